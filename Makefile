@@ -1,0 +1,29 @@
+# Every target creates and uses .venv on a fresh machine.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: demo test bench lint clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[test]"
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(PY) -m bearingsim.demo --out demo_output
+
+test: $(STAMP)
+	$(PY) -m ruff check bearingsim tests bench examples
+	$(PY) -m pytest -q -n 2 tests
+
+bench: $(STAMP)
+	$(PY) -m bench.run_all --out docs/benchmarks.md
+
+lint: $(STAMP)
+	$(PY) -m ruff check bearingsim tests bench examples
+
+clean:
+	rm -rf $(VENV) demo_output build *.egg-info

@@ -1,0 +1,146 @@
+"""Math that works on floats, numpy arrays and CasADi symbols alike.
+
+Physics functions and component equations are written once with these helpers, so the same code
+evaluates numbers in Python and builds symbolic CasADi graphs for the assembler and the FMU.
+
+Dispatch rule: if any argument is a CasADi ``SX``/``MX``/``DM`` object the CasADi function is used,
+otherwise numpy's.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+__all__ = [
+    "is_symbolic",
+    "sqrt",
+    "exp",
+    "log",
+    "sin",
+    "cos",
+    "tan",
+    "tanh",
+    "atan",
+    "atan2",
+    "arccos",
+    "arcsin",
+    "fabs",
+    "fmax",
+    "fmin",
+    "sign",
+    "power",
+    "if_else",
+    "smooth_max0",
+    "smooth_abs",
+    "ellipk",
+    "ellipe",
+]
+
+_CASADI_TYPES = (ca.SX, ca.MX, ca.DM)
+
+
+def is_symbolic(*values: Any) -> bool:
+    """Return True if any value is a CasADi object (SX, MX or DM)."""
+    return any(isinstance(v, _CASADI_TYPES) for v in values)
+
+
+def _unary(np_fn, ca_fn):
+    def fn(x):
+        return ca_fn(x) if is_symbolic(x) else np_fn(x)
+
+    fn.__doc__ = f"Element-wise ``{np_fn.__name__}`` for floats, arrays and CasADi symbols."
+    return fn
+
+
+sqrt = _unary(np.sqrt, ca.sqrt)
+exp = _unary(np.exp, ca.exp)
+log = _unary(np.log, ca.log)
+sin = _unary(np.sin, ca.sin)
+cos = _unary(np.cos, ca.cos)
+tan = _unary(np.tan, ca.tan)
+tanh = _unary(np.tanh, ca.tanh)
+atan = _unary(np.arctan, ca.atan)
+arccos = _unary(np.arccos, ca.acos)
+arcsin = _unary(np.arcsin, ca.asin)
+fabs = _unary(np.abs, ca.fabs)
+sign = _unary(np.sign, ca.sign)
+
+
+def atan2(y, x):
+    """Four-quadrant arc tangent for floats, arrays and CasADi symbols."""
+    return ca.atan2(y, x) if is_symbolic(y, x) else np.arctan2(y, x)
+
+
+def fmax(a, b):
+    """Element-wise maximum."""
+    return ca.fmax(a, b) if is_symbolic(a, b) else np.maximum(a, b)
+
+
+def fmin(a, b):
+    """Element-wise minimum."""
+    return ca.fmin(a, b) if is_symbolic(a, b) else np.minimum(a, b)
+
+
+def power(a, b):
+    """Element-wise ``a ** b``."""
+    return ca.power(a, b) if is_symbolic(a, b) else np.power(a, b)
+
+
+def if_else(cond, a, b):
+    """``a`` where ``cond`` holds, else ``b`` (both branches are evaluated)."""
+    if is_symbolic(cond, a, b):
+        return ca.if_else(cond, a, b)
+    return np.where(cond, a, b)
+
+
+def smooth_max0(x, eps):
+    """Smooth approximation of ``max(x, 0)``: ``(x + sqrt(x^2 + eps^2)) / 2``.
+
+    Differentiable everywhere (no events in the integrator); the error is at most ``eps / 2``.
+    """
+    return 0.5 * (x + sqrt(x * x + eps * eps))
+
+
+def smooth_abs(x, eps):
+    """Smooth approximation of ``|x|``: ``sqrt(x^2 + eps^2)``."""
+    return sqrt(x * x + eps * eps)
+
+
+def ellipk(m):
+    """Complete elliptic integral of the first kind K(m), parameter ``m = k^2``.
+
+    Numeric inputs use :func:`scipy.special.ellipk`; symbolic inputs use the arithmetic-geometric
+    mean (8 iterations, converged to machine precision for ``0 <= m < 1 - 1e-12``).
+    """
+    if not is_symbolic(m):
+        from scipy.special import ellipk as _ellipk
+
+        return _ellipk(m)
+    a, b = 1.0, sqrt(1.0 - m)
+    for _ in range(8):
+        a, b = 0.5 * (a + b), sqrt(a * b)
+    return np.pi / (2.0 * a)
+
+
+def ellipe(m):
+    """Complete elliptic integral of the second kind E(m), parameter ``m = k^2``.
+
+    Numeric inputs use :func:`scipy.special.ellipe`; symbolic inputs use the arithmetic-geometric
+    mean with the Gauss-Legendre sum (8 iterations).
+    """
+    if not is_symbolic(m):
+        from scipy.special import ellipe as _ellipe
+
+        return _ellipe(m)
+    a, b = 1.0, sqrt(1.0 - m)
+    c2_sum = 0.5 * m  # sum of 2^(n-1) c_n^2 starting with c_0^2 = m
+    scale = 0.5
+    for _ in range(8):
+        c = 0.5 * (a - b)
+        a, b = 0.5 * (a + b), sqrt(a * b)
+        scale *= 2.0
+        c2_sum = c2_sum + scale * c * c
+    return np.pi / (2.0 * a) * (1.0 - c2_sum)
