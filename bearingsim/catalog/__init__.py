@@ -1,0 +1,106 @@
+"""Catalogue of ball bearing geometries.
+
+The table ``bearings.csv`` holds catalogue values in mm, degrees, um, kN and r/min; they are
+converted to SI once, here. Each row names its ``source``. Internal geometry that manufacturers
+do not publish is estimated and listed in the ``estimated`` column, by these rules:
+
+* ``fi``, ``fo``: 0.52 / 0.53 for deep-groove bearings (typical values, Harris & Kotzalas,
+  *Rolling Bearing Analysis*, 5th ed.); 0.525 / 0.515 for angular contact bearings (the values
+  models.md section B gives for the NSK 7020 series).
+* ``Pd`` (deep-groove): the mean of the ISO 5753-1 Group N (CN) radial clearance range for the
+  bore.
+* ``dm``: (d + D) / 2.
+* ``Z``, ``Dw`` (deep-groove): a standard ball size (ISO 3290) of 0.55 to 0.62 times the ring
+  section (D - d) / 2, and the ball count for which the ISO 281 rating reproduces the catalogue C.
+* ``Z``, ``Dw`` (angular contact): the ball size nearest 0.57 times the ring section and
+  ``Z = floor(pi dm / (1.377 Dw))``, the section ratio and ball pitch of the published 7020
+  geometry.
+
+Catalogue ratings and speeds were transcribed from the named catalogues; check them against the
+current catalogue before relying on them.
+"""
+
+from __future__ import annotations
+
+import csv
+from functools import lru_cache
+from importlib import resources
+
+from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
+from bearingsim.errors import CatalogError
+from bearingsim.units import deg, mm, rpm_to_rad_s
+
+__all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings"]
+
+
+def _optional(text: str, scale: float) -> float | None:
+    return float(text) * scale if text.strip() else None
+
+
+def _row_to_geometry(row: dict[str, str]) -> BearingGeometry:
+    preload = None
+    if row["preload_light_N"].strip():
+        preload = PreloadClasses(
+            float(row["preload_light_N"]),
+            float(row["preload_medium_N"]),
+            float(row["preload_heavy_N"]),
+        )
+    return BearingGeometry(
+        designation=row["designation"],
+        bore=mm(float(row["d_mm"])),
+        outside_diameter=mm(float(row["D_mm"])),
+        width=mm(float(row["B_mm"])),
+        ball_count=int(row["Z"]),
+        ball_diameter=mm(float(row["Dw_mm"])),
+        pitch_diameter=mm(float(row["dm_mm"])),
+        fi=float(row["fi"]),
+        fo=float(row["fo"]),
+        contact_angle=deg(float(row["alpha_deg"])),
+        radial_clearance=float(row["Pd_um"]) * 1e-6,
+        dynamic_load_rating=_optional(row["C_kN"], 1e3),
+        static_load_rating=_optional(row["C0_kN"], 1e3),
+        reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),
+        limiting_speed=_optional(row["lim_speed_rpm"], rpm_to_rad_s(1.0)),
+        preload=preload,
+        estimated=tuple(f for f in row["estimated"].split(";") if f),
+        source=row["source"],
+    )
+
+
+@lru_cache(maxsize=1)
+def _catalogue() -> dict[str, BearingGeometry]:
+    text = resources.files(__name__).joinpath("bearings.csv").read_text(encoding="utf-8")
+    lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
+    return {row["designation"]: _row_to_geometry(row) for row in csv.DictReader(lines)}
+
+
+def list_bearings() -> list[str]:
+    """Designations of all catalogued bearings, in table order."""
+    return list(_catalogue())
+
+
+def get_bearing(designation: str) -> BearingGeometry:
+    """Geometry of a catalogued bearing, in SI units.
+
+    Parameters
+    ----------
+    designation : str
+        Bearing designation, e.g. "6204" or "7020C" (case-insensitive).
+
+    Returns
+    -------
+    BearingGeometry
+
+    Raises
+    ------
+    CatalogError
+        If the designation is unknown; the message lists the known designations.
+    """
+    table = _catalogue()
+    key = str(designation).strip().upper()
+    if key not in table:
+        raise CatalogError(
+            f"unknown bearing designation {designation!r}; known designations: "
+            + ", ".join(table)
+        )
+    return table[key]

@@ -1,0 +1,215 @@
+"""Internal geometry of a single-row ball bearing, in SI units.
+
+Relations from Harris & Kotzalas, *Rolling Bearing Analysis*, 5th ed., *Essential Concepts of
+Bearing Technology*, chapter "Rolling bearing macrogeometry" (groove curvature, clearance, free
+contact angle, groove curvature centre loci).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from bearingsim.errors import ParameterError, check_range
+
+__all__ = ["BearingGeometry", "PreloadClasses"]
+
+_MAX_CONTACT_ANGLE = math.radians(45.0)
+
+
+@dataclass(frozen=True)
+class PreloadClasses:
+    """Axial preload of the light, medium and heavy classes of a duplex pair.
+
+    Attributes
+    ----------
+    light, medium, heavy : float
+        Axial preload [N].
+    """
+
+    light: float
+    medium: float
+    heavy: float
+
+    def __post_init__(self) -> None:
+        for name in ("light", "medium", "heavy"):
+            check_range(getattr(self, name), name, "N", 0.0, where="PreloadClasses")
+        if not self.light <= self.medium <= self.heavy:
+            raise ParameterError(
+                f"PreloadClasses: preloads must satisfy light <= medium <= heavy, got "
+                f"{self.light:g}, {self.medium:g}, {self.heavy:g} [N]"
+            )
+
+    def __getitem__(self, level: str) -> float:
+        """Preload of the class named ``level`` ("light", "medium" or "heavy") [N]."""
+        if level not in ("light", "medium", "heavy"):
+            raise ParameterError(
+                f"preload class must be 'light', 'medium' or 'heavy', got {level!r}"
+            )
+        return getattr(self, level)
+
+
+@dataclass(frozen=True)
+class BearingGeometry:
+    """Geometry of a single-row ball bearing (deep-groove or angular contact), SI units.
+
+    Attributes
+    ----------
+    designation : str
+        Bearing designation, e.g. "6204".
+    bore : float
+        Bore diameter d [m].
+    outside_diameter : float
+        Outside diameter D [m].
+    width : float
+        Width B [m].
+    ball_count : int
+        Number of balls Z [-], at least 3.
+    ball_diameter : float
+        Ball diameter Dw [m].
+    pitch_diameter : float
+        Pitch diameter dm [m].
+    fi, fo : float
+        Inner and outer groove curvature factors (groove radius / Dw) [-], each in (0.5, 1).
+    contact_angle : float
+        Nominal contact angle [rad], 0 for a deep-groove bearing, at most 45 deg.
+    radial_clearance : float
+        Diametral (radial) internal clearance Pd [m], non-negative.
+    dynamic_load_rating, static_load_rating : float or None
+        Catalogue basic dynamic and static radial load ratings C, C0 [N].
+    reference_speed, limiting_speed : float or None
+        Catalogue reference (thermal) and limiting speeds [rad/s].
+    preload : PreloadClasses or None
+        Preload classes of a duplex pair, where published.
+    estimated : tuple of str
+        Names of the fields that were estimated because no catalogue publishes them.
+    source : str
+        Where the values come from.
+
+    Raises
+    ------
+    ParameterError
+        If a value is out of range or the balls do not fit the ring section.
+    """
+
+    designation: str
+    bore: float
+    outside_diameter: float
+    width: float
+    ball_count: int
+    ball_diameter: float
+    pitch_diameter: float
+    fi: float
+    fo: float
+    contact_angle: float = 0.0
+    radial_clearance: float = 0.0
+    dynamic_load_rating: float | None = None
+    static_load_rating: float | None = None
+    reference_speed: float | None = None
+    limiting_speed: float | None = None
+    preload: PreloadClasses | None = None
+    estimated: tuple[str, ...] = ()
+    source: str = "user"
+
+    def __post_init__(self) -> None:
+        where = f"BearingGeometry({self.designation})"
+        if isinstance(self.ball_count, bool) or not isinstance(self.ball_count, int):
+            raise ParameterError(
+                f"{where}: ball_count must be an integer >= 3 [-], got {self.ball_count!r}"
+            )
+        check_range(self.ball_count, "ball_count", "-", 3, where=where)
+        for name in ("bore", "outside_diameter", "width", "ball_diameter", "pitch_diameter"):
+            check_range(getattr(self, name), name, "m", 0.0, low_inclusive=False, where=where)
+        check_range(self.fi, "fi", "-", 0.5, 1.0, low_inclusive=False, where=where)
+        check_range(self.fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
+        check_range(self.contact_angle, "contact_angle", "rad", 0.0, _MAX_CONTACT_ANGLE,
+                    where=where)
+        check_range(self.radial_clearance, "radial_clearance", "m", 0.0, where=where)
+        for name in ("dynamic_load_rating", "static_load_rating", "reference_speed",
+                     "limiting_speed"):
+            if getattr(self, name) is not None:
+                check_range(getattr(self, name), name, "N" if "rating" in name else "rad/s",
+                            0.0, low_inclusive=False, where=where)
+        d, big_d, dw, dm = self.bore, self.outside_diameter, self.ball_diameter, self.pitch_diameter
+        if not (d < dm - dw and dm + dw < big_d):
+            raise ParameterError(
+                f"{where}: the balls do not fit the ring section: need bore < dm - Dw and "
+                f"dm + Dw < outside_diameter, got bore = {d:g}, dm = {dm:g}, Dw = {dw:g}, "
+                f"outside_diameter = {big_d:g} [m]"
+            )
+        if dw >= dm * math.sin(math.pi / self.ball_count):
+            raise ParameterError(
+                f"{where}: {self.ball_count} balls of Dw = {dw:g} m do not fit on the pitch "
+                f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
+                f"{dm * math.sin(math.pi / self.ball_count):g} m)"
+            )
+        cos_free = 1.0 - self.radial_clearance / (2.0 * self.groove_centre_distance)
+        if cos_free < math.cos(_MAX_CONTACT_ANGLE):
+            raise ParameterError(
+                f"{where}: radial_clearance = {self.radial_clearance:g} m gives a free contact "
+                f"angle above 45 deg; valid range [0, "
+                f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
+            )
+
+    @property
+    def bearing_type(self) -> str:
+        """"deep_groove" for a zero nominal contact angle, else "angular_contact"."""
+        return "deep_groove" if self.contact_angle == 0.0 else "angular_contact"
+
+    @property
+    def inner_groove_radius(self) -> float:
+        """Inner raceway groove radius ri = fi Dw [m]."""
+        return self.fi * self.ball_diameter
+
+    @property
+    def outer_groove_radius(self) -> float:
+        """Outer raceway groove radius ro = fo Dw [m]."""
+        return self.fo * self.ball_diameter
+
+    @property
+    def total_curvature(self) -> float:
+        """Total curvature B = fi + fo - 1 [-] (Harris & Kotzalas)."""
+        return self.fi + self.fo - 1.0
+
+    @property
+    def groove_centre_distance(self) -> float:
+        """Distance between the groove curvature centres A = B Dw [m] (Harris & Kotzalas)."""
+        return self.total_curvature * self.ball_diameter
+
+    @property
+    def free_contact_angle(self) -> float:
+        """Free (unloaded) contact angle [rad].
+
+        For a deep-groove bearing, from the radial clearance: cos a0 = 1 - Pd / (2 A)
+        (Harris & Kotzalas). For an angular contact bearing, the nominal contact angle.
+        """
+        if self.bearing_type == "angular_contact":
+            return self.contact_angle
+        return math.acos(1.0 - self.radial_clearance / (2.0 * self.groove_centre_distance))
+
+    @property
+    def inner_groove_centre_radius(self) -> float:
+        """Radius of the locus of the inner groove curvature centre [m].
+
+        ``dm/2 + (fi - 0.5) Dw cos a0`` with the ball centre on the pitch circle and the free
+        contact angle a0 (Harris & Kotzalas): the inner groove centre lies beyond the ball centre,
+        outside the pitch circle.
+        """
+        return 0.5 * self.pitch_diameter + (self.fi - 0.5) * self.ball_diameter * math.cos(
+            self.free_contact_angle
+        )
+
+    @property
+    def outer_groove_centre_radius(self) -> float:
+        """Radius of the locus of the outer groove curvature centre [m].
+
+        ``dm/2 - (fo - 0.5) Dw cos a0`` (Harris & Kotzalas): inside the pitch circle.
+        """
+        return 0.5 * self.pitch_diameter - (self.fo - 0.5) * self.ball_diameter * math.cos(
+            self.free_contact_angle
+        )
+
+    @property
+    def gamma(self) -> float:
+        """Dimensionless ball size gamma = Dw cos(a) / dm [-] at the nominal contact angle."""
+        return self.ball_diameter * math.cos(self.contact_angle) / self.pitch_diameter
