@@ -1,0 +1,1 @@
+"""Component libraries: rotational mechanics, bearing elements, motors."""

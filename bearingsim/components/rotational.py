@@ -1,0 +1,308 @@
+"""1-D rotational mechanics (in the manner of Modelica.Mechanics.Rotational).
+
+Sign convention: a flange's torque ``tau`` is the cut torque acting *on* the component that owns
+the flange; connected flanges share ``phi`` and their torques sum to zero.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import casadi as ca
+
+from bearingsim.language import Component, Connector, Flow, Input, Parameter, Potential, Variable
+from bearingsim.language import der
+
+__all__ = [
+    "Flange",
+    "Inertia",
+    "PartialCompliant",
+    "Spring",
+    "Damper",
+    "SpringDamper",
+    "Fixed",
+    "TorqueSource",
+    "SpeedSource",
+    "IdealGear",
+    "SpeedSensor",
+    "TorqueSensor",
+]
+
+TimeFunction = Callable[[ca.SX], ca.SX]
+
+
+class Flange(Connector):
+    """Rotational flange.
+
+    Connectors
+    ----------
+    phi : Potential [rad]
+        Absolute rotation angle.
+    tau : Flow [N m]
+        Cut torque into the owning component.
+    """
+
+    phi = Potential(unit="rad", description="absolute rotation angle")
+    tau = Flow(unit="N.m", description="cut torque acting on the component")
+
+
+class Inertia(Component):
+    """Rigid body rotating about a fixed axis.
+
+    Parameters
+    ----------
+    J : float
+        Moment of inertia [kg m^2], > 0.
+    phi0, w0 : float
+        Initial angle [rad] and angular speed [rad/s].
+
+    Variables
+    ---------
+    phi [rad], w [rad/s], a [rad/s^2]
+
+    Connectors
+    ----------
+    flange_a, flange_b : Flange
+    """
+
+    def __init__(self, J: float = 1.0, phi0: float = 0.0, w0: float = 0.0, name=None):
+        super().__init__(name)
+        self.J = Parameter(J, "kg.m2", "moment of inertia", low=0.0, low_inclusive=False)
+        self.flange_a = Flange()
+        self.flange_b = Flange()
+        self.phi = Variable(phi0, "rad", "absolute rotation angle")
+        self.w = Variable(w0, "rad/s", "absolute angular speed")
+
+    def equations(self):
+        return [
+            self.phi == self.flange_a.phi,
+            self.phi == self.flange_b.phi,
+            der(self.phi) == self.w,
+            self.J * der(self.w) == self.flange_a.tau + self.flange_b.tau,
+        ]
+
+
+class PartialCompliant(Component):
+    """Base of elements that transmit a torque ``tau`` from flange_a to flange_b.
+
+    Variables
+    ---------
+    phi_rel [rad] : flange_b.phi - flange_a.phi
+    tau [N m] : torque acting on the element at flange_b (at flange_a: -tau)
+    """
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.flange_a = Flange()
+        self.flange_b = Flange()
+        self.phi_rel = Variable(unit="rad", description="relative rotation angle")
+        self.tau = Variable(unit="N.m", description="transmitted torque")
+
+    def compliant_equations(self):
+        """The two-flange relations every subclass includes."""
+        return [
+            self.phi_rel == self.flange_b.phi - self.flange_a.phi,
+            self.flange_b.tau == self.tau,
+            self.flange_a.tau == -self.tau,
+        ]
+
+
+class Spring(PartialCompliant):
+    """Linear torsional spring.
+
+    Parameters
+    ----------
+    c : float
+        Stiffness [N m/rad], > 0.
+    phi_rel0 : float
+        Unstretched relative angle [rad].
+    """
+
+    def __init__(self, c: float = 1.0, phi_rel0: float = 0.0, name=None):
+        super().__init__(name)
+        self.c = Parameter(c, "N.m/rad", "spring constant", low=0.0, low_inclusive=False)
+        self.phi_rel0 = Parameter(phi_rel0, "rad", "unstretched spring angle")
+
+    def equations(self):
+        return self.compliant_equations() + [
+            self.tau == self.c * (self.phi_rel - self.phi_rel0)
+        ]
+
+
+class Damper(PartialCompliant):
+    """Linear torsional damper.
+
+    Parameters
+    ----------
+    d : float
+        Damping constant [N m s/rad], >= 0.
+    """
+
+    def __init__(self, d: float = 1.0, name=None):
+        super().__init__(name)
+        self.d = Parameter(d, "N.m.s/rad", "damping constant", low=0.0)
+        self.w_rel = Variable(unit="rad/s", description="relative angular speed")
+
+    def equations(self):
+        return self.compliant_equations() + [
+            self.w_rel == der(self.phi_rel),
+            self.tau == self.d * self.w_rel,
+        ]
+
+
+class SpringDamper(PartialCompliant):
+    """Linear spring and damper in parallel.
+
+    Parameters
+    ----------
+    c : float
+        Stiffness [N m/rad], > 0.
+    d : float
+        Damping [N m s/rad], >= 0.
+    phi_rel0 : float
+        Unstretched relative angle [rad].
+    """
+
+    def __init__(self, c: float = 1.0, d: float = 0.0, phi_rel0: float = 0.0, name=None):
+        super().__init__(name)
+        self.c = Parameter(c, "N.m/rad", "spring constant", low=0.0, low_inclusive=False)
+        self.d = Parameter(d, "N.m.s/rad", "damping constant", low=0.0)
+        self.phi_rel0 = Parameter(phi_rel0, "rad", "unstretched spring angle")
+        self.w_rel = Variable(unit="rad/s", description="relative angular speed")
+
+    def equations(self):
+        return self.compliant_equations() + [
+            self.w_rel == der(self.phi_rel),
+            self.tau == self.c * (self.phi_rel - self.phi_rel0) + self.d * self.w_rel,
+        ]
+
+
+class Fixed(Component):
+    """Flange fixed at an angle.
+
+    Parameters
+    ----------
+    phi0 : float
+        Fixed angle [rad].
+    """
+
+    def __init__(self, phi0: float = 0.0, name=None):
+        super().__init__(name)
+        self.phi0 = Parameter(phi0, "rad", "fixed angle")
+        self.flange = Flange()
+
+    def equations(self):
+        return [self.flange.phi == self.phi0]
+
+
+class TorqueSource(Component):
+    """Drives its flange with a torque given by an input or a function of time.
+
+    Parameters
+    ----------
+    torque : callable or float or None
+        ``torque(t)`` built from CasADi/`bearingsim._ops` math (kept symbolic), a constant, or
+        ``None`` for an input ``tau_in`` [N m].
+    """
+
+    def __init__(self, torque: TimeFunction | float | None = None, name=None):
+        super().__init__(name)
+        self.flange = Flange()
+        self._torque = torque
+        if torque is None:
+            self.tau_in = Input(unit="N.m", description="driving torque")
+
+    def equations(self):
+        tau = _signal(self._torque, self, "tau_in")
+        return [self.flange.tau == -tau]
+
+
+class SpeedSource(Component):
+    """Forces its flange to turn at a speed given by an input or a function of time.
+
+    Parameters
+    ----------
+    speed : callable or float or None
+        ``speed(t)`` [rad/s] (symbolic), a constant, or ``None`` for an input ``w_in``.
+    phi0 : float
+        Initial angle [rad].
+    """
+
+    def __init__(self, speed: TimeFunction | float | None = None, phi0: float = 0.0, name=None):
+        super().__init__(name)
+        self.flange = Flange()
+        self._speed = speed
+        self.phi = Variable(phi0, "rad", "angle of the driven flange")
+        self.w = Variable(unit="rad/s", description="imposed angular speed")
+        if speed is None:
+            self.w_in = Input(unit="rad/s", description="imposed angular speed")
+
+    def equations(self):
+        return [
+            self.w == _signal(self._speed, self, "w_in"),
+            der(self.phi) == self.w,
+            self.flange.phi == self.phi,
+        ]
+
+
+class IdealGear(Component):
+    """Ideal gear without inertia: ``phi_a = ratio * phi_b``, power conserving.
+
+    Parameters
+    ----------
+    ratio : float
+        Transmission ratio flange_a/flange_b [1], non-zero.
+    """
+
+    def __init__(self, ratio: float = 1.0, name=None):
+        super().__init__(name)
+        self.ratio = Parameter(ratio, "1", "transmission ratio phi_a/phi_b")
+        if ratio == 0:
+            from bearingsim.errors import ParameterError
+
+            raise ParameterError(f"{type(self).__name__}: ratio [1] must be non-zero")
+        self.flange_a = Flange()
+        self.flange_b = Flange()
+
+    def equations(self):
+        return [
+            self.flange_a.phi == self.ratio * self.flange_b.phi,
+            0 == self.ratio * self.flange_a.tau + self.flange_b.tau,
+        ]
+
+
+class SpeedSensor(Component):
+    """Measures the absolute angular speed ``w`` [rad/s] of its flange."""
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.flange = Flange()
+        self.w = Variable(unit="rad/s", description="measured angular speed")
+
+    def equations(self):
+        return [self.w == der(self.flange.phi), self.flange.tau == 0]
+
+
+class TorqueSensor(Component):
+    """Measures the torque ``tau`` [N m] passed from flange_a to flange_b."""
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.flange_a = Flange()
+        self.flange_b = Flange()
+        self.tau = Variable(unit="N.m", description="measured torque")
+
+    def equations(self):
+        return [
+            self.flange_a.phi == self.flange_b.phi,
+            self.flange_a.tau == self.tau,
+            self.flange_b.tau == -self.tau,
+        ]
+
+
+def _signal(source, component: Component, input_name: str):
+    if source is None:
+        return getattr(component, input_name)
+    if callable(source):
+        return source(component.time)
+    return ca.SX(float(source))

@@ -1,0 +1,74 @@
+"""Connectors: the ports through which components exchange potentials and flows."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from bearingsim.errors import ModelError
+from bearingsim.language.declarations import Declaration, Flow, Potential
+
+__all__ = ["Connector"]
+
+
+class Connector:
+    """Base class of connector types.
+
+    Subclasses declare their fields as class attributes of type :class:`Potential` or
+    :class:`Flow`. Each connector instance owns its own symbols; after it is assigned to a component
+    attribute its fields read as CasADi symbols (``flange.phi``).
+
+    Examples
+    --------
+    >>> from bearingsim import Connector, Potential, Flow
+    >>> class Pin(Connector):
+    ...     v = Potential(unit="V", description="electric potential")
+    ...     i = Flow(unit="A", description="current into the component")
+    """
+
+    _field_decls: dict[str, Declaration] = {}
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        fields = dict(getattr(cls, "_field_decls", {}))
+        for key, value in list(vars(cls).items()):
+            if isinstance(value, (Potential, Flow)):
+                fields[key] = value
+        cls._field_decls = fields
+
+    def __init__(self, description: str = ""):
+        if not self._field_decls:
+            raise ModelError(f"connector type {type(self).__name__} declares no fields")
+        self.description = description
+        self.owner: Any = None
+        self.name: str | None = None
+        self.fields: dict[str, Declaration] = {}
+
+    def bind(self, owner: Any, name: str) -> None:
+        """Attach to a component under ``name`` and create the field symbols."""
+        if self.owner is not None:
+            raise ModelError(f"connector {self.path} is already part of a component")
+        self.owner = owner
+        self.name = name
+        for key, proto in self._field_decls.items():
+            decl = proto.clone()
+            setattr(self, key, decl.bind(self, key))
+            self.fields[key] = decl
+
+    @property
+    def path(self) -> str:
+        """Dotted name relative to the root."""
+        prefix = self.owner.path if self.owner is not None else ""
+        return f"{prefix}.{self.name}" if prefix else str(self.name)
+
+    @property
+    def potentials(self) -> list[Declaration]:
+        """Potential fields in declaration order."""
+        return [d for d in self.fields.values() if isinstance(d, Potential)]
+
+    @property
+    def flows(self) -> list[Declaration]:
+        """Flow fields in declaration order."""
+        return [d for d in self.fields.values() if isinstance(d, Flow)]
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.path}>"

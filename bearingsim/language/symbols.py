@@ -1,0 +1,96 @@
+"""Symbols of the modeling language: declared variables become CasADi SX symbols.
+
+Every declared variable, parameter and connector field is one scalar ``casadi.SX`` symbol with a
+unique name ``<attr>__<id>``. The registry maps those names back to their declarations so the
+assembler can find owners, units and start values, and so that ``der`` can create derivative
+symbols.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+import weakref
+from typing import TYPE_CHECKING, Any
+
+import casadi as ca
+
+from bearingsim.errors import ModelError
+
+if TYPE_CHECKING:
+    from bearingsim.language.declarations import Declaration
+
+__all__ = ["time", "der", "symbol_declaration", "new_symbol", "readable"]
+
+_counter = itertools.count()
+_registry: weakref.WeakValueDictionary[str, Declaration] = weakref.WeakValueDictionary()
+_NAME = re.compile(r"\b([A-Za-z_][A-Za-z0-9_]*?)__(\d+)\b")
+
+time = ca.SX.sym("time")
+"""The independent variable t [s], shared by every model."""
+
+
+def new_symbol(attr: str, declaration: Declaration) -> ca.SX:
+    """Create the unique SX symbol of a declaration and register it."""
+    name = f"{attr}__{next(_counter)}"
+    _registry[name] = declaration
+    return ca.SX.sym(name)
+
+
+def symbol_declaration(sym: ca.SX) -> Declaration | None:
+    """The declaration behind a scalar symbol, or None for foreign symbols."""
+    return _registry.get(sym.name())
+
+
+def _derivative_of_symbol(sym: ca.SX) -> ca.SX:
+    decl = symbol_declaration(sym)
+    if decl is None:
+        raise ModelError(f"der() of {sym} which is not a declared variable")
+    return decl.derivative_symbol()
+
+
+def der(expr: Any) -> Any:
+    """Time derivative of a variable or of an expression of variables.
+
+    ``der(x)`` of a declared variable returns its derivative symbol. For an expression the chain
+    rule is applied: ``der(f(x, t)) = df/dx der(x) + df/dt``; parameters count as constants.
+
+    Parameters
+    ----------
+    expr : casadi.SX or float
+        A declared variable or an expression of declared variables.
+
+    Returns
+    -------
+    casadi.SX
+        The derivative expression.
+    """
+    if not isinstance(expr, ca.SX):
+        return 0.0
+    if expr.numel() != 1:
+        return ca.vertcat(*[der(expr[i]) for i in range(expr.numel())])
+    if expr.is_symbolic():
+        return _derivative_of_symbol(expr)
+    syms = ca.symvar(expr)
+    result = ca.SX(0)
+    for s in syms:
+        if s.name() == time.name():
+            result += ca.jacobian(expr, s)
+            continue
+        decl = symbol_declaration(s)
+        if decl is None:
+            raise ModelError(f"der() of an expression containing the foreign symbol {s}")
+        if decl.is_constant_in_time:
+            continue
+        result += ca.jacobian(expr, s) * decl.derivative_symbol()
+    return result
+
+
+def readable(expr: Any) -> str:
+    """Render an expression with the dotted names of its variables instead of symbol names."""
+
+    def repl(match: re.Match) -> str:
+        decl = _registry.get(match.group(0))
+        return decl.path if decl is not None else match.group(0)
+
+    return _NAME.sub(repl, str(expr))

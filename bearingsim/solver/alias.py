@@ -1,0 +1,202 @@
+"""Alias elimination: ``a = ±b`` and ``a = constant`` equations are removed by substitution.
+
+The eliminated variables are kept in ``dae.aliases`` so results can still report them (MTK's
+"observed" equations). Derivative links are carried over to the representative.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+
+from bearingsim.solver.dae import DAE, Eq, Var
+
+__all__ = ["eliminate_aliases"]
+
+
+def _classify(eq: Eq, lookup: dict[str, Var]):
+    """Return ('alias', a, b, s) for a = s*b, ('const', a, c) for a = c, or None."""
+    syms = ca.symvar(eq.residual)
+    if not syms or len(syms) > 2:
+        return None
+    vs = [lookup.get(s.name()) for s in syms]
+    if any(v is None for v in vs):
+        return None
+    r = eq.residual
+    coefs = [ca.jacobian(r, v.sym) for v in vs]
+    if not all(c.is_constant() for c in coefs):
+        return None
+    rest = ca.substitute(r, ca.vertcat(*[v.sym for v in vs]), ca.DM.zeros(len(vs)))
+    if not rest.is_constant():
+        return None
+    c = [float(x) for x in coefs]
+    if len(vs) == 1:
+        return ("const", vs[0], -float(rest) / c[0])
+    if float(rest) != 0.0 or abs(abs(c[0]) - abs(c[1])) > 0:
+        return None
+    return ("alias", vs[0], vs[1], -c[1] / c[0])
+
+
+def _priority(v: Var) -> tuple:
+    # lower is better as representative
+    return (not v.is_input, v.is_derivative, v.derivative is None, not v.fixed, len(v.name), v.name)
+
+
+def eliminate_aliases(dae: DAE, max_rounds: int = 8) -> None:
+    """Remove alias and constant equations from ``dae`` in place."""
+    for _ in range(max_rounds):
+        if not _one_round(dae):
+            break
+
+
+def _one_round(dae: DAE) -> bool:
+    lookup = dae.by_name()
+    parent: dict[Var, Var] = {}
+    sign: dict[Var, float] = {}
+
+    def find(v: Var) -> tuple[Var, float]:
+        s = 1.0
+        while parent.get(v, v) is not v:
+            s *= sign[v]
+            v = parent[v]
+        return v, s
+
+    integral_of: dict[Var, Var] = {}
+    for v in dae.vars:
+        if v.derivative is not None:
+            integral_of[v.derivative] = v
+
+    used: list[Eq] = []
+    consts: list[tuple[Var, float, Eq]] = []
+    for eq in dae.eqs:
+        kind = _classify(eq, lookup)
+        if kind is None:
+            continue
+        if kind[0] == "const":
+            consts.append((kind[1], kind[2], eq))
+            continue
+        _, a, b, s = kind
+        if a.is_input and b.is_input:
+            continue
+        if s < 0 and (a in integral_of or b in integral_of):
+            continue
+        ra, sa = find(a)
+        rb, sb = find(b)
+        if ra is rb or _in_derivative_chain(ra, rb) or _in_derivative_chain(rb, ra):
+            continue  # redundant, conflicting or an ODE x' = x: not an alias
+        # a = s b  ->  sa*ra = s*sb*rb  ->  ra = (s*sb/sa) rb
+        rel = s * sb / sa
+        if _priority(rb) <= _priority(ra):
+            parent[ra], sign[ra] = rb, rel
+        else:
+            parent[rb], sign[rb] = ra, 1.0 / rel
+        used.append(eq)
+
+    # constants on representatives
+    const_val: dict[Var, float] = {}
+    for v, c, eq in consts:
+        r, s = find(v)
+        if r in const_val or r.is_input or r in integral_of:
+            continue
+        const_val[r] = c / s
+        used.append(eq)
+
+    if not used:
+        return False
+
+    # derivative links of eliminated variables move to their representatives
+    extra_eqs: list[Eq] = []
+    for v in list(parent):
+        r, s = find(v)
+        if v.derivative is None:
+            continue
+        if r.derivative is None:
+            if s > 0:
+                r.derivative = v.derivative
+                continue
+            d = Var(f"der({r.name})", ca.SX.sym(f"der_{r.sym.name()}"), f"({r.unit})/s")
+            d.is_derivative = True
+            dae.vars.append(d)
+            r.derivative = d
+            lookup[d.sym.name()] = d
+        if r.derivative is not v.derivative:
+            extra_eqs.append(
+                Eq(v.derivative.sym - s * r.derivative.sym, "alias", text=f"der({v.name}) link")
+            )
+    for r in list(const_val):
+        if r.derivative is not None:
+            extra_eqs.append(Eq(r.derivative.sym, "alias", text=f"der({r.name}) = 0"))
+            r.derivative = None
+
+    used_ids = {id(e) for e in used}
+    remaining = [e for e in dae.eqs if id(e) not in used_ids] + extra_eqs
+    removed = [v for v in dae.vars if v in parent or v in const_val]
+    syms, repl = [], []
+    for v in removed:
+        if v in const_val:
+            val = const_val[v]
+            syms.append(v.sym)
+            repl.append(ca.SX(val))
+            dae.aliases[v.name] = (0.0, None, val)
+            continue
+        r, s = find(v)
+        if r in const_val:
+            syms.append(v.sym)
+            repl.append(ca.SX(s * const_val[r]))
+            dae.aliases[v.name] = (0.0, None, s * const_val[r])
+        else:
+            syms.append(v.sym)
+            repl.append(s * r.sym)
+            dae.aliases[v.name] = (s, r, 0.0)
+            if r.start is None and v.start is not None:
+                r.start, r.fixed = s * v.start, v.fixed
+            if v.is_input:
+                r.is_input = True
+    targets = remaining + dae.initial_eqs
+    if targets and syms:
+        res = ca.substitute(
+            ca.vertcat(*[e.residual for e in targets]), ca.vertcat(*syms), ca.vertcat(*repl)
+        )
+        for i, e in enumerate(targets):
+            e.residual = res[i]
+    removed_ids = {id(v) for v in removed}
+    dae.vars = [v for v in dae.vars if id(v) not in removed_ids]
+    # derivative pointers that referred to removed derivative vars
+    for v in dae.vars:
+        if v.derivative is not None and id(v.derivative) in removed_ids:
+            r, s = find(v.derivative)
+            if r in const_val or s < 0:
+                d = v.derivative
+                v.derivative = None
+                remaining.append(Eq(_deriv_placeholder(dae, v, d, r, s, const_val), "alias"))
+            else:
+                v.derivative = r
+    # re-point alias entries whose representative was itself removed later
+    dae.eqs = remaining
+    for name, (s, r, off) in list(dae.aliases.items()):
+        if r is not None and id(r) in removed_ids:
+            rr, s2 = find(r)
+            if rr in const_val:
+                dae.aliases[name] = (0.0, None, s * s2 * const_val[rr] + off)
+            else:
+                dae.aliases[name] = (s * s2, rr, off)
+    return True
+
+
+def _in_derivative_chain(a: Var, b: Var) -> bool:
+    """Whether ``b`` is a (higher) derivative of ``a``."""
+    d = a.derivative
+    while d is not None:
+        if d is b:
+            return True
+        d = d.derivative
+    return False
+
+
+def _deriv_placeholder(dae, v, d, r, s, const_val):
+    """Re-create der(v) as its own variable equal to what its eliminated derivative became."""
+    nd = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), f"({v.unit})/s")
+    nd.is_derivative = True
+    dae.vars.append(nd)
+    v.derivative = nd
+    target = ca.SX(s * const_val[r]) if r in const_val else s * r.sym
+    return nd.sym - target

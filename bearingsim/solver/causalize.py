@@ -1,0 +1,145 @@
+"""Solving the BLT blocks: explicit assignments, torn linear loops and torn nonlinear loops.
+
+Each block's unknowns are expressed through the *base* symbols (time, states, inputs,
+parameters) and the tearing variables of earlier nonlinear blocks. Within a block a greedy
+tearing (the variable in most remaining equations is torn first) leaves a small set of tearing
+variables; the other unknowns follow explicitly from equations linear in them. A linear residual
+system is solved symbolically; a nonlinear one becomes a :class:`NonlinearBlock` that code
+generation turns into a CasADi ``fast_newton`` rootfinder.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import casadi as ca
+
+from bearingsim.solver.dae import DAE, Eq, Var
+
+__all__ = ["NonlinearBlock", "Causal", "causalize"]
+
+
+@dataclass
+class NonlinearBlock:
+    """Residuals ``g(z) = 0`` in the tearing variables ``z`` (their own symbols)."""
+
+    tears: list[Var]
+    residuals: ca.SX
+    guess: list[float]
+    equations: list[Eq]
+
+
+@dataclass
+class Causal:
+    """Every unknown as an expression of base symbols and nonlinear-block tearing variables."""
+
+    expr: dict[Var, ca.SX] = field(default_factory=dict)
+    nonlinear: list[NonlinearBlock] = field(default_factory=list)
+    n_blocks: int = 0
+    n_linear_loops: int = 0
+    largest_block: int = 0
+
+
+def _solve_linear_scalar(r: ca.SX, v: Var) -> ca.SX:
+    coef = ca.jacobian(r, v.sym)
+    rest = ca.substitute(r, v.sym, ca.SX(0))
+    return -rest / coef
+
+
+def _linear_in(r: ca.SX, v: Var) -> bool:
+    coef = ca.jacobian(r, v.sym)
+    return not ca.depends_on(coef, v.sym) and not (coef.is_constant() and float(coef) == 0.0)
+
+
+def _tear(block: list[tuple[Eq, Var]], residuals: dict[Eq, ca.SX]):
+    """Greedy tearing. Returns (ordered explicit (eq, var) pairs, tear vars, residual eqs)."""
+    eqs = [e for e, _ in block]
+    unknown = {v for _, v in block}
+    occurs = {e: [v for v in unknown if ca.depends_on(residuals[e], v.sym)] for e in eqs}
+    remaining_eqs = list(eqs)
+    solved: list[tuple[Eq, Var]] = []
+    tears: list[Var] = []
+    while unknown:
+        progress = True
+        while progress:
+            progress = False
+            for e in list(remaining_eqs):
+                left = [v for v in occurs[e] if v in unknown]
+                if len(left) == 1 and _linear_in(residuals[e], left[0]):
+                    solved.append((e, left[0]))
+                    unknown.discard(left[0])
+                    remaining_eqs.remove(e)
+                    progress = True
+        if not unknown:
+            break
+        counts = {v: sum(v in occurs[e] for e in remaining_eqs) for v in unknown}
+        pick = max(sorted(unknown, key=lambda v: v.name), key=lambda v: counts[v])
+        tears.append(pick)
+        unknown.discard(pick)
+    return solved, tears, remaining_eqs
+
+
+def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
+    """Express every unknown through base symbols, block by block."""
+    out = Causal(n_blocks=len(blocks))
+    for block in blocks:
+        out.largest_block = max(out.largest_block, len(block))
+        raw = ca.vertcat(*[e.residual for e, _ in block])
+        prev = [v for v in out.expr if ca.depends_on(raw, v.sym)] if out.expr else []
+        if prev:
+            raw = ca.substitute(
+                raw, ca.vertcat(*[v.sym for v in prev]), ca.vertcat(*[out.expr[v] for v in prev])
+            )
+        residuals = {e: raw[k] for k, (e, _) in enumerate(block)}
+        if len(block) == 1:
+            e, v = block[0]
+            r = residuals[e]
+            if _linear_in(r, v):
+                out.expr[v] = _solve_linear_scalar(r, v)
+            else:
+                out.expr[v] = v.sym
+                out.nonlinear.append(NonlinearBlock([v], r, [_guess(v)], [e]))
+            continue
+        solved, tears, res_eqs = _tear(block, residuals)
+        local: dict[Var, ca.SX] = {}
+        for e, v in solved:
+            r = residuals[e]
+            if local:
+                keys = [k for k in local if ca.depends_on(r, k.sym)]
+                if keys:
+                    r = ca.substitute(
+                        r, ca.vertcat(*[k.sym for k in keys]), ca.vertcat(*[local[k] for k in keys])
+                    )
+            local[v] = _solve_linear_scalar(r, v)
+        g = ca.vertcat(*[residuals[e] for e in res_eqs])
+        if local:
+            g = ca.substitute(
+                g, ca.vertcat(*[k.sym for k in local]), ca.vertcat(*[local[k] for k in local])
+            )
+        z = ca.vertcat(*[t.sym for t in tears])
+        jac = ca.jacobian(g, z)
+        if not ca.depends_on(jac, z):
+            out.n_linear_loops += 1
+            g0 = ca.substitute(g, z, ca.DM.zeros(len(tears)))
+            zsol = ca.solve(jac, -g0)
+            tear_expr = {t: zsol[k] for k, t in enumerate(tears)}
+        else:
+            out.nonlinear.append(
+                NonlinearBlock(tears, g, [_guess(t) for t in tears], [e for e, _ in block])
+            )
+            tear_expr = {t: t.sym for t in tears}
+        for t, ex in tear_expr.items():
+            out.expr[t] = ex
+        if local:
+            vals = ca.substitute(
+                ca.vertcat(*[local[v] for v in local]),
+                z,
+                ca.vertcat(*[tear_expr[t] for t in tears]),
+            )
+            for k, v in enumerate(local):
+                out.expr[v] = vals[k]
+    return out
+
+
+def _guess(v: Var) -> float:
+    return float(v.start) if v.start is not None else 0.0

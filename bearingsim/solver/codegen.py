@@ -1,0 +1,95 @@
+"""Code generation: CasADi Functions for the ODE right-hand side, its exact sparse Jacobian,
+the outputs and every observed variable.
+
+Models whose BLT contains nonlinear blocks get MX functions in which each block is a
+``fast_newton`` rootfinder (code-generatable C); all other models are pure SX.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+
+from bearingsim.solver.causalize import Causal
+from bearingsim.solver.dae import DAE, Var
+
+__all__ = ["build_functions"]
+
+
+def _value_expr(v: Var, causal: Causal) -> ca.SX:
+    if v.is_state or v.is_input:
+        return v.sym
+    return causal.expr[v]
+
+
+def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_tol: float):
+    """Return (functions dict, observed names, output names)."""
+    states = dae.states
+    inputs = dae.inputs
+    t = dae.time
+    x = ca.vertcat(*[v.sym for v in states]) if states else ca.SX(0, 1)
+    u = ca.vertcat(*[v.sym for v in inputs]) if inputs else ca.SX(0, 1)
+    p = ca.vertcat(*[q.sym for q in dae.params]) if dae.params else ca.SX(0, 1)
+
+    xdot = ca.vertcat(*[_value_expr(v.derivative, causal) for v in states]) if states else ca.SX(0, 1)
+
+    observed_names: list[str] = []
+    observed: list[ca.SX] = []
+    for v in dae.vars:
+        observed_names.append(v.name)
+        observed.append(_value_expr(v, causal))
+    index = {v.name: v for v in dae.vars}
+    for name, (scale, rep, offset) in dae.aliases.items():
+        observed_names.append(name)
+        observed.append(offset + (scale * _value_expr(rep, causal) if rep is not None else 0))
+    obs = ca.vertcat(*observed) if observed else ca.SX(0, 1)
+    obs_pos = {n: k for k, n in enumerate(observed_names)}
+    output_names = list(outputs) if outputs else [n for n in observed_names if n in index]
+    y = ca.vertcat(*[obs[obs_pos[n]] for n in output_names]) if output_names else ca.SX(0, 1)
+
+    exprs = {"ode": xdot, "observe": obs, "output": y}
+    args = [t, x, u, p]
+    names = ["t", "x", "u", "p"]
+    if not causal.nonlinear:
+        funcs = {k: ca.Function(k, args, [e], names, [k]) for k, e in exprs.items()}
+        jx = ca.jacobian(xdot, x)
+        funcs["jac_x"] = ca.Function("jac_x", args, [jx], names, ["jac_x"])
+        funcs["jac_u"] = ca.Function("jac_u", args, [ca.jacobian(xdot, u)], names, ["jac_u"])
+        funcs["out_jac_x"] = ca.Function("out_jac_x", args, [ca.jacobian(y, x)], names, ["J"])
+        funcs["out_jac_u"] = ca.Function("out_jac_u", args, [ca.jacobian(y, u)], names, ["J"])
+        return funcs, observed_names, output_names
+
+    # MX composition with rootfinders
+    base_sx = ca.vertcat(t, x, u, p)
+    mt, mx = ca.MX.sym("t"), ca.MX.sym("x", x.numel())
+    mu, mp = ca.MX.sym("u", u.numel()), ca.MX.sym("p", p.numel())
+    base_mx = ca.vertcat(mt, mx, mu, mp)
+    z_sx: list[ca.SX] = []
+    z_mx: list[ca.MX] = []
+    for k, blk in enumerate(causal.nonlinear):
+        zb = ca.vertcat(*[v.sym for v in blk.tears])
+        prev_sx = ca.vertcat(base_sx, *z_sx)
+        g = ca.Function(f"g{k}", [zb, prev_sx], [blk.residuals])
+        solver = ca.rootfinder(
+            f"newton{k}", "fast_newton", g, {"abstol": newton_tol, "max_iter": 50}
+        )
+        zk = solver(ca.DM(blk.guess), ca.vertcat(base_mx, *z_mx))
+        z_sx.append(zb)
+        z_mx.append(zk)
+    full_sx = ca.vertcat(base_sx, *z_sx)
+    full_mx = ca.vertcat(base_mx, *z_mx)
+    margs = [mt, mx, mu, mp]
+    funcs = {}
+    mexprs = {}
+    for k, e in exprs.items():
+        f_sx = ca.Function(f"{k}_sx", [full_sx], [e])
+        mexprs[k] = f_sx(full_mx)
+        funcs[k] = ca.Function(k, margs, [mexprs[k]], names, [k])
+    funcs["jac_x"] = ca.Function("jac_x", margs, [ca.jacobian(mexprs["ode"], mx)], names, ["jac_x"])
+    funcs["jac_u"] = ca.Function("jac_u", margs, [ca.jacobian(mexprs["ode"], mu)], names, ["jac_u"])
+    funcs["out_jac_x"] = ca.Function(
+        "out_jac_x", margs, [ca.jacobian(mexprs["output"], mx)], names, ["J"]
+    )
+    funcs["out_jac_u"] = ca.Function(
+        "out_jac_u", margs, [ca.jacobian(mexprs["output"], mu)], names, ["J"]
+    )
+    return funcs, observed_names, output_names

@@ -1,0 +1,143 @@
+"""The flat DAE that the assembler's passes transform.
+
+One :class:`DAE` object travels through the passes. Variables and equations are scalar; each
+variable may have a derivative variable (``der(x)``), each equation may be the derivative of
+another (index reduction).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import casadi as ca
+
+from bearingsim.errors import StructuralError
+from bearingsim.language.symbols import readable
+
+__all__ = ["Var", "Eq", "Param", "DAE"]
+
+
+@dataclass
+class Var:
+    """A scalar time-varying variable of the flat model."""
+
+    name: str
+    sym: ca.SX
+    unit: str = "1"
+    description: str = ""
+    start: float | None = None
+    fixed: bool = False
+    nominal: float | None = None
+    is_input: bool = False
+    default: float | None = None
+    derivative: Var | None = None
+    dummy: bool = False
+    """Set when index reduction made this derivative an algebraic (dummy) variable."""
+    is_derivative: bool = False
+
+    @property
+    def is_state(self) -> bool:
+        """Differentiated with a true (non-dummy) derivative."""
+        return self.derivative is not None and not self.derivative.dummy
+
+    def __hash__(self) -> int:
+        return id(self)
+
+    def __eq__(self, other: object) -> bool:
+        return self is other
+
+
+@dataclass
+class Eq:
+    """A scalar residual equation ``residual = 0``."""
+
+    residual: ca.SX
+    origin: str
+    initial: bool = False
+    derivative_of: Eq | None = None
+    differentiated: Eq | None = None
+    text: str = ""
+
+    def describe(self) -> str:
+        """Origin and readable text, for messages."""
+        body = self.text or readable(self.residual) + " = 0"
+        return f"{self.origin or '<root>'}: {body}"
+
+    @property
+    def order(self) -> int:
+        """How many times this equation was differentiated by index reduction."""
+        n, e = 0, self
+        while e.derivative_of is not None:
+            n, e = n + 1, e.derivative_of
+        return n
+
+    def __hash__(self) -> int:
+        return id(self)
+
+    def __eq__(self, other: object) -> bool:
+        return self is other
+
+
+@dataclass
+class Param:
+    """A free parameter of the flat model."""
+
+    name: str
+    sym: ca.SX
+    value: float
+    unit: str
+    description: str
+    declaration: object = None
+
+
+@dataclass
+class DAE:
+    """The state object shared by all passes."""
+
+    vars: list[Var]
+    eqs: list[Eq]
+    params: list[Param]
+    time: ca.SX
+    initial_eqs: list[Eq] = field(default_factory=list)
+    aliases: dict[str, tuple[float, Var | None, float]] = field(default_factory=dict)
+    """Eliminated variable name -> (scale, representative or None, offset): v = scale*rep + offset."""
+    timings: list[tuple[str, float]] = field(default_factory=list)
+    log: list[str] = field(default_factory=list)
+    skipped: list[str] = field(default_factory=list)
+
+    # ---------------------------------------------------------------- lookups
+    def by_name(self) -> dict[str, Var]:
+        """Variables by symbol name."""
+        return {v.sym.name(): v for v in self.vars}
+
+    def incidence(self, eq: Eq, lookup: dict[str, Var] | None = None) -> list[Var]:
+        """Variables (not parameters, not time) that appear in an equation."""
+        lookup = lookup if lookup is not None else self.by_name()
+        out = []
+        for s in ca.symvar(eq.residual):
+            v = lookup.get(s.name())
+            if v is not None:
+                out.append(v)
+        return out
+
+    @property
+    def inputs(self) -> list[Var]:
+        """System inputs."""
+        return [v for v in self.vars if v.is_input]
+
+    @property
+    def states(self) -> list[Var]:
+        """Variables integrated by the ODE solver."""
+        return [v for v in self.vars if v.is_state and not v.is_input]
+
+    def unknowns(self) -> list[Var]:
+        """Variables the equations must determine: everything but states and inputs."""
+        return [v for v in self.vars if not v.is_state and not v.is_input]
+
+    def check_balance(self, stage: str) -> None:
+        """Raise if the number of equations differs from the number of unknowns."""
+        n_eq, n_unk = len(self.eqs), len(self.unknowns())
+        if n_eq != n_unk:
+            raise StructuralError(
+                f"internal error after pass {stage!r}: {n_eq} equations for {n_unk} unknowns"
+            )

@@ -1,0 +1,212 @@
+"""Index reduction: Pantelides' algorithm and the dummy derivative method.
+
+Pantelides (1988) finds the equations that must be differentiated so that every equation can be
+matched to a highest-derivative variable; the equations are differentiated symbolically with
+CasADi. Mattsson and Söderlind (1993) then turn selected derivatives into algebraic "dummy
+derivatives" so the augmented system is index 1 with exactly the true number of states. The
+selection uses the Jacobian at the start values with column pivoting (static state selection).
+"""
+
+from __future__ import annotations
+
+import sys
+
+import casadi as ca
+import numpy as np
+import scipy.linalg
+
+from bearingsim.errors import ModelError, SingularBlockError
+from bearingsim.solver.dae import DAE, Eq, Var
+from bearingsim.solver.structure import incidence_map, maximum_matching
+
+__all__ = ["pantelides", "dummy_derivatives", "reduce_index"]
+
+
+def _derivative_var(dae: DAE, v: Var, lookup: dict[str, Var]) -> Var:
+    if v.derivative is None:
+        if v.is_input:
+            raise ModelError(
+                f"index reduction needs the time derivative of input {v.name}; "
+                "drive it through a state (e.g. a filter) or give it as a time function"
+            )
+        d = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), f"({v.unit})/s")
+        d.is_derivative = True
+        v.derivative = d
+        dae.vars.append(d)
+        lookup[d.sym.name()] = d
+    return v.derivative
+
+
+def _differentiate(dae: DAE, eq: Eq, lookup: dict[str, Var]) -> Eq:
+    if eq.differentiated is not None:
+        return eq.differentiated
+    r = eq.residual
+    vs = [v for v in dae.incidence(eq, lookup)]
+    dr = ca.jacobian(r, dae.time)
+    if vs:
+        syms = ca.vertcat(*[v.sym for v in vs])
+        ders = ca.vertcat(*[_derivative_var(dae, v, lookup).sym for v in vs])
+        dr = dr + ca.jtimes(r, syms, ders)
+    new = Eq(ca.simplify(dr), eq.origin, derivative_of=eq)
+    new.text = f"d/dt({eq.text or 'eq'})"
+    eq.differentiated = new
+    dae.eqs.append(new)
+    return new
+
+
+def pantelides(dae: DAE, max_passes: int = 20) -> int:
+    """Differentiate equations until each can be matched to a highest derivative.
+
+    Returns
+    -------
+    int
+        The number of differentiated equations added.
+    """
+    lookup = dae.by_name()
+
+    def eligible(v: Var) -> bool:
+        return v.derivative is None and not v.is_input
+
+    inc_cache: dict[Eq, list[Var]] = {}
+
+    def inc(e: Eq) -> list[Var]:
+        if e not in inc_cache:
+            inc_cache[e] = dae.incidence(e, lookup)
+        return inc_cache[e]
+
+    candidates = [v for v in dae.vars if eligible(v)]
+    start = maximum_matching(incidence_map(dae, dae.eqs, candidates), candidates)
+    assign: dict[Var, Eq] = {v: e for e, v in start.items()}
+    added = 0
+    old_limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(old_limit, 20 * len(dae.eqs) + 1000))
+    try:
+        for k in list(dae.eqs):
+            if k in start:
+                continue
+            i = k
+            for _ in range(max_passes):
+                colored_e: set[Eq] = set()
+                colored_v: set[Var] = set()
+
+                def augment(e: Eq) -> bool:
+                    colored_e.add(e)
+                    for v in inc(e):
+                        if eligible(v) and assign.get(v) is None:
+                            assign[v] = e
+                            return True
+                    for v in inc(e):
+                        if eligible(v) and v not in colored_v:
+                            colored_v.add(v)
+                            if augment(assign[v]):
+                                assign[v] = e
+                                return True
+                    return False
+
+                if augment(i):
+                    break
+                for v in colored_v:
+                    _derivative_var(dae, v, lookup)
+                for e in colored_e:
+                    if e.differentiated is None:
+                        added += 1
+                    _differentiate(dae, e, lookup)
+                for v in colored_v:
+                    assign[v.derivative] = assign[v].differentiated
+                i = i.differentiated
+            else:
+                raise SingularBlockError(
+                    f"index reduction did not converge after {max_passes} differentiations: "
+                    "the equations are structurally singular",
+                    equations=[e.describe() for e in colored_e],
+                    unknowns=[v.name for v in colored_v],
+                )
+    finally:
+        sys.setrecursionlimit(old_limit)
+    return added
+
+
+def _start_point(dae: DAE) -> tuple[ca.SX, np.ndarray]:
+    syms, vals = [], []
+    for v in dae.vars:
+        syms.append(v.sym)
+        vals.append(v.start if v.start is not None else (v.default or 0.0))
+    for p in dae.params:
+        syms.append(p.sym)
+        vals.append(p.value)
+    syms.append(dae.time)
+    vals.append(0.0)
+    return ca.vertcat(*syms), np.array(vals, dtype=float)
+
+
+def _select_columns(h: np.ndarray, m: int, rng: np.random.Generator) -> list[int]:
+    if h.shape[1] == m:
+        return list(range(m))
+    _, r, piv = scipy.linalg.qr(h, pivoting=True, mode="economic")
+    diag = np.abs(np.diag(r))[:m] if r.size else np.zeros(0)
+    if diag.size == m and diag.min() > 1e-10 * max(diag.max(), 1.0):
+        return list(piv[:m])
+    raise np.linalg.LinAlgError
+
+
+def dummy_derivatives(dae: DAE) -> list[str]:
+    """Select dummy derivatives (Mattsson-Söderlind) after :func:`pantelides`.
+
+    Returns
+    -------
+    list of str
+        Names of the derivatives made algebraic.
+    """
+    g = [e for e in dae.eqs if e.derivative_of is not None and e.differentiated is None]
+    if not g:
+        return []
+    integral_of = {v.derivative: v for v in dae.vars if v.derivative is not None}
+    z = [v for v in dae.vars if v.derivative is None and not v.is_input]
+    syms, vals = _start_point(dae)
+    rng = np.random.default_rng(0)
+    chosen_names: list[str] = []
+    while g:
+        lookup = {v.sym.name(): v for v in z}
+        present = []
+        for e in g:
+            for v in dae.incidence(e, lookup):
+                if v not in present:
+                    present.append(v)
+        if len(present) < len(g):
+            raise SingularBlockError(
+                "dummy derivative selection failed: too few candidate derivatives",
+                equations=[e.describe() for e in g],
+                unknowns=[v.name for v in present],
+            )
+        jac = ca.jacobian(ca.vertcat(*[e.residual for e in g]), ca.vertcat(*[v.sym for v in present]))
+        jac_f = ca.Function("h", [syms], [jac])
+        sel = None
+        for attempt in range(4):
+            point = vals if attempt == 0 else vals + rng.normal(0.0, 0.1, vals.size) * (1 + abs(vals))
+            h = np.array(jac_f(point), dtype=float)
+            try:
+                sel = _select_columns(h, len(g), rng)
+                break
+            except np.linalg.LinAlgError:
+                continue
+        if sel is None:
+            raise SingularBlockError(
+                "dummy derivative selection failed: the differentiated constraints are singular",
+                equations=[e.describe() for e in g],
+                unknowns=[v.name for v in present],
+            )
+        chosen = [present[k] for k in sel]
+        for v in chosen:
+            if v in integral_of:
+                v.dummy = True
+                chosen_names.append(v.name)
+        g = [e.derivative_of for e in g if e.derivative_of.derivative_of is not None]
+        z = [integral_of[v] for v in chosen if v in integral_of]
+    return chosen_names
+
+
+def reduce_index(dae: DAE) -> dict:
+    """Run Pantelides and dummy derivatives; return a summary for the pass log."""
+    added = pantelides(dae)
+    dummies = dummy_derivatives(dae) if added else []
+    return {"differentiated_equations": added, "dummy_derivatives": dummies}

@@ -1,0 +1,66 @@
+"""System inputs given as constants, symbolic time functions or tables.
+
+Whatever can be expressed symbolically is composed into the compiled right-hand side, so no
+Python runs inside the integration; other callables are evaluated numerically.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from bearingsim.errors import ParameterError
+from bearingsim.solver.system import System
+
+__all__ = ["input_expression"]
+
+
+def _one(name: str, spec: Any, t: ca.SX) -> ca.SX:
+    if isinstance(spec, (int, float, np.floating)):
+        if not np.isfinite(spec):
+            raise ParameterError(f"input {name} must be finite, got {spec!r}")
+        return ca.SX(float(spec))
+    if isinstance(spec, tuple) and len(spec) == 2:
+        times = np.asarray(spec[0], dtype=float).ravel()
+        vals = np.asarray(spec[1], dtype=float).ravel()
+        if times.size != vals.size or times.size < 2 or np.any(np.diff(times) <= 0):
+            raise ParameterError(
+                f"input {name}: a table needs two equally long arrays (times strictly "
+                "increasing, at least two points)"
+            )
+        if not np.all(np.isfinite(vals)):
+            raise ParameterError(f"input {name}: table values must be finite")
+        return ca.pw_lin(t, ca.DM(times), ca.DM(vals))
+    if callable(spec):
+        try:
+            out = spec(t)
+        except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
+            raise ParameterError(
+                f"input {name}: the function could not be evaluated symbolically ({exc}); "
+                "write it with casadi or bearingsim._ops math"
+            ) from None
+        return ca.SX(out)
+    raise ParameterError(
+        f"input {name}: expected a number, a function of time or a (times, values) table, "
+        f"got {type(spec).__name__}"
+    )
+
+
+def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) -> ca.SX:
+    """Vector of input expressions of ``t`` in the system's input order."""
+    inputs = dict(inputs or {})
+    unknown = set(inputs) - set(system.input_names)
+    if unknown:
+        raise ParameterError(
+            f"unknown input(s) {', '.join(sorted(unknown))}; the system's inputs are: "
+            + (", ".join(system.input_names) or "none")
+        )
+    exprs = []
+    for sig in system.inputs:
+        exprs.append(_one(sig.name, inputs.get(sig.name, sig.start), t))
+    return ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
+
+

@@ -1,0 +1,69 @@
+"""Pruning: keep only the equations and states that the requested outputs depend on."""
+
+from __future__ import annotations
+
+import difflib
+
+from bearingsim.errors import ModelError
+from bearingsim.solver.dae import DAE, Eq, Var
+
+__all__ = ["resolve_names", "prune"]
+
+
+def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
+    """Map dotted names (variables or eliminated aliases) to the variables that carry them."""
+    by_path = {v.name: v for v in dae.vars}
+    out: list[Var] = []
+    for name in names:
+        if name in by_path:
+            out.append(by_path[name])
+        elif name in dae.aliases:
+            _, rep, _ = dae.aliases[name]
+            if rep is not None:
+                out.append(rep)
+        else:
+            known = list(by_path) + list(dae.aliases)
+            close = difflib.get_close_matches(name, known, n=5)
+            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            raise ModelError(f"unknown output variable {name!r}{hint}")
+    return out
+
+
+def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
+    """Drop equations, unknowns and states that no requested output depends on.
+
+    Returns
+    -------
+    list of str
+        What was skipped, for the scene summary.
+    """
+    var_eq = {v: e for e, v in matching.items()}
+    lookup = dae.by_name()
+    needed: set[Var] = set()
+    stack = resolve_names(dae, outputs)
+    while stack:
+        v = stack.pop()
+        if v in needed:
+            continue
+        needed.add(v)
+        if v.is_state:
+            stack.append(v.derivative)
+        elif v in var_eq:
+            stack.extend(dae.incidence(var_eq[v], lookup))
+    dropped_states = [v.name for v in dae.states if v not in needed]
+    dropped_eqs = [e for e in dae.eqs if matching[e] not in needed]
+    keep = {id(e) for e in dae.eqs if matching[e] in needed}
+    dae.eqs = [e for e in dae.eqs if id(e) in keep]
+    for e in dropped_eqs:
+        del matching[e]
+    dae.vars = [v for v in dae.vars if v in needed or v.is_input]
+    kept = set(dae.vars)
+    dae.aliases = {
+        k: a for k, a in dae.aliases.items() if a[1] is None or a[1] in kept
+    }
+    skipped = []
+    if dropped_states:
+        skipped.append(f"{len(dropped_states)} state(s) not needed: {', '.join(dropped_states)}")
+    if dropped_eqs:
+        skipped.append(f"{len(dropped_eqs)} equation(s) not needed by the requested outputs")
+    return skipped

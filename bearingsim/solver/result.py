@@ -1,0 +1,91 @@
+"""Simulation results: named series, CSV/NPZ export and plots."""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["Result"]
+
+
+@dataclass
+class Result:
+    """Time series of every observed variable of a run.
+
+    ``res["j1.w"]`` is the series of one variable; ``res.t`` the time points [s].
+    """
+
+    t: np.ndarray
+    names: list[str]
+    values: np.ndarray
+    """Shape (len(names), len(t))."""
+    units: dict[str, str] = field(default_factory=dict)
+    stats: dict[str, object] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self._index = {n: k for k, n in enumerate(self.names)}
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name in ("t", "time"):
+            return self.t
+        try:
+            return self.values[self._index[name]]
+        except KeyError:
+            import difflib
+
+            close = difflib.get_close_matches(name, self.names, n=5)
+            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            raise KeyError(f"no variable {name!r} in the result{hint}") from None
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._index
+
+    def final(self, name: str) -> float:
+        """Value at the last time point."""
+        return float(self[name][-1])
+
+    def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
+        """Write ``time`` and the chosen variables (default all) as CSV with a unit row."""
+        path = Path(path)
+        names = names or self.names
+        with path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["time"] + names)
+            w.writerow(["s"] + [self.units.get(n, "") for n in names])
+            cols = np.vstack([self.t] + [self[n] for n in names]).T
+            w.writerows(cols.tolist())
+        return path
+
+    def to_npz(self, path: str | Path) -> Path:
+        """Write all series to a compressed NumPy archive."""
+        path = Path(path)
+        np.savez_compressed(path, t=self.t, names=np.array(self.names), values=self.values)
+        return path
+
+    def plot(self, names: list[str] | None = None, path: str | Path | None = None, title=None):
+        """Plot variables against time; save to ``path`` if given. Returns the figure."""
+        import matplotlib
+
+        if path is not None:
+            matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        names = names or self.names[: min(6, len(self.names))]
+        fig, axes = plt.subplots(len(names), 1, sharex=True, figsize=(7, 1.8 * len(names) + 1))
+        axes = np.atleast_1d(axes)
+        for ax, n in zip(axes, names, strict=True):
+            ax.plot(self.t, self[n])
+            unit = self.units.get(n, "")
+            ax.set_ylabel(f"{n}\n[{unit}]" if unit else n, fontsize=8)
+            ax.grid(True, alpha=0.3)
+        axes[-1].set_xlabel("time [s]")
+        if title:
+            fig.suptitle(title)
+        fig.tight_layout()
+        if path is not None:
+            fig.savefig(path, dpi=120)
+            plt.close(fig)
+        return fig

@@ -1,0 +1,278 @@
+"""Time integration of an assembled system with scipy's ``solve_ivp`` or CasADi's CVODES."""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass
+from typing import Any
+
+import casadi as ca
+import numpy as np
+import scipy.integrate
+import scipy.optimize
+
+from bearingsim.errors import ParameterError, SimulationError, check_range
+from bearingsim.solver.inputs import input_expression
+from bearingsim.solver.result import Result
+from bearingsim.solver.system import System
+
+__all__ = ["ClosedModel", "close_inputs", "simulate", "initial_state"]
+
+SCIPY_METHODS = ("BDF", "Radau", "LSODA", "RK45", "DOP853", "RK23")
+IMPLICIT = ("BDF", "Radau", "LSODA")
+
+
+@dataclass
+class ClosedModel:
+    """The system with its inputs bound: ``f(t, x, p)``, ``J(t, x, p)``, ``observe(t, x, p)``."""
+
+    f: ca.Function
+    jac: ca.Function
+    observe: ca.Function
+    u: ca.Function
+    symbolic: bool
+
+
+def close_inputs(system: System, inputs: dict[str, Any] | None) -> ClosedModel:
+    """Compose the system's functions with symbolic input signals of time."""
+    ode, obs, jac = (system.functions[k] for k in ("ode", "observe", "jac_x"))
+    t_sx = ca.SX.sym("t")
+    u_expr = input_expression(system, inputs, t_sx)
+    u_fn = ca.Function("u", [t_sx], [u_expr])
+    sx = ode.is_a("SXFunction")
+    sym = ca.SX if sx else ca.MX
+    t = sym.sym("t")
+    x = sym.sym("x", system.n_states)
+    p = sym.sym("p", len(system.params))
+    u = u_fn(t)
+    args, names = [t, x, p], ["t", "x", "p"]
+    return ClosedModel(
+        f=ca.Function("f", args, [ode(t, x, u, p)], names, ["xdot"]),
+        jac=ca.Function("J", args, [jac(t, x, u, p)], names, ["J"]),
+        observe=ca.Function("obs", args, [obs(t, x, u, p)], names, ["y"]),
+        u=u_fn,
+        symbolic=sx,
+    )
+
+
+def initial_state(
+    system: System, closed: ClosedModel, p: np.ndarray, x0: np.ndarray, t0: float, steady: bool
+) -> np.ndarray:
+    """Consistent initial states: initial equations and, on request, a steady state."""
+    x = x0.copy()
+    if system.init_residual is not None:
+        free = system.free_initial_states
+        u0 = np.asarray(closed.u(t0), dtype=float).ravel()
+
+        def res(z):
+            xx = x.copy()
+            xx[free] = z
+            return np.asarray(system.init_residual(t0, xx, u0, p), dtype=float).ravel()
+
+        sol = scipy.optimize.root(res, x[free], tol=1e-12)
+        if not sol.success:
+            raise SimulationError(
+                "initial equations could not be solved for "
+                + ", ".join(system.state_names[k] for k in free)
+                + f": {sol.message}"
+            )
+        x[free] = sol.x
+    if steady:
+        from bearingsim.solver.steady import steady_state
+
+        x = steady_state(system, closed=closed, p=p, x_guess=x, t=t0)
+    return x
+
+
+def simulate(
+    system: System,
+    t_end: float,
+    *,
+    t_start: float = 0.0,
+    inputs: dict[str, Any] | None = None,
+    parameters: dict[str, float] | None = None,
+    x0: dict[str, float] | None = None,
+    initial: str = "start",
+    method: str = "BDF",
+    backend: str = "scipy",
+    rtol: float = 1e-6,
+    atol: float = 1e-8,
+    n_points: int = 501,
+    t_eval: np.ndarray | None = None,
+    max_step: float = np.inf,
+    progress: bool | None = None,
+) -> Result:
+    """Integrate a system and return every variable as a named series.
+
+    Parameters
+    ----------
+    system : System
+        From :func:`bearingsim.solver.assemble`.
+    t_end : float
+        End time [s].
+    t_start : float
+        Start time [s].
+    inputs : dict, optional
+        Input name -> constant, ``f(t)`` (symbolic) or ``(times, values)`` table.
+    parameters : dict, optional
+        Parameter name -> value (validated; no recompilation).
+    x0 : dict, optional
+        State name -> initial value, overriding start values.
+    initial : {"start", "steady"}
+        ``"steady"`` starts from the steady state at ``t_start``.
+    method : str
+        ``"BDF"``, ``"Radau"``, ``"LSODA"``, ``"RK45"``, ``"DOP853"`` (scipy) or ``"cvodes"``.
+    backend : {"scipy", "cvodes"}
+        Integrator family; ``method="cvodes"`` implies ``backend="cvodes"``.
+    rtol, atol : float
+        Tolerances.
+    n_points : int
+        Number of equally spaced output points (ignored when ``t_eval`` is given).
+    t_eval : array, optional
+        Output times [s].
+    max_step : float
+        Largest step for scipy's integrators [s].
+    progress : bool, optional
+        Show a progress bar; default: only for runs that take longer than about 2 s.
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    SimulationError
+        With the time reached and the variables that diverged.
+    """
+    check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
+    check_range(rtol, "rtol", "1", 0.0, 1.0, low_inclusive=False, where="simulate")
+    check_range(atol, "atol", "1", 0.0, None, low_inclusive=False, where="simulate")
+    if method.lower() == "cvodes":
+        backend = "cvodes"
+    if backend not in ("scipy", "cvodes"):
+        raise ParameterError(f"simulate: backend must be 'scipy' or 'cvodes', got {backend!r}")
+    if backend == "scipy" and method not in SCIPY_METHODS:
+        raise ParameterError(
+            f"simulate: method must be one of {', '.join(SCIPY_METHODS)} or 'cvodes', got "
+            f"{method!r}"
+        )
+    if initial not in ("start", "steady"):
+        raise ParameterError(f"simulate: initial must be 'start' or 'steady', got {initial!r}")
+    p = system.p0(parameters)
+    closed = close_inputs(system, inputs)
+    x_start = initial_state(system, closed, p, system.x0(x0), t_start, initial == "steady")
+    if t_eval is None:
+        t_eval = np.linspace(t_start, t_end, n_points)
+    t_eval = np.asarray(t_eval, dtype=float)
+    wall = _time.perf_counter()
+    if system.n_states == 0:
+        ts, xs, stats = t_eval, np.zeros((0, t_eval.size)), {}
+    elif backend == "scipy":
+        ts, xs, stats = _run_scipy(system, closed, p, x_start, t_start, t_end, t_eval, method,
+                                   rtol, atol, max_step, progress)
+    else:
+        ts, xs, stats = _run_cvodes(system, closed, p, x_start, t_start, t_eval, rtol, atol)
+    stats["wall_time"] = _time.perf_counter() - wall
+    obs = closed.observe.map(ts.size)
+    values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)), dtype=float)
+    units = _units(system)
+    return Result(ts, list(system.observed_names), values, units, stats)
+
+
+def _units(system: System) -> dict[str, str]:
+    units = {s.name: s.unit for s in system.states + system.inputs + system.outputs}
+    return units
+
+
+def _diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
+    bad = [n for n, v in zip(system.state_names, x, strict=True) if not np.isfinite(v)]
+    if bad:
+        return "non-finite: " + ", ".join(bad[:10])
+    growth = np.abs(x) / (np.abs(x0) + 1.0)
+    order = np.argsort(growth)[::-1][:5]
+    return "largest growth: " + ", ".join(
+        f"{system.state_names[k]}={x[k]:.3g}" for k in order
+    )
+
+
+def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_step, progress):
+    f, jac = closed.f, closed.jac
+    n_f = [0]
+    bar = _progress_bar(t0, t1, progress)
+    last = [t0, x0]
+
+    def fun(t, x):
+        n_f[0] += 1
+        out = np.asarray(f(t, x, p), dtype=float).ravel()
+        if not np.all(np.isfinite(out)):
+            bad = [n for n, v in zip(system.state_names, out, strict=True) if not np.isfinite(v)]
+            raise SimulationError(
+                f"the right-hand side is not finite at t = {t:.6g} s for der({', '.join(bad[:8])})"
+                f"; states there: {_diverged(system, x, x0)}"
+            )
+        if bar is not None and t > last[0]:
+            bar.update(t - last[0])
+            last[0] = t
+        last[1] = x
+        return out
+
+    kwargs: dict[str, Any] = {}
+    if method in IMPLICIT:
+        def jacobian(t, x):
+            return np.asarray(jac(t, x, p).sparse().toarray()) if method == "LSODA" else (
+                jac(t, x, p).sparse()
+            )
+        kwargs["jac"] = jacobian
+    try:
+        sol = scipy.integrate.solve_ivp(
+            fun, (t0, t1), x0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
+            max_step=max_step, **kwargs,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    if sol.status < 0:
+        t_reached = sol.t[-1] if sol.t.size else t0
+        raise SimulationError(
+            f"{method} failed at t = {t_reached:.6g} s of {t1:g} s: {sol.message}; "
+            f"{_diverged(system, last[1], x0)}"
+        )
+    stats = {"method": method, "nfev": sol.nfev, "njev": sol.njev, "nlu": sol.nlu,
+             "n_rhs_calls": n_f[0]}
+    return sol.t, sol.y, stats
+
+
+def _run_cvodes(system, closed, p, x0, t0, t_eval, rtol, atol):
+    sym = ca.SX if closed.symbolic else ca.MX
+    x = sym.sym("x", system.n_states)
+    pp = sym.sym("p", len(p))
+    t = sym.sym("t")
+    dae = {"x": x, "p": pp, "t": t, "ode": closed.f(t, x, pp)}
+    grid = t_eval[t_eval > t0]
+    opts = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000}
+    integ = ca.integrator("cvodes", "cvodes", dae, float(t0), grid, opts)
+    try:
+        out = integ(x0=x0, p=p)
+    except RuntimeError as exc:
+        raise SimulationError(f"CVODES failed: {str(exc).splitlines()[0]}") from None
+    xs = np.asarray(out["xf"], dtype=float)
+    if t_eval[0] <= t0:
+        xs = np.hstack([x0[:, None], xs])
+        ts = np.concatenate([[t0], grid])
+    else:
+        ts = grid
+    stats = {"method": "cvodes"}
+    st = integ.stats()
+    for key in ("nsteps", "nfevals", "nlinsetups"):
+        if key in st:
+            stats[key] = st[key]
+    return ts, xs, stats
+
+
+def _progress_bar(t0, t1, progress):
+    if progress is False:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=t1 - t0, unit="s(sim)", delay=0 if progress else 2.0, leave=False,
+                bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s [{elapsed}<{remaining}]")

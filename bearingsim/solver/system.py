@@ -1,0 +1,139 @@
+"""The assembled system: compiled functions plus the names, units and defaults around them."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from bearingsim.errors import ParameterError
+from bearingsim.solver.dae import Param
+
+__all__ = ["Signal", "System"]
+
+
+@dataclass(frozen=True)
+class Signal:
+    """Name, unit, description and start value of a state, input or output."""
+
+    name: str
+    unit: str
+    description: str = ""
+    start: float = 0.0
+    fixed: bool = True
+
+
+@dataclass
+class System:
+    """An assembled model, ready for ``simulate``, ``linearize`` and FMU export.
+
+    The ODE is ``dx/dt = ode(t, x, u, p)``; every CasADi function takes ``(t, x, u, p)``:
+
+    * ``ode`` -> state derivatives; ``jac_x``, ``jac_u`` -> their exact sparse Jacobians;
+    * ``output`` -> the requested outputs; ``out_jac_x``, ``out_jac_u`` -> their Jacobians;
+    * ``observe`` -> every variable of the model (``observed_names``), aliases included.
+
+    Parameters are function arguments, so new parameter values need no recompilation.
+    """
+
+    name: str
+    states: list[Signal]
+    inputs: list[Signal]
+    outputs: list[Signal]
+    params: list[Param]
+    functions: dict[str, ca.Function]
+    observed_names: list[str]
+    init_residual: ca.Function | None = None
+    free_initial_states: list[int] = field(default_factory=list)
+    timings: list[tuple[str, float]] = field(default_factory=list)
+    report: dict[str, Any] = field(default_factory=dict)
+    skipped: list[str] = field(default_factory=list)
+
+    # ---------------------------------------------------------------- names
+    @property
+    def state_names(self) -> list[str]:
+        """Dotted names of the states, in vector order."""
+        return [s.name for s in self.states]
+
+    @property
+    def input_names(self) -> list[str]:
+        """Dotted names of the inputs, in vector order."""
+        return [s.name for s in self.inputs]
+
+    @property
+    def output_names(self) -> list[str]:
+        """Dotted names of the requested outputs, in vector order."""
+        return [s.name for s in self.outputs]
+
+    @property
+    def parameter_names(self) -> list[str]:
+        """Dotted names of the free parameters, in vector order."""
+        return [q.name for q in self.params]
+
+    @property
+    def n_states(self) -> int:
+        """Number of states."""
+        return len(self.states)
+
+    # ---------------------------------------------------------------- vectors
+    def x0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
+        """Start values of the states, with optional overrides by name."""
+        x = np.array([s.start for s in self.states], dtype=float)
+        for name, val in (overrides or {}).items():
+            if name not in self.state_names:
+                raise ParameterError(
+                    f"initial value given for {name!r}, which is not a state; states: "
+                    + ", ".join(self.state_names)
+                )
+            x[self.state_names.index(name)] = float(val)
+        return x
+
+    def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
+        """Parameter vector: defaults, then validated overrides by dotted name."""
+        p = np.array([q.value for q in self.params], dtype=float)
+        names = self.parameter_names
+        for name, val in (overrides or {}).items():
+            if name not in names:
+                import difflib
+
+                close = difflib.get_close_matches(name, names, n=5)
+                hint = f"; did you mean {', '.join(close)}?" if close else ""
+                raise ParameterError(f"{self.name}: unknown parameter {name!r}{hint}")
+            k = names.index(name)
+            decl = self.params[k].declaration
+            p[k] = decl.validate(val) if decl is not None else float(val)
+        return p
+
+    def u_default(self) -> np.ndarray:
+        """Default input values."""
+        return np.array([s.start for s in self.inputs], dtype=float)
+
+    # ---------------------------------------------------------------- evaluation
+    def rhs(self, t: float, x, u=None, p=None) -> np.ndarray:
+        """State derivatives at one point (numbers)."""
+        u = self.u_default() if u is None else u
+        p = self.p0() if p is None else p
+        return np.asarray(self.functions["ode"](t, x, u, p), dtype=float).ravel()
+
+    def observe(self, t: float, x, u=None, p=None) -> dict[str, float]:
+        """Every variable of the model at one point, by dotted name."""
+        u = self.u_default() if u is None else u
+        p = self.p0() if p is None else p
+        vals = np.asarray(self.functions["observe"](t, x, u, p), dtype=float).ravel()
+        return dict(zip(self.observed_names, vals, strict=True))
+
+    def describe(self) -> str:
+        """A short text summary: sizes, pass timings and skipped parts."""
+        lines = [
+            f"system {self.name}: {self.n_states} states, {len(self.inputs)} inputs, "
+            f"{len(self.outputs)} outputs, {len(self.params)} parameters"
+        ]
+        for key, val in self.report.items():
+            lines.append(f"  {key}: {val}")
+        for name, dt in self.timings:
+            lines.append(f"  pass {name:<26s} {dt * 1e3:9.2f} ms")
+        for s in self.skipped:
+            lines.append(f"  skipped: {s}")
+        return "\n".join(lines)
