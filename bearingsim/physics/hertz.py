@@ -1,0 +1,533 @@
+"""Hertz theory of elastic point (elliptical) contact between a ball and a raceway.
+
+Every function works on floats, numpy arrays and CasADi SX alike (math through
+:mod:`bearingsim._ops`), so components can put them into symbolic equations.
+
+Notation (Hamrock, *Fundamentals of Fluid Film Lubrication*, chapter "Elastohydrodynamic
+lubrication of elliptical conjunctions" / "Simplified solutions for stresses and deformations"):
+``Rx`` is the effective radius in the rolling direction and ``Ry`` the one across it
+(``1/Rx = 1/r_ax + 1/r_bx``), ``R = 1/(1/Rx + 1/Ry)`` the curvature sum radius,
+``alpha_r = Ry/Rx >= 1``, ``k = a/b >= 1`` the ellipticity with ``a`` the semi-axis across the
+rolling direction, ``K(m)``, ``E(m)`` the complete elliptic integrals with ``m = 1 - 1/k^2`` and
+``E' = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2)`` the effective modulus. The same relations are given
+with Harris's notation in Harris & Kotzalas, *Rolling Bearing Analysis*, 5th ed., *Essential
+Concepts of Bearing Technology*, chapter "Contact stress and deformation".
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from bearingsim import _ops as op
+from bearingsim.errors import ParameterError, check_range
+
+if TYPE_CHECKING:
+    from bearingsim.catalog import BearingGeometry
+
+__all__ = [
+    "Material",
+    "STEEL",
+    "SILICON_NITRIDE",
+    "EllipticParameters",
+    "HertzContact",
+    "effective_modulus",
+    "raceway_radii",
+    "curvature_sum",
+    "curvature_difference",
+    "elliptic_parameters",
+    "ellipticity",
+    "semi_axes",
+    "approach",
+    "max_pressure",
+    "load_deflection_constant",
+    "combined_load_deflection_constant",
+    "bearing_load_deflection_constants",
+    "orthogonal_shear_stress",
+    "hertz_contact",
+    "contact_load",
+    "contact_stiffness",
+]
+
+METHODS = ("exact", "hamrock_brewe")
+_NEWTON_STEPS = 5
+_M_MIN = 1e-12  # smallest elliptic parameter used: k - 1 < 1e-12 (circular contact)
+_M_MAX = 1.0 - 1e-15
+
+
+@dataclass(frozen=True)
+class Material:
+    """Linear-elastic material of a ball or ring.
+
+    Attributes
+    ----------
+    name : str
+        Material name.
+    youngs_modulus : float
+        Young's modulus [Pa].
+    poisson_ratio : float
+        Poisson's ratio [-], in [0, 0.5).
+    """
+
+    name: str
+    youngs_modulus: float
+    poisson_ratio: float
+
+    def __post_init__(self) -> None:
+        where = f"Material({self.name})"
+        check_range(self.youngs_modulus, "youngs_modulus", "Pa", 0.0, low_inclusive=False,
+                    where=where)
+        check_range(self.poisson_ratio, "poisson_ratio", "-", 0.0, 0.5, high_inclusive=False,
+                    where=where)
+
+
+STEEL = Material("AISI 52100 bearing steel", 208e9, 0.3)
+"""Through-hardened bearing steel (Harris & Kotzalas, Essential Concepts, chapter "Contact stress
+and deformation": E = 208 GPa, nu = 0.3)."""
+
+SILICON_NITRIDE = Material("silicon nitride (Si3N4)", 310e9, 0.26)
+"""Hot isostatically pressed silicon nitride for hybrid bearings (Harris & Kotzalas, Essential
+Concepts, chapter "Rolling bearing materials": E = 310 GPa, nu = 0.26)."""
+
+
+class EllipticParameters(NamedTuple):
+    """Ellipticity and complete elliptic integrals of a contact.
+
+    Attributes
+    ----------
+    k : ellipticity a/b [-]
+    first_kind : K(m), m = 1 - 1/k^2 [-]
+    second_kind : E(m) [-]
+    """
+
+    k: Any
+    first_kind: Any
+    second_kind: Any
+
+
+@dataclass(frozen=True)
+class HertzContact:
+    """Result of :func:`hertz_contact` (floats, arrays or SX).
+
+    Attributes
+    ----------
+    k : ellipticity a/b [-]
+    a : semi-axis across the rolling direction (major) [m]
+    b : semi-axis in the rolling direction (minor) [m]
+    approach : elastic approach of the two bodies delta [m]
+    max_pressure : maximum Hertz pressure [Pa]
+    load_deflection_constant : K in Q = K delta^1.5 [N/m^1.5]
+    tau0 : maximum subsurface orthogonal shear stress [Pa]
+    z0 : its depth below the surface [m]
+    """
+
+    k: Any
+    a: Any
+    b: Any
+    approach: Any
+    max_pressure: Any
+    load_deflection_constant: Any
+    tau0: Any
+    z0: Any
+
+
+def _check_method(method: str) -> None:
+    if method not in METHODS:
+        raise ParameterError(f"method must be one of {METHODS}, got {method!r}")
+
+
+def _check_radii(rx, ry, where: str):
+    check_range(rx, "Rx", "m", 0.0, low_inclusive=False, where=where)
+    check_range(ry, "Ry", "m", 0.0, low_inclusive=False, where=where)
+    if not op.is_symbolic(rx, ry) and np.any(np.asarray(ry) < np.asarray(rx)):
+        raise ParameterError(
+            f"{where}: need Ry >= Rx (Ry across, Rx along the rolling direction) [m], "
+            f"got Rx = {rx}, Ry = {ry}; swap the radii for a contact elongated along x"
+        )
+
+
+def effective_modulus(body1: Material = STEEL, body2: Material = STEEL) -> float:
+    """Effective modulus ``E' = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2)`` [Pa] (Hamrock).
+
+    Parameters
+    ----------
+    body1, body2 : Material
+        Materials of the two bodies (ball and ring).
+
+    Returns
+    -------
+    float
+        E' [Pa].
+    """
+    compliance = (1.0 - body1.poisson_ratio**2) / body1.youngs_modulus + (
+        1.0 - body2.poisson_ratio**2
+    ) / body2.youngs_modulus
+    return 2.0 / compliance
+
+
+def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, race: str):
+    """Effective radii of a ball-raceway contact (Hamrock; Harris & Kotzalas).
+
+    ``Rx = Dw (1 -+ gamma) / 2`` (inner -, outer +), ``Ry = f Dw / (2 f - 1)``,
+    ``gamma = Dw cos(alpha) / dm``.
+
+    Parameters
+    ----------
+    ball_diameter : float or array or SX
+        Ball diameter Dw [m].
+    pitch_diameter : float or array or SX
+        Pitch diameter dm [m].
+    groove_factor : float or array or SX
+        Groove curvature factor f = groove radius / Dw [-], > 0.5.
+    contact_angle : float or array or SX
+        Contact angle [rad].
+    race : {"inner", "outer"}
+        Which raceway.
+
+    Returns
+    -------
+    (Rx, Ry) : tuple
+        Effective radii along and across the rolling direction [m].
+    """
+    where = "raceway_radii"
+    check_range(ball_diameter, "ball_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_range(groove_factor, "groove_factor", "-", 0.5, 1.0, low_inclusive=False, where=where)
+    check_range(contact_angle, "contact_angle", "rad", -np.pi / 2, np.pi / 2, where=where)
+    if race not in ("inner", "outer"):
+        raise ParameterError(f"{where}: race must be 'inner' or 'outer', got {race!r}")
+    gamma = ball_diameter * op.cos(contact_angle) / pitch_diameter
+    check_range(gamma, "Dw cos(alpha)/dm", "-", 0.0, 1.0, high_inclusive=False, where=where)
+    sign = -1.0 if race == "inner" else 1.0
+    rx = 0.5 * ball_diameter * (1.0 + sign * gamma)
+    ry = groove_factor * ball_diameter / (2.0 * groove_factor - 1.0)
+    return rx, ry
+
+
+def curvature_sum(rx, ry):
+    """Curvature sum ``1/Rx + 1/Ry`` [1/m] (Harris's sum rho)."""
+    _check_radii(rx, ry, "curvature_sum")
+    return 1.0 / rx + 1.0 / ry
+
+
+def curvature_difference(rx, ry):
+    """Curvature difference ``F(rho) = (1/Rx - 1/Ry) / (1/Rx + 1/Ry)`` [-] (Harris)."""
+    _check_radii(rx, ry, "curvature_difference")
+    return (ry - rx) / (ry + rx)
+
+
+def _hamrock_brewe(alpha_r):
+    """Hamrock & Brewe (1983) curve fits for k, K, E as functions of alpha_r = Ry/Rx."""
+    k = 1.0339 * op.power(alpha_r, 0.6360)
+    first = 1.5277 + 0.6023 * op.log(alpha_r)
+    second = 1.0003 + 0.5968 / alpha_r
+    return k, first, second
+
+
+def _exact_parameter(alpha_r):
+    """Elliptic parameter m solving Hertz's ellipticity equation, by a fixed number of Newton steps.
+
+    The equation ``F(rho) = ((k^2 + 1) E - 2 K) / ((k^2 - 1) E)`` is written in m = 1 - 1/k^2 as
+    ``2 B(m) / E(m) - 1 = (alpha_r - 1) / (alpha_r + 1)`` with ``B = (E - (1 - m) K) / m``,
+    which has no spurious root at k = 1. ``dK/dm = B / (2 (1 - m))``, ``dE/dm = -(K - B) / 2``,
+    ``dB/dm = (K/2 - B) / m``. Started from Hamrock & Brewe's k, five steps converge to better
+    than 1e-8 in k for 1 <= alpha_r <= 1e4; m is kept in [1e-12, 1 - 1e-15] so that no step
+    produces NaN (a circular contact gives k - 1 < 1e-8).
+    """
+    target = (alpha_r - 1.0) / (alpha_r + 1.0)
+    k0 = _hamrock_brewe(alpha_r)[0]
+    m = 1.0 - 1.0 / (k0 * k0)
+    for _ in range(_NEWTON_STEPS):
+        first, second = op.ellipk(m), op.ellipe(m)
+        b_int = (second - (1.0 - m) * first) / m
+        residual = 2.0 * b_int / second - 1.0 - target
+        d_b = (0.5 * first - b_int) / m
+        d_e = -0.5 * (first - b_int)
+        slope = 2.0 * (d_b * second - b_int * d_e) / (second * second)
+        m = op.fmin(op.fmax(m - residual / slope, _M_MIN), _M_MAX)
+    return m
+
+
+def elliptic_parameters(rx, ry, method: str = "exact") -> EllipticParameters:
+    """Ellipticity k and complete elliptic integrals K, E of a Hertz point contact.
+
+    ``method="exact"`` solves Hertz's transcendental equation (Harris & Kotzalas, chapter
+    "Contact stress and deformation"; Hamrock) with exact complete elliptic integrals, by a fixed
+    count of Newton steps so that SX inputs stay symbolic. ``method="hamrock_brewe"`` uses the
+    curve fits of Hamrock & Brewe (1983), ``k = 1.0339 alpha_r^0.636``,
+    ``E = 1.0003 + 0.5968 / alpha_r``, ``K = 1.5277 + 0.6023 ln(alpha_r)``, fitted for
+    1 <= alpha_r <= 10. Against the exact solution they are within 3.4 % (k), 1.7 % (E) and 2.8 %
+    (K) on that range; the error in k grows to 6 % at alpha_r = 100.
+
+    Parameters
+    ----------
+    rx, ry : float or array or SX
+        Effective radii along and across the rolling direction [m], ``Ry >= Rx``.
+    method : {"exact", "hamrock_brewe"}
+
+    Returns
+    -------
+    EllipticParameters
+        (k [-], K [-], E [-]).
+
+    References
+    ----------
+    Hamrock, B. J., Brewe, D. E. (1983), Simplified solution for stresses and deformations,
+    J. Lubr. Technol. 105(2), 171-177. Brewe, D. E., Hamrock, B. J. (1977), Simplified solution for
+    elliptical-contact deformation between two elastic solids, J. Lubr. Technol. 99(4), 485-487.
+    """
+    _check_method(method)
+    _check_radii(rx, ry, "elliptic_parameters")
+    alpha_r = op.fmax(ry / rx, 1.0)
+    if method == "hamrock_brewe":
+        return EllipticParameters(*_hamrock_brewe(alpha_r))
+    m = _exact_parameter(alpha_r)
+    return EllipticParameters(1.0 / op.sqrt(1.0 - m), op.ellipk(m), op.ellipe(m))
+
+
+def ellipticity(rx, ry, method: str = "exact"):
+    """Ellipticity ``k = a/b`` [-] of a Hertz point contact; see :func:`elliptic_parameters`."""
+    return elliptic_parameters(rx, ry, method).k
+
+
+def _unit_load_semi_axes(rx, ry, e_eff, params: EllipticParameters):
+    """Semi-axes a, b at unit load: ``a = (6 k^2 E R / (pi E'))^(1/3)``, ``b = a / k`` (Hamrock)."""
+    k, _, second = params
+    r = rx * ry / (rx + ry)
+    a1 = op.power(6.0 * k * k * second * r / (np.pi * e_eff), 1.0 / 3.0)
+    return a1, a1 / k
+
+
+def _load_deflection(rx, ry, e_eff, params: EllipticParameters):
+    """``K = pi k E' sqrt(2 E R / 9) / K(m)^1.5`` (Hamrock), so that ``Q = K delta^1.5``.
+
+    From ``delta = K(m) (9 / (2 E R) (Q / (pi k E'))^2)^(1/3)``.
+    """
+    k, first, second = params
+    r = rx * ry / (rx + ry)
+    return np.pi * k * e_eff * op.sqrt(2.0 * second * r / 9.0) / op.power(first, 1.5)
+
+
+def _check_contact(load, rx, ry, e_eff, method, where):
+    _check_method(method)
+    check_range(load, "load", "N", 0.0, where=where)
+    check_range(e_eff, "e_eff", "Pa", 0.0, low_inclusive=False, where=where)
+    return elliptic_parameters(rx, ry, method)
+
+
+def semi_axes(load, rx, ry, e_eff, method: str = "exact"):
+    """Semi-axes of the contact ellipse (Hamrock; Harris & Kotzalas).
+
+    Parameters
+    ----------
+    load : float or array or SX
+        Normal contact load Q [N], >= 0.
+    rx, ry : float or array or SX
+        Effective radii [m], ``Ry >= Rx``.
+    e_eff : float or array or SX
+        Effective modulus E' [Pa], see :func:`effective_modulus`.
+    method : {"exact", "hamrock_brewe"}
+
+    Returns
+    -------
+    (a, b) : tuple
+        Semi-axes across (major) and along (minor) the rolling direction [m].
+    """
+    params = _check_contact(load, rx, ry, e_eff, method, "semi_axes")
+    a1, b1 = _unit_load_semi_axes(rx, ry, e_eff, params)
+    scale = op.power(load, 1.0 / 3.0)
+    return a1 * scale, b1 * scale
+
+
+def load_deflection_constant(rx, ry, e_eff, method: str = "exact"):
+    """Load-deflection constant K of one contact, ``Q = K delta^1.5`` [N/m^1.5] (Hamrock).
+
+    Parameters
+    ----------
+    rx, ry : float or array or SX
+        Effective radii [m], ``Ry >= Rx``; see :func:`raceway_radii`.
+    e_eff : float or array or SX
+        Effective modulus E' [Pa].
+    method : {"exact", "hamrock_brewe"}
+
+    Returns
+    -------
+    K [N/m^1.5]
+    """
+    params = _check_contact(0.0, rx, ry, e_eff, method, "load_deflection_constant")
+    return _load_deflection(rx, ry, e_eff, params)
+
+
+def approach(load, rx, ry, e_eff, method: str = "exact"):
+    """Elastic approach ``delta = (Q / K)^(2/3)`` of the two bodies [m] (Hamrock).
+
+    Parameters are those of :func:`semi_axes`. Returns delta [m].
+    """
+    params = _check_contact(load, rx, ry, e_eff, method, "approach")
+    return op.power(load / _load_deflection(rx, ry, e_eff, params), 2.0 / 3.0)
+
+
+def max_pressure(load, rx, ry, e_eff, method: str = "exact"):
+    """Maximum Hertz pressure ``p_max = 3 Q / (2 pi a b)`` [Pa] (zero at zero load).
+
+    Parameters are those of :func:`semi_axes`. Returns p_max [Pa].
+    """
+    params = _check_contact(load, rx, ry, e_eff, method, "max_pressure")
+    a1, b1 = _unit_load_semi_axes(rx, ry, e_eff, params)
+    return 1.5 * op.power(load, 1.0 / 3.0) / (np.pi * a1 * b1)
+
+
+def combined_load_deflection_constant(k_inner, k_outer):
+    """Load-deflection constant of the inner and outer contacts of a ball in series.
+
+    ``K = (K_i^(-2/3) + K_o^(-2/3))^(-3/2)`` [N/m^1.5] (Harris & Kotzalas, chapter "Distribution of
+    internal loading in statically loaded bearings").
+
+    Parameters
+    ----------
+    k_inner, k_outer : float or array or SX
+        Constants of the inner and outer contacts [N/m^1.5], > 0.
+    """
+    where = "combined_load_deflection_constant"
+    check_range(k_inner, "k_inner", "N/m^1.5", 0.0, low_inclusive=False, where=where)
+    check_range(k_outer, "k_outer", "N/m^1.5", 0.0, low_inclusive=False, where=where)
+    return op.power(op.power(k_inner, -2.0 / 3.0) + op.power(k_outer, -2.0 / 3.0), -1.5)
+
+
+def bearing_load_deflection_constants(
+    geometry: BearingGeometry,
+    ball: Material = STEEL,
+    ring: Material = STEEL,
+    contact_angle=None,
+    method: str = "exact",
+):
+    """Load-deflection constants of the inner, outer and combined contacts of a bearing.
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        Bearing geometry (Dw, dm, fi, fo).
+    ball, ring : Material
+        Ball and ring materials.
+    contact_angle : float or array or SX, optional
+        Operating contact angle [rad]; the free contact angle of ``geometry`` by default.
+    method : {"exact", "hamrock_brewe"}
+
+    Returns
+    -------
+    (K_i, K_o, K) : tuple
+        Inner, outer and combined constants [N/m^1.5].
+    """
+    angle = geometry.free_contact_angle if contact_angle is None else contact_angle
+    e_eff = effective_modulus(ball, ring)
+    dw, dm = geometry.ball_diameter, geometry.pitch_diameter
+    k_i = load_deflection_constant(*raceway_radii(dw, dm, geometry.fi, angle, "inner"), e_eff,
+                                   method)
+    k_o = load_deflection_constant(*raceway_radii(dw, dm, geometry.fo, angle, "outer"), e_eff,
+                                   method)
+    return k_i, k_o, combined_load_deflection_constant(k_i, k_o)
+
+
+def orthogonal_shear_stress(p_max, b, k):
+    """Maximum subsurface orthogonal shear stress tau0 and its depth z0 (Lundberg-Palmgren).
+
+    With t from ``(t^2 - 1)(2t - 1) = (b/a)^2 = 1/k^2``:
+    ``tau0 = p_max sqrt(2t - 1) / (2 t (t + 1))``, ``z0 = b / ((t + 1) sqrt(2t - 1))``
+    (Harris & Kotzalas, chapter "Contact stress and deformation"). t is found by eight Newton
+    steps started to the right of the root (the cubic is convex and increasing for t >= 1).
+
+    Parameters
+    ----------
+    p_max : float or array or SX
+        Maximum Hertz pressure [Pa], >= 0.
+    b : float or array or SX
+        Semi-minor axis [m], >= 0.
+    k : float or array or SX
+        Ellipticity a/b [-], >= 1.
+
+    Returns
+    -------
+    (tau0, z0) : tuple
+        Amplitude [Pa] and depth [m].
+    """
+    where = "orthogonal_shear_stress"
+    check_range(p_max, "p_max", "Pa", 0.0, where=where)
+    check_range(b, "b", "m", 0.0, where=where)
+    check_range(k, "k", "-", 1.0, where=where)
+    ratio2 = 1.0 / (k * k)
+    t = 1.0 + 0.5 * ratio2
+    for _ in range(8):
+        t = t - ((t * t - 1.0) * (2.0 * t - 1.0) - ratio2) / (6.0 * t * t - 2.0 * t - 2.0)
+    root = op.sqrt(2.0 * t - 1.0)
+    return p_max * root / (2.0 * t * (t + 1.0)), b / ((t + 1.0) * root)
+
+
+def hertz_contact(load, rx, ry, e_eff, method: str = "exact") -> HertzContact:
+    """All Hertz quantities of one contact at once; see :func:`semi_axes` for the parameters.
+
+    Returns
+    -------
+    HertzContact
+    """
+    params = _check_contact(load, rx, ry, e_eff, method, "hertz_contact")
+    a1, b1 = _unit_load_semi_axes(rx, ry, e_eff, params)
+    scale = op.power(load, 1.0 / 3.0)
+    stiffness = _load_deflection(rx, ry, e_eff, params)
+    p_max = 1.5 * scale / (np.pi * a1 * b1)
+    b = b1 * scale
+    tau0, z0 = orthogonal_shear_stress(p_max, b, params.k)
+    return HertzContact(
+        k=params.k,
+        a=a1 * scale,
+        b=b,
+        approach=op.power(load / stiffness, 2.0 / 3.0),
+        max_pressure=p_max,
+        load_deflection_constant=stiffness,
+        tau0=tau0,
+        z0=z0,
+    )
+
+
+def _compression(delta, smooth):
+    if smooth is None:
+        return op.fmax(delta, 0.0)
+    check_range(smooth, "smooth", "m", 0.0, low_inclusive=False, where="contact_load")
+    return op.smooth_max0(delta, smooth)
+
+
+def contact_load(k_const, delta, smooth=None):
+    """Hertz contact load ``Q = K max(delta, 0)^1.5`` [N].
+
+    Parameters
+    ----------
+    k_const : float or array or SX
+        Load-deflection constant K [N/m^1.5], >= 0.
+    delta : float or array or SX
+        Approach (overlap, positive in compression) [m].
+    smooth : float, optional
+        If given, ``max(delta, 0)`` is replaced by the smooth
+        ``(delta + sqrt(delta^2 + smooth^2)) / 2`` [m], differentiable everywhere for use in
+        equations (error at most smooth/2 in delta).
+
+    Returns
+    -------
+    Q [N], non-negative and non-decreasing in delta.
+    """
+    check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_load")
+    return k_const * op.power(_compression(delta, smooth), 1.5)
+
+
+def contact_stiffness(k_const, delta, smooth=None):
+    """Tangent contact stiffness ``dQ/d delta`` of :func:`contact_load` [N/m].
+
+    ``1.5 K max(delta, 0)^0.5``, or with ``smooth`` the exact derivative of the smooth form,
+    ``1.5 K s^0.5 (1 + delta / sqrt(delta^2 + smooth^2)) / 2``. Parameters are those of
+    :func:`contact_load`.
+    """
+    check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_stiffness")
+    stiffness = 1.5 * k_const * op.sqrt(_compression(delta, smooth))
+    if smooth is None:
+        return stiffness
+    return stiffness * 0.5 * (1.0 + delta / op.smooth_abs(delta, smooth))

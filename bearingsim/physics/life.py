@@ -1,0 +1,564 @@
+"""Fatigue life of ball bearings: ISO 281, Lundberg-Palmgren per contact, ISO/TS 16281.
+
+* ISO 281:2007 basic dynamic load rating C, equivalent dynamic load P (X, Y factors) and basic
+  rating life ``L10 = (C/P)^3``; ISO 76:2006 basic static load rating C0.
+* Lundberg-Palmgren lives of each ball-raceway contact (Harris & Kotzalas, *Rolling Bearing
+  Analysis*, 5th ed., *Essential Concepts of Bearing Technology*, chapter "Fatigue life: basic
+  theory and rating standards"), combined as models.md section C prescribes.
+* A basic reference rating life from the internal load distribution in the manner of
+  ISO/TS 16281:2008.
+
+SI units at the interface (m, N, rad, rad/s); the ISO formulas are evaluated in their own units
+(mm, N) inside. Lives are in millions of revolutions of the rotating ring relative to the other.
+Functions take floats, numpy arrays or CasADi SX; table look-ups are piecewise linear.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from bearingsim import _ops as op
+from bearingsim.errors import ParameterError, check_range
+from bearingsim.physics.geometry import (
+    ball_pass_ratio,
+    pitch_ratio,
+)
+
+__all__ = [
+    "dynamic_load_rating",
+    "static_load_rating",
+    "static_factor",
+    "xy_factors",
+    "equivalent_dynamic_load",
+    "rating_life",
+    "life_hours",
+    "raceway_contact_capacity",
+    "ball_contact_capacity",
+    "contact_life",
+    "combined_contact_life",
+    "raceway_equivalent_load",
+    "bearing_life",
+    "raceway_dynamic_ratings",
+    "reference_rating_life",
+]
+
+_MM = 1e3  # metres to millimetres for the ISO formulas
+_DW_LARGE_MM = 25.4
+
+# ISO 281:2007, Table 2: fc for single-row radial contact and angular contact groove ball bearings.
+_FC_GAMMA = (0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.12, 0.14, 0.16, 0.18,
+             0.20, 0.22, 0.24, 0.26, 0.28, 0.30, 0.32, 0.34, 0.36, 0.38, 0.40)
+_FC = (29.1, 35.8, 40.3, 43.8, 46.7, 49.1, 51.1, 52.8, 54.3, 55.5, 57.5, 58.8, 59.6, 59.9,
+       59.9, 59.6, 59.0, 58.2, 57.1, 56.0, 54.6, 53.2, 51.7, 50.0, 48.4)
+
+# ISO 76:2006, Table 2: f0 for radial contact and angular contact groove ball bearings.
+_F0_GAMMA = tuple(round(0.01 * j, 2) for j in range(41))
+_F0 = (14.7, 14.9, 15.1, 15.3, 15.5, 15.7, 15.9, 16.1, 16.3, 16.5, 16.4, 16.1, 15.9, 15.6, 15.4,
+       15.2, 14.9, 14.7, 14.4, 14.2, 14.0, 13.7, 13.5, 13.2, 13.0, 12.8, 12.5, 12.3, 12.1, 11.8,
+       11.6, 11.4, 11.2, 10.9, 10.7, 10.5, 10.3, 10.0, 9.8, 9.6, 9.4)
+
+# ISO 281:2007, Table 3: radial contact groove ball bearings (relative axial load f0 Fa / C0r).
+_DG_LOAD = (0.172, 0.345, 0.689, 1.03, 1.38, 2.07, 3.45, 5.17, 6.89)
+_DG_E = (0.19, 0.22, 0.26, 0.28, 0.30, 0.34, 0.38, 0.42, 0.44)
+_DG_Y = (2.30, 1.99, 1.71, 1.55, 1.45, 1.31, 1.15, 1.04, 1.00)
+_DG_X = 0.56
+# ISO 281:2007, Table 3: single-row angular contact ball bearings, 15 deg (i f0 Fa / C0r).
+_AC15_LOAD = (0.178, 0.357, 0.714, 1.07, 1.43, 2.14, 3.57, 5.35, 7.14)
+_AC15_E = (0.38, 0.40, 0.43, 0.46, 0.47, 0.50, 0.55, 0.56, 0.56)
+_AC15_Y = (1.47, 1.40, 1.30, 1.23, 1.19, 1.12, 1.02, 1.00, 1.00)
+_AC15_X = 0.44
+# ISO 281:2007, Table 3: single-row angular contact ball bearings, 20 to 45 deg: (alpha, e, X, Y).
+_AC_FIXED = ((20.0, 0.57, 0.43, 1.00), (25.0, 0.68, 0.41, 0.87), (30.0, 0.80, 0.39, 0.76),
+             (35.0, 0.95, 0.37, 0.66), (40.0, 1.14, 0.35, 0.57), (45.0, 1.34, 0.33, 0.50))
+
+# Harris & Kotzalas: Lundberg-Palmgren constant of the raceway contact capacity, N and mm.
+_LP_CONSTANT = 98.1
+
+
+def _interp(x, xs: Sequence[float], ys: Sequence[float]):
+    """Piecewise-linear interpolation, constant beyond the ends; symbolic-safe (sum of ramps)."""
+    x = op.fmin(op.fmax(x, xs[0]), xs[-1])
+    result = ys[0]
+    previous_slope = 0.0
+    for j in range(len(xs) - 1):
+        slope = (ys[j + 1] - ys[j]) / (xs[j + 1] - xs[j])
+        result = result + (slope - previous_slope) * op.fmax(x - xs[j], 0.0)
+        previous_slope = slope
+    return result
+
+
+def _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows, where):
+    check_range(ball_diameter, "ball_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_range(ball_count, "ball_count", "-", 3, where=where)
+    check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where=where)
+    check_range(rows, "rows", "-", 1, where=where)
+    return pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
+
+
+def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=0.0, rows=1,
+                        bm=1.3):
+    """ISO 281:2007 basic dynamic radial load rating C of a radial ball bearing [N].
+
+    ``C = bm fc (i cos a)^0.7 Z^(2/3) Dw^1.8`` for Dw <= 25.4 mm and
+    ``C = 3.647 bm fc (i cos a)^0.7 Z^(2/3) Dw^1.4`` above (Dw in mm), with fc from ISO 281
+    Table 2 (single-row radial and angular contact groove ball bearings), interpolated linearly in
+    ``gamma = Dw cos(a) / dm``.
+
+    Parameters
+    ----------
+    ball_diameter : float or array or SX
+        Ball diameter Dw [m].
+    pitch_diameter : float or array or SX
+        Pitch diameter dm [m].
+    ball_count : int or float or SX
+        Balls per row Z [-].
+    contact_angle : float or array or SX
+        Nominal contact angle [rad], 0 to 45 deg.
+    rows : int
+        Number of rows i [-].
+    bm : float
+        Rating factor for contemporary material and manufacturing quality [-]: 1.3 for radial
+        ball bearings (1.1 for filling-slot and insert bearings).
+
+    Returns
+    -------
+    C [N]
+
+    Raises
+    ------
+    ParameterError
+        If gamma lies outside the table, 0.01 to 0.40.
+    """
+    where = "dynamic_load_rating"
+    gamma = _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows, where)
+    check_range(gamma, "Dw cos(alpha)/dm", "-", _FC_GAMMA[0], _FC_GAMMA[-1], where=where)
+    check_range(bm, "bm", "-", 0.0, low_inclusive=False, where=where)
+    dw_mm = ball_diameter * _MM
+    size = op.if_else(dw_mm <= _DW_LARGE_MM, op.power(dw_mm, 1.8),
+                      3.647 * op.power(dw_mm, 1.4))
+    return (bm * _interp(gamma, _FC_GAMMA, _FC) * op.power(rows * op.cos(contact_angle), 0.7)
+            * op.power(ball_count, 2.0 / 3.0) * size)
+
+
+def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
+    """ISO 76:2006 factor f0 of radial and angular contact groove ball bearings [N/mm^2].
+
+    Table 2 of ISO 76 (based on 4 200 MPa Hertz pressure at the most heavily loaded contact),
+    interpolated linearly in ``gamma = Dw cos(a) / dm`` from 0 to 0.40. It is also the f0 of the
+    relative axial load ``f0 Fa / C0`` in :func:`xy_factors`.
+
+    Parameters are those of :func:`dynamic_load_rating`. Returns f0 [N/mm^2].
+    """
+    gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
+    check_range(gamma, "Dw cos(alpha)/dm", "-", _F0_GAMMA[0], _F0_GAMMA[-1], where="static_factor")
+    return _interp(gamma, _F0_GAMMA, _F0)
+
+
+def static_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=0.0, rows=1):
+    """ISO 76:2006 basic static radial load rating ``C0 = f0 i Z Dw^2 cos(a)`` [N] (Dw in mm).
+
+    Parameters are those of :func:`dynamic_load_rating`. Returns C0 [N].
+    """
+    _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows,
+                   "static_load_rating")
+    f0 = static_factor(ball_diameter, pitch_diameter, contact_angle)
+    dw_mm = ball_diameter * _MM
+    return f0 * rows * ball_count * dw_mm * dw_mm * op.cos(contact_angle)
+
+
+def _angular_contact_factors(relative_load, alpha_deg: float):
+    """(e, X, Y) of single-row angular contact ball bearings, ISO 281 Table 3.
+
+    15 deg depends on the relative axial load; 20 to 45 deg are constants. Between tabulated
+    angles the factors are interpolated linearly in the contact angle (our choice).
+    """
+    rows = [(15.0, _interp(relative_load, _AC15_LOAD, _AC15_E), _AC15_X,
+             _interp(relative_load, _AC15_LOAD, _AC15_Y))] + list(_AC_FIXED)
+    for (a0, e0, x0, y0), (a1, e1, x1, y1) in zip(rows[:-1], rows[1:], strict=True):
+        if a0 <= alpha_deg <= a1:
+            w = (alpha_deg - a0) / (a1 - a0)
+            return e0 + w * (e1 - e0), x0 + w * (x1 - x0), y0 + w * (y1 - y0)
+    raise AssertionError("contact angle checked before")  # pragma: no cover
+
+
+def xy_factors(radial_load, axial_load, c0, f0, contact_angle: float = 0.0, rows: int = 1):
+    """ISO 281:2007 factors X, Y and the limit e of a radial ball bearing (Table 3).
+
+    Deep-groove (contact_angle = 0): table over ``f0 Fa / C0``; single-row angular contact
+    (15 to 45 deg): table over ``i f0 Fa / C0`` at 15 deg, constants from 20 deg up. Values between
+    rows are interpolated linearly; relative axial loads beyond the table take its end rows.
+    If ``Fa <= e Fr``: X = 1, Y = 0.
+
+    Parameters
+    ----------
+    radial_load, axial_load : float or array or SX
+        Radial and axial load Fr, Fa [N], >= 0.
+    c0 : float or array or SX
+        Basic static load rating C0 [N].
+    f0 : float or array or SX
+        Factor f0 [-] of :func:`static_factor`.
+    contact_angle : float
+        Nominal contact angle [rad]: 0, or 15 to 45 deg. A number (it selects the table).
+    rows : int
+        Number of rows i [-].
+
+    Returns
+    -------
+    (X, Y, e) : tuple [-]
+    """
+    where = "xy_factors"
+    check_range(radial_load, "radial_load", "N", 0.0, where=where)
+    check_range(axial_load, "axial_load", "N", 0.0, where=where)
+    check_range(c0, "c0", "N", 0.0, low_inclusive=False, where=where)
+    check_range(f0, "f0", "-", 0.0, low_inclusive=False, where=where)
+    if op.is_symbolic(contact_angle):
+        raise ParameterError(f"{where}: contact_angle must be a number [rad], not symbolic")
+    alpha_deg = float(np.degrees(contact_angle))
+    relative = f0 * axial_load / c0
+    if alpha_deg == 0.0:
+        e = _interp(relative, _DG_LOAD, _DG_E)
+        x, y = _DG_X, _interp(relative, _DG_LOAD, _DG_Y)
+    elif 15.0 <= alpha_deg <= 45.0:
+        e, x, y = _angular_contact_factors(rows * relative, alpha_deg)
+    else:
+        raise ParameterError(
+            f"{where}: contact_angle = {alpha_deg:g} deg is outside the tables: use 0 deg "
+            f"(deep-groove) or [15, 45] deg (angular contact)"
+        )
+    heavy_axial = axial_load > e * radial_load
+    return (op.if_else(heavy_axial, x, 1.0), op.if_else(heavy_axial, y, 0.0), e)
+
+
+def equivalent_dynamic_load(radial_load, axial_load, c0, f0, contact_angle: float = 0.0,
+                            rows: int = 1):
+    """ISO 281:2007 equivalent dynamic radial load ``P = X Fr + Y Fa`` [N].
+
+    Parameters are those of :func:`xy_factors`. Returns P [N].
+    """
+    x, y, _ = xy_factors(radial_load, axial_load, c0, f0, contact_angle, rows)
+    return x * radial_load + y * axial_load
+
+
+def rating_life(c, p, exponent=3.0):
+    """Basic rating life ``L10 = (C/P)^p`` [10^6 revolutions] (ISO 281; p = 3 for ball bearings).
+
+    Parameters
+    ----------
+    c : float or array or SX
+        Basic dynamic load rating C [N], > 0.
+    p : float or array or SX
+        Equivalent dynamic load P [N], > 0.
+    exponent : float
+        Life exponent [-].
+    """
+    check_range(c, "c", "N", 0.0, low_inclusive=False, where="rating_life")
+    check_range(p, "p", "N", 0.0, low_inclusive=False, where="rating_life")
+    return op.power(c / p, exponent)
+
+
+def life_hours(life, speed):
+    """Life in operating hours at a constant speed [h].
+
+    Parameters
+    ----------
+    life : float or array or SX
+        Life [10^6 revolutions], >= 0.
+    speed : float or array or SX
+        Relative ring speed [rad/s], > 0.
+    """
+    check_range(life, "life", "1e6 rev", 0.0, where="life_hours")
+    check_range(speed, "speed", "rad/s", 0.0, low_inclusive=False, where="life_hours")
+    return life * 1e6 * 2.0 * np.pi / (3600.0 * speed)
+
+
+def _check_race(race: str, where: str) -> None:
+    if race not in ("inner", "outer"):
+        raise ParameterError(f"{where}: race must be 'inner' or 'outer', got {race!r}")
+
+
+def raceway_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_count,
+                             contact_angle, race: str):
+    """Lundberg-Palmgren basic dynamic capacity Qc of a raceway contact [N] (Harris & Kotzalas).
+
+    ``Qc = 98.1 (2f/(2f - 1))^0.41 (1 -+ g)^1.39 / (1 +- g)^(1/3) (Dw/dm)^0.3 Dw^1.8 Z^(-1/3)``
+    (upper signs inner, lower outer raceway, Dw in mm; ``3.647 Dw^1.4`` for Dw > 25.4 mm): the
+    ball load the raceway carries for 10^6 revolutions with 90 % reliability. The raceway life at a
+    ball load Q is ``(Qc/Q)^3`` (:func:`contact_life`).
+
+    Parameters
+    ----------
+    ball_diameter, pitch_diameter : float or array or SX
+        Dw, dm [m].
+    groove_factor : float or array or SX
+        Groove curvature factor f of this raceway [-], > 0.5.
+    ball_count : int or float
+        Number of balls Z [-].
+    contact_angle : float or array or SX
+        Contact angle [rad].
+    race : {"inner", "outer"}
+
+    Returns
+    -------
+    Qc [N]
+    """
+    where = "raceway_contact_capacity"
+    _check_race(race, where)
+    gamma = _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, 1, where)
+    check_range(groove_factor, "groove_factor", "-", 0.5, 1.0, low_inclusive=False, where=where)
+    sign = -1.0 if race == "inner" else 1.0
+    dw_mm = ball_diameter * _MM
+    size = op.if_else(dw_mm <= _DW_LARGE_MM, op.power(dw_mm, 1.8),
+                      3.647 * op.power(dw_mm, 1.4))
+    conformity = op.power(2.0 * groove_factor / (2.0 * groove_factor - 1.0), 0.41)
+    return (_LP_CONSTANT * conformity * op.power(1.0 + sign * gamma, 1.39)
+            / op.power(1.0 - sign * gamma, 1.0 / 3.0)
+            * op.power(ball_diameter / pitch_diameter, 0.3) * size
+            * op.power(ball_count, -1.0 / 3.0))
+
+
+def ball_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_count,
+                          contact_angle, race: str):
+    """Capacity of the ball surface at a raceway contact, for lives in ball revolutions [N].
+
+    Lundberg-Palmgren theory gives the same stress field in the ball and in the raceway at a
+    contact; the two differ in the length of the stressed track, ``pi dm (1 -+ g)`` on the raceway
+    and ``pi Dw`` on the ball, and in the stress cycles per revolution, ``u`` (balls passing a
+    raceway point per ring revolution, :func:`~bearingsim.physics.geometry.ball_pass_ratio`) and
+    one per ball revolution. With the life in stress cycles proportional to
+    ``track length^(-1/e)``, e = 10/9, this gives
+    ``Qcb^3 = u Qc^3 (dm (1 -+ g) / Dw)^0.9``, and the ball life at load Q is ``(Qcb/Q)^3`` millions
+    of ball revolutions. This is our derivation from the theory in Harris & Kotzalas (chapter
+    "Fatigue life: basic theory and rating standards"); the models.md section C formula needs
+    such ball lives but does not define them.
+
+    Parameters are those of :func:`raceway_contact_capacity`. Returns Qcb [N].
+    """
+    qc = raceway_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_count,
+                                  contact_angle, race)
+    gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
+    sign = -1.0 if race == "inner" else 1.0
+    track_ratio = pitch_diameter * (1.0 + sign * gamma) / ball_diameter
+    cycles = ball_pass_ratio(ball_count, gamma, race)
+    return qc * op.power(cycles * op.power(track_ratio, 0.9), 1.0 / 3.0)
+
+
+def contact_life(capacity, load):
+    """Life of one contact ``L = (Qc/Q)^3`` [10^6 revolutions]; infinite at zero load.
+
+    Parameters
+    ----------
+    capacity : float or array or SX
+        Contact capacity Qc [N], > 0.
+    load : float or array or SX
+        Contact load Q [N], >= 0.
+    """
+    check_range(capacity, "capacity", "N", 0.0, low_inclusive=False, where="contact_life")
+    check_range(load, "load", "N", 0.0, where="contact_life")
+    with np.errstate(divide="ignore"):
+        return op.power(load / capacity, -3.0)
+
+
+def _balls(values) -> list:
+    """Per-ball entries of a list, a numpy array (balls along axis 0) or an SX column."""
+    if hasattr(values, "shape"):
+        return [values[j] for j in range(values.shape[0])]
+    return list(values)
+
+
+def _per_ball(value, z: int, name: str, where: str) -> list:
+    """One entry per ball: a sequence, array or SX column of length z, or one shared value."""
+    if isinstance(value, (list, tuple)) or (
+        hasattr(value, "shape") and int(np.prod(value.shape)) > 1
+    ):
+        items = _balls(value)
+        if len(items) != z:
+            raise ParameterError(
+                f"{where}: {name} needs one entry per ball ({z}), got {len(items)}"
+            )
+        return items
+    return [value] * z
+
+
+def _check_life(value, name: str, where: str) -> None:
+    """Lives must be > 0; unlike check_range, an infinite life (an unloaded contact) is allowed."""
+    if op.is_symbolic(value):
+        return
+    arr = np.asarray(value, dtype=float)
+    if np.any(np.isnan(arr)) or np.any(arr <= 0.0):
+        raise ParameterError(f"{where}: {name} must be > 0 (inf allowed) [1e6 rev], got {value}")
+
+
+def _inverse_life_power(life):
+    """``L^(-10/9)``; zero for an infinite life."""
+    return op.power(life, -10.0 / 9.0)
+
+
+def _life_from_inverse_power(total):
+    with np.errstate(divide="ignore"):
+        return op.power(total, -0.9)
+
+
+def combined_contact_life(life_outer, life_inner, life_ball_outer, life_ball_inner,
+                          ball_revolutions):
+    """Bearing life from the per-contact lives, exactly as models.md section C states [10^6 rev].
+
+    ``L10^(-10/9) = (1/Z) (sum_j L_1j^(-10/9) + sum_j L_2j^(-10/9))
+    + sum_j (L_b1j / N_j)^(-10/9) + sum_j (L_b2j / N_j)^(-10/9)``.
+    Note that both raceway terms average ``L^(-10/9)``, the rule of Harris & Kotzalas for a
+    stationary ring; :func:`bearing_life` with :func:`raceway_equivalent_load` distinguishes the
+    rotating ring.
+
+    Parameters
+    ----------
+    life_outer, life_inner : sequence or array or SX column
+        Lives L_1j, L_2j of the outer and inner raceway contacts of each ball j [10^6 rev]
+        (:func:`contact_life` with :func:`raceway_contact_capacity`).
+    life_ball_outer, life_ball_inner : sequence or array or SX column
+        Lives L_b1j, L_b2j of ball j at its outer and inner contact [10^6 ball revolutions]
+        (:func:`contact_life` with :func:`ball_contact_capacity`).
+    ball_revolutions : float or sequence or array or SX
+        Ball revolutions per ring revolution N_j [-] (one value for all balls or one per ball),
+        see :func:`~bearingsim.physics.geometry.ball_revolutions_per_revolution`.
+
+    Returns
+    -------
+    L10 [10^6 revolutions]
+    """
+    where = "combined_contact_life"
+    outer = _balls(life_outer)
+    z = len(outer)
+    inner = _per_ball(life_inner, z, "life_inner", where)
+    ball_outer = _per_ball(life_ball_outer, z, "life_ball_outer", where)
+    ball_inner = _per_ball(life_ball_inner, z, "life_ball_inner", where)
+    n = _per_ball(ball_revolutions, z, "ball_revolutions", where)
+    for name, values in (("life_outer", outer), ("life_inner", inner),
+                         ("life_ball_outer", ball_outer), ("life_ball_inner", ball_inner)):
+        for value in values:
+            _check_life(value, name, where)
+    for value in n:
+        check_range(value, "ball_revolutions", "-", 0.0, low_inclusive=False, where=where)
+    total = sum(_inverse_life_power(lo) + _inverse_life_power(li)
+                for lo, li in zip(outer, inner, strict=True)) / z
+    for lbo, lbi, nj in zip(ball_outer, ball_inner, n, strict=True):
+        total = total + _inverse_life_power(lbo / nj) + _inverse_life_power(lbi / nj)
+    return _life_from_inverse_power(total)
+
+
+def raceway_equivalent_load(loads, rotating: bool):
+    """Equivalent ball load of a raceway from the ball loads (Lundberg-Palmgren).
+
+    Rotating ring (each point meets every ball load): ``Qe = (1/Z sum Q_j^3)^(1/3)``; stationary
+    ring (each point always under the same ball position): ``Qe = (1/Z sum Q_j^(10/3))^0.3``
+    (Harris & Kotzalas; ISO/TS 16281).
+
+    Parameters
+    ----------
+    loads : sequence or array or SX column
+        Contact load of every ball on this raceway, including unloaded balls [N], >= 0.
+    rotating : bool
+        Whether the raceway rotates relative to the load.
+
+    Returns
+    -------
+    Qe [N]
+    """
+    q = _balls(loads)
+    for value in q:
+        check_range(value, "loads", "N", 0.0, where="raceway_equivalent_load")
+    w = 3.0 if rotating else 10.0 / 3.0
+    return op.power(sum(op.power(qj, w) for qj in q) / len(q), 1.0 / w)
+
+
+def bearing_life(life_inner, life_outer):
+    """Bearing life from the raceway lives, ``L = (L_i^(-10/9) + L_o^(-10/9))^(-9/10)`` [10^6 rev].
+
+    Lundberg-Palmgren (Harris & Kotzalas); ISO/TS 16281. Infinite raceway lives are allowed.
+
+    Parameters
+    ----------
+    life_inner, life_outer : float or array or SX
+        Raceway lives [10^6 revolutions], > 0.
+    """
+    _check_life(life_inner, "life_inner", "bearing_life")
+    _check_life(life_outer, "life_outer", "bearing_life")
+    return _life_from_inverse_power(_inverse_life_power(life_inner)
+                                    + _inverse_life_power(life_outer))
+
+
+def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, rows=1):
+    """ISO/TS 16281:2008 basic dynamic load ratings of the raceway contacts, (Q_ci, Q_ce) [N].
+
+    ``Q_ci = C / (0.407 Z i^0.7 cos a) (1 + x^(10/3))^0.3``,
+    ``Q_ce = C / (0.389 Z i^0.7 cos a) (1 + x^(-10/3))^0.3`` with
+    ``x = 1.044 ((1 - g)/(1 + g))^1.72 (fi (2 fo - 1) / (fo (2 fi - 1)))^0.41``: the ball loads for
+    which the inner and outer raceways reach 10^6 revolutions, consistent with C of ISO 281.
+
+    Parameters
+    ----------
+    c : float or array or SX
+        Basic dynamic radial load rating C [N].
+    fi, fo : float or array or SX
+        Groove curvature factors [-].
+    gamma : float or array or SX
+        Dw cos(a) / dm [-].
+    ball_count : int or float
+        Balls per row Z [-].
+    contact_angle : float or array or SX
+        Nominal contact angle [rad].
+    rows : int
+        Number of rows i [-].
+    """
+    where = "raceway_dynamic_ratings"
+    check_range(c, "c", "N", 0.0, low_inclusive=False, where=where)
+    check_range(fi, "fi", "-", 0.5, 1.0, low_inclusive=False, where=where)
+    check_range(fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
+    check_range(gamma, "gamma", "-", 0.0, 1.0, high_inclusive=False, where=where)
+    check_range(ball_count, "ball_count", "-", 3, where=where)
+    check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where=where)
+    x = 1.044 * op.power((1.0 - gamma) / (1.0 + gamma), 1.72) * op.power(
+        fi * (2.0 * fo - 1.0) / (fo * (2.0 * fi - 1.0)), 0.41)
+    base = c / (ball_count * op.power(rows, 0.7) * op.cos(contact_angle))
+    return (base / 0.407 * op.power(1.0 + op.power(x, 10.0 / 3.0), 0.3),
+            base / 0.389 * op.power(1.0 + op.power(x, -10.0 / 3.0), 0.3))
+
+
+def reference_rating_life(loads_inner, loads_outer, c, fi, fo, gamma, contact_angle=0.0,
+                          rows=1, inner_rotating: bool = True) -> Any:
+    """Basic reference rating life L10r from the internal load distribution [10^6 rev].
+
+    In the manner of ISO/TS 16281:2008 for ball bearings: raceway ratings Q_ci, Q_ce from C
+    (:func:`raceway_dynamic_ratings`), equivalent raceway loads from the ball loads
+    (:func:`raceway_equivalent_load`, cubic mean on the rotating ring, 10/3 mean on the
+    stationary one), raceway lives ``(Q_c/Q_e)^3`` combined by :func:`bearing_life`.
+
+    Included: whatever the given contact loads contain (clearance, combined radial, axial and
+    moment load, misalignment, centrifugal ball loads, which make inner and outer loads differ).
+    Not included: the life modification factor a_ISO (lubrication, contamination, fatigue load
+    limit), the reliability factor a1, ISO/TS 16281's treatment of roller bearings and of
+    truncated contact ellipses, and the variation of the operating contact angle in Q_c (the
+    nominal angle is used).
+
+    Parameters
+    ----------
+    loads_inner, loads_outer : sequence or array or SX column
+        Contact loads of every ball (including unloaded balls) on the inner and outer raceway [N].
+    c : float or array or SX
+        Basic dynamic radial load rating C [N] (:func:`dynamic_load_rating` or catalogue).
+    fi, fo, gamma, contact_angle, rows
+        As in :func:`raceway_dynamic_ratings`.
+    inner_rotating : bool
+        Whether the inner ring rotates relative to the load (else the outer ring does).
+
+    Returns
+    -------
+    L10r [10^6 revolutions]
+    """
+    z = len(_balls(loads_inner))
+    qci, qce = raceway_dynamic_ratings(c, fi, fo, gamma, z, contact_angle, rows)
+    qei = raceway_equivalent_load(loads_inner, rotating=inner_rotating)
+    qee = raceway_equivalent_load(loads_outer, rotating=not inner_rotating)
+    return bearing_life(contact_life(qci, qei), contact_life(qce, qee))
