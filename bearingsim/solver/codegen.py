@@ -30,7 +30,8 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     u = ca.vertcat(*[v.sym for v in inputs]) if inputs else ca.SX(0, 1)
     p = ca.vertcat(*[q.sym for q in dae.params]) if dae.params else ca.SX(0, 1)
 
-    xdot = ca.vertcat(*[_value_expr(v.derivative, causal) for v in states]) if states else ca.SX(0, 1)
+    derivs = [_value_expr(v.derivative, causal) for v in states]
+    xdot = ca.vertcat(*derivs) if states else ca.SX(0, 1)
 
     observed_names: list[str] = []
     observed: list[ca.SX] = []

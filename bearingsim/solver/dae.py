@@ -100,7 +100,7 @@ class DAE:
     time: ca.SX
     initial_eqs: list[Eq] = field(default_factory=list)
     aliases: dict[str, tuple[float, Var | None, float]] = field(default_factory=dict)
-    """Eliminated variable name -> (scale, representative or None, offset): v = scale*rep + offset."""
+    """Eliminated name -> (scale, representative or None, offset): v = scale * rep + offset."""
     timings: list[tuple[str, float]] = field(default_factory=list)
     log: list[str] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)

@@ -41,7 +41,7 @@ def _differentiate(dae: DAE, eq: Eq, lookup: dict[str, Var]) -> Eq:
     if eq.differentiated is not None:
         return eq.differentiated
     r = eq.residual
-    vs = [v for v in dae.incidence(eq, lookup)]
+    vs = dae.incidence(eq, lookup)
     dr = ca.jacobian(r, dae.time)
     if vs:
         syms = ca.vertcat(*[v.sym for v in vs])
@@ -52,6 +52,22 @@ def _differentiate(dae: DAE, eq: Eq, lookup: dict[str, Var]) -> Eq:
     eq.differentiated = new
     dae.eqs.append(new)
     return new
+
+
+def _augment(e: Eq, inc, eligible, assign: dict, colored_e: set, colored_v: set) -> bool:
+    """Pantelides' augmenting path search from equation ``e`` (colours what it visits)."""
+    colored_e.add(e)
+    for v in inc(e):
+        if eligible(v) and assign.get(v) is None:
+            assign[v] = e
+            return True
+    for v in inc(e):
+        if eligible(v) and v not in colored_v:
+            colored_v.add(v)
+            if _augment(assign[v], inc, eligible, assign, colored_e, colored_v):
+                assign[v] = e
+                return True
+    return False
 
 
 def pantelides(dae: DAE, max_passes: int = 20) -> int:
@@ -89,21 +105,7 @@ def pantelides(dae: DAE, max_passes: int = 20) -> int:
                 colored_e: set[Eq] = set()
                 colored_v: set[Var] = set()
 
-                def augment(e: Eq) -> bool:
-                    colored_e.add(e)
-                    for v in inc(e):
-                        if eligible(v) and assign.get(v) is None:
-                            assign[v] = e
-                            return True
-                    for v in inc(e):
-                        if eligible(v) and v not in colored_v:
-                            colored_v.add(v)
-                            if augment(assign[v]):
-                                assign[v] = e
-                                return True
-                    return False
-
-                if augment(i):
+                if _augment(i, inc, eligible, assign, colored_e, colored_v):
                     break
                 for v in colored_v:
                     _derivative_var(dae, v, lookup)
@@ -139,7 +141,7 @@ def _start_point(dae: DAE) -> tuple[ca.SX, np.ndarray]:
     return ca.vertcat(*syms), np.array(vals, dtype=float)
 
 
-def _select_columns(h: np.ndarray, m: int, rng: np.random.Generator) -> list[int]:
+def _select_columns(h: np.ndarray, m: int) -> list[int]:
     if h.shape[1] == m:
         return list(range(m))
     _, r, piv = scipy.linalg.qr(h, pivoting=True, mode="economic")
@@ -178,14 +180,16 @@ def dummy_derivatives(dae: DAE) -> list[str]:
                 equations=[e.describe() for e in g],
                 unknowns=[v.name for v in present],
             )
-        jac = ca.jacobian(ca.vertcat(*[e.residual for e in g]), ca.vertcat(*[v.sym for v in present]))
+        residuals = ca.vertcat(*[e.residual for e in g])
+        jac = ca.jacobian(residuals, ca.vertcat(*[v.sym for v in present]))
         jac_f = ca.Function("h", [syms], [jac])
         sel = None
         for attempt in range(4):
-            point = vals if attempt == 0 else vals + rng.normal(0.0, 0.1, vals.size) * (1 + abs(vals))
+            noise = rng.normal(0.0, 0.1, vals.size) * (1 + abs(vals))
+            point = vals if attempt == 0 else vals + noise
             h = np.array(jac_f(point), dtype=float)
             try:
-                sel = _select_columns(h, len(g), rng)
+                sel = _select_columns(h, len(g))
                 break
             except np.linalg.LinAlgError:
                 continue

@@ -6,7 +6,6 @@ Python runs inside the integration; other callables are evaluated numerically.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 import casadi as ca

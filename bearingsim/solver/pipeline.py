@@ -14,9 +14,9 @@ from typing import Any
 
 import casadi as ca
 
+from bearingsim.errors import StructuralError
 from bearingsim.language.component import Component
 from bearingsim.solver import alias, causalize, codegen, flatten, index_reduction, prune, structure
-from bearingsim.errors import StructuralError
 from bearingsim.solver.dae import DAE, Eq, Var
 from bearingsim.solver.system import Signal, System
 
@@ -134,8 +134,8 @@ def _initial_problem(dae: DAE, funcs: dict) -> tuple[ca.Function | None, list[in
     mt, mx = ca.MX.sym("t"), ca.MX.sym("x", obs.size1_in(1))
     mu, mp = ca.MX.sym("u", obs.size1_in(2)), ca.MX.sym("p", obs.size1_in(3))
     all_vals = obs(mt, mx, mu, mp)[: len(dae.vars)]
-    fn = ca.Function("init", [mt, mx, mu, mp], [r_fn(all_vals, mt, mp)], ["t", "x", "u", "p"], ["r"])
-    return fn, free
+    res_mx = r_fn(all_vals, mt, mp)
+    return ca.Function("init", [mt, mx, mu, mp], [res_mx], ["t", "x", "u", "p"], ["r"]), free
 
 
 Pass = tuple[str, Callable[[AssemblyState], None], bool]
