@@ -43,7 +43,7 @@ def regularized_coulomb(slip_speed: Any, mu: float, v_reg: float = 1e-3) -> Any:
     """Coulomb friction coefficient regularized through zero slip.
 
     ``mu_eff = mu * s / sqrt(s^2 + v_reg^2)``: odd, smooth, bounded by ``mu``; it reaches 99 % of
-    ``mu`` at ``|s| = 7 v_reg``. This is the standard viscous regularization of the Coulomb law
+    ``mu`` at ``|s| = 7.1 v_reg``. This is the standard viscous regularization of the Coulomb law
     (e.g. Gupta, *Advanced Dynamics of Rolling Elements*, sect. 2.6, and the smoothed friction laws
     used with implicit integrators).
 
