@@ -217,7 +217,7 @@ def xy_factors(radial_load, axial_load, c0, f0, contact_angle: float = 0.0, rows
     check_range(f0, "f0", "-", 0.0, low_inclusive=False, where=where)
     if op.is_symbolic(contact_angle):
         raise ParameterError(f"{where}: contact_angle must be a number [rad], not symbolic")
-    alpha_deg = float(np.degrees(contact_angle))
+    alpha_deg = round(float(np.degrees(contact_angle)), 9)
     relative = f0 * axial_load / c0
     if alpha_deg == 0.0:
         e = _interp(relative, _DG_LOAD, _DG_E)
