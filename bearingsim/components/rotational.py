@@ -10,8 +10,16 @@ from collections.abc import Callable
 
 import casadi as ca
 
-from bearingsim.language import Component, Connector, Flow, Input, Parameter, Potential, Variable
-from bearingsim.language import der
+from bearingsim.language import (
+    Component,
+    Connector,
+    Flow,
+    Input,
+    Parameter,
+    Potential,
+    Variable,
+    der,
+)
 
 __all__ = [
     "Flange",

@@ -1,0 +1,40 @@
+"""Signal blocks: controllers built from symbolic equations."""
+
+from __future__ import annotations
+
+from bearingsim.language import Component, Input, Parameter, Variable, der
+
+__all__ = ["PIController"]
+
+
+class PIController(Component):
+    """Proportional-integral controller ``y = kp e + ki int(e) dt`` with ``e = r - m``.
+
+    Parameters
+    ----------
+    kp : float
+        Proportional gain [unit of y / unit of e], >= 0.
+    ki : float
+        Integral gain [unit of y / (unit of e s)], >= 0.
+
+    Variables
+    ---------
+    r, m : inputs (reference, measurement); e : error; xi : integral state; y : output.
+    """
+
+    def __init__(self, kp: float, ki: float, unit_e: str = "1", unit_y: str = "1", name=None):
+        super().__init__(name)
+        self.kp = Parameter(kp, f"({unit_y})/({unit_e})", "proportional gain", low=0.0)
+        self.ki = Parameter(ki, f"({unit_y})/({unit_e}.s)", "integral gain", low=0.0)
+        self.r = Input(unit=unit_e, description="reference")
+        self.m = Input(unit=unit_e, description="measurement")
+        self.e = Variable(unit=unit_e, description="control error r - m")
+        self.xi = Variable(0.0, f"{unit_e}.s", "integral of the control error")
+        self.y = Variable(unit=unit_y, description="controller output")
+
+    def equations(self):
+        return [
+            self.e == self.r - self.m,
+            der(self.xi) == self.e,
+            self.y == self.kp * self.e + self.ki * self.xi,
+        ]

@@ -1,0 +1,219 @@
+"""Double-layer bearings (issue 5, models.md section A): speed ratio theories emerging from the
+torque-level simulation, lubrication trends, energy balance and rigid middle-ring joins."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import cumulative_trapezoid
+
+from bearingsim import Assembly, connect
+from bearingsim.assemblies import double_layer_bearing, motor_drive
+from bearingsim.assemblies.double_layer import middle_ring_bodies
+from bearingsim.assemblies.theory import (
+    design_report,
+    optimal_speed_ratio,
+    speed_ratio_palmgren,
+    speed_ratio_pure_rolling,
+)
+from bearingsim.catalog import get_bearing
+from bearingsim.components.bearing_torque import PalmgrenBearing
+from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
+from bearingsim.errors import ParameterError
+from bearingsim.physics.lubricant import Grease, Oil
+from bearingsim.solver import assemble, simulate, steady_state
+from bearingsim.units import rpm_to_rad_s
+
+W_SHAFT = rpm_to_rad_s(10_000)
+
+
+def _steady_rs(system, speed=W_SHAFT, parameters=None):
+    x = steady_state(system, inputs={"shaft_speed": speed}, parameters=parameters)
+    u = np.zeros(len(system.input_names))
+    u[system.input_names.index("shaft_speed")] = speed
+    return system.observe(0.0, x, u, system.p0(parameters))["Rs"]
+
+
+@pytest.mark.parametrize("outer", ["61907", "61908", "61909"])
+def test_torque_model_with_palmgren_m0_converges_to_dp45_law(outer):
+    bearing = double_layer_bearing("61905", outer, layer_options={
+        "smooth": False, "load_dependent": False})
+    system = assemble(bearing)
+    expected = speed_ratio_palmgren("61905", outer)
+    assert _steady_rs(system) == pytest.approx(expected, rel=1e-6)
+
+
+def test_torque_model_time_stepping_reaches_the_same_ratio():
+    system = assemble(double_layer_bearing("61905", "61907", layer_options={
+        "smooth": False, "load_dependent": False}))
+    res = simulate(system, 20.0, inputs={"shaft_speed": W_SHAFT}, rtol=1e-10, atol=1e-12)
+    assert res.final("Rs") == pytest.approx(speed_ratio_palmgren("61905", "61907"), rel=1e-6)
+
+
+@pytest.mark.parametrize("exact", [True, False])
+def test_kinematic_model_returns_pure_rolling_formula(exact):
+    fidelity = "kinematic" if exact else "kinematic_approx"
+    system = assemble(double_layer_bearing("61905", "61908", fidelity=fidelity))
+    expected = speed_ratio_pure_rolling("61905", "61908", exact=exact)
+    assert _steady_rs(system) == pytest.approx(expected, rel=1e-10)
+    g1, g2 = get_bearing("61905"), get_bearing("61908")
+    if not exact:
+        assert expected == pytest.approx(
+            g1.pitch_diameter / (g1.pitch_diameter + g2.pitch_diameter), rel=1e-12)
+
+
+@pytest.mark.parametrize("fidelity", ["kinematic", "torque"])
+def test_equal_pitch_diameters_give_one_half(fidelity):
+    inner = outer = get_bearing("61905")  # PDR = 1: two equal bearings, offset axially
+    opts = {"smooth": False, "load_dependent": False} if fidelity == "torque" else None
+    system = assemble(double_layer_bearing(inner, outer, structure="Z", fidelity=fidelity,
+                                           layer_options=opts))
+    assert _steady_rs(system) == pytest.approx(0.5, rel=1e-6)
+
+
+def test_more_friction_in_inner_layer_raises_ratio():
+    system = assemble(double_layer_bearing("61905", "61907", layer_options={
+        "load_dependent": False}))
+    base = _steady_rs(system)
+    f0 = system.p0()[system.parameter_names.index("inner_layer.f0")]
+    more = _steady_rs(system, parameters={"inner_layer.f0": 2.0 * f0})
+    less = _steady_rs(system, parameters={"outer_layer.f0": 2.0 * f0})
+    assert less < base < more
+
+
+def test_grease_fill_in_inner_layer_raises_ratio():
+    oil = Oil.from_iso_vg(32)
+    ratios = []
+    for fill in (0.2, 0.5, 0.9):
+        lub = (Grease(oil, fill_fraction=fill), Grease(oil, fill_fraction=0.2))
+        system = assemble(double_layer_bearing("61905", "61907", lubrication=lub,
+                                               layer_options={"load_dependent": False}))
+        ratios.append(_steady_rs(system))
+    assert ratios[0] < ratios[1] < ratios[2]
+
+
+def test_oil_and_grease_layers_drive_ratio_towards_the_extremes():
+    oil = Oil.from_iso_vg(32, method="oil_mist")
+    grease = Grease(Oil.from_iso_vg(100), fill_fraction=0.5)
+    kw = {"layer_options": {"load_dependent": False}}
+    both_oil = _steady_rs(assemble(double_layer_bearing(lubrication=(oil, oil), **kw)))
+    grease_in = _steady_rs(assemble(double_layer_bearing(lubrication=(grease, oil), **kw)))
+    grease_out = _steady_rs(assemble(double_layer_bearing(lubrication=(oil, grease), **kw)))
+    assert grease_in > both_oil > grease_out
+    assert grease_in > 0.5 and grease_out < 0.1
+
+
+def test_lubricant_swap_is_a_parameter_change():
+    system = assemble(double_layer_bearing("61905", "61907", layer_options={
+        "load_dependent": False}))
+    thin = Oil.from_iso_vg(10)
+    rs_default = _steady_rs(system)
+    rs_thin = _steady_rs(system, parameters={
+        "inner_layer.nu": float(thin.kinematic_viscosity())})
+    assert rs_thin < rs_default
+
+
+def test_load_dependent_friction_changes_ratio_with_load():
+    system = assemble(double_layer_bearing("61905", "61909", structure="I"))
+    x = steady_state(system, inputs={"shaft_speed": 100.0, "Fr": 2000.0})
+    light = steady_state(system, inputs={"shaft_speed": 100.0, "Fr": 0.0})
+    obs_heavy = system.observe(0.0, x, np.array([2000.0, 0.0, 100.0]))
+    obs_light = system.observe(0.0, light, np.array([0.0, 0.0, 100.0]))
+    assert obs_heavy["Rs"] != pytest.approx(obs_light["Rs"], rel=1e-3)
+    assert abs(obs_heavy["M_shaft"]) > abs(obs_light["M_shaft"])
+
+
+@pytest.mark.parametrize("motor", ["dc", "pmsm"])
+def test_motor_drive_energy_balance(motor):
+    drive = motor_drive(double_layer_bearing(drive="flange"), motor=motor, speed_ref=300.0)
+    system = assemble(drive)
+    res = simulate(system, 1.0, rtol=1e-9, atol=1e-11, n_points=20001)
+    assert res.final("shaft.w") == pytest.approx(300.0, rel=1e-3)
+    work = cumulative_trapezoid(res["motor.motor.P_mech"], res.t)[-1]
+    losses = cumulative_trapezoid(
+        res["bearing.inner_layer.P_loss"] + res["bearing.outer_layer.P_loss"], res.t)[-1]
+    p = dict(zip(system.parameter_names, system.p0(), strict=True))
+    j_rot = p["motor.motor.J"] + p["shaft.J"]
+    j_mid = sum(p[f"bearing.middle.{part}.J"] for part in (
+        "inner_ring_of_inner_bearing", "sleeve", "outer_ring_of_outer_bearing"))
+    kinetic = 0.5 * j_rot * res["shaft.w"] ** 2 + 0.5 * j_mid * res["bearing.middle.w"] ** 2
+    assert work == pytest.approx(losses + kinetic[-1] - kinetic[0], rel=1e-6)
+
+
+def test_motor_drive_follows_ramp_and_load_step():
+    drive = motor_drive(double_layer_bearing(drive="flange"), motor="pmsm",
+                        speed_ref=lambda t: 400.0 * _ramp(t, 0.2),
+                        load_torque=lambda t: -0.05 * _step(t, 0.6))
+    system = assemble(drive)
+    res = simulate(system, 1.0, rtol=1e-8, atol=1e-10, n_points=1001)
+    w = res["shaft.w"]
+    # a PI loop follows a ramp with a bounded lag
+    assert w[res.t.searchsorted(0.1)] == pytest.approx(200.0, rel=0.2)
+    assert res.final("shaft.w") == pytest.approx(400.0, rel=2e-3)
+    # after the load step the motor carries bearing friction plus the 0.05 N m load, through
+    # the q current alone (id = 0): tau = 3/2 p psi iq
+    tau_em = res.final("motor.motor.tau_em")
+    assert tau_em == pytest.approx(0.05 - res.final("bearing.M_shaft"), rel=1e-2)
+    assert res.final("motor.motor.iq") == pytest.approx(tau_em / (1.5 * 2 * 0.02), rel=1e-9)
+    assert abs(res.final("motor.motor.id")) < 1e-9
+
+
+def _ramp(t, t1):
+    import casadi as ca
+
+    return ca.fmin(t / t1, 1.0)
+
+
+def _step(t, t1):
+    import casadi as ca
+
+    return ca.if_else(t >= t1, 1.0, 0.0)
+
+
+def test_middle_ring_rigid_joins_equal_hand_merged_inertia():
+    gi, go = get_bearing("61905"), get_bearing("61907")
+    bodies = middle_ring_bodies(gi, go, "Z")
+
+    class HandMerged(Assembly):
+        def __init__(self):
+            super().__init__("merged")
+            self.drive = SpeedSource(W_SHAFT)
+            self.inner_layer = PalmgrenBearing(gi, load_dependent=False)
+            self.middle = Inertia(sum(b.inertia for b in bodies))
+            self.outer_layer = PalmgrenBearing(go, load_dependent=False)
+            self.housing = Fixed()
+            connect(self.drive.flange, self.inner_layer.inner)
+            connect(self.inner_layer.outer, self.middle.flange_a)
+            connect(self.middle.flange_b, self.outer_layer.inner)
+            connect(self.outer_layer.outer, self.housing.flange)
+
+    composite = assemble(double_layer_bearing("61905", "61907", speed=W_SHAFT,
+                                              layer_options={"load_dependent": False}))
+    merged = assemble(HandMerged())
+    assert composite.n_states == merged.n_states == 3
+    a = simulate(composite, 0.5, rtol=1e-10, atol=1e-12)
+    b = simulate(merged, 0.5, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(a["middle.w"], b["middle.w"], rtol=1e-8, atol=1e-9)
+
+
+def test_i_type_requires_the_inner_bearing_to_fit():
+    with pytest.raises(ParameterError, match="I-type"):
+        double_layer_bearing("61905", "61907", structure="I")
+    assert double_layer_bearing("61905", "61909").structure == "I"
+    assert double_layer_bearing("61905", "61907").structure == "Z"
+
+
+def test_optimal_ratio_and_design_report():
+    gi, go = get_bearing("61905"), get_bearing("61907")
+    ni, no = gi.limiting_speed, go.limiting_speed
+    assert optimal_speed_ratio(gi, go) == pytest.approx(no / (ni + no))
+    rep = design_report("61905", "61907")
+    assert rep.max_shaft_speed <= rep.max_shaft_speed_optimal * (1 + 1e-12)
+    assert 0 < rep.speed_utilisation <= 1
+    optimal = design_report("61905", "61907", rs=rep.rs_optimal)
+    assert optimal.speed_utilisation == pytest.approx(1.0)
+
+
+def test_unknown_fidelity_is_a_clear_error():
+    with pytest.raises(ParameterError, match="fidelity"):
+        double_layer_bearing(fidelity="dynamic")
