@@ -1,0 +1,234 @@
+"""The modeling language: declarations, errors that name the culprit, connections, arrays and
+nesting (issue 2)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from bearingsim import (
+    Assembly,
+    Component,
+    Connector,
+    Flow,
+    Input,
+    Parameter,
+    Potential,
+    Variable,
+    connect,
+    der,
+)
+from bearingsim.components.rotational import Fixed, Flange, Inertia, Spring, TorqueSource
+from bearingsim.errors import ConnectionError_, ModelError, ParameterError, UnconnectedInputError
+from bearingsim.solver import assemble, simulate
+
+
+class Pin(Connector):
+    v = Potential(unit="V", description="potential")
+    i = Flow(unit="A", description="current into the component")
+
+
+class Resistor(Component):
+    def __init__(self, R=1.0, name=None):
+        super().__init__(name)
+        self.R = Parameter(R, "Ohm", "resistance", low=0.0, low_inclusive=False)
+        self.p = Pin()
+        self.n = Pin()
+
+    def equations(self):
+        return [self.p.v - self.n.v == self.R * self.p.i, self.p.i + self.n.i == 0]
+
+
+def test_out_of_range_parameter_names_path_unit_and_range():
+    class Holder(Assembly):
+        def __init__(self):
+            super().__init__("holder")
+            self.j = Inertia(1.0)
+
+    h = Holder()
+    with pytest.raises(ParameterError) as err:
+        h.j.J = -2.0
+    msg = str(err.value)
+    assert "j.J" in msg and "kg.m2" in msg and "(0, inf)" in msg
+
+
+def test_wrongly_typed_parameter_is_rejected():
+    with pytest.raises(ParameterError, match="must be a real number"):
+        Inertia(J="heavy")
+    with pytest.raises(ParameterError, match="NaN|finite"):
+        Inertia(J=float("nan"))
+
+
+@given(st.floats(min_value=1e-6, max_value=1e6))
+def test_valid_parameters_are_accepted_and_stored(value):
+    j = Inertia(value)
+    assert j.parameter("J").value == value
+
+
+def test_connector_type_mismatch_is_an_error():
+    class Bad(Assembly):
+        def __init__(self):
+            super().__init__("bad")
+            self.r = Resistor()
+            self.j = Inertia()
+            connect(self.r.p, self.j.flange_a)
+
+    with pytest.raises(ConnectionError_, match="Pin.*Flange|types differ"):
+        Bad()
+
+
+def test_unconnected_required_input_names_the_input():
+    class NeedsInput(Component):
+        def __init__(self, name=None):
+            super().__init__(name)
+            self.u = Input(unit="N.m", description="drive torque")
+            self.w = Variable(0.0, "rad/s")
+
+        def equations(self):
+            return [der(self.w) == self.u]
+
+    class Top(Assembly):
+        def __init__(self):
+            super().__init__("top")
+            self.part = NeedsInput()
+
+    with pytest.raises(UnconnectedInputError, match=r"part\.u \[N\.m\]"):
+        assemble(Top())
+    root = assemble(NeedsInput("alone"))  # inputs of the root become system inputs
+    assert root.input_names == ["u"]
+    res = simulate(root, 1.0, inputs={"u": 2.0})
+    assert res.final("w") == pytest.approx(2.0)
+
+
+def test_constant_equation_is_reported():
+    class Trivial(Component):
+        def __init__(self):
+            super().__init__("trivial")
+            self.x = Variable(0.0)
+
+        def equations(self):
+            return [der(self.x) == 1.0, 1.0 == 1.0]
+
+    with pytest.raises(ModelError, match="constant"):
+        assemble(Trivial())
+
+
+class Ladder(Assembly):
+    """An array of resistors between a source pin held at 1 V and ground."""
+
+    def __init__(self, n=5):
+        super().__init__("ladder")
+        self.r = [Resistor(float(k + 1)) for k in range(n)]
+        self.src = Source()
+        self.gnd = Ground()
+        connect(self.src.p, self.r[0].p)
+        for a, b in zip(self.r[:-1], self.r[1:], strict=True):
+            connect(a.n, b.p)
+        connect(self.r[-1].n, self.gnd.p)
+
+
+class Source(Component):
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.p = Pin()
+        self.dummy = Variable(0.0)
+
+    def equations(self):
+        return [self.p.v == 1.0, der(self.dummy) == 0.0]
+
+
+class Ground(Component):
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.p = Pin()
+
+    def equations(self):
+        return [self.p.v == 0.0]
+
+
+def test_arrays_of_components_have_indexed_names_and_solve():
+    system = assemble(Ladder(5))
+    obs = system.observe(0.0, system.x0())
+    total = sum(range(1, 6))
+    assert obs["r[2].p.i"] == pytest.approx(1.0 / total)
+    assert obs["r[4].n.v"] == pytest.approx(0.0, abs=1e-12)
+
+
+class SpringMass(Assembly):
+    """A nested assembly exposing an outside flange."""
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.flange = Flange()
+        self.spring = Spring(100.0)
+        self.mass = Inertia(1.0)
+        connect(self.flange, self.spring.flange_a)
+        connect(self.spring.flange_b, self.mass.flange_a)
+
+
+def test_nested_assemblies_connect_through_outside_connectors():
+    class Top(Assembly):
+        def __init__(self):
+            super().__init__("top")
+            self.wall = Fixed()
+            self.unit = SpringMass()
+            connect(self.wall.flange, self.unit.flange)
+
+    system = assemble(Top())
+    assert set(system.state_names) == {"unit.mass.phi", "unit.mass.w"}
+    res = simulate(system, 1.0, x0={"unit.mass.phi": 0.1}, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(res["unit.mass.phi"], 0.1 * np.cos(10.0 * res.t), atol=1e-7)
+    # the wall carries the spring force: flows sum to zero across the nesting levels
+    np.testing.assert_allclose(res["wall.flange.tau"], 100.0 * res["unit.mass.phi"], atol=1e-7)
+
+
+def test_der_of_expression_uses_the_chain_rule():
+    class Energy(Component):
+        def __init__(self):
+            super().__init__("e")
+            self.x = Variable(1.0)
+            self.p = Variable(unit="1")
+
+        def equations(self):
+            return [der(self.x) == -self.x, self.p == der(self.x**2)]
+
+    system = assemble(Energy())
+    res = simulate(system, 1.0, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(res["p"], -2.0 * np.exp(-2.0 * res.t), rtol=1e-6)
+
+
+def test_time_functions_stay_symbolic():
+    class Driven(Assembly):
+        def __init__(self):
+            super().__init__("driven")
+            import casadi as ca
+
+            self.src = TorqueSource(lambda t: ca.sin(t))
+            self.j = Inertia(1.0)
+            connect(self.src.flange, self.j.flange_a)
+
+    res = simulate(assemble(Driven()), 2.0, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(res["j.w"], 1.0 - np.cos(res.t), atol=1e-8)
+
+
+def test_declaring_twice_or_reusing_a_component_is_an_error():
+    class Twice(Component):
+        def __init__(self):
+            super().__init__("twice")
+            self.x = Variable(0.0)
+            self.x = Variable(1.0)
+
+    with pytest.raises(ModelError, match="declared twice"):
+        Twice()
+    shared = Inertia()
+
+    class Reuse(Assembly):
+        def __init__(self):
+            super().__init__("reuse")
+            self.a = shared
+            self.b = shared
+
+    with pytest.raises(ModelError, match="cannot also be"):
+        Reuse()
