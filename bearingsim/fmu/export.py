@@ -1,0 +1,178 @@
+"""``export_fmu``: from an assembly or an assembled system to an ``.fmu`` archive."""
+
+from __future__ import annotations
+
+import logging
+import math
+import platform
+import re
+import tempfile
+import uuid
+from collections.abc import Sequence
+from pathlib import Path
+
+from bearingsim.errors import ParameterError
+from bearingsim.fmu.build import compile_shared_library, copy_templates, write_archive
+from bearingsim.fmu.codegen import fmu_functions, generate_c
+from bearingsim.fmu.interface import build_interface
+from bearingsim.fmu.model_c import write_model_c
+from bearingsim.fmu.model_description import model_description_xml
+
+__all__ = ["FMI_VERSIONS", "export_fmu"]
+
+log = logging.getLogger("bearingsim.fmu")
+
+FMI_VERSIONS = ("2.0",)
+"""FMI versions ``export_fmu`` can write."""
+
+KINDS = ("ME", "CS")
+
+
+def _identifier(name: str) -> str:
+    ident = re.sub(r"\W", "_", name)
+    return ident if re.match(r"[A-Za-z_]", ident) else f"m_{ident}"
+
+
+def _system(model, outputs):
+    from bearingsim.language.component import Component
+    from bearingsim.solver.pipeline import assemble
+    from bearingsim.solver.system import System
+
+    if isinstance(model, System):
+        return model
+    if isinstance(model, Component):
+        return assemble(model, list(outputs) if outputs else None)
+    raise ParameterError(
+        f"export_fmu: expected an assembly (Component) or a System, got {type(model).__name__}"
+    )
+
+
+def _outputs(system, outputs) -> tuple[list[str], list[str], list[str]]:
+    """FMU output names, units and descriptions; inputs of the system are dropped."""
+    known = {s.name: s for s in system.states + system.outputs}
+    known.update({f"der({s.name})": None for s in system.states})
+    names = list(outputs) if outputs else system.output_names
+    inputs = set(system.input_names)
+    dropped = [n for n in names if n in inputs]
+    if dropped:
+        log.warning("export_fmu: %s are inputs of the FMU, not outputs", ", ".join(dropped))
+    names = [n for n in names if n not in inputs]
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise ParameterError(
+            f"export_fmu: unknown output(s) {', '.join(unknown)}; outputs of {system.name}: "
+            + ", ".join(system.output_names)
+            + " (export the assembly, not the system, to choose other outputs)"
+        )
+    if len(set(names)) != len(names):
+        raise ParameterError("export_fmu: outputs must not repeat")
+    units, descriptions = [], []
+    for n in names:
+        sig = known[n]
+        if sig is None:
+            state = known[n[4:-1]]
+            units.append(f"({state.unit})/s")
+            descriptions.append(f"time derivative of {state.name}")
+        else:
+            units.append(sig.unit)
+            descriptions.append(sig.description)
+    return names, units, descriptions
+
+
+def _input_starts(system, inputs):
+    u = system.u_default()
+    for name, value in (inputs or {}).items():
+        if name not in system.input_names:
+            raise ParameterError(
+                f"export_fmu: unknown input {name!r}; inputs: "
+                + (", ".join(system.input_names) or "none")
+            )
+        value = float(value)
+        if not math.isfinite(value):
+            raise ParameterError(f"export_fmu: start value of input {name} must be finite")
+        u[system.input_names.index(name)] = value
+    return u
+
+
+def export_fmu(
+    model,
+    path: str | Path,
+    inputs: dict[str, float] | None = None,
+    outputs: Sequence[str] | None = None,
+    parameters: dict[str, float] | None = None,
+    fmi_version: str = "2.0",
+    kinds: Sequence[str] = ("ME", "CS"),
+    model_name: str | None = None,
+) -> Path:
+    """Export an assembly or an assembled system as a Functional Mock-up Unit.
+
+    The model's functions are generated as C by CasADi, joined to the generic FMI template of
+    ``bearingsim/fmu/templates`` and compiled with the system C compiler (``$CC``, default
+    ``gcc``) into ``binaries/linux64/<model>.so``. No Python runs inside the FMU.
+
+    Parameters
+    ----------
+    model : Component or System
+        An assembly (assembled here, pruned to ``outputs``) or the result of
+        :func:`bearingsim.solver.assemble`.
+    path : str or pathlib.Path
+        The ``.fmu`` file to write.
+    inputs : dict, optional
+        Input name -> start value [input unit].
+    outputs : sequence of str, optional
+        Dotted names of the FMU outputs. Default: the system's outputs (for an assembly: every
+        variable). Inputs named here are dropped (they are FMU inputs already).
+    parameters : dict, optional
+        Parameter name -> start value, validated against the declared range. All parameters
+        stay tunable in the FMU.
+    fmi_version : {"2.0"}
+        FMI version.
+    kinds : sequence of {"ME", "CS"}
+        Model Exchange and/or Co-Simulation interfaces.
+    model_name : str, optional
+        ``modelName``; its C-identifier form names the library. Default: the system's name.
+
+    Returns
+    -------
+    pathlib.Path
+        The written ``.fmu``.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown FMI version, kind, output, input or parameter, or a value out of range.
+    FmuBuildError
+        If the C compiler is missing or fails.
+    """
+    if fmi_version not in FMI_VERSIONS:
+        raise ParameterError(
+            f"export_fmu: fmi_version must be one of {', '.join(FMI_VERSIONS)}, got "
+            f"{fmi_version!r}"
+        )
+    kinds = tuple(kinds)
+    if not kinds or any(k not in KINDS for k in kinds):
+        raise ParameterError(f"export_fmu: kinds must be a non-empty subset of {KINDS}, got "
+                             f"{kinds!r}")
+    if platform.system() != "Linux" or platform.machine() not in ("x86_64", "AMD64"):
+        raise ParameterError("export_fmu: only Linux x86_64 binaries can be built")
+    system = _system(model, outputs)
+    names, units, descriptions = _outputs(system, outputs)
+    u0 = _input_starts(system, inputs)
+    p0 = system.p0(parameters)
+    name = model_name or system.name
+    ident = _identifier(name)
+    functions = fmu_functions(system, names)
+    iface = build_interface(system, functions, names, units, descriptions, u0, p0)
+    guid = "{" + str(uuid.uuid4()) + "}"
+    xml = model_description_xml(iface, name, ident, guid, kinds,
+                                description=(type(model).__doc__ or "").strip().split("\n")[0])
+    with tempfile.TemporaryDirectory(prefix="bearingsim_fmu_") as tmp:
+        src = Path(tmp) / "sources"
+        src.mkdir()
+        work = generate_c(functions, src)
+        write_model_c(src, iface, system, guid, work, kinds)
+        copy_templates(src)
+        binary = Path(tmp) / f"{ident}.so"
+        c_files = sorted(src.glob("*.c"))
+        compile_shared_library(c_files, binary, src)
+        return write_archive(Path(path), xml, binary, "linux64", ident, sorted(src.iterdir()))

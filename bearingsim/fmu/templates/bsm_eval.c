@@ -1,0 +1,137 @@
+/* bearingsim FMU runtime: evaluation of the generated model functions, checks and logging. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bsm_model.h"
+
+void bsm_log(BsmInstance *m, BsmStatus status, const char *category, const char *fmt, ...) {
+    char message[1024];
+    va_list ap;
+    if (m->logger == NULL || (status == BSM_OK && !m->debug_logging)) return;
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof(message), fmt, ap);
+    va_end(ap);
+    m->logger(m->host, status, category, message);
+}
+
+void bsm_invalidate(BsmInstance *m) {
+    m->dx_valid = 0;
+    m->y_valid = 0;
+}
+
+void bsm_reset(BsmInstance *m) {
+    memset(&m->s, 0, sizeof(m->s));
+    memcpy(m->s.x, bsm_x_start, sizeof(m->s.x));
+    memcpy(m->s.u, bsm_u_start, sizeof(m->s.u));
+    memcpy(m->s.p, bsm_p_start, sizeof(m->s.p));
+    m->s.rtol = 1e-6;
+    bsm_invalidate(m);
+}
+
+/* Evaluate function `fn` at (t, x, u, p) into a dense row-major matrix.
+ * Returns 0 on success, nonzero if the generated code reports a failure. */
+int bsm_eval_dense(BsmInstance *m, int fn, double t, const double *x, const double *u,
+                   double *out) {
+    const BsmFunction *f = &bsm_functions[fn];
+    const bsm_int *sp = f->sparsity_out(0);
+    bsm_int nrow = sp[0], ncol = sp[1];
+    const bsm_int *colind = sp + 2, *row = sp + 3 + ncol;
+    bsm_int c, k;
+    int mem, flag;
+    m->arg[0] = &t;
+    m->arg[1] = x;
+    m->arg[2] = u;
+    m->arg[3] = m->s.p;
+    m->res[0] = m->nz;
+    mem = f->checkout();
+    flag = f->eval(m->arg, m->res, m->iw, m->w, mem);
+    f->release(mem);
+    if (colind[0] == 1) { /* CasADi's compact form of a dense matrix (column major) */
+        for (c = 0; c < ncol; ++c)
+            for (k = 0; k < nrow; ++k) out[k * ncol + c] = m->nz[c * nrow + k];
+        return flag;
+    }
+    memset(out, 0, sizeof(double) * (size_t)(nrow * ncol > 0 ? nrow * ncol : 0));
+    for (c = 0; c < ncol; ++c)
+        for (k = colind[c]; k < colind[c + 1]; ++k) out[row[k] * ncol + c] = m->nz[k];
+    return flag;
+}
+
+static int first_non_finite(const double *v, int n) {
+    int i;
+    for (i = 0; i < n; ++i)
+        if (!isfinite(v[i])) return i;
+    return -1;
+}
+
+BsmStatus bsm_derivatives(BsmInstance *m, double t, const double *x, const double *u,
+                          double *dx) {
+    int bad;
+    if (NX == 0) return BSM_OK;
+    if (bsm_eval_dense(m, FN_ODE, t, x, u, dx) != 0) {
+        bsm_log(m, BSM_ERROR, "logStatusError",
+                "the model equations could not be evaluated at t = %g s", t);
+        return BSM_ERROR;
+    }
+    bad = first_non_finite(dx, NX);
+    if (bad >= 0) {
+        bsm_log(m, BSM_ERROR, "logStatusError",
+                "der(%s) is not finite (%g) at t = %g s; %s = %g", bsm_x_names[bad], dx[bad],
+                t, bsm_x_names[bad], x[bad]);
+        return BSM_ERROR;
+    }
+    return BSM_OK;
+}
+
+BsmStatus bsm_current_derivatives(BsmInstance *m) {
+    BsmStatus st;
+    if (m->dx_valid) return BSM_OK;
+    st = bsm_derivatives(m, m->s.time, m->s.x, m->s.u, m->dx);
+    m->dx_valid = (st == BSM_OK);
+    return st;
+}
+
+BsmStatus bsm_current_outputs(BsmInstance *m) {
+    int bad;
+    if (m->y_valid || NY == 0) return BSM_OK;
+    if (bsm_eval_dense(m, FN_OUTPUT, m->s.time, m->s.x, m->s.u, m->y) != 0) {
+        bsm_log(m, BSM_ERROR, "logStatusError",
+                "the outputs could not be evaluated at t = %g s", m->s.time);
+        return BSM_ERROR;
+    }
+    bad = first_non_finite(m->y, NY);
+    if (bad >= 0) {
+        bsm_log(m, BSM_ERROR, "logStatusError", "output %s is not finite (%g) at t = %g s",
+                bsm_y_names[bad], m->y[bad], m->s.time);
+        return BSM_ERROR;
+    }
+    m->y_valid = 1;
+    return BSM_OK;
+}
+
+BsmStatus bsm_check_parameter(BsmInstance *m, int k, double v) {
+    unsigned char b = bsm_p_bounds[k];
+    int low_ok = !(b & BSM_HAS_LOW) ||
+                 ((b & BSM_LOW_INCLUSIVE) ? v >= bsm_p_low[k] : v > bsm_p_low[k]);
+    int high_ok = !(b & BSM_HAS_HIGH) ||
+                  ((b & BSM_HIGH_INCLUSIVE) ? v <= bsm_p_high[k] : v < bsm_p_high[k]);
+    char range[128];
+    if (isfinite(v) && low_ok && high_ok) return BSM_OK;
+    snprintf(range, sizeof(range), "%s%.17g, %.17g%s", (b & BSM_LOW_INCLUSIVE) ? "[" : "(",
+             (b & BSM_HAS_LOW) ? bsm_p_low[k] : -INFINITY,
+             (b & BSM_HAS_HIGH) ? bsm_p_high[k] : INFINITY,
+             (b & BSM_HIGH_INCLUSIVE) ? "]" : ")");
+    bsm_log(m, BSM_ERROR, "logStatusError",
+            "parameter %s = %g [%s] is outside its valid range %s; value not set",
+            bsm_p_names[k], v, bsm_p_units[k], range);
+    return BSM_ERROR;
+}
+
+BsmStatus bsm_check_input(BsmInstance *m, int k, double v) {
+    if (isfinite(v)) return BSM_OK;
+    bsm_log(m, BSM_ERROR, "logStatusError", "input %s must be finite, got %g; value not set",
+            bsm_u_names[k], v);
+    return BSM_ERROR;
+}

@@ -1,0 +1,125 @@
+/* bearingsim FMU runtime: declarations shared by the generic template files.
+ *
+ * The model-specific part is generated at export: model_config.h (sizes, work sizes, GUID) and
+ * model_data.c (start values, parameter ranges, names, table of the CasADi-generated functions).
+ * Nothing here depends on an FMI version; fmi2_api.c maps the FMI 2.0 API onto it.
+ */
+#ifndef BSM_MODEL_H
+#define BSM_MODEL_H
+
+#include <stddef.h>
+
+#include "model_config.h"
+
+#define BSM_DIM(n) ((n) > 0 ? (n) : 1)
+
+typedef long long bsm_int; /* CasADi's default casadi_int */
+
+typedef int (*bsm_eval_fn)(const double **arg, double **res, bsm_int *iw, double *w, int mem);
+typedef const bsm_int *(*bsm_sparsity_fn)(bsm_int i);
+typedef int (*bsm_checkout_fn)(void);
+typedef void (*bsm_release_fn)(int mem);
+
+/* One CasADi-generated function of (t, x, u, p) with a single (sparse) result. */
+typedef struct {
+    const char *name;
+    bsm_eval_fn eval;
+    bsm_sparsity_fn sparsity_out;
+    bsm_checkout_fn checkout;
+    bsm_release_fn release;
+} BsmFunction;
+
+/* Order of the function table (bearingsim.fmu.codegen.FUNCTION_NAMES). */
+enum { FN_ODE, FN_JAC_X, FN_JAC_U, FN_JAC_T, FN_OUTPUT, FN_OUT_JAC_X, FN_OUT_JAC_U, FN_COUNT };
+
+/* Bound flags of a parameter range. */
+enum { BSM_HAS_LOW = 1, BSM_LOW_INCLUSIVE = 2, BSM_HAS_HIGH = 4, BSM_HIGH_INCLUSIVE = 8 };
+
+extern const BsmFunction bsm_functions[FN_COUNT];
+extern const double bsm_x_start[BSM_DIM(NX)];
+extern const double bsm_u_start[BSM_DIM(NU)];
+extern const double bsm_p_start[BSM_DIM(NP)];
+extern const double bsm_p_low[BSM_DIM(NP)];
+extern const double bsm_p_high[BSM_DIM(NP)];
+extern const unsigned char bsm_p_bounds[BSM_DIM(NP)];
+extern const char *const bsm_x_names[BSM_DIM(NX)];
+extern const char *const bsm_u_names[BSM_DIM(NU)];
+extern const char *const bsm_y_names[BSM_DIM(NY)];
+extern const char *const bsm_p_names[BSM_DIM(NP)];
+extern const char *const bsm_p_units[BSM_DIM(NP)];
+
+/* Same numbering as fmi2Status / fmi3Status. */
+typedef enum { BSM_OK = 0, BSM_WARNING = 1, BSM_DISCARD = 2, BSM_ERROR = 3 } BsmStatus;
+
+typedef void (*bsm_logger)(void *host, BsmStatus status, const char *category,
+                           const char *message);
+
+/* Everything that defines where an instance is: saved and restored as one block
+ * (FMU state get/set/serialize). */
+typedef struct {
+    int mode;           /* state machine of the API layer */
+    int is_cs;          /* co-simulation instance */
+    double time;
+    double x[BSM_DIM(NX)];
+    double u[BSM_DIM(NU)];
+    double du[BSM_DIM(NU)]; /* input slopes for the next doStep */
+    double p[BSM_DIM(NP)];
+    double h_next;          /* proposed internal step of the stepper (0: none yet) */
+    double rtol;
+    long n_steps, n_rejected, n_jac;
+} BsmState;
+
+typedef struct {
+    BsmState s;
+    /* cached evaluations at (s.time, s.x, s.u, s.p) */
+    int dx_valid, y_valid;
+    double dx[BSM_DIM(NX)];
+    double y[BSM_DIM(NY)];
+    /* CasADi work memory */
+    const double *arg[BSM_DIM(BSM_SZ_ARG)];
+    double *res[BSM_DIM(BSM_SZ_RES)];
+    bsm_int iw[BSM_DIM(BSM_SZ_IW)];
+    double w[BSM_DIM(BSM_SZ_W)];
+    double nz[BSM_DIM(BSM_SZ_NZ)];
+    /* dense Jacobians, row major */
+    double jx[BSM_DIM(NX * NX)];
+    double ju[BSM_DIM(NX * NU)];
+    double jt[BSM_DIM(NX)];
+    double yx[BSM_DIM(NY * NX)];
+    double yu[BSM_DIM(NY * NU)];
+    /* stepper work */
+    double lu[BSM_DIM(NX * NX)];
+    int piv[BSM_DIM(NX)];
+    double k[4][BSM_DIM(NX)];
+    double f[BSM_DIM(NX)];
+    double xs[BSM_DIM(NX)];
+    double x_new[BSM_DIM(NX)];
+    double dfdt[BSM_DIM(NX)];
+    double ut[BSM_DIM(NU)];
+    BsmState saved; /* state at the start of a doStep, restored on failure */
+    /* host */
+    const char *instance_name;
+    void *host;
+    bsm_logger logger;
+    int debug_logging;
+} BsmInstance;
+
+/* bsm_eval.c */
+void bsm_log(BsmInstance *m, BsmStatus status, const char *category, const char *fmt, ...);
+void bsm_reset(BsmInstance *m);
+void bsm_invalidate(BsmInstance *m);
+int bsm_eval_dense(BsmInstance *m, int fn, double t, const double *x, const double *u,
+                   double *out);
+BsmStatus bsm_derivatives(BsmInstance *m, double t, const double *x, const double *u,
+                          double *dx);
+BsmStatus bsm_current_derivatives(BsmInstance *m);
+BsmStatus bsm_current_outputs(BsmInstance *m);
+BsmStatus bsm_check_parameter(BsmInstance *m, int k, double value);
+BsmStatus bsm_check_input(BsmInstance *m, int k, double value);
+
+/* bsm_solver.c */
+int bsm_lu_factor(double *a, int n, int *piv);
+void bsm_lu_solve(const double *lu, int n, const int *piv, double *b);
+BsmStatus bsm_do_step(BsmInstance *m, double h);
+
+#endif

@@ -1,0 +1,639 @@
+/* bearingsim FMU runtime: the FMI 2.0 API (Model Exchange and Co-Simulation) on top of
+ * bsm_model.h. Generic: the model-specific part is in model_config.h and model_data.c. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi2Functions.h"
+#include "bsm_model.h"
+
+typedef enum {
+    MODE_INSTANTIATED = 1,
+    MODE_INITIALIZATION = 2,
+    MODE_EVENT = 4,
+    MODE_CONTINUOUS = 8,
+    MODE_STEP_COMPLETE = 16,
+    MODE_TERMINATED = 32,
+    MODE_ERROR = 64
+} Mode;
+
+#define ANY_MODE 0x7f
+#define SETUP_MODES (MODE_INSTANTIATED | MODE_INITIALIZATION)
+#define TUNE_MODES (SETUP_MODES | MODE_EVENT | MODE_STEP_COMPLETE)
+#define RUN_MODES (MODE_INITIALIZATION | MODE_EVENT | MODE_CONTINUOUS | MODE_STEP_COMPLETE)
+
+#define SERIAL_MAGIC 0x42534d32u /* "BSM2" */
+
+typedef struct {
+    BsmInstance m;
+    fmi2CallbackFunctions cb;
+} Fmi2Instance;
+
+typedef struct {
+    unsigned int magic;
+    unsigned int size;
+    BsmState s;
+} SerialState;
+
+static void fmi2_logger(void *host, BsmStatus status, const char *category,
+                        const char *message) {
+    Fmi2Instance *c = (Fmi2Instance *)host;
+    if (c->cb.logger != NULL)
+        c->cb.logger(c->cb.componentEnvironment, c->m.instance_name, (fmi2Status)status,
+                     category, message);
+}
+
+/* Check that `c` is an instance in one of `modes`; log and return fmi2Error otherwise. */
+static fmi2Status check_mode(Fmi2Instance *c, int modes, const char *function) {
+    if (c == NULL) return fmi2Error;
+    if (c->m.s.mode & modes) return fmi2OK;
+    bsm_log(&c->m, BSM_ERROR, "logStatusError", "%s must not be called in this state",
+            function);
+    return fmi2Error;
+}
+
+/* Record an error status; fmi2Error leaves the instance in the error state. */
+static fmi2Status fail(Fmi2Instance *c, BsmStatus st) {
+    if (st == BSM_ERROR) c->m.s.mode = MODE_ERROR;
+    return (fmi2Status)st;
+}
+
+#define INSTANCE(function, modes)                                         \
+    Fmi2Instance *c = (Fmi2Instance *)component;                         \
+    if (check_mode(c, (modes), (function)) != fmi2OK) return fmi2Error;
+
+/* ------------------------------------------------------------------ common functions */
+const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
+
+const char *fmi2GetVersion(void) { return fmi2Version; }
+
+fmi2Status fmi2SetDebugLogging(fmi2Component component, fmi2Boolean loggingOn,
+                               size_t nCategories, const fmi2String categories[]) {
+    INSTANCE("fmi2SetDebugLogging", ANY_MODE)
+    (void)nCategories;
+    (void)categories;
+    c->m.debug_logging = loggingOn ? 1 : 0;
+    return fmi2OK;
+}
+
+fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
+                              fmi2String fmuResourceLocation,
+                              const fmi2CallbackFunctions *functions, fmi2Boolean visible,
+                              fmi2Boolean loggingOn) {
+    Fmi2Instance *c;
+    char *name;
+    size_t len;
+    (void)fmuResourceLocation;
+    (void)visible;
+    if (functions == NULL || instanceName == NULL) return NULL;
+    if (fmuGUID == NULL || strcmp(fmuGUID, MODEL_GUID) != 0) {
+        if (functions->logger != NULL)
+            functions->logger(functions->componentEnvironment, instanceName, fmi2Error,
+                              "logStatusError", "GUID mismatch: this FMU is " MODEL_GUID);
+        return NULL;
+    }
+    if (fmuType == fmi2ModelExchange && !MODEL_HAS_ME) return NULL;
+    if (fmuType == fmi2CoSimulation && !MODEL_HAS_CS) return NULL;
+    c = functions->allocateMemory != NULL ? functions->allocateMemory(1, sizeof(Fmi2Instance))
+                                          : calloc(1, sizeof(Fmi2Instance));
+    if (c == NULL) return NULL;
+    len = strlen(instanceName) + 1;
+    name = functions->allocateMemory != NULL ? functions->allocateMemory(len, 1)
+                                             : calloc(len, 1);
+    if (name == NULL) {
+        if (functions->freeMemory != NULL) functions->freeMemory(c);
+        else free(c);
+        return NULL;
+    }
+    memcpy(name, instanceName, len);
+    c->cb = *functions;
+    c->m.instance_name = name;
+    c->m.host = c;
+    c->m.logger = fmi2_logger;
+    c->m.debug_logging = loggingOn ? 1 : 0;
+    bsm_reset(&c->m);
+    c->m.s.is_cs = (fmuType == fmi2CoSimulation);
+    c->m.s.mode = MODE_INSTANTIATED;
+    return c;
+}
+
+void fmi2FreeInstance(fmi2Component component) {
+    Fmi2Instance *c = (Fmi2Instance *)component;
+    fmi2CallbackFreeMemory release;
+    if (c == NULL) return;
+    release = c->cb.freeMemory;
+    if (release != NULL) {
+        release((void *)c->m.instance_name);
+        release(c);
+    } else {
+        free((void *)c->m.instance_name);
+        free(c);
+    }
+}
+
+fmi2Status fmi2SetupExperiment(fmi2Component component, fmi2Boolean toleranceDefined,
+                               fmi2Real tolerance, fmi2Real startTime,
+                               fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
+    INSTANCE("fmi2SetupExperiment", MODE_INSTANTIATED)
+    (void)stopTimeDefined;
+    (void)stopTime;
+    if (toleranceDefined) {
+        if (!(tolerance > 0.0 && tolerance < 1.0)) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "tolerance must be in (0, 1), got %g", tolerance);
+            return fmi2Error;
+        }
+        c->m.s.rtol = tolerance;
+    }
+    c->m.s.time = startTime;
+    bsm_invalidate(&c->m);
+    return fmi2OK;
+}
+
+fmi2Status fmi2EnterInitializationMode(fmi2Component component) {
+    INSTANCE("fmi2EnterInitializationMode", MODE_INSTANTIATED)
+    c->m.s.mode = MODE_INITIALIZATION;
+    return fmi2OK;
+}
+
+fmi2Status fmi2ExitInitializationMode(fmi2Component component) {
+    BsmStatus st;
+    INSTANCE("fmi2ExitInitializationMode", MODE_INITIALIZATION)
+    st = bsm_current_derivatives(&c->m);
+    if (st == BSM_OK) st = bsm_current_outputs(&c->m);
+    if (st != BSM_OK) return fail(c, st);
+    c->m.s.mode = c->m.s.is_cs ? MODE_STEP_COMPLETE : MODE_EVENT;
+    return fmi2OK;
+}
+
+fmi2Status fmi2Terminate(fmi2Component component) {
+    INSTANCE("fmi2Terminate", RUN_MODES | MODE_ERROR)
+    bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
+            "(%ld rejected)", c->m.s.time, c->m.s.n_steps, c->m.s.n_rejected);
+    c->m.s.mode = MODE_TERMINATED;
+    return fmi2OK;
+}
+
+fmi2Status fmi2Reset(fmi2Component component) {
+    int is_cs;
+    INSTANCE("fmi2Reset", ANY_MODE)
+    is_cs = c->m.s.is_cs;
+    bsm_reset(&c->m);
+    c->m.s.is_cs = is_cs;
+    c->m.s.mode = MODE_INSTANTIATED;
+    return fmi2OK;
+}
+
+/* ------------------------------------------------------------------ values */
+static fmi2Status bad_vr(Fmi2Instance *c, fmi2ValueReference vr, const char *what) {
+    bsm_log(&c->m, BSM_ERROR, "logStatusError", "%s: value reference %u is not valid", what,
+            (unsigned)vr);
+    return fmi2Error;
+}
+
+fmi2Status fmi2GetReal(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                       fmi2Real value[]) {
+    size_t i;
+    INSTANCE("fmi2GetReal", ANY_MODE)
+    for (i = 0; i < nvr; ++i) {
+        unsigned int r = vr[i];
+        if (r < VR_DX) {
+            value[i] = c->m.s.x[r - VR_X];
+        } else if (r < VR_U) {
+            BsmStatus st = bsm_current_derivatives(&c->m);
+            if (st != BSM_OK) return fail(c, st);
+            value[i] = c->m.dx[r - VR_DX];
+        } else if (r < VR_Y) {
+            value[i] = c->m.s.u[r - VR_U];
+        } else if (r < VR_P) {
+            BsmStatus st = bsm_current_outputs(&c->m);
+            if (st != BSM_OK) return fail(c, st);
+            value[i] = c->m.y[r - VR_Y];
+        } else if (r < VR_END) {
+            value[i] = c->m.s.p[r - VR_P];
+        } else {
+            return bad_vr(c, r, "fmi2GetReal");
+        }
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetReal(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                       const fmi2Real value[]) {
+    size_t i;
+    INSTANCE("fmi2SetReal", RUN_MODES | MODE_INSTANTIATED)
+    for (i = 0; i < nvr; ++i) {
+        unsigned int r = vr[i];
+        if (r < VR_DX) {
+            if (check_mode(c, SETUP_MODES, "fmi2SetReal of a state") != fmi2OK)
+                return fmi2Error;
+            if (!isfinite(value[i])) {
+                bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                        "start value of %s must be finite, got %g", bsm_x_names[r], value[i]);
+                return fail(c, BSM_ERROR);
+            }
+            c->m.s.x[r - VR_X] = value[i];
+        } else if (r >= VR_U && r < VR_Y) {
+            if (bsm_check_input(&c->m, (int)(r - VR_U), value[i]) != BSM_OK)
+                return fail(c, BSM_ERROR);
+            c->m.s.u[r - VR_U] = value[i];
+        } else if (r >= VR_P && r < VR_END) {
+            if (check_mode(c, TUNE_MODES, "fmi2SetReal of a parameter") != fmi2OK)
+                return fmi2Error;
+            if (bsm_check_parameter(&c->m, (int)(r - VR_P), value[i]) != BSM_OK)
+                return fail(c, BSM_ERROR);
+            c->m.s.p[r - VR_P] = value[i];
+        } else {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "fmi2SetReal: value reference %u is not a state start value, input or "
+                    "parameter", (unsigned)r);
+            return fmi2Error;
+        }
+    }
+    bsm_invalidate(&c->m);
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetInteger(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Integer value[]) {
+    INSTANCE("fmi2GetInteger", ANY_MODE)
+    (void)value;
+    return nvr == 0 ? fmi2OK : bad_vr(c, vr[0], "fmi2GetInteger");
+}
+
+fmi2Status fmi2GetBoolean(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Boolean value[]) {
+    INSTANCE("fmi2GetBoolean", ANY_MODE)
+    (void)value;
+    return nvr == 0 ? fmi2OK : bad_vr(c, vr[0], "fmi2GetBoolean");
+}
+
+fmi2Status fmi2GetString(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                         fmi2String value[]) {
+    INSTANCE("fmi2GetString", ANY_MODE)
+    (void)value;
+    return nvr == 0 ? fmi2OK : bad_vr(c, vr[0], "fmi2GetString");
+}
+
+fmi2Status fmi2SetInteger(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Integer value[]) {
+    INSTANCE("fmi2SetInteger", ANY_MODE)
+    (void)value;
+    return nvr == 0 ? fmi2OK : bad_vr(c, vr[0], "fmi2SetInteger");
+}
+
+fmi2Status fmi2SetBoolean(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Boolean value[]) {
+    INSTANCE("fmi2SetBoolean", ANY_MODE)
+    (void)value;
+    return nvr == 0 ? fmi2OK : bad_vr(c, vr[0], "fmi2SetBoolean");
+}
+
+fmi2Status fmi2SetString(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
+                         const fmi2String value[]) {
+    INSTANCE("fmi2SetString", ANY_MODE)
+    (void)value;
+    return nvr == 0 ? fmi2OK : bad_vr(c, vr[0], "fmi2SetString");
+}
+
+/* ------------------------------------------------------------------ FMU state */
+fmi2Status fmi2GetFMUstate(fmi2Component component, fmi2FMUstate *state) {
+    BsmState *copy;
+    INSTANCE("fmi2GetFMUstate", ANY_MODE)
+    copy = (BsmState *)*state;
+    if (copy == NULL) {
+        copy = c->cb.allocateMemory != NULL ? c->cb.allocateMemory(1, sizeof(BsmState))
+                                            : calloc(1, sizeof(BsmState));
+        if (copy == NULL) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError", "out of memory");
+            return fmi2Error;
+        }
+    }
+    *copy = c->m.s;
+    *state = copy;
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate state) {
+    INSTANCE("fmi2SetFMUstate", ANY_MODE)
+    if (state == NULL) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError", "fmi2SetFMUstate: no state given");
+        return fmi2Error;
+    }
+    c->m.s = *(const BsmState *)state;
+    bsm_invalidate(&c->m);
+    return fmi2OK;
+}
+
+fmi2Status fmi2FreeFMUstate(fmi2Component component, fmi2FMUstate *state) {
+    INSTANCE("fmi2FreeFMUstate", ANY_MODE)
+    if (state != NULL && *state != NULL) {
+        if (c->cb.freeMemory != NULL) c->cb.freeMemory(*state);
+        else free(*state);
+        *state = NULL;
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component component, fmi2FMUstate state,
+                                      size_t *size) {
+    INSTANCE("fmi2SerializedFMUstateSize", ANY_MODE)
+    (void)state;
+    *size = sizeof(SerialState);
+    return fmi2OK;
+}
+
+fmi2Status fmi2SerializeFMUstate(fmi2Component component, fmi2FMUstate state,
+                                 fmi2Byte serializedState[], size_t size) {
+    SerialState out;
+    INSTANCE("fmi2SerializeFMUstate", ANY_MODE)
+    if (state == NULL || size < sizeof(SerialState)) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2SerializeFMUstate: no state or buffer smaller than %u bytes",
+                (unsigned)sizeof(SerialState));
+        return fmi2Error;
+    }
+    memset(&out, 0, sizeof(out));
+    out.magic = SERIAL_MAGIC;
+    out.size = (unsigned int)sizeof(SerialState);
+    out.s = *(const BsmState *)state;
+    memcpy(serializedState, &out, sizeof(out));
+    return fmi2OK;
+}
+
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte serializedState[],
+                                   size_t size, fmi2FMUstate *state) {
+    SerialState in;
+    fmi2FMUstate copy = NULL;
+    INSTANCE("fmi2DeSerializeFMUstate", ANY_MODE)
+    if (size != sizeof(SerialState)) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2DeSerializeFMUstate: expected %u bytes, got %u",
+                (unsigned)sizeof(SerialState), (unsigned)size);
+        return fmi2Error;
+    }
+    memcpy(&in, serializedState, sizeof(in));
+    if (in.magic != SERIAL_MAGIC || in.size != sizeof(SerialState)) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2DeSerializeFMUstate: the data is not a state of this FMU");
+        return fmi2Error;
+    }
+    if (fmi2GetFMUstate(component, &copy) != fmi2OK) return fmi2Error;
+    *(BsmState *)copy = in.s;
+    *state = copy;
+    return fmi2OK;
+}
+
+/* ------------------------------------------------------------------ directional derivatives */
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component component,
+                                        const fmi2ValueReference vUnknown_ref[],
+                                        size_t nUnknown, const fmi2ValueReference vKnown_ref[],
+                                        size_t nKnown, const fmi2Real dvKnown[],
+                                        fmi2Real dvUnknown[]) {
+    size_t i, j;
+    BsmInstance *m;
+    INSTANCE("fmi2GetDirectionalDerivative", RUN_MODES)
+    m = &c->m;
+    for (j = 0; j < nKnown; ++j)
+        if (vKnown_ref[j] >= VR_DX && !(vKnown_ref[j] >= VR_U && vKnown_ref[j] < VR_Y)) {
+            bsm_log(m, BSM_ERROR, "logStatusError",
+                    "fmi2GetDirectionalDerivative: known %u must be a state or an input",
+                    (unsigned)vKnown_ref[j]);
+            return fmi2Error;
+        }
+    bsm_eval_dense(m, FN_JAC_X, m->s.time, m->s.x, m->s.u, m->jx);
+    if (NU > 0) bsm_eval_dense(m, FN_JAC_U, m->s.time, m->s.x, m->s.u, m->ju);
+    if (NY > 0) {
+        bsm_eval_dense(m, FN_OUT_JAC_X, m->s.time, m->s.x, m->s.u, m->yx);
+        if (NU > 0) bsm_eval_dense(m, FN_OUT_JAC_U, m->s.time, m->s.x, m->s.u, m->yu);
+    }
+    for (i = 0; i < nUnknown; ++i) {
+        unsigned int r = vUnknown_ref[i];
+        double sum = 0.0;
+        for (j = 0; j < nKnown; ++j) {
+            unsigned int q = vKnown_ref[j];
+            int is_state = q < VR_DX;
+            int col = is_state ? (int)(q - VR_X) : (int)(q - VR_U);
+            double d;
+            if (r < VR_DX) d = (is_state && q == r) ? 1.0 : 0.0;
+            else if (r < VR_U) d = is_state ? m->jx[(r - VR_DX) * NX + col]
+                                            : m->ju[(r - VR_DX) * NU + col];
+            else if (r >= VR_Y && r < VR_P) d = is_state ? m->yx[(r - VR_Y) * NX + col]
+                                                         : m->yu[(r - VR_Y) * NU + col];
+            else if (r >= VR_U && r < VR_Y) d = (!is_state && q == r) ? 1.0 : 0.0;
+            else return bad_vr(c, r, "fmi2GetDirectionalDerivative (unknown)");
+            sum += d * dvKnown[j];
+        }
+        if (!isfinite(sum)) {
+            bsm_log(m, BSM_ERROR, "logStatusError",
+                    "fmi2GetDirectionalDerivative: derivative of %u is not finite at t = %g s",
+                    (unsigned)r, m->s.time);
+            return fail(c, BSM_ERROR);
+        }
+        dvUnknown[i] = sum;
+    }
+    return fmi2OK;
+}
+
+/* ------------------------------------------------------------------ model exchange */
+fmi2Status fmi2EnterEventMode(fmi2Component component) {
+    INSTANCE("fmi2EnterEventMode", MODE_EVENT | MODE_CONTINUOUS)
+    c->m.s.mode = MODE_EVENT;
+    return fmi2OK;
+}
+
+fmi2Status fmi2NewDiscreteStates(fmi2Component component, fmi2EventInfo *info) {
+    INSTANCE("fmi2NewDiscreteStates", MODE_EVENT)
+    info->newDiscreteStatesNeeded = fmi2False;
+    info->terminateSimulation = fmi2False;
+    info->nominalsOfContinuousStatesChanged = fmi2False;
+    info->valuesOfContinuousStatesChanged = fmi2False;
+    info->nextEventTimeDefined = fmi2False;
+    info->nextEventTime = 0.0;
+    return fmi2OK;
+}
+
+fmi2Status fmi2EnterContinuousTimeMode(fmi2Component component) {
+    INSTANCE("fmi2EnterContinuousTimeMode", MODE_EVENT)
+    c->m.s.mode = MODE_CONTINUOUS;
+    return fmi2OK;
+}
+
+fmi2Status fmi2CompletedIntegratorStep(fmi2Component component,
+                                       fmi2Boolean noSetFMUStatePriorToCurrentPoint,
+                                       fmi2Boolean *enterEventMode,
+                                       fmi2Boolean *terminateSimulation) {
+    INSTANCE("fmi2CompletedIntegratorStep", MODE_CONTINUOUS)
+    (void)noSetFMUStatePriorToCurrentPoint;
+    *enterEventMode = fmi2False;
+    *terminateSimulation = fmi2False;
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetTime(fmi2Component component, fmi2Real time) {
+    INSTANCE("fmi2SetTime", MODE_EVENT | MODE_CONTINUOUS)
+    c->m.s.time = time;
+    bsm_invalidate(&c->m);
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetContinuousStates(fmi2Component component, const fmi2Real x[], size_t nx) {
+    size_t i;
+    INSTANCE("fmi2SetContinuousStates", MODE_EVENT | MODE_CONTINUOUS)
+    if (nx != NX) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2SetContinuousStates: expected %d states, got %u", NX, (unsigned)nx);
+        return fmi2Error;
+    }
+    for (i = 0; i < nx; ++i)
+        if (!isfinite(x[i])) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "fmi2SetContinuousStates: %s is not finite (%g) at t = %g s",
+                    bsm_x_names[i], x[i], c->m.s.time);
+            return fail(c, BSM_ERROR);
+        }
+    memcpy(c->m.s.x, x, sizeof(double) * nx);
+    bsm_invalidate(&c->m);
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetDerivatives(fmi2Component component, fmi2Real derivatives[], size_t nx) {
+    BsmStatus st;
+    INSTANCE("fmi2GetDerivatives", RUN_MODES | MODE_TERMINATED)
+    if (nx != NX) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2GetDerivatives: expected %d states, got %u", NX, (unsigned)nx);
+        return fmi2Error;
+    }
+    st = bsm_current_derivatives(&c->m);
+    if (st != BSM_OK) return fail(c, st);
+    memcpy(derivatives, c->m.dx, sizeof(double) * nx);
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetEventIndicators(fmi2Component component, fmi2Real eventIndicators[],
+                                  size_t ni) {
+    INSTANCE("fmi2GetEventIndicators", ANY_MODE)
+    (void)eventIndicators;
+    return ni == 0 ? fmi2OK : bad_vr(c, (fmi2ValueReference)ni, "fmi2GetEventIndicators");
+}
+
+fmi2Status fmi2GetContinuousStates(fmi2Component component, fmi2Real x[], size_t nx) {
+    INSTANCE("fmi2GetContinuousStates", ANY_MODE)
+    if (nx != NX) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2GetContinuousStates: expected %d states, got %u", NX, (unsigned)nx);
+        return fmi2Error;
+    }
+    memcpy(x, c->m.s.x, sizeof(double) * nx);
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component component, fmi2Real x_nominal[],
+                                             size_t nx) {
+    size_t i;
+    INSTANCE("fmi2GetNominalsOfContinuousStates", ANY_MODE)
+    for (i = 0; i < nx; ++i) x_nominal[i] = 1.0;
+    return fmi2OK;
+}
+
+/* ------------------------------------------------------------------ co-simulation */
+fmi2Status fmi2SetRealInputDerivatives(fmi2Component component, const fmi2ValueReference vr[],
+                                       size_t nvr, const fmi2Integer order[],
+                                       const fmi2Real value[]) {
+    size_t i;
+    INSTANCE("fmi2SetRealInputDerivatives", MODE_INITIALIZATION | MODE_STEP_COMPLETE)
+    for (i = 0; i < nvr; ++i) {
+        if (vr[i] < VR_U || vr[i] >= VR_Y || order[i] != 1) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "fmi2SetRealInputDerivatives: only first derivatives of inputs (got vr %u, "
+                    "order %d)", (unsigned)vr[i], (int)order[i]);
+            return fmi2Error;
+        }
+        if (!isfinite(value[i])) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "fmi2SetRealInputDerivatives: derivative of %s must be finite, got %g",
+                    bsm_u_names[vr[i] - VR_U], value[i]);
+            return fail(c, BSM_ERROR);
+        }
+        c->m.s.du[vr[i] - VR_U] = value[i];
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component component, const fmi2ValueReference vr[],
+                                        size_t nvr, const fmi2Integer order[],
+                                        fmi2Real value[]) {
+    INSTANCE("fmi2GetRealOutputDerivatives", ANY_MODE)
+    (void)vr;
+    (void)order;
+    (void)value;
+    if (nvr == 0) return fmi2OK;
+    bsm_log(&c->m, BSM_ERROR, "logStatusError", "output derivatives are not provided");
+    return fmi2Error;
+}
+
+fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoint,
+                      fmi2Real communicationStepSize,
+                      fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
+    BsmStatus st;
+    double t = 0.0;
+    INSTANCE("fmi2DoStep", MODE_STEP_COMPLETE)
+    (void)noSetFMUStatePriorToCurrentPoint;
+    t = c->m.s.time;
+    if (!(communicationStepSize > 0.0) || !isfinite(communicationStepSize) ||
+        fabs(currentCommunicationPoint - t) > 1e-9 * fmax(1.0, fabs(t))) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi2DoStep: step from t = %.17g s with h = %g s, but the FMU is at t = %.17g s "
+                "(h must be positive)", currentCommunicationPoint, communicationStepSize, t);
+        return fmi2Error;
+    }
+    c->m.s.time = currentCommunicationPoint;
+    st = bsm_do_step(&c->m, communicationStepSize);
+    if (st != BSM_OK) return fail(c, st);
+    return fmi2OK;
+}
+
+fmi2Status fmi2CancelStep(fmi2Component component) {
+    INSTANCE("fmi2CancelStep", ANY_MODE)
+    bsm_log(&c->m, BSM_ERROR, "logStatusError", "fmi2CancelStep: doStep is synchronous");
+    return fmi2Error;
+}
+
+fmi2Status fmi2GetStatus(fmi2Component component, const fmi2StatusKind s, fmi2Status *value) {
+    INSTANCE("fmi2GetStatus", ANY_MODE)
+    if (s != fmi2DoStepStatus) return fmi2Discard;
+    *value = fmi2OK;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetRealStatus(fmi2Component component, const fmi2StatusKind s, fmi2Real *value) {
+    INSTANCE("fmi2GetRealStatus", ANY_MODE)
+    if (s != fmi2LastSuccessfulTime) return fmi2Discard;
+    *value = c->m.s.time;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetIntegerStatus(fmi2Component component, const fmi2StatusKind s,
+                                fmi2Integer *value) {
+    INSTANCE("fmi2GetIntegerStatus", ANY_MODE)
+    (void)s;
+    (void)value;
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetBooleanStatus(fmi2Component component, const fmi2StatusKind s,
+                                fmi2Boolean *value) {
+    INSTANCE("fmi2GetBooleanStatus", ANY_MODE)
+    if (s != fmi2Terminated) return fmi2Discard;
+    *value = fmi2False;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetStringStatus(fmi2Component component, const fmi2StatusKind s,
+                               fmi2String *value) {
+    INSTANCE("fmi2GetStringStatus", ANY_MODE)
+    (void)s;
+    (void)value;
+    return fmi2Discard;
+}
