@@ -30,6 +30,7 @@ def steady_state(
     x_guess: np.ndarray | None = None,
     t: float = 0.0,
     tol: float = 1e-12,
+    residual_tol: float = 1e-9,
 ) -> np.ndarray:
     """Solve ``dx/dt = 0`` for every state that some derivative depends on.
 
@@ -51,7 +52,10 @@ def steady_state(
     t : float
         Time at which inputs are evaluated [s].
     tol : float
-        Residual tolerance.
+        Relative step tolerance of the solver.
+    residual_tol : float
+        A solution whose largest derivative is below this is accepted even if the solver
+        stalls [state units/s].
 
     Returns
     -------
@@ -79,7 +83,8 @@ def steady_state(
         return np.asarray(closed.jac(t, xx, p).sparse().toarray())[np.ix_(free, free)]
 
     sol = scipy.optimize.root(res, x[free], jac=jac, method="hybr", tol=tol)
-    if not sol.success or not np.all(np.isfinite(sol.x)):
+    converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
+    if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
         raise SimulationError(
             "steady state not found: " + str(sol.message) + "; residual max "
             f"{np.max(np.abs(res(sol.x))):.3g} for states "

@@ -1,0 +1,1 @@
+"""Studies: parameter sweeps and reproductions of the published cases."""
