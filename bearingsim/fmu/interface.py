@@ -14,7 +14,6 @@ causality ``output``; its slot in the output block is then not declared.
 
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
 
 import casadi as ca
@@ -25,7 +24,6 @@ from bearingsim.fmu.units import derivative_unit, normalize_unit
 
 __all__ = ["FmuInterface", "FmuVariable", "build_interface"]
 
-log = logging.getLogger("bearingsim.fmu")
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,54 @@
+"""FMUs built once per test session."""
+
+from __future__ import annotations
+
+import pytest
+
+from bearingsim.fmu import export_fmu
+from bearingsim.solver import assemble
+from tests.fmu.fmu_models import DrivenInertia, SpeedDrivenLoad, StiffChain
+from tests.models import TwoInertiaDrive
+
+DRIVE_OUTPUTS = ["j2.w", "sd.tau", "j1.phi"]
+DRIVEN_OUTPUTS = ["rotor.w", "friction.tau"]
+STIFF_OUTPUTS = ["mass[3].phi", "mass[3].w", "link[0].tau"]
+
+
+@pytest.fixture(scope="session")
+def fmu_dir(tmp_path_factory):
+    return tmp_path_factory.mktemp("fmus")
+
+
+@pytest.fixture(scope="session")
+def drive_system():
+    return assemble(TwoInertiaDrive(), outputs=DRIVE_OUTPUTS)
+
+
+@pytest.fixture(scope="session")
+def drive_fmu(fmu_dir, drive_system):
+    return export_fmu(drive_system, fmu_dir / "drive.fmu")
+
+
+@pytest.fixture(scope="session")
+def driven_system():
+    return assemble(DrivenInertia(), outputs=DRIVEN_OUTPUTS)
+
+
+@pytest.fixture(scope="session")
+def driven_fmu(fmu_dir, driven_system):
+    return export_fmu(driven_system, fmu_dir / "driven.fmu")
+
+
+@pytest.fixture(scope="session")
+def load_fmu(fmu_dir):
+    return export_fmu(SpeedDrivenLoad(), fmu_dir / "load.fmu", outputs=["sensor.tau"])
+
+
+@pytest.fixture(scope="session")
+def stiff_system():
+    return assemble(StiffChain(), outputs=STIFF_OUTPUTS)
+
+
+@pytest.fixture(scope="session")
+def stiff_fmu(fmu_dir, stiff_system):
+    return export_fmu(stiff_system, fmu_dir / "stiff.fmu", kinds=("CS",))
