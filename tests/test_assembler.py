@@ -174,3 +174,56 @@ def test_pruning_keeps_only_what_outputs_need():
     a = simulate(full, 1.0, rtol=1e-10, atol=1e-12)
     b = simulate(pruned, 1.0, rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(b["j2.w"], a["j2.w"], rtol=1e-9, atol=1e-12)
+
+
+def test_idas_backend_agrees_with_cvodes():
+    system = assemble(TwoInertiaDrive())
+    a = simulate(system, 1.0, method="cvodes", rtol=1e-10, atol=1e-12)
+    b = simulate(system, 1.0, method="idas", rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(a["j2.w"], b["j2.w"], atol=1e-7)
+
+
+class _InitialSpeed(Component):
+    """An inertia whose start speed follows from an initial equation: w(0) = 2 x(0) + 1."""
+
+    def __init__(self):
+        super().__init__("init")
+        self.x = Variable(0.5, "m")
+        self.w = Variable(unit="m/s", fixed=False)
+
+    def equations(self):
+        return [der(self.x) == self.w, der(self.w) == -self.x]
+
+    def initial_equations(self):
+        return [self.w == 2.0 * self.x + 1.0]
+
+
+def test_initial_equations_determine_free_start_values():
+    res = simulate(assemble(_InitialSpeed()), 1.0, rtol=1e-10, atol=1e-12)
+    assert res["w"][0] == pytest.approx(2.0, rel=1e-10)
+    np.testing.assert_allclose(res["x"], 0.5 * np.cos(res.t) + 2.0 * np.sin(res.t), atol=1e-7)
+
+
+class _BlowUp(Component):
+    def __init__(self):
+        super().__init__("blow")
+        self.x = Variable(1.0)
+
+    def equations(self):
+        return [der(self.x) == self.x**2]
+
+
+@pytest.mark.parametrize("method", ["BDF", "cvodes"])
+def test_solver_failure_reports_time_and_variable(method):
+    from bearingsim.errors import SimulationError
+
+    with pytest.raises(SimulationError) as err:
+        simulate(assemble(_BlowUp()), 2.0, method=method)
+    msg = str(err.value)
+    assert "x" in msg and ("t = " in msg or "failed" in msg)
+
+
+def test_steady_initialization_starts_at_rest_state():
+    system = assemble(DampersInSeries())
+    res = simulate(system, 0.5, initial="steady")
+    np.testing.assert_allclose(res["j1.w"], res["j2.w"], atol=1e-9)

@@ -19,6 +19,7 @@ from bearingsim.solver.system import System
 __all__ = ["ClosedModel", "close_inputs", "simulate", "initial_state"]
 
 SCIPY_METHODS = ("BDF", "Radau", "LSODA", "RK45", "DOP853", "RK23")
+CASADI_METHODS = ("cvodes", "idas")
 IMPLICIT = ("BDF", "Radau", "LSODA")
 
 
@@ -121,9 +122,10 @@ def simulate(
     initial : {"start", "steady"}
         ``"steady"`` starts from the steady state at ``t_start``.
     method : str
-        ``"BDF"``, ``"Radau"``, ``"LSODA"``, ``"RK45"``, ``"DOP853"`` (scipy) or ``"cvodes"``.
-    backend : {"scipy", "cvodes"}
-        Integrator family; ``method="cvodes"`` implies ``backend="cvodes"``.
+        ``"BDF"``, ``"Radau"``, ``"LSODA"``, ``"RK45"``, ``"DOP853"`` (scipy, the implicit ones
+        with the exact sparse Jacobian) or CasADi's ``"cvodes"`` / ``"idas"`` (SUNDIALS).
+    backend : {"scipy", "casadi"}
+        Integrator family; a CasADi method implies ``backend="casadi"``.
     rtol, atol : float
         Tolerances.
     n_points : int
@@ -147,15 +149,17 @@ def simulate(
     check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
     check_range(rtol, "rtol", "1", 0.0, 1.0, low_inclusive=False, where="simulate")
     check_range(atol, "atol", "1", 0.0, None, low_inclusive=False, where="simulate")
-    if method.lower() == "cvodes":
-        backend = "cvodes"
-    if backend not in ("scipy", "cvodes"):
-        raise ParameterError(f"simulate: backend must be 'scipy' or 'cvodes', got {backend!r}")
+    if method.lower() in CASADI_METHODS:
+        backend = "casadi"
+    if backend not in ("scipy", "casadi"):
+        raise ParameterError(f"simulate: backend must be 'scipy' or 'casadi', got {backend!r}")
     if backend == "scipy" and method not in SCIPY_METHODS:
         raise ParameterError(
-            f"simulate: method must be one of {', '.join(SCIPY_METHODS)} or 'cvodes', got "
+            f"simulate: method must be one of {', '.join(SCIPY_METHODS + CASADI_METHODS)}, got "
             f"{method!r}"
         )
+    if backend == "casadi" and method.lower() not in CASADI_METHODS:
+        method = "cvodes"
     if initial not in ("start", "steady"):
         raise ParameterError(f"simulate: initial must be 'start' or 'steady', got {initial!r}")
     p = system.p0(parameters)
@@ -171,7 +175,8 @@ def simulate(
         ts, xs, stats = _run_scipy(system, closed, p, x_start, t_start, t_end, t_eval, method,
                                    rtol, atol, max_step, progress)
     else:
-        ts, xs, stats = _run_cvodes(system, closed, p, x_start, t_start, t_eval, rtol, atol)
+        ts, xs, stats = _run_casadi(system, closed, p, x_start, t_start, t_eval, rtol, atol,
+                                    method.lower())
     stats["wall_time"] = _time.perf_counter() - wall
     obs = closed.observe.map(ts.size)
     values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)), dtype=float)
@@ -242,7 +247,7 @@ def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_st
     return sol.t, sol.y, stats
 
 
-def _run_cvodes(system, closed, p, x0, t0, t_eval, rtol, atol):
+def _run_casadi(system, closed, p, x0, t0, t_eval, rtol, atol, plugin):
     sym = ca.SX if closed.symbolic else ca.MX
     x = sym.sym("x", system.n_states)
     pp = sym.sym("p", len(p))
@@ -250,23 +255,48 @@ def _run_cvodes(system, closed, p, x0, t0, t_eval, rtol, atol):
     dae = {"x": x, "p": pp, "t": t, "ode": closed.f(t, x, pp)}
     grid = t_eval[t_eval > t0]
     opts = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000}
-    integ = ca.integrator("cvodes", "cvodes", dae, float(t0), grid, opts)
+    integ = ca.integrator(plugin, plugin, dae, float(t0), grid, opts)
     try:
         out = integ(x0=x0, p=p)
-    except RuntimeError as exc:
-        raise SimulationError(f"CVODES failed: {str(exc).splitlines()[0]}") from None
+    except RuntimeError:
+        _locate_casadi_failure(system, dae, plugin, opts, float(t0), grid, x0, p)
+        raise
     xs = np.asarray(out["xf"], dtype=float)
+    if not np.all(np.isfinite(xs)):
+        k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
+        raise SimulationError(
+            f"{plugin.upper()} produced non-finite states by t = {grid[k]:.6g} s; "
+            f"{_diverged(system, xs[:, k], x0)}"
+        )
     if t_eval[0] <= t0:
         xs = np.hstack([x0[:, None], xs])
         ts = np.concatenate([[t0], grid])
     else:
         ts = grid
-    stats = {"method": "cvodes"}
+    stats = {"method": plugin}
     st = integ.stats()
     for key in ("nsteps", "nfevals", "nlinsetups"):
         if key in st:
             stats[key] = st[key]
     return ts, xs, stats
+
+
+def _locate_casadi_failure(system, dae, plugin, opts, t0, grid, x0, p):
+    """Integrate interval by interval to report where a SUNDIALS run failed (failure path only)."""
+    x, t_prev = np.asarray(x0, dtype=float), t0
+    for t_next in grid:
+        step = ca.integrator(plugin, plugin, dae, t_prev, [float(t_next)], opts)
+        try:
+            x_new = np.asarray(step(x0=x, p=p)["xf"], dtype=float).ravel()
+        except RuntimeError:
+            x_new = None
+        if x_new is None or not np.all(np.isfinite(x_new)):
+            raise SimulationError(
+                f"{plugin.upper()} failed between t = {t_prev:.6g} s and {t_next:.6g} s; "
+                f"states at t = {t_prev:.6g} s: {_diverged(system, x, x0)}"
+            ) from None
+        x, t_prev = x_new, float(t_next)
+    raise SimulationError(f"{plugin.upper()} failed (not reproducible interval by interval)")
 
 
 def _progress_bar(t0, t1, progress):
