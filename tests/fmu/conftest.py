@@ -11,7 +11,7 @@ from tests.models import TwoInertiaDrive
 
 DRIVE_OUTPUTS = ["j2.w", "sd.tau", "j1.phi"]
 DRIVEN_OUTPUTS = ["rotor.w", "friction.tau"]
-STIFF_OUTPUTS = ["mass[3].phi", "mass[3].w", "link[0].tau"]
+STIFF_OUTPUTS = ["load.phi", "load.w", "link[0].tau", "coupling.tau"]
 
 
 @pytest.fixture(scope="session")

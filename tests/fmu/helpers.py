@@ -38,7 +38,7 @@ def run_fmu(path, kind, t_end, dt, outputs, start_values=None, tol=1e-9):
 def reference(system, t_end, dt, **kwargs):
     """In-Python simulation on the same time grid."""
     n = int(round(t_end / dt)) + 1
-    return simulate(system, t_end, n_points=n, rtol=1e-10, atol=1e-12, **kwargs)
+    return simulate(system, t_end, n_points=n, rtol=1e-10, atol=1e-12, progress=False, **kwargs)
 
 
 class LogCapture:

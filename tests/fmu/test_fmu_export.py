@@ -30,8 +30,9 @@ def test_archive_layout(drive_fmu):
 def test_only_fmi_functions_are_exported(drive_fmu, tmp_path):
     with zipfile.ZipFile(drive_fmu) as z:
         z.extract("binaries/linux64/drive.so", tmp_path)
-    out = subprocess.run(["nm", "-D", "--defined-only", str(tmp_path / "binaries/linux64/drive.so")],
-                         capture_output=True, text=True, check=True).stdout
+    lib = tmp_path / "binaries/linux64/drive.so"
+    out = subprocess.run(["nm", "-D", "--defined-only", str(lib)], capture_output=True,
+                         text=True, check=True).stdout
     symbols = {line.split()[-1] for line in out.splitlines() if " T " in line}
     assert "fmi2DoStep" in symbols and "fmi2GetDirectionalDerivative" in symbols
     assert all(s.startswith("fmi2") for s in symbols), symbols

@@ -16,6 +16,12 @@ void bsm_log(BsmInstance *m, BsmStatus status, const char *category, const char 
     m->logger(m->host, status, category, message);
 }
 
+const char *bsm_num(char buf[32], double v) {
+    if (isnan(v)) return "NaN";
+    snprintf(buf, 32, "%g", v);
+    return buf;
+}
+
 void bsm_invalidate(BsmInstance *m) {
     m->dx_valid = 0;
     m->y_valid = 0;
@@ -77,9 +83,10 @@ BsmStatus bsm_derivatives(BsmInstance *m, double t, const double *x, const doubl
     }
     bad = first_non_finite(dx, NX);
     if (bad >= 0) {
-        bsm_log(m, BSM_ERROR, "logStatusError",
-                "der(%s) is not finite (%g) at t = %g s; %s = %g", bsm_x_names[bad], dx[bad],
-                t, bsm_x_names[bad], x[bad]);
+        char b1[32], b2[32];
+        bsm_log(m, BSM_ERROR, "logStatusError", "der(%s) is not finite (%s) at t = %g s; %s = %s",
+                bsm_x_names[bad], bsm_num(b1, dx[bad]), t, bsm_x_names[bad],
+                bsm_num(b2, x[bad]));
         return BSM_ERROR;
     }
     return BSM_OK;
@@ -103,8 +110,9 @@ BsmStatus bsm_current_outputs(BsmInstance *m) {
     }
     bad = first_non_finite(m->y, NY);
     if (bad >= 0) {
-        bsm_log(m, BSM_ERROR, "logStatusError", "output %s is not finite (%g) at t = %g s",
-                bsm_y_names[bad], m->y[bad], m->s.time);
+        char b[32];
+        bsm_log(m, BSM_ERROR, "logStatusError", "output %s is not finite (%s) at t = %g s",
+                bsm_y_names[bad], bsm_num(b, m->y[bad]), m->s.time);
         return BSM_ERROR;
     }
     m->y_valid = 1;
@@ -117,21 +125,22 @@ BsmStatus bsm_check_parameter(BsmInstance *m, int k, double v) {
                  ((b & BSM_LOW_INCLUSIVE) ? v >= bsm_p_low[k] : v > bsm_p_low[k]);
     int high_ok = !(b & BSM_HAS_HIGH) ||
                   ((b & BSM_HIGH_INCLUSIVE) ? v <= bsm_p_high[k] : v < bsm_p_high[k]);
-    char range[128];
+    char range[128], num[32];
     if (isfinite(v) && low_ok && high_ok) return BSM_OK;
     snprintf(range, sizeof(range), "%s%.17g, %.17g%s", (b & BSM_LOW_INCLUSIVE) ? "[" : "(",
              (b & BSM_HAS_LOW) ? bsm_p_low[k] : -INFINITY,
              (b & BSM_HAS_HIGH) ? bsm_p_high[k] : INFINITY,
              (b & BSM_HIGH_INCLUSIVE) ? "]" : ")");
     bsm_log(m, BSM_ERROR, "logStatusError",
-            "parameter %s = %g [%s] is outside its valid range %s; value not set",
-            bsm_p_names[k], v, bsm_p_units[k], range);
+            "parameter %s = %s [%s] is outside its valid range %s; value not set",
+            bsm_p_names[k], bsm_num(num, v), bsm_p_units[k], range);
     return BSM_ERROR;
 }
 
 BsmStatus bsm_check_input(BsmInstance *m, int k, double v) {
+    char b[32];
     if (isfinite(v)) return BSM_OK;
-    bsm_log(m, BSM_ERROR, "logStatusError", "input %s must be finite, got %g; value not set",
-            bsm_u_names[k], v);
+    bsm_log(m, BSM_ERROR, "logStatusError", "input %s must be finite, got %s; value not set",
+            bsm_u_names[k], bsm_num(b, v));
     return BSM_ERROR;
 }

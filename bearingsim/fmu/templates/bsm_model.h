@@ -105,6 +105,7 @@ typedef struct {
 } BsmInstance;
 
 /* bsm_eval.c */
+const char *bsm_num(char buf[32], double v);
 void bsm_log(BsmInstance *m, BsmStatus status, const char *category, const char *fmt, ...);
 void bsm_reset(BsmInstance *m);
 void bsm_invalidate(BsmInstance *m);

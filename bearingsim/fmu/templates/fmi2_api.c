@@ -228,8 +228,9 @@ fmi2Status fmi2SetReal(fmi2Component component, const fmi2ValueReference vr[], s
             if (check_mode(c, SETUP_MODES, "fmi2SetReal of a state") != fmi2OK)
                 return fmi2Error;
             if (!isfinite(value[i])) {
-                bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                        "start value of %s must be finite, got %g", bsm_x_names[r], value[i]);
+                char num[32];
+                bsm_log(&c->m, BSM_ERROR, "logStatusError", "start value of %s must be finite, "
+                        "got %s", bsm_x_names[r], bsm_num(num, value[i]));
                 return fail(c, BSM_ERROR);
             }
             c->m.s.x[r - VR_X] = value[i];
@@ -488,8 +489,8 @@ fmi2Status fmi2SetContinuousStates(fmi2Component component, const fmi2Real x[], 
     for (i = 0; i < nx; ++i)
         if (!isfinite(x[i])) {
             bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                    "fmi2SetContinuousStates: %s is not finite (%g) at t = %g s",
-                    bsm_x_names[i], x[i], c->m.s.time);
+                    "fmi2SetContinuousStates: %s is not finite at t = %g s",
+                    bsm_x_names[i], c->m.s.time);
             return fail(c, BSM_ERROR);
         }
     memcpy(c->m.s.x, x, sizeof(double) * nx);
@@ -551,9 +552,10 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component component, const fmi2ValueR
             return fmi2Error;
         }
         if (!isfinite(value[i])) {
+            char num[32];
             bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                    "fmi2SetRealInputDerivatives: derivative of %s must be finite, got %g",
-                    bsm_u_names[vr[i] - VR_U], value[i]);
+                    "fmi2SetRealInputDerivatives: derivative of %s must be finite, got %s",
+                    bsm_u_names[vr[i] - VR_U], bsm_num(num, value[i]));
             return fail(c, BSM_ERROR);
         }
         c->m.s.du[vr[i] - VR_U] = value[i];
