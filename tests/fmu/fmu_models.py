@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from bearingsim import Assembly, Component, Input, Variable, connect, der
+from bearingsim import Assembly, Component, Input, Parameter, Variable, connect, der
 from bearingsim.components.rotational import (
     Damper,
     Fixed,
@@ -107,3 +107,17 @@ class Sqrt(Component):
 
     def equations(self):
         return [der(self.x) == ca.sqrt(1.0 - self.time)]
+
+
+class ImplicitDecay(Component):
+    """der(x) = -k z with z + z^3 = x: a nonlinear algebraic loop solved by Newton in the
+    generated code."""
+
+    def __init__(self, k=2.0):
+        super().__init__("implicit")
+        self.k = Parameter(k, "1/s", "decay rate", low=0.0)
+        self.x = Variable(2.0, "1", "decaying quantity")
+        self.z = Variable(1.0, "1", "root of z + z^3 = x", fixed=False)
+
+    def equations(self):
+        return [der(self.x) == -self.k * self.z, self.z + self.z**3 == self.x]
