@@ -9,5 +9,6 @@ model-specific part (sizes, value references, start values, parameter ranges). S
 from bearingsim.fmu.build import FmuBuildError
 from bearingsim.fmu.cli import cli_export
 from bearingsim.fmu.export import FMI_VERSIONS, export_fmu
+from bearingsim.fmu.ssp import write_ssp
 
-__all__ = ["FMI_VERSIONS", "FmuBuildError", "cli_export", "export_fmu"]
+__all__ = ["FMI_VERSIONS", "FmuBuildError", "cli_export", "export_fmu", "write_ssp"]
