@@ -92,7 +92,7 @@ def write_ssp(
     system = ET.SubElement(root, f"{{{SSD}}}System", name=name)
     elements = ET.SubElement(system, f"{{{SSD}}}Elements")
     units: set[str] = set()
-    for element, fmu in fmus.items():
+    for element in fmus:
         comp = ET.SubElement(elements, f"{{{SSD}}}Component", name=element,
                              source=f"resources/{element}.fmu",
                              type="application/x-fmu-sharedlibrary")
