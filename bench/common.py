@@ -1,0 +1,183 @@
+"""Shared helpers of the benchmarks: timing, fits, Markdown tables, machine description."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import os
+import platform
+import statistics
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+
+__all__ = [
+    "Section",
+    "machine_info",
+    "median_call_time",
+    "loglog_slope",
+    "interp_loglog",
+    "markdown_table",
+    "peak_rss_reset",
+    "peak_rss_kib",
+    "fmt",
+]
+
+
+@dataclass
+class Section:
+    """One benchmark's report: a title, Markdown body and raw numbers.
+
+    Attributes
+    ----------
+    title : str
+        Heading of the section.
+    body : str
+        Markdown text (tables, remarks, image links).
+    data : dict
+        Raw numbers, for callers that want more than the text.
+    """
+
+    title: str
+    body: str
+    data: dict = field(default_factory=dict)
+
+
+def machine_info() -> dict[str, str]:
+    """Describe the machine and the numerical stack.
+
+    Returns
+    -------
+    dict
+        Cores, CPU model (from ``/proc/cpuinfo``), OS, and Python/numpy/scipy/casadi versions.
+    """
+    import casadi
+    import scipy
+
+    cpu = platform.processor() or "unknown"
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    try:
+        usable = len(os.sched_getaffinity(0))
+    except AttributeError:
+        usable = os.cpu_count() or 0
+    return {
+        "cores": f"{usable} usable ({os.cpu_count()} logical)",
+        "cpu": cpu,
+        "os": platform.platform(),
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "casadi": casadi.__version__,
+        "matplotlib": matplotlib.__version__,
+        "date": _dt.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z"),
+    }
+
+
+def median_call_time(fn: Callable[[], object], n_calls: int = 200, repeats: int = 7) -> float:
+    """Median over ``repeats`` batches of the mean time of one call of ``fn`` [s].
+
+    Parameters
+    ----------
+    fn : callable
+        Function of no arguments.
+    n_calls : int
+        Calls per batch.
+    repeats : int
+        Number of batches.
+
+    Returns
+    -------
+    float
+        Median seconds per call.
+    """
+    fn()  # warm up
+    per_call = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(n_calls):
+            fn()
+        per_call.append((time.perf_counter() - t0) / n_calls)
+    return statistics.median(per_call)
+
+
+def loglog_slope(x: Sequence[float], y: Sequence[float]) -> float:
+    """Least-squares slope of ``log y`` against ``log x`` (the exponent ``k`` of ``y ~ x^k``)."""
+    lx, ly = np.log(np.asarray(x, float)), np.log(np.asarray(y, float))
+    return float(np.polyfit(lx, ly, 1)[0])
+
+
+def interp_loglog(x_new: float, x: Sequence[float], y: Sequence[float]) -> float:
+    """Interpolate ``y(x_new)`` linearly in log-log coordinates; NaN outside the data range.
+
+    The points are sorted by ``x``; for non-monotone data this is a piecewise-linear path through
+    the sorted points.
+    """
+    xs, ys = np.asarray(x, float), np.asarray(y, float)
+    ok = (xs > 0) & (ys > 0) & np.isfinite(xs) & np.isfinite(ys)
+    xs, ys = xs[ok], ys[ok]
+    if xs.size < 2:
+        return float("nan")
+    order = np.argsort(xs)
+    lx, ly = np.log(xs[order]), np.log(ys[order])
+    lq = np.log(x_new)
+    if lq < lx[0] or lq > lx[-1]:
+        return float("nan")
+    return float(np.exp(np.interp(lq, lx, ly)))
+
+
+def fmt(value: float, digits: int = 3) -> str:
+    """Format a number compactly (``g`` format); NaN becomes an em dash."""
+    if value is None or (isinstance(value, float) and not np.isfinite(value)):
+        return "—"
+    return f"{value:.{digits}g}"
+
+
+def markdown_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
+    """A GitHub-flavoured Markdown table."""
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def peak_rss_reset() -> bool:
+    """Reset the kernel's peak-RSS counter of this process (Linux); True on success."""
+    try:
+        with open("/proc/self/clear_refs", "w", encoding="ascii") as fh:
+            fh.write("5")
+        return True
+    except OSError:
+        return False
+
+
+def peak_rss_kib() -> tuple[int, int]:
+    """Current and peak resident set size of this process [KiB] (Linux; zeros elsewhere)."""
+    rss = hwm = 0
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmRSS:"):
+                    rss = int(line.split()[1])
+                elif line.startswith("VmHWM:"):
+                    hwm = int(line.split()[1])
+    except OSError:
+        pass
+    return rss, hwm
+
+
+def image_link(path: Path, out_md: Path, alt: str) -> str:
+    """Markdown image reference to ``path`` relative to the report's folder."""
+    rel = os.path.relpath(path, out_md.parent)
+    return f"![{alt}]({rel})"
