@@ -82,10 +82,11 @@ def _tear(block: list[tuple[Eq, Var]], residuals: dict[Eq, ca.SX]):
 def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
     """Express every unknown through base symbols, block by block."""
     out = Causal(n_blocks=len(blocks))
+    solved_by_name: dict[str, Var] = {}
     for block in blocks:
         out.largest_block = max(out.largest_block, len(block))
         raw = ca.vertcat(*[e.residual for e, _ in block])
-        prev = [v for v in out.expr if ca.depends_on(raw, v.sym)] if out.expr else []
+        prev = [solved_by_name[s.name()] for s in ca.symvar(raw) if s.name() in solved_by_name]
         if prev:
             raw = ca.substitute(
                 raw, ca.vertcat(*[v.sym for v in prev]), ca.vertcat(*[out.expr[v] for v in prev])
@@ -99,6 +100,7 @@ def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
             else:
                 out.expr[v] = v.sym
                 out.nonlinear.append(NonlinearBlock([v], r, [_guess(v)], [e]))
+            solved_by_name[v.sym.name()] = v
             continue
         solved, tears, res_eqs = _tear(block, residuals)
         local: dict[Var, ca.SX] = {}
@@ -130,6 +132,7 @@ def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
             tear_expr = {t: t.sym for t in tears}
         for t, ex in tear_expr.items():
             out.expr[t] = ex
+            solved_by_name[t.sym.name()] = t
         if local:
             vals = ca.substitute(
                 ca.vertcat(*[local[v] for v in local]),
@@ -138,6 +141,7 @@ def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
             )
             for k, v in enumerate(local):
                 out.expr[v] = vals[k]
+                solved_by_name[v.sym.name()] = v
     return out
 
 
