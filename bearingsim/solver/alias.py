@@ -7,33 +7,57 @@ The eliminated variables are kept in ``dae.aliases`` so results can still report
 from __future__ import annotations
 
 import casadi as ca
+import numpy as np
 
 from bearingsim.solver.dae import DAE, Eq, Var
 
 __all__ = ["eliminate_aliases"]
 
 
-def _classify(eq: Eq, lookup: dict[str, Var]):
-    """Return ('alias', a, b, s) for a = s*b, ('const', a, c) for a = c, or None."""
-    syms = ca.symvar(eq.residual)
-    if not syms or len(syms) > 2:
-        return None
-    vs = [lookup.get(s.name()) for s in syms]
-    if any(v is None for v in vs):
-        return None
-    r = eq.residual
-    coefs = [ca.jacobian(r, v.sym) for v in vs]
-    if not all(c.is_constant() for c in coefs):
-        return None
-    rest = ca.substitute(r, ca.vertcat(*[v.sym for v in vs]), ca.DM.zeros(len(vs)))
-    if not rest.is_constant():
-        return None
-    c = [float(x) for x in coefs]
-    if len(vs) == 1:
-        return ("const", vs[0], -float(rest) / c[0])
-    if float(rest) != 0.0 or abs(abs(c[0]) - abs(c[1])) > 0:
-        return None
-    return ("alias", vs[0], vs[1], -c[1] / c[0])
+def _classify_all(dae: DAE) -> list[tuple]:
+    """Alias candidates of all equations, found with whole-vector CasADi operations.
+
+    Returns a list of ('alias', eq, a, b, s) for ``a = s*b`` and ('const', eq, a, c) for
+    ``a = c``; equations with parameters, time or more than two variables are never aliases.
+    """
+    if not dae.eqs or not dae.vars:
+        return []
+    r = ca.vertcat(*[e.residual for e in dae.eqs])
+    v = ca.vertcat(*[x.sym for x in dae.vars])
+    rows, _ = ca.jacobian_sparsity(r, v).get_triplet()
+    count = np.bincount(np.asarray(rows, dtype=int), minlength=len(dae.eqs))
+    others = [q.sym for q in dae.params] + [dae.time]
+    has_other = np.zeros(len(dae.eqs), dtype=bool)
+    if others:
+        prow, _ = ca.jacobian_sparsity(r, ca.vertcat(*others)).get_triplet()
+        has_other[np.asarray(prow, dtype=int)] = True
+    cand = [i for i in range(len(dae.eqs)) if 1 <= count[i] <= 2 and not has_other[i]]
+    if not cand:
+        return []
+    rc = ca.vertcat(*[dae.eqs[i].residual for i in cand])
+    jac = ca.jacobian(rc, v)
+    rest = ca.substitute(rc, v, ca.DM.zeros(v.numel()))
+    jrows, jcols = jac.sparsity().get_triplet()
+    jnz = jac.nonzeros()
+    entries: dict[int, list[tuple[int, ca.SX]]] = {}
+    for k, (i, j) in enumerate(zip(jrows, jcols, strict=True)):
+        entries.setdefault(i, []).append((j, jnz[k]))
+    rest_nz = [rest[i] for i in range(len(cand))]
+    out = []
+    for i, row in entries.items():
+        eq = dae.eqs[cand[i]]
+        const = rest_nz[i]
+        if not const.is_constant() or not all(c.is_constant() for _, c in row):
+            continue
+        coef = [float(c) for _, c in row]
+        if any(c == 0.0 for c in coef):
+            continue
+        xs = [dae.vars[j] for j, _ in row]
+        if len(xs) == 1:
+            out.append(("const", eq, xs[0], -float(const) / coef[0]))
+        elif float(const) == 0.0 and abs(coef[0]) == abs(coef[1]):
+            out.append(("alias", eq, xs[0], xs[1], -coef[1] / coef[0]))
+    return out
 
 
 def _priority(v: Var) -> tuple:
@@ -67,14 +91,12 @@ def _one_round(dae: DAE) -> bool:
 
     used: list[Eq] = []
     consts: list[tuple[Var, float, Eq]] = []
-    for eq in dae.eqs:
-        kind = _classify(eq, lookup)
-        if kind is None:
-            continue
+    for kind in _classify_all(dae):
         if kind[0] == "const":
-            consts.append((kind[1], kind[2], eq))
+            _, eq, a, c = kind
+            consts.append((a, c, eq))
             continue
-        _, a, b, s = kind
+        _, eq, a, b, s = kind
         if a.is_input and b.is_input:
             continue
         if s < 0 and (a in integral_of or b in integral_of):
