@@ -154,6 +154,7 @@ def _one_round(dae: DAE) -> bool:
     removed = [v for v in dae.vars if v in parent or v in const_val]
     syms, repl = [], []
     for v in removed:
+        dae.alias_declarations[v.name] = (v.unit, v.description)
         if v in const_val:
             val = const_val[v]
             syms.append(v.sym)

@@ -101,6 +101,8 @@ class DAE:
     initial_eqs: list[Eq] = field(default_factory=list)
     aliases: dict[str, tuple[float, Var | None, float]] = field(default_factory=dict)
     """Eliminated name -> (scale, representative or None, offset): v = scale * rep + offset."""
+    alias_declarations: dict[str, tuple[str, str]] = field(default_factory=dict)
+    """Eliminated name -> (unit, description) of its declaration."""
     timings: list[tuple[str, float]] = field(default_factory=list)
     log: list[str] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)

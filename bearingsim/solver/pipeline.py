@@ -91,8 +91,13 @@ def _codegen(s: AssemblyState) -> None:
     funcs, observed, out_names = codegen.build_functions(dae, s.causal, s.outputs, s.newton_tol)
     units = {v.name: v.unit for v in dae.vars}
     descs = {v.name: v.description for v in dae.vars}
+    for name, (_, rep, _) in dae.aliases.items():
+        decl = dae.alias_declarations.get(name)
+        units[name] = decl[0] if decl else (rep.unit if rep is not None else "1")
+        descs[name] = decl[1] if decl else ""
     states = [
-        Signal(v.name, v.unit, v.description, v.start if v.start is not None else 0.0, v.fixed)
+        Signal(v.name, v.unit, v.description, v.start if v.start is not None else 0.0, v.fixed,
+               v.nominal)
         for v in dae.states
     ]
     inputs = [Signal(v.name, v.unit, v.description, v.default or 0.0) for v in dae.inputs]
@@ -106,6 +111,8 @@ def _codegen(s: AssemblyState) -> None:
         params=dae.params,
         functions=funcs,
         observed_names=observed,
+        observed_units={n: units.get(n, "1") for n in observed},
+        observed_descriptions={n: descs.get(n, "") for n in observed},
         init_residual=init_fn,
         free_initial_states=free,
         skipped=list(dae.skipped),

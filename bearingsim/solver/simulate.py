@@ -185,7 +185,8 @@ def simulate(
 
 
 def _units(system: System) -> dict[str, str]:
-    units = {s.name: s.unit for s in system.states + system.inputs + system.outputs}
+    units = dict(system.observed_units)
+    units.update({s.name: s.unit for s in system.states + system.inputs + system.outputs})
     return units
 
 

@@ -23,6 +23,8 @@ class Signal:
     description: str = ""
     start: float = 0.0
     fixed: bool = True
+    nominal: float | None = None
+    """Typical magnitude, for tolerance scaling (None: unknown)."""
 
 
 @dataclass
@@ -45,6 +47,8 @@ class System:
     params: list[Param]
     functions: dict[str, ca.Function]
     observed_names: list[str]
+    observed_units: dict[str, str] = field(default_factory=dict)
+    observed_descriptions: dict[str, str] = field(default_factory=dict)
     init_residual: ca.Function | None = None
     free_initial_states: list[int] = field(default_factory=list)
     timings: list[tuple[str, float]] = field(default_factory=list)
