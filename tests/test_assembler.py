@@ -227,3 +227,15 @@ def test_steady_initialization_starts_at_rest_state():
     system = assemble(DampersInSeries())
     res = simulate(system, 0.5, initial="steady")
     np.testing.assert_allclose(res["j1.w"], res["j2.w"], atol=1e-9)
+
+
+def test_compiled_backend_gives_identical_results(tmp_path):
+    from bearingsim.solver.compile import compile_system
+
+    system = assemble(Pendulum())  # has a nonlinear Newton block: MX with fast_newton in C
+    compiled = compile_system(system, cache_dir=tmp_path)
+    assert "compiled" in compiled.report
+    a = simulate(system, 1.0, rtol=1e-9, atol=1e-11)
+    b = simulate(compiled, 1.0, rtol=1e-9, atol=1e-11)
+    np.testing.assert_allclose(b["x"], a["x"], rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(b["F"], a["F"], rtol=1e-9, atol=1e-10)

@@ -12,6 +12,7 @@ import scipy.integrate
 import scipy.optimize
 
 from bearingsim.errors import ParameterError, SimulationError, check_range
+from bearingsim.solver.fastcall import BufferedFunction
 from bearingsim.solver.inputs import input_expression
 from bearingsim.solver.result import Result
 from bearingsim.solver.system import System
@@ -202,14 +203,14 @@ def _diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
 
 
 def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_step, progress):
-    f, jac = closed.f, closed.jac
+    f, jac = BufferedFunction(closed.f), BufferedFunction(closed.jac)
     n_f = [0]
     bar = _progress_bar(t0, t1, progress)
     last = [t0, x0]
 
     def fun(t, x):
         n_f[0] += 1
-        out = np.asarray(f(t, x, p), dtype=float).ravel()
+        out = f.vector(t, x, p)
         if not np.all(np.isfinite(out)):
             bad = [n for n, v in zip(system.state_names, out, strict=True) if not np.isfinite(v)]
             raise SimulationError(
@@ -225,9 +226,8 @@ def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_st
     kwargs: dict[str, Any] = {}
     if method in IMPLICIT:
         def jacobian(t, x):
-            return np.asarray(jac(t, x, p).sparse().toarray()) if method == "LSODA" else (
-                jac(t, x, p).sparse()
-            )
+            matrix = jac.sparse(t, x, p)
+            return matrix.toarray() if method == "LSODA" else matrix
         kwargs["jac"] = jacobian
     try:
         sol = scipy.integrate.solve_ivp(
