@@ -1,0 +1,249 @@
+"""A small, safe expression language for input signals of time, compiled to CasADi.
+
+A scene writes an input as text, for example ``"rpm(10000) * min(t / 0.5, 1)"``. The text is
+parsed with :mod:`ast` and only whitelisted nodes are accepted; it is never passed to ``eval``.
+The result is a function of the time symbol that returns a CasADi expression, so the signal is
+compiled into the right-hand side (no Python runs during the integration).
+
+Grammar (Python syntax, restricted):
+
+* numbers, the time ``t`` [s], the constants ``pi`` and ``e``;
+* ``+ - * / **``, unary ``-``/``+``, comparisons (``t < 1``: 1 or 0), ``a if cond else b``;
+* functions: ``min max abs sqrt exp log log10 sin cos tan asin acos atan atan2 tanh sinh cosh
+  floor ceil sign`` and the helpers ``step(t0)`` (0 before ``t0``, 1 after), ``ramp(t0, t1)``
+  (0 before ``t0``, linear to 1 at ``t1``, then 1), ``rpm(n)`` (r/min -> rad/s), ``deg(a)``
+  (degrees -> rad).
+
+Everything is in SI units; a value such as ``"1000 rpm"`` is rejected with a hint to write
+``rpm(1000)``.
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+from collections.abc import Callable
+from typing import Any
+
+import casadi as ca
+
+from bearingsim.errors import ParameterError
+
+__all__ = ["ExpressionError", "compile_expression", "FUNCTIONS", "CONSTANTS"]
+
+
+class ExpressionError(ParameterError):
+    """An input expression uses a construct, name or function outside the whitelist."""
+
+
+def _step(t, t0):
+    return ca.if_else(t >= t0, 1.0, 0.0)
+
+
+def _ramp(t, t0, t1):
+    return ca.fmin(ca.fmax((t - t0) / (t1 - t0), 0.0), 1.0)
+
+
+# name -> (number of arguments (None: 2 or more), builder taking (t, *args))
+FUNCTIONS: dict[str, tuple[int | None, Callable[..., Any]]] = {
+    "min": (None, lambda t, *a: _fold(ca.fmin, a)),
+    "max": (None, lambda t, *a: _fold(ca.fmax, a)),
+    "abs": (1, lambda t, x: ca.fabs(x)),
+    "sqrt": (1, lambda t, x: ca.sqrt(x)),
+    "exp": (1, lambda t, x: ca.exp(x)),
+    "log": (1, lambda t, x: ca.log(x)),
+    "log10": (1, lambda t, x: ca.log10(x)),
+    "sin": (1, lambda t, x: ca.sin(x)),
+    "cos": (1, lambda t, x: ca.cos(x)),
+    "tan": (1, lambda t, x: ca.tan(x)),
+    "asin": (1, lambda t, x: ca.asin(x)),
+    "acos": (1, lambda t, x: ca.acos(x)),
+    "atan": (1, lambda t, x: ca.atan(x)),
+    "atan2": (2, lambda t, y, x: ca.atan2(y, x)),
+    "tanh": (1, lambda t, x: ca.tanh(x)),
+    "sinh": (1, lambda t, x: ca.sinh(x)),
+    "cosh": (1, lambda t, x: ca.cosh(x)),
+    "floor": (1, lambda t, x: ca.floor(x)),
+    "ceil": (1, lambda t, x: ca.ceil(x)),
+    "sign": (1, lambda t, x: ca.sign(x)),
+    "step": (1, lambda t, t0: _step(t, t0)),
+    "ramp": (2, lambda t, t0, t1: _ramp(t, t0, t1)),
+    "rpm": (1, lambda t, n: n * (2.0 * math.pi / 60.0)),
+    "deg": (1, lambda t, a: a * (math.pi / 180.0)),
+}
+"""Whitelisted functions."""
+
+CONSTANTS = {"pi": math.pi, "e": math.e}
+"""Named constants; ``t`` is the time [s]."""
+
+_BINOPS = {
+    ast.Add: lambda a, b: a + b,
+    ast.Sub: lambda a, b: a - b,
+    ast.Mult: lambda a, b: a * b,
+    ast.Div: lambda a, b: a / b,
+    ast.Pow: lambda a, b: a**b,
+}
+_CMPOPS = {
+    ast.Lt: lambda a, b: a < b,
+    ast.LtE: lambda a, b: a <= b,
+    ast.Gt: lambda a, b: a > b,
+    ast.GtE: lambda a, b: a >= b,
+}
+_MAX_LENGTH = 2000
+_MAX_NODES = 400
+
+
+def _fold(fn, args):
+    out = args[0]
+    for a in args[1:]:
+        out = fn(out, a)
+    return out
+
+
+def _allowed_text() -> str:
+    return (
+        "numbers, t, " + ", ".join(CONSTANTS) + "; operators + - * / ** < <= > >= and "
+        "'a if cond else b'; functions " + ", ".join(f"{k}()" for k in FUNCTIONS)
+    )
+
+
+def _fail(name: str, text: str, why: str) -> ExpressionError:
+    return ExpressionError(f"{name}: cannot use the expression {text!r}: {why}. Allowed: "
+                           f"{_allowed_text()}")
+
+
+def _parse(text: str, name: str) -> ast.Expression:
+    if not isinstance(text, str):
+        raise ExpressionError(f"{name}: an expression must be text, got {type(text).__name__}")
+    if len(text) > _MAX_LENGTH:
+        raise _fail(name, text[:40] + "...", f"longer than {_MAX_LENGTH} characters")
+    try:
+        tree = ast.parse(text.strip(), mode="eval")
+    except SyntaxError as exc:
+        hint = ""
+        low = text.lower()
+        if any(u in low for u in ("rpm", "r/min", "rad/s", "hz", " n", "nm", "mm")):
+            hint = (" (values are SI: rad/s, N, N m, m, s; write a speed in r/min as "
+                    "rpm(1000), not '1000 rpm')")
+        raise _fail(name, text, f"not a valid expression ({exc.msg}){hint}") from None
+    if sum(1 for _ in ast.walk(tree)) > _MAX_NODES:
+        raise _fail(name, text, f"more than {_MAX_NODES} syntax nodes")
+    return tree
+
+
+def compile_expression(text: str, name: str = "input") -> Callable[[Any], Any]:
+    """Parse an expression of ``t`` and return ``f(t)`` building the CasADi expression.
+
+    Parameters
+    ----------
+    text : str
+        The expression (see the module docstring for the grammar).
+    name : str
+        The input (or scene key) it belongs to, used in error messages.
+
+    Returns
+    -------
+    callable
+        ``f(t)`` for a CasADi symbol or a number ``t``; returns ``casadi.SX``/``DM``.
+
+    Raises
+    ------
+    ExpressionError
+        For a syntax error or a construct, name or function outside the whitelist.
+    """
+    tree = _parse(text, name)
+    _check(tree.body, name, text)  # fail at compile time, not at the first evaluation
+
+    def f(t):
+        return _eval(tree.body, t, name, text)
+
+    f.expression = text  # type: ignore[attr-defined]
+    return f
+
+
+def _check(node: ast.AST, name: str, text: str) -> None:
+    """Walk the tree once to reject anything outside the whitelist."""
+    if isinstance(node, ast.Constant):
+        if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
+            raise _fail(name, text, f"the constant {node.value!r} is not a number")
+        try:
+            finite = math.isfinite(float(node.value))
+        except OverflowError:
+            finite = False
+        if not finite:
+            raise _fail(name, text, "numbers must be finite")
+        return
+    if isinstance(node, ast.Name):
+        if node.id != "t" and node.id not in CONSTANTS:
+            known = ["t", *CONSTANTS]
+            raise _fail(name, text, f"unknown name {node.id!r} (names: {', '.join(known)})")
+        return
+    if isinstance(node, ast.BinOp):
+        if type(node.op) not in _BINOPS:
+            raise _fail(name, text, f"operator {type(node.op).__name__} is not allowed")
+        _check(node.left, name, text)
+        _check(node.right, name, text)
+        return
+    if isinstance(node, ast.UnaryOp):
+        if not isinstance(node.op, (ast.USub, ast.UAdd)):
+            raise _fail(name, text, f"operator {type(node.op).__name__} is not allowed")
+        _check(node.operand, name, text)
+        return
+    if isinstance(node, ast.Compare):
+        if len(node.ops) != 1 or type(node.ops[0]) not in _CMPOPS:
+            raise _fail(name, text, "only single comparisons < <= > >= are allowed")
+        _check(node.left, name, text)
+        _check(node.comparators[0], name, text)
+        return
+    if isinstance(node, ast.IfExp):
+        for part in (node.test, node.body, node.orelse):
+            _check(part, name, text)
+        return
+    if isinstance(node, ast.Call):
+        if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
+            fn = node.func.id if isinstance(node.func, ast.Name) else ast.unparse(node.func)
+            raise _fail(name, text, f"unknown function {fn!r}")
+        if node.keywords:
+            raise _fail(name, text, "keyword arguments are not allowed")
+        nargs, _ = FUNCTIONS[node.func.id]
+        if (nargs is None and len(node.args) < 2) or (nargs is not None
+                                                      and len(node.args) != nargs):
+            want = "2 or more" if nargs is None else str(nargs)
+            raise _fail(name, text, f"{node.func.id}() takes {want} argument(s), got "
+                                    f"{len(node.args)}")
+        for a in node.args:
+            if isinstance(a, ast.Starred):
+                raise _fail(name, text, "starred arguments are not allowed")
+            _check(a, name, text)
+        return
+    raise _fail(name, text, f"{type(node).__name__} is not allowed")
+
+
+def _eval(node: ast.AST, t, name: str, text: str):
+    if isinstance(node, ast.Constant):
+        return float(node.value)
+    if isinstance(node, ast.Name):
+        return t if node.id == "t" else CONSTANTS[node.id]
+    if isinstance(node, ast.BinOp):
+        a, b = _eval(node.left, t, name, text), _eval(node.right, t, name, text)
+        if isinstance(a, float) and isinstance(b, float):
+            a = ca.DM(a)  # keep float arithmetic symbolic-friendly (no ZeroDivisionError)
+        return _BINOPS[type(node.op)](a, b)
+    if isinstance(node, ast.UnaryOp):
+        v = _eval(node.operand, t, name, text)
+        return -v if isinstance(node.op, ast.USub) else v
+    if isinstance(node, ast.Compare):
+        a = _eval(node.left, t, name, text)
+        b = _eval(node.comparators[0], t, name, text)
+        return ca.if_else(_CMPOPS[type(node.ops[0])](ca.SX(a) if isinstance(a, float) else a, b),
+                          1.0, 0.0)
+    if isinstance(node, ast.IfExp):
+        cond = _eval(node.test, t, name, text)
+        return ca.if_else(cond, _eval(node.body, t, name, text),
+                          _eval(node.orelse, t, name, text))
+    if isinstance(node, ast.Call):
+        _, fn = FUNCTIONS[node.func.id]
+        args = [_eval(a, t, name, text) for a in node.args]
+        args = [ca.DM(a) if isinstance(a, float) else a for a in args]
+        return fn(t, *args)
+    raise _fail(name, text, f"{type(node).__name__} is not allowed")  # pragma: no cover

@@ -1,0 +1,406 @@
+"""Run a scene: choose the fidelity, assemble only what the outputs need, simulate, write.
+
+``prepare`` builds and assembles the model (pruned to the requested outputs) and checks the
+scene's names against it; ``run_scene`` simulates, computes the post-processed quantities and
+writes CSV, a JSON summary (with everything that was skipped) and PNG plots.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from bearingsim.errors import ModelError, ParameterError
+from bearingsim.scenes.expressions import compile_expression
+from bearingsim.scenes.registry import AssemblySpec, PostQuantity, min_fidelity
+from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
+from bearingsim.solver import Result, System, assemble, simulate
+
+__all__ = [
+    "Prepared",
+    "SceneRun",
+    "choose_fidelity",
+    "prepare",
+    "run_scene",
+    "simulate_inputs",
+    "validate_scene",
+]
+
+
+@dataclass
+class Prepared:
+    """A scene with its assembled (pruned) system."""
+
+    scene: Scene
+    spec: AssemblySpec
+    args: dict[str, Any]
+    fidelity: str
+    fidelity_reason: str
+    system: System
+    model_outputs: list[str]
+    """Variables kept by pruning: the requested ones and those the post-processing reads."""
+    post: dict[str, PostQuantity]
+    """Requested quantities computed after the integration."""
+    symmetry: list[str]
+    assemble_s: float
+    fidelity_attempts: list[str] = field(default_factory=list)
+
+    @property
+    def outputs(self) -> list[str]:
+        """The requested outputs in order (model and post-processed)."""
+        return self.scene.outputs or [n for n in self.spec.default_outputs
+                                      if n in self.model_outputs or n in self.post]
+
+
+@dataclass
+class SceneRun:
+    """The outcome of :func:`run_scene`."""
+
+    prepared: Prepared
+    result: Result
+    series: dict[str, np.ndarray]
+    """Requested outputs by name (post-processed ones included)."""
+    summary: dict[str, Any]
+    files: list[Path]
+
+
+def _check(scene: Scene) -> Scene:
+    """Re-validate a scene built in Python (dataclass) through the TOML validator."""
+    if scene.text is not None:
+        return scene
+    return scene_from_dict(scene.to_dict(), path=scene.path)
+
+
+def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]
+                    ) -> tuple[str, str]:
+    """The fidelity to assemble and why.
+
+    ``auto`` takes the lowest level in ``spec.auto_fidelities`` that provides every requested
+    output, every input and parameter the scene sets, and every post-processed quantity.
+    """
+    if spec.fidelity_arg is None:
+        return "", "the assembly has a single fidelity level"
+    if scene.fidelity != "auto":
+        return scene.fidelity, "requested by the scene"
+    order = list(spec.auto_fidelities)
+    need = {}
+    names = list(scene.outputs or spec.default_outputs)
+    for n in names:
+        need[n] = post[n].fidelity if n in post else min_fidelity(spec, n)
+    for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial):
+        need[n] = min_fidelity(spec, n)
+    level = 0
+    for fid in need.values():
+        level = max(level, order.index(fid) if fid in order else len(order) - 1)
+    chosen = order[level]
+    drivers = sorted(n for n, f in need.items() if f == chosen)
+    if level == 0:
+        reason = f"'{chosen}' (the lowest level) provides every requested name"
+    else:
+        reason = (f"'{chosen}' is the lowest level that provides "
+                  + ", ".join(drivers[:8]) + (" ..." if len(drivers) > 8 else ""))
+    return chosen, reason
+
+
+def _known_names(spec: AssemblySpec, args: dict, fidelity: str) -> set[str]:
+    system = assemble(spec.build(args, fidelity))
+    return set(system.observed_names)
+
+
+def prepare(scene: Scene) -> Prepared:
+    """Validate a scene, choose its fidelity and assemble the pruned model.
+
+    Raises
+    ------
+    SceneError
+        For names the model does not have (outputs, inputs, parameters, initial values) or
+        parameter values outside their range, naming the key and line.
+    """
+    scene = _check(scene)
+    spec = scene.spec
+    args = spec.with_defaults(scene.args)
+    post_all = spec.post(args)
+    requested = list(scene.outputs or spec.default_outputs)
+    post = {n: post_all[n] for n in requested if n in post_all}
+    model_outputs = [n for n in requested if n not in post]
+    for q in post.values():
+        model_outputs += [n for n in q.needs if n not in model_outputs]
+    fidelity, reason = choose_fidelity(scene, spec, post)
+    attempts = []
+    t0 = time.perf_counter()
+    while True:
+        try:
+            component = spec.build(args, fidelity)
+        except ParameterError as exc:
+            raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
+                             path=scene.path) from None
+        try:
+            system = assemble(component, outputs=model_outputs)
+            break
+        except ModelError as exc:
+            if "unknown output variable" not in str(exc):
+                raise
+            order = list(spec.auto_fidelities)
+            if scene.fidelity == "auto" and fidelity in order and fidelity != order[-1]:
+                attempts.append(f"{fidelity}: {exc}")
+                fidelity = order[order.index(fidelity) + 1]
+                reason += f"; raised to '{fidelity}' ({exc})"
+                continue
+            key = "outputs"
+            raise SceneError(str(exc).replace("unknown output variable", "unknown output"),
+                             key, line_of(scene.text, key),
+                             "model variables (see the CSV of a run without 'outputs') or "
+                             "post-processed: " + (", ".join(post_all) or "none"),
+                             scene.path) from None
+    assemble_s = time.perf_counter() - t0
+    _check_names(scene, system)
+    symmetry = spec.symmetry(args, scene.inputs)
+    return Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
+                    symmetry, assemble_s, attempts)
+
+
+def _check_names(scene: Scene, system: System) -> None:
+    problems = []
+
+    def add(key, msg, allowed):
+        problems.append(SceneError(msg, key, line_of(scene.text, key), allowed, scene.path))
+
+    for n in scene.inputs:
+        if n not in system.input_names:
+            add(f"inputs.{n}", f"the model has no input {n!r}",
+                ", ".join(system.input_names) or "none")
+    for n, v in scene.parameters.items():
+        try:
+            system.p0({n: v})
+        except ParameterError as exc:
+            allowed = (", ".join(system.parameter_names) if n not in system.parameter_names
+                       else "see the range in the message")
+            add(f"parameters.{n}", str(exc), allowed)
+    for n in scene.initial:
+        if n not in system.state_names:
+            add(f"initial.{n}", f"{n!r} is not a state of the (pruned) model",
+                ", ".join(system.state_names) or "none")
+    if problems:
+        first = problems[0]
+        raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,
+                         problems=problems)
+
+
+def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
+    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays."""
+    out = {}
+    for k, v in inputs.items():
+        if isinstance(v, str):
+            out[k] = compile_expression(v, f"inputs.{k}")
+        elif isinstance(v, TableInput):
+            out[k] = v.as_tuple()
+        else:
+            out[k] = v
+    return out
+
+
+def validate_scene(scene: Scene | str | Path, assemble_model: bool = True) -> Prepared | Scene:
+    """Check a scene without running it: the file, and (by default) its names against the
+    assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`)."""
+    from bearingsim.scenes.scene import load_scene
+
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    scene = _check(scene)
+    return prepare(scene) if assemble_model else scene
+
+
+def _json_safe(v: Any) -> Any:
+    if isinstance(v, dict):
+        return {str(k): _json_safe(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_json_safe(x) for x in v]
+    if isinstance(v, (np.floating, float)):
+        return float(v) if math.isfinite(float(v)) else None
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.ndarray):
+        return _json_safe(v.tolist())
+    return v
+
+
+def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
+                   inputs: dict[str, Any] | None = None, **overrides) -> Result:
+    """Simulate a prepared scene (optionally with other parameters, inputs or settings)."""
+    s = prep.scene.simulation
+    opts = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
+            "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial}
+    opts.update(overrides)
+    t_end = opts.pop("t_end", s.t_end)
+    params = {**prep.scene.parameters, **(parameters or {})}
+    ins = simulate_inputs({**prep.scene.inputs, **(inputs or {})})
+    return simulate(prep.system, t_end, inputs=ins, parameters=params,
+                    x0=prep.scene.initial or None, progress=False, **opts)
+
+
+def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
+    """The requested outputs: model series from the result, post-processed ones computed."""
+    series = {n: np.asarray(result[n]) for n in prep.model_outputs}
+    out = {}
+    for n in prep.outputs:
+        if n in prep.post:
+            out[n] = np.asarray(prep.post[n].compute(series, {"args": prep.args}), dtype=float)
+        else:
+            out[n] = series[n]
+    return out
+
+
+def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
+            files: list[Path] | None = None) -> dict[str, Any]:
+    """The JSON summary of a run: sizes, timings, final values and every skip."""
+    system = prep.system
+    units = {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
+    outs = {}
+    for n, y in series.items():
+        finite = y[np.isfinite(y)]
+        outs[n] = {"unit": units.get(n, ""), "final": y[-1],
+                   "min": finite.min() if finite.size else None,
+                   "max": finite.max() if finite.size else None}
+    spec = prep.spec
+    higher = []
+    if prep.fidelity in spec.fidelities:
+        higher = list(spec.fidelities[spec.fidelities.index(prep.fidelity) + 1:])
+    return _json_safe({
+        "title": prep.scene.title,
+        "scene": prep.scene.path,
+        "assembly": spec.name,
+        "arguments": prep.args,
+        "fidelity": {"requested": prep.scene.fidelity, "chosen": prep.fidelity,
+                     "reason": prep.fidelity_reason, "attempts": prep.fidelity_attempts},
+        "system": {"states": system.n_states, "inputs": system.input_names,
+                   "parameters": len(system.params), "report": system.report},
+        "skipped": {
+            "pruned": list(system.skipped) or ["nothing: every equation is needed"],
+            "fidelity_levels_not_used": higher,
+            "post_processed": [
+                {"name": q.name, "unit": q.unit, "needs": list(q.needs),
+                 "note": f"{q.doc}; computed after the integration at the "
+                         f"{result.t.size} save points, not in the right-hand side"}
+                for q in prep.post.values()],
+            "symmetry": prep.symmetry or ["none applicable to this assembly and load"],
+        },
+        "simulation": {"t_start": prep.scene.simulation.t_start,
+                       "t_end": prep.scene.simulation.t_end,
+                       "method": prep.scene.simulation.method,
+                       "rtol": prep.scene.simulation.rtol,
+                       "atol": prep.scene.simulation.atol, "points": int(result.t.size),
+                       "stats": {k: v for k, v in result.stats.items()
+                                 if isinstance(v, (int, float, str))}},
+        "timings_s": {"assemble": round(prep.assemble_s, 4),
+                      "simulate": round(float(result.stats.get("wall_time", 0.0)), 4)},
+        "outputs": outs,
+        "files": [str(f) for f in (files or [])],
+    })
+
+
+def write_csv(path: Path, t: np.ndarray, series: dict[str, np.ndarray],
+              units: dict[str, str]) -> Path:
+    """``time`` and the series, with a unit row."""
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        names = list(series)
+        w.writerow(["time", *names])
+        w.writerow(["s", *[units.get(n, "") for n in names]])
+        cols = np.vstack([t, *[series[n] for n in names]]).T
+        w.writerows(cols.tolist())
+    return path
+
+
+def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.ndarray],
+                units: dict[str, str], groups: list[list[str]], title: str) -> list[Path]:
+    """PNG figures: one panel per group (default: per output), at most 6 panels a figure."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    groups = groups or [[n] for n in series]
+    files = []
+    for k in range(0, len(groups), 6):
+        chunk = groups[k:k + 6]
+        fig, axes = plt.subplots(len(chunk), 1, sharex=True, figsize=(7, 1.9 * len(chunk) + 1))
+        axes = np.atleast_1d(axes)
+        for ax, group in zip(axes, chunk, strict=True):
+            for n in group:
+                y = series[n]
+                ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=n)
+            unit = units.get(group[0], "")
+            label = group[0] if len(group) == 1 else ", ".join(group)
+            ax.set_ylabel(f"{label}\n[{unit}]" if unit else label, fontsize=8)
+            if len(group) > 1:
+                ax.legend(fontsize=7)
+            ax.grid(True, alpha=0.3)
+        axes[-1].set_xlabel("time [s]")
+        fig.suptitle(title, fontsize=10)
+        fig.tight_layout()
+        path = folder / (f"{stem}.png" if k == 0 else f"{stem}_{k // 6 + 1}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        files.append(path)
+    return files
+
+
+def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True
+              ) -> SceneRun:
+    """Run a scene and (by default) write CSV, JSON summary and plots to its output folder.
+
+    Parameters
+    ----------
+    scene : Scene or path
+        The scene, or a scene TOML file.
+    out : path, optional
+        Output folder (default: the scene's ``output.folder``).
+    write : bool
+        Write the files; otherwise only return the results.
+
+    Returns
+    -------
+    SceneRun
+    """
+    from bearingsim.scenes.scene import load_scene
+
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    prep = prepare(scene)
+    result = run_simulation(prep)
+    series = output_series(prep, result)
+    for n, y in series.items():
+        if np.any(np.isnan(y)):
+            raise ModelError(f"output {n} has NaN values; please report this scene")
+    files: list[Path] = []
+    units = {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
+    if write:
+        folder = Path(out if out is not None else prep.scene.output.folder)
+        folder.mkdir(parents=True, exist_ok=True)
+        stem = Path(prep.scene.path).stem if prep.scene.path else prep.spec.name
+        if prep.scene.output.csv:
+            files.append(write_csv(folder / f"{stem}.csv", result.t, series, units))
+        if prep.scene.output.plots:
+            groups = [g for g in prep.scene.output.plot_groups]
+            missing = sorted({n for g in groups for n in g} - set(series))
+            if missing:
+                raise SceneError(f"plot group names {', '.join(missing)}, which are not "
+                                 "outputs", "output.plot_groups",
+                                 line_of(prep.scene.text, "output.plot_groups"),
+                                 ", ".join(series), prep.scene.path)
+            files += write_plots(folder, stem, result.t, series, units, groups,
+                                 prep.scene.title)
+        summary_path = folder / f"{stem}.summary.json"
+        files.append(summary_path)
+        data = summary(prep, result, series, files)
+        summary_path.write_text(json.dumps(data, indent=2))
+    else:
+        data = summary(prep, result, series, files)
+    return SceneRun(prep, result, series, data, files)
