@@ -12,7 +12,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench import assembler_scaling, double_layer_steady, work_precision
+from bench import assembler_scaling, backends, double_layer_steady, work_precision
 from bench.common import Section, machine_info, markdown_table
 
 __all__ = ["main", "render"]
@@ -75,12 +75,14 @@ def main(argv: list[str] | None = None) -> int:
     command = "python -m bench.run_all " + " ".join(sys.argv[1:] if argv is None else argv)
     start = time.perf_counter()
     sections = []
-    print("1/3 assembler scaling", flush=True)
+    print("1/4 assembler scaling", flush=True)
     sections.append(assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s))
-    print("2/3 work-precision", flush=True)
+    print("2/4 work-precision", flush=True)
     sections.append(work_precision.run(args.quick, img_dir, out))
-    print("3/3 double-layer steady state", flush=True)
+    print("3/4 double-layer steady state", flush=True)
     sections.append(double_layer_steady.run(args.quick, img_dir, out))
+    print("4/4 evaluation backends", flush=True)
+    sections.append(backends.run(args.quick, img_dir, out))
     total = time.perf_counter() - start
     out.write_text(render(sections, command.strip(), machine_info(), total, args.quick),
                    encoding="utf-8")

@@ -50,7 +50,9 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
     Returns
     -------
     System
-        Same names, parameters and metadata; ``functions`` replaced by compiled ones.
+        Same names, parameters and metadata; ``functions`` replaced by compiled ones (the
+        originals stay in ``symbolic_functions`` for CasADi's own integrators, which
+        differentiate them).
 
     Raises
     ------
@@ -81,5 +83,7 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
                 )
             shutil.move(str(tmp_lib), lib)
     functions = {key: ca.external(system.functions[key].name(), str(lib)) for key in names}
-    return dataclasses.replace(system, functions=functions, report={
-        **system.report, "compiled": str(lib)})
+    return dataclasses.replace(
+        system, functions=functions, symbolic_functions=system.functions,
+        report={**system.report, "compiled": str(lib)},
+    )

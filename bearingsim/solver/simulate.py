@@ -35,9 +35,15 @@ class ClosedModel:
     symbolic: bool
 
 
-def close_inputs(system: System, inputs: dict[str, Any] | None) -> ClosedModel:
-    """Compose the system's functions with symbolic input signals of time."""
-    ode, obs, jac = (system.functions[k] for k in ("ode", "observe", "jac_x"))
+def close_inputs(system: System, inputs: dict[str, Any] | None,
+                 symbolic: bool = False) -> ClosedModel:
+    """Compose the system's functions with symbolic input signals of time.
+
+    With ``symbolic=True`` the symbolic originals of a compiled system are used (needed where
+    CasADi differentiates the functions, as in its integrators).
+    """
+    funcs = (system.symbolic_functions or system.functions) if symbolic else system.functions
+    ode, obs, jac = (funcs[k] for k in ("ode", "observe", "jac_x"))
     t_sx = ca.SX.sym("t")
     u_expr = input_expression(system, inputs, t_sx)
     u_fn = ca.Function("u", [t_sx], [u_expr])
@@ -176,7 +182,8 @@ def simulate(
         ts, xs, stats = _run_scipy(system, closed, p, x_start, t_start, t_end, t_eval, method,
                                    rtol, atol, max_step, progress)
     else:
-        ts, xs, stats = _run_casadi(system, closed, p, x_start, t_start, t_eval, rtol, atol,
+        sym_closed = close_inputs(system, inputs, symbolic=True)
+        ts, xs, stats = _run_casadi(system, sym_closed, p, x_start, t_start, t_eval, rtol, atol,
                                     method.lower())
     stats["wall_time"] = _time.perf_counter() - wall
     obs = closed.observe.map(ts.size)

@@ -49,6 +49,8 @@ class System:
     observed_names: list[str]
     observed_units: dict[str, str] = field(default_factory=dict)
     observed_descriptions: dict[str, str] = field(default_factory=dict)
+    symbolic_functions: dict[str, ca.Function] | None = None
+    """The symbolic originals when ``functions`` are compiled (CasADi's integrators need them)."""
     init_residual: ca.Function | None = None
     free_initial_states: list[int] = field(default_factory=list)
     timings: list[tuple[str, float]] = field(default_factory=list)
