@@ -42,6 +42,7 @@ def write_ssp(
     connections: Sequence[tuple[str, str]],
     name: str = "system",
     stop_time: float | None = None,
+    observe: Sequence[str] = (),
 ) -> Path:
     """Write an SSP file that couples FMUs.
 
@@ -58,6 +59,9 @@ def write_ssp(
         Name of the system.
     stop_time : float, optional
         ``DefaultExperiment`` stop time [s].
+    observe : sequence of str
+        More ``"component.output"`` connectors that are not connected; an importer records them
+        (fmpy's ``simulate_ssp`` returns the values of every connector).
 
     Returns
     -------
@@ -85,6 +89,14 @@ def write_ssp(
                 raise ParameterError(f"write_ssp: input {element}.{var} is connected twice")
             connectors[element][var] = kind
         links.append((se, sv, ee, ev))
+    for endpoint in observe:
+        element, var = _split(endpoint, fmus)
+        v = variables[element].get(var)
+        if v is None or v.causality != "output":
+            raise ParameterError(
+                f"write_ssp: {element}.{var} is not an output of {fmus[element].name}"
+            )
+        connectors[element].setdefault(var, "output")
 
     ET.register_namespace("ssd", SSD)
     ET.register_namespace("ssc", SSC)

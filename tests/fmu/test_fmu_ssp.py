@@ -51,3 +51,5 @@ def test_bad_connections(fmu_dir, load_fmu, drive_fmu):
         write_ssp(fmu_dir / "x.ssp", {"a": drive_fmu, "b": load_fmu}, [("a.j2.w", "b.sensor.tau")])
     with pytest.raises(ParameterError, match="COMPONENT.VARIABLE"):
         write_ssp(fmu_dir / "x.ssp", {"a": drive_fmu}, [("c.x", "a.y")])
+    with pytest.raises(ParameterError, match="not an output"):
+        write_ssp(fmu_dir / "x.ssp", {"a": drive_fmu}, [], observe=["a.sd.c"])
