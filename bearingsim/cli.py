@@ -1,22 +1,58 @@
-"""Command line: ``bearingsim list | demo | export-fmu``."""
+"""Command line: ``bearingsim run | validate | sweep | list | demo | export-fmu``.
+
+Exit status: 0 success; 1 a simulation (or a sweep point) failed; 2 an invalid scene or
+command line.
+"""
 
 from __future__ import annotations
 
 import argparse
+import inspect
 import sys
 
 __all__ = ["main"]
 
 
+def _components() -> dict[str, list[str]]:
+    """Component classes defined in each ``bearingsim.components`` module."""
+    import importlib
+    import pkgutil
+
+    import bearingsim.components as pkg
+    from bearingsim.language import Component
+
+    out: dict[str, list[str]] = {}
+    for info in pkgutil.walk_packages(pkg.__path__, pkg.__name__ + "."):
+        try:
+            mod = importlib.import_module(info.name)
+        except Exception:  # noqa: BLE001 - a module being written must not break `list`
+            continue
+        names = [n for n, obj in vars(mod).items()
+                 if inspect.isclass(obj) and issubclass(obj, Component)
+                 and obj.__module__ == mod.__name__ and not n.startswith("_")]
+        if names:
+            out[info.name.removeprefix(pkg.__name__ + ".")] = sorted(names)
+    return out
+
+
 def _list(_: argparse.Namespace) -> int:
     from bearingsim.catalog import get_bearing, list_bearings
     from bearingsim.physics.lubricant import known_lubricants
+    from bearingsim.scenes.registry import REGISTRY
 
-    print("assemblies: double_layer_bearing (fidelity: kinematic, kinematic_approx, torque), "
-          "motor_drive (motor: dc, pmsm)")
-    print("components: rotational (Inertia, Spring, Damper, SpringDamper, Fixed, TorqueSource, "
-          "SpeedSource, IdealGear, SpeedSensor, TorqueSensor), bearing_torque (PalmgrenBearing, "
-          "SkfBearing, PureRollingLayer), motor (DCMotor, PMSM, DCMotorDrive, PMSMDrive)")
+    print("assemblies (scene [assembly] name):")
+    for spec in REGISTRY.values():
+        print(f"  {spec.name}: {spec.description}")
+        if spec.fidelity_arg is not None:
+            print(f"    fidelity: auto, {', '.join(spec.fidelities)}")
+        print(f"    arguments: {', '.join(spec.args)}")
+        print(f"    default outputs: {', '.join(spec.default_outputs)}")
+        post = spec.post(spec.with_defaults({}))
+        if post:
+            print(f"    post-processed outputs: {', '.join(post)}")
+    print("components:")
+    for module, names in _components().items():
+        print(f"  {module}: {', '.join(names)}")
     print("bearings:")
     for d in list_bearings():
         g = get_bearing(d)
@@ -40,19 +76,125 @@ def _export(args: argparse.Namespace) -> int:
     return cli_export(args.rest) or 0
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``bearingsim`` command."""
+def _run(args: argparse.Namespace) -> int:
+    from bearingsim.scenes import run_scene
+
+    run = run_scene(args.scene, out=args.out)
+    s = run.summary
+    print(f"{s['title']}: {s['assembly']} at fidelity {s['fidelity']['chosen']} "
+          f"({s['fidelity']['reason']})")
+    print(f"  {s['system']['states']} states; assemble {s['timings_s']['assemble']:.2f} s, "
+          f"simulate {s['timings_s']['simulate']:.2f} s")
+    for kind, items in s["skipped"].items():
+        for item in items:
+            text = item if isinstance(item, str) else f"{item['name']}: {item['note']}"
+            print(f"  skipped ({kind}): {text}")
+    for name, o in s["outputs"].items():
+        final = "inf/nan" if o["final"] is None else f"{o['final']:.6g}"
+        print(f"  {name} = {final} [{o['unit']}] at t_end")
+    for f in run.files:
+        print(f"  wrote {f}")
+    return 0
+
+
+def _validate(args: argparse.Namespace) -> int:
+    from bearingsim.scenes import validate_scene
+
+    prep = validate_scene(args.scene, assemble_model=not args.no_assemble)
+    if args.no_assemble:
+        print(f"{args.scene}: valid ({prep.assembly}; names not checked against the model)")
+        return 0
+    print(f"{args.scene}: valid; {prep.spec.name} at fidelity {prep.fidelity or '-'} "
+          f"({prep.fidelity_reason}); {prep.system.n_states} states; outputs "
+          + ", ".join(prep.outputs))
+    for item in prep.system.skipped:
+        print(f"  pruned: {item}")
+    for name in prep.post:
+        print(f"  post-processed after the integration: {name}")
+    return 0
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from bearingsim.scenes.sweep import (
+        SweepError,
+        describe_failures,
+        grid_points,
+        parse_grid,
+        parse_sample,
+        run_sweep,
+        sample_points,
+    )
+
+    if not args.grid and not args.sample:
+        raise SweepError("give at least one --grid key=v1,v2,... or --sample key=low:high")
+    points = grid_points(parse_grid(args.grid)) if args.grid else [{}]
+    if args.sample:
+        samples = sample_points(parse_sample(args.sample), args.samples, args.seed)
+        points = [{**p, **s} for p in points for s in samples]
+    out = args.out
+    if out is None:
+        from bearingsim.scenes import load_scene
+
+        out = load_scene(args.scene).output.folder
+    res = run_sweep(args.scene, points, scheduler=args.scheduler, n_workers=args.workers,
+                    out=out, progress=not args.no_progress)
+    print(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed; "
+          f"{res.models_built} model(s) built and shipped; {res.wall_s:.1f} s")
+    if res.failures:
+        print(describe_failures(res), file=sys.stderr)
+    for f in res.files:
+        print(f"  wrote {f}")
+    return 1 if res.failures else 0
+
+
+def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="bearingsim", description="bearing system simulator")
     sub = parser.add_subparsers(dest="command", required=True)
+    p_run = sub.add_parser("run", help="run a scene file: CSV, JSON summary and PNG plots")
+    p_run.add_argument("scene", help="scene TOML file")
+    p_run.add_argument("--out", help="output folder (default: the scene's output.folder)")
+    p_val = sub.add_parser("validate", help="check a scene file without running it")
+    p_val.add_argument("scene", help="scene TOML file")
+    p_val.add_argument("--no-assemble", action="store_true",
+                       help="only check the file, not its names against the model")
+    p_sw = sub.add_parser("sweep", help="run a scene over a grid or sample (dask.distributed)")
+    p_sw.add_argument("scene", help="scene TOML file")
+    p_sw.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
+                      help="grid values of a key (inputs.X, parameters.X, initial.X, "
+                           "simulation.X, assembly.X); repeat for a Cartesian product; "
+                           "separate expressions with ';'")
+    p_sw.add_argument("--sample", action="append", default=[], metavar="KEY=LOW:HIGH",
+                      help="Latin-hypercube sample of a numeric key")
+    p_sw.add_argument("--samples", type=int, default=8, help="number of samples")
+    p_sw.add_argument("--seed", type=int, default=0, help="seed of the sample")
+    p_sw.add_argument("--scheduler", help="address of a dask scheduler (default: a "
+                                          "LocalCluster)")
+    p_sw.add_argument("--workers", type=int, default=2, help="LocalCluster workers")
+    p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
+    p_sw.add_argument("--no-progress", action="store_true", help="no progress bar")
     sub.add_parser("list", help="assemblies, components, catalogue bearings and lubricants")
-    p_demo = sub.add_parser("demo", help="run the default scene and write its plots")
+    p_demo = sub.add_parser("demo", help="the built-in demo (PMSM spin-up, speed-ratio sweep)")
     p_demo.add_argument("--out", default="demo_output")
-    p_exp = sub.add_parser("export-fmu", help="export an assembly as an FMU",
-                           add_help=False)
+    p_exp = sub.add_parser("export-fmu", help="export an assembly as an FMU", add_help=False)
     p_exp.add_argument("rest", nargs=argparse.REMAINDER)
-    args = parser.parse_args(argv)
-    handlers = {"list": _list, "demo": _demo, "export-fmu": _export}
-    return handlers[args.command](args)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``bearingsim`` command; returns the exit status."""
+    from bearingsim.errors import BearingsimError, SimulationError
+
+    args = _parser().parse_args(argv)
+    handlers = {"list": _list, "demo": _demo, "export-fmu": _export, "run": _run,
+                "validate": _validate, "sweep": _sweep}
+    try:
+        return handlers[args.command](args)
+    except SimulationError as exc:
+        print(f"bearingsim {args.command}: simulation failed: {exc}", file=sys.stderr)
+        return 1
+    except BearingsimError as exc:
+        print(f"bearingsim {args.command}: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

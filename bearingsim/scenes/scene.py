@@ -256,6 +256,7 @@ class _Collector:
 
     def raise_if_any(self) -> None:
         if self.problems:
+            self.problems.sort(key=lambda p: (p.line is None, p.line or 0))
             first = self.problems[0]
             raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,
                              problems=list(self.problems))
@@ -275,7 +276,7 @@ def _unknown(c: _Collector, section: str, key: str, allowed) -> None:
 def _number(c: _Collector, key: str, v: Any, unit: str, low=None, high=None, strict_low=False,
             integer=False) -> float | None:
     if isinstance(v, str):
-        c.add(key, f"must be a number in {unit} (SI units), got the text {v!r}",
+        c.add(key, f"must be a number in {unit}, got the text {v!r}",
               f"a number in {unit}" + ("; write r/min as a number in rad/s" if "rpm" in v.lower()
                                        else ""))
         return None
@@ -536,7 +537,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             low, strict, high = {"t_end": (None, False, None), "t_start": (None, False, None),
                                  "rtol": (0.0, True, 0.1), "atol": (0.0, True, None),
                                  "max_step": (0.0, True, None)}[k]
-            if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "1", low,
+            if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "[1]", low,
                        high, strict) is not None:
                 setattr(sim, k, float(v))
     if "t_end" not in raw:

@@ -1,0 +1,455 @@
+"""Parameter sweeps of a scene on dask.distributed.
+
+A sweep runs one scene over a grid (``--grid key=v1,v2,...``, the Cartesian product of all
+grids) or a random sample (``--sample key=low:high --samples N``) of keys:
+
+* ``inputs.<name>``: a number or an expression of ``t``;
+* ``parameters.<name>``, ``initial.<state>``: numbers;
+* ``simulation.<setting>``: ``t_end``, ``rtol``, ``atol``, ``method``, ``max_step``,
+  ``n_points``, ``initial``;
+* ``assembly.<argument>`` (also ``assembly.bearing.lubrication`` and ``assembly.fidelity``).
+
+Every point is validated before anything runs. The model is assembled on the client once per
+distinct structure (arguments that only change parameter values, such as the lubricant of a
+Palmgren friction model, become parameter overrides), serialized with
+``casadi.Function.serialize`` and scattered to the workers, which deserialize it once per process.
+Results gather into one table (CSV; also Parquet when pyarrow is installed) with a progress bar;
+a failing point is recorded with its parameters and error and does not affect the others.
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.scenes.portable import LOADS, load_cached, pack
+from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare, simulate_inputs
+from bearingsim.scenes.scene import Scene, SceneError, TableInput, load_scene
+
+__all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
+           "sample_points", "run_sweep"]
+
+SIM_KEYS = ("t_end", "t_start", "rtol", "atol", "method", "max_step", "n_points", "initial")
+
+
+class SweepError(ParameterError):
+    """A sweep specification is invalid (key, value or point), naming it."""
+
+
+@dataclass
+class SweepResult:
+    """Rows of the result table (one per point), failures and written files."""
+
+    keys: list[str]
+    rows: list[dict[str, Any]]
+    failures: list[dict[str, Any]]
+    models_built: int
+    files: list[Path] = field(default_factory=list)
+    wall_s: float = 0.0
+
+    @property
+    def ok(self) -> list[dict[str, Any]]:
+        """The rows of the points that succeeded."""
+        return [r for r in self.rows if r["status"] == "ok"]
+
+
+# --------------------------------------------------------------------------- specification
+def _split_values(text: str) -> list[str]:
+    """Split on ';' if present, else on commas outside parentheses."""
+    if ";" in text:
+        return [v.strip() for v in text.split(";") if v.strip()]
+    out, depth, cur = [], 0, ""
+    for ch in text:
+        if ch == "(":
+            depth += 1
+        elif ch == ")":
+            depth -= 1
+        if ch == "," and depth == 0:
+            out.append(cur.strip())
+            cur = ""
+        else:
+            cur += ch
+    if cur.strip():
+        out.append(cur.strip())
+    return out
+
+
+def _value(text: str) -> Any:
+    low = text.strip().lower()
+    if low in ("true", "false"):
+        return low == "true"
+    try:
+        v = float(text)
+    except ValueError:
+        return text.strip()
+    return int(v) if v.is_integer() and "." not in text and "e" not in low else v
+
+
+def _check_key(key: str) -> None:
+    head = key.split(".", 1)[0]
+    if head not in ("inputs", "parameters", "initial", "simulation", "assembly") or "." not in key:
+        raise SweepError(
+            f"sweep key {key!r}: must start with inputs., parameters., initial., simulation. "
+            "or assembly. (e.g. inputs.shaft_speed, parameters.inner_layer.nu, "
+            "assembly.lubrication, simulation.rtol)")
+    if head == "simulation" and key.split(".", 1)[1] not in SIM_KEYS:
+        raise SweepError(f"sweep key {key!r}: allowed simulation settings: "
+                         + ", ".join(SIM_KEYS))
+
+
+def parse_grid(items: list[str]) -> dict[str, list[Any]]:
+    """``["inputs.shaft_speed=100,200", ...]`` -> ``{"inputs.shaft_speed": [100, 200]}``."""
+    grid: dict[str, list[Any]] = {}
+    for item in items:
+        if "=" not in item:
+            raise SweepError(f"--grid {item!r}: expected key=v1,v2,...")
+        key, values = item.split("=", 1)
+        key = key.strip()
+        _check_key(key)
+        vals = [_value(v) for v in _split_values(values)]
+        if not vals:
+            raise SweepError(f"--grid {key}: no values")
+        grid[key] = vals
+    return grid
+
+
+def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
+    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``."""
+    ranges = {}
+    for item in items:
+        if "=" not in item or ":" not in item.split("=", 1)[1]:
+            raise SweepError(f"--sample {item!r}: expected key=low:high")
+        key, rng = item.split("=", 1)
+        key = key.strip()
+        _check_key(key)
+        try:
+            lo, hi = (float(x) for x in rng.split(":", 1))
+        except ValueError:
+            raise SweepError(f"--sample {key}: low and high must be numbers, got {rng!r}"
+                             ) from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+            raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
+        ranges[key] = (lo, hi)
+    return ranges
+
+
+def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
+    """The Cartesian product of a grid, as a list of {key: value}."""
+    keys = list(grid)
+    return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
+
+
+def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int = 0
+                  ) -> list[dict[str, Any]]:
+    """``n`` Latin-hypercube points in the given ranges (reproducible with ``seed``)."""
+    if n < 1:
+        raise SweepError(f"--samples must be >= 1, got {n}")
+    rng = np.random.default_rng(seed)
+    cols = {}
+    for key, (lo, hi) in ranges.items():
+        u = (rng.permutation(n) + rng.random(n)) / n
+        cols[key] = lo + u * (hi - lo)
+    return [{k: float(cols[k][i]) for k in ranges} for i in range(n)]
+
+
+# --------------------------------------------------------------------------- planning
+def _set_nested(d: dict, path: list[str], value: Any) -> None:
+    for p in path[:-1]:
+        d = d.setdefault(p, {})
+    d[path[-1]] = value
+
+
+def _point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
+    """The scene with the point's values applied, validated (errors name the sweep key)."""
+    d = scene.to_dict()
+    for key, value in point.items():
+        head, rest = key.split(".", 1)
+        if head == "assembly":
+            _set_nested(d["assembly"], rest.split("."), value)
+        else:
+            d.setdefault(head, {})[rest] = value
+    from bearingsim.scenes.scene import scene_from_dict
+
+    try:
+        return scene_from_dict(d, path=scene.path)
+    except SceneError as exc:
+        shown = ", ".join(f"{k}={v!r}" for k, v in point.items())
+        why = "; ".join(p.key + ": " + p.reason + (f"; allowed: {p.allowed}" if p.allowed else "")
+                        for p in exc.problems)
+        raise SweepError(f"sweep point ({shown}): {why}") from None
+
+
+def _parameter_values(component) -> dict[str, float]:
+    from bearingsim.language.declarations import Parameter
+
+    out = {}
+    for comp in component.walk():
+        for decl in comp.declarations.values():
+            if isinstance(decl, Parameter) and decl.value is not None:
+                out[decl.path] = float(decl.value)
+    return out
+
+
+def _structure(sc: Scene) -> tuple[str, str]:
+    """Key of the model structure of a point: fidelity and the non-parametric arguments."""
+    spec = sc.spec
+    args = spec.with_defaults(sc.args)
+    post_all = spec.post(args)
+    post = {n: post_all[n] for n in (sc.outputs or spec.default_outputs) if n in post_all}
+    fidelity, _ = choose_fidelity(sc, spec, post)
+    stripped = copy.deepcopy(args)
+    for key, holds in spec.parametric_args.items():
+        if holds(args):
+            path, d = key.split("."), stripped
+            for p in path[:-1]:
+                d = d.get(p, {})
+            d.pop(path[-1], None)
+    return fidelity, json.dumps(stripped, sort_keys=True, default=str)
+
+
+@dataclass
+class _Plan:
+    prepared: dict[tuple, Prepared]
+    packed: dict[tuple, dict]
+    jobs: list[dict[str, Any]]
+
+
+def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
+    spec = scene.spec
+    scenes = [_point_scene(scene, p) for p in points]
+    prepared: dict[tuple, Prepared] = {}
+    packed: dict[tuple, dict] = {}
+    base_values: dict[tuple, dict[str, float]] = {}
+    jobs = []
+    for k, (pt, sc) in enumerate(zip(points, scenes, strict=True)):
+        key = _structure(sc)
+        if key not in prepared:
+            prep = prepare(sc)
+            prepared[key] = prep
+            packed[key] = pack(prep.system)
+            base_values[key] = _parameter_values(spec.build(prep.args, prep.fidelity))
+        prep = prepared[key]
+        params: dict[str, float] = {}
+        args = spec.with_defaults(sc.args)
+        if json.dumps(args, sort_keys=True, default=str) != json.dumps(
+                prep.args, sort_keys=True, default=str):
+            # parametric arguments differ from the assembled ones: parameter overrides
+            new = _parameter_values(spec.build(args, prep.fidelity))
+            if set(new) != set(base_values[key]):
+                raise SweepError(f"sweep point {pt}: the arguments change the model structure "
+                                 "although declared parametric; please report")
+            params.update({n: v for n, v in new.items()
+                           if n in prep.system.parameter_names and v != base_values[key][n]})
+        params.update(sc.parameters)
+        try:
+            prep.system.p0(params)
+        except ParameterError as exc:
+            raise SweepError(f"sweep point {pt}: {exc}") from None
+        for name in sc.inputs:
+            if name not in prep.system.input_names:
+                raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "
+                                 + ", ".join(prep.system.input_names))
+        inputs = {n: ((list(v.times), list(v.values)) if isinstance(v, TableInput) else v)
+                  for n, v in sc.inputs.items()}
+        s = sc.simulation
+        jobs.append({
+            "index": k, "point": pt, "structure": key, "parameters": params, "inputs": inputs,
+            "x0": dict(sc.initial),
+            "sim": {"t_end": s.t_end, "t_start": s.t_start, "method": s.method, "rtol": s.rtol,
+                    "atol": s.atol, "n_points": s.n_points, "max_step": s.max_step,
+                    "initial": s.initial},
+            "outputs": list(prep.model_outputs),
+        })
+    return _Plan(prepared, packed, jobs)
+
+
+# --------------------------------------------------------------------------- execution
+def run_point(packed: dict[str, Any], job: dict[str, Any]) -> dict[str, Any]:
+    """Run one sweep point (on a worker): returns final values or the error; never raises."""
+    from bearingsim.solver import simulate
+
+    t0 = time.perf_counter()
+    out = {"index": job["index"], "pid": os.getpid(), "token": packed["token"]}
+    try:
+        system = load_cached(packed)
+        inputs = {n: (tuple(np.asarray(x, dtype=float) for x in v) if isinstance(v, (list, tuple))
+                      else v) for n, v in job["inputs"].items()}
+        sim = dict(job["sim"])
+        t_end = sim.pop("t_end")
+        res = simulate(system, t_end, inputs=simulate_inputs(inputs),
+                       parameters=job["parameters"] or None, x0=job["x0"] or None,
+                       progress=False, **sim)
+        final = {}
+        for n in job["outputs"]:
+            y = np.asarray(res[n], dtype=float)
+            if not np.all(np.isfinite(y)):
+                raise BearingsimError(f"output {n} is not finite")
+            final[n] = float(y[-1])
+        out.update(status="ok", final=final, error="",
+                   nsteps=int(res.stats.get("nfev", res.stats.get("nsteps", 0)) or 0))
+    except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
+        out.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
+    out["wall_s"] = time.perf_counter() - t0
+    out["model_loads"] = LOADS.get(packed["token"], 0)
+    return out
+
+
+def _client(scheduler: str | None, n_workers: int):
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler), None
+    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=40)
+    return Client(cluster), cluster
+
+
+def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str) -> list[Path]:
+    import csv
+
+    cols: list[str] = []
+    for r in rows:
+        for k in r:
+            if k not in cols:
+                cols.append(k)
+    path = folder / f"{stem}.csv"
+    with path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=cols)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: r.get(k, "") for k in cols})
+    files = [path]
+    try:
+        import pyarrow  # noqa: F401
+        import pyarrow.csv as pacsv
+        import pyarrow.parquet as pq
+
+        pq.write_table(pacsv.read_csv(path), folder / f"{stem}.parquet")
+        files.append(folder / f"{stem}.parquet")
+    except ImportError:
+        pass
+    return files
+
+
+def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
+              scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
+              progress: bool = True, client=None) -> SweepResult:
+    """Run a scene at every point on dask.distributed and gather one table.
+
+    Parameters
+    ----------
+    scene : Scene or path
+    points : list of dict
+        From :func:`grid_points` or :func:`sample_points`.
+    scheduler : str, optional
+        Address of a running dask scheduler (``tcp://host:8786``); default: a LocalCluster.
+    n_workers : int
+        Workers of the LocalCluster.
+    out : path, optional
+        Folder for ``<scene>.sweep.csv`` (and ``.parquet``) and ``.sweep.json``; None: no files.
+    progress : bool
+        Show a progress bar.
+    client : distributed.Client, optional
+        Use this client (and leave it open).
+
+    Raises
+    ------
+    SweepError
+        For an invalid key or point (before anything runs).
+    """
+    from distributed import as_completed
+    from tqdm import tqdm
+
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    if not points:
+        raise SweepError("a sweep needs at least one point")
+    wall = time.perf_counter()
+    plan = _plan(scene, points)
+    own = client is None
+    cluster = None
+    if own:
+        client, cluster = _client(scheduler, n_workers)
+    try:
+        shipped = {k: client.scatter(v, broadcast=True) for k, v in plan.packed.items()}
+        futures = {}
+        for job in plan.jobs:
+            fut = client.submit(run_point, shipped[job["structure"]], job, pure=False,
+                                key=f"sweep-point-{job['index']}-{time.time_ns()}")
+            futures[fut] = job
+        results: dict[int, dict[str, Any]] = {}
+        bar = tqdm(total=len(futures), unit="point", disable=not progress, leave=False)
+        for fut in as_completed(futures):
+            job = futures[fut]
+            try:
+                r = fut.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker fails only its point
+                r = {"index": job["index"], "status": "failed", "final": {},
+                     "error": f"{type(exc).__name__}: {exc}", "wall_s": float("nan")}
+            results[job["index"]] = r
+            bar.update(1)
+        bar.close()
+    finally:
+        if own:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    keys = list(points[0])
+    rows, failures = [], []
+    for job in plan.jobs:
+        r = results[job["index"]]
+        prep = plan.prepared[job["structure"]]
+        row: dict[str, Any] = {"point": job["index"], **job["point"], "status": r["status"]}
+        finals = {k: np.array([v]) for k, v in r["final"].items()}
+        for name in prep.outputs:
+            if r["status"] != "ok":
+                row[name] = float("nan")
+            elif name in prep.post:
+                row[name] = float(prep.post[name].compute(finals, {"args": prep.args})[0])
+            else:
+                row[name] = r["final"][name]
+        row["wall_s"] = round(float(r.get("wall_s", float("nan"))), 4)
+        row["error"] = r["error"]
+        rows.append(row)
+        if r["status"] != "ok":
+            failures.append({"point": job["index"], "values": job["point"], "error": r["error"]})
+    res = SweepResult(keys, rows, failures, len(plan.prepared))
+    res.wall_s = time.perf_counter() - wall
+    if out is not None:
+        folder = Path(out)
+        folder.mkdir(parents=True, exist_ok=True)
+        stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
+        res.files = _write_table(rows, folder, stem)
+        summary = {
+            "scene": scene.path, "points": len(rows), "ok": len(res.ok),
+            "failed": len(failures), "failures": failures, "models_built": res.models_built,
+            "structures": [{"fidelity": k[0], "arguments": json.loads(k[1])}
+                           for k in plan.prepared],
+            "model_loads_per_worker": sorted({(r.get("pid"), r.get("model_loads"))
+                                              for r in results.values() if "pid" in r}),
+            "scheduler": scheduler or f"LocalCluster({n_workers} workers)",
+            "wall_s": round(res.wall_s, 3),
+        }
+        path = folder / f"{stem}.json"
+        path.write_text(json.dumps(summary, indent=2, default=str))
+        res.files.append(path)
+    return res
+
+
+def describe_failures(res: SweepResult) -> str:
+    """One line per failed point: its values and the error."""
+    lines = []
+    for f in res.failures:
+        values = ", ".join(f"{k}={v!r}" for k, v in f["values"].items())
+        lines.append(f"point {f['point']} ({values}): {f['error']}")
+    return "\n".join(lines)
