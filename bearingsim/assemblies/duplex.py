@@ -1,0 +1,292 @@
+"""Duplex pairs of angular contact ball bearings: DF, DB and DT (models.md section B).
+
+A rigid shaft runs in two quasi-static ball rows (:class:`~bearingsim.components.ball_row.
+BallRow`). Each row's inner ring sits on the shaft, its outer ring in the housing. The rows lie
+at ``z = L1`` (row 0) and ``z = -L2`` (row 1) from the shaft's centre of mass. Arrangements
+(the axial direction ``s`` in which each row's inner ring must move to load it):
+
+* **DB** (back-to-back, "O"): ``s = (-1, +1)``; the contact lines meet the axis outside the
+  rows, at the pressure centres ``z = L1 + (dm/2) tan a`` and ``-L2 - (dm/2) tan a``.
+* **DF** (face-to-face, "X"): ``s = (+1, -1)``; pressure centres ``L1 - (dm/2) tan a`` and
+  ``-L2 + (dm/2) tan a``, so the tilt stiffness is lower than DB's.
+* **DT** (tandem): ``s = (+1, +1)``; both rows carry thrust in +z and share it.
+
+The inner and outer spacers between the rows differ in width; after clamping, row 1's inner
+ring sits ``width_difference`` further along the axis than in the reference configuration in
+which its balls just touch. The model represents the clamped stack exactly by a
+:class:`~bearingsim.components.rings.Spacer` of zero lever between the shaft's row-1 frame and
+row 1's inner ring, carrying the mounting offset (and the preload as its force). A DT pair is
+preloaded by a constant axial (spring) force on the shaft instead.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from bearingsim.catalog import BearingGeometry, get_bearing
+from bearingsim.components.ball_row import BallRow, axial_approach, row_parameters
+from bearingsim.components.rings import (
+    ConstantLoad,
+    Housing,
+    InnerRing,
+    OuterRing,
+    Shaft,
+    Spacer,
+)
+from bearingsim.errors import ParameterError, check_range
+from bearingsim.language import Assembly, connect
+from bearingsim.physics.lubricant import Lubricant, get_lubricant
+
+__all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
+           "preload_offset"]
+
+ARRANGEMENTS = {"DF": (1, -1), "DB": (-1, 1), "DT": (1, 1)}
+"""Axial loading direction ``s`` of (row 0, row 1) for each arrangement."""
+PRELOAD_CLASSES = ("light", "medium", "heavy")
+STEEL_DENSITY = 7850.0
+
+
+@dataclass(frozen=True)
+class ShaftSpec:
+    """Shaft of a duplex pair: mass properties and row positions.
+
+    The source study does not give them; the defaults describe a solid steel shaft section of
+    100 mm diameter (the 7020 bore) and 300 mm length with the rows 100 mm apart (a 76 mm spacer
+    between two 24 mm wide bearings), centred on the centre of mass.
+
+    Attributes
+    ----------
+    diameter, length : float
+        Of the solid cylinder that gives the default mass properties [m].
+    row_spacing : float
+        Axial distance between the two rows' centres [m], > 0.
+    centre_offset : float
+        Axial position of the midpoint between the rows from the centre of mass [m].
+    mass, transverse_inertia, polar_inertia : float, optional
+        Override the solid-cylinder values [kg, kg m^2, kg m^2]; include the inner rings.
+    density : float
+        Material density [kg/m^3].
+    """
+
+    diameter: float = 0.100
+    length: float = 0.300
+    row_spacing: float = 0.100
+    centre_offset: float = 0.0
+    mass: float | None = None
+    transverse_inertia: float | None = None
+    polar_inertia: float | None = None
+    density: float = STEEL_DENSITY
+
+    def __post_init__(self) -> None:
+        for name in ("diameter", "length", "row_spacing", "density"):
+            check_range(getattr(self, name), name, "m" if name != "density" else "kg/m3", 0.0,
+                        low_inclusive=False, where="ShaftSpec")
+        check_range(self.centre_offset, "centre_offset", "m", where="ShaftSpec")
+        for name in ("mass", "transverse_inertia", "polar_inertia"):
+            if getattr(self, name) is not None:
+                check_range(getattr(self, name), name, "kg" if name == "mass" else "kg.m2", 0.0,
+                            low_inclusive=False, where="ShaftSpec")
+
+    @property
+    def solid_mass(self) -> float:
+        """Mass of the solid cylinder [kg]."""
+        return self.density * math.pi * self.diameter**2 / 4.0 * self.length
+
+    @property
+    def m(self) -> float:
+        """Shaft mass [kg]."""
+        return self.solid_mass if self.mass is None else self.mass
+
+    @property
+    def jt(self) -> float:
+        """Transverse moment of inertia about the centre of mass, ``m (3 r^2 + l^2) / 12``."""
+        if self.transverse_inertia is not None:
+            return self.transverse_inertia
+        return self.m * (0.75 * self.diameter**2 + self.length**2) / 12.0
+
+    @property
+    def jp(self) -> float:
+        """Polar moment of inertia, ``m r^2 / 2`` [kg m^2]."""
+        return self.m * self.diameter**2 / 8.0 if self.polar_inertia is None else \
+            self.polar_inertia
+
+    @property
+    def positions(self) -> tuple[float, float]:
+        """Axial positions (L1, -L2) of row 0 and row 1 from the centre of mass [m]."""
+        half = 0.5 * self.row_spacing
+        return (self.centre_offset + half, self.centre_offset - half)
+
+
+def _shaft_spec(shaft: ShaftSpec | dict | None) -> ShaftSpec:
+    if shaft is None:
+        return ShaftSpec()
+    if isinstance(shaft, ShaftSpec):
+        return shaft
+    if isinstance(shaft, dict):
+        try:
+            return ShaftSpec(**shaft)
+        except TypeError as exc:
+            raise ParameterError(f"duplex_pair: bad shaft specification: {exc}") from None
+    raise ParameterError(f"duplex_pair: shaft must be a ShaftSpec or a dict, got {shaft!r}")
+
+
+def _preload_force(geometry: BearingGeometry, preload) -> float:
+    if isinstance(preload, str):
+        if geometry.preload is None:
+            raise ParameterError(f"duplex_pair: bearing {geometry.designation} has no catalogued "
+                                 "preload classes; give the preload in N")
+        return geometry.preload[preload]
+    check_range(preload, "preload", "N", 0.0, low_inclusive=False, where="duplex_pair")
+    return float(preload)
+
+
+def preload_offset(bearing: str | BearingGeometry, preload: float, arrangement: str = "DF",
+                   contact_angle: float | None = None) -> float:
+    """Spacer width difference that preloads a DF or DB pair of identical rows [m].
+
+    Each row must carry the axial ``preload``: its inner ring moves by the row's axial approach
+    ``delta_a`` (:func:`~bearingsim.components.ball_row.axial_approach`, Jones's relation) along
+    its loading direction, so the offset is ``s1 delta_a - s0 delta_a``.
+
+    Parameters
+    ----------
+    bearing : str or BearingGeometry
+    preload : float
+        Axial preload [N], > 0.
+    arrangement : {"DF", "DB"}
+    contact_angle : float, optional
+        Free contact angle [rad] (default: the bearing's).
+
+    Returns
+    -------
+    float
+        The width difference [m] (negative for DF, positive for DB).
+    """
+    if arrangement not in ("DF", "DB"):
+        raise ParameterError(f"preload_offset: arrangement must be 'DF' or 'DB', got "
+                             f"{arrangement!r} (a DT pair is preloaded by an axial force)")
+    g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
+    delta = axial_approach(row_parameters(g, contact_angle), g.ball_count, preload)
+    s0, s1 = ARRANGEMENTS[arrangement]
+    return (s1 - s0) * delta
+
+
+class DuplexPair(Assembly):
+    """Duplex pair: shaft, two ball rows, inner and outer rings, spacers and housing.
+
+    Parameters
+    ----------
+    bearing : str or BearingGeometry
+        Bearing of both rows.
+    arrangement : {"DF", "DB", "DT"}
+    preload : {"light", "medium", "heavy"} or float
+        Catalogue preload class or axial preload [N], > 0.
+    speed : float
+        Shaft (inner ring) speed [rad/s].
+    shaft : ShaftSpec or dict, optional
+    lubricant : str or Lubricant, optional
+        Validated and kept as ``self.lubricant`` for friction post-processing; the quasi-static
+        model itself has no friction.
+    ball_position_angle : float
+        Azimuth of ball 0 of both rows [rad].
+    contact_angle : float, optional
+        Free contact angle of both rows [rad] in [0, 45 deg] (default: the bearing's).
+    spacer_offset : float, optional
+        Spacer width difference [m]; overrides ``preload`` for DF/DB pairs.
+    speed_effects : bool
+        Jones-Harris rows with centrifugal force and gyroscopic moment.
+    housing_stiffness, housing_damping : sequence of 5 float, optional
+        Spring-damper support of each outer ring (default: rigid housing).
+    exact : bool
+        Exact rigid-body kinematics (default) or the small-angle form.
+    smooth : float
+        Contact regularization length [m].
+
+    Attributes
+    ----------
+    preload_force : float
+        Nominal preload [N].
+    directions : tuple of int
+        Loading direction of each row.
+    shaft_spec : ShaftSpec
+    """
+
+    def __init__(self, bearing: str | BearingGeometry = "7020C", arrangement: str = "DF",
+                 preload: str | float = "light", speed: float = 0.0,
+                 shaft: ShaftSpec | dict | None = None, lubricant: str | Lubricant | None = None,
+                 ball_position_angle: float = 0.0, contact_angle: float | None = None,
+                 spacer_offset: float | None = None, speed_effects: bool = False,
+                 housing_stiffness=None, housing_damping=None, exact: bool = True,
+                 smooth: float = 1e-9, name="pair"):
+        super().__init__(name)
+        g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
+        if arrangement not in ARRANGEMENTS:
+            raise ParameterError(f"duplex_pair: arrangement must be one of "
+                                 f"{', '.join(ARRANGEMENTS)}, got {arrangement!r}")
+        self.geometry = g
+        self.arrangement = arrangement
+        self.directions = ARRANGEMENTS[arrangement]
+        self.shaft_spec = spec = _shaft_spec(shaft)
+        self.lubricant = (lubricant if lubricant is None or isinstance(lubricant, Lubricant)
+                          else get_lubricant(lubricant))
+        self.preload_force = _preload_force(g, preload)
+        s0, s1 = self.directions
+        if arrangement == "DT":
+            offset = 0.0 if spacer_offset is None else float(spacer_offset)
+            delta0 = axial_approach(row_parameters(g, contact_angle), g.ball_count,
+                                    0.5 * self.preload_force)
+        else:
+            offset = (preload_offset(g, self.preload_force, arrangement, contact_angle)
+                      if spacer_offset is None else float(spacer_offset))
+            if not offset * (s1 - s0) > 0.0:
+                raise ParameterError(
+                    f"duplex_pair: a spacer width difference of {offset:g} m leaves both rows of "
+                    f"the {arrangement} pair unloaded (axial play); valid range: "
+                    f"{'> 0' if s1 > s0 else '< 0'} m"
+                )
+            delta0 = 0.5 * abs(offset)
+        self.spacer_width_difference = offset
+        self.shaft = Shaft(spec.m, spec.jt, spec.jp, spec.positions, speed, exact,
+                           q0=(0.0, 0.0, s0 * delta0, 0.0, 0.0))
+        self.housing = Housing(2, housing_stiffness, housing_damping)
+        self.inner_ring = [InnerRing(exact=exact) for _ in range(2)]
+        self.outer_ring = [OuterRing(exact=exact) for _ in range(2)]
+        self.inner_spacer = Spacer(width_difference=offset, exact=exact)
+        self.outer_spacer = Spacer(exact=exact)
+        self.row = [BallRow(g, s, contact_angle=contact_angle,
+                            ball_position_angle=ball_position_angle,
+                            speed_effects=speed_effects, exact=exact, smooth=smooth)
+                    for s in self.directions]
+        for k in range(2):
+            self.inner_ring[k].speed = self.shaft.speed
+            self.row[k].inner_speed = self.inner_ring[k].speed
+            self.row[k].outer_speed = self.outer_ring[k].speed
+            connect(self.inner_ring[k].frame_b, self.row[k].inner)
+            connect(self.outer_ring[k].frame_b, self.row[k].outer)
+        connect(self.shaft.frame[0], self.inner_ring[0].frame_a)
+        connect(self.shaft.frame[1], self.inner_spacer.frame_a)
+        connect(self.inner_spacer.frame_b, self.inner_ring[1].frame_a)
+        connect(self.housing.frame[0], self.outer_ring[0].frame_a)
+        connect(self.housing.frame[1], self.outer_spacer.frame_a)
+        connect(self.outer_spacer.frame_b, self.outer_ring[1].frame_a)
+        if arrangement == "DT":
+            self.spring = ConstantLoad(Fz=s0 * self.preload_force)
+            connect(self.spring.frame, self.shaft.frame[0])
+
+
+def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str = "DF",
+                preload: str | float = "light", speed: float = 0.0,
+                shaft: ShaftSpec | dict | None = None, lubricant=None,
+                ball_position_angle: float = 0.0, **kwargs) -> DuplexPair:
+    """Build a duplex pair assembly; see :class:`DuplexPair` for the parameters.
+
+    Examples
+    --------
+    >>> from bearingsim.assemblies.duplex import duplex_pair
+    >>> pair = duplex_pair("7020C", "DF", preload="medium")
+    >>> round(pair.preload_force)
+    1270
+    """
+    return DuplexPair(designation, arrangement, preload, speed, shaft, lubricant,
+                      ball_position_angle, **kwargs)
