@@ -57,6 +57,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import casadi as ca
+import numpy as np
 import scipy.optimize
 
 from bearingsim import _ops as op
@@ -79,6 +81,7 @@ __all__ = [
     "row_parameters",
     "row_loads",
     "axial_approach",
+    "row_stiffness",
     "REFERENCES",
 ]
 
@@ -482,3 +485,30 @@ class BallRow(Component):
         eqs += [f == -load for f, load in zip(self.inner.loads(), c.inner_load, strict=True)]
         eqs += [f == -load for f, load in zip(self.outer.loads(), c.outer_load, strict=True)]
         return eqs
+
+
+def row_stiffness(p: RowParameters, n_balls: int, inner=(0.0,) * 5, direction: int = 1, *,
+                  reference: str = "touching", exact: bool = True) -> np.ndarray:
+    """5x5 stiffness matrix of a ball row (classic form) from the exact CasADi Jacobian.
+
+    ``K = -d(load on the inner ring) / d(inner ring displacement)`` with the outer ring fixed;
+    rows and columns ordered (x, y, z, tx, ty) [N/m, N/rad, N m/m, N m/rad].
+
+    Parameters
+    ----------
+    p : RowParameters
+    n_balls : int
+    inner : sequence of 5
+        Inner ring displacement of the operating point [m, rad].
+    direction, reference, exact
+        As for :func:`row_loads`.
+
+    Returns
+    -------
+    numpy.ndarray of shape (5, 5)
+    """
+    q = ca.SX.sym("q", 5)
+    loads = row_loads(p, [q[k] for k in range(5)], [0.0] * 5, n_balls, direction,
+                      reference=reference, exact=exact)
+    jac = ca.Function("row_jac", [q], [ca.jacobian(ca.vertcat(*loads.inner_load), q)])
+    return -np.asarray(jac(ca.DM(list(inner))).full(), dtype=float)

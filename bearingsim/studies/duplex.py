@@ -1,0 +1,520 @@
+"""Duplex pair studies (models.md section B): equilibrium, stiffness, modes and sweeps.
+
+One assembled system serves every configuration: preload (the spacer width difference or the
+DT spring force), contact angle (with the Hertz constants it implies), speed and ball position
+angle are parameters of the compiled functions, so a sweep re-solves without re-assembling.
+
+* **Equilibrium**: ``dx/dt = 0`` of the assembled model (Newton with the exact Jacobian).
+* **Stiffness**: the exact static compliance ``C = d q / d F_ext = -(A^-1 B)_q`` of the model
+  linearized at the equilibrium (CasADi's exact Jacobians, through the Newton blocks by the
+  implicit function theorem), ``K = C^-1`` about the shaft's centre of mass. This includes a
+  spring-damper housing in series. No finite differences.
+* **Modes**: ``K phi = w^2 M phi`` with ``M = diag(m, m, m, Jt, Jt)`` (:func:`scipy.linalg.eigh`
+  on the symmetric part of K), modes named after their dominant degree of freedom. Damping
+  follows models.md's loss factor ``eta = 0.005``: hysteretic damping ``C = (eta / w) K``
+  at each mode's frequency, i.e. the modal damping ratio ``zeta = eta / 2`` (Harris & Piersol,
+  *Shock and Vibration Handbook*, chapter "Material damping").
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.linalg
+import scipy.optimize
+
+from bearingsim.assemblies.duplex import ARRANGEMENTS, DuplexPair, preload_offset
+from bearingsim.catalog import BearingGeometry, get_bearing
+from bearingsim.components.ball_row import axial_approach, row_parameters
+from bearingsim.errors import BearingsimError, ParameterError, SimulationError
+from bearingsim.solver import assemble, linearize, steady_state
+from bearingsim.units import to_deg
+
+__all__ = [
+    "MODE_NAMES",
+    "LOSS_FACTOR",
+    "SWEEP_PARAMETERS",
+    "RowUnloadedWarning",
+    "DuplexModel",
+    "Equilibrium",
+    "Modes",
+    "Sweep",
+    "modal_analysis",
+    "sweep",
+    "plot_sweep",
+]
+
+DOFS = ("x", "y", "z", "tx", "ty")
+MODE_NAMES = ("radial x", "radial y", "axial", "tilt about x", "tilt about y")
+"""Mode names, one per dominant degree of freedom (x, y, z, tx, ty)."""
+LOSS_FACTOR = 0.005
+"""Loss factor eta of models.md section B [-]."""
+SWEEP_PARAMETERS = {
+    "preload": ("N", 1.0),
+    "contact_angle": ("deg", to_deg(1.0)),
+    "speed": ("rad/s", 1.0),
+    "ball_position_angle": ("deg", to_deg(1.0)),
+}
+"""Sweepable configuration parameters: (display unit, factor from SI to it)."""
+_LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))
+_POSITIONS = tuple(f"shaft.{k}" for k in DOFS)
+_UNLOADED = 1e-3  # N: a row whose largest ball load is below this is reported as unloaded
+_DEGENERATE = 1e-6  # relative gap of eigenvalues treated as one (repeated) frequency
+
+
+class RowUnloadedWarning(UserWarning):
+    """A ball row of the pair carries no load at the equilibrium (spacer or external load)."""
+
+
+@dataclass
+class Equilibrium:
+    """Quasi-static equilibrium of a duplex pair.
+
+    Attributes
+    ----------
+    displacement : ndarray (5,)
+        Shaft (x, y, z, tx, ty) at the centre of mass [m, rad].
+    state : ndarray
+        Full state vector (for :func:`~bearingsim.solver.linearize`).
+    inputs : dict
+        External loads by input name [N, N m].
+    parameters : dict
+        Parameter overrides of the configuration.
+    Q_i, Q_o : ndarray (2, Z)
+        Ball loads at the inner and outer race of each row [N].
+    alpha_i, alpha_o : ndarray (2, Z)
+        Contact angles [rad].
+    delta : ndarray (2, Z)
+        Total elastic approach of each ball [m].
+    spacer_force : float
+        Axial force of the inner spacer on row 1's inner ring [N].
+    """
+
+    displacement: np.ndarray
+    state: np.ndarray
+    inputs: dict
+    parameters: dict
+    Q_i: np.ndarray
+    Q_o: np.ndarray
+    alpha_i: np.ndarray
+    alpha_o: np.ndarray
+    delta: np.ndarray
+    spacer_force: float
+
+    @property
+    def row_axial_loads(self) -> np.ndarray:
+        """Axial load carried by each row, ``sum_j Q_ij sin(alpha_ij)`` [N]."""
+        return np.sum(self.Q_i * np.sin(self.alpha_i), axis=1)
+
+
+@dataclass
+class Modes:
+    """Natural frequencies and mode shapes of the shaft on its bearings.
+
+    Attributes
+    ----------
+    frequencies : ndarray (5,)
+        Undamped natural frequencies [Hz], ascending.
+    names : list of str
+        Name of each mode (:data:`MODE_NAMES`).
+    shapes : ndarray (5, 5)
+        Columns: mass-normalised mode shapes in (x, y, z, tx, ty).
+    damping_ratios : ndarray (5,)
+        Modal damping ratios [-].
+    damped_frequencies : ndarray (5,)
+        ``f sqrt(1 - zeta^2)`` [Hz].
+    stiffness, mass : ndarray (5, 5)
+        K [N/m, N/rad, N m/rad] and M [kg, kg m^2].
+    """
+
+    frequencies: np.ndarray
+    names: list[str]
+    shapes: np.ndarray
+    damping_ratios: np.ndarray
+    damped_frequencies: np.ndarray
+    stiffness: np.ndarray
+    mass: np.ndarray
+
+    def frequency(self, name: str) -> float:
+        """Natural frequency of the mode called ``name`` [Hz]."""
+        if name not in self.names:
+            raise ParameterError(f"no mode named {name!r}; modes: {', '.join(self.names)}")
+        return float(self.frequencies[self.names.index(name)])
+
+    def by_name(self) -> dict[str, float]:
+        """Frequencies [Hz] keyed by mode name, in :data:`MODE_NAMES` order."""
+        return {n: self.frequency(n) for n in MODE_NAMES}
+
+    def damping_matrix(self) -> np.ndarray:
+        """Viscous damping matrix of the modal damping ratios, ``M Phi diag(2 zeta w) Phi^T M``."""
+        w = 2.0 * np.pi * self.frequencies
+        mp = self.mass @ self.shapes
+        return mp @ np.diag(2.0 * self.damping_ratios * w) @ mp.T
+
+
+def _name_modes(shapes: np.ndarray, mass: np.ndarray) -> list[str]:
+    """Assign each mode the degree of freedom that holds most of its kinetic energy."""
+    energy = shapes * (mass @ shapes)  # energy[i, k]: share of DOF i in mode k (M diagonal)
+    rows, cols = scipy.optimize.linear_sum_assignment(-np.abs(energy.T))
+    names = [""] * shapes.shape[1]
+    for k, i in zip(rows, cols, strict=True):
+        names[k] = MODE_NAMES[i]
+    return names
+
+
+def _align_repeated(w2: np.ndarray, shapes: np.ndarray, mass: np.ndarray) -> np.ndarray:
+    """Within each group of repeated eigenvalues, rotate the modes onto the DOF axes."""
+    shapes = shapes.copy()
+    k = 0
+    while k < w2.size:
+        end = k + 1
+        while end < w2.size and w2[end] - w2[k] <= _DEGENERATE * abs(w2[k]):
+            end += 1
+        if end - k > 1:
+            v = shapes[:, k:end]
+            share = np.sum(np.abs(v * (mass @ v)), axis=1)
+            axes = np.eye(w2.size)[:, np.sort(np.argsort(share)[-(end - k):])]
+            proj = v @ (v.T @ mass @ axes)
+            for j in range(end - k):  # mass-orthonormalise (Gram-Schmidt)
+                for i in range(j):
+                    proj[:, j] -= (proj[:, i] @ mass @ proj[:, j]) * proj[:, i]
+                proj[:, j] /= np.sqrt(proj[:, j] @ mass @ proj[:, j])
+            shapes[:, k:end] = proj
+        k = end
+    return shapes
+
+
+def modal_analysis(stiffness: np.ndarray, mass: np.ndarray,
+                   loss_factor: float = LOSS_FACTOR) -> Modes:
+    """Natural frequencies, named mode shapes and modal damping from K and M.
+
+    Parameters
+    ----------
+    stiffness : array (5, 5)
+        Stiffness matrix; its symmetric part is used.
+    mass : array (5, 5)
+        Mass matrix, symmetric positive definite.
+    loss_factor : float
+        Loss factor eta [-], >= 0; the modal damping ratio is eta / 2.
+
+    Returns
+    -------
+    Modes
+
+    Raises
+    ------
+    BearingsimError
+        If K is not positive definite (a direction without stiffness, e.g. unloaded rows).
+    """
+    k_sym = 0.5 * (stiffness + stiffness.T)
+    w2, shapes = scipy.linalg.eigh(k_sym, mass)
+    if w2[0] <= 0.0:
+        raise BearingsimError(
+            "the stiffness matrix is not positive definite (smallest eigenvalue "
+            f"{w2[0]:.3g}): the shaft has a direction without stiffness; are the rows preloaded?"
+        )
+    shapes = _align_repeated(w2, shapes, mass)
+    freqs = np.sqrt(w2) / (2.0 * np.pi)
+    zeta = np.full(freqs.size, 0.5 * loss_factor)
+    return Modes(freqs, _name_modes(shapes, mass), shapes, zeta, freqs * np.sqrt(1 - zeta**2),
+                 np.asarray(stiffness, dtype=float), np.asarray(mass, dtype=float))
+
+
+@dataclass
+class DuplexModel:
+    """An assembled duplex pair and the parameter values of its configurations.
+
+    Parameters
+    ----------
+    bearing : str or BearingGeometry
+        Bearing of the rows. Bearings that differ only in contact angle and preload classes
+        (7020C, 7020A5, 7020A) share one model: pass them to :meth:`parameters`.
+    arrangement : {"DF", "DB", "DT"}
+    pair_options : dict
+        Further keyword arguments of :class:`~bearingsim.assemblies.duplex.DuplexPair`
+        (shaft, speed_effects, housing_stiffness, exact, smooth, ...).
+    """
+
+    bearing: str | BearingGeometry = "7020C"
+    arrangement: str = "DF"
+    pair_options: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.pair = DuplexPair(self.bearing, self.arrangement, **self.pair_options)
+        self.geometry = self.pair.geometry
+        self.system = assemble(self.pair)
+        spec = self.pair.shaft_spec
+        self.mass = np.diag([spec.m, spec.m, spec.m, spec.jt, spec.jt])
+
+    # ------------------------------------------------------------------ configurations
+    def _geometry(self, bearing) -> BearingGeometry:
+        if bearing is None:
+            return self.geometry
+        g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
+        ref = self.geometry
+        same = (g.ball_count, g.ball_diameter, g.pitch_diameter, g.fi, g.fo) == (
+            ref.ball_count, ref.ball_diameter, ref.pitch_diameter, ref.fi, ref.fo)
+        if not same:
+            raise ParameterError(f"DuplexModel: bearing {g.designation} differs from "
+                                 f"{ref.designation} in more than contact angle and preload; "
+                                 "build a DuplexModel for it")
+        return g
+
+    def preload_force(self, preload: str | float, bearing=None) -> float:
+        """Preload [N] of a class name or a number (checked > 0)."""
+        g = self._geometry(bearing)
+        if isinstance(preload, str):
+            if g.preload is None:
+                raise ParameterError(f"bearing {g.designation} has no catalogued preload classes")
+            return g.preload[preload]
+        if not np.isfinite(preload) or preload <= 0:
+            raise ParameterError(f"preload = {preload!r} [N] is outside the valid range (0, inf)")
+        return float(preload)
+
+    def parameters(self, preload: str | float = "light", contact_angle: float | None = None,
+                   speed: float = 0.0, ball_position_angle: float = 0.0,
+                   bearing: str | BearingGeometry | None = None) -> dict[str, float]:
+        """Parameter overrides of one configuration.
+
+        Parameters
+        ----------
+        preload : {"light", "medium", "heavy"} or float
+            Preload class of ``bearing`` or axial preload [N].
+        contact_angle : float, optional
+            Free contact angle [rad] (default: that of ``bearing``).
+        speed : float
+            Shaft speed [rad/s].
+        ball_position_angle : float
+            Azimuth of ball 0 of both rows [rad].
+        bearing : str or BearingGeometry, optional
+            A bearing of the same row geometry (default: the model's).
+
+        Returns
+        -------
+        dict
+            Parameter values by dotted name.
+        """
+        g = self._geometry(bearing)
+        force = self.preload_force(preload, g)
+        rp = row_parameters(g, contact_angle, ball_position_angle, self._smooth())
+        out = {"shaft.speed": float(speed)}
+        for k in range(2):
+            out.update({f"row[{k}].alpha0": rp.alpha0, f"row[{k}].K_i": rp.K_i,
+                        f"row[{k}].K_o": rp.K_o, f"row[{k}].psi0": rp.psi0})
+        if self.arrangement == "DT":
+            out["spring.Fz"] = ARRANGEMENTS["DT"][0] * force
+        else:
+            out["inner_spacer.width_difference"] = preload_offset(g, force, self.arrangement,
+                                                                  rp.alpha0)
+        return out
+
+    def _smooth(self) -> float:
+        return float(self.system.p0()[self.system.parameter_names.index("row[0].smooth")])
+
+    def _guess(self, params: dict[str, float]) -> np.ndarray:
+        x = self.system.x0()
+        s0 = ARRANGEMENTS[self.arrangement][0]
+        if self.arrangement == "DT":
+            g = self.geometry
+            rp = row_parameters(g, params["row[0].alpha0"], smooth=self._smooth())
+            delta = axial_approach(rp, g.ball_count, 0.5 * abs(params["spring.Fz"]))
+        else:
+            delta = 0.5 * abs(params["inner_spacer.width_difference"])
+        x[self.system.state_names.index("shaft.z")] = s0 * delta
+        return x
+
+    # ------------------------------------------------------------------ analyses
+    def equilibrium(self, loads: dict[str, float] | None = None, **config: Any) -> Equilibrium:
+        """Quasi-static equilibrium under the preload and external loads.
+
+        Parameters
+        ----------
+        loads : dict, optional
+            External loads at the shaft's centre of mass by name: "Fx", "Fy", "Fz" [N],
+            "Mx", "My" [N m].
+        **config
+            Configuration, see :meth:`parameters`.
+
+        Returns
+        -------
+        Equilibrium
+
+        Warns
+        -----
+        RowUnloadedWarning
+            If a row carries no load (its stiffness is then zero).
+        """
+        params = self.parameters(**config)
+        inputs = _load_inputs(loads)
+        x = self._solve(inputs, params)
+        return self._equilibrium(x, inputs, params)
+
+    def _solve(self, inputs: dict[str, float], params: dict[str, float]) -> np.ndarray:
+        guess = self._guess(params)
+        try:
+            return steady_state(self.system, inputs=inputs, parameters=params, x_guess=guess)
+        except SimulationError:
+            pass
+        x = guess  # load continuation from the preloaded state
+        for step in np.linspace(0.0, 1.0, 11):
+            scaled = {k: step * v for k, v in inputs.items()}
+            x = steady_state(self.system, inputs=scaled, parameters=params, x_guess=x)
+        return x
+
+    def _equilibrium(self, x, inputs, params) -> Equilibrium:
+        u = self.system.u_default()
+        for name, val in inputs.items():
+            u[self.system.input_names.index(name)] = val
+        obs = self.system.observe(0.0, x, u, self.system.p0(params))
+        z = self.geometry.ball_count
+
+        def per_ball(key):
+            return np.array([[obs[f"row[{k}].{key}[{j}]"] for j in range(z)] for k in range(2)])
+
+        eq = Equilibrium(np.array([obs[n] for n in _POSITIONS]), x, inputs, params,
+                         per_ball("Q_i"), per_ball("Q_o"), per_ball("alpha_i"),
+                         per_ball("alpha_o"), per_ball("delta"), obs["inner_spacer.force"])
+        for k in range(2):
+            if eq.Q_i[k].max() < _UNLOADED:
+                warnings.warn(
+                    f"row[{k}] of the {self.arrangement} pair carries no load (largest ball "
+                    f"load {eq.Q_i[k].max():.2g} N < {_UNLOADED:g} N): the spacer or the "
+                    "external load unloads it completely and it adds no stiffness",
+                    RowUnloadedWarning, stacklevel=2)
+        return eq
+
+    def stiffness(self, eq: Equilibrium) -> np.ndarray:
+        """5x5 stiffness matrix at an equilibrium, from the exact Jacobian (no differences).
+
+        ``K = C^-1``, ``C = -(A^-1 B)`` restricted to the shaft displacements and the external
+        loads, with A, B of the model linearized at the equilibrium.
+        """
+        lin = linearize(self.system, eq.state, inputs=eq.inputs, parameters=eq.parameters)
+        cols = [self.system.input_names.index(n) for n in _LOADS]
+        rows = [self.system.state_names.index(n) for n in _POSITIONS]
+        compliance = -np.linalg.solve(lin.A, lin.B[:, cols])[rows, :]
+        return np.linalg.inv(compliance)
+
+    def modes(self, loads: dict[str, float] | None = None, loss_factor: float = LOSS_FACTOR,
+              **config: Any) -> Modes:
+        """Natural frequencies and named mode shapes of one configuration.
+
+        Parameters
+        ----------
+        loads : dict, optional
+            External loads (see :meth:`equilibrium`).
+        loss_factor : float
+            Loss factor eta [-].
+        **config
+            Configuration, see :meth:`parameters`.
+        """
+        eq = self.equilibrium(loads, **config)
+        return modal_analysis(self.stiffness(eq), self.mass, loss_factor)
+
+
+def _load_inputs(loads: dict[str, float] | None) -> dict[str, float]:
+    out = {}
+    for key, val in (loads or {}).items():
+        name = key if key.startswith("shaft.") else f"shaft.{key}"
+        if name not in _LOADS:
+            raise ParameterError(f"unknown load {key!r}; loads: Fx, Fy, Fz [N], Mx, My [N m]")
+        if not np.isfinite(val):
+            raise ParameterError(f"load {key} must be finite, got {val!r}")
+        out[name] = float(val)
+    return out
+
+
+@dataclass
+class Sweep:
+    """Natural frequencies over one configuration parameter.
+
+    Attributes
+    ----------
+    parameter : str
+        Swept parameter (a key of :data:`SWEEP_PARAMETERS`).
+    values : ndarray
+        Its values (SI units).
+    frequencies : ndarray (n, 5)
+        Natural frequencies [Hz], columns in :data:`MODE_NAMES` order.
+    stiffness : ndarray (n, 5, 5)
+        Stiffness matrices.
+    label : str
+        Legend label of the swept model.
+    """
+
+    parameter: str
+    values: np.ndarray
+    frequencies: np.ndarray
+    stiffness: np.ndarray
+    label: str = ""
+
+    def relative_change(self) -> np.ndarray:
+        """Per mode: (max - min) / min of the frequency over the sweep [-]."""
+        f = self.frequencies
+        return (f.max(axis=0) - f.min(axis=0)) / f.min(axis=0)
+
+
+def sweep(model: DuplexModel, parameter: str, values, label: str = "",
+          **config: Any) -> Sweep:
+    """Natural frequencies of ``model`` over ``values`` of one configuration parameter.
+
+    Parameters
+    ----------
+    model : DuplexModel
+    parameter : {"preload", "contact_angle", "speed", "ball_position_angle"}
+    values : array_like
+        Values in SI units (N, rad, rad/s, rad); preload may also list class names.
+    label : str
+        Legend label.
+    **config
+        The other configuration parameters (see :meth:`DuplexModel.parameters`).
+    """
+    if parameter not in SWEEP_PARAMETERS:
+        raise ParameterError(f"sweep: parameter must be one of {', '.join(SWEEP_PARAMETERS)}, "
+                             f"got {parameter!r}")
+    freqs, stiff, xs = [], [], []
+    for v in values:
+        config[parameter] = v
+        eq = model.equilibrium(**config)
+        k = model.stiffness(eq)
+        modes = modal_analysis(k, model.mass)
+        freqs.append([modes.frequency(n) for n in MODE_NAMES])
+        stiff.append(k)
+        xs.append(model.preload_force(v, config.get("bearing")) if parameter == "preload"
+                  else float(v))
+    return Sweep(parameter, np.array(xs), np.array(freqs), np.array(stiff), label)
+
+
+def plot_sweep(result: Sweep, ax=None, modes=MODE_NAMES, **line_kw):
+    """Plot natural frequencies against the swept parameter.
+
+    Parameters
+    ----------
+    result : Sweep
+    ax : matplotlib Axes, optional
+    modes : sequence of str
+        Modes to draw.
+    **line_kw
+        Passed to ``ax.plot``.
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+
+    ax = ax if ax is not None else plt.subplots(figsize=(6, 4))[1]
+    unit, factor = SWEEP_PARAMETERS[result.parameter]
+    for name in modes:
+        k = MODE_NAMES.index(name)
+        label = f"{result.label} {name}".strip()
+        ax.plot(result.values * factor, result.frequencies[:, k], marker="o", label=label,
+                **line_kw)
+    ax.set_xlabel(f"{result.parameter.replace('_', ' ')} [{unit}]")
+    ax.set_ylabel("natural frequency [Hz]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    return ax
