@@ -434,6 +434,28 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path) -> TableInput | N
     return TableInput(t.tolist(), y.tolist(), source)
 
 
+def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
+                   section: str = "inputs") -> None:
+    """Expressions must be finite over the time span (checked on a fine grid)."""
+    import casadi as ca
+
+    t = ca.SX.sym("t")
+    grid = np.linspace(sim.t_start, sim.t_end, max(2 * sim.n_points, 201))
+    for name, v in inputs.items():
+        if not isinstance(v, str):
+            continue
+        try:
+            fn = ca.Function("u", [t], [ca.SX(compile_expression(v, name)(t))])
+            vals = np.asarray(fn.map(grid.size)(grid[None, :]), dtype=float).ravel()
+        except Exception:  # noqa: BLE001 - reported by the syntax check already
+            continue
+        bad = ~np.isfinite(vals)
+        if np.any(bad):
+            c.add(f"{section}.{name}", f"the expression {v!r} is not finite at t = "
+                  f"{grid[np.argmax(bad)]:.6g} s (in the time span "
+                  f"[{sim.t_start:g}, {sim.t_end:g}] s)", "an expression finite for all t")
+
+
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
                     text: str | None = None) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
@@ -572,6 +594,10 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
                       'e.g. [["w_shaft", "w_middle"], ["Rs"]]')
             else:
                 out.plot_groups = v
+    _check_signals(c, inputs, sim)
+    for k in ("load_torque",):
+        if isinstance(args.get(k), str):
+            _check_signals(c, {k: args[k]}, sim, "assembly")
     title = d.get("title", "")
     if not isinstance(title, str):
         c.add("title", "must be text", "a string")

@@ -108,7 +108,11 @@ def _check_key(key: str) -> None:
 
 
 def parse_grid(items: list[str]) -> dict[str, list[Any]]:
-    """``["inputs.shaft_speed=100,200", ...]`` -> ``{"inputs.shaft_speed": [100, 200]}``."""
+    """``["inputs.shaft_speed=100,200", ...]`` -> ``{"inputs.shaft_speed": ["100", "200"]}``.
+
+    Values stay text here; they are converted by the type the key expects when a point is
+    applied to a scene (numbers for parameters, designations stay text).
+    """
     grid: dict[str, list[Any]] = {}
     for item in items:
         if "=" not in item:
@@ -116,7 +120,7 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
         key, values = item.split("=", 1)
         key = key.strip()
         _check_key(key)
-        vals = [_value(v) for v in _split_values(values)]
+        vals = _split_values(values)
         if not vals:
             raise SweepError(f"--grid {key}: no values")
         grid[key] = vals
@@ -169,10 +173,35 @@ def _set_nested(d: dict, path: list[str], value: Any) -> None:
     d[path[-1]] = value
 
 
+def _coerce(scene: Scene, key: str, value: Any) -> Any:
+    """A grid value converted to the type its key expects."""
+    head, rest = key.split(".", 1)
+    text_kinds = ("bearing", "lubricant", "choice")
+    if head == "assembly":
+        spec = scene.spec.args
+        parts = rest.split(".")
+        arg = None
+        for part in parts:
+            arg = spec.get(part) if spec else None
+            spec = arg.table if arg is not None and arg.table else None
+        if rest == "fidelity" or (arg is not None and arg.kind in text_kinds):
+            return str(value) if not isinstance(value, str) else value
+        if arg is not None and arg.kind == "signal" and isinstance(value, str):
+            v = _value(value)
+            return v if not isinstance(v, bool) else value
+    if head == "simulation" and rest in ("method", "initial"):
+        return str(value)
+    if isinstance(value, str):
+        v = _value(value)
+        return value if isinstance(v, bool) and head != "assembly" else v
+    return value
+
+
 def _point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
     """The scene with the point's values applied, validated (errors name the sweep key)."""
     d = scene.to_dict()
     for key, value in point.items():
+        value = _coerce(scene, key, value)
         head, rest = key.split(".", 1)
         if head == "assembly":
             _set_nested(d["assembly"], rest.split("."), value)
@@ -231,10 +260,14 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
     packed: dict[tuple, dict] = {}
     base_values: dict[tuple, dict[str, float]] = {}
     jobs = []
-    for k, (pt, sc) in enumerate(zip(points, scenes, strict=True)):
+    for k, (raw, sc) in enumerate(zip(points, scenes, strict=True)):
+        pt = {key: _coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
         if key not in prepared:
-            prep = prepare(sc)
+            try:
+                prep = prepare(sc)
+            except SceneError as exc:
+                raise SweepError(f"sweep point {pt}: {exc}") from None
             prepared[key] = prep
             packed[key] = pack(prep.system)
             base_values[key] = _parameter_values(spec.build(prep.args, prep.fidelity))
