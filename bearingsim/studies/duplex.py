@@ -63,6 +63,7 @@ _LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))
 _POSITIONS = tuple(f"shaft.{k}" for k in DOFS)
 _UNLOADED = 1e-3  # N: a row whose largest ball load is below this is reported as unloaded
 _DEGENERATE = 1e-6  # relative gap of eigenvalues treated as one (repeated) frequency
+_ACCEL_TOL = 1e-7  # m/s^2, rad/s^2: equilibrium residual (displacement error ~ m a / k < 1e-13)
 
 
 class RowUnloadedWarning(UserWarning):
@@ -355,13 +356,15 @@ class DuplexModel:
     def _solve(self, inputs: dict[str, float], params: dict[str, float]) -> np.ndarray:
         guess = self._guess(params)
         try:
-            return steady_state(self.system, inputs=inputs, parameters=params, x_guess=guess)
+            return steady_state(self.system, inputs=inputs, parameters=params, x_guess=guess,
+                                residual_tol=_ACCEL_TOL)
         except SimulationError:
             pass
         x = guess  # load continuation from the preloaded state
         for step in np.linspace(0.0, 1.0, 11):
             scaled = {k: step * v for k, v in inputs.items()}
-            x = steady_state(self.system, inputs=scaled, parameters=params, x_guess=x)
+            x = steady_state(self.system, inputs=scaled, parameters=params, x_guess=x,
+                             residual_tol=_ACCEL_TOL)
         return x
 
     def _equilibrium(self, x, inputs, params) -> Equilibrium:
