@@ -11,13 +11,26 @@ from pathlib import Path
 
 from bearingsim.errors import BearingsimError
 
-__all__ = ["FmuBuildError", "TEMPLATE_FILES", "compile_shared_library", "copy_templates",
-           "fmi_header_dir", "write_archive"]
+__all__ = ["BINARY_PLATFORMS", "FmuBuildError", "RUNTIME_FILES", "TEMPLATE_FILES",
+           "compile_shared_library", "copy_templates", "fmi_header_dir", "write_archive"]
 
-TEMPLATE_FILES = ("bsm_model.h", "bsm_eval.c", "bsm_solver.c", "fmi2_api.c")
-"""The generic C template, shared by every exported FMU."""
+RUNTIME_FILES = ("bsm_model.h", "bsm_eval.c", "bsm_solver.c")
+"""The FMI-independent runtime of the C template, shared by every exported FMU."""
 
-FMI2_HEADERS = ("fmi2Functions.h", "fmi2FunctionTypes.h", "fmi2TypesPlatform.h")
+API_FILES = {"2.0": "fmi2_api.c", "3.0": "fmi3_api.c"}
+"""The FMI API layer of the template, per FMI version."""
+
+TEMPLATE_FILES = (*RUNTIME_FILES, API_FILES["2.0"])
+"""The generic C template of an FMI 2.0 FMU."""
+
+FMI_HEADERS = {
+    "2.0": ("fmi2Functions.h", "fmi2FunctionTypes.h", "fmi2TypesPlatform.h"),
+    "3.0": ("fmi3Functions.h", "fmi3FunctionTypes.h", "fmi3PlatformTypes.h"),
+}
+"""FMI headers (from fmpy) per FMI version."""
+
+BINARY_PLATFORMS = {"2.0": "linux64", "3.0": "x86_64-linux"}
+"""Folder of the shared library under ``binaries/`` per FMI version."""
 
 
 class FmuBuildError(BearingsimError):
@@ -31,8 +44,9 @@ def fmi_header_dir() -> Path:
     return Path(fmpy.__file__).parent / "c-code"
 
 
-def copy_templates(directory: Path) -> list[str]:
-    """Copy the generic C template and the FMI 2.0 headers into ``directory``.
+def copy_templates(directory: Path, fmi_version: str = "2.0") -> list[str]:
+    """Copy the generic C template (runtime and the API layer of ``fmi_version``) and the FMI
+    headers into ``directory``.
 
     Returns
     -------
@@ -40,11 +54,12 @@ def copy_templates(directory: Path) -> list[str]:
         The copied file names.
     """
     pkg = resources.files("bearingsim.fmu") / "templates"
-    for name in TEMPLATE_FILES:
+    files = (*RUNTIME_FILES, API_FILES[fmi_version])
+    for name in files:
         (directory / name).write_text((pkg / name).read_text())
-    for name in FMI2_HEADERS:
+    for name in FMI_HEADERS[fmi_version]:
         shutil.copyfile(fmi_header_dir() / name, directory / name)
-    return [*TEMPLATE_FILES, *FMI2_HEADERS]
+    return [*files, *FMI_HEADERS[fmi_version]]
 
 
 def compile_shared_library(sources: list[Path], output: Path, include: Path,
@@ -95,7 +110,7 @@ def write_archive(path: Path, model_description: str, binary: Path, platform: st
     binary : pathlib.Path
         The compiled shared library.
     platform : str
-        Binary folder name, e.g. ``"linux64"``.
+        Binary folder name, e.g. ``"linux64"`` (FMI 2.0) or ``"x86_64-linux"`` (FMI 3.0).
     model_identifier : str
         Library name without extension.
     sources : list of pathlib.Path

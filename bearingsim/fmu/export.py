@@ -12,17 +12,23 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from bearingsim.errors import ParameterError
-from bearingsim.fmu.build import compile_shared_library, copy_templates, write_archive
+from bearingsim.fmu.build import (
+    BINARY_PLATFORMS,
+    compile_shared_library,
+    copy_templates,
+    write_archive,
+)
 from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
 from bearingsim.fmu.model_c import write_model_c
 from bearingsim.fmu.model_description import model_description_xml
+from bearingsim.fmu.model_description3 import model_description3_xml
 
 __all__ = ["FMI_VERSIONS", "export_fmu"]
 
 log = logging.getLogger("bearingsim.fmu")
 
-FMI_VERSIONS = ("2.0",)
+FMI_VERSIONS = ("2.0", "3.0")
 """FMI versions ``export_fmu`` can write."""
 
 KINDS = ("ME", "CS")
@@ -125,8 +131,9 @@ def export_fmu(
     parameters : dict, optional
         Parameter name -> start value, validated against the declared range. All parameters
         stay tunable in the FMU.
-    fmi_version : {"2.0"}
-        FMI version.
+    fmi_version : {"2.0", "3.0"}
+        FMI version. Both share the C runtime (model functions, checks, Rodas3 stepper); only
+        the API layer (``fmi2_api.c`` or ``fmi3_api.c``) and the model description differ.
     kinds : sequence of {"ME", "CS"}
         Model Exchange and/or Co-Simulation interfaces.
     model_name : str, optional
@@ -164,15 +171,17 @@ def export_fmu(
     functions = fmu_functions(system, names)
     iface = build_interface(system, functions, names, units, descriptions, u0, p0)
     guid = "{" + str(uuid.uuid4()) + "}"
-    xml = model_description_xml(iface, name, ident, guid, kinds,
-                                description=(type(model).__doc__ or "").strip().split("\n")[0])
+    writer = model_description_xml if fmi_version == "2.0" else model_description3_xml
+    xml = writer(iface, name, ident, guid, kinds,
+                 description=(type(model).__doc__ or "").strip().split("\n")[0])
     with tempfile.TemporaryDirectory(prefix="bearingsim_fmu_") as tmp:
         src = Path(tmp) / "sources"
         src.mkdir()
         work = generate_c(functions, src)
         write_model_c(src, iface, system, guid, work, kinds)
-        copy_templates(src)
+        copy_templates(src, fmi_version)
         binary = Path(tmp) / f"{ident}.so"
         c_files = sorted(src.glob("*.c"))
         compile_shared_library(c_files, binary, src)
-        return write_archive(Path(path), xml, binary, "linux64", ident, sorted(src.iterdir()))
+        return write_archive(Path(path), xml, binary, BINARY_PLATFORMS[fmi_version], ident,
+                             sorted(src.iterdir()))

@@ -20,8 +20,9 @@ def _fmt(v: float) -> str:
     return repr(float(v))
 
 
-def _unit_definitions(parent: ET.Element, variables: list[FmuVariable]) -> None:
-    names = sorted({v.unit for v in variables if v.unit})
+def _unit_definitions(parent: ET.Element, variables: list[FmuVariable],
+                      extra: tuple[str, ...] = ()) -> None:
+    names = sorted({v.unit for v in variables if v.unit} | set(extra))
     if not names:
         return
     defs = ET.SubElement(parent, "UnitDefinitions")
