@@ -1,0 +1,115 @@
+"""Command line (issue 8): run, validate, list, sweep; exit codes and messages."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from bearingsim.cli import main
+
+SCENES = Path(__file__).resolve().parent.parent / "scenes"
+
+FAST = """
+title = "cli test"
+outputs = ["Rs"]
+[assembly]
+name = "double_layer_bearing"
+[inputs]
+shaft_speed = "rpm(1000) * ramp(0, 0.1)"
+[simulation]
+t_end = 0.2
+n_points = 21
+[output]
+folder = "out"
+"""
+
+
+@pytest.fixture
+def scene_file(tmp_path):
+    path = tmp_path / "fast.toml"
+    path.write_text(FAST)
+    return path
+
+
+def test_list_shows_assemblies_components_bearings_and_lubricants(capsys):
+    assert main(["list"]) == 0
+    out = capsys.readouterr().out
+    for word in ("double_layer_bearing", "motor_drive", "fidelity: auto", "PalmgrenBearing",
+                 "Inertia", "61905", "ISO VG 32", "L10h"):
+        assert word in out
+
+
+def test_validate_ok(scene_file, capsys):
+    assert main(["validate", str(scene_file)]) == 0
+    out = capsys.readouterr().out
+    assert "valid" in out and "kinematic" in out and "pruned" in out
+
+
+def test_validate_without_assembling(scene_file, capsys):
+    assert main(["validate", "--no-assemble", str(scene_file)]) == 0
+    assert "not checked against the model" in capsys.readouterr().out
+
+
+def test_validate_reports_key_line_and_allowed_values(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(FAST.replace('name = "double_layer_bearing"',
+                                'name = "double_layer_bearing"\nlubrication = "olive oil"'))
+    assert main(["validate", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert f"{bad}:6: assembly.lubrication: unknown lubricant 'olive oil'" in err
+    assert "allowed: ISO VG 10" in err
+
+
+def test_missing_scene_file(tmp_path, capsys):
+    assert main(["run", str(tmp_path / "nope.toml")]) == 2
+    assert "not found" in capsys.readouterr().err
+
+
+def test_run_writes_files_into_the_scene_folder(scene_file, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["run", str(scene_file)]) == 0
+    out = capsys.readouterr().out
+    assert "skipped (pruned)" in out and "Rs = " in out
+    files = sorted(p.name for p in (tmp_path / "out").iterdir())
+    assert files == ["fast.csv", "fast.png", "fast.summary.json"]
+    summary = json.loads((tmp_path / "out" / "fast.summary.json").read_text())
+    assert summary["fidelity"]["chosen"] == "kinematic"
+
+
+def test_run_reports_a_failed_simulation_with_exit_1(tmp_path, capsys):
+    path = tmp_path / "diverge.toml"
+    path.write_text(FAST + '[initial]\n"middle.sleeve.w" = 1e308\n')
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 1
+    assert "simulation failed" in capsys.readouterr().err
+
+
+def test_sweep_bad_grid_key_is_exit_2(scene_file, capsys):
+    assert main(["sweep", str(scene_file), "--grid", "speed=1,2"]) == 2
+    assert "must start with" in capsys.readouterr().err
+
+
+def test_sweep_needs_a_grid_or_sample(scene_file, capsys):
+    assert main(["sweep", str(scene_file)]) == 2
+    assert "--grid" in capsys.readouterr().err
+
+
+def test_console_script_runs_sweep_on_a_local_cluster(scene_file, tmp_path):
+    proc = subprocess.run(
+        [sys.executable, "-m", "bearingsim.cli", "sweep", str(scene_file), "--grid",
+         "inputs.shaft_speed=50;100*min(t,1)", "--out", str(tmp_path / "sw"),
+         "--no-progress"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert "2 point(s): 2 ok, 0 failed; 1 model(s) built" in proc.stdout
+    assert (tmp_path / "sw" / "fast.sweep.csv").is_file()
+
+
+def test_demo_and_export_fmu_commands_are_kept():
+    from bearingsim.cli import _parser
+
+    parser = _parser()
+    assert parser.parse_args(["demo", "--out", "x"]).out == "x"
+    assert parser.parse_args(["export-fmu", "a", "b"]).rest == ["a", "b"]
