@@ -51,9 +51,12 @@ STEEL_DENSITY = 7850.0
 class ShaftSpec:
     """Shaft of a duplex pair: mass properties and row positions.
 
-    The source study does not give them; the defaults describe a solid steel shaft section of
-    100 mm diameter (the 7020 bore) and 300 mm length with the rows 100 mm apart (a 76 mm spacer
-    between two 24 mm wide bearings), centred on the centre of mass.
+    The source study does not give them; the defaults describe a solid steel shaft of 100 mm
+    diameter (the 7020 bore) and 400 mm length with the rows 300 mm apart, centred on the centre
+    of mass. The tilt stiffness goes with ``(L -+ (dm/2) tan a)^2`` (pressure centres), so the
+    study's finding that the contact angle changes the axial mode most holds only for rows far
+    apart compared with ``(dm/2) tan a`` (17 to 36 mm for the 7020 series); with rows 100 mm
+    apart the DF tilt modes change more.
 
     Attributes
     ----------
@@ -70,8 +73,8 @@ class ShaftSpec:
     """
 
     diameter: float = 0.100
-    length: float = 0.300
-    row_spacing: float = 0.100
+    length: float = 0.400
+    row_spacing: float = 0.300
     centre_offset: float = 0.0
     mass: float | None = None
     transverse_inertia: float | None = None

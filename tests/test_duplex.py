@@ -1,0 +1,172 @@
+"""Duplex pairs of angular contact bearings (issue 4, models.md section B): preload, stiffness
+from the exact Jacobian, DF/DB/DT arrangements, natural frequencies and invalid input."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from bearingsim.assemblies.duplex import DuplexPair, ShaftSpec, duplex_pair, preload_offset
+from bearingsim.catalog import get_bearing
+from bearingsim.components.ball_row import row_parameters
+from bearingsim.errors import ParameterError
+from bearingsim.physics.hertz import combined_load_deflection_constant
+from bearingsim.studies.duplex import (
+    MODE_NAMES,
+    DuplexModel,
+    RowUnloadedWarning,
+    modal_analysis,
+    sweep,
+)
+from bearingsim.units import deg
+from tests.test_ball_row import jones_contact_angle
+
+ROW = row_parameters("7020C")
+A = (ROW.fi + ROW.fo - 1.0) * ROW.Dw
+K_BALL = combined_load_deflection_constant(ROW.K_i, ROW.K_o)
+
+
+@pytest.fixture(scope="module")
+def df():
+    return DuplexModel("7020C", "DF")
+
+
+@pytest.fixture(scope="module")
+def db():
+    return DuplexModel("7020C", "DB")
+
+
+def _row_axial_stiffness(fa, alpha0=ROW.alpha0, z=20):
+    """dFa/d(delta_a) of Jones's closed form ``Fa = Z K A^1.5 sin a g^1.5``, g = cos a0/cos a - 1
+    with ``delta_a = A (cos a0 tan a - sin a0)``; analytic derivatives in a."""
+    a = jones_contact_angle(fa, z, K_BALL, A, alpha0)
+    g = math.cos(alpha0) / math.cos(a) - 1.0
+    c = z * K_BALL * A**1.5
+    dfa = c * (math.cos(a) * g**1.5
+               + 1.5 * math.sin(a) * g**0.5 * math.cos(alpha0) * math.sin(a) / math.cos(a) ** 2)
+    ddelta = A * math.cos(alpha0) / math.cos(a) ** 2
+    return dfa / ddelta, a
+
+
+@pytest.mark.parametrize("level", ["light", "medium", "heavy"])
+def test_preload_and_pair_axial_stiffness_equal_the_rows_closed_form(df, level):
+    force = get_bearing("7020C").preload[level]
+    eq = df.equilibrium(preload=level)
+    assert eq.row_axial_loads == pytest.approx([force, force], rel=1e-9)
+    assert abs(eq.spacer_force) == pytest.approx(force, rel=1e-9)
+    k_row, alpha = _row_axial_stiffness(force)
+    assert eq.alpha_i == pytest.approx(np.full((2, 20), alpha), rel=1e-6)
+    k = df.stiffness(eq)
+    assert k[2, 2] == pytest.approx(2.0 * k_row, rel=1e-6)
+
+
+def test_stiffness_is_the_exact_jacobian_of_the_equilibrium(df):
+    eq = df.equilibrium(preload="medium", loads={"Fx": 800.0, "Fz": 300.0, "My": 40.0})
+    k = df.stiffness(eq)
+    base = {"Fx": 800.0, "Fz": 300.0, "My": 40.0}
+    steps = {"Fx": 20.0, "Fy": 20.0, "Fz": 20.0, "Mx": 2.0, "My": 2.0}
+    compliance = np.empty((5, 5))
+    for j, (name, h) in enumerate(steps.items()):
+        plus, minus = dict(base), dict(base)
+        plus[name] = base.get(name, 0.0) + h
+        minus[name] = base.get(name, 0.0) - h
+        dq = (df.equilibrium(loads=plus, preload="medium").displacement
+              - df.equilibrium(loads=minus, preload="medium").displacement)
+        compliance[:, j] = dq / (2 * h)
+    assert np.linalg.inv(compliance) == pytest.approx(k, rel=2e-4, abs=2e-4 * np.abs(k).max())
+
+
+def test_df_and_db_differ_only_in_tilt_stiffness_as_pressure_centres_predict(df, db):
+    eq_f, eq_b = df.equilibrium(preload="light"), db.equilibrium(preload="light")
+    k_f, k_b = df.stiffness(eq_f), db.stiffness(eq_b)
+    for i in (0, 1, 2):
+        assert k_f[i, i] == pytest.approx(k_b[i, i], rel=1e-9)
+    assert k_b[3, 3] > k_f[3, 3]
+    half = 0.5 * ShaftSpec().row_spacing
+    c = 0.5 * ROW.dm * math.tan(eq_f.alpha_i.mean())  # pressure centre beyond/before the row
+    predicted = ((half + c) / (half - c)) ** 2
+    for i in (3, 4):
+        assert k_b[i, i] / k_f[i, i] == pytest.approx(predicted, rel=0.01)
+        # tilt stiffness ~ sum over rows of k_radial * (pressure-centre distance)^2
+        assert k_f[i, i] == pytest.approx(k_f[0, 0] * (half - c) ** 2, rel=0.02)
+
+
+def test_frequencies_rise_with_preload(df):
+    result = sweep(df, "preload", ["light", "medium", "heavy"])
+    assert result.values == pytest.approx([540.0, 1270.0, 2550.0])
+    assert np.all(np.diff(result.frequencies, axis=0) > 0)
+
+
+def test_axial_mode_is_most_sensitive_to_contact_angle(df):
+    result = sweep(df, "contact_angle", [deg(15.0), deg(25.0), deg(30.0)], preload=1270.0)
+    change = result.relative_change()
+    assert MODE_NAMES[int(np.argmax(change))] == "axial"
+    assert np.all(np.diff(result.frequencies[:, MODE_NAMES.index("axial")]) > 0)
+
+
+def test_ball_position_angle_barely_changes_frequencies(df):
+    result = sweep(df, "ball_position_angle", np.linspace(0.0, 2 * np.pi / 20, 4),
+                   preload="light")
+    assert np.all(result.relative_change() < 1e-3)
+
+
+def test_modes_are_named_and_damped_by_the_loss_factor(df):
+    modes = df.modes(preload="medium")
+    assert sorted(modes.names) == sorted(MODE_NAMES)
+    assert modes.damping_ratios == pytest.approx(np.full(5, 0.0025))
+    assert modes.frequency("radial x") == pytest.approx(modes.frequency("radial y"), rel=1e-9)
+    axial = modes.shapes[:, modes.names.index("axial")]
+    assert np.argmax(np.abs(axial)) == 2
+    c = modes.damping_matrix()
+    phi = modes.shapes
+    modal = phi.T @ c @ phi
+    w = 2 * np.pi * modes.frequencies
+    assert np.diag(modal) == pytest.approx(2 * 0.0025 * w, rel=1e-9)
+
+
+def test_tandem_pair_shares_axial_load_equally():
+    dt = DuplexModel("7020C", "DT")
+    eq = dt.equilibrium(loads={"Fz": 3000.0}, preload="light")
+    loads = eq.row_axial_loads
+    assert loads[0] == pytest.approx(loads[1], rel=1e-9)
+    assert loads.sum() == pytest.approx(3000.0 + 540.0, rel=1e-9)
+    modes = modal_analysis(dt.stiffness(eq), dt.mass)
+    assert np.all(modes.frequencies > 0)
+
+
+def test_invalid_inputs_give_clear_errors():
+    with pytest.raises(ParameterError, match="preload"):
+        duplex_pair("7020C", "DF", preload=-100.0)
+    with pytest.raises(ParameterError, match="preload class"):
+        duplex_pair("7020C", "DF", preload="extreme")
+    with pytest.raises(ParameterError, match="contact_angle"):
+        duplex_pair("7020C", "DB", contact_angle=deg(50.0))
+    with pytest.raises(ParameterError, match="unloaded"):
+        duplex_pair("7020C", "DF", spacer_offset=+5e-6)  # DF needs a negative difference
+    with pytest.raises(ParameterError, match="arrangement"):
+        duplex_pair("7020C", "XX")
+    with pytest.raises(ParameterError, match="preload classes"):
+        duplex_pair("6204", "DF", preload="light")
+    with pytest.raises(ParameterError, match="shaft"):
+        duplex_pair("7020C", shaft={"radius": 0.05})
+    assert math.isclose(preload_offset("7020C", 540.0, "DB"), -preload_offset("7020C", 540.0))
+
+
+def test_external_load_that_unloads_a_row_warns(df):
+    with pytest.warns(RowUnloadedWarning, match="row"):
+        eq = df.equilibrium(loads={"Fz": 10 * 540.0}, preload="light")
+    assert np.all(np.isfinite(eq.Q_i))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        df.equilibrium(loads={"Fz": 540.0}, preload="light")
+
+
+def test_pair_structure_and_speed_binding():
+    pair = duplex_pair("7020A", "DB", preload="heavy", speed=100.0)
+    assert isinstance(pair, DuplexPair)
+    assert pair.preload_force == 4310.0
+    assert pair.directions == (-1, 1)
+    assert pair.spacer_width_difference > 0
