@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import ast
 import math
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -118,14 +119,17 @@ def _parse(text: str, name: str) -> ast.Expression:
     if len(text) > _MAX_LENGTH:
         raise _fail(name, text[:40] + "...", f"longer than {_MAX_LENGTH} characters")
     try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError as exc:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SyntaxWarning)
+            tree = ast.parse(text.strip(), mode="eval")
+    except (SyntaxError, ValueError) as exc:
         hint = ""
         low = text.lower()
         if any(u in low for u in ("rpm", "r/min", "rad/s", "hz", " n", "nm", "mm")):
             hint = (" (values are SI: rad/s, N, N m, m, s; write a speed in r/min as "
                     "rpm(1000), not '1000 rpm')")
-        raise _fail(name, text, f"not a valid expression ({exc.msg}){hint}") from None
+        why = getattr(exc, "msg", str(exc))
+        raise _fail(name, text, f"not a valid expression ({why}){hint}") from None
     if sum(1 for _ in ast.walk(tree)) > _MAX_NODES:
         raise _fail(name, text, f"more than {_MAX_NODES} syntax nodes")
     return tree

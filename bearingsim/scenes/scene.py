@@ -476,13 +476,14 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         c.add("assembly.name", "missing: every scene names its assembly", ", ".join(REGISTRY))
     else:
         name = asm["name"]
-        if name not in REGISTRY:
+        if not isinstance(name, str) or name not in REGISTRY:
             c.add("assembly.name", f"unknown assembly {name!r}", ", ".join(REGISTRY))
             name = None
     if name is not None:
         spec = REGISTRY[name]
         fidelity = asm.get("fidelity", "auto")
-        if fidelity != "auto" and fidelity not in spec.fidelities:
+        if not isinstance(fidelity, str) or (fidelity != "auto"
+                                             and fidelity not in spec.fidelities):
             c.add("assembly.fidelity", f"{fidelity!r} is not a fidelity of {name}",
                   ", ".join(("auto",) + spec.fidelities))
         for k, v in asm.items():
