@@ -30,7 +30,7 @@ from bearingsim.assemblies.duplex import ARRANGEMENTS, DuplexPair, preload_offse
 from bearingsim.catalog import BearingGeometry, get_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
-from bearingsim.solver import assemble, linearize, steady_state
+from bearingsim.solver import assemble, steady_state
 from bearingsim.units import to_deg
 
 __all__ = [
@@ -393,12 +393,19 @@ class DuplexModel:
         """5x5 stiffness matrix at an equilibrium, from the exact Jacobian (no differences).
 
         ``K = C^-1``, ``C = -(A^-1 B)`` restricted to the shaft displacements and the external
-        loads, with A, B of the model linearized at the equilibrium.
+        loads, with ``A = d(dx/dt)/dx`` and ``B = d(dx/dt)/du`` from the system's compiled exact
+        Jacobians (``jac_x``, ``jac_u``) at the equilibrium.
         """
-        lin = linearize(self.system, eq.state, inputs=eq.inputs, parameters=eq.parameters)
-        cols = [self.system.input_names.index(n) for n in _LOADS]
-        rows = [self.system.state_names.index(n) for n in _POSITIONS]
-        compliance = -np.linalg.solve(lin.A, lin.B[:, cols])[rows, :]
+        system = self.system
+        u = system.u_default()
+        for name, val in eq.inputs.items():
+            u[system.input_names.index(name)] = val
+        args = (0.0, eq.state, u, system.p0(eq.parameters))
+        a = np.asarray(system.functions["jac_x"](*args).full(), dtype=float)
+        b = np.asarray(system.functions["jac_u"](*args).full(), dtype=float)
+        cols = [system.input_names.index(n) for n in _LOADS]
+        rows = [system.state_names.index(n) for n in _POSITIONS]
+        compliance = -np.linalg.solve(a, b[:, cols])[rows, :]
         return np.linalg.inv(compliance)
 
     def modes(self, loads: dict[str, float] | None = None, loss_factor: float = LOSS_FACTOR,
