@@ -170,3 +170,16 @@ def test_pair_structure_and_speed_binding():
     assert pair.preload_force == 4310.0
     assert pair.directions == (-1, 1)
     assert pair.spacer_width_difference > 0
+
+
+def test_spring_housing_acts_in_series_with_each_row():
+    k_h = 5e7
+    soft = DuplexModel("7020C", "DF", {"housing_stiffness": (1e9, 1e9, k_h, 1e7, 1e7),
+                                       "housing_damping": (10.0,) * 5})
+    eq = soft.equilibrium(preload="light")
+    k = soft.stiffness(eq)
+    # the housing springs lie in the preload loop too: the rows keep less than 540 N
+    assert eq.row_axial_loads[0] == pytest.approx(eq.row_axial_loads[1], rel=1e-9)
+    assert eq.row_axial_loads[0] < 540.0
+    k_row, _ = _row_axial_stiffness(eq.row_axial_loads[0])
+    assert k[2, 2] == pytest.approx(2.0 / (1.0 / k_row + 1.0 / k_h), rel=1e-6)
