@@ -39,7 +39,7 @@ from bearingsim.language import Assembly, connect
 from bearingsim.physics.lubricant import Lubricant, get_lubricant
 
 __all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
-           "preload_offset"]
+           "preload_offset", "preload_force"]
 
 ARRANGEMENTS = {"DF": (1, -1), "DB": (-1, 1), "DT": (1, 1)}
 """Axial loading direction ``s`` of (row 0, row 1) for each arrangement."""
@@ -134,7 +134,14 @@ def _shaft_spec(shaft: ShaftSpec | dict | None) -> ShaftSpec:
     raise ParameterError(f"duplex_pair: shaft must be a ShaftSpec or a dict, got {shaft!r}")
 
 
-def _preload_force(geometry: BearingGeometry, preload) -> float:
+def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
+    """Axial preload [N] of a catalogue class name ("light", "medium", "heavy") or a number.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown class, a bearing without catalogued classes, or a preload <= 0.
+    """
     if isinstance(preload, str):
         if geometry.preload is None:
             raise ParameterError(f"duplex_pair: bearing {geometry.designation} has no catalogued "
@@ -233,7 +240,7 @@ class DuplexPair(Assembly):
         self.shaft_spec = spec = _shaft_spec(shaft)
         self.lubricant = (lubricant if lubricant is None or isinstance(lubricant, Lubricant)
                           else get_lubricant(lubricant))
-        self.preload_force = _preload_force(g, preload)
+        self.preload_force = preload_force(g, preload)
         s0, s1 = self.directions
         if arrangement == "DT":
             offset = 0.0 if spacer_offset is None else float(spacer_offset)

@@ -26,7 +26,12 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
-from bearingsim.assemblies.duplex import ARRANGEMENTS, DuplexPair, preload_offset
+from bearingsim.assemblies.duplex import (
+    ARRANGEMENTS,
+    DuplexPair,
+    preload_force,
+    preload_offset,
+)
 from bearingsim.catalog import BearingGeometry, get_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
@@ -265,15 +270,8 @@ class DuplexModel:
         return g
 
     def preload_force(self, preload: str | float, bearing=None) -> float:
-        """Preload [N] of a class name or a number (checked > 0)."""
-        g = self._geometry(bearing)
-        if isinstance(preload, str):
-            if g.preload is None:
-                raise ParameterError(f"bearing {g.designation} has no catalogued preload classes")
-            return g.preload[preload]
-        if not np.isfinite(preload) or preload <= 0:
-            raise ParameterError(f"preload = {preload!r} [N] is outside the valid range (0, inf)")
-        return float(preload)
+        """Preload [N] of a class name or a number (checked > 0) for ``bearing``."""
+        return preload_force(self._geometry(bearing), preload)
 
     def parameters(self, preload: str | float = "light", contact_angle: float | None = None,
                    speed: float = 0.0, ball_position_angle: float = 0.0,
@@ -299,7 +297,7 @@ class DuplexModel:
             Parameter values by dotted name.
         """
         g = self._geometry(bearing)
-        force = self.preload_force(preload, g)
+        force = preload_force(g, preload)
         rp = row_parameters(g, contact_angle, ball_position_angle, self._smooth())
         out = {"shaft.speed": float(speed)}
         for k in range(2):
