@@ -86,7 +86,7 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     output, every input and parameter the scene sets, and every post-processed quantity.
     """
     if spec.fidelity_arg is None:
-        return "", "the assembly has a single fidelity level"
+        return spec.fidelities[0], "the assembly has a single fidelity level"
     if scene.fidelity != "auto":
         return scene.fidelity, "requested by the scene"
     order = list(spec.auto_fidelities)

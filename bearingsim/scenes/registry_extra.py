@@ -1,0 +1,57 @@
+"""Registry entries of assemblies that live in modules written after the scene layer.
+
+Each entry is added only when its module imports (``duplex_pair`` from
+``bearingsim.assemblies.duplex``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from bearingsim.scenes.registry import ArgSpec, AssemblySpec
+
+__all__ = ["register_extra"]
+
+
+def _build_duplex(args: dict[str, Any], fidelity: str):
+    from bearingsim.assemblies.duplex import duplex_pair
+
+    kwargs = {k: v for k, v in args.items() if v is not None and k not in ("bearing",)}
+    return duplex_pair(args["bearing"], **kwargs)
+
+
+def _duplex_symmetry(args: dict[str, Any], inputs: dict[str, Any]) -> list[str]:
+    radial = [inputs.get(n, 0.0) for n in ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")]
+    if all(isinstance(v, (int, float)) and v == 0.0 for v in radial):
+        return ["pure axial load: the balls of each row are equally loaded (axisymmetric); the "
+                "quasi-static rows have no one-ball reduced form yet, so all balls are kept"]
+    return []
+
+
+def register_extra(register) -> None:
+    """Register the optional assemblies whose modules exist."""
+    try:
+        from bearingsim.assemblies import duplex
+    except ImportError:
+        return
+    register(AssemblySpec(
+        name="duplex_pair",
+        description="DF/DB/DT duplex pair of angular contact ball bearings on a rigid shaft "
+                    "(quasi-static ball rows); inputs shaft.Fx, Fy, Fz [N], Mx, My [N m]",
+        build=_build_duplex,
+        args={
+            "bearing": ArgSpec("bearing", "7020C", "bearing of both rows"),
+            "arrangement": ArgSpec("choice", "DF", "arrangement",
+                                   choices=tuple(duplex.ARRANGEMENTS)),
+            "preload": ArgSpec("choice", "light", "catalogue preload class",
+                               choices=duplex.PRELOAD_CLASSES),
+            "speed": ArgSpec("float", None, "shaft speed [rad/s]", low=-1e9),
+            "speed_effects": ArgSpec("bool", None, "centrifugal and gyroscopic ball loads"),
+        },
+        fidelities=("quasi-static",),
+        auto_fidelities=("quasi-static",),
+        output_fidelity=[],
+        default_outputs=["shaft.x", "shaft.z", "shaft.ty"],
+        symmetry=_duplex_symmetry,
+        fidelity_arg=None,
+    ))
