@@ -224,8 +224,8 @@ class DoubleLayerBearing(Assembly):
         self.M_shaft = Variable(unit="N.m", description="friction torque on the shaft")
         self._lubricated = fidelity == "torque"
         if self._lubricated:
-            self.Fr = Input(0.0, "N", "radial load through both layers")
-            self.Fa = Input(0.0, "N", "axial load through both layers")
+            self.Fr = Input(0.0, "N", "radial load through both layers", low=0.0)
+            self.Fa = Input(0.0, "N", "axial load through both layers (magnitude)", low=0.0)
         connect(self.shaft, self.inner_layer.inner)
         connect(self.inner_layer.outer, self.middle.inner_side)
         connect(self.middle.outer_side, self.outer_layer.inner)

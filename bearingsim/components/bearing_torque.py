@@ -119,8 +119,8 @@ class _LubricatedBearing(BearingTorqueElement):
             omega_reg, "rad/s", "speed below which friction is regularized (smooth sign)",
             low=0.0, low_inclusive=False,
         )
-        self.Fr = Input(0.0, "N", "radial load")
-        self.Fa = Input(0.0, "N", "axial load")
+        self.Fr = Input(0.0, "N", "radial load", low=0.0)
+        self.Fa = Input(0.0, "N", "axial load (magnitude)", low=0.0)
 
     @property
     def bearing_type(self) -> str:

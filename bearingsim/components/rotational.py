@@ -10,6 +10,7 @@ from collections.abc import Callable
 
 import casadi as ca
 
+from bearingsim.errors import check_range
 from bearingsim.language import (
     Component,
     Connector,
@@ -216,9 +217,9 @@ class TorqueSource(Component):
     def __init__(self, torque: TimeFunction | float | None = None, name=None):
         super().__init__(name)
         self.flange = Flange()
-        self._torque = torque
+        self._torque = _check_signal(torque, "torque", "N.m", self)
         if torque is None:
-            self.tau_in = Input(unit="N.m", description="driving torque")
+            self.tau_in = Input(0.0, unit="N.m", description="driving torque")
 
     def equations(self):
         tau = _signal(self._torque, self, "tau_in")
@@ -239,11 +240,11 @@ class SpeedSource(Component):
     def __init__(self, speed: TimeFunction | float | None = None, phi0: float = 0.0, name=None):
         super().__init__(name)
         self.flange = Flange()
-        self._speed = speed
+        self._speed = _check_signal(speed, "speed", "rad/s", self)
         self.phi = Variable(phi0, "rad", "angle of the driven flange")
         self.w = Variable(unit="rad/s", description="imposed angular speed")
         if speed is None:
-            self.w_in = Input(unit="rad/s", description="imposed angular speed")
+            self.w_in = Input(0.0, unit="rad/s", description="imposed angular speed")
 
     def equations(self):
         return [
@@ -306,6 +307,13 @@ class TorqueSensor(Component):
             self.flange_a.tau == self.tau,
             self.flange_b.tau == -self.tau,
         ]
+
+
+def _check_signal(source, name: str, unit: str, component: Component):
+    """Validate a constant signal argument (callables are checked when simulated)."""
+    if source is None or callable(source):
+        return source
+    return float(check_range(source, name, unit, where=f"{type(component).__name__}"))
 
 
 def _signal(source, component: Component, input_name: str):

@@ -146,11 +146,17 @@ class Input(Variable):
         Value used when the input is left free; ``None`` makes a sub-component input required.
     unit, description : str
         As for :class:`Declaration`.
+    low, high : float, optional
+        Valid range, checked on the input signal before a simulation.
     """
 
-    def __init__(self, default: float | None = None, unit: str = "1", description: str = ""):
+    def __init__(self, default: float | None = None, unit: str = "1", description: str = "",
+                 *, low: float | None = None, high: float | None = None):
         super().__init__(start=None, unit=unit, description=description, fixed=False)
-        self.default = None if default is None else float(default)
+        self.default = None if default is None else float(
+            check_range(default, "default", unit, low, high, where=description or "input"))
+        self.low = low
+        self.high = high
 
 
 class Parameter(Declaration):

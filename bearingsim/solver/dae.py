@@ -30,6 +30,8 @@ class Var:
     nominal: float | None = None
     is_input: bool = False
     default: float | None = None
+    low: float | None = None
+    high: float | None = None
     derivative: Var | None = None
     dummy: bool = False
     """Set when index reduction made this derivative an algebraic (dummy) variable."""

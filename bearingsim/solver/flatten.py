@@ -177,6 +177,8 @@ def _make_var(d: Declaration) -> Var:
         fixed=getattr(d, "fixed", False),
         nominal=getattr(d, "nominal", None),
         default=getattr(d, "default", None),
+        low=getattr(d, "low", None),
+        high=getattr(d, "high", None),
     )
 
 

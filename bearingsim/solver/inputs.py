@@ -14,7 +14,7 @@ import numpy as np
 from bearingsim.errors import ParameterError
 from bearingsim.solver.system import System
 
-__all__ = ["input_expression"]
+__all__ = ["input_expression", "check_input_ranges"]
 
 
 def _one(name: str, spec: Any, t: ca.SX) -> ca.SX:
@@ -63,3 +63,31 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
     return ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
 
 
+
+
+def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
+    """Check every input signal at the given times against its declared range.
+
+    Raises
+    ------
+    ParameterError
+        Naming the input, its unit and range, and the first time it leaves the range.
+    """
+    if not system.inputs or times.size == 0:
+        return
+    values = np.asarray(u_fn.map(times.size)(times[None, :]), dtype=float).reshape(
+        len(system.inputs), times.size)
+    for sig, row in zip(system.inputs, values, strict=True):
+        bad = ~np.isfinite(row)
+        if sig.low is not None:
+            bad |= row < sig.low
+        if sig.high is not None:
+            bad |= row > sig.high
+        if bad.any():
+            k = int(np.argmax(bad))
+            lo = "-inf" if sig.low is None else f"{sig.low:g}"
+            hi = "inf" if sig.high is None else f"{sig.high:g}"
+            raise ParameterError(
+                f"input {sig.name} = {row[k]:g} [{sig.unit}] at t = {times[k]:g} s is outside its "
+                f"valid range [{lo}, {hi}] [{sig.unit}]"
+            )

@@ -100,7 +100,8 @@ def _codegen(s: AssemblyState) -> None:
                v.nominal)
         for v in dae.states
     ]
-    inputs = [Signal(v.name, v.unit, v.description, v.default or 0.0) for v in dae.inputs]
+    inputs = [Signal(v.name, v.unit, v.description, v.default or 0.0, low=v.low, high=v.high)
+              for v in dae.inputs]
     outputs = [Signal(n, units.get(n, "1"), descs.get(n, "")) for n in out_names]
     init_fn, free = _initial_problem(dae, funcs)
     s.system = System(

@@ -13,7 +13,7 @@ import scipy.optimize
 
 from bearingsim.errors import ParameterError, SimulationError, check_range
 from bearingsim.solver.fastcall import BufferedFunction
-from bearingsim.solver.inputs import input_expression
+from bearingsim.solver.inputs import check_input_ranges, input_expression
 from bearingsim.solver.result import Result
 from bearingsim.solver.system import System
 
@@ -175,6 +175,7 @@ def simulate(
     if t_eval is None:
         t_eval = np.linspace(t_start, t_end, n_points)
     t_eval = np.asarray(t_eval, dtype=float)
+    check_input_ranges(system, closed.u, np.union1d(t_eval, [t_start, t_end]))
     wall = _time.perf_counter()
     if system.n_states == 0:
         ts, xs, stats = t_eval, np.zeros((0, t_eval.size)), {}
@@ -224,8 +225,9 @@ def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_st
                 f"the right-hand side is not finite at t = {t:.6g} s for der({', '.join(bad[:8])})"
                 f"; states there: {_diverged(system, x, x0)}"
             )
-        if bar is not None and t > last[0]:
-            bar.update(t - last[0])
+        if t > last[0]:
+            if bar is not None:
+                bar.update(t - last[0])
             last[0] = t
         last[1] = x
         return out
@@ -241,6 +243,13 @@ def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_st
             fun, (t0, t1), x0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
             max_step=max_step, **kwargs,
         )
+    except (ArithmeticError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
+        if isinstance(exc, SimulationError):
+            raise
+        raise SimulationError(
+            f"{method} failed near t = {last[0]:.6g} s of {t1:g} s ({type(exc).__name__}: {exc}); "
+            f"{_diverged(system, last[1], x0)}"
+        ) from None
     finally:
         if bar is not None:
             bar.close()

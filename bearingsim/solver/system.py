@@ -8,7 +8,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, check_range
 from bearingsim.solver.dae import Param
 
 __all__ = ["Signal", "System"]
@@ -25,6 +25,10 @@ class Signal:
     fixed: bool = True
     nominal: float | None = None
     """Typical magnitude, for tolerance scaling (None: unknown)."""
+    low: float | None = None
+    """Smallest valid value (inputs), None: unbounded."""
+    high: float | None = None
+    """Largest valid value (inputs), None: unbounded."""
 
 
 @dataclass
@@ -93,7 +97,10 @@ class System:
                     f"initial value given for {name!r}, which is not a state; states: "
                     + ", ".join(self.state_names)
                 )
-            x[self.state_names.index(name)] = float(val)
+            x[self.state_names.index(name)] = float(
+                check_range(val, name, self.states[self.state_names.index(name)].unit,
+                            where=f"{self.name}: initial value")
+            )
         return x
 
     def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:

@@ -80,47 +80,26 @@ def test_speed_with_units_in_a_scene_gets_a_hint():
                     'shaft_speed = "1000 rpm"\n[simulation]\nt_end = 1\n')
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG double_layer_bearing(speed='1000 rpm'): SpeedSource converts the speed with float() "
-    "and a raw ValueError \"could not convert string to float: '1000 rpm'\" escapes; expected a "
-    "ParameterError naming the argument 'speed' [rad/s]"))
 def test_speed_given_as_text_to_the_assembly_names_the_argument():
     with pytest.raises(ParameterError, match="speed"):
         assemble(double_layer_bearing(speed="1000 rpm"))
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG double_layer_bearing(speed=nan) is accepted; simulate then fails with 'right-hand side "
-    "is not finite ... der(middle.sleeve.w, drive.phi)', never naming the speed; expected a "
-    "ParameterError naming 'speed' when the assembly is built"))
 def test_nan_speed_given_to_the_assembly_names_the_argument():
     with pytest.raises(ParameterError, match="speed"):
         double_layer_bearing(speed=float("nan"))
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG a negative radial load input Fr (e.g. -500 N) makes the right-hand side NaN "
-    "(Palmgren P1/P0 terms of a negative load); simulate raises SimulationError 'not finite "
-    "... der(middle.sleeve.w)' without naming Fr. Expected: a ParameterError naming the input "
-    "Fr and its range [0, inf) N, or a load taken by magnitude (Fa < 0 already works)"))
 def test_negative_radial_load_names_the_input():
     with pytest.raises(ParameterError, match="Fr"):
         simulate(torque_system(), 0.1, inputs={"shaft_speed": 100.0, "Fr": -500.0}, **FAST)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG System.x0 accepts a NaN initial value; scipy then raises a raw ValueError 'All "
-    "components of the initial state y0 must be finite' without the state's name; expected a "
-    "ParameterError naming 'middle.sleeve.w'"))
 def test_nan_initial_state_names_the_state():
     with pytest.raises(ParameterError, match="middle.sleeve.w"):
         simulate(torque_system(), 0.1, x0={"middle.sleeve.w": float("nan")}, **FAST)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG inner_layer.nu = outer_layer.nu = 0 is inside the declared range [0, inf) m2/s but "
-    "simulate (BDF) raises a raw RuntimeError 'Factor is exactly singular' from scipy's LU; "
-    "expected a SimulationError (with time and variables) or a range that excludes 0"))
 def test_zero_viscosity_is_rejected_or_simulated():
     try:
         res = simulate(torque_system(), 0.5, inputs={"shaft_speed": 1000.0},
@@ -130,11 +109,6 @@ def test_zero_viscosity_is_rejected_or_simulated():
         pass
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG motor_drive(load_torque=None) is documented to give an input load.tau_in [N m], but "
-    "assemble raises UnconnectedInputError 'input load.tau_in ... has no default': "
-    "TorqueSource declares Input(unit='N.m') without a default (Input(0.0, ...) would fix it). "
-    "The scene layer passes the load as the argument load_torque meanwhile"))
 def test_motor_drive_load_torque_input():
     system = assemble(motor_drive(speed_ref=10.0, load_torque=None))
     assert "load.tau_in" in system.input_names
