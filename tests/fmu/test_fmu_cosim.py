@@ -67,11 +67,15 @@ def fmpy_run(paths, h):
 def osp_run(paths, h):
     """libcosim's fixed-step master on the same SSP file."""
     try:
-        from libcosimpy.CosimExecution import CosimExecution
-        from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-        from libcosimpy.CosimObserver import CosimObserver
-    except OSError as exc:  # the shared library (or a library it needs) cannot be loaded
-        pytest.skip(f"libcosimpy's runtime cannot be loaded: {exc}")
+        from libcosimpy._internal import libcosimc
+
+        libcosimc()  # loads libcosimc.so (and what it links, e.g. Debian's libtbb12)
+    except OSError as exc:
+        pytest.skip(f"libcosimpy's runtime library cannot be loaded: {exc}")
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
     log_output_level(CosimLogLevel.WARNING)
     n = int(round(T_END / h))
     execution = CosimExecution.from_ssp_file(str(paths["ssp"]), step_size=int(round(h * 1e9)))
