@@ -41,7 +41,8 @@ def build_parser() -> argparse.ArgumentParser:
                         metavar="NAME=VALUE", help="parameter start value (repeatable)")
     parser.add_argument("--input", type=_assignment, action="append", default=[],
                         metavar="NAME=VALUE", help="input start value (repeatable)")
-    parser.add_argument("--fmi-version", default="2.0", help="FMI version (2.0)")
+    parser.add_argument("--fmi-version", default="2.0", choices=["2.0", "3.0"],
+                        help="FMI version (default 2.0)")
     return parser
 
 

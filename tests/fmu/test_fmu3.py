@@ -5,6 +5,8 @@ derivatives, FMU state, range errors; motor and bearing FMUs coupled by a hand-w
 from __future__ import annotations
 
 import ctypes
+import re
+import subprocess
 import xml.etree.ElementTree as ET
 import zipfile
 
@@ -17,6 +19,7 @@ from fmpy.validation import validate_fmu
 
 from bearingsim.assemblies.motor_drive import motor_drive
 from bearingsim.fmu import export_fmu
+from bearingsim.fmu.build import fmi_header_dir
 from bearingsim.fmu.cosim_models import export_motor_bearing
 from bearingsim.solver import assemble
 from tests.fmu.conftest import DRIVE_OUTPUTS, DRIVEN_OUTPUTS
@@ -76,6 +79,19 @@ def test_model_description(drive3):
     assert "binaries/x86_64-linux/drive.so" in names
     assert {"sources/fmi3_api.c", "sources/bsm_solver.c", "sources/fmi3Functions.h"} <= set(names)
     assert "sources/fmi2_api.c" not in names
+
+
+def test_every_fmi3_function_and_nothing_else_is_exported(drive3, tmp_path):
+    with zipfile.ZipFile(drive3) as z:
+        z.extract("binaries/x86_64-linux/drive.so", tmp_path)
+    out = subprocess.run(["nm", "-D", "--defined-only",
+                          str(tmp_path / "binaries/x86_64-linux/drive.so")],
+                         capture_output=True, text=True, check=True).stdout
+    symbols = {line.split()[-1] for line in out.splitlines() if " T " in line}
+    header = (fmi_header_dir() / "fmi3Functions.h").read_text()
+    declared = set(re.findall(r"FMI3_Export\s+fmi3\w+TYPE\s+(fmi3\w+);", header))
+    assert len(declared) > 70
+    assert symbols == declared, (declared - symbols, symbols - declared)
 
 
 @pytest.mark.parametrize("kind", ["ModelExchange", "CoSimulation"])
