@@ -1,0 +1,252 @@
+"""Single deep-groove ball bearing: quasi-static and dynamic fidelity (models.md section C).
+
+Coordinates: z is the bearing axis (models.md C uses x): its axial force ``Fx`` is our ``Fz``, its
+radial ``Fy, Fz`` are our ``Fx, Fy`` and its moments ``My, Mz`` our ``Mx, My``.
+
+Dynamic fidelities build, for every ball j, a :class:`~bearingsim.components.dynamic.Ball`, its
+inner and outer :class:`~bearingsim.components.dynamic.RaceContact`, a
+:class:`~bearingsim.components.dynamic.PocketContact` with the cage and (with a viscous
+lubricant) a :class:`~bearingsim.components.dynamic.BallDrag`; the cage is guided by the outer
+ring land. The inner ring is a 5-DOF :class:`~bearingsim.components.dynamic.RingBody` (its mass,
+not a quasi-static balance as in the study, so the ring mode is resolved rather than eliminated)
+loaded by a :class:`~bearingsim.components.dynamic.RingLoad`, and turned through a rotational
+flange by a speed source (or by whatever the user connects to ``shaft``). The outer ring is
+fixed to the housing.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from bearingsim.components.dynamic import (
+    Ball,
+    BallDrag,
+    Cage,
+    FixedFrame,
+    LandGuidance,
+    PocketContact,
+    RaceContact,
+    RingBody,
+    RingLoad,
+)
+from bearingsim.components.dynamic.design import BRASS, BearingDesign, bearing_design
+from bearingsim.components.dynamic.static import static_state
+from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
+from bearingsim.errors import ParameterError
+from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
+from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
+
+__all__ = ["FIDELITIES", "DeepGrooveBallBearing", "deep_groove_ball_bearing"]
+
+FIDELITIES = ("quasi-static", "dynamic", "dynamic_massive_balls")
+_W_REG = 1e-2  # rad/s, regularization of the slip ratio at standstill
+
+
+def _lubricant(lubricant: Lubricant | str) -> Lubricant:
+    return get_lubricant(lubricant) if isinstance(lubricant, str) else lubricant
+
+
+def _pocket_constant(design: BearingDesign) -> float:
+    """Hertz constant of a ball on the concave pocket wall (Rx = Rb, Ry = Rb Rp / (Rp - Rb))."""
+    rb = design.ball_radius
+    rp = rb + design.cage.pocket_clearance
+    return float(load_deflection_constant(rb, rb * rp / (rp - rb), effective_modulus(STEEL,
+                                                                                      BRASS)))
+
+
+class DeepGrooveBallBearing(Assembly):
+    """Dynamic model of a single deep-groove ball bearing (see the module docstring).
+
+    Parameters
+    ----------
+    design : BearingDesign
+        From :func:`~bearingsim.components.dynamic.design.bearing_design`.
+    lubricant : Lubricant
+        Oil, Grease or Dry (traction law, viscosity for film, drag and cage forces).
+    massive_balls : bool
+        Ball radial/axial motion with inertia (True) or quasi-static (False).
+    speed : callable or float or None
+        Inner-ring speed [rad/s] imposed through a speed source (``None``: an input
+        ``shaft_speed``); ignored with ``drive="flange"``.
+    drive : {"speed", "flange"}
+        ``"flange"`` leaves ``shaft`` (with the ring's polar inertia) for the user to drive.
+    loads : dict
+        ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] on the inner ring: constants, functions of time or
+        ``None`` for inputs (missing keys are inputs with default 0).
+    free_tilt : bool
+        Whether the inner ring tilts (else the shaft holds it straight).
+    damping : float
+        Hunt-Crossley coefficient of the race contacts [s/m].
+    n_slices : int
+        ``2 n + 1`` traction slices per contact.
+    drag : bool
+        Ball drag in the oil-air mixture (only with a viscous lubricant).
+    oil_fraction : float
+        Oil volume fraction of the cavity mixture [-] (drag).
+    traction_scale : float
+        Multiplier of the race traction [-] (0: frictionless races).
+    pocket_mu, land_mu : float
+        Coulomb coefficients of pocket and land contacts [-].
+    cage_damping : float
+        Hunt-Crossley coefficient of the pocket and land contacts [s/m].
+
+    Connectors
+    ----------
+    shaft : Flange (the inner ring's rotation)
+
+    Variables
+    ---------
+    w_inner, w_cage, w_epicyclic [rad/s]; slip [1] = 1 - w_cage / w_epicyclic
+    """
+
+    def __init__(self, design: BearingDesign, lubricant: Lubricant, massive_balls: bool = False,
+                 speed: Callable | float | None = None, drive: str = "speed",
+                 loads: dict[str, Any] | None = None, free_tilt: bool = False,
+                 damping: float = 1.0, n_slices: int = 2, drag: bool = True,
+                 oil_fraction: float = 0.05, traction_scale: float = 1.0,
+                 pocket_mu: float | None = None, land_mu: float | None = None,
+                 cage_damping: float = 10.0, name="bearing"):
+        super().__init__(name)
+        if drive not in ("speed", "flange"):
+            raise ParameterError(f"deep_groove_ball_bearing: drive must be 'speed' or 'flange', "
+                                 f"got {drive!r}")
+        g, cage = design.geometry, design.cage
+        self.design, self.lubricant = design, lubricant
+        loads = dict(loads or {})
+        constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
+        start = static_state(design, constant, free_tilt=free_tilt) if constant else None
+        eta = float(lubricant.dynamic_viscosity())
+        mu_dry = getattr(lubricant, "mu", 0.1)
+        pocket_mu = mu_dry if pocket_mu is None else pocket_mu
+        land_mu = mu_dry if land_mu is None else land_mu
+        nz, dw, dm = g.ball_count, g.ball_diameter, g.pitch_diameter
+
+        self.shaft = Flange()
+        self.housing = FixedFrame()
+        self.housing_flange = Fixed()
+        self.ring = RingBody(design.ring_mass, design.ring_tilt_inertia,
+                             start=(*start.ring,) if start else (0.0,) * 5, free_tilt=free_tilt)
+        self.load = RingLoad(loads)
+        self.cage = Cage(cage.mass, cage.inertia)
+        self.guidance = LandGuidance(cage.guide_radius, cage.guide_width, cage.guide_clearance,
+                                     eta, k_land=_pocket_constant(design), mu=land_mu,
+                                     damping=cage_damping)
+        balls, inner, outer, pockets, drags = [], [], [], [], []
+        k_pocket = _pocket_constant(design)
+        for j in range(nz):
+            theta = 2.0 * math.pi * j / nz
+            r0 = float(start.r[j]) if start else 0.5 * dm
+            z0 = float(start.z[j]) if start else 0.0
+            balls.append(Ball(design.ball_mass, design.ball_inertia, r0, 0.5 * dm, theta, z0,
+                              massive=massive_balls))
+            common = dict(ball_diameter=dw, lubricant=lubricant, damping=damping,
+                          n_slices=n_slices, traction_scale=traction_scale)
+            inner.append(RaceContact("inner", design.rho_inner, g.fi, k_hertz=design.k_inner,
+                                     a1=design.a1_inner, moving=True, **common))
+            outer.append(RaceContact("outer", design.rho_outer, g.fo, k_hertz=design.k_outer,
+                                     a1=design.a1_outer, **common))
+            pockets.append(PocketContact(j, nz, 0.5 * dm, 0.5 * dw,
+                                         0.5 * dw + cage.pocket_clearance, cage.pocket_straight,
+                                         cage.web, k_pocket, pocket_mu, eta, cage_damping))
+            if drag and eta > 0.0:
+                drags.append(BallDrag(dm, dw, oil_fraction * float(lubricant.density()),
+                                      oil_fraction * eta))
+        self.ball = balls
+        self.inner = inner
+        self.outer = outer
+        self.pocket = pockets
+        if drags:
+            self.drag = drags
+        connect(self.ring.frame, self.load.frame, *[c.ring for c in inner])
+        connect(self.housing.frame, *[c.ring for c in outer])
+        connect(self.housing_flange.flange, *[c.flange for c in outer])
+        connect(self.cage.frame, self.guidance.cage, *[p.cage for p in pockets])
+        for j in range(nz):
+            ports = [balls[j].frame, inner[j].ball, outer[j].ball, pockets[j].ball]
+            connect(*(ports + ([drags[j].ball] if drags else [])))
+        if drive == "speed":
+            self.drive = SpeedSource(speed)
+            connect(self.drive.flange, self.shaft, *[c.flange for c in inner])
+            if speed is None:
+                self.shaft_speed = Input(0.0, "rad/s", "imposed inner-ring speed")
+        else:
+            self.rotor = Inertia(design.ring_polar_inertia)
+            connect(self.rotor.flange_a, self.shaft, *[c.flange for c in inner])
+        self.w_inner = Variable(unit="rad/s", description="inner-ring speed")
+        self.w_cage = Variable(unit="rad/s", description="cage speed")
+        self.w_epicyclic = Variable(unit="rad/s", description="cage speed of pure rolling")
+        self.slip = Variable(unit="1", description="cage slip ratio 1 - w_cage / w_epicyclic")
+
+    def equations(self):
+        wk = self.w_epicyclic
+        eqs = [
+            self.w_inner == der(self.shaft.phi),
+            self.w_cage == self.cage.w,
+            wk == self.design.epicyclic_ratio * self.w_inner,
+            self.slip == 1.0 - self.w_cage * wk / (wk * wk + _W_REG**2),
+        ]
+        if hasattr(self, "shaft_speed"):
+            eqs.append(self.drive.w_in == self.shaft_speed)
+        return eqs
+
+
+def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
+                             lubricant: Lubricant | str = "ISO VG 32",
+                             clearance: float | None = None, housing: str = "fixed",
+                             speed: Callable | float | None = None,
+                             loads: dict[str, Any] | None = None, **options: Any):
+    """Build a single deep-groove ball bearing at a chosen fidelity.
+
+    Parameters
+    ----------
+    designation : str or BearingGeometry
+        Catalogue designation (``"6304"`` has the models.md section C validation geometry).
+    fidelity : {"quasi-static", "dynamic", "dynamic_massive_balls"}
+        ``"dynamic"``: ball orbit and spin dynamics, cage dynamics, quasi-static ball positions
+        (algebraic, solved by the assembler's Newton blocks) as in models.md C;
+        ``"dynamic_massive_balls"``: the balls' radial and axial motion with inertia too;
+        ``"quasi-static"``: the colleague's ``BallRow`` (Hertz load sharing only).
+    lubricant : Lubricant or str
+        ``Oil``, ``Grease``, ``Dry`` or a name for
+        :func:`~bearingsim.physics.lubricant.get_lubricant`.
+    clearance : float, optional
+        Diametral clearance Pd [m]; default: catalogue.
+    housing : {"fixed"}
+        The outer ring is fixed to a rigid housing (the only option of the dynamic levels).
+    speed : callable or float or None
+        Inner-ring speed [rad/s] (``None``: input ``shaft_speed``).
+    loads : dict, optional
+        External loads on the inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]; constants,
+        functions of time or None (inputs).
+    **options
+        Further keyword arguments of :class:`DeepGrooveBallBearing` (``drive``, ``damping``,
+        ``n_slices``, ``drag``, ``traction_scale``, ...), and ``pocket_clearance``,
+        ``guide_clearance`` of :func:`~bearingsim.components.dynamic.design.bearing_design`.
+
+    Returns
+    -------
+    DeepGrooveBallBearing
+    """
+    if fidelity not in FIDELITIES:
+        raise ParameterError(f"deep_groove_ball_bearing: fidelity must be one of "
+                             f"{', '.join(FIDELITIES)}, got {fidelity!r}")
+    if housing != "fixed":
+        raise ParameterError(f"deep_groove_ball_bearing: housing must be 'fixed', got "
+                             f"{housing!r}")
+    lub = _lubricant(lubricant)
+    if not isinstance(lub, (Lubricant, Oil)):
+        raise ParameterError(f"deep_groove_ball_bearing: lubricant must be a Lubricant or a "
+                             f"name, got {type(lubricant).__name__}")
+    cage_keys = ("pocket_clearance", "guide_clearance")
+    design = bearing_design(designation, clearance,
+                            **{k: options.pop(k) for k in cage_keys if k in options})
+    if fidelity == "quasi-static":
+        raise ParameterError("deep_groove_ball_bearing: the quasi-static fidelity needs "
+                             "bearingsim.components.ball_row.BallRow, which is not available "
+                             "yet; use fidelity='dynamic' or static_state() from "
+                             "bearingsim.components.dynamic")
+    return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
+                                 speed=speed, loads=loads, **options)

@@ -1,0 +1,30 @@
+"""Dynamic ball-bearing components: balls, race contacts with slice traction, cage, pockets,
+land guidance, drag and ring bodies (models.md section C; z is the bearing axis)."""
+
+from bearingsim.components.dynamic.ball import Ball
+from bearingsim.components.dynamic.cage import Cage, LandGuidance, PocketContact
+from bearingsim.components.dynamic.design import BearingDesign, CageDesign, bearing_design
+from bearingsim.components.dynamic.drag import BallDrag
+from bearingsim.components.dynamic.frames import BallFrame, CageFrame
+from bearingsim.components.dynamic.race_contact import RaceContact
+from bearingsim.components.dynamic.ring import FixedFrame, RingBody, RingLoad
+from bearingsim.components.dynamic.static import StaticState, static_state
+
+__all__ = [
+    "Ball",
+    "BallDrag",
+    "BallFrame",
+    "BearingDesign",
+    "Cage",
+    "CageDesign",
+    "CageFrame",
+    "FixedFrame",
+    "LandGuidance",
+    "PocketContact",
+    "RaceContact",
+    "RingBody",
+    "RingLoad",
+    "StaticState",
+    "bearing_design",
+    "static_state",
+]

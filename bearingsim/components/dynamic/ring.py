@@ -1,0 +1,122 @@
+"""Rigid ring bodies of the dynamic bearing: a 5-DOF moving ring, a fixed ring, a load."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+from bearingsim.components.dynamic.ball import MICRON
+from bearingsim.components.frame import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
+from bearingsim.components.rotational import _signal
+from bearingsim.language import Component, Input, Parameter, Variable, der
+
+__all__ = ["RingBody", "FixedFrame", "RingLoad"]
+
+
+class RingBody(Component):
+    """A rigid ring (with its shaft) moving in 5 DOF: translations x, y, z and tilts tx, ty.
+
+    ``m der(v) = F``, ``J_t der(w_t) = M`` with the forces and moments of everything connected
+    to ``frame`` (ball contacts, external load). Its rotation about the axis is the business of
+    the rotational components connected to the contacts' flanges.
+
+    Parameters
+    ----------
+    mass : float
+        [kg], > 0.
+    tilt_inertia : float
+        Moment of inertia about a diameter [kg m^2], > 0.
+    start : sequence of 5 float
+        Initial (x, y, z, tx, ty) [m, m, m, rad, rad].
+    free_tilt : bool
+        Whether the ring tilts; if False the shaft holds ``tx = ty = 0`` and the moments of the
+        connected elements are reactions.
+
+    Connectors
+    ----------
+    frame : RingFrame
+
+    Variables
+    ---------
+    x, y, z [m], tx, ty [rad] and their rates vx, vy, vz [m/s], wx, wy [rad/s]; the states of
+    the translations are x_um, y_um, z_um [um]
+    """
+
+    def __init__(self, mass: float, tilt_inertia: float, start: Sequence[float] = (0.0,) * 5,
+                 free_tilt: bool = False, name=None):
+        super().__init__(name)
+        self.free_tilt = bool(free_tilt)
+        self.m = Parameter(mass, "kg", "ring mass", low=0.0, low_inclusive=False)
+        self.J = Parameter(tilt_inertia, "kg.m2", "ring tilt inertia", low=0.0,
+                           low_inclusive=False)
+        self.frame = RingFrame()
+        units = ("m", "m", "m", "rad", "rad")
+        for key, unit, x0 in zip(FRAME_POTENTIALS, units, start, strict=True):
+            if unit == "rad" and not self.free_tilt:
+                continue
+            if unit == "m":
+                self.add(key + "_um", Variable(float(x0) / MICRON, "um",
+                                               f"ring displacement {key} (state)"))
+            self.add(key, Variable(float(x0) if unit == "rad" else None, unit,
+                                   f"ring displacement {key}"))
+            rate = "v" + key if unit == "m" else "w" + key[1]
+            self.add(rate, Variable(0.0, f"{unit}/s", f"rate of {key}"))
+
+    def equations(self):
+        f = self.frame
+        eqs = []
+        for key, flow in zip(FRAME_POTENTIALS, FRAME_FLOWS, strict=True):
+            if key in ("tx", "ty") and not self.free_tilt:
+                eqs.append(getattr(f, key) == 0.0)
+                continue
+            pos = getattr(self, key)
+            rate = getattr(self, "v" + key if key in "xyz" else "w" + key[1])
+            inertia = self.m if key in "xyz" else self.J
+            if key in "xyz":
+                micro = getattr(self, key + "_um")
+                eqs += [pos == MICRON * micro, MICRON * der(micro) == rate]
+            else:
+                eqs.append(der(pos) == rate)
+            eqs += [getattr(f, key) == pos, inertia * der(rate) == getattr(f, flow)]
+        return eqs
+
+
+class FixedFrame(Component):
+    """A ring frame fixed at zero displacement (the housing side); the reactions are free."""
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.frame = RingFrame()
+
+    def equations(self):
+        return [p == 0.0 for p in self.frame.displacement()]
+
+
+class RingLoad(Component):
+    """External load on a ring: forces Fx, Fy, Fz [N] and moments Mx, My [N m].
+
+    Each component is a constant, a symbolic function of time, or ``None`` for an input of the
+    same name.
+
+    Parameters
+    ----------
+    loads : dict
+        ``{"Fx": ..., "Fy": ..., "Fz": ..., "Mx": ..., "My": ...}``; missing keys are inputs
+        with default 0.
+
+    Connectors
+    ----------
+    frame : RingFrame
+    """
+
+    def __init__(self, loads: dict[str, float | Callable | None] | None = None, name=None):
+        super().__init__(name)
+        self.frame = RingFrame()
+        self._loads = dict(loads or {})
+        for key in FRAME_FLOWS:
+            if self._loads.get(key) is None:
+                unit = "N" if key.startswith("F") else "N.m"
+                self.add(key, Input(0.0, unit, f"external load {key} on the ring"))
+
+    def equations(self):
+        return [getattr(self.frame, key) == -_signal(self._loads.get(key), self, key)
+                for key in FRAME_FLOWS]
