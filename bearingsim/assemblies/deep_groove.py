@@ -20,6 +20,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+from bearingsim.components.ball_row import BallRow
 from bearingsim.components.dynamic import (
     Ball,
     BallDrag,
@@ -30,6 +31,7 @@ from bearingsim.components.dynamic import (
     RaceContact,
     RingBody,
     RingLoad,
+    TiltGuide,
 )
 from bearingsim.components.dynamic.design import BRASS, BearingDesign, bearing_design
 from bearingsim.components.dynamic.static import static_state
@@ -39,7 +41,8 @@ from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
 
-__all__ = ["FIDELITIES", "DeepGrooveBallBearing", "deep_groove_ball_bearing"]
+__all__ = ["FIDELITIES", "DeepGrooveBallBearing", "QuasiStaticDeepGroove",
+           "deep_groove_ball_bearing"]
 
 FIDELITIES = ("quasi-static", "dynamic", "dynamic_massive_balls")
 _W_REG = 1e-2  # rad/s, regularization of the slip ratio at standstill
@@ -193,6 +196,35 @@ class DeepGrooveBallBearing(Assembly):
         return eqs
 
 
+class QuasiStaticDeepGroove(Assembly):
+    """Quasi-static deep-groove bearing: a :class:`~bearingsim.components.ball_row.BallRow`
+    (``reference="centred"``) between the fixed outer ring and an inner ring in force balance
+    with the external load (its displacement is algebraic, solved by the assembler's Newton).
+
+    With ``speed`` > 0 the row uses its Jones-Harris form (centrifugal force, gyroscopic moment)
+    at that inner-ring speed; the shaft holds the ring straight (no tilt).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+    loads : dict
+        ``Fx, Fy, Fz`` [N] (constants or None for inputs; moments are taken by the shaft).
+    speed : float
+        Inner-ring speed [rad/s], >= 0.
+    """
+
+    def __init__(self, geometry, loads: dict[str, Any] | None = None, speed: float = 0.0,
+                 name="bearing"):
+        super().__init__(name)
+        self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0)
+        self.row.inner_speed = float(speed)
+        self.housing = FixedFrame()
+        self.guide = TiltGuide()
+        self.load = RingLoad({**(loads or {}), "Mx": 0.0, "My": 0.0})
+        connect(self.row.outer, self.housing.frame)
+        connect(self.row.inner, self.load.frame, self.guide.frame)
+
+
 def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
                              lubricant: Lubricant | str = "ISO VG 32",
                              clearance: float | None = None, housing: str = "fixed",
@@ -244,9 +276,7 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":
-        raise ParameterError("deep_groove_ball_bearing: the quasi-static fidelity needs "
-                             "bearingsim.components.ball_row.BallRow, which is not available "
-                             "yet; use fidelity='dynamic' or static_state() from "
-                             "bearingsim.components.dynamic")
+        speed_value = float(speed) if isinstance(speed, (int, float)) else 0.0
+        return QuasiStaticDeepGroove(design.geometry, loads, speed_value)
     return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
                                  speed=speed, loads=loads, **options)

@@ -7,7 +7,7 @@ from bearingsim.components.dynamic.design import BearingDesign, CageDesign, bear
 from bearingsim.components.dynamic.drag import BallDrag
 from bearingsim.components.dynamic.frames import BallFrame, CageFrame
 from bearingsim.components.dynamic.race_contact import RaceContact
-from bearingsim.components.dynamic.ring import FixedFrame, RingBody, RingLoad
+from bearingsim.components.dynamic.ring import FixedFrame, RingBody, RingLoad, TiltGuide
 from bearingsim.components.dynamic.static import StaticState, static_state
 
 __all__ = [
@@ -25,6 +25,7 @@ __all__ = [
     "RingBody",
     "RingLoad",
     "StaticState",
+    "TiltGuide",
     "bearing_design",
     "static_state",
 ]

@@ -9,7 +9,7 @@ from bearingsim.components.frame import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.rotational import _signal
 from bearingsim.language import Component, Input, Parameter, Variable, der
 
-__all__ = ["RingBody", "FixedFrame", "RingLoad"]
+__all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide"]
 
 
 class RingBody(Component):
@@ -120,3 +120,16 @@ class RingLoad(Component):
     def equations(self):
         return [getattr(self.frame, key) == -_signal(self._loads.get(key), self, key)
                 for key in FRAME_FLOWS]
+
+
+class TiltGuide(Component):
+    """Holds a ring frame straight (``tx = ty = 0``): the shaft's other supports take the
+    moments, no force."""
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.frame = RingFrame()
+
+    def equations(self):
+        f = self.frame
+        return [f.tx == 0.0, f.ty == 0.0, f.Fx == 0.0, f.Fy == 0.0, f.Fz == 0.0]
