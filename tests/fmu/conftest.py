@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import casadi as ca
 import pytest
 
 from bearingsim.fmu import export_fmu
@@ -52,3 +53,31 @@ def stiff_system():
 @pytest.fixture(scope="session")
 def stiff_fmu(fmu_dir, stiff_system):
     return export_fmu(stiff_system, fmu_dir / "stiff.fmu", kinds=("CS",))
+
+
+def cosim_ramp(t):
+    """Speed reference of the motor/bearing co-simulation tests: 0 -> 100 rad/s in 0.1 s."""
+    return 100.0 * ca.fmin(t / 0.1, 1.0)
+
+
+COSIM_FR = 500.0
+"""Radial load of the bearing in the co-simulation tests [N]."""
+
+
+@pytest.fixture(scope="session")
+def cosim_pair(fmu_dir):
+    """``cosim_pair(motor, fmi_version="2.0")``: motor FMU, bearing FMU (and SSP for FMI 2.0)
+    with the ramp reference, exported once per session."""
+    from bearingsim.fmu.cosim_models import export_motor_bearing
+
+    cache = {}
+
+    def get(motor: str, fmi_version: str = "2.0"):
+        key = (motor, fmi_version)
+        if key not in cache:
+            cache[key] = export_motor_bearing(
+                fmu_dir / f"cosim_{motor}_{fmi_version}", motor=motor, speed_ref=cosim_ramp,
+                Fr=COSIM_FR, fmi_version=fmi_version, ssp=fmi_version == "2.0")
+        return cache[key]
+
+    return get

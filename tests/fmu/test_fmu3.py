@@ -10,7 +10,6 @@ import subprocess
 import xml.etree.ElementTree as ET
 import zipfile
 
-import casadi as ca
 import numpy as np
 import pytest
 from fmpy import read_model_description
@@ -20,7 +19,6 @@ from fmpy.validation import validate_fmu
 from bearingsim.assemblies.motor_drive import motor_drive
 from bearingsim.fmu import export_fmu
 from bearingsim.fmu.build import fmi_header_dir
-from bearingsim.fmu.cosim_models import export_motor_bearing
 from bearingsim.solver import assemble
 from tests.fmu.conftest import DRIVE_OUTPUTS, DRIVEN_OUTPUTS
 from tests.fmu.helpers import reference, rel_err, run_fmu
@@ -179,16 +177,11 @@ def test_parameter_out_of_range_is_refused(drive3, tmp_path):
 
 
 @pytest.mark.slow
-def test_motor_and_bearing_fmi3_cosimulation(fmu_dir, tmp_path):
+def test_motor_and_bearing_fmi3_cosimulation(cosim_pair, tmp_path):
     """The FMI 3 pair under a hand-written Jacobi master gives the FMI 2 SSP result."""
     from fmpy.ssp.simulation import simulate_ssp
 
-    def ramp(t):
-        return 100.0 * ca.fmin(t / 0.1, 1.0)
-
-    fmi2 = export_motor_bearing(fmu_dir / "cosim_fmi2", "dc", speed_ref=ramp, Fr=500.0)
-    fmi3 = export_motor_bearing(fmu_dir / "cosim_fmi3", "dc", speed_ref=ramp, Fr=500.0,
-                                fmi_version="3.0", ssp=False)
+    fmi2, fmi3 = cosim_pair("dc"), cosim_pair("dc", "3.0")
     h, n = 1e-3, 200
     motor, _, mv = open3(fmi3["motor"], tmp_path)
     bearing, _, bv = open3(fmi3["bearing"], tmp_path)

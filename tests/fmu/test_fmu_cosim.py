@@ -4,23 +4,17 @@ libcosim (libcosimpy) on the same SSP file."""
 
 from __future__ import annotations
 
-import casadi as ca
 import numpy as np
 import pytest
 from fmpy import read_model_description
 from fmpy.ssp.simulation import simulate_ssp
 
 from bearingsim.assemblies.motor_drive import motor_drive
-from bearingsim.fmu.cosim_models import (
-    BEARING_OUTPUTS,
-    MOTOR_OUTPUTS,
-    MotorShaft,
-    export_motor_bearing,
-)
+from bearingsim.fmu.cosim_models import BEARING_OUTPUTS, MOTOR_OUTPUTS, MotorShaft
 from bearingsim.solver import assemble, simulate
+from tests.fmu.conftest import COSIM_FR, cosim_ramp
 
 T_END = 0.3
-FR = 500.0
 BREAKAWAY = 0.01
 """The first 10 ms: the shaft leaves standstill and the friction torque jumps to half its
 running value within the first rad/s; a sampled coupling sees that jump one step late."""
@@ -29,18 +23,14 @@ REF_OUTPUTS = {"motor.w_shaft": "shaft.w", "bearing.M_shaft": "bearing.M_shaft",
                "bearing.w_middle": "bearing.w_middle"}
 
 
-def ramp(t):
-    """Speed reference: 0 -> 100 rad/s in 0.1 s."""
-    return 100.0 * ca.fmin(t / 0.1, 1.0)
-
-
 @pytest.fixture(scope="module", params=["dc", "pmsm"])
-def pair(request, fmu_dir):
+def pair(request, cosim_pair):
     motor = request.param
-    paths = export_motor_bearing(fmu_dir / f"cosim_{motor}", motor=motor, speed_ref=ramp, Fr=FR)
-    system = assemble(motor_drive(motor=motor, speed_ref=ramp), outputs=list(REF_OUTPUTS.values()))
+    paths = cosim_pair(motor)
+    system = assemble(motor_drive(motor=motor, speed_ref=cosim_ramp),
+                      outputs=list(REF_OUTPUTS.values()))
     ref = simulate(system, T_END, n_points=int(round(T_END / 5e-4)) + 1,
-                   inputs={"bearing.Fr": FR}, rtol=1e-10, atol=1e-12, progress=False)
+                   inputs={"bearing.Fr": COSIM_FR}, rtol=1e-10, atol=1e-12, progress=False)
     return motor, paths, ref
 
 
