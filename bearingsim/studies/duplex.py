@@ -36,6 +36,7 @@ from bearingsim.catalog import BearingGeometry, get_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
 from bearingsim.solver import assemble, steady_state
+from bearingsim.solver.statics import static_stiffness
 from bearingsim.units import to_deg
 
 __all__ = [
@@ -394,17 +395,8 @@ class DuplexModel:
         loads, with ``A = d(dx/dt)/dx`` and ``B = d(dx/dt)/du`` from the system's compiled exact
         Jacobians (``jac_x``, ``jac_u``) at the equilibrium.
         """
-        system = self.system
-        u = system.u_default()
-        for name, val in eq.inputs.items():
-            u[system.input_names.index(name)] = val
-        args = (0.0, eq.state, u, system.p0(eq.parameters))
-        a = np.asarray(system.functions["jac_x"](*args).full(), dtype=float)
-        b = np.asarray(system.functions["jac_u"](*args).full(), dtype=float)
-        cols = [system.input_names.index(n) for n in _LOADS]
-        rows = [system.state_names.index(n) for n in _POSITIONS]
-        compliance = -np.linalg.solve(a, b[:, cols])[rows, :]
-        return np.linalg.inv(compliance)
+        return static_stiffness(self.system, eq.state, _POSITIONS, _LOADS, eq.inputs,
+                                eq.parameters)
 
     def modes(self, loads: dict[str, float] | None = None, loss_factor: float = LOSS_FACTOR,
               **config: Any) -> Modes:
