@@ -12,7 +12,16 @@ import sys
 import time
 from pathlib import Path
 
-from bench import assembler_scaling, backends, double_layer_steady, work_precision
+from bench import (
+    assembler_scaling,
+    backends,
+    dgbb,
+    double_layer_steady,
+    duplex,
+    pruning,
+    work_precision,
+)
+from bench import fmu as fmu_bench
 from bench.common import Section, machine_info, markdown_table
 
 __all__ = ["main", "render"]
@@ -75,14 +84,22 @@ def main(argv: list[str] | None = None) -> int:
     command = "python -m bench.run_all " + " ".join(sys.argv[1:] if argv is None else argv)
     start = time.perf_counter()
     sections = []
-    print("1/4 assembler scaling", flush=True)
-    sections.append(assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s))
-    print("2/4 work-precision", flush=True)
-    sections.append(work_precision.run(args.quick, img_dir, out))
-    print("3/4 double-layer steady state", flush=True)
-    sections.append(double_layer_steady.run(args.quick, img_dir, out))
-    print("4/4 evaluation backends", flush=True)
-    sections.append(backends.run(args.quick, img_dir, out))
+    steps = [
+        ("assembler scaling",
+         lambda: assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s)),
+        ("work-precision", lambda: work_precision.run(args.quick, img_dir, out)),
+        ("double-layer steady state", lambda: double_layer_steady.run(args.quick, img_dir, out)),
+        ("evaluation backends", lambda: backends.run(args.quick, img_dir, out)),
+        ("pruning", lambda: pruning.section(args.quick)),
+        ("duplex pair", lambda: Section("6. Duplex pair: stiffness matrix and natural "
+                                        "frequencies", duplex.run(args.quick))),
+        ("deep-groove dynamics", lambda: Section("7. Deep-groove dynamic model: "
+                                                 "work-precision", dgbb.run(args.quick))),
+        ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
+    ]
+    for k, (label, bench_fn) in enumerate(steps, start=1):
+        print(f"{k}/{len(steps)} {label}", flush=True)
+        sections.append(bench_fn())
     total = time.perf_counter() - start
     out.write_text(render(sections, command.strip(), machine_info(), total, args.quick),
                    encoding="utf-8")
