@@ -33,7 +33,7 @@ __all__ = [
     "FIDELITIES",
 ]
 
-FIDELITIES = ("kinematic", "kinematic_approx", "torque")
+FIDELITIES = ("kinematic", "kinematic_approx", "torque", "quasi-static")
 STEEL_DENSITY = 7850.0
 """Bearing steel density [kg/m^3]."""
 
@@ -189,10 +189,10 @@ class DoubleLayerBearing(Assembly):
                  name="bearing"):
         super().__init__(name)
         gi, go = resolve_geometry(inner), resolve_geometry(outer)
-        if fidelity not in FIDELITIES:
+        if fidelity not in FIDELITIES[:3]:
             raise ParameterError(
                 f"double_layer_bearing: fidelity must be one of {', '.join(FIDELITIES)}, got "
-                f"{fidelity!r} (quasi-static load sharing: bearingsim.assemblies.nested_stiffness)"
+                f"{fidelity!r} (the quasi-static level is built by double_layer_bearing)"
             )
         fits = gi.outside_diameter <= go.bore
         structure = structure or ("I" if fits else "Z")
@@ -252,6 +252,15 @@ class DoubleLayerBearing(Assembly):
 
 
 def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity="torque",
-                         lubrication=("ISO VG 32", "ISO VG 32"), **kwargs) -> DoubleLayerBearing:
-    """Build a double-layer bearing assembly (see :class:`DoubleLayerBearing`)."""
+                         lubrication=("ISO VG 32", "ISO VG 32"), **kwargs):
+    """Build a double-layer bearing assembly.
+
+    ``fidelity="quasi-static"`` returns a
+    :class:`~bearingsim.assemblies.nested_static.NestedQuasiStatic` (load through both layers
+    in series; keyword ``axial``); the other levels return a :class:`DoubleLayerBearing`.
+    """
+    if fidelity == "quasi-static":
+        from bearingsim.assemblies.nested_static import NestedQuasiStatic
+
+        return NestedQuasiStatic(inner, outer, structure, **kwargs)
     return DoubleLayerBearing(inner, outer, structure, fidelity, lubrication, **kwargs)

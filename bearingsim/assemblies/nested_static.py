@@ -1,0 +1,244 @@
+"""Quasi-static fidelity of the double-layer bearing: the load through both layers in series.
+
+The shaft carries the inner bearing's inner ring; the middle ring is a free body between the
+inner bearing's outer ring and the outer bearing's inner ring; the outer bearing's outer ring sits
+in a rigid housing. Each layer is a quasi-static :class:`~bearingsim.components.ball_row.BallRow`
+(Hertz contacts, exact rigid-ring kinematics, contact angle from the clearance and the load).
+The shaft and the middle ring are *aligned bodies*: they translate freely (x, y and, with
+``axial=True``, z) while their tilts are held by the mounting (the spindle's other bearings),
+so a single deep-groove row needs no tilt stiffness of its own. Both bodies carry a small mass so
+the equilibrium is the steady state of a damped dynamic model: ``steady_state`` finds it and the
+exact Jacobians give the stiffness (:mod:`bearingsim.solver.statics`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from bearingsim.components.ball_row import BallRow
+from bearingsim.components.bearing_torque import resolve_geometry
+from bearingsim.components.frame import RingFrame
+from bearingsim.components.rings import Housing
+from bearingsim.errors import ParameterError, check_range
+from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
+from bearingsim.solver import steady_state
+from bearingsim.solver.statics import static_stiffness
+from bearingsim.solver.system import System
+
+__all__ = ["AlignedBody", "NestedQuasiStatic", "NestedEquilibrium", "nested_equilibrium"]
+
+_AXES = ("x", "y", "z")
+_LOADS = ("Fx", "Fy", "Fz")
+
+
+class AlignedBody(Component):
+    """A rigid body that translates but does not tilt; frames at axial offsets.
+
+    ``m x'' = sum of frame forces + external load - c x'`` per free axis (``c`` is a numerical
+    damping that makes the steady state an attracting one; it does not change the equilibrium).
+    Axes that are not free stay at zero; tilts are zero (their moments are reactions).
+
+    Parameters
+    ----------
+    mass : float
+        Mass [kg], > 0.
+    offsets : sequence of float
+        Axial positions of the frames relative to the body's reference point [m].
+    free : sequence of str
+        Free translations among "x", "y", "z".
+    damping : float
+        Numerical damping [N s/m], > 0.
+
+    Variables
+    ---------
+    x, y, z [m] : displacement; vx, vy, vz [m/s]; inputs Fx, Fy, Fz [N] (external load).
+
+    Connectors
+    ----------
+    frame[k] : RingFrame
+    """
+
+    def __init__(self, mass: float = 0.1, offsets=(0.0,), free=_AXES, damping: float = 1e3,
+                 name=None):
+        super().__init__(name)
+        unknown = set(free) - set(_AXES)
+        if unknown:
+            raise ParameterError(f"{type(self).__name__}: free axes must be among {_AXES}, got "
+                                 f"{sorted(unknown)}")
+        self.mass = Parameter(mass, "kg", "body mass", low=0.0, low_inclusive=False)
+        self.damping = Parameter(damping, "N.s/m", "numerical damping", low=0.0,
+                                 low_inclusive=False)
+        self._free = tuple(a for a in _AXES if a in free)
+        self._offsets = [float(o) for o in offsets]
+        self.frame = [RingFrame() for _ in self._offsets]
+        for axis in _AXES:
+            self.add(axis, Variable(0.0, "m", f"displacement {axis}"))
+        for axis in self._free:
+            self.add(f"v{axis}", Variable(0.0, "m/s", f"velocity {axis}"))
+        for load in _LOADS:
+            self.add(load, Input(0.0, "N", f"external load {load}"))
+
+    def equations(self):
+        eqs = []
+        for frame in self.frame:
+            eqs += [frame.x == self.x, frame.y == self.y, frame.z == self.z,
+                    frame.tx == 0, frame.ty == 0]
+        for axis, load in zip(_AXES, _LOADS, strict=True):
+            pos = getattr(self, axis)
+            if axis not in self._free:
+                eqs.append(pos == 0)
+                continue
+            vel = getattr(self, f"v{axis}")
+            total = getattr(self, load) + sum(getattr(f, load) for f in self.frame)
+            eqs += [der(pos) == vel, self.mass * der(vel) == total - self.damping * vel]
+        return eqs
+
+
+class NestedQuasiStatic(Assembly):
+    """Quasi-static double-layer bearing: two ball rows in series through a free middle ring.
+
+    Parameters
+    ----------
+    inner, outer : str or BearingGeometry
+        Inner (shaft side) and outer (housing side) bearing.
+    structure : {"I", "Z"} or None
+        As :class:`~bearingsim.assemblies.double_layer.DoubleLayerBearing`; for "Z" the outer
+        row sits ``(B1 + B2)/2`` axially behind the inner row on the middle ring.
+    axial : bool
+        Let the bodies move axially (needed for axial loads); with ``False`` the axial
+        positions stay centred (a deep-groove bearing with clearance has axial play and no axial
+        stiffness without an axial load).
+
+    Inputs
+    ------
+    shaft.Fx, shaft.Fy, shaft.Fz [N] : load on the shaft
+    """
+
+    def __init__(self, inner="61905", outer="61907", structure: str | None = None,
+                 axial: bool = True, name="nested"):
+        super().__init__(name)
+        gi, go = resolve_geometry(inner), resolve_geometry(outer)
+        fits = gi.outside_diameter <= go.bore
+        structure = structure or ("I" if fits else "Z")
+        if structure == "I" and not fits:
+            raise ParameterError("NestedQuasiStatic: an I-type middle ring needs the inner "
+                                 "bearing's outside diameter <= the outer bearing's bore")
+        offset = 0.0 if structure == "I" else -(gi.width + go.width) / 2
+        free = _AXES if axial else ("x", "y")
+        self.geometries = (gi, go)
+        self.shaft = AlignedBody(free=free)
+        self.middle = AlignedBody(offsets=(0.0, offset), free=free)
+        self.inner_row = BallRow(gi, reference="centred")
+        self.outer_row = BallRow(go, reference="centred")
+        self.housing = Housing(1)
+        connect(self.shaft.frame[0], self.inner_row.inner)
+        connect(self.inner_row.outer, self.middle.frame[0])
+        connect(self.middle.frame[1], self.outer_row.inner)
+        connect(self.outer_row.outer, self.housing.frame[0])
+
+
+@dataclass(frozen=True)
+class NestedEquilibrium:
+    """Equilibrium of a nested pair under a shaft load."""
+
+    shaft_displacement: np.ndarray
+    """(x, y, z) of the shaft [m]."""
+    middle_displacement: np.ndarray
+    """(x, y, z) of the middle ring [m]."""
+    inner_ball_loads: np.ndarray
+    """Ball loads of the inner layer [N]."""
+    outer_ball_loads: np.ndarray
+    """Ball loads of the outer layer [N]."""
+    inner_contact_angles: np.ndarray
+    """Contact angles of the inner layer [rad]."""
+    outer_contact_angles: np.ndarray
+    """Contact angles of the outer layer [rad]."""
+    stiffness: np.ndarray
+    """Stiffness of the shaft against the housing in the free directions [N/m]."""
+    state: np.ndarray
+
+
+def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
+                       guess: np.ndarray | None = None) -> NestedEquilibrium:
+    """Solve the nested pair for a radial (x) and axial (z) shaft load.
+
+    Parameters
+    ----------
+    system : System
+        Assembled :class:`NestedQuasiStatic`.
+    radial : float
+        Radial load on the shaft along x [N], > 0 (a load is needed to seat the balls).
+    axial : float
+        Axial load along z [N] (needs ``axial=True``).
+    guess : array, optional
+        Starting state (default: seated guess from the clearance).
+
+    Returns
+    -------
+    NestedEquilibrium
+    """
+    check_range(radial, "radial", "N", 0.0, None, low_inclusive=False,
+                where="nested_equilibrium")
+    check_range(axial, "axial", "N", where="nested_equilibrium")
+    axial_free = "shaft.z" in system.state_names
+    if axial and not axial_free:
+        raise ParameterError("nested_equilibrium: an axial load needs NestedQuasiStatic("
+                             "axial=True)")
+    inputs = {"shaft.Fx": float(radial)}
+    if axial_free:
+        inputs["shaft.Fz"] = float(axial)
+    x = _seated_guess(system, radial) if guess is None else np.array(guess, dtype=float)
+    mass = min(v for n, v in zip(system.parameter_names, system.p0(), strict=True)
+               if n.endswith(".mass"))
+    tol = 1e-9 * (abs(radial) + abs(axial)) / mass  # force balance to 1e-9 of the load
+    x = steady_state(system, inputs={"shaft.Fx": float(radial)}, x_guess=x, residual_tol=tol)
+    if axial:
+        for k in np.linspace(0.2, 1.0, 5):  # axial load continuation from the radial seat
+            x = steady_state(system, inputs={**inputs, "shaft.Fz": k * float(axial)},
+                             x_guess=x, residual_tol=tol)
+    u = system.u_default()
+    for n, v in inputs.items():
+        u[system.input_names.index(n)] = v
+    obs = system.observe(0.0, x, u)
+    free = [a for a in _AXES if f"shaft.{a}" in system.state_names]
+    stiff = static_stiffness(system, x, [f"shaft.{a}" for a in free],
+                             [f"shaft.F{a}" for a in free], inputs)
+
+    def series(prefix, key, count):
+        return np.array([obs[f"{prefix}.{key}[{j}]"] for j in range(count)])
+
+    zi = _ball_count(obs, "inner_row")
+    zo = _ball_count(obs, "outer_row")
+    return NestedEquilibrium(
+        np.array([obs[f"shaft.{a}"] for a in _AXES]),
+        np.array([obs[f"middle.{a}"] for a in _AXES]),
+        series("inner_row", "Q_i", zi), series("outer_row", "Q_i", zo),
+        series("inner_row", "alpha_i", zi), series("outer_row", "alpha_i", zo),
+        stiff, x,
+    )
+
+
+def _seated_guess(system: System, radial: float) -> np.ndarray:
+    """Each layer's radial play taken up in the load direction plus the Hertz approach of its
+    most loaded ball under Stribeck's estimate ``Qmax = 5 Fr / Z``."""
+    p = dict(zip(system.parameter_names, system.p0(), strict=True))
+    play = []
+    for row in ("inner_row", "outer_row"):
+        dw, fi, fo, a0, ki, ko = (p[f"{row}.{k}"] for k in ("Dw", "fi", "fo", "alpha0", "K_i",
+                                                              "K_o"))
+        z = _ball_count({n: 0 for n in system.observed_names}, row)
+        k = (ki ** (-2.0 / 3.0) + ko ** (-2.0 / 3.0)) ** -1.5
+        approach = (5.0 * abs(radial) / z / k) ** (2.0 / 3.0)
+        play.append((fi + fo - 1.0) * dw * (1.0 - np.cos(a0)) + approach)
+    x = system.x0()
+    sign = np.sign(radial)
+    x[system.state_names.index("middle.x")] = sign * play[1]
+    x[system.state_names.index("shaft.x")] = sign * (play[0] + play[1])
+    return x
+
+
+def _ball_count(observed, row: str) -> int:
+    """Number of balls of a row from the observed variable names."""
+    return sum(1 for n in observed if n.startswith(f"{row}.Q_i["))

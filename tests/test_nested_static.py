@@ -1,0 +1,84 @@
+"""Quasi-static double-layer bearing (issue 5): the load passes through both layers in series."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim.assemblies import double_layer_bearing
+from bearingsim.assemblies.nested_static import nested_equilibrium
+from bearingsim.components.ball_row import RowParameters, row_stiffness
+from bearingsim.errors import ParameterError
+from bearingsim.solver import assemble
+
+
+@pytest.fixture(scope="module")
+def radial_system():
+    return assemble(double_layer_bearing("61905", "61909", fidelity="quasi-static", axial=False))
+
+
+@pytest.fixture(scope="module")
+def full_system():
+    return assemble(double_layer_bearing("61905", "61907", fidelity="quasi-static"))
+
+
+def _row(system, prefix):
+    p = dict(zip(system.parameter_names, system.p0(), strict=True))
+    return RowParameters(*(p[f"{prefix}.{k}"] for k in ("Dw", "dm", "fi", "fo", "alpha0", "K_i",
+                                                         "K_o", "psi0", "smooth")))
+
+
+def _radial_resultant(loads, angles):
+    z = loads.size
+    psi = 2.0 * np.pi * np.arange(z) / z
+    return np.sum(loads * np.cos(angles) * np.cos(psi))
+
+
+def test_both_layers_carry_the_whole_radial_load(radial_system):
+    eq = nested_equilibrium(radial_system, 800.0)
+    # Stribeck: the resultant of the ball loads of each layer is the applied load (series)
+    assert _radial_resultant(eq.inner_ball_loads, eq.inner_contact_angles) == pytest.approx(
+        800.0, rel=1e-6)
+    assert _radial_resultant(eq.outer_ball_loads, eq.outer_contact_angles) == pytest.approx(
+        800.0, rel=1e-6)
+    # radial clearance concentrates the load above Stribeck's zero-clearance 4.37 Fr / Z
+    assert eq.inner_ball_loads.max() > 4.37 * 800.0 / eq.inner_ball_loads.size
+    assert eq.shaft_displacement[0] > eq.middle_displacement[0] > 0.0
+
+
+def test_nested_stiffness_is_the_series_combination_of_the_layers(radial_system):
+    eq = nested_equilibrium(radial_system, 800.0)
+    rel_inner = [*(eq.shaft_displacement - eq.middle_displacement), 0.0, 0.0]
+    rel_outer = [*eq.middle_displacement, 0.0, 0.0]
+    z_i, z_o = eq.inner_ball_loads.size, eq.outer_ball_loads.size
+    k_inner = row_stiffness(_row(radial_system, "inner_row"), z_i, rel_inner,
+                            reference="centred")[:2, :2]
+    k_outer = row_stiffness(_row(radial_system, "outer_row"), z_o, rel_outer,
+                            reference="centred")[:2, :2]
+    series = np.linalg.inv(np.linalg.inv(k_inner) + np.linalg.inv(k_outer))
+    np.testing.assert_allclose(eq.stiffness, series, rtol=1e-6, atol=1e-6 * series.max())
+    assert eq.stiffness[0, 0] < min(k_inner[0, 0], k_outer[0, 0])
+
+
+def test_stiffness_grows_with_load(radial_system):
+    light = nested_equilibrium(radial_system, 200.0).stiffness[0, 0]
+    heavy = nested_equilibrium(radial_system, 2000.0).stiffness[0, 0]
+    assert heavy > light
+
+
+def test_axial_load_raises_contact_angles_and_couples_directions(full_system):
+    radial = nested_equilibrium(full_system, 500.0)
+    combined = nested_equilibrium(full_system, 500.0, 300.0)
+    assert combined.inner_contact_angles.mean() > radial.inner_contact_angles.mean()
+    assert combined.shaft_displacement[2] > combined.middle_displacement[2] > 0.0
+    assert combined.stiffness.shape == (3, 3)
+    assert abs(combined.stiffness[0, 2]) > 0.0
+    np.testing.assert_allclose(combined.stiffness, combined.stiffness.T, rtol=1e-6,
+                               atol=1e-9 * combined.stiffness.max())
+
+
+def test_invalid_loads_are_rejected(radial_system):
+    with pytest.raises(ParameterError, match="radial"):
+        nested_equilibrium(radial_system, 0.0)
+    with pytest.raises(ParameterError, match="axial"):
+        nested_equilibrium(radial_system, 100.0, 50.0)
