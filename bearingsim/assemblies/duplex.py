@@ -212,6 +212,9 @@ class DuplexPair(Assembly):
         Exact rigid-body kinematics (default) or the small-angle form.
     smooth : float
         Contact regularization length [m].
+    axisymmetric : bool
+        Solve one representative ball per row (valid for pure axial loads only: the shaft then
+        has no radial or tilt load path; see ``BallRow(representative=True)``).
 
     Attributes
     ----------
@@ -228,7 +231,7 @@ class DuplexPair(Assembly):
                  ball_position_angle: float = 0.0, contact_angle: float | None = None,
                  spacer_offset: float | None = None, speed_effects: bool = False,
                  housing_stiffness=None, housing_damping=None, exact: bool = True,
-                 smooth: float = 1e-9, name="pair"):
+                 smooth: float = 1e-9, axisymmetric: bool = False, name="pair"):
         super().__init__(name)
         g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
         if arrangement not in ARRANGEMENTS:
@@ -266,7 +269,8 @@ class DuplexPair(Assembly):
         self.outer_spacer = Spacer(exact=exact)
         self.row = [BallRow(g, s, contact_angle=contact_angle,
                             ball_position_angle=ball_position_angle,
-                            speed_effects=speed_effects, exact=exact, smooth=smooth)
+                            speed_effects=speed_effects, exact=exact, smooth=smooth,
+                            representative=axisymmetric)
                     for s in self.directions]
         for k in range(2):
             self.inner_ring[k].speed = self.shaft.speed

@@ -390,6 +390,12 @@ class BallRow(Component):
         Materials for the Hertz constants.
     ball_density : float
         Ball density [kg/m^3] (centrifugal force, gyroscopic moment).
+    representative : bool
+        Axisymmetric reduction for a pure axial load: ball 0 is solved alone under the axial
+        displacement of the rings and stands for every ball (all per-ball outputs equal it);
+        the row transmits ``Z`` times its axial load and no radial force or moment. Valid only
+        while the rings do not move radially or tilt, which a pure axial load on a symmetric
+        assembly guarantees.
 
     Parameters (model)
     ------------------
@@ -412,9 +418,10 @@ class BallRow(Component):
                  contact_angle: float | None = None, ball_position_angle: float = 0.0,
                  speed_effects: bool = False, reference: str = "touching", exact: bool = True,
                  smooth: float = 1e-9, ball: Material = STEEL, ring: Material = STEEL,
-                 ball_density: float = STEEL_DENSITY, name=None):
+                 ball_density: float = STEEL_DENSITY, representative: bool = False, name=None):
         super().__init__(name)
         self.geometry = _resolve(bearing)
+        self.representative = bool(representative)
         if direction not in (1, -1):
             raise ParameterError(f"{self.display_name}: direction must be 1 or -1, got "
                                  f"{direction!r}")
@@ -462,7 +469,7 @@ class BallRow(Component):
                                                 fixed=False)),
                  self.add(f"b_z[{j}]", Variable(0.0, "m", "ball centre axial offset",
                                                 fixed=False)))
-                for j in range(z)]
+                for j in range(1 if self.representative else z)]
 
     def output_names(self, key: str) -> list[str]:
         """Dotted names of the per-ball variable ``key`` (e.g. "Q_i") in ball order."""
@@ -476,7 +483,19 @@ class BallRow(Component):
                          speeds=(self.inner_speed, self.outer_speed),
                          ball_density=self.ball_density)
 
+    def representative_loads(self) -> BallContacts:
+        """:func:`row_loads` of ball 0 alone under the axial part of the ring displacements."""
+        def axial(frame):
+            return [0.0, 0.0, frame.z, 0.0, 0.0]
+
+        return row_loads(self, axial(self.inner), axial(self.outer), 1, self.direction,
+                         reference=self.reference, exact=self.exact,
+                         ball_centres=self._centres, speeds=(self.inner_speed, self.outer_speed),
+                         ball_density=self.ball_density)
+
     def equations(self):
+        if self.representative:
+            return self._representative_equations()
         c = self.loads()
         eqs = [var == val for key, values in self._outputs.items()
                for var, val in zip(values, getattr(c, key), strict=True)]
@@ -484,6 +503,18 @@ class BallRow(Component):
         # the row's connector flows are the loads of the rings on the row
         eqs += [f == -load for f, load in zip(self.inner.loads(), c.inner_load, strict=True)]
         eqs += [f == -load for f, load in zip(self.outer.loads(), c.outer_load, strict=True)]
+        return eqs
+
+    def _representative_equations(self):
+        """Axisymmetric row: ball 0 stands for all balls; only the axial load is transmitted."""
+        c = self.representative_loads()
+        z = self.n_balls
+        eqs = [var == getattr(c, key)[0] for key, values in self._outputs.items()
+               for var in values]
+        eqs += list(c.residual)
+        for frame, load in ((self.inner, c.inner_load), (self.outer, c.outer_load)):
+            fx, fy, fz, mx, my = frame.loads()
+            eqs += [fz == -z * load[2], fx == 0, fy == 0, mx == 0, my == 0]
         return eqs
 
 

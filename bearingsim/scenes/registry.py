@@ -90,6 +90,10 @@ class AssemblySpec:
     predicate on the other arguments that says when this holds."""
     symmetry: Callable[[dict[str, Any], dict[str, Any]], list[str]] = lambda args, inputs: []
     """``symmetry(args, inputs)`` -> notes on symmetric parts solved once."""
+    symmetric_args: Callable[[dict[str, Any], dict[str, Any]], dict[str, Any]] = (
+        lambda args, inputs: {})
+    """``symmetric_args(args, inputs)`` -> assembly arguments that build the reduced model the
+    loads allow (merged into the arguments before building)."""
     fidelity_arg: str | None = "fidelity"
 
     def with_defaults(self, args: dict[str, Any]) -> dict[str, Any]:

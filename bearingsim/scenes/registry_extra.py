@@ -20,12 +20,20 @@ def _build_duplex(args: dict[str, Any], fidelity: str):
     return duplex_pair(args["bearing"], **kwargs)
 
 
-def _duplex_symmetry(args: dict[str, Any], inputs: dict[str, Any]) -> list[str]:
+def _pure_axial(inputs: dict[str, Any]) -> bool:
     radial = [inputs.get(n, 0.0) for n in ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")]
-    if all(isinstance(v, (int, float)) and v == 0.0 for v in radial):
-        return ["pure axial load: the balls of each row are equally loaded (axisymmetric); the "
-                "quasi-static rows have no one-ball reduced form yet, so all balls are kept"]
+    return all(isinstance(v, (int, float)) and v == 0.0 for v in radial)
+
+
+def _duplex_symmetry(args: dict[str, Any], inputs: dict[str, Any]) -> list[str]:
+    if args.get("axisymmetric"):
+        return ["pure axial load: one representative ball per row is solved (axisymmetric "
+                "rows); the other balls equal it and the rows carry no radial load or moment"]
     return []
+
+
+def _duplex_symmetric_args(args: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
+    return {"axisymmetric": True} if _pure_axial(inputs) else {}
 
 
 def register_extra(register) -> None:
@@ -53,5 +61,6 @@ def register_extra(register) -> None:
         output_fidelity=[],
         default_outputs=["shaft.x", "shaft.z", "shaft.ty"],
         symmetry=_duplex_symmetry,
+        symmetric_args=_duplex_symmetric_args,
         fidelity_arg=None,
     ))

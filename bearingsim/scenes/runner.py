@@ -126,6 +126,7 @@ def prepare(scene: Scene) -> Prepared:
     scene = _check(scene)
     spec = scene.spec
     args = spec.with_defaults(scene.args)
+    args.update(spec.symmetric_args(args, scene.inputs))
     post_all = spec.post(args)
     requested = list(scene.outputs or spec.default_outputs)
     post = {n: post_all[n] for n in requested if n in post_all}
