@@ -239,3 +239,14 @@ def test_compiled_backend_gives_identical_results(tmp_path):
     b = simulate(compiled, 1.0, rtol=1e-9, atol=1e-11)
     np.testing.assert_allclose(b["x"], a["x"], rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(b["F"], a["F"], rtol=1e-9, atol=1e-10)
+
+
+def test_idas_on_the_semi_explicit_dae_matches_the_ode_form():
+    system = assemble(Pendulum())  # one nonlinear block: y from x^2 + y^2 = L^2
+    assert {"dae_ode", "dae_alg", "dae_observe", "dae_z"} <= set(system.functions)
+    ode_form = simulate(system, 3.0, method="cvodes", rtol=1e-10, atol=1e-12)
+    dae_form = simulate(system, 3.0, method="idas", rtol=1e-10, atol=1e-12)
+    assert dae_form.stats["algebraic_states"] == 1
+    for name in ("x", "y", "F"):
+        np.testing.assert_allclose(dae_form[name], ode_form[name], atol=1e-7)
+    assert np.max(np.abs(dae_form["x"] ** 2 + dae_form["y"] ** 2 - 1.0)) < 1e-8

@@ -93,4 +93,20 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     funcs["out_jac_u"] = ca.Function(
         "out_jac_u", margs, [ca.jacobian(mexprs["output"], mu)], names, ["J"]
     )
+    funcs.update(_semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs))
     return funcs, observed_names, output_names
+
+
+def _semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs) -> dict:
+    """The model as ``x' = f(t, x, z, u, p), 0 = g(t, x, z, u, p)`` with ``z`` the tearing
+    variables of the nonlinear blocks: for DAE solvers (IDAS) that iterate on ``z`` themselves
+    instead of calling a Newton solve inside every right-hand side."""
+    z = ca.vertcat(*z_sx)
+    g = ca.vertcat(*[blk.residuals for blk in causal.nonlinear])
+    args, names = [t, x, z, u, p], ["t", "x", "z", "u", "p"]
+    return {
+        "dae_ode": ca.Function("dae_ode", args, [xdot], names, ["ode"]),
+        "dae_alg": ca.Function("dae_alg", args, [g], names, ["alg"]),
+        "dae_observe": ca.Function("dae_observe", args, [obs], names, ["observe"]),
+        "dae_z": ca.Function("dae_z", margs, [ca.vertcat(*z_mx)], ["t", "x", "u", "p"], ["z"]),
+    }
