@@ -13,13 +13,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from bearingsim.catalog import BearingGeometry
-from bearingsim.components.bearing_torque import (
-    PalmgrenBearing,
-    PureRollingLayer,
-    SkfBearing,
-    resolve_geometry,
-)
+from bearingsim.catalog import BearingGeometry, resolve_bearing
+from bearingsim.components.bearing_torque import PalmgrenBearing, PureRollingLayer, SkfBearing
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
@@ -188,7 +183,7 @@ class DoubleLayerBearing(Assembly):
                  speed: Callable | float | None = None, layer_options: dict | None = None,
                  name="bearing"):
         super().__init__(name)
-        gi, go = resolve_geometry(inner), resolve_geometry(outer)
+        gi, go = resolve_bearing(inner), resolve_bearing(outer)
         if fidelity not in FIDELITIES[:3]:
             raise ParameterError(
                 f"double_layer_bearing: fidelity must be one of {', '.join(FIDELITIES)}, got "

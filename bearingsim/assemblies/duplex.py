@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from bearingsim.catalog import BearingGeometry, get_bearing
+from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import BallRow, axial_approach, row_parameters
 from bearingsim.components.rings import (
     ConstantLoad,
@@ -176,7 +176,7 @@ def preload_offset(bearing: str | BearingGeometry, preload: float, arrangement: 
     if arrangement not in ("DF", "DB"):
         raise ParameterError(f"preload_offset: arrangement must be 'DF' or 'DB', got "
                              f"{arrangement!r} (a DT pair is preloaded by an axial force)")
-    g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
+    g = resolve_bearing(bearing)
     delta = axial_approach(row_parameters(g, contact_angle), g.ball_count, preload)
     s0, s1 = ARRANGEMENTS[arrangement]
     return (s1 - s0) * delta
@@ -233,7 +233,7 @@ class DuplexPair(Assembly):
                  housing_stiffness=None, housing_damping=None, exact: bool = True,
                  smooth: float = 1e-9, axisymmetric: bool = False, name="pair"):
         super().__init__(name)
-        g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
+        g = resolve_bearing(bearing)
         if arrangement not in ARRANGEMENTS:
             raise ParameterError(f"duplex_pair: arrangement must be one of "
                                  f"{', '.join(ARRANGEMENTS)}, got {arrangement!r}")

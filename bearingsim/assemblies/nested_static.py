@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from bearingsim.catalog import resolve_bearing
 from bearingsim.components.ball_row import BallRow
-from bearingsim.components.bearing_torque import resolve_geometry
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rings import Housing
 from bearingsim.errors import ParameterError, check_range
@@ -119,7 +119,7 @@ class NestedQuasiStatic(Assembly):
     def __init__(self, inner="61905", outer="61907", structure: str | None = None,
                  axial: bool = True, name="nested"):
         super().__init__(name)
-        gi, go = resolve_geometry(inner), resolve_geometry(outer)
+        gi, go = resolve_bearing(inner), resolve_bearing(outer)
         fits = gi.outside_diameter <= go.bore
         structure = structure or ("I" if fits else "Z")
         if structure == "I" and not fits:

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from bearingsim.catalog import BearingGeometry
-from bearingsim.components.bearing_torque import resolve_geometry
+from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.errors import ParameterError
 
 __all__ = [
@@ -24,7 +23,7 @@ def speed_ratio_pure_rolling(inner, outer, exact: bool = True) -> float:
     ``g_k = (Dw_k cos a_k / Dp_k)^2``; with ``exact=False`` the approximation
     ``Dp1 / (Dp1 + Dp2)``.
     """
-    g1, g2 = resolve_geometry(inner), resolve_geometry(outer)
+    g1, g2 = resolve_bearing(inner), resolve_bearing(outer)
     k1 = (1 - g1.gamma**2) if exact else 1.0
     k2 = (1 - g2.gamma**2) if exact else 1.0
     a, b = k1 * g1.pitch_diameter, k2 * g2.pitch_diameter
@@ -33,7 +32,7 @@ def speed_ratio_pure_rolling(inner, outer, exact: bool = True) -> float:
 
 def speed_ratio_palmgren(inner, outer) -> float:
     """Palmgren M0 speed ratio ``Rs = Dp1^4.5 / (Dp1^4.5 + Dp2^4.5)`` [1] (equal f0 and nu)."""
-    g1, g2 = resolve_geometry(inner), resolve_geometry(outer)
+    g1, g2 = resolve_bearing(inner), resolve_bearing(outer)
     a, b = g1.pitch_diameter**4.5, g2.pitch_diameter**4.5
     return a / (a + b)
 
@@ -47,7 +46,7 @@ def _limit(g: BearingGeometry) -> float:
 
 def optimal_speed_ratio(inner, outer) -> float:
     """``Rs_opt = n_o,max / (n_i,max + n_o,max)`` [1] from the catalogue limiting speeds."""
-    ni, no = _limit(resolve_geometry(inner)), _limit(resolve_geometry(outer))
+    ni, no = _limit(resolve_bearing(inner)), _limit(resolve_bearing(outer))
     return no / (ni + no)
 
 
@@ -81,7 +80,7 @@ def design_report(inner, outer, rs: float | None = None) -> PairingReport:
     rs : float, optional
         Speed ratio to assess (default: the Palmgren ratio).
     """
-    gi, go = resolve_geometry(inner), resolve_geometry(outer)
+    gi, go = resolve_bearing(inner), resolve_bearing(outer)
     ni, no = _limit(gi), _limit(go)
     rs_pal = speed_ratio_palmgren(gi, go)
     rs_use = rs_pal if rs is None else rs

@@ -30,7 +30,7 @@ from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
 from bearingsim.errors import CatalogError
 from bearingsim.units import deg, mm, rpm_to_rad_s
 
-__all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings"]
+__all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings", "resolve_bearing"]
 
 
 def _optional(text: str, scale: float) -> float | None:
@@ -104,3 +104,14 @@ def get_bearing(designation: str) -> BearingGeometry:
             + ", ".join(table)
         )
     return table[key]
+
+
+def resolve_bearing(bearing: str | BearingGeometry) -> BearingGeometry:
+    """A catalogue designation or a user geometry, as a :class:`BearingGeometry`.
+
+    Raises
+    ------
+    CatalogError
+        For an unknown designation.
+    """
+    return bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)

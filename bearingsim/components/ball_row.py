@@ -62,7 +62,7 @@ import numpy as np
 import scipy.optimize
 
 from bearingsim import _ops as op
-from bearingsim.catalog import BearingGeometry, get_bearing
+from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.qs_rigid import add, cross, rotate, rotation, scale
 from bearingsim.errors import ParameterError, check_range
@@ -116,10 +116,6 @@ class RowParameters:
     smooth: float = 1e-9
 
 
-def _resolve(bearing: str | BearingGeometry) -> BearingGeometry:
-    return bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
-
-
 def row_parameters(bearing: str | BearingGeometry, contact_angle: float | None = None,
                    ball_position_angle: float = 0.0, smooth: float = 1e-9,
                    ball: Material = STEEL, ring: Material = STEEL,
@@ -146,7 +142,7 @@ def row_parameters(bearing: str | BearingGeometry, contact_angle: float | None =
     RowParameters
         With the Hertz constants evaluated at the free contact angle.
     """
-    g = _resolve(bearing)
+    g = resolve_bearing(bearing)
     alpha0 = g.free_contact_angle if contact_angle is None else contact_angle
     check_range(alpha0, "contact_angle", "rad", 0.0, _MAX_ALPHA,
                 where=f"row_parameters({g.designation})")
@@ -420,7 +416,7 @@ class BallRow(Component):
                  smooth: float = 1e-9, ball: Material = STEEL, ring: Material = STEEL,
                  ball_density: float = STEEL_DENSITY, representative: bool = False, name=None):
         super().__init__(name)
-        self.geometry = _resolve(bearing)
+        self.geometry = resolve_bearing(bearing)
         self.representative = bool(representative)
         if direction not in (1, -1):
             raise ParameterError(f"{self.display_name}: direction must be 1 or -1, got "

@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim._ops import smooth_abs
-from bearingsim.catalog import BearingGeometry, get_bearing
+from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.rotational import Flange
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Parameter, Variable, der
@@ -28,15 +28,9 @@ __all__ = [
     "PalmgrenBearing",
     "SkfBearing",
     "PureRollingLayer",
-    "resolve_geometry",
     "resolve_lubricant",
     "static_equivalent_load",
 ]
-
-
-def resolve_geometry(bearing: str | BearingGeometry) -> BearingGeometry:
-    """A catalogue designation or a user geometry, as a :class:`BearingGeometry`."""
-    return bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
 
 
 def resolve_lubricant(lubricant: str | Lubricant) -> Lubricant:
@@ -111,7 +105,7 @@ class _LubricatedBearing(BearingTorqueElement):
 
     def __init__(self, bearing, lubricant, omega_reg: float, name=None):
         super().__init__(name)
-        self.geometry = resolve_geometry(bearing)
+        self.geometry = resolve_bearing(bearing)
         self.lubricant = resolve_lubricant(lubricant)
         g = self.geometry
         self.dm = Parameter(g.pitch_diameter, "m", "pitch diameter", low=0.0, low_inclusive=False)
@@ -256,7 +250,7 @@ class PureRollingLayer(BearingTorqueElement):
 
     def __init__(self, bearing, k: float = 1.0, *, exact: bool = True, name=None):
         super().__init__(name)
-        self.geometry = resolve_geometry(bearing)
+        self.geometry = resolve_bearing(bearing)
         g = self.geometry
         self.k = Parameter(k, "N.s/m", "pure-rolling drag coefficient", low=0.0,
                            low_inclusive=False)

@@ -32,7 +32,7 @@ from bearingsim.assemblies.duplex import (
     preload_force,
     preload_offset,
 )
-from bearingsim.catalog import BearingGeometry, get_bearing
+from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
 from bearingsim.solver import assemble, steady_state
@@ -260,7 +260,7 @@ class DuplexModel:
     def _geometry(self, bearing) -> BearingGeometry:
         if bearing is None:
             return self.geometry
-        g = bearing if isinstance(bearing, BearingGeometry) else get_bearing(bearing)
+        g = resolve_bearing(bearing)
         ref = self.geometry
         same = (g.ball_count, g.ball_diameter, g.pitch_diameter, g.fi, g.fo) == (
             ref.ball_count, ref.ball_diameter, ref.pitch_diameter, ref.fi, ref.fo)
