@@ -48,6 +48,12 @@ __all__ = [
 _MM = 1e3  # metres to millimetres for the ISO formulas
 _DW_LARGE_MM = 25.4
 
+# Issue 3 audit: the ISO 281 / ISO 76 tables below (fc, f0, X/Y/e) were entered from memory and
+# could NOT be checked against the standard's text (not retrievable in the issue-3 search). Indirect
+# checks only: fc with bm = 1.3 reproduces ISO 281-based catalogue C within 5 %
+# (tests/physics/test_life.py), f0 reproduces the 4 200 MPa contact stress of ISO 76 within 1 %
+# through our Hertz solution, and the deep-groove X/Y/e rows are the ones SKF's product pages cite
+# as "table 1, f0 Fa/C0" (values themselves not retrievable). Treat them as UNVERIFIED.
 # ISO 281:2007, Table 2: fc for single-row radial contact and angular contact groove ball bearings.
 _FC_GAMMA = (0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.12, 0.14, 0.16, 0.18,
              0.20, 0.22, 0.24, 0.26, 0.28, 0.30, 0.32, 0.34, 0.36, 0.38, 0.40)
@@ -496,6 +502,14 @@ def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, row
     ``Q_ce = C / (0.389 Z i^0.7 cos a) (1 + x^(-10/3))^0.3`` with
     ``x = 1.044 ((1 - g)/(1 + g))^1.72 (fi (2 fo - 1) / (fo (2 fi - 1)))^0.41``: the ball loads for
     which the inner and outer raceways reach 10^6 revolutions, consistent with C of ISO 281.
+
+    Issue 3 audit: the constants 0.407, 0.389, 1.044, 1.72, 0.41, 10/3 and 0.3 agree with an
+    independent public implementation of ISO/TS 16281 (GitHub ``minzhun/ISO16281``,
+    ``BallBearing.py``, "Equation 19-24"); the standard's text itself was not retrievable. That
+    implementation divides by ``(i cos a)^0.7`` where this function divides by ``i^0.7 cos a``
+    (Harris's ``C = 0.407 Q_c Z i^0.7 cos a``); the two agree for radial contact (a = 0) and differ
+    by ``cos(a)^0.3`` (1 % at 15 deg, 2.5 % at 25 deg) for angular contact. UNRESOLVED: check
+    against ISO/TS 16281:2008 eq. (19)/(20) before relying on angular-contact L10r to that accuracy.
 
     Parameters
     ----------
