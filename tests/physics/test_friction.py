@@ -215,3 +215,19 @@ def test_invalid_input_is_rejected(call, exc, match):
 def test_f0_table_is_complete():
     for row in PALMGREN_F0.values():
         assert set(row) == {"grease", "oil_mist", "oil_bath", "oil_jet", "vertical_shaft"}
+
+
+def test_skf_constants_match_checked_sources():
+    """Issue 3 audit. SKF "Rolling bearings" catalogue (10000 EN), Friction, p. 105: mu_bl about
+    0.15 and mu_EHL 0.05 for mineral oil (the Oil defaults). Table 2b has a single row "2, 3" for
+    deep groove series 2 and 3 (4.4e-7, 1.7, 2e-3, 100 in a public transcription), so both
+    series share it; series 3 had S1 = 1.70e-3 entered from memory before the audit."""
+    from bearingsim.physics.friction import SKF_DEEP_GROOVE, SKF_KRS, SKF_KZ
+
+    oil = Oil.from_iso_vg(68)
+    assert (oil.mu_bl, oil.mu_ehl) == (0.15, 0.05)
+    assert SKF_DEEP_GROOVE["2"] == SKF_DEEP_GROOVE["3"] == {
+        "R1": 4.4e-7, "R2": 1.7, "S1": 2.00e-3, "S2": 100.0}
+    assert SKF_DEEP_GROOVE["62"] == {"R1": 3.9e-7, "R2": 1.7, "S1": 3.23e-3, "S2": 36.5}
+    assert (SKF_KRS["oil_bath"], SKF_KRS["grease"]) == (3e-8, 6e-8)
+    assert SKF_KZ == {"deep_groove_ball": 3.1, "angular_contact_ball": 4.4}

@@ -39,11 +39,35 @@ def test_sphere_on_flat_classical_hertz():
 
 def test_harris_209_curvature():
     """Harris & Kotzalas, Essential Concepts, 209 bearing examples (Dw 12.7, dm 65, f 0.52):
-    sum rho_i = 0.2018 /mm, F(rho)_i = 0.9399; sum rho_o = 0.1378 /mm, F(rho)_o = 0.9120."""
+    sum rho_i = 0.2018 /mm, F(rho)_i = 0.9399; sum rho_o = 0.1378 /mm, F(rho)_o = 0.9120.
+
+    Issue 3 audit: the book page could not be retrieved, so these four numbers are UNVERIFIED as
+    quotations; they are, to the digits given, the closed forms
+    sum rho = (4 - 1/f +- 2g/(1 -+ g))/Dw
+    and F(rho) = (1/f +- 2g/(1 -+ g))/(4 - 1/f +- 2g/(1 -+ g)) with g = 12.7/65 (0.20178,
+    0.93997, 0.13780, 0.91209), which :func:`test_curvature_matches_iso_ts_16281_form` checks
+    independently."""
     for race, s_ref, f_ref in (("inner", 0.2018, 0.9399), ("outer", 0.1378, 0.9120)):
         rx, ry = h.raceway_radii(12.7e-3, 65e-3, 0.52, 0.0, race)
         assert h.curvature_sum(rx, ry) * 1e-3 == pytest.approx(s_ref, abs=5e-5)
         assert h.curvature_difference(rx, ry) == pytest.approx(f_ref, abs=1e-4)
+
+
+def test_curvature_matches_iso_ts_16281_form():
+    """ISO/TS 16281:2008 writes the curvature sums and relative differences as
+    sum rho_i = 2/Dw (2 + g/(1 - g) - Dw/(2 ri)), F_i = (g/(1 - g) + Dw/(2 ri)) / (2 + g/(1 - g)
+    - Dw/(2 ri)) and the outer ones with -g/(1 + g) (as transcribed in the public implementation
+    GitHub minzhun/ISO16281, BallBearing.py, geometry()); our Rx/Ry route must agree exactly."""
+    dw, dm, alpha = 12.7e-3, 65e-3, 0.0
+    for race, f in (("inner", 0.52), ("outer", 0.53)):
+        g = dw * np.cos(alpha) / dm
+        t = g / (1 - g) if race == "inner" else -g / (1 + g)
+        r = f * dw
+        s_iso = 2 / dw * (2 + t - dw / (2 * r))
+        f_iso = (t + dw / (2 * r)) / (2 + t - dw / (2 * r))
+        rx, ry = h.raceway_radii(dw, dm, f, alpha, race)
+        assert h.curvature_sum(rx, ry) == pytest.approx(s_iso, rel=1e-12)
+        assert h.curvature_difference(rx, ry) == pytest.approx(f_iso, rel=1e-12)
 
 
 @pytest.mark.parametrize("alpha_r", [1.0 + 1e-6, 1.01, 1.5, 3.0, 10.0, 31.6, 100.0, 1e3, 1e4])
