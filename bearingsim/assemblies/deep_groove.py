@@ -41,11 +41,15 @@ from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
 
-__all__ = ["FIDELITIES", "DeepGrooveBallBearing", "QuasiStaticDeepGroove",
+__all__ = ["FIDELITIES", "FILM_DAMPING", "DeepGrooveBallBearing", "QuasiStaticDeepGroove",
            "deep_groove_ball_bearing"]
 
 FIDELITIES = ("quasi-static", "dynamic", "dynamic_massive_balls")
 _W_REG = 1e-2  # rad/s, regularization of the slip ratio at standstill
+FILM_DAMPING = 1e-5
+"""Damping of a lubricated race contact over its tangent stiffness [s] (Kramer 1993: rolling
+bearings damp 0.25e-5 .. 2.5e-5 times their stiffness; see
+:class:`~bearingsim.components.dynamic.RaceContact`)."""
 
 
 def _lubricant(lubricant: Lubricant | str) -> Lubricant:
@@ -83,6 +87,10 @@ class DeepGrooveBallBearing(Assembly):
         Whether the inner ring tilts (else the shaft holds it straight).
     damping : float
         Hunt-Crossley coefficient of the race contacts [s/m].
+    film_damping : float, optional
+        Film damping time constant of the race contacts [s] (damping = ``film_damping`` times
+        the tangent contact stiffness, see :class:`~bearingsim.components.dynamic.RaceContact`);
+        default :data:`FILM_DAMPING` with a viscous lubricant, 0 dry.
     n_slices : int
         ``2 n + 1`` traction slices per contact.
     drag : bool
@@ -108,7 +116,8 @@ class DeepGrooveBallBearing(Assembly):
     def __init__(self, design: BearingDesign, lubricant: Lubricant, massive_balls: bool = False,
                  speed: Callable | float | None = None, drive: str = "speed",
                  loads: dict[str, Any] | None = None, free_tilt: bool = False,
-                 damping: float = 1.0, n_slices: int = 2, drag: bool = True,
+                 damping: float = 1.0, film_damping: float | None = None,
+                 n_slices: int = 2, drag: bool = True,
                  oil_fraction: float = 0.05, traction_scale: float = 1.0,
                  pocket_mu: float | None = None, land_mu: float | None = None,
                  cage_damping: float = 10.0, name="bearing"):
@@ -122,6 +131,8 @@ class DeepGrooveBallBearing(Assembly):
         constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
         start = static_state(design, constant, free_tilt=free_tilt) if constant else None
         eta = float(lubricant.dynamic_viscosity())
+        if film_damping is None:
+            film_damping = FILM_DAMPING if eta > 0.0 else 0.0
         mu_dry = getattr(lubricant, "mu", 0.1)
         pocket_mu = mu_dry if pocket_mu is None else pocket_mu
         land_mu = mu_dry if land_mu is None else land_mu
@@ -146,6 +157,7 @@ class DeepGrooveBallBearing(Assembly):
             balls.append(Ball(design.ball_mass, design.ball_inertia, r0, 0.5 * dm, theta, z0,
                               massive=massive_balls))
             common = dict(ball_diameter=dw, lubricant=lubricant, damping=damping,
+                          film_damping=film_damping,
                           n_slices=n_slices, traction_scale=traction_scale)
             inner.append(RaceContact("inner", design.rho_inner, g.fi, k_hertz=design.k_inner,
                                      a1=design.a1_inner, moving=True, **common))
