@@ -39,9 +39,14 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
         observed_names.append(v.name)
         observed.append(_value_expr(v, causal))
     index = {v.name: v for v in dae.vars}
-    for name, (scale, rep, offset) in dae.aliases.items():
-        observed_names.append(name)
-        observed.append(offset + (scale * _value_expr(rep, causal) if rep is not None else 0))
+    if dae.aliases:
+        scales, reps, offsets = [], [], []
+        for name, (scale, rep, offset) in dae.aliases.items():
+            observed_names.append(name)
+            scales.append(scale if rep is not None else 0.0)
+            reps.append(_value_expr(rep, causal) if rep is not None else ca.SX(0))
+            offsets.append(offset)
+        observed.append(ca.DM(offsets) + ca.DM(scales) * ca.vertcat(*reps))
     obs = ca.vertcat(*observed) if observed else ca.SX(0, 1)
     obs_pos = {n: k for k, n in enumerate(observed_names)}
     output_names = list(outputs) if outputs else [n for n in observed_names if n in index]
