@@ -14,6 +14,10 @@ from bearingsim.solver.dae import DAE, Var
 
 __all__ = ["build_functions"]
 
+CSE = {"cse": True}
+"""Function options: common subexpression elimination (CasADi), e.g. 3x fewer instructions
+for the duplex pair's right-hand side."""
+
 
 def _value_expr(v: Var, causal: Causal) -> ca.SX:
     if v.is_state or v.is_input:
@@ -56,12 +60,15 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     args = [t, x, u, p]
     names = ["t", "x", "u", "p"]
     if not causal.nonlinear:
-        funcs = {k: ca.Function(k, args, [e], names, [k]) for k, e in exprs.items()}
+        funcs = {k: ca.Function(k, args, [e], names, [k], CSE) for k, e in exprs.items()}
         jx = ca.jacobian(xdot, x)
-        funcs["jac_x"] = ca.Function("jac_x", args, [jx], names, ["jac_x"])
-        funcs["jac_u"] = ca.Function("jac_u", args, [ca.jacobian(xdot, u)], names, ["jac_u"])
-        funcs["out_jac_x"] = ca.Function("out_jac_x", args, [ca.jacobian(y, x)], names, ["J"])
-        funcs["out_jac_u"] = ca.Function("out_jac_u", args, [ca.jacobian(y, u)], names, ["J"])
+        funcs["jac_x"] = ca.Function("jac_x", args, [jx], names, ["jac_x"], CSE)
+        funcs["jac_u"] = ca.Function("jac_u", args, [ca.jacobian(xdot, u)], names, ["jac_u"],
+                                     CSE)
+        funcs["out_jac_x"] = ca.Function("out_jac_x", args, [ca.jacobian(y, x)], names, ["J"],
+                                         CSE)
+        funcs["out_jac_u"] = ca.Function("out_jac_u", args, [ca.jacobian(y, u)], names, ["J"],
+                                         CSE)
         return funcs, observed_names, output_names
 
     # MX composition with rootfinders
@@ -87,7 +94,7 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     funcs = {}
     mexprs = {}
     for k, e in exprs.items():
-        f_sx = ca.Function(f"{k}_sx", [full_sx], [e])
+        f_sx = ca.Function(f"{k}_sx", [full_sx], [e], CSE)
         mexprs[k] = f_sx(full_mx)
         funcs[k] = ca.Function(k, margs, [mexprs[k]], names, [k])
     funcs["jac_x"] = ca.Function("jac_x", margs, [ca.jacobian(mexprs["ode"], mx)], names, ["jac_x"])
