@@ -8,6 +8,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 import time
 from pathlib import Path
@@ -65,8 +66,9 @@ def render(sections: list[Section], command: str, machine: dict[str, str], total
         "",
         info,
     ]
-    for s in sections:
-        parts += ["", f"## {s.title}", "", s.body]
+    for k, s in enumerate(sections, start=1):
+        title = re.sub(r"^\d+\.\s*", "", s.title)
+        parts += ["", f"## {k}. {title}", "", s.body]
     return "\n".join(parts) + "\n"
 
 
