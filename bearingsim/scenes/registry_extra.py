@@ -20,6 +20,13 @@ def _build_duplex(args: dict[str, Any], fidelity: str):
     return duplex_pair(args["bearing"], **kwargs)
 
 
+def _build_deep_groove(args: dict[str, Any], fidelity: str):
+    from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
+
+    return deep_groove_ball_bearing(args["bearing"], fidelity=fidelity,
+                                    lubricant=args["lubricant"])
+
+
 def _pure_axial(inputs: dict[str, Any]) -> bool:
     radial = [inputs.get(n, 0.0) for n in ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")]
     return all(isinstance(v, (int, float)) and v == 0.0 for v in radial)
@@ -39,9 +46,28 @@ def _duplex_symmetric_args(args: dict[str, Any], inputs: dict[str, Any]) -> dict
 def register_extra(register) -> None:
     """Register the optional assemblies whose modules exist."""
     try:
-        from bearingsim.assemblies import duplex
+        from bearingsim.assemblies import deep_groove, duplex
     except ImportError:
         return
+    register(AssemblySpec(
+        name="deep_groove_ball_bearing",
+        description="single deep-groove ball bearing: quasi-static load distribution, or ball "
+                    "and cage dynamics (cage slip, pocket forces); inputs shaft_speed [rad/s] "
+                    "(dynamic levels), load.Fx, Fy, Fz [N]",
+        build=_build_deep_groove,
+        args={
+            "bearing": ArgSpec("bearing", "6304", "catalogue designation"),
+            "lubricant": ArgSpec("lubricant", "ISO VG 32", "lubricant name"),
+        },
+        fidelities=deep_groove.FIDELITIES,
+        auto_fidelities=("quasi-static", "dynamic_massive_balls"),
+        output_fidelity=[("row.*", "quasi-static"), ("load.*", "quasi-static"),
+                         ("w_cage", "dynamic_massive_balls"),
+                         ("slip", "dynamic_massive_balls"), ("inner*", "dynamic_massive_balls"),
+                         ("outer*", "dynamic_massive_balls"), ("pocket*", "dynamic_massive_balls"),
+                         ("shaft_speed", "dynamic_massive_balls")],
+        default_outputs=["row.Q_i[0]", "row.alpha_i[0]"],
+    ))
     register(AssemblySpec(
         name="duplex_pair",
         description="DF/DB/DT duplex pair of angular contact ball bearings on a rigid shaft "
