@@ -1,6 +1,7 @@
 """Invalid inputs get clear errors naming the input: negative, NaN, wrong units ("1000 rpm"),
-unknown designations, malformed scene files (fuzzed). Known bugs in code outside the scene layer
-are strict xfails with the bug described in the reason."""
+unknown designations, malformed scene files (fuzzed). The tests for the argument and input checks
+of the assemblies and the simulator started as strict xfails (bugs found by this suite) and now
+pass."""
 
 from __future__ import annotations
 
