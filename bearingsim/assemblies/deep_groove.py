@@ -80,6 +80,10 @@ class DeepGrooveBallBearing(Assembly):
         ``shaft_speed``); ignored with ``drive="flange"``.
     drive : {"speed", "flange"}
         ``"flange"`` leaves ``shaft`` (with the ring's polar inertia) for the user to drive.
+    outer_ring : {"fixed", "flange"}
+        ``"flange"``: the outer ring may rotate (its translations stay fixed); its rotation is
+        the connector ``outer_flange`` (a nested bearing's middle ring). The epicyclic cage
+        speed and the slip then use both ring speeds.
     loads : dict
         ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] on the inner ring: constants, functions of time or
         ``None`` for inputs (missing keys are inputs with default 0).
@@ -120,11 +124,14 @@ class DeepGrooveBallBearing(Assembly):
                  n_slices: int = 2, drag: bool = True,
                  oil_fraction: float = 0.05, traction_scale: float = 1.0,
                  pocket_mu: float | None = None, land_mu: float | None = None,
-                 cage_damping: float = 10.0, name="bearing"):
+                 cage_damping: float = 10.0, outer_ring: str = "fixed", name="bearing"):
         super().__init__(name)
         if drive not in ("speed", "flange"):
             raise ParameterError(f"deep_groove_ball_bearing: drive must be 'speed' or 'flange', "
                                  f"got {drive!r}")
+        if outer_ring not in ("fixed", "flange"):
+            raise ParameterError(f"deep_groove_ball_bearing: outer_ring must be 'fixed' or "
+                                 f"'flange', got {outer_ring!r}")
         g, cage = design.geometry, design.cage
         self.design, self.lubricant = design, lubricant
         loads = dict(loads or {})
@@ -140,7 +147,11 @@ class DeepGrooveBallBearing(Assembly):
 
         self.shaft = Flange()
         self.housing = FixedFrame()
-        self.housing_flange = Fixed()
+        rotating_outer = outer_ring == "flange"
+        if rotating_outer:
+            self.outer_flange = Flange()
+        else:
+            self.housing_flange = Fixed()
         self.ring = RingBody(design.ring_mass, design.ring_tilt_inertia,
                              start=(*start.ring,) if start else (0.0,) * 5, free_tilt=free_tilt)
         self.load = RingLoad(loads)
@@ -162,7 +173,7 @@ class DeepGrooveBallBearing(Assembly):
             inner.append(RaceContact("inner", design.rho_inner, g.fi, k_hertz=design.k_inner,
                                      a1=design.a1_inner, moving=True, **common))
             outer.append(RaceContact("outer", design.rho_outer, g.fo, k_hertz=design.k_outer,
-                                     a1=design.a1_outer, **common))
+                                     a1=design.a1_outer, moving=rotating_outer, **common))
             pockets.append(PocketContact(j, nz, 0.5 * dm, 0.5 * dw,
                                          0.5 * dw + cage.pocket_clearance, cage.pocket_straight,
                                          cage.web, k_pocket, pocket_mu, eta, cage_damping))
@@ -177,7 +188,8 @@ class DeepGrooveBallBearing(Assembly):
             self.drag = drags
         connect(self.ring.frame, self.load.frame, *[c.ring for c in inner])
         connect(self.housing.frame, *[c.ring for c in outer])
-        connect(self.housing_flange.flange, *[c.flange for c in outer])
+        outer_rotation = self.outer_flange if rotating_outer else self.housing_flange.flange
+        connect(outer_rotation, self.guidance.ring, *[c.flange for c in outer])
         connect(self.cage.frame, self.guidance.cage, *[p.cage for p in pockets])
         for j in range(nz):
             ports = [balls[j].frame, inner[j].ball, outer[j].ball, pockets[j].ball]
@@ -191,17 +203,23 @@ class DeepGrooveBallBearing(Assembly):
             self.rotor = Inertia(design.ring_polar_inertia)
             connect(self.rotor.flange_a, self.shaft, *[c.flange for c in inner])
         self.w_inner = Variable(unit="rad/s", description="inner-ring speed")
+        self.w_outer = Variable(unit="rad/s", description="outer-ring speed")
         self.w_cage = Variable(unit="rad/s", description="cage speed")
         self.w_epicyclic = Variable(unit="rad/s", description="cage speed of pure rolling")
-        self.slip = Variable(unit="1", description="cage slip ratio 1 - w_cage / w_epicyclic")
+        self.slip = Variable(unit="1", description="cage slip ratio 1 - (w_cage - w_outer) / "
+                                                   "(w_epicyclic - w_outer)")
 
     def equations(self):
         wk = self.w_epicyclic
+        ratio = self.design.epicyclic_ratio
+        w_o = self.w_outer
+        rel_cage, rel_kin = self.w_cage - w_o, wk - w_o
         eqs = [
             self.w_inner == der(self.shaft.phi),
+            w_o == (der(self.outer_flange.phi) if hasattr(self, "outer_flange") else 0.0),
             self.w_cage == self.cage.w,
-            wk == self.design.epicyclic_ratio * self.w_inner,
-            self.slip == 1.0 - self.w_cage * wk / (wk * wk + _W_REG**2),
+            wk == ratio * self.w_inner + (1.0 - ratio) * w_o,
+            self.slip == 1.0 - rel_cage * rel_kin / (rel_kin * rel_kin + _W_REG**2),
         ]
         if hasattr(self, "shaft_speed"):
             eqs.append(self.drive.w_in == self.shaft_speed)

@@ -16,6 +16,7 @@ from bearingsim.components.dynamic.frames import (
     scale,
     sub,
 )
+from bearingsim.components.rotational import Flange
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.cage import (
     SIGMA_BALL,
@@ -214,6 +215,7 @@ class LandGuidance(Component):
     Connectors
     ----------
     cage : CageFrame
+    ring : Flange (rotation of the guiding ring; connect it to a fixed flange for a fixed ring)
 
     Variables
     ---------
@@ -229,14 +231,16 @@ class LandGuidance(Component):
         self.mu = Parameter(mu, "1", "land friction coefficient", low=0.0, high=2.0)
         self.c_d = Parameter(damping, "s/m", "Hunt-Crossley damping coefficient", low=0.0)
         self.cage = CageFrame()
+        self.ring = Flange()
         self.eps = Variable(unit="1", description="cage eccentricity ratio")
         self.M = Variable(unit="N.m", description="guidance moment on the cage")
 
     def equations(self):
         cg = self.cage
-        w = der(cg.phi)
-        film = cage_guidance_force(cg.x, cg.y, der(cg.x), der(cg.y), w, 0.0, Rg=self.Rg,
-                                   Bg=self.Bg, Cg=self.Cg, eta=self.eta)
+        w_ring = der(self.ring.phi)
+        w = der(cg.phi) - w_ring  # cage speed relative to the guiding ring
+        film = cage_guidance_force(cg.x, cg.y, der(cg.x), der(cg.y), der(cg.phi), w_ring,
+                                   Rg=self.Rg, Bg=self.Bg, Cg=self.Cg, eta=self.eta)
         e = op.sqrt(cg.x * cg.x + cg.y * cg.y + 1e-18)
         over = op.smooth_max0(e - self.Cg, 1e-8)
         e_rate = (cg.x * der(cg.x) + cg.y * der(cg.y)) / e
@@ -248,4 +252,5 @@ class LandGuidance(Component):
             self.eps == e / self.Cg,
             self.M == film.moment + m_fric,
             cg.Fx == -fx, cg.Fy == -fy, cg.Mz == -(film.moment + m_fric),
+            self.ring.tau == film.moment + m_fric,
         ]
