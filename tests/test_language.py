@@ -232,3 +232,22 @@ def test_declaring_twice_or_reusing_a_component_is_an_error():
 
     with pytest.raises(ModelError, match="cannot also be"):
         Reuse()
+
+
+def test_ad_hoc_assembly_without_subclassing():
+    drive = Assembly("ad_hoc")
+    drive.add("wall", Fixed())
+    drive.add("spring", Spring(400.0))
+    drive.add("mass", Inertia(1.0, phi0=0.05))
+    drive.add("brake", TorqueSource(None))
+    drive.add("damping", Variable(unit="N.m", description="viscous torque on the mass"))
+    connect(drive.wall.flange, drive.spring.flange_a)
+    connect(drive.spring.flange_b, drive.mass.flange_a)
+    connect(drive.brake.flange, drive.mass.flange_b)
+    drive.add_equation(drive.damping == -2.0 * drive.mass.w,
+                       drive.brake.tau_in == drive.damping)
+    res = simulate(assemble(drive), 1.0, rtol=1e-10, atol=1e-12)
+    # J phi'' + 2 phi' + 400 phi = 0: underdamped, omega_d = sqrt(400 - 1)
+    wd = np.sqrt(399.0)
+    expected = 0.05 * np.exp(-res.t) * (np.cos(wd * res.t) + np.sin(wd * res.t) / wd)
+    np.testing.assert_allclose(res["mass.phi"], expected, atol=1e-8)

@@ -10,7 +10,7 @@ import casadi as ca
 
 from bearingsim.errors import ConnectionError_, ModelError
 from bearingsim.language.connector import Connector
-from bearingsim.language.declarations import Declaration, Flow, Parameter
+from bearingsim.language.declarations import Declaration, Parameter
 from bearingsim.language.symbols import time
 
 __all__ = ["Component", "Assembly", "connect", "ElementArray"]
@@ -288,8 +288,3 @@ def connect(*connectors: Connector) -> None:
 def flow_sign(connector: Connector, scope: Component) -> float:
     """+1 for a connector of a sub-component (inside), -1 for the scope's own (outside)."""
     return -1.0 if connector.owner is scope else 1.0
-
-
-def is_flow(decl: Declaration) -> bool:
-    """Whether a connector field is a flow."""
-    return isinstance(decl, Flow)

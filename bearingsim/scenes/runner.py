@@ -109,11 +109,6 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     return chosen, reason
 
 
-def _known_names(spec: AssemblySpec, args: dict, fidelity: str) -> set[str]:
-    system = assemble(spec.build(args, fidelity))
-    return set(system.observed_names)
-
-
 def prepare(scene: Scene) -> Prepared:
     """Validate a scene, choose its fidelity and assemble the pruned model.
 

@@ -194,10 +194,6 @@ class Scene:
         d.update(changes)
         return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None)
 
-    def base_dir(self) -> Path:
-        """Folder that relative table paths refer to (the scene file's folder, else cwd)."""
-        return Path(self.path).resolve().parent if self.path else Path.cwd()
-
 
 # --------------------------------------------------------------------------- line numbers
 _KEY_PART = r'(?:"[^"]*"|\'[^\']*\'|[A-Za-z0-9_\-]+)'
