@@ -96,6 +96,16 @@ def _interp(x, xs: Sequence[float], ys: Sequence[float]):
     return result
 
 
+def _within_table(gamma, table: Sequence[float], where: str):
+    """Check ``gamma = Dw cos(a)/dm`` against a table's range and clip round-off at its ends.
+
+    Values within a relative 1e-9 of an end (e.g. ``dm`` computed from a ratio) count as the end.
+    """
+    lo, hi = table[0], table[-1]
+    check_range(gamma, "Dw cos(alpha)/dm", "-", lo * (1.0 - 1e-9), hi * (1.0 + 1e-9), where=where)
+    return op.fmin(op.fmax(gamma, lo), hi)
+
+
 def _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows, where):
     check_range(ball_diameter, "ball_diameter", "m", 0.0, low_inclusive=False, where=where)
     check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
@@ -141,7 +151,7 @@ def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle
     """
     where = "dynamic_load_rating"
     gamma = _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows, where)
-    check_range(gamma, "Dw cos(alpha)/dm", "-", _FC_GAMMA[0], _FC_GAMMA[-1], where=where)
+    gamma = _within_table(gamma, _FC_GAMMA, where)
     check_range(bm, "bm", "-", 0.0, low_inclusive=False, where=where)
     dw_mm = ball_diameter * _MM
     size = op.if_else(dw_mm <= _DW_LARGE_MM, op.power(dw_mm, 1.8),
@@ -160,8 +170,7 @@ def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
     Parameters are those of :func:`dynamic_load_rating`. Returns f0 [N/mm^2].
     """
     gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
-    check_range(gamma, "Dw cos(alpha)/dm", "-", _F0_GAMMA[0], _F0_GAMMA[-1], where="static_factor")
-    return _interp(gamma, _F0_GAMMA, _F0)
+    return _interp(_within_table(gamma, _F0_GAMMA, "static_factor"), _F0_GAMMA, _F0)
 
 
 def static_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=0.0, rows=1):
