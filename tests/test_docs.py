@@ -1,4 +1,4 @@
-"""Every ```python block in docs/*.md runs without error.
+"""Every ```python block in README.md and docs/*.md runs without error.
 
 The blocks of one page run in order in one namespace, as a reader would run them.
 """
@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
-PAGES = [p for p in sorted(DOCS.glob("*.md")) if "```python" in p.read_text()]
+ROOT = Path(__file__).resolve().parent.parent
+PAGES = [p for p in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+         if "```python" in p.read_text()]
 
 
 @pytest.mark.parametrize("page", PAGES, ids=[p.name for p in PAGES])
