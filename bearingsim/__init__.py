@@ -5,32 +5,9 @@ The modeling language is importable from the top level::
     from bearingsim import Component, Connector, Assembly, connect, der
 """
 
-from bearingsim.language import (
-    Assembly,
-    Component,
-    Connector,
-    Flow,
-    Input,
-    Parameter,
-    Potential,
-    Variable,
-    connect,
-    der,
-    time,
-)
+from bearingsim import language
+from bearingsim.language import *  # noqa: F403 - the language is the top-level API
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "Assembly",
-    "Component",
-    "Connector",
-    "Flow",
-    "Input",
-    "Parameter",
-    "Potential",
-    "Variable",
-    "connect",
-    "der",
-    "time",
-]
+__all__ = list(language.__all__)

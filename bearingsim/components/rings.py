@@ -78,7 +78,22 @@ class PartialRigidLink(Component):
         ]
 
 
-class InnerRing(PartialRigidLink):
+class _Ring(PartialRigidLink):
+    """A rigid ring: seat frame, raceway frame at ``groove_offset``, rotational speed."""
+
+    _which = "ring"
+
+    def __init__(self, speed: float = 0.0, groove_offset: float = 0.0, exact: bool = True,
+                 name=None):
+        super().__init__(exact, name)
+        self.speed = Parameter(speed, "rad/s", f"{self._which} ring speed")
+        self.groove_offset = Parameter(groove_offset, "m", "raceway plane from the seat point")
+
+    def equations(self):
+        return self.link_equations(self.groove_offset, 0.0)
+
+
+class InnerRing(_Ring):
     """Rigid inner ring: seat on the shaft (``frame_a``) and raceway frame (``frame_b``).
 
     The ring's mass belongs to the shaft it is mounted on (the assembly adds it there).
@@ -98,17 +113,10 @@ class InnerRing(PartialRigidLink):
     frame_a : RingFrame (seat), frame_b : RingFrame (raceway, to the ball row)
     """
 
-    def __init__(self, speed: float = 0.0, groove_offset: float = 0.0, exact: bool = True,
-                 name=None):
-        super().__init__(exact, name)
-        self.speed = Parameter(speed, "rad/s", "inner ring speed")
-        self.groove_offset = Parameter(groove_offset, "m", "raceway plane from the seat point")
-
-    def equations(self):
-        return self.link_equations(self.groove_offset, 0.0)
+    _which = "inner"
 
 
-class OuterRing(PartialRigidLink):
+class OuterRing(_Ring):
     """Rigid outer ring: seat in the housing (``frame_a``) and raceway frame (``frame_b``).
 
     Parameters
@@ -125,14 +133,7 @@ class OuterRing(PartialRigidLink):
     frame_a : RingFrame (seat), frame_b : RingFrame (raceway, to the ball row)
     """
 
-    def __init__(self, speed: float = 0.0, groove_offset: float = 0.0, exact: bool = True,
-                 name=None):
-        super().__init__(exact, name)
-        self.speed = Parameter(speed, "rad/s", "outer ring speed")
-        self.groove_offset = Parameter(groove_offset, "m", "raceway plane from the seat point")
-
-    def equations(self):
-        return self.link_equations(self.groove_offset, 0.0)
+    _which = "outer"
 
 
 class Spacer(PartialRigidLink):

@@ -39,7 +39,8 @@ def _unit_definitions(parent: ET.Element, variables: list[FmuVariable],
         ET.SubElement(unit, "BaseUnit", attrs)
 
 
-def _scalar_variable(parent: ET.Element, v: FmuVariable, derivative_index: int | None) -> None:
+def variable_attributes(v: FmuVariable) -> dict[str, str]:
+    """Name, value reference, causality, variability, initial and description of a variable."""
     attrs = {
         "name": v.name,
         "valueReference": str(v.vr),
@@ -50,24 +51,34 @@ def _scalar_variable(parent: ET.Element, v: FmuVariable, derivative_index: int |
         attrs["initial"] = v.initial
     if v.description:
         attrs["description"] = v.description
-    sv = ET.SubElement(parent, "ScalarVariable", attrs)
-    real: dict[str, str] = {}
+    return attrs
+
+
+def value_attributes(v: FmuVariable, derivative_of: int | None) -> dict[str, str]:
+    """Unit, range, start and the ``derivative`` reference of a real variable."""
+    attrs: dict[str, str] = {}
     if v.unit:
-        real["unit"] = v.unit
+        attrs["unit"] = v.unit
     if v.low is not None:
-        real["min"] = _fmt(v.low)
+        attrs["min"] = _fmt(v.low)
     if v.high is not None:
-        real["max"] = _fmt(v.high)
+        attrs["max"] = _fmt(v.high)
     if v.start is not None:
-        real["start"] = _fmt(v.start)
-    if derivative_index is not None:
-        real["derivative"] = str(derivative_index)
-    ET.SubElement(sv, "Real", real)
+        attrs["start"] = _fmt(v.start)
+    if derivative_of is not None:
+        attrs["derivative"] = str(derivative_of)
+    return attrs
 
 
-def _deps(columns: list[np.ndarray], indices: list[list[int]]) -> str:
+def _scalar_variable(parent: ET.Element, v: FmuVariable, derivative_index: int | None) -> None:
+    sv = ET.SubElement(parent, "ScalarVariable", variable_attributes(v))
+    ET.SubElement(sv, "Real", value_attributes(v, derivative_index))
+
+
+def dependency_list(rows: list[np.ndarray], refs: list[list[int]]) -> str:
+    """Sorted, space-separated references of the structural non-zeros of ``rows``."""
     out: list[int] = []
-    for row, idx in zip(columns, indices, strict=True):
+    for row, idx in zip(rows, refs, strict=True):
         out.extend(idx[j] for j in np.flatnonzero(row))
     return " ".join(str(i) for i in sorted(out))
 
@@ -150,7 +161,7 @@ def model_description_xml(iface: FmuInterface, model_name: str, model_identifier
         if with_params:
             cols.append(sp[f"{pre}_p"][k])
             idx.append(p_idx)
-        return _deps(cols, idx)
+        return dependency_list(cols, idx)
 
     def unknown(vr: int, with_params: bool) -> tuple[int, str]:
         if vr < iface.vr_dx:

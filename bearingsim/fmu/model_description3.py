@@ -11,10 +11,15 @@ from __future__ import annotations
 import datetime as _dt
 import xml.etree.ElementTree as ET
 
-import numpy as np
-
 from bearingsim.fmu.interface import FmuInterface, FmuVariable
-from bearingsim.fmu.model_description import LOG_CATEGORIES, _fmt, _unit_definitions
+from bearingsim.fmu.model_description import (
+    LOG_CATEGORIES,
+    _fmt,
+    _unit_definitions,
+    dependency_list,
+    value_attributes,
+    variable_attributes,
+)
 
 __all__ = ["model_description3_xml", "time_value_reference"]
 
@@ -25,34 +30,8 @@ def time_value_reference(iface: FmuInterface) -> int:
 
 
 def _float64(parent: ET.Element, v: FmuVariable, derivative_of: int | None) -> None:
-    attrs = {
-        "name": v.name,
-        "valueReference": str(v.vr),
-        "causality": v.causality,
-        "variability": v.variability,
-    }
-    if v.initial is not None:
-        attrs["initial"] = v.initial
-    if v.description:
-        attrs["description"] = v.description
-    if v.unit:
-        attrs["unit"] = v.unit
-    if v.low is not None:
-        attrs["min"] = _fmt(v.low)
-    if v.high is not None:
-        attrs["max"] = _fmt(v.high)
-    if v.start is not None:
-        attrs["start"] = _fmt(v.start)
-    if derivative_of is not None:
-        attrs["derivative"] = str(derivative_of)
+    attrs = {**variable_attributes(v), **value_attributes(v, derivative_of)}
     ET.SubElement(parent, "Float64", attrs)
-
-
-def _deps(rows: list[np.ndarray], vrs: list[list[int]]) -> str:
-    out: list[int] = []
-    for row, refs in zip(rows, vrs, strict=True):
-        out.extend(refs[j] for j in np.flatnonzero(row))
-    return " ".join(str(r) for r in sorted(out))
 
 
 def model_description3_xml(iface: FmuInterface, model_name: str, model_identifier: str,
@@ -139,7 +118,7 @@ def model_description3_xml(iface: FmuInterface, model_name: str, model_identifie
         if with_params:
             rows.append(sp[f"{pre}_p"][k])
             refs.append(p_vrs)
-        return _deps(rows, refs)
+        return dependency_list(rows, refs)
 
     structure = ET.SubElement(root, "ModelStructure")
     for vr in sorted(set(iface.output_vrs)):

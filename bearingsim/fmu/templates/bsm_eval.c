@@ -144,3 +144,46 @@ BsmStatus bsm_check_input(BsmInstance *m, int k, double v) {
             bsm_u_names[k], bsm_num(b, v));
     return BSM_ERROR;
 }
+
+/* ------------------------------------------------------------------ FMU state serialization */
+typedef struct {
+    unsigned int magic;
+    unsigned int size;
+    BsmState s;
+} BsmSerialState;
+
+size_t bsm_serialized_size(void) { return sizeof(BsmSerialState); }
+
+BsmStatus bsm_serialize(BsmInstance *m, const BsmState *s, unsigned int magic, void *buffer,
+                        size_t size, const char *function) {
+    BsmSerialState out;
+    if (s == NULL || size < sizeof(BsmSerialState)) {
+        bsm_log(m, BSM_ERROR, "logStatusError", "%s: no state or buffer smaller than %u bytes",
+                function, (unsigned)sizeof(BsmSerialState));
+        return BSM_ERROR;
+    }
+    memset(&out, 0, sizeof(out));
+    out.magic = magic;
+    out.size = (unsigned int)sizeof(BsmSerialState);
+    out.s = *s;
+    memcpy(buffer, &out, sizeof(out));
+    return BSM_OK;
+}
+
+BsmStatus bsm_deserialize(BsmInstance *m, unsigned int magic, const void *buffer, size_t size,
+                          BsmState *s, const char *function) {
+    BsmSerialState in;
+    if (size != sizeof(BsmSerialState)) {
+        bsm_log(m, BSM_ERROR, "logStatusError", "%s: expected %u bytes, got %u", function,
+                (unsigned)sizeof(BsmSerialState), (unsigned)size);
+        return BSM_ERROR;
+    }
+    memcpy(&in, buffer, sizeof(in));
+    if (in.magic != magic || in.size != sizeof(BsmSerialState)) {
+        bsm_log(m, BSM_ERROR, "logStatusError", "%s: the data is not a state of this FMU",
+                function);
+        return BSM_ERROR;
+    }
+    *s = in.s;
+    return BSM_OK;
+}

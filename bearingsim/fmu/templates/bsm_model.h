@@ -117,6 +117,11 @@ BsmStatus bsm_current_derivatives(BsmInstance *m);
 BsmStatus bsm_current_outputs(BsmInstance *m);
 BsmStatus bsm_check_parameter(BsmInstance *m, int k, double value);
 BsmStatus bsm_check_input(BsmInstance *m, int k, double value);
+size_t bsm_serialized_size(void);
+BsmStatus bsm_serialize(BsmInstance *m, const BsmState *s, unsigned int magic, void *buffer,
+                        size_t size, const char *function);
+BsmStatus bsm_deserialize(BsmInstance *m, unsigned int magic, const void *buffer, size_t size,
+                          BsmState *s, const char *function);
 
 /* bsm_solver.c */
 int bsm_lu_factor(double *a, int n, int *piv);

@@ -29,12 +29,6 @@ typedef struct {
     fmi2CallbackFunctions cb;
 } Fmi2Instance;
 
-typedef struct {
-    unsigned int magic;
-    unsigned int size;
-    BsmState s;
-} SerialState;
-
 static void fmi2_logger(void *host, BsmStatus status, const char *category,
                         const char *message) {
     Fmi2Instance *c = (Fmi2Instance *)host;
@@ -340,47 +334,28 @@ fmi2Status fmi2SerializedFMUstateSize(fmi2Component component, fmi2FMUstate stat
                                       size_t *size) {
     INSTANCE("fmi2SerializedFMUstateSize", ANY_MODE)
     (void)state;
-    *size = sizeof(SerialState);
+    *size = bsm_serialized_size();
     return fmi2OK;
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component component, fmi2FMUstate state,
                                  fmi2Byte serializedState[], size_t size) {
-    SerialState out;
     INSTANCE("fmi2SerializeFMUstate", ANY_MODE)
-    if (state == NULL || size < sizeof(SerialState)) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi2SerializeFMUstate: no state or buffer smaller than %u bytes",
-                (unsigned)sizeof(SerialState));
-        return fmi2Error;
-    }
-    memset(&out, 0, sizeof(out));
-    out.magic = SERIAL_MAGIC;
-    out.size = (unsigned int)sizeof(SerialState);
-    out.s = *(const BsmState *)state;
-    memcpy(serializedState, &out, sizeof(out));
-    return fmi2OK;
+    return bsm_serialize(&c->m, (const BsmState *)state, SERIAL_MAGIC, serializedState, size,
+                         "fmi2SerializeFMUstate") == BSM_OK ? fmi2OK : fmi2Error;
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte serializedState[],
                                    size_t size, fmi2FMUstate *state) {
-    SerialState in;
+    BsmState restored;
     fmi2FMUstate copy = NULL;
     INSTANCE("fmi2DeSerializeFMUstate", ANY_MODE)
-    if (size != sizeof(SerialState)) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi2DeSerializeFMUstate: expected %u bytes, got %u",
-                (unsigned)sizeof(SerialState), (unsigned)size);
-        return fmi2Error;
-    }
-    memcpy(&in, serializedState, sizeof(in));
-    if (in.magic != SERIAL_MAGIC || in.size != sizeof(SerialState)) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi2DeSerializeFMUstate: the data is not a state of this FMU");
+    if (bsm_deserialize(&c->m, SERIAL_MAGIC, serializedState, size, &restored,
+                        "fmi2DeSerializeFMUstate") != BSM_OK) {
         return fmi2Error;
     }
     if (fmi2GetFMUstate(component, &copy) != fmi2OK) return fmi2Error;
-    *(BsmState *)copy = in.s;
+    *(BsmState *)copy = restored;
     *state = copy;
     return fmi2OK;
 }

@@ -36,12 +36,6 @@ typedef struct {
     fmi3LogMessageCallback log_message;
 } Fmi3Instance;
 
-typedef struct {
-    unsigned int magic;
-    unsigned int size;
-    BsmState s;
-} SerialState;
-
 static void fmi3_logger(void *host, BsmStatus status, const char *category,
                         const char *message) {
     Fmi3Instance *c = (Fmi3Instance *)host;
@@ -463,47 +457,28 @@ fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUSta
                                       size_t *size) {
     INSTANCE("fmi3SerializedFMUStateSize", ANY_MODE)
     (void)FMUState;
-    *size = sizeof(SerialState);
+    *size = bsm_serialized_size();
     return fmi3OK;
 }
 
 fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState,
                                  fmi3Byte serializedState[], size_t size) {
-    SerialState out;
     INSTANCE("fmi3SerializeFMUState", ANY_MODE)
-    if (FMUState == NULL || size < sizeof(SerialState)) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi3SerializeFMUState: no state or buffer smaller than %u bytes",
-                (unsigned)sizeof(SerialState));
-        return fmi3Error;
-    }
-    memset(&out, 0, sizeof(out));
-    out.magic = SERIAL_MAGIC;
-    out.size = (unsigned int)sizeof(SerialState);
-    out.s = *(const BsmState *)FMUState;
-    memcpy(serializedState, &out, sizeof(out));
-    return fmi3OK;
+    return bsm_serialize(&c->m, (const BsmState *)FMUState, SERIAL_MAGIC, serializedState, size,
+                         "fmi3SerializeFMUState") == BSM_OK ? fmi3OK : fmi3Error;
 }
 
 fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte serializedState[],
                                    size_t size, fmi3FMUState *FMUState) {
-    SerialState in;
+    BsmState restored;
     fmi3FMUState copy = NULL;
     INSTANCE("fmi3DeserializeFMUState", ANY_MODE)
-    if (size != sizeof(SerialState)) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi3DeserializeFMUState: expected %u bytes, got %u",
-                (unsigned)sizeof(SerialState), (unsigned)size);
-        return fmi3Error;
-    }
-    memcpy(&in, serializedState, sizeof(in));
-    if (in.magic != SERIAL_MAGIC || in.size != sizeof(SerialState)) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi3DeserializeFMUState: the data is not a state of this FMU");
+    if (bsm_deserialize(&c->m, SERIAL_MAGIC, serializedState, size, &restored,
+                        "fmi3DeserializeFMUState") != BSM_OK) {
         return fmi3Error;
     }
     if (fmi3GetFMUState(instance, &copy) != fmi3OK) return fmi3Error;
-    *(BsmState *)copy = in.s;
+    *(BsmState *)copy = restored;
     *FMUState = copy;
     return fmi3OK;
 }
