@@ -22,10 +22,10 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
-from bearingsim.solver import simulate
+from bearingsim.solver import assemble, simulate
 from bearingsim.solver.fastcall import BufferedFunction
 from bearingsim.solver.simulate import close_inputs
-from bearingsim.studies.deep_groove import DUTY_CYCLE, assemble_bearing
+from bearingsim.studies.deep_groove import DUTY_CYCLE
 from bearingsim.units import rpm_to_rad_s
 from bench.common import fmt, interp_loglog, markdown_table
 
@@ -40,7 +40,7 @@ def _system(k: int, fidelity: str):
     outputs = ["w_cage"] + [f"inner[{j}].Q" for j in range(7)]
     bearing = deep_groove_ball_bearing("6304", fidelity, speed=lambda t: w * ca.fmin(t / RAMP, 1),
                                        loads={"Fx": load}, n_slices=0)
-    return assemble_bearing(bearing, outputs)
+    return assemble(bearing, outputs=outputs)
 
 
 RK4_REAL_LIMIT = 2.785

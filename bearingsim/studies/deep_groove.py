@@ -7,7 +7,6 @@ from the result (:func:`post_process`), never in the right-hand side.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 
 import casadi as ca
@@ -28,11 +27,10 @@ from bearingsim.physics.life import (
     reference_rating_life,
 )
 from bearingsim.physics.lubricant import Dry, Lubricant, get_lubricant
-from bearingsim.solver import Result, System, assemble, simulate
+from bearingsim.solver import Result, assemble, simulate
 from bearingsim.units import rpm_to_rad_s
 
-__all__ = ["DUTY_CYCLE", "VALIDATION", "RunSummary", "outputs_for", "shared_subexpressions",
-           "assemble_bearing", "run_bearing",
+__all__ = ["DUTY_CYCLE", "VALIDATION", "RunSummary", "outputs_for", "run_bearing",
            "validation_case", "duty_condition", "post_process", "settling_time"]
 
 DUTY_CYCLE = ((1730.0, 938.0), (3703.0, 903.0), (1785.0, 266.0), (3998.0, 206.0))
@@ -93,36 +91,6 @@ def outputs_for(n_balls: int) -> list[str]:
     return names
 
 
-def shared_subexpressions(system: System) -> System:
-    """The system with its right-hand side and Jacobian rebuilt without repeated subexpressions.
-
-    The assembler's causal expressions repeat the same subexpressions many times (the contact
-    geometry of a ball enters its own force balance, the ring's and the cage's, each as a copy):
-    the deep-groove right-hand side of 7 balls has about 28 000 SX instructions, 4 800 after
-    ``casadi.cse``; the Jacobian, differentiated from the reduced right-hand side, 46 000 instead
-    of 275 000 (6304, one slice per contact). Both evaluate 5-6 times faster, in CasADi's virtual
-    machine (CVODES) as in compiled C, and compile far quicker. Values are unchanged (the same
-    operations, each evaluated once). The other functions (observe, outputs), evaluated once per
-    output point, are kept. Models with Newton blocks (MX functions) are returned unchanged.
-    """
-    ode = system.functions["ode"]
-    if not ode.is_a("SXFunction"):
-        return system
-    ins = [ca.SX.sym(ode.name_in(i), ode.sparsity_in(i)) for i in range(ode.n_in())]
-    xdot = ca.cse(ode.call(ins)[0])
-    jac = ca.cse(ca.jacobian(xdot, ins[1]))
-    names = ode.name_in()
-    functions = dict(system.functions)
-    functions["ode"] = ca.Function("ode", ins, [xdot], names, ["ode"])
-    functions["jac_x"] = ca.Function("jac_x", ins, [jac], names, ["jac_x"])
-    return dataclasses.replace(system, functions=functions)
-
-
-def assemble_bearing(bearing, outputs: list[str] | None = None) -> System:
-    """:func:`~bearingsim.solver.assemble` followed by :func:`shared_subexpressions`."""
-    return shared_subexpressions(assemble(bearing, outputs=outputs))
-
-
 def run_bearing(speed, load: float, t_end: float, *, designation: str = "6304",
                 lubricant: Lubricant | str = "ISO VG 32",
                 fidelity: str = "dynamic_massive_balls", method: str = "cvodes",
@@ -151,7 +119,7 @@ def run_bearing(speed, load: float, t_end: float, *, designation: str = "6304",
     """
     bearing = deep_groove_ball_bearing(designation, fidelity, lubricant=lubricant, speed=speed,
                                        loads={"Fx": float(load)}, **options)
-    system = assemble_bearing(bearing, outputs_for(bearing.design.geometry.ball_count))
+    system = assemble(bearing, outputs=outputs_for(bearing.design.geometry.ball_count))
     res = simulate(system, t_end, method=method, rtol=rtol, atol=atol, n_points=n_points,
                    progress=False)
     return res, bearing.design
