@@ -84,14 +84,13 @@ PALMGREN_F1: dict[str, tuple[float, float]] = {
 }
 
 # SKF model, geometry constants. Source: SKF General Catalogue 6000 EN (2005), section "Friction",
-# Table 2b "Geometry constants for rolling and sliding frictional moments" (the same model and
-# tables in the SKF "Rolling bearings" catalogue, PUB BU/P1 10000 EN, "Friction", Tables 2a/2b,
-# pp. 104-106 of the copy hosted as yumpu.com document 55668573, uploaded 2016).
+# Table 3a "Geometry constants for rolling and sliding frictional moments" (the same model and
+# tables in the SKF "Rolling bearings" catalogue, PUB BU/P1 10000 EN, "Friction").
 # Units: those of the catalogue formulas (dm mm, n r/min, nu mm^2/s, loads N, torque N mm).
-# Verification (issue 3): the Table 2b page itself could not be retrieved. The Table 2a formulas
-# (Grr, Gsl, alpha_F) were checked against that catalogue copy, page 106, and every deep-groove
-# row below was cross-checked against an independent public transcription of Table 2b (GitHub
-# code index, "BEARING_CONSTANTS" of a DGBB friction model): all rows agree except series 3.
+# Issue 3 verification: every row below equals Table 3a of the SKF General Catalogue 6000, Russian
+# edition (data as of 2006), p. 93 ("2, 3", "42, 43", "60, 630", "62, 622", "63, 623", "64",
+# "160, 161", "617, 618, 628, 637, 638", "619, 639"); the Grr/Gsl forms equal its Table 2a, p. 91
+# (tests/physics/test_published_examples.py).
 SKF_DEEP_GROOVE: dict[str, dict[str, float]] = {
     "2": {"R1": 4.4e-7, "R2": 1.7, "S1": 2.00e-3, "S2": 100.0},
     # The catalogue has one row "2, 3". Corrected S1 1.70e-3 -> 2.00e-3 (the value of that row in
@@ -106,21 +105,19 @@ SKF_DEEP_GROOVE: dict[str, dict[str, float]] = {
     "618": {"R1": 4.7e-7, "R2": 1.7, "S1": 6.50e-3, "S2": 0.78},
     "619": {"R1": 4.3e-7, "R2": 1.7, "S1": 4.75e-3, "S2": 3.6},
 }
-# Angular contact rows: 72 B agrees with an independent public implementation of the SKF model
-# (GitHub code index, a "least_square_model" using R1 5.03e-7, R2 1.97, R3 1.90e-12, S1 1.30e-2,
-# S2 0.68, S3 1.91e-12 for a 72xx bearing); 73 B is UNVERIFIED (entered from memory, no source
-# text found).
+# Angular contact rows: "72B" equals the single-row angular contact row of Table 3 of the SKF
+# General Catalogue 6000 (Russian ed., 2006 data), p. 92, which gives one row for all single-row
+# series (also used by an independent public implementation, GitHub code index). "73B" is
+# UNVERIFIED (entered from memory; that catalogue has no separate 73 B row, the 2018 catalogue
+# 17000 was not retrievable).
 SKF_ANGULAR_CONTACT: dict[str, dict[str, float]] = {
     "72B": {"R1": 5.03e-7, "R2": 1.97, "R3": 1.90e-12, "S1": 1.30e-2, "S2": 0.68, "S3": 1.91e-12},
     "73B": {"R1": 4.78e-7, "R2": 1.65, "R3": 2.71e-12, "S1": 1.31e-2, "S2": 0.68, "S3": 1.96e-12},
 }
 SKF_KRS: dict[str, float] = {
-    # Replenishment/starvation constant Krs (SKF General Catalogue 2005, "Kinematic
-    # replenishment/starvation reduction factor"): 3e-8 for low-level oil bath and oil jet,
-    # 6e-8 for grease and oil-air (oil mist). The catalogue page shows the formula as an image;
-    # the values were cross-checked against three independent public implementations of the SKF
-    # model (GitHub code index), which use the same 3e-8 / 6e-8 and Kz 3.1 (deep groove) /
-    # 4.4 (angular contact). "vertical_shaft" has no catalogue value; the oil-bath value is used.
+    # Replenishment/starvation constant Krs: 3e-8 for low-level oil bath and oil jet, 6e-8 for
+    # grease and oil-air (oil mist). Verified against the SKF General Catalogue 6000 (Russian ed.,
+    # 2006 data), p. 98. "vertical_shaft" has no catalogue value; the oil-bath value is used.
     "oil_bath": 3e-8,
     "oil_jet": 3e-8,
     "vertical_shaft": 3e-8,
@@ -128,8 +125,8 @@ SKF_KRS: dict[str, float] = {
     "oil_mist": 6e-8,
 }
 SKF_KZ: dict[str, float] = {"deep_groove_ball": 3.1, "angular_contact_ball": 4.4}
-"""Bearing type geometry constant Kz of the replenishment factor (SKF 2005, Table 5; values
-cross-checked against public implementations of the SKF model, see :data:`SKF_KRS`)."""
+"""Bearing type geometry constant Kz of the replenishment factor (SKF 2005, Table 5; verified
+against the SKF General Catalogue 6000, Russian ed., 2006 data, p. 98, Table 5)."""
 
 _PALMGREN_BLEND = 3.2  # smoothing width of the M0 branch blend, 2 % of the 160 plateau
 _NU_N_BRANCH_CUBE_ROOT = 160.0  # 160 = the low-speed plateau of (nu n)^(2/3)
@@ -461,12 +458,14 @@ def skf_friction_components(
       ``phi_bl = exp(-2.6e-8 (n nu)^1.4 dm)``; ``mu_bl``, ``mu_EHL`` from the lubricant. Verified
       against the SKF "Rolling bearings" catalogue (10000 EN), "Sliding frictional moment",
       p. 105 (``phi_bl`` constant 2.6e-8, exponent 1.4; ``mu_bl`` about 0.15; ``mu_EHL`` 0.05
-      mineral oil, 0.04 synthetic oil, 0.1 transmission fluid).
-    * ``phi_ish = 1 / (1 + 1.84e-9 (n dm)^1.28 nu^0.64)`` (inlet shear heating; SKF 2005 and the
-      SKF web page "Inlet shear heating reduction factor", whose formula is an image: constants
-      cross-checked against public implementations of the SKF model, GitHub code index).
+      mineral oil, 0.04 synthetic oil, 0.1 transmission fluid); the same in the SKF General
+      Catalogue 6000 (Russian ed., 2006 data), pp. 100-101.
+    * ``phi_ish = 1 / (1 + 1.84e-9 (n dm)^1.28 nu^0.64)`` (inlet shear heating; SKF General
+      Catalogue 6000, Russian ed., 2006 data, p. 97; its worked example on p. 104, 0.85, is
+      reproduced in tests/physics/test_published_examples.py).
     * ``phi_rs = exp(-Krs nu n (d + D) sqrt(Kz / (2 (D - d))))`` (kinematic replenishment /
-      starvation), ``Krs`` from :data:`SKF_KRS` by lubrication method.
+      starvation), ``Krs`` from :data:`SKF_KRS` by lubrication method (same catalogue, p. 98;
+      its example on p. 105, 0.8 with Kz = 5.5, is reproduced).
     * ``Mseal = KS1 ds^beta + KS2`` (:class:`SkfSeal`), 0 without seals.
     * ``Mdrag``: SKF's drag term needs the ``VM`` diagram, which is not reproduced here; instead
       the drag of the immersed balls is computed from
