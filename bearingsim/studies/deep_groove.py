@@ -31,7 +31,8 @@ from bearingsim.solver import Result, assemble, simulate
 from bearingsim.units import rpm_to_rad_s
 
 __all__ = ["DUTY_CYCLE", "VALIDATION", "RunSummary", "outputs_for", "run_bearing",
-           "validation_case", "duty_condition", "post_process", "settling_time"]
+           "validation_case", "duty_condition", "post_process", "settling_time",
+           "largest_pocket_force", "StartUp", "start_up"]
 
 DUTY_CYCLE = ((1730.0, 938.0), (3703.0, 903.0), (1785.0, 266.0), (3998.0, 206.0))
 """The four motor working conditions of models.md C: (speed [r/min], radial load [N])."""
@@ -148,6 +149,76 @@ def settling_time(t: np.ndarray, signal: np.ndarray, band: float, t_min: float =
     tail = signal[int(0.8 * len(signal)):]
     outside = np.nonzero((np.abs(signal - tail.mean()) > band) & (t >= t_min))[0]
     return float(t[outside[-1]]) if outside.size else float(t_min)
+
+
+def largest_pocket_force(res: Result, n_balls: int) -> np.ndarray:
+    """Largest ball-pocket (collision) force among the balls at every save point [N]."""
+    return np.max(np.abs([res[f"pocket[{j}].F"] for j in range(n_balls)]), axis=0)
+
+
+@dataclass
+class StartUp:
+    """Start-up transient of a run from rest (models.md C findings on slip and collisions).
+
+    Attributes
+    ----------
+    slip_settling : float
+        Time after which the cage slip stays within the slip band of its final mean [s].
+    collision_peak : float
+        Largest ball-pocket force of the run [N] (a single sample: one impact decides it).
+    collision_level : float
+        Largest trailing average of the largest pocket force [N]: the force level the balls
+        sustain on the cage while they accelerate it (less sensitive to where the save points
+        fall on the short Hertz impacts than the peak).
+    collision_settling : float
+        Time after which that average stays within the force band of its final mean [s].
+    impacts : int
+        Number of times the largest pocket force rises through half of ``collision_level``
+        before ``collision_settling`` [-] (repeated collisions: the start-up oscillation).
+    """
+
+    slip_settling: float
+    collision_peak: float
+    collision_level: float
+    collision_settling: float
+    impacts: int
+
+
+def start_up(res: Result, design: BearingDesign, *, slip_band: float = 0.05,
+             force_band: float = 2.0, averaging: float = 5e-4) -> StartUp:
+    """Settling of the cage slip and of the ball-cage collision forces after a start from rest.
+
+    Parameters
+    ----------
+    res : Result
+        A run from rest with the outputs of :func:`outputs_for`, saved densely enough to
+        resolve the collisions (10 us in the tests).
+    design : BearingDesign
+        The bearing's design.
+    slip_band : float
+        Band of :func:`settling_time` for the slip [-].
+    force_band : float
+        Band of :func:`settling_time` for the averaged collision force [N].
+    averaging : float
+        Length of the trailing average of the largest pocket force [s].
+
+    Returns
+    -------
+    StartUp
+    """
+    force = largest_pocket_force(res, design.geometry.ball_count)
+    n = max(1, int(round(averaging / (res.t[1] - res.t[0]))))
+    level = np.convolve(force, np.ones(n) / n)[:force.size]  # trailing; at rest before t = 0
+    t_force = settling_time(res.t, level, force_band)
+    half = 0.5 * level.max()
+    rises = (force[1:] > half) & (force[:-1] <= half) & (res.t[1:] <= t_force)
+    return StartUp(
+        slip_settling=settling_time(res.t, res["slip"], slip_band),
+        collision_peak=float(force.max()),
+        collision_level=float(level.max()),
+        collision_settling=t_force,
+        impacts=int(np.count_nonzero(rises)),
+    )
 
 
 def post_process(res: Result, design: BearingDesign, lubricant: Lubricant | str, load: float,
