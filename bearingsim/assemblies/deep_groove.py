@@ -30,6 +30,7 @@ from bearingsim.components.dynamic import (
     PocketContact,
     RaceContact,
     RingBody,
+    RingDrag,
     RingLoad,
     TiltGuide,
 )
@@ -80,6 +81,10 @@ class DeepGrooveBallBearing(Assembly):
         ``shaft_speed``); ignored with ``drive="flange"``.
     drive : {"speed", "flange"}
         ``"flange"`` leaves ``shaft`` (with the ring's polar inertia) for the user to drive.
+    ring_inertia : bool
+        With ``drive="flange"``: whether the inner ring's polar inertia belongs to this bearing
+        (False when an enclosing assembly models the ring's rotation, e.g. a nested bearing's
+        middle ring).
     outer_ring : {"fixed", "flange"}
         ``"flange"``: the outer ring may rotate (its translations stay fixed); its rotation is
         the connector ``outer_flange`` (a nested bearing's middle ring). The epicyclic cage
@@ -107,6 +112,14 @@ class DeepGrooveBallBearing(Assembly):
         Coulomb coefficients of pocket and land contacts [-].
     cage_damping : float
         Hunt-Crossley coefficient of the pocket and land contacts [s/m].
+    rolling_resistance : bool
+        EHL hydrodynamic rolling resistance at every race contact (viscous lubricants only;
+        see :class:`~bearingsim.components.dynamic.RaceContact`). Default False.
+    ring_drag : bool
+        A :class:`~bearingsim.components.dynamic.RingDrag` between the inner and outer ring
+        rotations: the load-independent Palmgren ``M0`` less the viscous losses resolved at
+        ball level (rolling resistance, ball drag, cage pockets and land), so that the
+        bearing's viscous loss equals the torque level's. Default False.
 
     Connectors
     ----------
@@ -114,7 +127,8 @@ class DeepGrooveBallBearing(Assembly):
 
     Variables
     ---------
-    w_inner, w_cage, w_epicyclic [rad/s]; slip [1] = 1 - w_cage / w_epicyclic
+    w_inner, w_cage, w_epicyclic [rad/s]; slip [1] = 1 - w_cage / w_epicyclic; with
+    ``ring_drag`` P_resolved [W], the loss resolved at ball level (see ``_resolved_loss``)
     """
 
     def __init__(self, design: BearingDesign, lubricant: Lubricant, massive_balls: bool = False,
@@ -124,7 +138,9 @@ class DeepGrooveBallBearing(Assembly):
                  n_slices: int = 2, drag: bool = True,
                  oil_fraction: float = 0.05, traction_scale: float = 1.0,
                  pocket_mu: float | None = None, land_mu: float | None = None,
-                 cage_damping: float = 10.0, outer_ring: str = "fixed", name="bearing"):
+                 cage_damping: float = 10.0, outer_ring: str = "fixed",
+                 rolling_resistance: bool = False, ring_drag: bool = False,
+                 ring_inertia: bool = True, name="bearing"):
         super().__init__(name)
         if drive not in ("speed", "flange"):
             raise ParameterError(f"deep_groove_ball_bearing: drive must be 'speed' or 'flange', "
@@ -138,6 +154,9 @@ class DeepGrooveBallBearing(Assembly):
         constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
         start = static_state(design, constant, free_tilt=free_tilt) if constant else None
         eta = float(lubricant.dynamic_viscosity())
+        if (rolling_resistance or ring_drag) and eta <= 0.0:
+            raise ParameterError(f"deep_groove_ball_bearing: rolling_resistance and ring_drag "
+                                 f"need a viscous lubricant, got {lubricant.describe()}")
         if film_damping is None:
             film_damping = FILM_DAMPING if eta > 0.0 else 0.0
         mu_dry = getattr(lubricant, "mu", 0.1)
@@ -168,12 +187,15 @@ class DeepGrooveBallBearing(Assembly):
             balls.append(Ball(design.ball_mass, design.ball_inertia, r0, 0.5 * dm, theta, z0,
                               massive=massive_balls))
             common = dict(ball_diameter=dw, lubricant=lubricant, damping=damping,
-                          film_damping=film_damping,
-                          n_slices=n_slices, traction_scale=traction_scale)
+                          film_damping=film_damping, n_slices=n_slices,
+                          traction_scale=traction_scale, rolling_resistance=rolling_resistance,
+                          e_eff=design.e_eff)
             inner.append(RaceContact("inner", design.rho_inner, g.fi, k_hertz=design.k_inner,
-                                     a1=design.a1_inner, moving=True, **common))
+                                     a1=design.a1_inner, moving=True, rx=design.rx_inner,
+                                     ry=design.ry_inner, **common))
             outer.append(RaceContact("outer", design.rho_outer, g.fo, k_hertz=design.k_outer,
-                                     a1=design.a1_outer, moving=rotating_outer, **common))
+                                     a1=design.a1_outer, moving=rotating_outer,
+                                     rx=design.rx_outer, ry=design.ry_outer, **common))
             pockets.append(PocketContact(j, nz, 0.5 * dm, 0.5 * dw,
                                          0.5 * dw + cage.pocket_clearance, cage.pocket_straight,
                                          cage.web, k_pocket, pocket_mu, eta, cage_damping))
@@ -194,14 +216,22 @@ class DeepGrooveBallBearing(Assembly):
         for j in range(nz):
             ports = [balls[j].frame, inner[j].ball, outer[j].ball, pockets[j].ball]
             connect(*(ports + ([drags[j].ball] if drags else [])))
+        if ring_drag:
+            self.ring_drag = RingDrag(dm, lubricant)
+            self.P_resolved = Variable(unit="W", description="viscous loss resolved at ball "
+                                                             "level (rolling resistance, drag)")
+            connect(self.ring_drag.inner, self.shaft)
+            connect(self.ring_drag.outer, outer_rotation)
         if drive == "speed":
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft, *[c.flange for c in inner])
             if speed is None:
                 self.shaft_speed = Input(0.0, "rad/s", "imposed inner-ring speed")
-        else:
+        elif ring_inertia:
             self.rotor = Inertia(design.ring_polar_inertia)
             connect(self.rotor.flange_a, self.shaft, *[c.flange for c in inner])
+        else:
+            connect(self.shaft, *[c.flange for c in inner])
         self.w_inner = Variable(unit="rad/s", description="inner-ring speed")
         self.w_outer = Variable(unit="rad/s", description="outer-ring speed")
         self.w_cage = Variable(unit="rad/s", description="cage speed")
@@ -223,7 +253,39 @@ class DeepGrooveBallBearing(Assembly):
         ]
         if hasattr(self, "shaft_speed"):
             eqs.append(self.drive.w_in == self.shaft_speed)
+        if hasattr(self, "ring_drag"):
+            eqs += [self.P_resolved == self._resolved_loss(),
+                    self.ring_drag.P_resolved == self.P_resolved]
         return eqs
+
+    def _resolved_loss(self):
+        """Power of the viscous losses resolved at ball level [W].
+
+        The race contacts' rolling resistance ``P_roll``, and the power taken in by the
+        elements that stand for the lubricant's drag on balls and cage: the ball drag, the
+        pockets (film, and contact damping and friction) and the land guidance (film, and land
+        contact). An element's power is the sum over its ports of flow (force or moment *on*
+        the element) times the port's velocity; a ball port moves at ``(vr, r w_orbit, vz)``
+        and turns at ``(wr, wt, wz)`` in the orbiting frame.
+        """
+        def ball_port(port, ball):
+            return (port.Fr * ball.vr + port.Ft * ball.r * ball.w_orbit + port.Fz * ball.vz
+                    + port.Mr * ball.wr + port.Mt * ball.wt + port.Mz * ball.wz)
+
+        cage = self.cage
+
+        def cage_port(port):
+            return port.Fx * cage.vx + port.Fy * cage.vy + port.Mz * cage.w
+
+        power = (cage_port(self.guidance.cage) + self.guidance.ring.tau * self.w_outer)
+        for contact in (*self.inner, *self.outer):
+            if contact.rolling:
+                power = power + contact.P_roll
+        for ball, pocket in zip(self.ball, self.pocket, strict=True):
+            power = power + ball_port(pocket.ball, ball) + cage_port(pocket.cage)
+        for ball, drag in zip(self.ball, getattr(self, "drag", []), strict=False):
+            power = power + ball_port(drag.ball, ball)
+        return power
 
 
 class QuasiStaticDeepGroove(Assembly):

@@ -5,6 +5,10 @@ and the outer bearing's inner ring form the *middle ring*, three bodies joined r
 connections (the assembler's alias elimination and index reduction merge them). The shaft drives
 the inner bearing's inner ring; the outer bearing's outer ring sits in the housing. Friction
 drags the middle ring to a speed ``n_z``; the speed distribution ratio is ``Rs = n_z / n_i``.
+
+Fidelity levels: pure rolling (``kinematic``), friction torque (``torque``, Palmgren or SKF),
+load sharing (``quasi-static``, :mod:`bearingsim.assemblies.nested_static`) and ball and cage
+dynamics of both layers (``dynamic``, :class:`DynamicDoubleLayerBearing`).
 """
 
 from __future__ import annotations
@@ -12,23 +16,36 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
+import numpy as np
+
+from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
 from bearingsim.catalog import BearingGeometry, resolve_bearing
-from bearingsim.components.bearing_torque import PalmgrenBearing, PureRollingLayer, SkfBearing
+from bearingsim.components.bearing_torque import (
+    PalmgrenBearing,
+    PureRollingLayer,
+    SkfBearing,
+    resolve_lubricant,
+)
+from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.solver import simulate
 
 __all__ = [
     "MiddleRing",
     "RingBody",
     "DoubleLayerBearing",
+    "DynamicDoubleLayerBearing",
+    "SpeedRatioEstimate",
     "double_layer_bearing",
     "middle_ring_bodies",
     "FIDELITIES",
 ]
 
-FIDELITIES = ("kinematic", "kinematic_approx", "torque", "quasi-static")
+FIDELITIES = ("kinematic", "kinematic_approx", "torque", "quasi-static", "dynamic")
 STEEL_DENSITY = 7850.0
 """Bearing steel density [kg/m^3]."""
 
@@ -112,8 +129,9 @@ class MiddleRing(Assembly):
         super().__init__(name)
         ring1, sleeve, ring2 = bodies
         self.inner_ring_of_inner_bearing = Inertia(ring1.inertia, w0=w0)
-        self.sleeve = Inertia(sleeve.inertia)
-        self.outer_ring_of_outer_bearing = Inertia(ring2.inertia)
+        self.sleeve = Inertia(sleeve.inertia, w0=w0)
+        self.outer_ring_of_outer_bearing = Inertia(ring2.inertia, w0=w0)
+        self.J = sum(b.inertia for b in bodies)
         self.inner_side = Flange()
         self.outer_side = Flange()
         self.w = Variable(unit="rad/s", description="middle ring speed")
@@ -139,6 +157,37 @@ def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dic
     raise ParameterError(
         f"friction_model must be 'palmgren' or 'skf', got {friction_model!r}"
     )
+
+
+def _structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) -> str:
+    """Checked middle-ring type: "I" needs ``D1 <= d2``; None chooses "I" when it fits."""
+    fits = gi.outside_diameter <= go.bore
+    structure = structure or ("I" if fits else "Z")
+    if structure not in ("I", "Z"):
+        raise ParameterError(f"double_layer_bearing: structure must be 'I' or 'Z', got "
+                             f"{structure!r}")
+    if structure == "I" and not fits:
+        raise ParameterError(
+            f"double_layer_bearing: an I-type middle ring needs the inner bearing's outside "
+            f"diameter ({gi.outside_diameter * 1e3:g} mm) <= the outer bearing's bore "
+            f"({go.bore * 1e3:g} mm); use structure='Z'"
+        )
+    return structure
+
+
+def _check_drive(drive: str) -> None:
+    if drive not in ("speed", "flange"):
+        raise ParameterError(f"double_layer_bearing: drive must be 'speed' or 'flange', got "
+                             f"{drive!r}")
+
+
+def _pair(lubrication) -> tuple[Any, Any]:
+    if isinstance(lubrication, (tuple, list)):
+        if len(lubrication) != 2:
+            raise ParameterError(f"double_layer_bearing: lubrication must be one lubricant or "
+                                 f"an (inner, outer) pair, got {len(lubrication)} items")
+        return lubrication[0], lubrication[1]
+    return lubrication, lubrication
 
 
 class DoubleLayerBearing(Assembly):
@@ -187,24 +236,12 @@ class DoubleLayerBearing(Assembly):
         if fidelity not in FIDELITIES[:3]:
             raise ParameterError(
                 f"double_layer_bearing: fidelity must be one of {', '.join(FIDELITIES)}, got "
-                f"{fidelity!r} (the quasi-static level is built by double_layer_bearing)"
+                f"{fidelity!r} (the quasi-static and dynamic levels are built by "
+                f"double_layer_bearing)"
             )
-        fits = gi.outside_diameter <= go.bore
-        structure = structure or ("I" if fits else "Z")
-        if structure not in ("I", "Z"):
-            raise ParameterError(f"double_layer_bearing: structure must be 'I' or 'Z', got "
-                                 f"{structure!r}")
-        if structure == "I" and not fits:
-            raise ParameterError(
-                f"double_layer_bearing: an I-type middle ring needs the inner bearing's outside "
-                f"diameter ({gi.outside_diameter * 1e3:g} mm) <= the outer bearing's bore "
-                f"({go.bore * 1e3:g} mm); use structure='Z'"
-            )
-        if drive not in ("speed", "flange"):
-            raise ParameterError(f"double_layer_bearing: drive must be 'speed' or 'flange', got "
-                                 f"{drive!r}")
-        lub_i, lub_o = (lubrication if isinstance(lubrication, (tuple, list))
-                        else (lubrication, lubrication))
+        structure = _structure(gi, go, structure)
+        _check_drive(drive)
+        lub_i, lub_o = _pair(lubrication)
         opts = dict(layer_options or {})
         self.structure = structure
         self.geometries = (gi, go)
@@ -246,16 +283,251 @@ class DoubleLayerBearing(Assembly):
         return eqs
 
 
+@dataclass(frozen=True)
+class SpeedRatioEstimate:
+    """Result of :meth:`DynamicDoubleLayerBearing.speed_ratio`.
+
+    Attributes
+    ----------
+    rs : float
+        Speed ratio where the net middle-ring torque vanishes (secant root) [-].
+    bracket : (float, float)
+        The two speed ratios run [-].
+    torques : (float, float)
+        Mean net torque on the middle ring at each [N m]; opposite signs (positive first)
+        when the bracket holds the result.
+    """
+
+    rs: float
+    bracket: tuple[float, float]
+    torques: tuple[float, float]
+
+    @property
+    def bracketed(self) -> bool:
+        """Whether the middle ring speeds up below and slows down above the bracket."""
+        return self.torques[0] > 0.0 > self.torques[1]
+
+
+class DynamicDoubleLayerBearing(Assembly):
+    """A double-layer bearing with ball and cage dynamics in both layers.
+
+    Each layer is a :class:`~bearingsim.assemblies.deep_groove.DeepGrooveBallBearing`: the inner
+    layer's inner ring is the shaft, its outer ring rotates with the middle ring
+    (``outer_ring="flange"``); the outer layer's inner ring is the middle ring (its rotation and
+    polar inertia belong to the :class:`MiddleRing`, ``ring_inertia=False``) and its outer ring
+    is fixed. The middle ring is the three-body :class:`MiddleRing`; the rigid joins are left to
+    the assembler's index reduction. Translations are not coupled through the middle ring: each
+    layer's inner ring carries ``loads`` on its own 5-DOF ring body against a rigid outer race
+    (the middle ring is held centred), so both layers carry the load in series.
+
+    Losses per layer (see docs/double_layer.md): race traction (slices), pocket and land
+    contacts and films of the cage, the EHL rolling resistance at every race contact
+    (``rolling_resistance``) and the :class:`~bearingsim.components.dynamic.RingDrag` between
+    the layer's rings (``ring_drag``): Palmgren's ``M0`` of the layer's lubricant less the
+    rolling-resistance loss, so that each layer's viscous loss equals the torque level's. The
+    balls' drag in the oil-air mixture (:class:`~bearingsim.components.dynamic.BallDrag`) is
+    off: it refers the oil to a housing at rest, which is wrong for the inner layer whose
+    lubricant turns between the shaft and the middle ring; the churning it stands for is part
+    of ``M0``.
+
+    Parameters
+    ----------
+    inner, outer : str or BearingGeometry
+        Inner and outer deep-groove bearing (contact angle 0).
+    structure : {"I", "Z"} or None
+        Middle ring type (None: "I" when the inner bearing fits in the outer one's bore).
+    lubrication : lubricant or (lubricant, lubricant)
+        Viscous lubricant (``Oil``, ``Grease`` or a name) of both layers or of (inner, outer).
+    drive : {"speed", "flange"}
+        ``"speed"``: a speed source turns the shaft at ``speed`` (an input ``shaft_speed``
+        [rad/s] when ``speed`` is None); ``"flange"``: ``shaft`` (with the inner ring's polar
+        inertia) is left for a motor.
+    speed : callable or float or None
+        Shaft speed [rad/s] for ``drive="speed"``.
+    loads : dict, optional
+        Constant loads on each layer's inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] (z is
+        the axis); missing keys are inputs of each layer (``inner_layer.load.Fx``, ...).
+    massive_balls : bool
+        Balls' radial and axial motion with inertia (True, the fast ODE level) or quasi-static.
+    rolling_resistance, ring_drag : bool
+        The two viscous loss terms above (both needed for a forward middle ring).
+    w_middle0 : float
+        Initial middle ring speed [rad/s].
+    layer_options : dict, optional
+        Further keyword arguments of both layers (``n_slices``, ``damping``, ...).
+
+    Connectors
+    ----------
+    shaft : Flange (inner ring of the inner bearing)
+
+    Variables
+    ---------
+    w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft; M_middle [N m] net torque on the
+    middle ring (its total polar inertia times its acceleration)
+    """
+
+    def __init__(self, inner="61905", outer="61907", structure: str | None = None,
+                 lubrication=("ISO VG 32", "ISO VG 32"), drive: str = "speed",
+                 speed: Callable | float | None = None, loads: dict[str, Any] | None = None,
+                 massive_balls: bool = True, rolling_resistance: bool = True,
+                 ring_drag: bool = True, w_middle0: float = 0.0,
+                 layer_options: dict | None = None, name="bearing"):
+        super().__init__(name)
+        gi, go = resolve_bearing(inner), resolve_bearing(outer)
+        self.structure = _structure(gi, go, structure)
+        _check_drive(drive)
+        lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
+        for lub in (lub_i, lub_o):
+            if float(lub.dynamic_viscosity()) <= 0.0:
+                raise ParameterError(f"double_layer_bearing: the dynamic level needs viscous "
+                                     f"lubricants (oil or grease), got {lub.describe()}")
+        opts = dict(layer_options or {})
+        for key in ("drive", "outer_ring", "ring_inertia", "speed", "loads", "drag",
+                    "massive_balls"):
+            if key in opts:
+                raise ParameterError(f"double_layer_bearing: layer_options may not set "
+                                     f"{key!r} (the nested assembly sets it)")
+        self.geometries = (gi, go)
+        self.designs = (bearing_design(gi), bearing_design(go))
+        common = dict(massive_balls=massive_balls, loads=loads, drag=False,
+                      rolling_resistance=rolling_resistance, ring_drag=ring_drag,
+                      drive="flange", **opts)
+        self.shaft = Flange()
+        self.middle = MiddleRing(middle_ring_bodies(gi, go, self.structure), w0=w_middle0)
+        # an imposed shaft speed needs no shaft inertia (which would need the input's derivative)
+        self.inner_layer = DeepGrooveBallBearing(self.designs[0], lub_i, outer_ring="flange",
+                                                 ring_inertia=drive == "flange", **common)
+        self.outer_layer = DeepGrooveBallBearing(self.designs[1], lub_o, ring_inertia=False,
+                                                 **common)
+        self.w_shaft = Variable(unit="rad/s", description="shaft (inner ring) speed")
+        self.w_middle = Variable(unit="rad/s", description="middle ring speed")
+        self.Rs = Variable(unit="1", description="speed distribution ratio n_z / n_i")
+        self.M_middle = Variable(unit="N.m", description="net torque on the middle ring")
+        connect(self.shaft, self.inner_layer.shaft)
+        connect(self.inner_layer.outer_flange, self.middle.inner_side)
+        connect(self.middle.outer_side, self.outer_layer.shaft)
+        if drive == "speed":
+            self.drive = SpeedSource(speed)
+            connect(self.drive.flange, self.shaft)
+            if speed is None:
+                self.shaft_speed = Input(0.0, "rad/s", "imposed shaft speed")
+
+    def rolling_start(self, w_shaft: float, w_middle: float,
+                      states: list[str]) -> dict[str, float]:
+        """Initial values for a start in pure rolling at the given ring speeds.
+
+        The orbital speeds of the balls and cages are the epicyclic ones of each layer,
+        ``w_c = (1 - g)/2 w_i + (1 + g)/2 w_o``, the balls spin about the axis at
+        ``(w_c dm - w_i (dm - Dw)) / Dw`` (no slip at the inner race, hence none at the outer),
+        and the middle ring turns at ``w_middle``.
+
+        Parameters
+        ----------
+        w_shaft, w_middle : float
+            Shaft and middle ring speed [rad/s].
+        states : list of str
+            State names of the assembled system (``system.state_names``); only those are
+            returned (the middle ring's state is whichever of its bodies the assembler kept).
+
+        Returns
+        -------
+        dict
+            ``{state name: value}`` for :func:`~bearingsim.solver.simulate` (``x0``).
+        """
+        prefix = self.path_prefix(states)
+        start: dict[str, float] = {}
+        for name, layer, (wi, wo) in (("inner_layer", self.inner_layer, (w_shaft, w_middle)),
+                                      ("outer_layer", self.outer_layer, (w_middle, 0.0))):
+            design = layer.design
+            dm, dw = design.geometry.pitch_diameter, design.geometry.ball_diameter
+            wc = design.epicyclic_ratio * wi + (1.0 - design.epicyclic_ratio) * wo
+            start[f"{name}.cage.w"] = wc
+            for j in range(design.geometry.ball_count):
+                start[f"{name}.ball[{j}].w_orbit"] = wc
+                start[f"{name}.ball[{j}].wz"] = (wc * dm - wi * (dm - dw)) / dw
+        for body in ("inner_ring_of_inner_bearing", "sleeve", "outer_ring_of_outer_bearing"):
+            start[f"middle.{body}.w"] = w_middle
+        start["inner_layer.rotor.w"] = w_shaft
+        return {prefix + k: v for k, v in start.items() if prefix + k in states}
+
+    def speed_ratio(self, system, w_shaft: float, bracket: tuple[float, float],
+                    parameters: dict | None = None, t_run: float = 0.02) -> SpeedRatioEstimate:
+        """Steady speed ratio from the net middle-ring torque of two short runs.
+
+        Each run starts in pure rolling (:meth:`rolling_start`) with the middle ring at
+        ``Rs * w_shaft`` for one ``Rs`` of ``bracket`` and lasts ``t_run`` (the balls and cages
+        settle within some milliseconds, the middle ring's own time constant is a large
+        fraction of a second); the net torque ``M_middle`` is averaged over the second half.
+        The ratio is the secant root of the two torques.
+
+        Parameters
+        ----------
+        system : System
+            This assembly assembled as the root, with the input ``shaft_speed``
+            (``drive="speed"``, ``speed=None``) and ``M_middle`` among its outputs.
+        w_shaft : float
+            Shaft speed [rad/s], > 0.
+        bracket : (float, float)
+            Two speed ratios [-], ideally on either side of the result.
+        parameters : dict, optional
+            Parameter overrides (e.g. ``{"inner_layer.ring_drag.f0": 1.62}``).
+        t_run : float
+            Length of each run [s].
+
+        Returns
+        -------
+        SpeedRatioEstimate
+        """
+        check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False,
+                    where="speed_ratio")
+        if "shaft_speed" not in system.input_names or "M_middle" not in system.output_names:
+            raise ParameterError("speed_ratio: assemble the bearing as the root with "
+                                 "drive='speed', speed=None and outputs=['M_middle', ...]")
+        torques = []
+        for rs in bracket:
+            x0 = self.rolling_start(w_shaft, rs * w_shaft, system.state_names)
+            res = simulate(system, t_run, x0=x0, inputs={"shaft_speed": w_shaft},
+                           parameters=parameters, method="cvodes", rtol=1e-5, atol=1e-8,
+                           n_points=21, progress=False)
+            torques.append(float(np.mean(res["M_middle"][res.t >= 0.5 * t_run])))
+        (r0, r1), (m0, m1) = bracket, torques
+        return SpeedRatioEstimate(r0 - m0 * (r1 - r0) / (m1 - m0), tuple(bracket), tuple(torques))
+
+    def path_prefix(self, states: list[str]) -> str:
+        """Prefix of this assembly's state names in a system (empty when it is the root)."""
+        key = "inner_layer.cage.w"
+        for s in states:
+            if s.endswith(key):
+                return s[: -len(key)]
+        raise ParameterError(f"{self.name}: the system holds no state {key!r}")
+
+    def equations(self):
+        eqs = [
+            self.w_shaft == der(self.shaft.phi),
+            self.w_middle == self.middle.w,
+            self.Rs == self.w_middle * self.w_shaft / (self.w_shaft**2 + 1e-6),
+            self.M_middle == self.middle.J * der(self.middle.sleeve.w),
+        ]
+        if hasattr(self, "shaft_speed"):
+            eqs.append(self.drive.w_in == self.shaft_speed)
+        return eqs
+
+
 def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity="torque",
                          lubrication=("ISO VG 32", "ISO VG 32"), **kwargs):
     """Build a double-layer bearing assembly.
 
     ``fidelity="quasi-static"`` returns a
     :class:`~bearingsim.assemblies.nested_static.NestedQuasiStatic` (load through both layers
-    in series; keyword ``axial``); the other levels return a :class:`DoubleLayerBearing`.
+    in series; keyword ``axial``); ``fidelity="dynamic"`` a :class:`DynamicDoubleLayerBearing`
+    (keywords ``drive``, ``speed``, ``loads``, ``massive_balls``, ``rolling_resistance``,
+    ``ring_drag``, ``w_middle0``, ``layer_options``); the other levels a
+    :class:`DoubleLayerBearing`.
     """
     if fidelity == "quasi-static":
         from bearingsim.assemblies.nested_static import NestedQuasiStatic
 
         return NestedQuasiStatic(inner, outer, structure, **kwargs)
+    if fidelity == "dynamic":
+        return DynamicDoubleLayerBearing(inner, outer, structure, lubrication, **kwargs)
     return DoubleLayerBearing(inner, outer, structure, fidelity, lubrication, **kwargs)

@@ -1,4 +1,5 @@
-"""Ball-raceway contact: Hertz normal load from the exact ring-ball geometry and slice traction."""
+"""Ball-raceway contact: Hertz normal load from the exact ring-ball geometry, slice traction and
+(optionally) the EHL hydrodynamic rolling resistance."""
 
 from __future__ import annotations
 
@@ -20,12 +21,16 @@ from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.hertz import contact_load, contact_stiffness
 from bearingsim.physics.lubricant import Lubricant
+from bearingsim.physics.rolling import rolling_resistance
 from bearingsim.physics.traction import slice_traction
 
 __all__ = ["RaceContact"]
 
 _Q_SMOOTH = 1e-4
 """Width [N] of the smooth non-negative limit of the damped contact load (offset 5e-5 N)."""
+_V_ROLL_REG = 1e-3
+"""Regularization speed [m/s] of the direction of the rolling resistance (the ball centre moves
+relative to the race at about the entrainment speed, metres per second)."""
 
 
 class RaceContact(Component):
@@ -57,6 +62,18 @@ class RaceContact(Component):
     ``du = v_b + w_b x r_s - v_ring - w_ring e_z x (p_b + r_s - c)``; the coefficient comes from
     the swappable lubricant (``Lubricant.traction_coefficient``), odd and smooth in the slip.
 
+    Rolling resistance (``rolling_resistance=True``): the hydrodynamic rolling force ``F_R`` of
+    the EHL inlet (:func:`~bearingsim.physics.rolling.rolling_resistance`, Houpert's curve fit at
+    the elastic load, the entrainment speed and the lubricant's ``eta``, ``alpha``, which are
+    parameters) acts on the ball at its centre, against the ball centre's velocity relative to
+    the ring, ``v_rel = (v_b - v_ring(p_b)) . e_roll``, and on the ring as the equal and
+    opposite force at the contact plus the couple of the inlet-shifted pressure that makes the
+    pair collinear (so angular momentum about the axis is conserved: the ring feels the force
+    at the ball centre's radius). It is a pure rolling loss: its power
+    ``P_roll = F_R |v_rel|`` is dissipated even in pure rolling (where a force pair at the
+    contact point would do no work), and on a ring it is a drag torque ``F_R r_b`` towards the
+    ball's motion: the outer ring of a bearing with a turning inner ring is dragged forwards.
+
     Parameters
     ----------
     race : {"inner", "outer"}
@@ -85,6 +102,13 @@ class RaceContact(Component):
         Width of the smooth contact ramp [m].
     traction_scale : float
         Multiplier of the traction [-] (0 switches traction off).
+    rolling_resistance : bool
+        Add the EHL hydrodynamic rolling resistance (needs a viscous lubricant and ``rx``,
+        ``ry``, ``e_eff``).
+    rx, ry : float, optional
+        Reduced radii of the contact along and across rolling [m] (rolling resistance).
+    e_eff : float, optional
+        Effective modulus ``E'`` [Pa] (rolling resistance).
 
     Connectors
     ----------
@@ -102,8 +126,9 @@ class RaceContact(Component):
     def __init__(self, race: str, rho: float, groove_factor: float, ball_diameter: float,
                  k_hertz: float, a1: float, lubricant: Lubricant, moving: bool = False,
                  damping: float = 0.0, film_damping: float = 0.0, n_slices: int = 2,
-                 smooth: float = 2e-8,
-                 traction_scale: float = 1.0, name=None):
+                 smooth: float = 2e-8, traction_scale: float = 1.0,
+                 rolling_resistance: bool = False, rx: float | None = None,
+                 ry: float | None = None, e_eff: float | None = None, name=None):
         super().__init__(name)
         if race not in ("inner", "outer"):
             raise ParameterError(f"RaceContact: race must be 'inner' or 'outer', got {race!r}")
@@ -122,6 +147,27 @@ class RaceContact(Component):
         self.c_d = Parameter(damping, "s/m", "Hunt-Crossley damping coefficient", low=0.0)
         self.beta = Parameter(film_damping, "s", "film damping / contact stiffness", low=0.0)
         self.mu_scale = Parameter(traction_scale, "1", "traction multiplier", low=0.0)
+        self.rolling = bool(rolling_resistance)
+        if self.rolling:
+            if rx is None or ry is None or e_eff is None:
+                raise ParameterError("RaceContact: rolling_resistance needs rx, ry [m] and "
+                                     "e_eff [Pa]")
+            eta = float(lubricant.dynamic_viscosity())
+            if eta <= 0.0:
+                raise ParameterError(f"RaceContact: rolling_resistance needs a viscous "
+                                     f"lubricant, got {lubricant.describe()}")
+            self.Rx = Parameter(rx, "m", "reduced radius along rolling", low=0.0,
+                                low_inclusive=False)
+            self.Ry = Parameter(ry, "m", "reduced radius across rolling", low=0.0,
+                                low_inclusive=False)
+            self.E_eff = Parameter(e_eff, "Pa", "effective modulus E'", low=0.0,
+                                   low_inclusive=False)
+            self.eta = Parameter(eta, "Pa.s", "lubricant viscosity at the inlet", low=0.0)
+            self.alpha_p = Parameter(float(lubricant.pressure_viscosity()), "1/Pa",
+                                     "pressure-viscosity coefficient", low=0.0)
+            self.F_rr = Variable(unit="N", description="rolling resistance on the ball along "
+                                                       "the rolling direction")
+            self.P_roll = Variable(unit="W", description="rolling resistance loss")
         self.ball = BallFrame()
         self.ring = RingFrame()
         self.flange = Flange()
@@ -190,7 +236,20 @@ class RaceContact(Component):
         u_ball = dot(sub(add(v_b, cross(w_b, r0)), v_cp), e_roll)
         u_race = dot(sub(add(v_c, cross((0.0, 0.0, w_ring), sub(p_contact, c))), v_cp), e_roll)
         slip0 = sliding(0.0)[0]
-        return [
+        eqs = []
+        if self.rolling:
+            # ring material at the ball centre: the pair (force at the ball centre, reaction at
+            # the contact plus the couple of the shifted pressure) acts on the ring as if at p_b
+            v_ring_b = add(v_c, cross((0.0, 0.0, w_ring), sub(p_b, c)))
+            v_rel = dot(sub(v_b, v_ring_b), e_roll)
+            f_r = rolling_resistance(q_el + 1e-9, self.u_entrain, self.Rx, self.Ry, self.E_eff,
+                                     self.eta, self.alpha_p)
+            f_rr = -f_r * v_rel / op.smooth_abs(v_rel, _V_ROLL_REG)
+            force = add(force, scale(f_rr, e_roll))
+            f_ring = scale(-1.0, force)
+            m_ring = sub(cross(sub(p_b, c), f_ring), moment)
+            eqs += [self.F_rr == f_rr, self.P_roll == -f_rr * v_rel]
+        return eqs + [
             self.delta == delta,
             self.Q == q,
             self.alpha == op.atan2(n[2], op.fabs(dot(n, ep)) + 1e-12),
