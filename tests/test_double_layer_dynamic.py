@@ -8,10 +8,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bearingsim import Assembly, connect
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
+from bearingsim.components.dynamic import RingDrag
+from bearingsim.components.rotational import Fixed, SpeedSource
 from bearingsim.errors import ParameterError
+from bearingsim.physics.friction import palmgren_torque
 from bearingsim.physics.lubricant import Dry, Grease, Oil
 from bearingsim.solver import assemble, steady_state
 
@@ -47,6 +51,27 @@ def test_dynamic_level_nests_two_ball_bearings_on_the_middle_ring():
         assert all(c.rolling for c in (*layer.inner, *layer.outer))
     # the middle ring's inertia is the three bodies', not doubled by the outer layer's ring
     assert not hasattr(bearing.outer_layer, "rotor")
+
+
+class _DragRig(Assembly):
+    def __init__(self):
+        super().__init__("rig")
+        self.drive = SpeedSource(W)
+        self.drag = RingDrag(0.0335, GREASE)
+        self.housing = Fixed()
+        connect(self.drive.flange, self.drag.inner)
+        connect(self.drag.outer, self.housing.flange)
+
+
+def test_ring_drag_carries_palmgren_m0_less_the_resolved_loss():
+    system = assemble(_DragRig())
+    x = system.x0()
+    m0 = -palmgren_torque(W, 0.0335, GREASE, "deep_groove_ball")  # grease f0 and fill
+    for p_resolved, expected in ((0.0, m0), (0.5, m0 - 0.5 / W), (10.0 * m0 * W, 0.0)):
+        obs = system.observe(0.0, x, np.array([p_resolved]))
+        assert obs["drag.M0"] == pytest.approx(m0, rel=1e-6)  # smooth |w| vs |w|
+        assert -obs["drag.M"] == pytest.approx(expected, rel=1e-6, abs=2e-6)
+        assert obs["drag.P_loss"] == pytest.approx(-obs["drag.M"] * W, rel=1e-12)
 
 
 @pytest.fixture(scope="module")

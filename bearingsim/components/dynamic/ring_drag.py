@@ -73,7 +73,7 @@ class RingDrag(Component):
                                    low_inclusive=False)
         self.inner = Flange()
         self.outer = Flange()
-        self.P_resolved = Input(0.0, "W", "viscous loss resolved at ball level", low=0.0)
+        self.P_resolved = Input(0.0, "W", "viscous loss resolved at ball level")
         self.w_rel = Variable(unit="rad/s", description="inner-ring speed relative to outer ring")
         self.M = Variable(unit="N.m", description="drag torque on the inner ring")
         self.M0 = Variable(unit="N.m", description="Palmgren load-independent torque")
