@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from bearingsim import Component, Variable, der
-from bearingsim.errors import OverdeterminedError, UnderdeterminedError
+from bearingsim.errors import OverdeterminedError, ParameterError, UnderdeterminedError
 from bearingsim.solver import assemble, linearize, simulate
 from tests.models import (
     DampersInSeries,
@@ -250,3 +250,22 @@ def test_idas_on_the_semi_explicit_dae_matches_the_ode_form():
     for name in ("x", "y", "F"):
         np.testing.assert_allclose(dae_form[name], ode_form[name], atol=1e-7)
     assert np.max(np.abs(dae_form["x"] ** 2 + dae_form["y"] ** 2 - 1.0)) < 1e-8
+
+
+def test_line_search_newton_gives_the_fast_newton_result_and_refuses_code_generation(tmp_path):
+    from bearingsim.fmu import export_fmu
+    from bearingsim.solver.compile import CompileError, compile_system
+
+    fast = assemble(Pendulum())
+    searched = assemble(Pendulum(), rootfinder="newton")
+    assert (fast.rootfinder, searched.rootfinder) == ("fast_newton", "newton")
+    assert assemble(DampersInSeries()).rootfinder is None  # no nonlinear block
+    a = simulate(fast, 1.0, rtol=1e-9, atol=1e-11)
+    b = simulate(searched, 1.0, rtol=1e-9, atol=1e-11)
+    np.testing.assert_allclose(b["y"], a["y"], rtol=1e-9, atol=1e-11)
+    with pytest.raises(CompileError, match="rootfinder='fast_newton'"):
+        compile_system(searched, cache_dir=tmp_path)
+    with pytest.raises(ParameterError, match="rootfinder='fast_newton'"):
+        export_fmu(searched, tmp_path / "p.fmu")
+    with pytest.raises(ParameterError, match="rootfinder must be one of fast_newton, newton"):
+        assemble(Pendulum(), rootfinder="kinsol")

@@ -45,9 +45,15 @@ def _system(model, outputs):
     from bearingsim.solver.system import System
 
     if isinstance(model, System):
+        if model.rootfinder not in (None, "fast_newton"):
+            raise ParameterError(
+                f"export_fmu: the nonlinear blocks of {model.name!r} use CasADi's "
+                f"{model.rootfinder!r} rootfinder, which generates no C code; assemble with "
+                "rootfinder='fast_newton'"
+            )
         return model
     if isinstance(model, Component):
-        return assemble(model, list(outputs) if outputs else None)
+        return assemble(model, list(outputs) if outputs else None, rootfinder="fast_newton")
     raise ParameterError(
         f"export_fmu: expected an assembly (Component) or a System, got {type(model).__name__}"
     )

@@ -39,6 +39,10 @@ class Component:
         Name of a root component (sub-components take their attribute name).
     """
 
+    needs_line_search: bool = False
+    """Whether the component's nonlinear equations need a Newton method with a line search
+    (the assembler then picks CasADi's ``newton`` rootfinder over ``fast_newton``)."""
+
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         init = cls.__dict__.get("__init__")

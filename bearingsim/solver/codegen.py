@@ -1,8 +1,10 @@
 """Code generation: CasADi Functions for the ODE right-hand side, its exact sparse Jacobian,
 the outputs and every observed variable.
 
-Models whose BLT contains nonlinear blocks get MX functions in which each block is a
-``fast_newton`` rootfinder (code-generatable C); all other models are pure SX.
+Models whose BLT contains nonlinear blocks get MX functions in which each block is a CasADi
+rootfinder: ``fast_newton`` (plain Newton steps, code-generatable C, for FMUs and compiled
+systems) or ``newton`` (Newton with a line search, for models whose blocks need globalization;
+not code-generatable); all other models are pure SX.
 """
 
 from __future__ import annotations
@@ -12,7 +14,10 @@ import casadi as ca
 from bearingsim.solver.causalize import Causal
 from bearingsim.solver.dae import DAE, Var
 
-__all__ = ["build_functions"]
+__all__ = ["ROOTFINDERS", "build_functions"]
+
+ROOTFINDERS = ("fast_newton", "newton")
+"""CasADi rootfinder plugins the assembler can put in nonlinear blocks."""
 
 CSE = {"cse": True}
 """Function options: common subexpression elimination (CasADi), e.g. 3x fewer instructions
@@ -25,8 +30,12 @@ def _value_expr(v: Var, causal: Causal) -> ca.SX:
     return causal.expr[v]
 
 
-def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_tol: float):
-    """Return (functions dict, observed names, output names)."""
+def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_tol: float,
+                    rootfinder: str = "fast_newton"):
+    """Return (functions dict, observed names, output names).
+
+    ``rootfinder`` is one of :data:`ROOTFINDERS` (the plugin of the nonlinear blocks).
+    """
     states = dae.states
     inputs = dae.inputs
     t = dae.time
@@ -82,9 +91,9 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
         zb = ca.vertcat(*[v.sym for v in blk.tears])
         prev_sx = ca.vertcat(base_sx, *z_sx)
         g = ca.Function(f"g{k}", [zb, prev_sx], [blk.residuals])
-        solver = ca.rootfinder(
-            f"newton{k}", "fast_newton", g, {"abstol": newton_tol, "max_iter": 50}
-        )
+        opts = ({"abstol": newton_tol, "max_iter": 50} if rootfinder == "fast_newton"
+                else {"abstol": newton_tol, "max_iter": 100, "line_search": True})
+        solver = ca.rootfinder(f"newton{k}", rootfinder, g, opts)
         zk = solver(ca.DM(blk.guess), ca.vertcat(base_mx, *z_mx))
         z_sx.append(zb)
         z_mx.append(zk)

@@ -57,8 +57,15 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
     Raises
     ------
     CompileError
-        If no C compiler is found or compilation fails.
+        If no C compiler is found, compilation fails or the system's nonlinear blocks use a
+        rootfinder without code generation.
     """
+    if system.rootfinder not in (None, "fast_newton"):
+        raise CompileError(
+            f"compile_system: the nonlinear blocks of {system.name!r} use CasADi's "
+            f"{system.rootfinder!r} rootfinder, which generates no C code; assemble with "
+            "rootfinder='fast_newton'"
+        )
     cc = shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
     if cc is None:
         raise CompileError("compile_system: no C compiler (gcc or cc) on PATH")

@@ -14,7 +14,7 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.errors import StructuralError
+from bearingsim.errors import ParameterError, StructuralError
 from bearingsim.language.component import Component
 from bearingsim.solver import alias, causalize, codegen, flatten, index_reduction, prune, structure
 from bearingsim.solver.dae import DAE, Eq, Var
@@ -32,6 +32,7 @@ class AssemblyState:
     root: Component
     outputs: list[str] | None
     newton_tol: float = 1e-12
+    rootfinder: str = "fast_newton"
     dae: DAE | None = None
     matching: dict[Eq, Var] = field(default_factory=dict)
     blocks: list = field(default_factory=list)
@@ -88,7 +89,8 @@ def _tearing(s: AssemblyState) -> None:
 
 def _codegen(s: AssemblyState) -> None:
     dae = s.dae
-    funcs, observed, out_names = codegen.build_functions(dae, s.causal, s.outputs, s.newton_tol)
+    funcs, observed, out_names = codegen.build_functions(dae, s.causal, s.outputs, s.newton_tol,
+                                                       s.rootfinder)
     units = {v.name: v.unit for v in dae.vars}
     descs = {v.name: v.description for v in dae.vars}
     for name, (_, rep, _) in dae.aliases.items():
@@ -117,6 +119,7 @@ def _codegen(s: AssemblyState) -> None:
         init_residual=init_fn,
         free_initial_states=free,
         skipped=list(dae.skipped),
+        rootfinder=s.rootfinder if s.causal.nonlinear else None,
     )
 
 
@@ -163,7 +166,8 @@ PASSES: list[Pass] = [
 
 
 def assemble(
-    assembly: Component, outputs: list[str] | None = None, *, newton_tol: float = 1e-12
+    assembly: Component, outputs: list[str] | None = None, *, newton_tol: float = 1e-12,
+    rootfinder: str | None = None,
 ) -> System:
     """Flatten, reduce and compile an assembly.
 
@@ -176,13 +180,25 @@ def assemble(
         are kept (pruning). ``None`` keeps everything and outputs every variable.
     newton_tol : float
         Absolute residual tolerance of the Newton iterations of nonlinear loops.
+    rootfinder : {"fast_newton", "newton"}, optional
+        CasADi plugin of the nonlinear loops: ``"fast_newton"`` (plain Newton, generates C:
+        needed by :func:`~bearingsim.fmu.export_fmu` and
+        :func:`~bearingsim.solver.compile.compile_system`) or ``"newton"`` (with a line
+        search). Default: ``"newton"`` if a component of the assembly declares
+        ``needs_line_search`` (e.g. the quasi-static ball), else ``"fast_newton"``.
 
     Returns
     -------
     System
         Compiled functions with names, units, start values and the pass report.
     """
-    state = AssemblyState(assembly, list(outputs) if outputs else None, newton_tol)
+    if rootfinder is None:
+        rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
+                      else "fast_newton")
+    if rootfinder not in codegen.ROOTFINDERS:
+        raise ParameterError(f"assemble: rootfinder must be one of "
+                             f"{', '.join(codegen.ROOTFINDERS)}, got {rootfinder!r}")
+    state = AssemblyState(assembly, list(outputs) if outputs else None, newton_tol, rootfinder)
     timings = []
     for name, fn, check in PASSES:
         t0 = _time.perf_counter()

@@ -60,6 +60,8 @@ class System:
     timings: list[tuple[str, float]] = field(default_factory=list)
     report: dict[str, Any] = field(default_factory=dict)
     skipped: list[str] = field(default_factory=list)
+    rootfinder: str | None = None
+    """CasADi plugin of the nonlinear blocks (``None``: the model has none)."""
 
     # ---------------------------------------------------------------- names
     @property

@@ -14,6 +14,15 @@ An unloaded ball in the clearance has no stiffness; this spring keeps the Newton
 regular. Loaded balls move some 10 um from the pitch circle, so the force error is about 0.01 N.
 """
 
+VELOCITY_REGULARIZATION = 1e-2
+"""Damping coefficient [N s/m] of a quasi-static ball's radial and axial motion.
+
+A massless ball's velocity follows from its force balance through the contact damping; a ball
+out of contact with both races has none, and this weak damper (the regularizing spring times
+1e-5 s, the film damping time constant) keeps that balance solvable. It moves a free ball at
+about 30 m/s under a 0.3 N centrifugal force, so it reaches a race within nanoseconds.
+"""
+
 MICRON = 1e-6
 """Positions are states in micrometres (so that one absolute tolerance suits positions and
 speeds)."""
@@ -33,10 +42,17 @@ class Ball(Component):
     * spin (Euler's equations of a sphere written in the frame turning at ``w_orbit``):
       ``J (der(wr) - w_orbit wt) = Mr``, ``J (der(wt) + w_orbit wr) = Mt``, ``J der(wz) = Mz``;
     * position, ``massive=True``: ``m (der(vr) - r w_orbit^2) = Fr``, ``m der(vz) = Fz``;
-      ``massive=False`` (quasi-static, as in models.md section C): ``Fr + m r w_orbit^2 = 0``,
-      ``Fz = 0`` are algebraic (the assembler solves them by Newton) and ``vr = vz = 0``; a
-      weak spring :data:`POSITION_REGULARIZATION` towards ``(r, z) = (pitch_radius, 0)`` keeps
-      unloaded balls determinate.
+      ``massive=False`` (quasi-static, as in models.md section C): no radial and axial
+      inertia, the force balances ``Fr + m r w_orbit^2 = 0`` and ``Fz = 0`` hold at every
+      instant (the centrifugal force included). The contact forces depend on the ball's
+      velocity through their damping, so the balances are solved (by Newton with a line
+      search, nonlinear blocks of the assembler) for ``vr = der(r)``, ``vz = der(z)``: the
+      positions follow the balance through the contacts' damping. Setting ``vr = vz = 0``
+      instead (balance in the positions alone) drops the contact damping from the ring's
+      motion; the ring's axial mode then grows until the equilibrium is lost (measured: the
+      ring drifted 26 um axially within 20 ms of the models.md C validation start-up). A weak
+      spring :data:`POSITION_REGULARIZATION` towards ``(r, z) = (pitch_radius, 0)`` and a weak
+      damper :data:`VELOCITY_REGULARIZATION` keep balls that touch neither race determinate.
 
     Gravity is neglected.
 
@@ -87,14 +103,14 @@ class Ball(Component):
         self.wr = Variable(spin0[0], "rad/s", "angular velocity along e_r")
         self.wt = Variable(spin0[1], "rad/s", "angular velocity along e_t")
         self.wz = Variable(spin0[2], "rad/s", "angular velocity along e_z")
-        fixed = self.massive
+        self.needs_line_search = not self.massive
         self.dr = Variable((r0 - pitch_radius) / MICRON, "um",
-                           "radial offset of the ball centre from the pitch circle", fixed=fixed)
-        self.dz = Variable(z0 / MICRON, "um", "axial position of the ball centre", fixed=fixed)
+                           "radial offset of the ball centre from the pitch circle")
+        self.dz = Variable(z0 / MICRON, "um", "axial position of the ball centre")
         self.r = Variable(unit="m", description="radial position of the ball centre")
         self.z = Variable(unit="m", description="axial position of the ball centre")
-        self.vr = Variable(0.0, "m/s", "radial velocity", fixed=fixed)
-        self.vz = Variable(0.0, "m/s", "axial velocity", fixed=fixed)
+        self.vr = Variable(0.0, "m/s", "radial velocity", fixed=self.massive)
+        self.vz = Variable(0.0, "m/s", "axial velocity", fixed=self.massive)
 
     def equations(self):
         f, m, w = self.frame, self.m, self.w_orbit
@@ -109,19 +125,18 @@ class Ball(Component):
             self.J * (der(self.wt) + w * self.wr) == f.Mt,
             self.J * der(self.wz) == f.Mz,
         ]
+        eqs += [MICRON * der(self.dr) == self.vr, MICRON * der(self.dz) == self.vz]
         if self.massive:
             eqs += [
-                MICRON * der(self.dr) == self.vr,
-                MICRON * der(self.dz) == self.vz,
                 m * (der(self.vr) - self.r * w * w) == f.Fr,
                 m * der(self.vz) == f.Fz,
             ]
         else:
             eqs += [
-                self.vr == 0.0,
-                self.vz == 0.0,
                 _FORCE_SCALE * (f.Fr + m * self.r * w * w
-                                - POSITION_REGULARIZATION * MICRON * self.dr) == 0.0,
-                _FORCE_SCALE * (f.Fz - POSITION_REGULARIZATION * self.z) == 0.0,
+                                - POSITION_REGULARIZATION * MICRON * self.dr
+                                - VELOCITY_REGULARIZATION * self.vr) == 0.0,
+                _FORCE_SCALE * (f.Fz - POSITION_REGULARIZATION * self.z
+                                - VELOCITY_REGULARIZATION * self.vz) == 0.0,
             ]
         return eqs
