@@ -216,4 +216,4 @@ def test_optimal_ratio_and_design_report():
 
 def test_unknown_fidelity_is_a_clear_error():
     with pytest.raises(ParameterError, match="fidelity"):
-        double_layer_bearing(fidelity="dynamic")
+        double_layer_bearing(fidelity="ball-level")
