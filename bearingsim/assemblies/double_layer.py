@@ -350,7 +350,8 @@ class DynamicDoubleLayerBearing(Assembly):
     massive_balls : bool
         Balls' radial and axial motion with inertia (True, the fast ODE level) or quasi-static.
     rolling_resistance, ring_drag : bool
-        The two viscous loss terms above (both needed for a forward middle ring).
+        The two viscous loss terms above (with both, each layer's viscous loss is the torque
+        level's M0 and the ratio follows its lubricant dependence).
     w_middle0 : float
         Initial middle ring speed [rad/s].
     layer_options : dict, optional
