@@ -40,3 +40,15 @@ def test_quasi_static_and_massive_balls_give_the_same_slip_and_loads(condition_1
     q_massive = np.array([massive[f"inner[{j}].Q"][tail] for j in range(7)])
     assert q_qs.max() == pytest.approx(q_massive.max(), rel=0.01)
     np.testing.assert_allclose(q_qs.sum(axis=0), q_massive.sum(axis=0), rtol=0.01)
+
+
+@pytest.mark.slow
+def test_idas_on_the_dae_form_gives_the_cvodes_result(condition_1):
+    """IDAS iterates on the balls' velocities itself (the semi-explicit DAE form) instead of a
+    Newton solve inside every right-hand side."""
+    res, _ = duty_condition(1, fidelity="dynamic", method="idas", **RUN)
+    assert res.stats["algebraic_states"] == 14  # vr, vz of the 7 balls
+    cvodes = condition_1["dynamic"]
+    assert res.final("w_cage") == pytest.approx(cvodes.final("w_cage"), rel=1e-3)
+    tail = res.t > 0.015
+    assert np.mean(res["slip"][tail]) == pytest.approx(np.mean(cvodes["slip"][tail]), abs=1e-3)
