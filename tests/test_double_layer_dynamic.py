@@ -13,11 +13,14 @@ from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
 from bearingsim.components.dynamic import RingDrag
+from bearingsim.components.dynamic.ball import MICRON
+from bearingsim.components.dynamic.design import bearing_design
+from bearingsim.components.dynamic.static import static_state
 from bearingsim.components.rotational import Fixed, SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.physics.friction import palmgren_torque
 from bearingsim.physics.lubricant import Dry, Grease, Oil
-from bearingsim.solver import assemble, steady_state
+from bearingsim.solver import assemble, simulate, steady_state
 
 W = 300.0  # rad/s, shaft speed (2865 r/min)
 LOADS = {"Fx": 0.0, "Fy": 0.0, "Fz": 100.0, "Mx": 0.0, "My": 0.0}  # axial: all balls alike
@@ -51,6 +54,18 @@ def test_dynamic_level_nests_two_ball_bearings_on_the_middle_ring():
         assert all(c.rolling for c in (*layer.inner, *layer.outer))
     # the middle ring's inertia is the three bodies', not doubled by the outer layer's ring
     assert not hasattr(bearing.outer_layer, "rotor")
+    # one translating middle ring between the layers, the load on the shaft only
+    assert bearing.middle_body.parameter("m").value == pytest.approx(bearing.middle.mass)
+    assert not hasattr(bearing.outer_layer, "ring") and not hasattr(bearing.outer_layer, "load")
+    assert not hasattr(bearing.inner_layer, "housing")
+    with pytest.raises(ParameterError, match="inner_ring"):
+        DeepGrooveBallBearing(bearing.designs[0], OIL, inner_ring="shaft")
+    with pytest.raises(ParameterError, match="outer_support"):
+        DeepGrooveBallBearing(bearing.designs[0], OIL, outer_support="sleeve")
+    with pytest.raises(ParameterError, match="outer_start"):
+        DeepGrooveBallBearing(bearing.designs[0], OIL, outer_start=(0.0, 0.0, 1e-6))
+    with pytest.raises(ParameterError, match="constants"):
+        DeepGrooveBallBearing(bearing.designs[0], OIL, inner_ring="frame", loads={"Fz": None})
 
 
 class _DragRig(Assembly):
@@ -137,3 +152,41 @@ def test_more_friction_in_the_inner_layer_raises_the_ratio(nested, oil_ratio):
                      {"inner_layer.ring_drag.f0": f0})
     assert rs == pytest.approx(rs_torque, rel=TOLERANCE)
     assert rs > 1.5 * oil_ratio[0]  # torque level: 0.352 vs 0.208
+
+
+def test_static_reference_is_the_nested_quasi_static_level():
+    # the single-layer quasi-static solution (the dynamic components' contact geometry) in
+    # series reproduces the nested quasi-static level (BallRow): 23.6247 vs 23.6232 um at 200 N
+    # radial (the nested level's Newton does not converge under the axial load of LOADS)
+    from bearingsim.assemblies.nested_static import nested_equilibrium
+
+    bearing = double_layer_bearing("61905", "61907", fidelity="quasi-static")
+    eq = nested_equilibrium(assemble(bearing), 200.0)
+    inner, outer = (static_state(bearing_design(g), {"Fx": 200.0}).ring[0]
+                    for g in bearing.geometries)
+    assert eq.middle_displacement[0] == pytest.approx(outer, rel=1e-3)
+    assert eq.shaft_displacement[0] == pytest.approx(inner + outer, rel=1e-3)
+
+
+# Tolerance of the displacements against the quasi-static layers in series: 1 %. The dynamic
+# equilibrium differs by the centrifugal force of the balls (about 0.1 N against 8 N per ball)
+# and the traction and rolling-resistance forces neglected by the quasi-static solution; the
+# middle ring, started 5 um off its equilibrium, settles within about 10 ms (film
+# damping). Measured (61905/61907, 100 N axial, 300 rad/s): middle ring 70.38 um vs 70.36 um,
+# shaft 135.13 um vs 135.09 um.
+DISPLACEMENT_TOLERANCE = 0.01
+
+
+@pytest.mark.slow
+def test_shaft_load_goes_through_both_layers_in_series(nested):
+    bearing, system = nested
+    inner, outer = (static_state(d, LOADS).ring[2] for d in bearing.designs)
+    x0 = bearing.rolling_start(W, 0.21 * W, system.state_names)
+    x0["middle_body.z_um"] = (outer - 5e-6) / MICRON  # off equilibrium: the ring must settle
+    res = simulate(system, T_RUN, x0=x0, inputs={"shaft_speed": W}, method="cvodes", rtol=1e-5,
+                   atol=1e-8, n_points=21, progress=False)
+    middle, shaft = res["middle_body.z"][-1], res["inner_layer.ring.z"][-1]
+    assert middle > 0.5 * outer  # the middle ring moves with the load (the outer layer's play)
+    assert middle == pytest.approx(outer, rel=DISPLACEMENT_TOLERANCE)
+    assert shaft == pytest.approx(inner + outer, rel=DISPLACEMENT_TOLERANCE)
+    assert abs(res["middle_body.x"][-1]) < 1e-9 and abs(res["middle_body.y"][-1]) < 1e-9

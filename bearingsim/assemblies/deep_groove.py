@@ -11,7 +11,9 @@ ring land. The inner ring is a 5-DOF :class:`~bearingsim.components.dynamic.Ring
 not a quasi-static balance as in the study, so the ring mode is resolved rather than eliminated)
 loaded by a :class:`~bearingsim.components.dynamic.RingLoad`, and turned through a rotational
 flange by a speed source (or by whatever the user connects to ``shaft``). The outer ring is
-fixed to the housing.
+fixed to the housing. For a nested bearing either ring's translations can instead be left to an
+enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
+``outer_support="frame"``).
 """
 
 from __future__ import annotations
@@ -35,7 +37,8 @@ from bearingsim.components.dynamic import (
     TiltGuide,
 )
 from bearingsim.components.dynamic.design import BRASS, BearingDesign, bearing_design
-from bearingsim.components.dynamic.static import static_state
+from bearingsim.components.dynamic.static import StaticState, static_state
+from bearingsim.components.frame import RingFrame
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
@@ -94,6 +97,19 @@ class DeepGrooveBallBearing(Assembly):
         ``None`` for inputs (missing keys are inputs with default 0).
     free_tilt : bool
         Whether the inner ring tilts (else the shaft holds it straight).
+    inner_ring : {"body", "frame"}
+        ``"body"``: the inner ring is a 5-DOF ``RingBody`` (``ring``) loaded by ``loads``
+        (``load``); ``"frame"``: no ring body and no load, the inner race contacts' ring frame
+        is the connector ``inner_frame`` for an enclosing body (a nested bearing's middle ring);
+        ``loads`` must then be constants and only set the start values (the load the enclosing
+        body passes on).
+    outer_support : {"housing", "frame"}
+        ``"housing"``: the outer race is fixed (``housing``); ``"frame"``: the outer race
+        contacts' ring frame is the connector ``outer_frame`` for an enclosing body that may
+        translate (the outer race contacts then use its velocity).
+    outer_start : sequence of 3 float
+        With ``outer_support="frame"``: start displacement (x, y, z) of the outer race [m]; the
+        inner ring and the balls start shifted by it.
     damping : float
         Hunt-Crossley coefficient of the race contacts [s/m].
     film_damping : float, optional
@@ -124,6 +140,14 @@ class DeepGrooveBallBearing(Assembly):
     Connectors
     ----------
     shaft : Flange (the inner ring's rotation)
+    inner_frame : RingFrame (with ``inner_ring="frame"``)
+    outer_frame : RingFrame (with ``outer_support="frame"``)
+
+    Attributes
+    ----------
+    start : StaticState or None
+        Quasi-static solution of this bearing alone under the constant ``loads`` (relative to
+        the outer race), the start values; None without constant loads.
 
     Variables
     ---------
@@ -140,7 +164,9 @@ class DeepGrooveBallBearing(Assembly):
                  pocket_mu: float | None = None, land_mu: float | None = None,
                  cage_damping: float = 10.0, outer_ring: str = "fixed",
                  rolling_resistance: bool = False, ring_drag: bool = False,
-                 ring_inertia: bool = True, name="bearing"):
+                 ring_inertia: bool = True, inner_ring: str = "body",
+                 outer_support: str = "housing",
+                 outer_start: tuple[float, float, float] = (0.0, 0.0, 0.0), name="bearing"):
         super().__init__(name)
         if drive not in ("speed", "flange"):
             raise ParameterError(f"deep_groove_ball_bearing: drive must be 'speed' or 'flange', "
@@ -148,11 +174,25 @@ class DeepGrooveBallBearing(Assembly):
         if outer_ring not in ("fixed", "flange"):
             raise ParameterError(f"deep_groove_ball_bearing: outer_ring must be 'fixed' or "
                                  f"'flange', got {outer_ring!r}")
+        if inner_ring not in ("body", "frame"):
+            raise ParameterError(f"deep_groove_ball_bearing: inner_ring must be 'body' or "
+                                 f"'frame', got {inner_ring!r}")
+        if outer_support not in ("housing", "frame"):
+            raise ParameterError(f"deep_groove_ball_bearing: outer_support must be 'housing' "
+                                 f"or 'frame', got {outer_support!r}")
+        offset = tuple(float(v) for v in outer_start)
+        if len(offset) != 3 or (outer_support == "housing" and any(offset)):
+            raise ParameterError(f"deep_groove_ball_bearing: outer_start must be (x, y, z) [m], "
+                                 f"nonzero only with outer_support='frame', got {outer_start!r}")
         g, cage = design.geometry, design.cage
         self.design, self.lubricant = design, lubricant
         loads = dict(loads or {})
         constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
+        if inner_ring == "frame" and len(constant) != len(loads):
+            raise ParameterError("deep_groove_ball_bearing: with inner_ring='frame' the loads "
+                                 "only set the start values and must be constants")
         start = static_state(design, constant, free_tilt=free_tilt) if constant else None
+        self.start: StaticState | None = start
         eta = float(lubricant.dynamic_viscosity())
         if (rolling_resistance or ring_drag) and eta <= 0.0:
             raise ParameterError(f"deep_groove_ball_bearing: rolling_resistance and ring_drag "
@@ -165,15 +205,24 @@ class DeepGrooveBallBearing(Assembly):
         nz, dw, dm = g.ball_count, g.ball_diameter, g.pitch_diameter
 
         self.shaft = Flange()
-        self.housing = FixedFrame()
+        if outer_support == "frame":
+            self.outer_frame = RingFrame()
+        else:
+            self.housing = FixedFrame()
         rotating_outer = outer_ring == "flange"
         if rotating_outer:
             self.outer_flange = Flange()
         else:
             self.housing_flange = Fixed()
-        self.ring = RingBody(design.ring_mass, design.ring_tilt_inertia,
-                             start=(*start.ring,) if start else (0.0,) * 5, free_tilt=free_tilt)
-        self.load = RingLoad(loads)
+        if inner_ring == "frame":
+            self.inner_frame = RingFrame()
+        else:
+            ring0 = [*start.ring] if start else [0.0] * 5
+            self.ring = RingBody(design.ring_mass, design.ring_tilt_inertia,
+                                 start=[a + b for a, b in zip(ring0, (*offset, 0.0, 0.0),
+                                                              strict=True)],
+                                 free_tilt=free_tilt)
+            self.load = RingLoad(loads)
         self.cage = Cage(cage.mass, cage.inertia)
         self.guidance = LandGuidance(cage.guide_radius, cage.guide_width, cage.guide_clearance,
                                      eta, k_land=_pocket_constant(design), mu=land_mu,
@@ -182,8 +231,9 @@ class DeepGrooveBallBearing(Assembly):
         k_pocket = _pocket_constant(design)
         for j in range(nz):
             theta = 2.0 * math.pi * j / nz
-            r0 = float(start.r[j]) if start else 0.5 * dm
-            z0 = float(start.z[j]) if start else 0.0
+            r0 = (float(start.r[j]) if start else 0.5 * dm) + offset[0] * math.cos(theta) \
+                + offset[1] * math.sin(theta)  # a small shift of the outer race, to first order
+            z0 = (float(start.z[j]) if start else 0.0) + offset[2]
             balls.append(Ball(design.ball_mass, design.ball_inertia, r0, 0.5 * dm, theta, z0,
                               massive=massive_balls))
             common = dict(ball_diameter=dw, lubricant=lubricant, damping=damping,
@@ -194,7 +244,8 @@ class DeepGrooveBallBearing(Assembly):
                                      a1=design.a1_inner, moving=True, rx=design.rx_inner,
                                      ry=design.ry_inner, **common))
             outer.append(RaceContact("outer", design.rho_outer, g.fo, k_hertz=design.k_outer,
-                                     a1=design.a1_outer, moving=rotating_outer,
+                                     a1=design.a1_outer,
+                                     moving=rotating_outer or outer_support == "frame",
                                      rx=design.rx_outer, ry=design.ry_outer, **common))
             pockets.append(PocketContact(j, nz, 0.5 * dm, 0.5 * dw,
                                          0.5 * dw + cage.pocket_clearance, cage.pocket_straight,
@@ -208,8 +259,12 @@ class DeepGrooveBallBearing(Assembly):
         self.pocket = pockets
         if drags:
             self.drag = drags
-        connect(self.ring.frame, self.load.frame, *[c.ring for c in inner])
-        connect(self.housing.frame, *[c.ring for c in outer])
+        if inner_ring == "frame":
+            connect(self.inner_frame, *[c.ring for c in inner])
+        else:
+            connect(self.ring.frame, self.load.frame, *[c.ring for c in inner])
+        connect(self.outer_frame if outer_support == "frame" else self.housing.frame,
+                *[c.ring for c in outer])
         outer_rotation = self.outer_flange if rotating_outer else self.housing_flange.flange
         connect(outer_rotation, self.guidance.ring, *[c.flange for c in outer])
         connect(self.cage.frame, self.guidance.cage, *[p.cage for p in pockets])

@@ -28,6 +28,7 @@ from bearingsim.components.bearing_torque import (
     SkfBearing,
     resolve_lubricant,
 )
+from bearingsim.components.dynamic import RingBody as MovingRing
 from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_range
@@ -315,10 +316,16 @@ class DynamicDoubleLayerBearing(Assembly):
     layer's inner ring is the shaft, its outer ring rotates with the middle ring
     (``outer_ring="flange"``); the outer layer's inner ring is the middle ring (its rotation and
     polar inertia belong to the :class:`MiddleRing`, ``ring_inertia=False``) and its outer ring
-    is fixed. The middle ring is the three-body :class:`MiddleRing`; the rigid joins are left to
-    the assembler's index reduction. Translations are not coupled through the middle ring: each
-    layer's inner ring carries ``loads`` on its own 5-DOF ring body against a rigid outer race
-    (the middle ring is held centred), so both layers carry the load in series.
+    is fixed. The middle ring's rotation is the three-body :class:`MiddleRing` (the rigid joins
+    are left to the assembler's index reduction); its translations are one
+    :class:`~bearingsim.components.dynamic.RingBody` ``middle_body`` with the middle ring's total
+    mass, whose frame carries the inner layer's outer race contacts (``outer_support="frame"``)
+    and the outer layer's inner race contacts (``inner_ring="frame"``). The shaft load thus goes
+    shaft, inner-layer balls, middle ring, outer-layer balls, housing: the two layers in series.
+    The middle ring is held straight as the shaft is (its tilts are reactions; its tilt inertia,
+    unused, is the thin-ring estimate of half the polar inertia); it starts at the outer
+    layer's quasi-static displacement under ``loads``, the shaft at that plus the inner
+    layer's own.
 
     Losses per layer (see docs/double_layer.md): race traction (slices), pocket and land
     contacts and films of the cage, the EHL rolling resistance at every race contact
@@ -345,8 +352,9 @@ class DynamicDoubleLayerBearing(Assembly):
     speed : callable or float or None
         Shaft speed [rad/s] for ``drive="speed"``.
     loads : dict, optional
-        Constant loads on each layer's inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] (z is
-        the axis); missing keys are inputs of each layer (``inner_layer.load.Fx``, ...).
+        Loads on the shaft (the inner layer's inner ring), ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]
+        (z is the axis); constants, functions of time or None, missing keys are inputs
+        (``inner_layer.load.Fx``, ...). The constant ones set the start values.
     massive_balls : bool
         Balls' radial and axial motion with inertia (True, the fast ODE level) or quasi-static.
     rolling_resistance, ring_drag : bool
@@ -364,7 +372,8 @@ class DynamicDoubleLayerBearing(Assembly):
     Variables
     ---------
     w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft; M_middle [N m] net torque on the
-    middle ring (its total polar inertia times its acceleration)
+    middle ring (its total polar inertia times its acceleration); the displacements
+    ``inner_layer.ring.x, y, z`` (shaft) and ``middle_body.x, y, z`` (middle ring) [m]
     """
 
     def __init__(self, inner="61905", outer="61907", structure: str | None = None,
@@ -384,21 +393,29 @@ class DynamicDoubleLayerBearing(Assembly):
                                      f"lubricants (oil or grease), got {lub.describe()}")
         opts = dict(layer_options or {})
         for key in ("drive", "outer_ring", "ring_inertia", "speed", "loads", "drag",
-                    "massive_balls"):
+                    "massive_balls", "inner_ring", "outer_support", "outer_start"):
             if key in opts:
                 raise ParameterError(f"double_layer_bearing: layer_options may not set "
                                      f"{key!r} (the nested assembly sets it)")
         self.geometries = (gi, go)
         self.designs = (bearing_design(gi), bearing_design(go))
-        common = dict(massive_balls=massive_balls, loads=loads, drag=False,
+        loads = dict(loads or {})
+        constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
+        common = dict(massive_balls=massive_balls, drag=False,
                       rolling_resistance=rolling_resistance, ring_drag=ring_drag,
                       drive="flange", **opts)
         self.shaft = Flange()
         self.middle = MiddleRing(middle_ring_bodies(gi, go, self.structure), w0=w_middle0)
+        self.outer_layer = DeepGrooveBallBearing(self.designs[1], lub_o, ring_inertia=False,
+                                                 loads=constant, inner_ring="frame", **common)
+        start = self.outer_layer.start
+        middle0 = tuple(float(v) for v in start.ring[:3]) if start else (0.0, 0.0, 0.0)
+        self.middle_body = MovingRing(self.middle.mass, 0.5 * self.middle.J,
+                                      start=(*middle0, 0.0, 0.0))
         # an imposed shaft speed needs no shaft inertia (which would need the input's derivative)
         self.inner_layer = DeepGrooveBallBearing(self.designs[0], lub_i, outer_ring="flange",
-                                                 ring_inertia=drive == "flange", **common)
-        self.outer_layer = DeepGrooveBallBearing(self.designs[1], lub_o, ring_inertia=False,
+                                                 ring_inertia=drive == "flange", loads=loads,
+                                                 outer_support="frame", outer_start=middle0,
                                                  **common)
         self.w_shaft = Variable(unit="rad/s", description="shaft (inner ring) speed")
         self.w_middle = Variable(unit="rad/s", description="middle ring speed")
@@ -407,6 +424,8 @@ class DynamicDoubleLayerBearing(Assembly):
         connect(self.shaft, self.inner_layer.shaft)
         connect(self.inner_layer.outer_flange, self.middle.inner_side)
         connect(self.middle.outer_side, self.outer_layer.shaft)
+        connect(self.middle_body.frame, self.inner_layer.outer_frame,
+                self.outer_layer.inner_frame)
         if drive == "speed":
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft)
