@@ -8,6 +8,7 @@ import pytest
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.nested_static import nested_equilibrium
 from bearingsim.components.ball_row import RowParameters, row_stiffness
+from bearingsim.components.dynamic import bearing_design, static_state
 from bearingsim.errors import ParameterError
 from bearingsim.solver import assemble
 
@@ -75,6 +76,20 @@ def test_axial_load_raises_contact_angles_and_couples_directions(full_system):
     assert abs(combined.stiffness[0, 2]) > 0.0
     np.testing.assert_allclose(combined.stiffness, combined.stiffness.T, rtol=1e-6,
                                atol=1e-9 * combined.stiffness.max())
+
+
+@pytest.mark.parametrize("radial", [1.0, 30.0])
+def test_axial_dominated_load_goes_through_the_layers_in_series(full_system, radial):
+    """100 N axial on 61905/61907 with a light radial load: the equilibrium is reached by load
+    continuation (seated radially, axial load added, radial load taken down). The axial
+    displacements equal each layer's own static solution (its inner ring against a fixed outer
+    ring under the same load) in series: middle ring 70.38 um, shaft 135.13 um."""
+    eq = nested_equilibrium(full_system, radial, 100.0)
+    inner, outer = (static_state(bearing_design(d), {"Fz": 100.0}).ring[2]
+                    for d in ("61905", "61907"))
+    assert eq.middle_displacement[2] == pytest.approx(outer, rel=1e-3)
+    assert eq.shaft_displacement[2] == pytest.approx(inner + outer, rel=1e-3)
+    assert np.all(eq.inner_ball_loads > 0.0) and np.all(eq.outer_ball_loads > 0.0)
 
 
 def test_invalid_loads_are_rejected(radial_system):

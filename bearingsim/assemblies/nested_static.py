@@ -21,7 +21,7 @@ from bearingsim.catalog import resolve_bearing
 from bearingsim.components.ball_row import BallRow
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rings import Housing
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError, SimulationError, check_range
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
 from bearingsim.solver import steady_state
 from bearingsim.solver.statics import static_stiffness
@@ -189,15 +189,20 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     inputs = {"shaft.Fx": float(radial)}
     if axial_free:
         inputs["shaft.Fz"] = float(axial)
-    x = _seated_guess(system, radial) if guess is None else np.array(guess, dtype=float)
+    # Seat the balls radially (with at least the axial load, so that the axial path starts from
+    # loaded contacts), add the axial load, then take the radial load down to its value.
+    seat = max(float(radial), abs(float(axial)))
+    x = _seated_guess(system, seat) if guess is None else np.array(guess, dtype=float)
     mass = min(v for n, v in zip(system.parameter_names, system.p0(), strict=True)
                if n.endswith(".mass"))
     tol = 1e-9 * (abs(radial) + abs(axial)) / mass  # force balance to 1e-9 of the load
-    x = steady_state(system, inputs={"shaft.Fx": float(radial)}, x_guess=x, residual_tol=tol)
+    seated = {**inputs, "shaft.Fx": seat} | ({"shaft.Fz": 0.0} if axial_free else {})
+    x = steady_state(system, inputs=seated, x_guess=x, residual_tol=tol)
+    loaded = {**seated, **({"shaft.Fz": float(axial)} if axial_free else {})}
     if axial:
-        for k in np.linspace(0.2, 1.0, 5):  # axial load continuation from the radial seat
-            x = steady_state(system, inputs={**inputs, "shaft.Fz": k * float(axial)},
-                             x_guess=x, residual_tol=tol)
+        x = _load_path(system, seated, loaded, x, tol)
+    if seat != radial:
+        x = _load_path(system, loaded, inputs, x, tol)
     u = system.u_default()
     for n, v in inputs.items():
         u[system.input_names.index(n)] = v
@@ -218,6 +223,34 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
         series("inner_row", "alpha_i", zi), series("outer_row", "alpha_i", zo),
         stiff, x,
     )
+
+
+def _load_path(system: System, start: dict[str, float], end: dict[str, float], x: np.ndarray,
+               tol: float, min_step: float = 1e-3) -> np.ndarray:
+    """Move the shaft loads linearly from ``start`` to ``end`` in steps, each equilibrium
+    solved from the previous one; a step that fails is halved, one that succeeds doubled (up to
+    a quarter of the path).
+
+    Raises
+    ------
+    SimulationError
+        If a step below ``min_step`` of the path still fails.
+    """
+    done, step = 0.0, 0.1
+    while done < 1.0:
+        trial = min(1.0, done + step)
+        loads = {k: start[k] + trial * (end[k] - start[k]) for k in end}
+        try:
+            x = steady_state(system, inputs=loads, x_guess=x, residual_tol=tol)
+        except SimulationError as exc:
+            step /= 2.0
+            if step < min_step:
+                raise SimulationError(f"nested_equilibrium: no equilibrium found from {start} "
+                                      f"towards {end} beyond {done:.3g} of the way: {exc}"
+                                      ) from None
+            continue
+        done, step = trial, min(2.0 * step, 0.25)
+    return x
 
 
 def _seated_guess(system: System, radial: float) -> np.ndarray:
