@@ -169,7 +169,8 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     system : System
         Assembled :class:`NestedQuasiStatic`.
     radial : float
-        Radial load on the shaft along x [N], > 0 (a load is needed to seat the balls).
+        Radial load on the shaft along x [N], >= 0; 0 only with an axial load (a load is
+        needed to seat the balls).
     axial : float
         Axial load along z [N] (needs ``axial=True``).
     guess : array, optional
@@ -179,9 +180,12 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     -------
     NestedEquilibrium
     """
-    check_range(radial, "radial", "N", 0.0, None, low_inclusive=False,
-                where="nested_equilibrium")
+    check_range(radial, "radial", "N", 0.0, None, where="nested_equilibrium")
     check_range(axial, "axial", "N", where="nested_equilibrium")
+    if radial == 0.0 and not axial:
+        raise ParameterError("nested_equilibrium: radial = 0 N needs an axial load; the balls "
+                             "of a bearing with clearance are seated by a load (radial > 0 N "
+                             "or axial != 0 N)")
     axial_free = "shaft.z" in system.state_names
     if axial and not axial_free:
         raise ParameterError("nested_equilibrium: an axial load needs NestedQuasiStatic("
