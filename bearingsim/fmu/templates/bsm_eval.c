@@ -145,6 +145,109 @@ BsmStatus bsm_check_input(BsmInstance *m, int k, double v) {
     return BSM_ERROR;
 }
 
+/* ------------------------------------------------------------------ values, derivatives */
+BsmStatus bsm_get_real(BsmInstance *m, unsigned int r, double *value) {
+    BsmStatus st;
+    if (r < VR_DX) {
+        *value = m->s.x[r - VR_X];
+    } else if (r < VR_U) {
+        st = bsm_current_derivatives(m);
+        if (st != BSM_OK) return st;
+        *value = m->dx[r - VR_DX];
+    } else if (r < VR_Y) {
+        *value = m->s.u[r - VR_U];
+    } else if (r < VR_P) {
+        st = bsm_current_outputs(m);
+        if (st != BSM_OK) return st;
+        *value = m->y[r - VR_Y];
+    } else {
+        *value = m->s.p[r - VR_P];
+    }
+    return BSM_OK;
+}
+
+BsmCall bsm_set_real(BsmInstance *m, unsigned int r, double v, int states_settable,
+                     int parameters_settable, const char *function) {
+    if (r < VR_DX) {
+        if (!states_settable) {
+            bsm_log(m, BSM_ERROR, "logStatusError",
+                    "%s of a state must not be called in this state", function);
+            return BSM_CALL_REFUSED;
+        }
+        if (!isfinite(v)) {
+            char num[32];
+            bsm_log(m, BSM_ERROR, "logStatusError", "start value of %s must be finite, got %s",
+                    bsm_x_names[r], bsm_num(num, v));
+            return BSM_CALL_FAILED;
+        }
+        m->s.x[r - VR_X] = v;
+    } else if (r >= VR_U && r < VR_Y) {
+        if (bsm_check_input(m, (int)(r - VR_U), v) != BSM_OK) return BSM_CALL_FAILED;
+        m->s.u[r - VR_U] = v;
+    } else if (r >= VR_P && r < VR_END) {
+        if (!parameters_settable) {
+            bsm_log(m, BSM_ERROR, "logStatusError",
+                    "%s of a parameter must not be called in this state", function);
+            return BSM_CALL_REFUSED;
+        }
+        if (bsm_check_parameter(m, (int)(r - VR_P), v) != BSM_OK) return BSM_CALL_FAILED;
+        m->s.p[r - VR_P] = v;
+    } else {
+        bsm_log(m, BSM_ERROR, "logStatusError",
+                "%s: value reference %u is not a state start value, input or parameter",
+                function, r);
+        return BSM_CALL_REFUSED;
+    }
+    return BSM_CALL_DONE;
+}
+
+BsmCall bsm_directional_derivative(BsmInstance *m, const unsigned int *unknowns, size_t n_unknown,
+                                   const unsigned int *knowns, size_t n_known,
+                                   const double *seed, double *out, const char *function) {
+    size_t i, j;
+    for (j = 0; j < n_known; ++j)
+        if (knowns[j] >= VR_DX && !(knowns[j] >= VR_U && knowns[j] < VR_Y)) {
+            bsm_log(m, BSM_ERROR, "logStatusError", "%s: known %u must be a state or an input",
+                    function, knowns[j]);
+            return BSM_CALL_REFUSED;
+        }
+    bsm_eval_dense(m, FN_JAC_X, m->s.time, m->s.x, m->s.u, m->jx);
+    if (NU > 0) bsm_eval_dense(m, FN_JAC_U, m->s.time, m->s.x, m->s.u, m->ju);
+    if (NY > 0) {
+        bsm_eval_dense(m, FN_OUT_JAC_X, m->s.time, m->s.x, m->s.u, m->yx);
+        if (NU > 0) bsm_eval_dense(m, FN_OUT_JAC_U, m->s.time, m->s.x, m->s.u, m->yu);
+    }
+    for (i = 0; i < n_unknown; ++i) {
+        unsigned int r = unknowns[i];
+        double sum = 0.0;
+        for (j = 0; j < n_known; ++j) {
+            unsigned int q = knowns[j];
+            int is_state = q < VR_DX;
+            int col = is_state ? (int)(q - VR_X) : (int)(q - VR_U);
+            double d;
+            if (r < VR_DX) d = (is_state && q == r) ? 1.0 : 0.0;
+            else if (r < VR_U) d = is_state ? m->jx[(r - VR_DX) * NX + col]
+                                            : m->ju[(r - VR_DX) * NU + col];
+            else if (r >= VR_Y && r < VR_P) d = is_state ? m->yx[(r - VR_Y) * NX + col]
+                                                         : m->yu[(r - VR_Y) * NU + col];
+            else if (r >= VR_U && r < VR_Y) d = (!is_state && q == r) ? 1.0 : 0.0;
+            else {
+                bsm_log(m, BSM_ERROR, "logStatusError",
+                        "%s (unknown): value reference %u is not valid", function, r);
+                return BSM_CALL_REFUSED;
+            }
+            sum += d * seed[j];
+        }
+        if (!isfinite(sum)) {
+            bsm_log(m, BSM_ERROR, "logStatusError", "%s: derivative of %u is not finite at "
+                    "t = %g s", function, r, m->s.time);
+            return BSM_CALL_FAILED;
+        }
+        out[i] = sum;
+    }
+    return BSM_CALL_DONE;
+}
+
 /* ------------------------------------------------------------------ FMU state serialization */
 typedef struct {
     unsigned int magic;

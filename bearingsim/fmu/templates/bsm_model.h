@@ -104,6 +104,11 @@ typedef struct {
     int debug_logging;
 } BsmInstance;
 
+/* Outcome of a shared API operation: done; refused without harm (bad arguments or a call in
+ * the wrong mode; logged); failed in the model (logged; the caller puts the instance in its
+ * error state). */
+typedef enum { BSM_CALL_DONE = 0, BSM_CALL_REFUSED = 1, BSM_CALL_FAILED = 2 } BsmCall;
+
 /* bsm_eval.c */
 const char *bsm_num(char buf[32], double v);
 void bsm_log(BsmInstance *m, BsmStatus status, const char *category, const char *fmt, ...);
@@ -117,6 +122,16 @@ BsmStatus bsm_current_derivatives(BsmInstance *m);
 BsmStatus bsm_current_outputs(BsmInstance *m);
 BsmStatus bsm_check_parameter(BsmInstance *m, int k, double value);
 BsmStatus bsm_check_input(BsmInstance *m, int k, double value);
+/* Value of the Float64 variable ``r`` below VR_END (the caller rejects other references). */
+BsmStatus bsm_get_real(BsmInstance *m, unsigned int r, double *value);
+/* Set a state start value, an input or a parameter (each checked; states and parameters only
+ * when the caller's mode allows it). */
+BsmCall bsm_set_real(BsmInstance *m, unsigned int r, double v, int states_settable,
+                     int parameters_settable, const char *function);
+/* out = d(unknowns)/d(knowns) seed, knowns states or inputs, at the current state. */
+BsmCall bsm_directional_derivative(BsmInstance *m, const unsigned int *unknowns, size_t n_unknown,
+                                   const unsigned int *knowns, size_t n_known,
+                                   const double *seed, double *out, const char *function);
 size_t bsm_serialized_size(void);
 BsmStatus bsm_serialize(BsmInstance *m, const BsmState *s, unsigned int magic, void *buffer,
                         size_t size, const char *function);

@@ -185,29 +185,21 @@ static fmi2Status bad_vr(Fmi2Instance *c, fmi2ValueReference vr, const char *wha
     return fmi2Error;
 }
 
+/* Map a shared operation's outcome to an FMI status. */
+static fmi2Status outcome(Fmi2Instance *c, BsmCall call) {
+    if (call == BSM_CALL_FAILED) return fail(c, BSM_ERROR);
+    return call == BSM_CALL_DONE ? fmi2OK : fmi2Error;
+}
+
 fmi2Status fmi2GetReal(fmi2Component component, const fmi2ValueReference vr[], size_t nvr,
                        fmi2Real value[]) {
     size_t i;
     INSTANCE("fmi2GetReal", ANY_MODE)
     for (i = 0; i < nvr; ++i) {
-        unsigned int r = vr[i];
-        if (r < VR_DX) {
-            value[i] = c->m.s.x[r - VR_X];
-        } else if (r < VR_U) {
-            BsmStatus st = bsm_current_derivatives(&c->m);
-            if (st != BSM_OK) return fail(c, st);
-            value[i] = c->m.dx[r - VR_DX];
-        } else if (r < VR_Y) {
-            value[i] = c->m.s.u[r - VR_U];
-        } else if (r < VR_P) {
-            BsmStatus st = bsm_current_outputs(&c->m);
-            if (st != BSM_OK) return fail(c, st);
-            value[i] = c->m.y[r - VR_Y];
-        } else if (r < VR_END) {
-            value[i] = c->m.s.p[r - VR_P];
-        } else {
-            return bad_vr(c, r, "fmi2GetReal");
-        }
+        BsmStatus st;
+        if (vr[i] >= VR_END) return bad_vr(c, vr[i], "fmi2GetReal");
+        st = bsm_get_real(&c->m, vr[i], &value[i]);
+        if (st != BSM_OK) return fail(c, st);
     }
     return fmi2OK;
 }
@@ -217,33 +209,9 @@ fmi2Status fmi2SetReal(fmi2Component component, const fmi2ValueReference vr[], s
     size_t i;
     INSTANCE("fmi2SetReal", RUN_MODES | MODE_INSTANTIATED)
     for (i = 0; i < nvr; ++i) {
-        unsigned int r = vr[i];
-        if (r < VR_DX) {
-            if (check_mode(c, SETUP_MODES, "fmi2SetReal of a state") != fmi2OK)
-                return fmi2Error;
-            if (!isfinite(value[i])) {
-                char num[32];
-                bsm_log(&c->m, BSM_ERROR, "logStatusError", "start value of %s must be finite, "
-                        "got %s", bsm_x_names[r], bsm_num(num, value[i]));
-                return fail(c, BSM_ERROR);
-            }
-            c->m.s.x[r - VR_X] = value[i];
-        } else if (r >= VR_U && r < VR_Y) {
-            if (bsm_check_input(&c->m, (int)(r - VR_U), value[i]) != BSM_OK)
-                return fail(c, BSM_ERROR);
-            c->m.s.u[r - VR_U] = value[i];
-        } else if (r >= VR_P && r < VR_END) {
-            if (check_mode(c, TUNE_MODES, "fmi2SetReal of a parameter") != fmi2OK)
-                return fmi2Error;
-            if (bsm_check_parameter(&c->m, (int)(r - VR_P), value[i]) != BSM_OK)
-                return fail(c, BSM_ERROR);
-            c->m.s.p[r - VR_P] = value[i];
-        } else {
-            bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                    "fmi2SetReal: value reference %u is not a state start value, input or "
-                    "parameter", (unsigned)r);
-            return fmi2Error;
-        }
+        BsmCall call = bsm_set_real(&c->m, vr[i], value[i], (c->m.s.mode & SETUP_MODES) != 0,
+                                    (c->m.s.mode & TUNE_MODES) != 0, "fmi2SetReal");
+        if (call != BSM_CALL_DONE) return outcome(c, call);
     }
     bsm_invalidate(&c->m);
     return fmi2OK;
@@ -366,49 +334,10 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component component,
                                         size_t nUnknown, const fmi2ValueReference vKnown_ref[],
                                         size_t nKnown, const fmi2Real dvKnown[],
                                         fmi2Real dvUnknown[]) {
-    size_t i, j;
-    BsmInstance *m;
     INSTANCE("fmi2GetDirectionalDerivative", RUN_MODES)
-    m = &c->m;
-    for (j = 0; j < nKnown; ++j)
-        if (vKnown_ref[j] >= VR_DX && !(vKnown_ref[j] >= VR_U && vKnown_ref[j] < VR_Y)) {
-            bsm_log(m, BSM_ERROR, "logStatusError",
-                    "fmi2GetDirectionalDerivative: known %u must be a state or an input",
-                    (unsigned)vKnown_ref[j]);
-            return fmi2Error;
-        }
-    bsm_eval_dense(m, FN_JAC_X, m->s.time, m->s.x, m->s.u, m->jx);
-    if (NU > 0) bsm_eval_dense(m, FN_JAC_U, m->s.time, m->s.x, m->s.u, m->ju);
-    if (NY > 0) {
-        bsm_eval_dense(m, FN_OUT_JAC_X, m->s.time, m->s.x, m->s.u, m->yx);
-        if (NU > 0) bsm_eval_dense(m, FN_OUT_JAC_U, m->s.time, m->s.x, m->s.u, m->yu);
-    }
-    for (i = 0; i < nUnknown; ++i) {
-        unsigned int r = vUnknown_ref[i];
-        double sum = 0.0;
-        for (j = 0; j < nKnown; ++j) {
-            unsigned int q = vKnown_ref[j];
-            int is_state = q < VR_DX;
-            int col = is_state ? (int)(q - VR_X) : (int)(q - VR_U);
-            double d;
-            if (r < VR_DX) d = (is_state && q == r) ? 1.0 : 0.0;
-            else if (r < VR_U) d = is_state ? m->jx[(r - VR_DX) * NX + col]
-                                            : m->ju[(r - VR_DX) * NU + col];
-            else if (r >= VR_Y && r < VR_P) d = is_state ? m->yx[(r - VR_Y) * NX + col]
-                                                         : m->yu[(r - VR_Y) * NU + col];
-            else if (r >= VR_U && r < VR_Y) d = (!is_state && q == r) ? 1.0 : 0.0;
-            else return bad_vr(c, r, "fmi2GetDirectionalDerivative (unknown)");
-            sum += d * dvKnown[j];
-        }
-        if (!isfinite(sum)) {
-            bsm_log(m, BSM_ERROR, "logStatusError",
-                    "fmi2GetDirectionalDerivative: derivative of %u is not finite at t = %g s",
-                    (unsigned)r, m->s.time);
-            return fail(c, BSM_ERROR);
-        }
-        dvUnknown[i] = sum;
-    }
-    return fmi2OK;
+    return outcome(c, bsm_directional_derivative(&c->m, vUnknown_ref, nUnknown, vKnown_ref,
+                                                 nKnown, dvKnown, dvUnknown,
+                                                 "fmi2GetDirectionalDerivative"));
 }
 
 /* ------------------------------------------------------------------ model exchange */

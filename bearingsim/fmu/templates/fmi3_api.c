@@ -237,37 +237,35 @@ static fmi3Status bad_vr(Fmi3Instance *c, fmi3ValueReference vr, const char *wha
     return fmi3Error;
 }
 
+/* Map a shared operation's outcome to an FMI status. */
+static fmi3Status outcome(Fmi3Instance *c, BsmCall call) {
+    if (call == BSM_CALL_FAILED) return fail(c, BSM_ERROR);
+    return call == BSM_CALL_DONE ? fmi3OK : fmi3Error;
+}
+
+static fmi3Status count_mismatch(Fmi3Instance *c, const char *function, size_t n_values,
+                                 size_t n_refs) {
+    bsm_log(&c->m, BSM_ERROR, "logStatusError", "%s: %u values for %u scalar variables",
+            function, (unsigned)n_values, (unsigned)n_refs);
+    return fmi3Error;
+}
+
 fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, fmi3Float64 values[], size_t nValues) {
     size_t i;
     INSTANCE("fmi3GetFloat64", ANY_MODE)
-    if (nValues != nValueReferences) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi3GetFloat64: %u values for %u scalar variables", (unsigned)nValues,
-                (unsigned)nValueReferences);
-        return fmi3Error;
-    }
+    if (nValues != nValueReferences)
+        return count_mismatch(c, "fmi3GetFloat64", nValues, nValueReferences);
     for (i = 0; i < nValueReferences; ++i) {
         unsigned int r = valueReferences[i];
-        if (r < VR_DX) {
-            values[i] = c->m.s.x[r - VR_X];
-        } else if (r < VR_U) {
-            BsmStatus st = bsm_current_derivatives(&c->m);
-            if (st != BSM_OK) return fail(c, st);
-            values[i] = c->m.dx[r - VR_DX];
-        } else if (r < VR_Y) {
-            values[i] = c->m.s.u[r - VR_U];
-        } else if (r < VR_P) {
-            BsmStatus st = bsm_current_outputs(&c->m);
-            if (st != BSM_OK) return fail(c, st);
-            values[i] = c->m.y[r - VR_Y];
-        } else if (r < VR_END) {
-            values[i] = c->m.s.p[r - VR_P];
-        } else if (r == VR_TIME) {
+        BsmStatus st;
+        if (r == VR_TIME) {
             values[i] = c->m.s.time;
-        } else {
-            return bad_vr(c, r, "fmi3GetFloat64");
+            continue;
         }
+        if (r >= VR_END) return bad_vr(c, r, "fmi3GetFloat64");
+        st = bsm_get_real(&c->m, r, &values[i]);
+        if (st != BSM_OK) return fail(c, st);
     }
     return fmi3OK;
 }
@@ -276,40 +274,13 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
                           size_t nValueReferences, const fmi3Float64 values[], size_t nValues) {
     size_t i;
     INSTANCE("fmi3SetFloat64", RUN_MODES | MODE_INSTANTIATED)
-    if (nValues != nValueReferences) {
-        bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                "fmi3SetFloat64: %u values for %u scalar variables", (unsigned)nValues,
-                (unsigned)nValueReferences);
-        return fmi3Error;
-    }
+    if (nValues != nValueReferences)
+        return count_mismatch(c, "fmi3SetFloat64", nValues, nValueReferences);
     for (i = 0; i < nValueReferences; ++i) {
-        unsigned int r = valueReferences[i];
-        if (r < VR_DX) {
-            if (check_mode(c, SETUP_MODES, "fmi3SetFloat64 of a state") != fmi3OK)
-                return fmi3Error;
-            if (!isfinite(values[i])) {
-                char num[32];
-                bsm_log(&c->m, BSM_ERROR, "logStatusError", "start value of %s must be finite, "
-                        "got %s", bsm_x_names[r], bsm_num(num, values[i]));
-                return fail(c, BSM_ERROR);
-            }
-            c->m.s.x[r - VR_X] = values[i];
-        } else if (r >= VR_U && r < VR_Y) {
-            if (bsm_check_input(&c->m, (int)(r - VR_U), values[i]) != BSM_OK)
-                return fail(c, BSM_ERROR);
-            c->m.s.u[r - VR_U] = values[i];
-        } else if (r >= VR_P && r < VR_END) {
-            if (check_mode(c, TUNE_MODES, "fmi3SetFloat64 of a parameter") != fmi3OK)
-                return fmi3Error;
-            if (bsm_check_parameter(&c->m, (int)(r - VR_P), values[i]) != BSM_OK)
-                return fail(c, BSM_ERROR);
-            c->m.s.p[r - VR_P] = values[i];
-        } else {
-            bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                    "fmi3SetFloat64: value reference %u is not a state start value, input or "
-                    "parameter", (unsigned)r);
-            return fmi3Error;
-        }
+        BsmCall call = bsm_set_real(&c->m, valueReferences[i], values[i],
+                                    (c->m.s.mode & SETUP_MODES) != 0,
+                                    (c->m.s.mode & TUNE_MODES) != 0, "fmi3SetFloat64");
+        if (call != BSM_CALL_DONE) return outcome(c, call);
     }
     bsm_invalidate(&c->m);
     return fmi3OK;
@@ -489,56 +460,17 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance,
                                         const fmi3ValueReference knowns[], size_t nKnowns,
                                         const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity) {
-    size_t i, j;
-    BsmInstance *m;
     INSTANCE("fmi3GetDirectionalDerivative", RUN_MODES)
-    m = &c->m;
     if (nSeed != nKnowns || nSensitivity != nUnknowns) {
-        bsm_log(m, BSM_ERROR, "logStatusError",
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
                 "fmi3GetDirectionalDerivative: %u seeds for %u knowns, %u sensitivities for %u "
                 "unknowns", (unsigned)nSeed, (unsigned)nKnowns, (unsigned)nSensitivity,
                 (unsigned)nUnknowns);
         return fmi3Error;
     }
-    for (j = 0; j < nKnowns; ++j)
-        if (knowns[j] >= VR_DX && !(knowns[j] >= VR_U && knowns[j] < VR_Y)) {
-            bsm_log(m, BSM_ERROR, "logStatusError",
-                    "fmi3GetDirectionalDerivative: known %u must be a state or an input",
-                    (unsigned)knowns[j]);
-            return fmi3Error;
-        }
-    bsm_eval_dense(m, FN_JAC_X, m->s.time, m->s.x, m->s.u, m->jx);
-    if (NU > 0) bsm_eval_dense(m, FN_JAC_U, m->s.time, m->s.x, m->s.u, m->ju);
-    if (NY > 0) {
-        bsm_eval_dense(m, FN_OUT_JAC_X, m->s.time, m->s.x, m->s.u, m->yx);
-        if (NU > 0) bsm_eval_dense(m, FN_OUT_JAC_U, m->s.time, m->s.x, m->s.u, m->yu);
-    }
-    for (i = 0; i < nUnknowns; ++i) {
-        unsigned int r = unknowns[i];
-        double sum = 0.0;
-        for (j = 0; j < nKnowns; ++j) {
-            unsigned int q = knowns[j];
-            int is_state = q < VR_DX;
-            int col = is_state ? (int)(q - VR_X) : (int)(q - VR_U);
-            double d;
-            if (r < VR_DX) d = (is_state && q == r) ? 1.0 : 0.0;
-            else if (r < VR_U) d = is_state ? m->jx[(r - VR_DX) * NX + col]
-                                            : m->ju[(r - VR_DX) * NU + col];
-            else if (r >= VR_Y && r < VR_P) d = is_state ? m->yx[(r - VR_Y) * NX + col]
-                                                         : m->yu[(r - VR_Y) * NU + col];
-            else if (r >= VR_U && r < VR_Y) d = (!is_state && q == r) ? 1.0 : 0.0;
-            else return bad_vr(c, r, "fmi3GetDirectionalDerivative (unknown)");
-            sum += d * seed[j];
-        }
-        if (!isfinite(sum)) {
-            bsm_log(m, BSM_ERROR, "logStatusError",
-                    "fmi3GetDirectionalDerivative: derivative of %u is not finite at t = %g s",
-                    (unsigned)r, m->s.time);
-            return fail(c, BSM_ERROR);
-        }
-        sensitivity[i] = sum;
-    }
-    return fmi3OK;
+    return outcome(c, bsm_directional_derivative(&c->m, unknowns, nUnknowns, knowns, nKnowns,
+                                                 seed, sensitivity,
+                                                 "fmi3GetDirectionalDerivative"));
 }
 
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[],
