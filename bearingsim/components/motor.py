@@ -19,7 +19,27 @@ def _positive(value, unit, description):
     return Parameter(value, unit, description, low=0.0, low_inclusive=False)
 
 
-class DCMotor(Component):
+class _Machine(Component):
+    """Rotor of an electric machine: inertia ``J`` (a parameter) on ``flange``, driven by the
+    electromagnetic torque ``tau_em`` that the subclass defines together with ``P_el``."""
+
+    def _declare_rotor(self, w0: float) -> None:
+        self.phi = Variable(0.0, "rad", "rotor angle")
+        self.w = Variable(w0, "rad/s", "rotor speed")
+        self.tau_em = Variable(unit="N.m", description="electromagnetic torque")
+        self.P_el = Variable(unit="W", description="electrical input power")
+        self.P_mech = Variable(unit="W", description="electromagnetic (air-gap) power")
+
+    def _rotor_equations(self) -> list:
+        return [
+            der(self.phi) == self.w,
+            self.J * der(self.w) == self.tau_em + self.flange.tau,
+            self.flange.phi == self.phi,
+            self.P_mech == self.tau_em * self.w,
+        ]
+
+
+class DCMotor(_Machine):
     """Permanent-magnet DC motor with rotor inertia.
 
     ``L di/dt = v - R i - k w``, ``J dw/dt = k i + flange.tau``.
@@ -53,25 +73,18 @@ class DCMotor(Component):
         self.flange = Flange()
         self.v = Input(unit="V", description="terminal voltage")
         self.i = Variable(0.0, "A", "armature current")
-        self.phi = Variable(0.0, "rad", "rotor angle")
-        self.w = Variable(w0, "rad/s", "rotor speed")
-        self.tau_em = Variable(unit="N.m", description="electromagnetic torque")
-        self.P_el = Variable(unit="W", description="electrical input power")
-        self.P_mech = Variable(unit="W", description="electromagnetic (air-gap) power")
+        self._declare_rotor(w0)
 
     def equations(self):
         return [
             self.L * der(self.i) == self.v - self.R * self.i - self.k * self.w,
             self.tau_em == self.k * self.i,
-            der(self.phi) == self.w,
-            self.J * der(self.w) == self.tau_em + self.flange.tau,
-            self.flange.phi == self.phi,
             self.P_el == self.v * self.i,
-            self.P_mech == self.tau_em * self.w,
+            *self._rotor_equations(),
         ]
 
 
-class PMSM(Component):
+class PMSM(_Machine):
     """Permanent-magnet synchronous motor in the rotor (dq) frame.
 
     ``Ld did/dt = vd - R id + p w Lq iq``,
@@ -109,11 +122,7 @@ class PMSM(Component):
         self.vq = Input(unit="V", description="q-axis voltage")
         self.id = Variable(0.0, "A", "d-axis current")
         self.iq = Variable(0.0, "A", "q-axis current")
-        self.phi = Variable(0.0, "rad", "rotor angle")
-        self.w = Variable(w0, "rad/s", "rotor speed")
-        self.tau_em = Variable(unit="N.m", description="electromagnetic torque")
-        self.P_el = Variable(unit="W", description="electrical input power")
-        self.P_mech = Variable(unit="W", description="electromagnetic (air-gap) power")
+        self._declare_rotor(w0)
 
     def equations(self):
         we = self.p * self.w
@@ -123,11 +132,8 @@ class PMSM(Component):
             == self.vq - self.R * self.iq - we * (self.Ld * self.id + self.psi),
             self.tau_em
             == 1.5 * self.p * (self.psi * self.iq + (self.Ld - self.Lq) * self.id * self.iq),
-            der(self.phi) == self.w,
-            self.J * der(self.w) == self.tau_em + self.flange.tau,
-            self.flange.phi == self.phi,
             self.P_el == 1.5 * (self.vd * self.id + self.vq * self.iq),
-            self.P_mech == self.tau_em * self.w,
+            *self._rotor_equations(),
         ]
 
 
