@@ -23,6 +23,7 @@ __all__ = [
     "UnconnectedInputError",
     "SimulationError",
     "CatalogError",
+    "check_choice",
     "check_range",
 ]
 
@@ -162,3 +163,34 @@ def check_range(
     if arr.ndim == 0 and not math.isfinite(float(arr)):
         raise ParameterError(f"{label} must be finite [{unit}]")
     return value
+
+
+def check_choice(value: Any, name: str, allowed: tuple, where: str = "") -> Any:
+    """Check that ``value`` is one of ``allowed``.
+
+    Parameters
+    ----------
+    value : Any
+        The value to check.
+    name : str
+        Name of the argument, used in the message.
+    allowed : tuple
+        The valid values.
+    where : str
+        Component path or function name, used in the message.
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> must be 'a', 'b' or 'c', got <value>"``.
+    """
+    if value in allowed:
+        return value
+    names = [repr(a) for a in allowed]
+    options = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+    label = f"{where}: {name}" if where else name
+    raise ParameterError(f"{label} must be {options}, got {value!r}")

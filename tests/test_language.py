@@ -251,3 +251,14 @@ def test_ad_hoc_assembly_without_subclassing():
     wd = np.sqrt(399.0)
     expected = 0.05 * np.exp(-res.t) * (np.cos(wd * res.t) + np.sin(wd * res.t) / wd)
     np.testing.assert_allclose(res["mass.phi"], expected, atol=1e-8)
+
+
+def test_check_choice_names_the_argument_and_the_valid_values():
+    from bearingsim.errors import ParameterError, check_choice
+
+    assert check_choice("Z", "structure", ("I", "Z"), "double_layer_bearing") == "Z"
+    with pytest.raises(ParameterError) as info:
+        check_choice("T", "structure", ("I", "Z"), "double_layer_bearing")
+    assert str(info.value) == "double_layer_bearing: structure must be 'I' or 'Z', got 'T'"
+    with pytest.raises(ParameterError, match=r"^race must be 'a', 'b' or 'c', got 2$"):
+        check_choice(2, "race", ("a", "b", "c"))

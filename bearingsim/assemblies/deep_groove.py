@@ -40,7 +40,7 @@ from bearingsim.components.dynamic.design import BRASS, BearingDesign, bearing_d
 from bearingsim.components.dynamic.static import StaticState, static_state
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, check_choice
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
@@ -168,18 +168,11 @@ class DeepGrooveBallBearing(Assembly):
                  outer_support: str = "housing",
                  outer_start: tuple[float, float, float] = (0.0, 0.0, 0.0), name="bearing"):
         super().__init__(name)
-        if drive not in ("speed", "flange"):
-            raise ParameterError(f"deep_groove_ball_bearing: drive must be 'speed' or 'flange', "
-                                 f"got {drive!r}")
-        if outer_ring not in ("fixed", "flange"):
-            raise ParameterError(f"deep_groove_ball_bearing: outer_ring must be 'fixed' or "
-                                 f"'flange', got {outer_ring!r}")
-        if inner_ring not in ("body", "frame"):
-            raise ParameterError(f"deep_groove_ball_bearing: inner_ring must be 'body' or "
-                                 f"'frame', got {inner_ring!r}")
-        if outer_support not in ("housing", "frame"):
-            raise ParameterError(f"deep_groove_ball_bearing: outer_support must be 'housing' "
-                                 f"or 'frame', got {outer_support!r}")
+        where = "deep_groove_ball_bearing"
+        check_choice(drive, "drive", ("speed", "flange"), where)
+        check_choice(outer_ring, "outer_ring", ("fixed", "flange"), where)
+        check_choice(inner_ring, "inner_ring", ("body", "frame"), where)
+        check_choice(outer_support, "outer_support", ("housing", "frame"), where)
         offset = tuple(float(v) for v in outer_start)
         if len(offset) != 3 or (outer_support == "housing" and any(offset)):
             raise ParameterError(f"deep_groove_ball_bearing: outer_start must be (x, y, z) [m], "

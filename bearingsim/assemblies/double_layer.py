@@ -31,7 +31,7 @@ from bearingsim.components.bearing_torque import (
 from bearingsim.components.dynamic import RingBody as MovingRing
 from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.solver import simulate
 
@@ -164,9 +164,7 @@ def _structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) 
     """Checked middle-ring type: "I" needs ``D1 <= d2``; None chooses "I" when it fits."""
     fits = gi.outside_diameter <= go.bore
     structure = structure or ("I" if fits else "Z")
-    if structure not in ("I", "Z"):
-        raise ParameterError(f"double_layer_bearing: structure must be 'I' or 'Z', got "
-                             f"{structure!r}")
+    check_choice(structure, "structure", ("I", "Z"), "double_layer_bearing")
     if structure == "I" and not fits:
         raise ParameterError(
             f"double_layer_bearing: an I-type middle ring needs the inner bearing's outside "
@@ -177,9 +175,7 @@ def _structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) 
 
 
 def _check_drive(drive: str) -> None:
-    if drive not in ("speed", "flange"):
-        raise ParameterError(f"double_layer_bearing: drive must be 'speed' or 'flange', got "
-                             f"{drive!r}")
+    check_choice(drive, "drive", ("speed", "flange"), "double_layer_bearing")
 
 
 def _pair(lubrication) -> tuple[Any, Any]:

@@ -65,7 +65,7 @@ from bearingsim import _ops as op
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.qs_rigid import add, cross, rotate, rotation, scale
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Component, Parameter, Variable
 from bearingsim.physics.hertz import (
     STEEL,
@@ -418,9 +418,7 @@ class BallRow(Component):
         super().__init__(name)
         self.geometry = resolve_bearing(bearing)
         self.representative = bool(representative)
-        if direction not in (1, -1):
-            raise ParameterError(f"{self.display_name}: direction must be 1 or -1, got "
-                                 f"{direction!r}")
+        check_choice(direction, "direction", (1, -1), self.display_name)
         if reference not in REFERENCES:
             raise ParameterError(f"{self.display_name}: reference must be one of {REFERENCES}, "
                                  f"got {reference!r}")

@@ -8,7 +8,7 @@ Speeds are angular speeds about the bearing axis [rad/s]; floats, arrays and Cas
 from __future__ import annotations
 
 from bearingsim import _ops as op
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import check_choice, check_range
 
 __all__ = [
     "pitch_ratio",
@@ -97,7 +97,6 @@ def ball_pass_ratio(ball_count, gamma, race: str):
     """
     check_range(ball_count, "ball_count", "-", 3, where="ball_pass_ratio")
     check_range(gamma, "gamma", "-", 0.0, 1.0, high_inclusive=False, where="ball_pass_ratio")
-    if race not in ("inner", "outer"):
-        raise ParameterError(f"ball_pass_ratio: race must be 'inner' or 'outer', got {race!r}")
+    check_choice(race, "race", ("inner", "outer"), "ball_pass_ratio")
     sign = 1.0 if race == "inner" else -1.0
     return 0.5 * ball_count * (1.0 + sign * gamma)

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from bearingsim import _ops as op
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError, check_choice, check_range
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry
@@ -196,8 +196,7 @@ def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, r
     check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
     check_range(groove_factor, "groove_factor", "-", 0.5, 1.0, low_inclusive=False, where=where)
     check_range(contact_angle, "contact_angle", "rad", -np.pi / 2, np.pi / 2, where=where)
-    if race not in ("inner", "outer"):
-        raise ParameterError(f"{where}: race must be 'inner' or 'outer', got {race!r}")
+    check_choice(race, "race", ("inner", "outer"), where)
     gamma = ball_diameter * op.cos(contact_angle) / pitch_diameter
     check_range(gamma, "Dw cos(alpha)/dm", "-", 0.0, 1.0, high_inclusive=False, where=where)
     sign = -1.0 if race == "inner" else 1.0

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim import _ops as op
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.physics.geometry import (
     ball_pass_ratio,
     pitch_ratio,
@@ -300,8 +300,7 @@ def life_hours(life, speed):
 
 
 def _check_race(race: str, where: str) -> None:
-    if race not in ("inner", "outer"):
-        raise ParameterError(f"{where}: race must be 'inner' or 'outer', got {race!r}")
+    check_choice(race, "race", ("inner", "outer"), where)
 
 
 def raceway_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_count,

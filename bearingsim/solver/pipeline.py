@@ -14,7 +14,7 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.errors import ParameterError, StructuralError
+from bearingsim.errors import StructuralError, check_choice
 from bearingsim.language.component import Component
 from bearingsim.solver import alias, causalize, codegen, flatten, index_reduction, prune, structure
 from bearingsim.solver.dae import DAE, Eq, Var
@@ -195,9 +195,7 @@ def assemble(
     if rootfinder is None:
         rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
                       else "fast_newton")
-    if rootfinder not in codegen.ROOTFINDERS:
-        raise ParameterError(f"assemble: rootfinder must be one of "
-                             f"{', '.join(codegen.ROOTFINDERS)}, got {rootfinder!r}")
+    check_choice(rootfinder, "rootfinder", codegen.ROOTFINDERS, "assemble")
     state = AssemblyState(assembly, list(outputs) if outputs else None, newton_tol, rootfinder)
     timings = []
     for name, fn, check in PASSES:

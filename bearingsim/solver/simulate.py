@@ -11,7 +11,7 @@ import numpy as np
 import scipy.integrate
 import scipy.optimize
 
-from bearingsim.errors import ParameterError, SimulationError, check_range
+from bearingsim.errors import ParameterError, SimulationError, check_choice, check_range
 from bearingsim.solver.fastcall import BufferedFunction
 from bearingsim.solver.inputs import check_input_ranges, input_expression
 from bearingsim.solver.result import Result
@@ -158,8 +158,7 @@ def simulate(
     check_range(atol, "atol", "1", 0.0, None, low_inclusive=False, where="simulate")
     if method.lower() in CASADI_METHODS:
         backend = "casadi"
-    if backend not in ("scipy", "casadi"):
-        raise ParameterError(f"simulate: backend must be 'scipy' or 'casadi', got {backend!r}")
+    check_choice(backend, "backend", ("scipy", "casadi"), "simulate")
     if backend == "scipy" and method not in SCIPY_METHODS:
         raise ParameterError(
             f"simulate: method must be one of {', '.join(SCIPY_METHODS + CASADI_METHODS)}, got "
@@ -167,8 +166,7 @@ def simulate(
         )
     if backend == "casadi" and method.lower() not in CASADI_METHODS:
         method = "cvodes"
-    if initial not in ("start", "steady"):
-        raise ParameterError(f"simulate: initial must be 'start' or 'steady', got {initial!r}")
+    check_choice(initial, "initial", ("start", "steady"), "simulate")
     p = system.p0(parameters)
     closed = close_inputs(system, inputs)
     x_start = initial_state(system, closed, p, system.x0(x0), t_start, initial == "steady")

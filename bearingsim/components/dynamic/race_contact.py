@@ -17,7 +17,7 @@ from bearingsim.components.dynamic.frames import (
 )
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rotational import Flange
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, check_choice
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.hertz import contact_load, contact_stiffness
 from bearingsim.physics.lubricant import Lubricant
@@ -130,8 +130,7 @@ class RaceContact(Component):
                  rolling_resistance: bool = False, rx: float | None = None,
                  ry: float | None = None, e_eff: float | None = None, name=None):
         super().__init__(name)
-        if race not in ("inner", "outer"):
-            raise ParameterError(f"RaceContact: race must be 'inner' or 'outer', got {race!r}")
+        check_choice(race, "race", ("inner", "outer"), "RaceContact")
         if not isinstance(lubricant, Lubricant):
             raise ParameterError(f"RaceContact: lubricant must be a Lubricant, got "
                                  f"{type(lubricant).__name__}")
