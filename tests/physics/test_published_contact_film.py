@@ -38,8 +38,8 @@ def _e_prime(youngs_modulus, poisson_ratio):
 def test_amesweb_steel_ball_bearing_inner_race_contact():
     """amesweb.info, "Example - Contact Stresses in a Steel Ball Bearing": steel ball of radius
     R1 = 4.90 mm in an inner race of groove radius R2 = 5 mm and race radius R3 = 25 mm,
-    E = 210 GPa, nu = 0.29 for both, load on the topmost ball P = 5 P0 / n = 1 500 N. Printed results:
-    p_max = 2193.6 MPa, a = 2.101 mm, b = 0.156 mm, approach d = 0.012 mm.
+    E = 210 GPa, nu = 0.29 for both, load on the topmost ball P = 5 P0 / n = 1 500 N. Printed
+    results: p_max = 2193.6 MPa, a = 2.101 mm, b = 0.156 mm, approach d = 0.012 mm.
 
     Geometry: along the rolling direction the convex race (25 mm) meets the ball,
     Rx = 1/(1/4.90 + 1/25) = 4.097 mm; across it the concave groove, Ry = 1/(1/4.90 - 1/5) =
