@@ -104,9 +104,12 @@ def dimensionless_load(Q: Any, E_eff: Any, Rx: Any) -> Any:  # noqa: N803
 
 
 def ellipticity(Rx: Any, Ry: Any) -> Any:  # noqa: N803
-    """Ellipticity ``k = a/b = 1.0339 (Ry/Rx)^0.636`` [-] (Hamrock & Brewe 1983 approximation,
-    used with the Hamrock-Dowson formulas; Hamrock, *Fundamentals of Fluid Film Lubrication*;
-    within 3 % of the exact Hertz value for ``1 <= Ry/Rx <= 100``).
+    """Ellipticity ``k = a/b = 1.0339 (Ry/Rx)^0.636`` [-] (Brewe & Hamrock 1977 approximation,
+    used with the Hamrock-Dowson formulas; Hamrock & Dowson, *Ball Bearing Lubrication*, 1981).
+    Against the exact Hertz value it is within 3.4 % for ``1 <= Ry/Rx <= 50`` and 6.3 % high at
+    ``Ry/Rx = 100`` (measured with :func:`bearingsim.physics.hertz.elliptic_parameters`).
+    Hamrock's later texts use ``(Ry/Rx)^(2/pi)`` instead (Hamrock & Brewe 1983), which is 3.1 % to
+    3.4 % lower than this on ``1 <= Ry/Rx <= 100``.
 
     Parameters
     ----------

@@ -218,7 +218,7 @@ def curvature_difference(rx, ry):
 
 
 def _hamrock_brewe(alpha_r):
-    """Hamrock & Brewe (1983) curve fits for k, K, E as functions of alpha_r = Ry/Rx."""
+    """Brewe & Hamrock (1977) curve fits for k, K, E as functions of alpha_r = Ry/Rx."""
     k = 1.0339 * op.power(alpha_r, 0.6360)
     first = 1.5277 + 0.6023 * op.log(alpha_r)
     second = 1.0003 + 0.5968 / alpha_r
@@ -231,7 +231,7 @@ def _exact_parameter(alpha_r):
     The equation ``F(rho) = ((k^2 + 1) E - 2 K) / ((k^2 - 1) E)`` is written in m = 1 - 1/k^2 as
     ``2 B(m) / E(m) - 1 = (alpha_r - 1) / (alpha_r + 1)`` with ``B = (E - (1 - m) K) / m``,
     which has no spurious root at k = 1. ``dK/dm = B / (2 (1 - m))``, ``dE/dm = -(K - B) / 2``,
-    ``dB/dm = (K/2 - B) / m``. Started from Hamrock & Brewe's k, five steps converge to better
+    ``dB/dm = (K/2 - B) / m``. Started from Brewe & Hamrock's k, five steps converge to better
     than 1e-8 in k for 1 <= alpha_r <= 1e4; m is kept in [1e-12, 1 - 1e-15] so that no step
     produces NaN (a circular contact gives k - 1 < 1e-8).
     """
@@ -255,10 +255,15 @@ def elliptic_parameters(rx, ry, method: str = "exact") -> EllipticParameters:
     ``method="exact"`` solves Hertz's transcendental equation (Harris & Kotzalas, chapter
     "Contact stress and deformation"; Hamrock) with exact complete elliptic integrals, by a fixed
     count of Newton steps so that SX inputs stay symbolic. ``method="hamrock_brewe"`` uses the
-    curve fits of Hamrock & Brewe (1983), ``k = 1.0339 alpha_r^0.636``,
-    ``E = 1.0003 + 0.5968 / alpha_r``, ``K = 1.5277 + 0.6023 ln(alpha_r)``, fitted for
-    1 <= alpha_r <= 10. Against the exact solution they are within 3.4 % (k), 1.7 % (E) and 2.8 %
-    (K) on that range; the error in k grows to 6 % at alpha_r = 100.
+    curve fits of Brewe & Hamrock (1977), ``k = 1.0339 alpha_r^0.636``,
+    ``E = 1.0003 + 0.5968 / alpha_r``, ``K = 1.5277 + 0.6023 ln(alpha_r)`` (the fits given by
+    Harris & Kotzalas and by Hamrock & Dowson, *Ball Bearing Lubrication*, 1981; the method name
+    is kept for compatibility). Hamrock & Brewe (1983) later replaced them by
+    ``k = alpha_r^(2/pi)``, ``E = 1 + (pi/2 - 1)/alpha_r``, ``K = pi/2 + (pi/2 - 1) ln(alpha_r)``,
+    the forms of Hamrock's *Fundamentals of Fluid Film Lubrication*, which are not implemented
+    here. Against the exact solution the 1977 fits are within 3.4 % (k), 1.7 % (E) and 2.8 % (K)
+    for 1 <= alpha_r <= 10 (measured; the fit range stated in the paper was not retrievable);
+    the error in k grows to 6 % at alpha_r = 100.
 
     Parameters
     ----------
@@ -273,9 +278,10 @@ def elliptic_parameters(rx, ry, method: str = "exact") -> EllipticParameters:
 
     References
     ----------
+    Brewe, D. E., Hamrock, B. J. (1977), Simplified solution for elliptical-contact deformation
+    between two elastic solids, J. Lubr. Technol. 99(4), 485-487 (the fits used here).
     Hamrock, B. J., Brewe, D. E. (1983), Simplified solution for stresses and deformations,
-    J. Lubr. Technol. 105(2), 171-177. Brewe, D. E., Hamrock, B. J. (1977), Simplified solution for
-    elliptical-contact deformation between two elastic solids, J. Lubr. Technol. 99(4), 485-487.
+    J. Lubr. Technol. 105(2), 171-177 (the later ``alpha_r^(2/pi)`` forms).
     """
     _check_method(method)
     _check_radii(rx, ry, "elliptic_parameters")
