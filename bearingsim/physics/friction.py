@@ -53,6 +53,10 @@ LUBRICATION_METHODS = ("grease", "oil_mist", "oil_bath", "oil_jet", "vertical_sh
 # (after Palmgren, Ball and Roller Bearing Engineering, 1959). Where the table gives a range the
 # middle is used. "vertical_shaft" and "oil_jet" share the table's "oil bath (vertical shaft) or
 # oil jet" column.
+# Issue 3: UNVERIFIED (written from memory). None of the catalogues retrieved in the search (NSK
+# E1102e, SKF 6000 (2006), NTN CAT. No. 2202, Koyo CAT. NO. 203E-1, GMN 4000 0813 EN, the FAG/INA
+# document found was a price list) prints a Palmgren f0 table or f1 formula; NTN and Koyo give
+# friction coefficients mu instead, SKF only its four-component model.
 _F0_ROWS = {
     #                          grease, oil_mist, oil_bath, oil_jet / vertical_shaft
     "deep_groove_ball": (1.35, 1.0, 2.0, 4.0),
@@ -108,8 +112,8 @@ SKF_DEEP_GROOVE: dict[str, dict[str, float]] = {
 # Angular contact rows: "72B" equals the single-row angular contact row of Table 3 of the SKF
 # General Catalogue 6000 (Russian ed., 2006 data), p. 92, which gives one row for all single-row
 # series (also used by an independent public implementation, GitHub code index). "73B" is
-# UNVERIFIED (entered from memory; that catalogue has no separate 73 B row, the 2018 catalogue
-# 17000 was not retrievable).
+# UNVERIFIED (entered from memory; that catalogue has no separate 73 B row, and neither the 2018
+# catalogue 17000 nor an SKF friction web page giving a 73 B row was retrievable).
 SKF_ANGULAR_CONTACT: dict[str, dict[str, float]] = {
     "72B": {"R1": 5.03e-7, "R2": 1.97, "R3": 1.90e-12, "S1": 1.30e-2, "S2": 0.68, "S3": 1.91e-12},
     "73B": {"R1": 4.78e-7, "R2": 1.65, "R3": 2.71e-12, "S1": 1.31e-2, "S2": 0.68, "S3": 1.96e-12},

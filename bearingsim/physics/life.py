@@ -53,13 +53,20 @@ _DW_LARGE_MM = 25.4
 # * X/Y/e, radial contact groove ball bearings (all 9 rows) and single-row angular contact 15 deg
 #   (rows 0.178 to 5.35), 25, 30 and 40 deg: identical to the tables NSK prints with its bearing
 #   tables (NSK CAT. No. E1102e, pp. B8-B11 and B50-B61), which reproduce ISO 281 Table 3; NSK's
-#   worked Example 3 (p. A34) is reproduced. The 15 deg row 7.14 and the 20, 35 and 45 deg rows
-#   are NOT in that catalogue and remain UNVERIFIED (entered from memory).
+#   worked Example 3 (p. A34) is reproduced. All nine 15 deg (e, Y) rows, including the last
+#   (7.14, which NSK omits), and the 30/40 deg rows also equal Koyo CAT. NO. 203E-1, p. B20 (Koyo
+#   prints them over the older abscissa Fa/C0r, 0.015 to 0.58). e = 1.34 at 45 deg equals the e
+#   of SKF's 45 deg double-row series 33 D (SKF General Catalogue 6000, 2006 data, p. 440, Table 3;
+#   ISO 281 has one e column for single and double row from 20 deg up). The 20 and 35 deg rows and
+#   X, Y at 45 deg are in no retrieved catalogue and remain UNVERIFIED (entered from memory).
+#   (tests/physics/test_published_tables.py)
 # * fc: ISO 281 C from our geometry reproduces NSK's ISO 281-based Cr of 6204, 6205, 6206 and 6304
-#   within 0.3 % (Dw cos a/dm 0.20 to 0.26). Every tabulated value below also agrees with two
-#   independent public implementations (GitHub code index), which in addition list the odd
-#   hundredths above 0.10 (e.g. 0.11: 56.6, 0.19: 60.0); our linear interpolation between the
-#   even rows stays within 0.1 (0.17 %) of those. Values outside 0.20-0.26 are corroborated only.
+#   within 0.3 % (Dw cos a/dm 0.20 to 0.26), and at 15/25 deg GMN's C of S 6014 C/E from GMN's
+#   printed ball set within 0.3 % (Dw cos a/dm 0.128, 0.120; GMN 4000 0813 EN, pp. 38-39).
+#   Every tabulated value below also agrees with two independent public implementations (GitHub
+#   code index), which in addition list the odd hundredths above 0.10 (e.g. 0.11: 56.6, 0.19:
+#   60.0); our linear interpolation between the even rows stays within 0.1 (0.17 %) of those.
+#   Values outside 0.12-0.13 and 0.20-0.26 are corroborated only.
 # * f0: the ISO 76 f0 at the Dw/dm of those four rows equals the f0 NSK prints within 0.05, and
 #   f0 Z Dw^2 reproduces NSK's C0r within 0.5 %; elsewhere corroborated by the same public
 #   implementations and by the 4 200 MPa Hertz basis of ISO 76 (tests/physics/test_life.py).
