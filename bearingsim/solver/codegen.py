@@ -70,14 +70,20 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     names = ["t", "x", "u", "p"]
     if not causal.nonlinear:
         funcs = {k: ca.Function(k, args, [e], names, [k], CSE) for k, e in exprs.items()}
-        jx = ca.jacobian(xdot, x)
-        funcs["jac_x"] = ca.Function("jac_x", args, [jx], names, ["jac_x"], CSE)
-        funcs["jac_u"] = ca.Function("jac_u", args, [ca.jacobian(xdot, u)], names, ["jac_u"],
-                                     CSE)
-        funcs["out_jac_x"] = ca.Function("out_jac_x", args, [ca.jacobian(y, x)], names, ["J"],
-                                         CSE)
-        funcs["out_jac_u"] = ca.Function("out_jac_u", args, [ca.jacobian(y, u)], names, ["J"],
-                                         CSE)
+        # Differentiate the shared (CSE'd) graphs: the Jacobian then shares their
+        # subexpressions from the start, which is ~10x cheaper than eliminating common
+        # subexpressions of a Jacobian afterwards (6304 ball level: 1.6 s vs 12 s for jac_x,
+        # same instruction count within 2 %).
+        xdot_shared = funcs["ode"](*args)
+        y_shared = funcs["output"](*args)
+        jacobians = {
+            "jac_x": (ca.jacobian(xdot_shared, x), "jac_x"),
+            "jac_u": (ca.jacobian(xdot_shared, u), "jac_u"),
+            "out_jac_x": (ca.jacobian(y_shared, x), "J"),
+            "out_jac_u": (ca.jacobian(y_shared, u), "J"),
+        }
+        for key, (jac, out_name) in jacobians.items():
+            funcs[key] = ca.Function(key, args, [jac], names, [out_name])
         return funcs, observed_names, output_names
 
     # MX composition with rootfinders
