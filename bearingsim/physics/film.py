@@ -217,11 +217,12 @@ def hamrock_dowson(
 ) -> FilmThickness:
     """Minimum and central film thickness of an elliptical contact from physical inputs.
 
-    Issue 3 audit: no published worked example (U, G, W, k, h_min of a ball bearing contact) could
-    be retrieved in the issue-3 search; the inputs of Hamrock's 209-bearing example (Dw 12.7 mm,
-    di 52.291 mm, do 77.706 mm, Fr 8900 N, omega_i 400 rad/s, eta0 0.04 Pa s, alpha 2.3e-8 m^2/N,
-    as used in public code citing Hamrock 1994) were found, but not its printed results, so no
-    worked-example test exists yet. The formulas are checked against models.md only.
+    Checked against a published answer: Stachowiak & Batchelor's *Engineering Tribology*
+    chapter 7 problem of a ball rolling down an oiled plate (h_min 0.059 and 0.281 um,
+    reproduced to the printed digits; ``tests/physics/test_published_contact_film.py``). That
+    book writes the formula with the reduced radius ``R'`` where Hamrock & Dowson use ``Rx``;
+    this function follows Hamrock & Dowson. No printed result of a ball *bearing* example
+    (e.g. Hamrock's 209 bearing) was retrievable.
 
     Computes ``U, G, W, k`` and evaluates :func:`minimum_film_thickness` and
     :func:`central_film_thickness` (Hamrock & Dowson 1977). Take ``eta0``, ``alpha`` from a

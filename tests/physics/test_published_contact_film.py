@@ -17,16 +17,21 @@ Sources (retrieved in the issue-3 search; numbers quoted as printed):
   chapter 2 "Physical properties of lubricants" (text retrieved from a public copy of the chapter
   at 123docz.net, "Engineering Tribology 2E, episode 2"). Dynamic viscosity at 30, 60 and 100 degC
   of 13 oils.
+* Stachowiak, G. W., Batchelor, A. W., *Engineering Tribology*, chapter 7 (elastohydrodynamic
+  lubrication), end-of-chapter problem "a steel ball starts rolling from rest down a steel plate
+  inclined at 45 deg ..." with its printed answer (h0 = 0.059 and 0.281 um), as reproduced at
+  https://tutorbin.com/questions-and-answers/a-steel-ball-starts-rolling-from-rest-down-a-steel-plate-inclined-at-4
+  (the exponents there are garbled in the copy: "d = 3x10^2 m" is read as 3e-2 m).
 
-Both contact sources are calculators/worked cases published on the web, not the textbooks
+The contact sources are calculators/worked cases published on the web, not the textbooks
 (Harris & Kotzalas, Hamrock) named in issue 3: those, and any published Hamrock-Dowson film
-thickness result, were not retrievable. See docs/physics.md, "Verification".
+thickness result of a bearing, were not retrievable. See docs/physics.md, "Verification".
 """
 
 import numpy as np
 import pytest
 
-from bearingsim.physics import hertz
+from bearingsim.physics import film, hertz
 from bearingsim.physics.lubricant import Oil
 
 
@@ -133,3 +138,39 @@ def test_walther_interpolation_reproduces_stachowiak_table_2_3():
     assert np.median(np.abs(errors)) < 0.02
     assert np.sum(np.abs(errors) < 0.03) >= 10
     assert np.all(np.abs(errors[1:]) < 0.06)
+
+
+@pytest.mark.parametrize(("distance", "h0_published"), [(0.01, 0.059e-6), (1.0, 0.281e-6)])
+def test_stachowiak_ball_rolling_down_an_oiled_plate(distance, h0_published):
+    """Stachowiak & Batchelor, *Engineering Tribology*, chapter 7 problem: a steel ball
+    (d = 3e-2 m, E = 2.1e11 Pa, nu = 0.3, rho = 7 800 kg/m^3) rolls without sliding from rest
+    down a steel plate inclined at 45 deg, covered with oil of eta0 = 50 cP and
+    alpha = 2.2e-8 m^2/N. Printed answer: minimum film h0 = 0.059 um after 1 cm and 0.281 um
+    after 1 m.
+
+    Reading of the problem (the printed answer is reproduced with it and with no other
+    combination tried): the ball rolls, so its centre accelerates at 5/7 g sin 45 deg and has
+    v = sqrt(2 a s) after the distance s; the entraining velocity is the mean of the two
+    surfaces' speeds, (v + 0) / 2; the normal load is m g cos 45 deg; E' = E / (1 - nu^2).
+    Stachowiak & Batchelor write the Hamrock-Dowson formula with the reduced radius R'
+    (1/R' = 1/Rx + 1/Ry, here R' = d/4) where Hamrock & Dowson and our callers use Rx; the
+    coefficients and exponents are the same, so R' is passed as ``Rx`` and as ``Ry`` (k =
+    1.0339 for a sphere on a flat either way). With Rx = d/2 the film would be 2^0.466 = 1.38
+    times thicker; with an entraining velocity of v, 1.60 times; with sliding acceleration
+    g sin 45 deg, 1.12 times.
+
+    Found: 0.0587 um and 0.2812 um; the tolerance is half a unit of the last printed digit."""
+    radius = 1.5e-2
+    mass = 7800.0 * 4.0 / 3.0 * np.pi * radius**3
+    load = mass * 9.81 * np.cos(np.pi / 4.0)
+    speed = np.sqrt(2.0 * (5.0 / 7.0) * 9.81 * np.sin(np.pi / 4.0) * distance)
+    r_reduced = radius / 2.0
+    e_eff = _e_prime(2.1e11, 0.3)
+    u = film.dimensionless_speed(0.05, film.entrainment_speed(speed, 0.0), e_eff, r_reduced)
+    g = film.dimensionless_material(2.2e-8, e_eff)
+    w = film.dimensionless_load(load, e_eff, r_reduced)
+    k = film.ellipticity(r_reduced, r_reduced)
+    h0 = film.minimum_film_thickness(u, g, w, k, r_reduced)
+    assert h0 == pytest.approx(h0_published, abs=0.0005e-6)
+    same = film.hamrock_dowson(load, speed / 2.0, r_reduced, r_reduced, e_eff, 0.05, 2.2e-8)
+    assert same.h_min == pytest.approx(h0, rel=1e-12)
