@@ -12,9 +12,9 @@ do not publish is estimated and listed in the ``estimated`` column, by these rul
 * ``dm``: (d + D) / 2.
 * ``Z``, ``Dw`` (deep-groove): a standard ball size (ISO 3290) of 0.55 to 0.62 times the ring
   section (D - d) / 2, and the ball count for which the ISO 281 rating reproduces the catalogue C.
-* ``Z``, ``Dw`` (angular contact): the ball size nearest 0.57 times the ring section and
-  ``Z = floor(pi dm / (1.377 Dw))``, the section ratio and ball pitch of the published 7020
-  geometry.
+
+The angular contact rows carry published ball sets (models.md section B for 7020, GMN's precision
+catalogue for 7014), so only their groove curvature factors are estimated.
 
 Catalogue ratings and speeds were transcribed from the named catalogues; check them against the
 current catalogue before relying on them.
