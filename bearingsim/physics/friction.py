@@ -113,7 +113,10 @@ SKF_DEEP_GROOVE: dict[str, dict[str, float]] = {
 # General Catalogue 6000 (Russian ed., 2006 data), p. 92, which gives one row for all single-row
 # series (also used by an independent public implementation, GitHub code index). "73B" is
 # UNVERIFIED (entered from memory; that catalogue has no separate 73 B row, and neither the 2018
-# catalogue 17000 nor an SKF friction web page giving a 73 B row was retrievable).
+# catalogue 17000 nor an SKF friction web page giving a 73 B row was retrievable). Caution: its R1
+# (4.78e-7) equals R1 of the four-point contact row of the same Table 3 (4.78e-7, 2.42, 1.40e-12,
+# 1.20e-2, 0.9, 1.40e-12), while its other five constants differ from that row; whether "73B" is
+# SKF's later 73 B(E) row or a mix-up could not be settled.
 SKF_ANGULAR_CONTACT: dict[str, dict[str, float]] = {
     "72B": {"R1": 5.03e-7, "R2": 1.97, "R3": 1.90e-12, "S1": 1.30e-2, "S2": 0.68, "S3": 1.91e-12},
     "73B": {"R1": 4.78e-7, "R2": 1.65, "R3": 2.71e-12, "S1": 1.31e-2, "S2": 0.68, "S3": 1.96e-12},

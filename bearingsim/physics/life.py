@@ -57,8 +57,11 @@ _DW_LARGE_MM = 25.4
 #   (7.14, which NSK omits), and the 30/40 deg rows also equal Koyo CAT. NO. 203E-1, p. B20 (Koyo
 #   prints them over the older abscissa Fa/C0r, 0.015 to 0.58). e = 1.34 at 45 deg equals the e
 #   of SKF's 45 deg double-row series 33 D (SKF General Catalogue 6000, 2006 data, p. 440, Table 3;
-#   ISO 281 has one e column for single and double row from 20 deg up). The 20 and 35 deg rows and
-#   X, Y at 45 deg are in no retrieved catalogue and remain UNVERIFIED (entered from memory).
+#   ISO 281 has one e column for single and double row from 20 deg up). By the same argument
+#   e = 0.95 at 35 deg equals the limit of SKF's 35 deg four-point contact bearings QJ 2/QJ 3
+#   (same catalogue, p. 455: P = Fr + 0.66 Fa for Fa/Fr <= 0.95, else 0.6 Fr + 1.07 Fa, i.e. the
+#   ISO double-row factors). The single-row X, Y at 20, 35 and 45 deg and e at 20 deg are in no
+#   retrieved catalogue and remain UNVERIFIED (entered from memory).
 #   (tests/physics/test_published_tables.py)
 # * fc: ISO 281 C from our geometry reproduces NSK's ISO 281-based Cr of 6204, 6205, 6206 and 6304
 #   within 0.3 % (Dw cos a/dm 0.20 to 0.26), and at 15/25 deg GMN's C of S 6014 C/E from GMN's

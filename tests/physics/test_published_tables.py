@@ -7,7 +7,8 @@ documents' own):
   bearings, table of X, Y and e, p. B20 (``07_Бренды_и_каталоги/Бренды/каталоги/
   Каталог_шариковых_и_роликовых_подшипников_KOYO.md.txt``).
 * SKF: *General Catalogue* 6000, Russian edition (data as of 2006), double row angular contact ball
-  bearings, Table 3 "calculation factors", p. 440 (``.../Общий_каталог_подшипников_SKF.md.txt``).
+  bearings, Table 3 "calculation factors", p. 440, and four-point contact ball bearings,
+  "equivalent dynamic bearing load", p. 455 (``.../Общий_каталог_подшипников_SKF.md.txt``).
 * GMN: *High precision ball bearings*, publication 4000 0813 EN, spindle ball bearing data
   pp. 38-39 (65 to 75 mm) and 42-43 (100 to 120 mm), deep groove ball bearing data pp. 54-55
   (``output_md/GMN_Paul_Müller_Industrie_GmbH_Co._KG.md``). GMN prints the ball set (dm, Dw, Z)
@@ -16,7 +17,7 @@ documents' own):
   (``.../Каталог_высокопрецизионных_подшипников_NTN_серии_ULTAGE.md.txt``).
 
 Still unverified (no retrieved source prints them): the single-row X, Y of 20, 35 and 45 deg and
-e of 20 and 35 deg (ISO 281 Table 3), the Palmgren f0/f1 tables and the SKF "73B" constants; see
+e of 20 deg (ISO 281 Table 3), the Palmgren f0/f1 tables and the SKF "73B" constants; see
 docs/physics.md, "Verification".
 """
 
@@ -154,3 +155,19 @@ def test_deep_groove_ball_sets_match_gmn(name):
     assert g.ball_diameter == pytest.approx(dw * 1e-3, rel=1e-12)
     assert g.pitch_diameter == pytest.approx(dm * 1e-3, abs=0.1e-3)
     assert "dm" not in g.estimated
+
+
+def test_xy_limit_e_35_deg_matches_skf_four_point_contact():
+    """SKF General Catalogue 6000 (2006 data), p. 455, four-point contact ball bearings QJ 2/QJ 3,
+    contact angle 35 deg (p. 452): P = Fr + 0.66 Fa when Fa/Fr <= 0.95 and P = 0.6 Fr + 1.07 Fa
+    when Fa/Fr > 0.95. These are ISO 281's double-row factors at 35 deg (four-point contact
+    bearings are rated as double row), and ISO 281 Table 3 has one e column for single and double
+    row from 20 deg up, so the 35 deg e of our single-row table must be 0.95. (The single-row
+    X = 0.37, Y = 0.66 at 35 deg are not printed there and stay unverified.)"""
+    _, _, e = life.xy_factors(100.0, 1000.0, 10000.0, 14.0, np.radians(35.0))
+    assert float(e) == pytest.approx(0.95, abs=1e-9)
+    # The switch between X = 1, Y = 0 and the heavy-axial factors sits at SKF's Fa/Fr = 0.95.
+    x_below, y_below, _ = life.xy_factors(1000.0 / 0.94, 1000.0, 10000.0, 14.0, np.radians(35.0))
+    x_above, y_above, _ = life.xy_factors(1000.0 / 0.96, 1000.0, 10000.0, 14.0, np.radians(35.0))
+    assert (float(x_below), float(y_below)) == (1.0, 0.0)
+    assert (float(x_above), float(y_above)) != (1.0, 0.0)
