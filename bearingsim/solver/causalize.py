@@ -40,15 +40,21 @@ class Causal:
     largest_block: int = 0
 
 
-def _solve_linear_scalar(r: ca.SX, v: Var) -> ca.SX:
+def _linear_coefficient(r: ca.SX, v: Var) -> ca.SX | None:
+    """``dr/dv`` if the residual ``r`` is linear in ``v`` with a coefficient that is not
+    identically zero, else None."""
     coef = ca.jacobian(r, v.sym)
+    if ca.depends_on(coef, v.sym) or (coef.is_constant() and float(coef) == 0.0):
+        return None
+    return coef
+
+
+def _solve_linear_scalar(r: ca.SX, v: Var, coef: ca.SX | None = None) -> ca.SX:
+    """``v`` from ``r = 0``, linear in ``v`` (``coef``: ``dr/dv`` if already known)."""
+    if coef is None:
+        coef = ca.jacobian(r, v.sym)
     rest = ca.substitute(r, v.sym, ca.SX(0))
     return -rest / coef
-
-
-def _linear_in(r: ca.SX, v: Var) -> bool:
-    coef = ca.jacobian(r, v.sym)
-    return not ca.depends_on(coef, v.sym) and not (coef.is_constant() and float(coef) == 0.0)
 
 
 def _tear(block: list[tuple[Eq, Var]], residuals: dict[Eq, ca.SX]):
@@ -65,7 +71,7 @@ def _tear(block: list[tuple[Eq, Var]], residuals: dict[Eq, ca.SX]):
             progress = False
             for e in list(remaining_eqs):
                 left = [v for v in occurs[e] if v in unknown]
-                if len(left) == 1 and _linear_in(residuals[e], left[0]):
+                if len(left) == 1 and _linear_coefficient(residuals[e], left[0]) is not None:
                     solved.append((e, left[0]))
                     unknown.discard(left[0])
                     remaining_eqs.remove(e)
@@ -95,8 +101,9 @@ def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
         if len(block) == 1:
             e, v = block[0]
             r = residuals[e]
-            if _linear_in(r, v):
-                out.expr[v] = _solve_linear_scalar(r, v)
+            coef = _linear_coefficient(r, v)
+            if coef is not None:
+                out.expr[v] = _solve_linear_scalar(r, v, coef)
             else:
                 out.expr[v] = v.sym
                 out.nonlinear.append(NonlinearBlock([v], r, [_guess(v)], [e]))
