@@ -17,6 +17,7 @@ from bench import (
     assembler_scaling,
     assembly_work_precision,
     backends,
+    ball_level_assembly,
     dgbb,
     double_layer_steady,
     duplex,
@@ -102,6 +103,7 @@ def main(argv: list[str] | None = None) -> int:
             "7. Deep-groove dynamic model: work-precision (always the quick settings: 2 ms; "
             "the RK4 baseline needs steps below the stability limit of the stiff friction "
             "modes)", dgbb.run(True))),
+        ("ball-level assembly", ball_level_assembly.section),
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
     ]
     for k, (label, bench_fn) in enumerate(steps, start=1):
