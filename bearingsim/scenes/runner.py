@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import ModelError, ParameterError
+from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.registry import AssemblySpec, PostQuantity, min_fidelity
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
@@ -332,6 +333,7 @@ def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.nda
             for n in group:
                 y = series[n]
                 ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=n)
+            set_value_scale(ax, [series[n] for n in group])
             unit = units.get(group[0], "")
             label = group[0] if len(group) == 1 else ", ".join(group)
             ax.set_ylabel(f"{label}\n[{unit}]" if unit else label, fontsize=8)

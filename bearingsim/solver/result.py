@@ -8,6 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
+from bearingsim.plotting import set_value_scale
+
 __all__ = ["Result"]
 
 
@@ -78,6 +80,7 @@ class Result:
         axes = np.atleast_1d(axes)
         for ax, n in zip(axes, names, strict=True):
             ax.plot(self.t, self[n])
+            set_value_scale(ax, [self[n]])
             unit = self.units.get(n, "")
             ax.set_ylabel(f"{n}\n[{unit}]" if unit else n, fontsize=8)
             ax.grid(True, alpha=0.3)
