@@ -93,7 +93,9 @@ def test_torque_opposes_speed_and_grows_with_load_and_viscosity(w, load, dl, gra
     m = palmgren_torque(w, 0.04, oil, "deep_groove_ball", load_P1=load, **kw)
     assert np.isfinite(m) and m * w <= 0.0
     heavier = palmgren_torque(w, 0.04, oil, "deep_groove_ball", load_P1=load + dl, **kw)
-    assert abs(heavier) > abs(m) or w == 0.0
+    # at zero speed (and at subnormal speeds, where the signed torque underflows to 0) there
+    # is nothing to grow
+    assert abs(heavier) > abs(m) or abs(w) < 1e-150
     thicker = palmgren_torque(w, 0.04, Oil.from_iso_vg(grade, temperature=300.0),
                               "deep_groove_ball", load_P1=load, **kw)
     assert abs(thicker) >= abs(m)
