@@ -63,6 +63,24 @@ _DW_LARGE_MM = 25.4
 #   ISO double-row factors). The single-row X, Y at 20, 35 and 45 deg and e at 20 deg are in no
 #   retrieved catalogue and remain UNVERIFIED (entered from memory).
 #   (tests/physics/test_published_tables.py)
+# * Double-row X, Y (rows=2; also two single-row bearings back-to-back DB or face-to-face DF):
+#   15 deg (e, Y1 for Fa/Fr <= e, X2 and Y2 for Fa/Fr > e; rows 0.178 to 5.35), 25, 30 and
+#   40 deg: identical to the "DB or DF" columns NSK prints beside "Single, DT" (E1102e,
+#   pp. B50-B61; the 25 deg factors also with its double-row 52/53 series, p. B67); 15 deg (all
+#   nine rows), 30 and 40 deg also to Koyo's "back-to-back and face-to-face" columns (203E-1,
+#   p. B20; Koyo adds the 7.14 row and prints
+#   Y2 2.21 for the 0.714 row, a misprint: NSK 2.11 = 2^0.7 x 1.30 keeps P continuous at e).
+#   30, 40, 45 deg: SKF GC 6000, p. 440, Table 3 (32 A/33 A, 33 DNRCBM, 33 D); 35 deg: SKF,
+#   p. 455 (QJ four-point contact). The 20 deg double-row factors (Y1 1.09, X2 0.70, Y2 1.63) are
+#   in no retrieved catalogue: UNVERIFIED (ISO 281 from memory), like the single-row 20 deg row.
+#   Corroborated only loosely: Koyo p. B21 prints its 24 deg (52/53 series) and 32 deg (32/33
+#   series) double-row factors, and its 32 deg row is exactly our linear interpolation between
+#   30 and 35 deg; its 24 deg row (0.66, 0.95, 0.68, 1.45) is too if the 20 deg row is ours
+#   (the 24 deg print bounds each 20 deg value to +-0.025 only). Interpolating 15 to 25 deg
+#   directly would miss Koyo's 24 deg Y2 (1.45) by 0.018 or more.
+#   Deep-groove (0 deg) double row: SKF GC 6000, p. 393 (42/43 series): P = Fr for Fa/Fr <= e,
+#   else 0.56 Fr + Y Fa, e and Y over f0 Fa/C0 in the single-row table (Table 1 there prints all
+#   nine rows), i.e. rows=2 changes nothing for deep-groove bearings.
 # * fc: ISO 281 C from our geometry reproduces NSK's ISO 281-based Cr of 6204, 6205, 6206 and 6304
 #   within 0.3 % (Dw cos a/dm 0.20 to 0.26), and at 15/25 deg GMN's C of S 6014 C/E from GMN's
 #   printed ball set within 0.3 % (Dw cos a/dm 0.128, 0.120; GMN 4000 0813 EN, pp. 38-39).
@@ -98,6 +116,15 @@ _AC15_X = 0.44
 # ISO 281:2007, Table 3: single-row angular contact ball bearings, 20 to 45 deg: (alpha, e, X, Y).
 _AC_FIXED = ((20.0, 0.57, 0.43, 1.00), (25.0, 0.68, 0.41, 0.87), (30.0, 0.80, 0.39, 0.76),
              (35.0, 0.95, 0.37, 0.66), (40.0, 1.14, 0.35, 0.57), (45.0, 1.34, 0.33, 0.50))
+# ISO 281:2007, Table 3: double-row angular contact ball bearings (i = 2; also DB and DF pairs of
+# single-row bearings, whose e is the single-row one): Y1 (X = 1) for Fa/Fr <= e, X2 and Y2 for
+# Fa/Fr > e. 15 deg over i f0 Fa / C0r (_AC15_LOAD):
+_AC15_Y1 = (1.65, 1.57, 1.46, 1.38, 1.34, 1.26, 1.14, 1.12, 1.12)
+_AC15_X2 = 0.72
+_AC15_Y2 = (2.39, 2.28, 2.11, 2.00, 1.93, 1.82, 1.66, 1.63, 1.63)
+# 20 to 45 deg: (alpha, Y1, X2, Y2); the 20 deg row is UNVERIFIED (see the comment above).
+_AC2_FIXED = ((20.0, 1.09, 0.70, 1.63), (25.0, 0.92, 0.67, 1.41), (30.0, 0.78, 0.63, 1.24),
+              (35.0, 0.66, 0.60, 1.07), (40.0, 0.55, 0.57, 0.93), (45.0, 0.47, 0.54, 0.81))
 
 # Harris & Kotzalas: Lundberg-Palmgren constant of the raceway contact capacity, N and mm.
 _LP_CONSTANT = 98.1
@@ -204,67 +231,119 @@ def static_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=
     return f0 * rows * ball_count * dw_mm * dw_mm * op.cos(contact_angle)
 
 
-def _angular_contact_factors(relative_load, alpha_deg: float):
-    """(e, X, Y) of single-row angular contact ball bearings, ISO 281 Table 3.
-
-    15 deg depends on the relative axial load; 20 to 45 deg are constants. Between tabulated
-    angles the factors are interpolated linearly in the contact angle (our choice).
-    """
-    rows = [(15.0, _interp(relative_load, _AC15_LOAD, _AC15_E), _AC15_X,
-             _interp(relative_load, _AC15_LOAD, _AC15_Y))] + list(_AC_FIXED)
-    for (a0, e0, x0, y0), (a1, e1, x1, y1) in zip(rows[:-1], rows[1:], strict=True):
+def _interp_angle(alpha_deg: float, table: Sequence[tuple]):
+    """Entries of the table row at ``alpha_deg``, linear between the tabulated angles (our choice;
+    Koyo's 32 deg double-row factors, 203E-1 p. B21, are this interpolation between 30 and 35)."""
+    for row0, row1 in zip(table[:-1], table[1:], strict=True):
+        a0, a1 = row0[0], row1[0]
         if a0 <= alpha_deg <= a1:
             w = (alpha_deg - a0) / (a1 - a0)
-            return e0 + w * (e1 - e0), x0 + w * (x1 - x0), y0 + w * (y1 - y0)
+            return tuple(v0 + w * (v1 - v0) for v0, v1 in zip(row0[1:], row1[1:], strict=True))
     raise AssertionError("contact angle checked before")  # pragma: no cover
+
+
+def _angular_contact_factors(relative_load, alpha_deg: float, rows: int):
+    """(e, X, Y for Fa/Fr <= e, X, Y for Fa/Fr > e) of angular contact ball bearings, ISO 281
+    Table 3, single row (rows=1) or double row (rows=2).
+
+    15 deg depends on the relative axial load ``i f0 Fa / C0``; 20 to 45 deg are constants. Between
+    tabulated angles the factors are interpolated linearly in the contact angle (our choice).
+    """
+    e15 = _interp(relative_load, _AC15_LOAD, _AC15_E)
+    e = _interp_angle(alpha_deg, [(15.0, e15)] + [(a, e_) for a, e_, _, _ in _AC_FIXED])[0]
+    if rows == 1:
+        single = [(15.0, _AC15_X, _interp(relative_load, _AC15_LOAD, _AC15_Y))]
+        x, y = _interp_angle(alpha_deg, single + [(a, x_, y_) for a, _, x_, y_ in _AC_FIXED])
+        return e, 1.0, 0.0, x, y
+    double = [(15.0, _interp(relative_load, _AC15_LOAD, _AC15_Y1), _AC15_X2,
+               _interp(relative_load, _AC15_LOAD, _AC15_Y2))]
+    y1, x2, y2 = _interp_angle(alpha_deg, double + list(_AC2_FIXED))
+    return e, 1.0, y1, x2, y2
+
+
+def _check_rows(rows, where: str) -> int:
+    """``rows`` as 1 or 2; anything else (including symbolic values) is a ParameterError."""
+    ok = (not op.is_symbolic(rows) and np.ndim(rows) == 0 and not isinstance(rows, bool)
+          and isinstance(rows, (int, float, np.integer, np.floating)) and float(rows) in (1.0, 2.0))
+    if not ok:
+        raise ParameterError(
+            f"{where}: rows = {rows!r} is not supported: ISO 281 Table 3 has factors for "
+            f"rows = 1 (single row, or bearings in tandem DT) and rows = 2 (double row, or two "
+            f"single-row bearings back-to-back DB or face-to-face DF)"
+        )
+    return int(rows)
 
 
 def xy_factors(radial_load, axial_load, c0, f0, contact_angle: float = 0.0, rows: int = 1):
     """ISO 281:2007 factors X, Y and the limit e of a radial ball bearing (Table 3).
 
-    Deep-groove (contact_angle = 0): table over ``f0 Fa / C0``; single-row angular contact
-    (15 to 45 deg): table over ``i f0 Fa / C0`` at 15 deg, constants from 20 deg up. Values between
-    rows are interpolated linearly; relative axial loads beyond the table take its end rows.
-    If ``Fa <= e Fr``: X = 1, Y = 0.
+    ``P = X Fr + Y Fa`` with, for ``Fa/Fr <= e``, X = 1 and Y = 0 (single row) or Y = Y1 (double
+    row), and for ``Fa/Fr > e`` the heavy-axial factors X, Y (X2, Y2 for a double row).
+
+    * Deep-groove (contact_angle = 0): e and Y from the table over ``f0 Fa / C0``, X = 0.56;
+      rows = 2 gives the same factors (ISO 281; SKF General Catalogue 6000, p. 393, double-row
+      deep groove ball bearings: P = Fr for Fa/Fr <= e, else 0.56 Fr + Y Fa from the same table).
+    * Angular contact (15 to 45 deg): at 15 deg e, Y (and Y1, X2, Y2) depend on ``i f0 Fa / C0``
+      with i = rows; from 20 deg up they are constants, interpolated linearly in the contact angle
+      between the tabulated 15, 20, 25, 30, 35, 40 and 45 deg. e is the same for one and two rows.
+      Use rows = 2 for double-row bearings and for two single-row bearings mounted back-to-back
+      (DB) or face-to-face (DF); rows = 1 for a single bearing and for bearings in tandem (DT).
+      The double-row 20 deg factors are unverified (see the module comments).
+
+    Values between the rows of the 15 deg and deep-groove tables are interpolated linearly;
+    relative axial loads beyond a table take its end rows.
 
     Parameters
     ----------
     radial_load, axial_load : float or array or SX
-        Radial and axial load Fr, Fa [N], >= 0.
+        Radial and axial load Fr, Fa [N], >= 0, on the whole bearing (pair).
     c0 : float or array or SX
-        Basic static load rating C0 [N].
+        Basic static radial load rating C0 [N] of the whole bearing, as
+        :func:`static_load_rating` with the same ``rows`` gives it (for a DB/DF pair that of the
+        pair, twice one bearing's, as NSK prints it under "matched"). ``i f0 Fa / C0`` is then
+        f0 Fa over the C0 of one row (our reading of the ISO 281 abscissa).
     f0 : float or array or SX
-        Factor f0 [-] of :func:`static_factor`.
+        Factor f0 [-] of :func:`static_factor` (of one row).
     contact_angle : float
         Nominal contact angle [rad]: 0, or 15 to 45 deg. A number (it selects the table).
     rows : int
-        Number of rows i [-].
+        Number of rows i [-]: 1 or 2 (see above).
 
     Returns
     -------
     (X, Y, e) : tuple [-]
+
+    Raises
+    ------
+    ParameterError
+        For a contact angle outside 0 and [15, 45] deg, a symbolic contact angle, or rows other
+        than 1 or 2.
     """
     where = "xy_factors"
     check_range(radial_load, "radial_load", "N", 0.0, where=where)
     check_range(axial_load, "axial_load", "N", 0.0, where=where)
     check_range(c0, "c0", "N", 0.0, low_inclusive=False, where=where)
     check_range(f0, "f0", "-", 0.0, low_inclusive=False, where=where)
+    rows = _check_rows(rows, where)
     if op.is_symbolic(contact_angle):
         raise ParameterError(f"{where}: contact_angle must be a number [rad], not symbolic")
     alpha_deg = round(float(np.degrees(contact_angle)), 9)
     relative = f0 * axial_load / c0
     if alpha_deg == 0.0:
         e = _interp(relative, _DG_LOAD, _DG_E)
-        x, y = _DG_X, _interp(relative, _DG_LOAD, _DG_Y)
+        x_light, y_light = 1.0, 0.0
+        x_heavy, y_heavy = _DG_X, _interp(relative, _DG_LOAD, _DG_Y)
     elif 15.0 <= alpha_deg <= 45.0:
-        e, x, y = _angular_contact_factors(rows * relative, alpha_deg)
+        e, x_light, y_light, x_heavy, y_heavy = _angular_contact_factors(rows * relative,
+                                                                         alpha_deg, rows)
     else:
         raise ParameterError(
             f"{where}: contact_angle = {alpha_deg:g} deg is outside the tables: use 0 deg "
             f"(deep-groove) or [15, 45] deg (angular contact)"
         )
     heavy_axial = axial_load > e * radial_load
-    return (op.if_else(heavy_axial, x, 1.0), op.if_else(heavy_axial, y, 0.0), e)
+    return (op.if_else(heavy_axial, x_heavy, x_light), op.if_else(heavy_axial, y_heavy, y_light),
+            e)
 
 
 def equivalent_dynamic_load(radial_load, axial_load, c0, f0, contact_angle: float = 0.0,
