@@ -9,7 +9,13 @@ import warnings
 import numpy as np
 import pytest
 
-from bearingsim.assemblies.duplex import DuplexPair, ShaftSpec, duplex_pair, preload_offset
+from bearingsim.assemblies.duplex import (
+    DuplexPair,
+    ShaftSpec,
+    duplex_pair,
+    offset_preload,
+    preload_offset,
+)
 from bearingsim.catalog import get_bearing
 from bearingsim.components.ball_row import row_parameters
 from bearingsim.errors import ParameterError
@@ -183,3 +189,81 @@ def test_spring_housing_acts_in_series_with_each_row():
     assert eq.row_axial_loads[0] < 540.0
     k_row, _ = _row_axial_stiffness(eq.row_axial_loads[0])
     assert k[2, 2] == pytest.approx(2.0 / (1.0 / k_row + 1.0 / k_h), rel=1e-6)
+
+
+# ---------------------------------------------------------------- the pair's own configuration
+@pytest.fixture(scope="module")
+def heavy():
+    return DuplexModel("7020C", "DF", pair_options={
+        "preload": "heavy", "contact_angle": deg(20.0), "ball_position_angle": 0.1})
+
+
+def test_pair_options_configuration_is_the_default_and_explicit_arguments_override(heavy):
+    eq = heavy.equilibrium()
+    assert eq.row_axial_loads == pytest.approx([2550.0, 2550.0], rel=1e-9)
+    assert heavy.preload_force() == 2550.0
+    params = heavy.parameters()
+    assert params["row[0].alpha0"] == params["row[1].alpha0"] == pytest.approx(deg(20.0))
+    assert params["row[0].psi0"] == params["row[1].psi0"] == 0.1
+    # explicit arguments win over the pair's configuration
+    light = heavy.equilibrium(preload="light")
+    assert light.row_axial_loads == pytest.approx([540.0, 540.0], rel=1e-9)
+    other = heavy.parameters(contact_angle=deg(25.0), ball_position_angle=0.0)
+    assert other["row[0].alpha0"] == pytest.approx(deg(25.0))
+    assert other["row[0].psi0"] == 0.0
+    assert heavy.parameters(bearing="7020A")["row[0].alpha0"] == pytest.approx(
+        get_bearing("7020A").free_contact_angle)
+    # modes and sweeps start from the same configuration
+    default = heavy.modes().frequencies
+    assert default == pytest.approx(heavy.modes(preload="heavy", contact_angle=deg(20.0),
+                                                ball_position_angle=0.1).frequencies, rel=1e-9)
+    assert np.all(default > heavy.modes(preload="light").frequencies)
+    swept = sweep(heavy, "ball_position_angle", [0.1])
+    assert swept.frequencies[0] == pytest.approx([heavy.modes().frequency(n) for n in MODE_NAMES],
+                                                 rel=1e-9)
+
+
+def test_pair_options_speed_reaches_the_system_parameters():
+    fast = DuplexModel("7020C", "DF", pair_options={"speed": 2000.0, "speed_effects": True})
+    eq = fast.equilibrium()
+    assert eq.parameters["shaft.speed"] == 2000.0
+    at_rest = fast.equilibrium(speed=0.0)
+    assert at_rest.parameters["shaft.speed"] == 0.0
+    assert at_rest.row_axial_loads == pytest.approx([540.0, 540.0], rel=1e-6)
+    # centrifugal ball loads raise the rows' axial load at the pair's speed
+    assert np.all(eq.row_axial_loads > 1.5 * at_rest.row_axial_loads)
+
+
+def test_spacer_offset_sets_the_reported_and_the_solved_preload():
+    offset = preload_offset("7020C", 1270.0, "DF")
+    pair = DuplexPair("7020C", "DF", spacer_offset=offset)
+    assert pair.preload_force == pytest.approx(1270.0, rel=1e-9)
+    assert offset_preload("7020C", offset, "DF") == pytest.approx(1270.0, rel=1e-9)
+    with pytest.raises(ParameterError, match="either preload"):
+        DuplexPair("7020C", "DF", preload="heavy", spacer_offset=offset)
+    model = DuplexModel("7020C", "DF", pair_options={"spacer_offset": offset})
+    assert model.parameters()["inner_spacer.width_difference"] == offset
+    assert model.equilibrium().row_axial_loads == pytest.approx([1270.0, 1270.0], rel=1e-9)
+    assert model.preload_force() == pytest.approx(1270.0, rel=1e-9)
+    assert model.equilibrium(preload="light").row_axial_loads == pytest.approx([540.0, 540.0],
+                                                                               rel=1e-9)
+
+
+def test_tandem_spacer_mismatch_shares_the_spring_preload_unequally():
+    dt = DuplexModel("7020C", "DT", pair_options={"spacer_offset": 2e-6, "preload": "medium"})
+    assert dt.pair.preload_force == 1270.0
+    for preload, force in ((None, 1270.0), ("light", 540.0)):
+        eq = dt.equilibrium(preload=preload)
+        assert eq.parameters["inner_spacer.width_difference"] == 2e-6
+        loads = eq.row_axial_loads
+        assert loads.sum() == pytest.approx(force, rel=1e-9)
+        assert loads[1] > 1.2 * loads[0]
+
+
+def test_pair_options_the_studies_cannot_honour_are_rejected():
+    with pytest.raises(ParameterError, match="axisymmetric"):
+        DuplexModel("7020C", "DF", pair_options={"axisymmetric": True})
+    with pytest.raises(ParameterError, match="unknown pair option"):
+        DuplexModel("7020C", "DF", pair_options={"preloads": "heavy"})
+    with pytest.raises(ParameterError, match="arrangement"):
+        DuplexModel("7020C", "DF", pair_options={"arrangement": "DB"})

@@ -25,7 +25,7 @@ import math
 from dataclasses import dataclass
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
-from bearingsim.components.ball_row import BallRow, axial_approach, row_parameters
+from bearingsim.components.ball_row import BallRow, axial_approach, row_loads, row_parameters
 from bearingsim.components.rings import (
     ConstantLoad,
     Housing,
@@ -39,7 +39,7 @@ from bearingsim.language import Assembly, connect
 from bearingsim.physics.lubricant import Lubricant, get_lubricant
 
 __all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
-           "preload_offset", "preload_force"]
+           "preload_offset", "preload_force", "offset_preload"]
 
 ARRANGEMENTS = {"DF": (1, -1), "DB": (-1, 1), "DT": (1, 1)}
 """Axial loading direction ``s`` of (row 0, row 1) for each arrangement."""
@@ -182,6 +182,49 @@ def preload_offset(bearing: str | BearingGeometry, preload: float, arrangement: 
     return (s1 - s0) * delta
 
 
+def offset_preload(bearing: str | BearingGeometry, offset: float, arrangement: str = "DF",
+                   contact_angle: float | None = None) -> float:
+    """Axial preload [N] that a spacer width difference gives a DF or DB pair of identical rows.
+
+    The inverse of :func:`preload_offset`: each row's inner ring moves by ``|offset| / 2``
+    along its loading direction and the row carries the axial load of that approach (classic
+    row, rigid rings and housing, no speed effects).
+
+    Parameters
+    ----------
+    bearing : str or BearingGeometry
+    offset : float
+        Spacer width difference [m]: < 0 for DF, > 0 for DB.
+    arrangement : {"DF", "DB"}
+    contact_angle : float, optional
+        Free contact angle [rad] (default: the bearing's).
+
+    Returns
+    -------
+    float
+        Axial preload of each row [N], > 0.
+
+    Raises
+    ------
+    ParameterError
+        For a DT arrangement or an offset of the wrong sign (axial play).
+    """
+    if arrangement not in ("DF", "DB"):
+        raise ParameterError(f"offset_preload: arrangement must be 'DF' or 'DB', got "
+                             f"{arrangement!r} (a DT pair is preloaded by an axial force)")
+    s0, s1 = ARRANGEMENTS[arrangement]
+    if not offset * (s1 - s0) > 0.0:
+        raise ParameterError(
+            f"duplex_pair: a spacer width difference of {offset:g} m leaves both rows of the "
+            f"{arrangement} pair unloaded (axial play); valid range: "
+            f"{'> 0' if s1 > s0 else '< 0'} m"
+        )
+    g = resolve_bearing(bearing)
+    loads = row_loads(row_parameters(g, contact_angle), [0.0, 0.0, 0.5 * abs(offset), 0.0, 0.0],
+                      [0.0] * 5, g.ball_count, 1)
+    return -float(loads.inner_load[2])
+
+
 class DuplexPair(Assembly):
     """Duplex pair: shaft, two ball rows, inner and outer rings, spacers and housing.
 
@@ -190,8 +233,9 @@ class DuplexPair(Assembly):
     bearing : str or BearingGeometry
         Bearing of both rows.
     arrangement : {"DF", "DB", "DT"}
-    preload : {"light", "medium", "heavy"} or float
-        Catalogue preload class or axial preload [N], > 0.
+    preload : {"light", "medium", "heavy"} or float, optional
+        Catalogue preload class or axial preload [N], > 0 (default: "light", or for a DF/DB
+        pair with ``spacer_offset`` the preload that offset gives).
     speed : float
         Shaft (inner ring) speed [rad/s].
     shaft : ShaftSpec or dict, optional
@@ -203,7 +247,10 @@ class DuplexPair(Assembly):
     contact_angle : float, optional
         Free contact angle of both rows [rad] in [0, 45 deg] (default: the bearing's).
     spacer_offset : float, optional
-        Spacer width difference [m]; overrides ``preload`` for DF/DB pairs.
+        Spacer width difference [m]. For DF/DB pairs it replaces ``preload`` (give one or the
+        other; ``preload_force`` is then the preload it gives, :func:`offset_preload`). For DT
+        pairs it is a mismatch of the spacers (default 0): the spring still sets the preload,
+        but the rows share it unequally.
     speed_effects : bool
         Jones-Harris rows with centrifugal force and gyroscopic moment.
     housing_stiffness, housing_damping : sequence of 5 float, optional
@@ -219,14 +266,22 @@ class DuplexPair(Assembly):
     Attributes
     ----------
     preload_force : float
-        Nominal preload [N].
+        Nominal preload [N]: the class or given value, or for a DF/DB pair built from
+        ``spacer_offset`` the preload of that offset (rigid housing, no speed effects).
+    preload : str or float or None
+        The preload class or value the pair was built with (None for a DF/DB pair built from
+        ``spacer_offset``).
+    speed, ball_position_angle : float
+        Shaft speed [rad/s] and azimuth of ball 0 [rad] the pair was built with.
+    contact_angle, spacer_offset : float or None
+        The free contact angle [rad] and spacer width difference [m] given (None: default).
     directions : tuple of int
         Loading direction of each row.
     shaft_spec : ShaftSpec
     """
 
     def __init__(self, bearing: str | BearingGeometry = "7020C", arrangement: str = "DF",
-                 preload: str | float = "light", speed: float = 0.0,
+                 preload: str | float | None = None, speed: float = 0.0,
                  shaft: ShaftSpec | dict | None = None, lubricant: str | Lubricant | None = None,
                  ball_position_angle: float = 0.0, contact_angle: float | None = None,
                  spacer_offset: float | None = None, speed_effects: bool = False,
@@ -243,21 +298,32 @@ class DuplexPair(Assembly):
         self.shaft_spec = spec = _shaft_spec(shaft)
         self.lubricant = (lubricant if lubricant is None or isinstance(lubricant, Lubricant)
                           else get_lubricant(lubricant))
-        self.preload_force = preload_force(g, preload)
-        s0, s1 = self.directions
+        if spacer_offset is not None and arrangement != "DT":
+            if preload is not None:
+                raise ParameterError(
+                    f"duplex_pair: give either preload ({preload!r}) or spacer_offset "
+                    f"({spacer_offset!r} m) for a {arrangement} pair: the spacer width "
+                    "difference sets the preload"
+                )
+            offset = float(spacer_offset)
+            self.preload_force = offset_preload(g, offset, arrangement, contact_angle)
+        else:
+            preload = "light" if preload is None else preload
+            self.preload_force = preload_force(g, preload)
+            if arrangement == "DT":
+                offset = 0.0 if spacer_offset is None else float(spacer_offset)
+            else:
+                offset = preload_offset(g, self.preload_force, arrangement, contact_angle)
+        self.preload = preload
+        self.speed = float(speed)
+        self.contact_angle = None if contact_angle is None else float(contact_angle)
+        self.ball_position_angle = float(ball_position_angle)
+        self.spacer_offset = None if spacer_offset is None else float(spacer_offset)
+        s0 = self.directions[0]
         if arrangement == "DT":
-            offset = 0.0 if spacer_offset is None else float(spacer_offset)
             delta0 = axial_approach(row_parameters(g, contact_angle), g.ball_count,
                                     0.5 * self.preload_force)
         else:
-            offset = (preload_offset(g, self.preload_force, arrangement, contact_angle)
-                      if spacer_offset is None else float(spacer_offset))
-            if not offset * (s1 - s0) > 0.0:
-                raise ParameterError(
-                    f"duplex_pair: a spacer width difference of {offset:g} m leaves both rows of "
-                    f"the {arrangement} pair unloaded (axial play); valid range: "
-                    f"{'> 0' if s1 > s0 else '< 0'} m"
-                )
             delta0 = 0.5 * abs(offset)
         self.spacer_width_difference = offset
         self.shaft = Shaft(spec.m, spec.jt, spec.jp, spec.positions, speed, exact,
@@ -290,7 +356,7 @@ class DuplexPair(Assembly):
 
 
 def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str = "DF",
-                preload: str | float = "light", speed: float = 0.0,
+                preload: str | float | None = None, speed: float = 0.0,
                 shaft: ShaftSpec | dict | None = None, lubricant=None,
                 ball_position_angle: float = 0.0, **kwargs) -> DuplexPair:
     """Build a duplex pair assembly; see :class:`DuplexPair` for the parameters.

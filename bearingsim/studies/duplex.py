@@ -3,6 +3,8 @@
 One assembled system serves every configuration: preload (the spacer width difference or the
 DT spring force), contact angle (with the Hertz constants it implies), speed and ball position
 angle are parameters of the compiled functions, so a sweep re-solves without re-assembling.
+The pair's own configuration (``DuplexModel(pair_options=...)``) is the default; a study
+overrides only what it is given.
 
 * **Equilibrium**: ``dx/dt = 0`` of the assembled model (Newton with the exact Jacobian).
 * **Stiffness**: the exact static compliance ``C = d q / d F_ext = -(A^-1 B)_q`` of the model
@@ -18,6 +20,7 @@ angle are parameters of the compiled functions, so a sweep re-solves without re-
 
 from __future__ import annotations
 
+import inspect
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
@@ -29,6 +32,7 @@ import scipy.optimize
 from bearingsim.assemblies.duplex import (
     ARRANGEMENTS,
     DuplexPair,
+    offset_preload,
     preload_force,
     preload_offset,
 )
@@ -67,6 +71,7 @@ SWEEP_PARAMETERS = {
 """Sweepable configuration parameters: (display unit, factor from SI to it)."""
 _LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))
 _POSITIONS = tuple(f"shaft.{k}" for k in DOFS)
+_PAIR_OPTIONS = frozenset(inspect.signature(DuplexPair).parameters) - {"bearing", "arrangement"}
 _UNLOADED = 1e-3  # N: a row whose largest ball load is below this is reported as unloaded
 _DEGENERATE = 1e-6  # relative gap of eigenvalues treated as one (repeated) frequency
 _ACCEL_TOL = 1e-7  # m/s^2, rad/s^2: equilibrium residual (displacement error ~ m a / k < 1e-13)
@@ -242,7 +247,18 @@ class DuplexModel:
     arrangement : {"DF", "DB", "DT"}
     pair_options : dict
         Further keyword arguments of :class:`~bearingsim.assemblies.duplex.DuplexPair`
-        (shaft, speed_effects, housing_stiffness, exact, smooth, ...).
+        (shaft, speed_effects, housing_stiffness, exact, smooth, ...). The configuration
+        options ``preload`` [N or class], ``speed`` [rad/s], ``contact_angle`` [rad],
+        ``ball_position_angle`` [rad] and ``spacer_offset`` [m] become the model's default
+        configuration: :meth:`parameters`, :meth:`equilibrium`, :meth:`modes` and
+        :func:`sweep` use them unless given explicitly. ``axisymmetric`` is rejected (the
+        studies need the radial and tilt load paths), and so are ``bearing``, ``arrangement``
+        and unknown names.
+
+    Raises
+    ------
+    ParameterError
+        For a pair option that the studies cannot honour or that the pair does not take.
     """
 
     bearing: str | BearingGeometry = "7020C"
@@ -250,7 +266,23 @@ class DuplexModel:
     pair_options: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        self.pair = DuplexPair(self.bearing, self.arrangement, **self.pair_options)
+        options = dict(self.pair_options)
+        bad = sorted(set(options) & {"bearing", "arrangement"})
+        if bad:
+            raise ParameterError(f"DuplexModel: give {', '.join(bad)} as DuplexModel's own "
+                                 "argument, not in pair_options")
+        unknown = sorted(set(options) - _PAIR_OPTIONS)
+        if unknown:
+            raise ParameterError(f"DuplexModel: unknown pair option(s) {', '.join(unknown)}; "
+                                 f"options: {', '.join(sorted(_PAIR_OPTIONS))}")
+        if options.get("axisymmetric"):
+            raise ParameterError(
+                "DuplexModel: pair_options axisymmetric=True cannot be honoured: one "
+                "representative ball per row has no radial or tilt load path, so the studies' "
+                "radial/tilt loads, 5x5 stiffness and modes would be wrong; build the pair with "
+                "duplex_pair(..., axisymmetric=True) for pure axial loads"
+            )
+        self.pair = DuplexPair(self.bearing, self.arrangement, **options)
         self.geometry = self.pair.geometry
         self.system = assemble(self.pair)
         spec = self.pair.shaft_spec
@@ -270,25 +302,58 @@ class DuplexModel:
                                  "build a DuplexModel for it")
         return g
 
-    def preload_force(self, preload: str | float, bearing=None) -> float:
-        """Preload [N] of a class name or a number (checked > 0) for ``bearing``."""
-        return preload_force(self._geometry(bearing), preload)
-
-    def parameters(self, preload: str | float = "light", contact_angle: float | None = None,
-                   speed: float = 0.0, ball_position_angle: float = 0.0,
-                   bearing: str | BearingGeometry | None = None) -> dict[str, float]:
-        """Parameter overrides of one configuration.
+    def preload_force(self, preload: str | float | None = None, bearing=None,
+                      contact_angle: float | None = None) -> float:
+        """Nominal preload [N] of a configuration.
 
         Parameters
         ----------
-        preload : {"light", "medium", "heavy"} or float
-            Preload class of ``bearing`` or axial preload [N].
+        preload : {"light", "medium", "heavy"} or float, optional
+            Preload class of ``bearing`` or axial preload [N] (checked > 0). Default: the
+            pair's own, i.e. its preload class or value, or for a DF/DB pair built with
+            ``spacer_offset`` the preload that offset gives (rigid housing, no speed effects).
+        bearing : str or BearingGeometry, optional
+            A bearing of the same row geometry (default: the model's).
         contact_angle : float, optional
-            Free contact angle [rad] (default: that of ``bearing``).
-        speed : float
-            Shaft speed [rad/s].
-        ball_position_angle : float
-            Azimuth of ball 0 of both rows [rad].
+            Free contact angle [rad]; only used for the preload of a spacer offset.
+
+        Returns
+        -------
+        float
+        """
+        g = self._geometry(bearing)
+        if preload is None and self.pair.preload is None:
+            return offset_preload(g, self.pair.spacer_offset, self.arrangement,
+                                  self._contact_angle(contact_angle, bearing))
+        return preload_force(g, self.pair.preload if preload is None else preload)
+
+    def _contact_angle(self, contact_angle: float | None, bearing) -> float | None:
+        if contact_angle is not None or bearing is not None:
+            return contact_angle
+        return self.pair.contact_angle
+
+    def parameters(self, preload: str | float | None = None, contact_angle: float | None = None,
+                   speed: float | None = None, ball_position_angle: float | None = None,
+                   bearing: str | BearingGeometry | None = None) -> dict[str, float]:
+        """Parameter overrides of one configuration.
+
+        Every argument left at None takes the value the pair was built with (the
+        configuration options of ``pair_options``, else :class:`DuplexPair`'s defaults).
+
+        Parameters
+        ----------
+        preload : {"light", "medium", "heavy"} or float, optional
+            Preload class of ``bearing`` or axial preload [N]. Default: the pair's preload;
+            for a DF/DB pair built with ``spacer_offset``, that spacer width difference [m]
+            (kept as it is when the contact angle or bearing changes). A DT pair keeps its
+            ``spacer_offset`` (spacer mismatch) in every configuration.
+        contact_angle : float, optional
+            Free contact angle [rad]. Default: the pair's, or that of ``bearing`` when
+            ``bearing`` is given.
+        speed : float, optional
+            Shaft speed [rad/s] (default: the pair's).
+        ball_position_angle : float, optional
+            Azimuth of ball 0 of both rows [rad] (default: the pair's).
         bearing : str or BearingGeometry, optional
             A bearing of the same row geometry (default: the model's).
 
@@ -297,16 +362,25 @@ class DuplexModel:
         dict
             Parameter values by dotted name.
         """
+        pair = self.pair
         g = self._geometry(bearing)
-        force = preload_force(g, preload)
+        contact_angle = self._contact_angle(contact_angle, bearing)
+        speed = pair.speed if speed is None else speed
+        if ball_position_angle is None:
+            ball_position_angle = pair.ball_position_angle
         rp = row_parameters(g, contact_angle, ball_position_angle, self._smooth())
         out = {"shaft.speed": float(speed)}
         for k in range(2):
             out.update({f"row[{k}].alpha0": rp.alpha0, f"row[{k}].K_i": rp.K_i,
                         f"row[{k}].K_o": rp.K_o, f"row[{k}].psi0": rp.psi0})
         if self.arrangement == "DT":
+            force = preload_force(g, pair.preload if preload is None else preload)
             out["spring.Fz"] = ARRANGEMENTS["DT"][0] * force
+            out["inner_spacer.width_difference"] = pair.spacer_width_difference
+        elif preload is None and pair.preload is None:
+            out["inner_spacer.width_difference"] = pair.spacer_offset
         else:
+            force = preload_force(g, pair.preload if preload is None else preload)
             out["inner_spacer.width_difference"] = preload_offset(g, force, self.arrangement,
                                                                   rp.alpha0)
         return out
@@ -470,7 +544,8 @@ def sweep(model: DuplexModel, parameter: str, values, label: str = "",
     label : str
         Legend label.
     **config
-        The other configuration parameters (see :meth:`DuplexModel.parameters`).
+        The other configuration parameters (see :meth:`DuplexModel.parameters`); those not
+        given keep the pair's own values (``pair_options``).
     """
     if parameter not in SWEEP_PARAMETERS:
         raise ParameterError(f"sweep: parameter must be one of {', '.join(SWEEP_PARAMETERS)}, "
