@@ -146,11 +146,20 @@ class MiddleRing(Assembly):
         return [self.w == self.sleeve.w]
 
 
+KINEMATIC_OPTIONS = ("k",)
+"""``layer_options`` of the kinematic levels (the drag coefficient of PureRollingLayer)."""
+
+
 def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dict):
-    if fidelity == "kinematic":
-        return PureRollingLayer(geometry, exact=True)
-    if fidelity == "kinematic_approx":
-        return PureRollingLayer(geometry, exact=False)
+    if fidelity in ("kinematic", "kinematic_approx"):
+        unused = sorted(set(options) - set(KINEMATIC_OPTIONS))
+        if unused:
+            raise ParameterError(
+                f"double_layer_bearing: layer_options {', '.join(map(repr, unused))} not used at "
+                f"fidelity {fidelity!r}; its only option is 'k' (pure-rolling drag coefficient "
+                f"[N s/m], > 0)"
+            )
+        return PureRollingLayer(geometry, exact=fidelity == "kinematic", **options)
     if friction_model == "palmgren":
         return PalmgrenBearing(geometry, lubricant, **options)
     if friction_model == "skf":
@@ -211,7 +220,12 @@ class DoubleLayerBearing(Assembly):
     speed : callable or float or None
         Shaft speed [rad/s] for ``drive="speed"``.
     layer_options : dict
-        Extra keyword arguments of the layer elements (e.g. ``smooth``, ``load_dependent``).
+        Extra keyword arguments of the layer elements: at the torque level those of
+        :class:`~bearingsim.components.bearing_torque.PalmgrenBearing` or
+        :class:`~bearingsim.components.bearing_torque.SkfBearing` (e.g. ``smooth``,
+        ``load_dependent``); at the kinematic levels only ``k``, the drag coefficient of
+        :class:`~bearingsim.components.bearing_torque.PureRollingLayer` [N s/m] (others raise
+        :class:`~bearingsim.errors.ParameterError`).
 
     Connectors
     ----------

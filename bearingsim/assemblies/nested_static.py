@@ -104,8 +104,10 @@ class NestedQuasiStatic(Assembly):
     inner, outer : str or BearingGeometry
         Inner (shaft side) and outer (housing side) bearing.
     structure : {"I", "Z"} or None
-        As :class:`~bearingsim.assemblies.double_layer.DoubleLayerBearing`; for "Z" the outer
-        row sits ``(B1 + B2)/2`` axially behind the inner row on the middle ring.
+        As :class:`~bearingsim.assemblies.double_layer.DoubleLayerBearing` (checked the same
+        way: anything else, or "I" when the inner bearing does not fit in the outer one's bore,
+        raises :class:`~bearingsim.errors.ParameterError`); for "Z" the outer row sits
+        ``(B1 + B2)/2`` axially behind the inner row on the middle ring.
     axial : bool
         Let the bodies move axially (needed for axial loads); with ``False`` the axial
         positions stay centred (a deep-groove bearing with clearance has axial play and no axial
@@ -119,12 +121,11 @@ class NestedQuasiStatic(Assembly):
     def __init__(self, inner="61905", outer="61907", structure: str | None = None,
                  axial: bool = True, name="nested"):
         super().__init__(name)
+        from bearingsim.assemblies.double_layer import _structure
+
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
-        fits = gi.outside_diameter <= go.bore
-        structure = structure or ("I" if fits else "Z")
-        if structure == "I" and not fits:
-            raise ParameterError("NestedQuasiStatic: an I-type middle ring needs the inner "
-                                 "bearing's outside diameter <= the outer bearing's bore")
+        structure = _structure(gi, go, structure)
+        self.structure = structure
         offset = 0.0 if structure == "I" else -(gi.width + go.width) / 2
         free = _AXES if axial else ("x", "y")
         self.geometries = (gi, go)

@@ -1,5 +1,9 @@
 """System inputs given as constants, symbolic time functions or tables.
 
+A ``(times, values)`` table is interpolated linearly between its rows and holds its first value
+before the first time and its last value after the last time (no extrapolation), as a load or
+speed recorded in a CSV file is meant.
+
 Whatever can be expressed symbolically is composed into the compiled right-hand side, so no
 Python runs inside the integration; other callables are evaluated numerically.
 """
@@ -32,7 +36,9 @@ def _one(name: str, spec: Any, t: ca.SX) -> ca.SX:
             )
         if not np.all(np.isfinite(vals)):
             raise ParameterError(f"input {name}: table values must be finite")
-        return ca.pw_lin(t, ca.DM(times), ca.DM(vals))
+        # hold the end values outside the table (pw_lin alone would extrapolate linearly)
+        held = ca.fmin(ca.fmax(t, float(times[0])), float(times[-1]))
+        return ca.pw_lin(held, ca.DM(times), ca.DM(vals))
     if callable(spec):
         try:
             out = spec(t)
@@ -49,7 +55,29 @@ def _one(name: str, spec: Any, t: ca.SX) -> ca.SX:
 
 
 def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) -> ca.SX:
-    """Vector of input expressions of ``t`` in the system's input order."""
+    """Vector of input expressions of ``t`` in the system's input order.
+
+    Parameters
+    ----------
+    system : System
+        The assembled system.
+    inputs : dict, optional
+        Input name -> number, symbolic function of time, or ``(times, values)`` table
+        (piecewise linear, the end values held outside ``[times[0], times[-1]]``). Inputs not
+        given take their start values.
+    t : casadi.SX
+        The time symbol [s].
+
+    Returns
+    -------
+    casadi.SX
+        Column of the input expressions.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown input name or a malformed value.
+    """
     inputs = dict(inputs or {})
     unknown = set(inputs) - set(system.input_names)
     if unknown:

@@ -101,8 +101,8 @@ def simulate(
     parameters: dict[str, float] | None = None,
     x0: dict[str, float] | None = None,
     initial: str = "start",
-    method: str = "BDF",
-    backend: str = "scipy",
+    method: str | None = None,
+    backend: str | None = None,
     rtol: float = 1e-6,
     atol: float = 1e-8,
     n_points: int = 501,
@@ -121,28 +121,34 @@ def simulate(
     t_start : float
         Start time [s].
     inputs : dict, optional
-        Input name -> constant, ``f(t)`` (symbolic) or ``(times, values)`` table.
+        Input name -> constant, ``f(t)`` (symbolic) or ``(times, values)`` table (linear
+        between the rows, holding the first and last value outside the table's times).
     parameters : dict, optional
         Parameter name -> value (validated; no recompilation).
     x0 : dict, optional
         State name -> initial value, overriding start values.
     initial : {"start", "steady"}
         ``"steady"`` starts from the steady state at ``t_start``.
-    method : str
-        ``"BDF"``, ``"Radau"``, ``"LSODA"``, ``"RK45"``, ``"DOP853"`` (scipy, the implicit ones
-        with the exact sparse Jacobian) or CasADi's ``"cvodes"`` / ``"idas"`` (SUNDIALS).
-    backend : {"scipy", "casadi"}
-        Integrator family; a CasADi method implies ``backend="casadi"``.
+    method : str, optional
+        Backend ``"scipy"``: ``"BDF"`` (the default), ``"Radau"``, ``"LSODA"`` (these with the
+        exact sparse Jacobian), ``"RK45"``, ``"DOP853"``, ``"RK23"``; backend ``"casadi"``:
+        ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case).
+    backend : {"scipy", "casadi"}, optional
+        Integrator family; by default the one ``method`` belongs to. A method of the other
+        family raises :class:`~bearingsim.errors.ParameterError`.
     rtol, atol : float
-        Tolerances.
+        Relative tolerance in (0, 1] and absolute tolerance > 0.
     n_points : int
-        Number of equally spaced output points (ignored when ``t_eval`` is given).
-    t_eval : array, optional
-        Output times [s].
+        Number of equally spaced output points in ``[t_start, t_end]``, an integer >= 2
+        (ignored when ``t_eval`` is given).
+    t_eval : array_like, optional
+        Output times [s]: finite, strictly increasing, within ``[t_start, t_end]``.
     max_step : float
-        Largest step for scipy's integrators [s].
+        Largest step [s], > 0 (``inf``: no limit); CVODES and IDAS get it as
+        ``max_step_size``.
     progress : bool, optional
-        Show a progress bar; default: only for runs that take longer than about 2 s.
+        Show a progress bar (scipy methods); default: only for runs that take longer than
+        about 2 s.
 
     Returns
     -------
@@ -150,29 +156,24 @@ def simulate(
 
     Raises
     ------
+    ParameterError
+        For a bad argument (naming it, its unit and valid range) or a method that is not one
+        of ``backend``'s.
     SimulationError
         With the time reached and the variables that diverged.
     """
+    check_range(t_start, "t_start", "s", where="simulate")
     check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
     check_range(rtol, "rtol", "1", 0.0, 1.0, low_inclusive=False, where="simulate")
     check_range(atol, "atol", "1", 0.0, None, low_inclusive=False, where="simulate")
-    if method.lower() in CASADI_METHODS:
-        backend = "casadi"
-    check_choice(backend, "backend", ("scipy", "casadi"), "simulate")
-    if backend == "scipy" and method not in SCIPY_METHODS:
-        raise ParameterError(
-            f"simulate: method must be one of {', '.join(SCIPY_METHODS + CASADI_METHODS)}, got "
-            f"{method!r}"
-        )
-    if backend == "casadi" and method.lower() not in CASADI_METHODS:
-        method = "cvodes"
+    if max_step != np.inf:
+        check_range(max_step, "max_step", "s", 0.0, None, low_inclusive=False, where="simulate")
+    method, backend = _method_backend(method, backend)
     check_choice(initial, "initial", ("start", "steady"), "simulate")
+    t_eval = _output_times(t_start, t_end, n_points, t_eval)
     p = system.p0(parameters)
     closed = close_inputs(system, inputs)
     x_start = initial_state(system, closed, p, system.x0(x0), t_start, initial == "steady")
-    if t_eval is None:
-        t_eval = np.linspace(t_start, t_end, n_points)
-    t_eval = np.asarray(t_eval, dtype=float)
     check_input_ranges(system, closed.u, np.union1d(t_eval, [t_start, t_end]))
     wall = _time.perf_counter()
     if system.n_states == 0:
@@ -181,12 +182,12 @@ def simulate(
         ts, xs, stats = _run_scipy(system, closed, p, x_start, t_start, t_end, t_eval, method,
                                    rtol, atol, max_step, progress)
     elif method.lower() == "idas" and "dae_ode" in system.functions:
-        ts, xs, values, stats = _run_idas_dae(system, closed, p, x_start, t_start, t_eval, rtol,
-                                              atol)
+        ts, xs, values, stats = _run_idas_dae(system, closed, p, x_start, t_start, t_eval,
+                                              _sundials_options(rtol, atol, max_step))
     else:
         sym_closed = close_inputs(system, inputs, symbolic=True)
-        ts, xs, stats = _run_casadi(system, sym_closed, p, x_start, t_start, t_eval, rtol, atol,
-                                    method.lower())
+        ts, xs, stats = _run_casadi(system, sym_closed, p, x_start, t_start, t_eval,
+                                    _sundials_options(rtol, atol, max_step), method)
     stats["wall_time"] = _time.perf_counter() - wall
     if "dae" not in stats.get("method", ""):
         obs = closed.observe.map(ts.size)
@@ -194,6 +195,58 @@ def simulate(
                             dtype=float)
     units = _units(system)
     return Result(ts, list(system.observed_names), values, units, stats)
+
+
+def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:
+    """Checked ``(method, backend)``: each backend with its own methods, defaults filled in."""
+    methods = {"scipy": SCIPY_METHODS, "casadi": CASADI_METHODS}
+    valid = "; ".join(f"backend {b!r}: {', '.join(m)}" for b, m in methods.items())
+    if backend is not None:
+        check_choice(backend, "backend", tuple(methods), "simulate")
+    if method is None:
+        return ("cvodes", "casadi") if backend == "casadi" else ("BDF", "scipy")
+    if not isinstance(method, str):
+        raise ParameterError(f"simulate: method must be a string ({valid}), got {method!r}")
+    owner = ("casadi" if method.lower() in CASADI_METHODS
+             else "scipy" if method in SCIPY_METHODS else None)
+    if owner is None:
+        raise ParameterError(f"simulate: unknown method {method!r}; valid methods are {valid}")
+    if backend is not None and backend != owner:
+        raise ParameterError(
+            f"simulate: method {method!r} belongs to backend {owner!r}, not backend "
+            f"{backend!r}; valid methods are {valid}"
+        )
+    return (method.lower() if owner == "casadi" else method), owner
+
+
+def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> np.ndarray:
+    """Checked output times: ``t_eval`` or ``n_points`` equally spaced in [t_start, t_end]."""
+    if t_eval is None:
+        if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)):
+            raise ParameterError(
+                f"simulate: n_points must be an integer >= 2 [1], got {n_points!r}"
+            )
+        check_range(n_points, "n_points", "1", 2, None, where="simulate")
+        return np.linspace(t_start, t_end, int(n_points))
+    try:
+        times = np.asarray(t_eval, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(
+            f"simulate: t_eval must be an array of times [s], got {type(t_eval).__name__}"
+        ) from None
+    if times.ndim != 1 or times.size == 0:
+        raise ParameterError(
+            f"simulate: t_eval must be a non-empty one-dimensional array of times [s], got "
+            f"shape {times.shape}"
+        )
+    check_range(times, "t_eval", "s", t_start, t_end, where="simulate")
+    if np.any(np.diff(times) <= 0.0):
+        k = int(np.argmax(np.diff(times) <= 0.0))
+        raise ParameterError(
+            f"simulate: t_eval must be strictly increasing [s], got t_eval[{k + 1}] = "
+            f"{times[k + 1]:g} s after t_eval[{k}] = {times[k]:g} s"
+        )
+    return times
 
 
 def _units(system: System) -> dict[str, str]:
@@ -267,14 +320,21 @@ def _run_scipy(system, closed, p, x0, t0, t1, t_eval, method, rtol, atol, max_st
     return sol.t, sol.y, stats
 
 
-def _run_casadi(system, closed, p, x0, t0, t_eval, rtol, atol, plugin):
+def _sundials_options(rtol: float, atol: float, max_step: float) -> dict[str, Any]:
+    """Options of CasADi's CVODES / IDAS integrators (``max_step`` only when finite)."""
+    opts: dict[str, Any] = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000}
+    if np.isfinite(max_step):
+        opts["max_step_size"] = float(max_step)
+    return opts
+
+
+def _run_casadi(system, closed, p, x0, t0, t_eval, opts, plugin):
     sym = ca.SX if closed.symbolic else ca.MX
     x = sym.sym("x", system.n_states)
     pp = sym.sym("p", len(p))
     t = sym.sym("t")
     dae = {"x": x, "p": pp, "t": t, "ode": closed.f(t, x, pp)}
     grid = t_eval[t_eval > t0]
-    opts = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000}
     integ = ca.integrator(plugin, plugin, dae, float(t0), grid, opts)
     try:
         out = integ(x0=x0, p=p)
@@ -301,7 +361,7 @@ def _run_casadi(system, closed, p, x0, t0, t_eval, rtol, atol, plugin):
     return ts, xs, stats
 
 
-def _run_idas_dae(system, closed, p, x0, t0, t_eval, rtol, atol):
+def _run_idas_dae(system, closed, p, x0, t0, t_eval, opts):
     """IDAS on the semi-explicit DAE: the nonlinear blocks' tearing variables are algebraic
     states that IDAS iterates on, warm-started from step to step."""
     funcs = system.symbolic_functions or system.functions
@@ -313,7 +373,6 @@ def _run_idas_dae(system, closed, p, x0, t0, t_eval, rtol, atol):
     u = closed.u(t)
     dae = {"x": x, "z": z, "p": pp, "t": t, "ode": f(t, x, z, u, pp), "alg": g(t, x, z, u, pp)}
     grid = t_eval[t_eval > t0]
-    opts = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000}
     integ = ca.integrator("idas_dae", "idas", dae, float(t0), grid, opts)
     u0 = np.asarray(closed.u(t0), dtype=float).ravel()
     z0 = np.asarray(z_of(t0, x0, u0, p), dtype=float).ravel()

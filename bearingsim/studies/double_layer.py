@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from bearingsim.assemblies.double_layer import double_layer_bearing
+from bearingsim.errors import ParameterError
 from bearingsim.solver import assemble, steady_state
 from bearingsim.solver.system import System
 
@@ -29,20 +30,39 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
                  x_guess=None) -> tuple[float, float, np.ndarray]:
     """Steady ``Rs`` and shaft friction torque of an assembled double-layer bearing.
 
+    Parameters
+    ----------
+    system : System
+        An assembled double-layer bearing with the input ``shaft_speed`` and the variables
+        ``Rs`` and ``M_shaft`` (:func:`double_layer_bearing` with ``drive="speed"``,
+        ``speed=None``).
+    speed : float
+        Shaft speed [rad/s].
+    loads : (float, float)
+        Radial and axial load [N], set when the system has the inputs ``Fr`` and ``Fa``.
+    parameters : dict, optional
+        Parameter overrides.
+    x_guess : array, optional
+        Starting guess of the steady state.
+
     Returns
     -------
     (Rs [1], M_shaft [N m], steady state vector)
+        Evaluated with the inputs above and every other input at its start value
+        (``system.u_default()``), the values the steady state was solved with.
     """
     inputs = {"shaft_speed": float(speed)}
     if "Fr" in system.input_names:
         inputs.update({"Fr": float(loads[0]), "Fa": float(loads[1])})
     x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
-    u = np.array([inputs.get(n, 0.0) for n in system.input_names])
+    u = system.u_default()
+    for name, value in inputs.items():
+        u[system.input_names.index(name)] = value
     obs = system.observe(0.0, x, u, system.p0(parameters))
     return obs["Rs"], obs["M_shaft"], x
 
 
-def speed_ratio_sweep(speeds, inner="61905", outer="61907", loads=(0.0, 0.0), parameters=None,
+def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), parameters=None,
                       system: System | None = None, **bearing) -> SpeedRatioSweep:
     """Steady speed ratio over shaft speeds with ONE assembled system (no re-assembly).
 
@@ -50,8 +70,8 @@ def speed_ratio_sweep(speeds, inner="61905", outer="61907", loads=(0.0, 0.0), pa
     ----------
     speeds : array_like
         Shaft speeds [rad/s], > 0.
-    inner, outer : str or BearingGeometry
-        Bearings.
+    inner, outer : str or BearingGeometry, optional
+        Bearings (default "61905" in "61907"); only without ``system``.
     loads : (float, float)
         Radial and axial load [N] (torque fidelity).
     parameters : dict, optional
@@ -59,12 +79,33 @@ def speed_ratio_sweep(speeds, inner="61905", outer="61907", loads=(0.0, 0.0), pa
     system : System, optional
         A system assembled from :func:`double_layer_bearing` (built if not given).
     **bearing
-        Passed to :func:`double_layer_bearing` (structure, fidelity, lubrication, ...).
+        Passed to :func:`double_layer_bearing` (structure, fidelity, lubrication, ...); only
+        without ``system``.
+
+    Returns
+    -------
+    SpeedRatioSweep
+
+    Raises
+    ------
+    ParameterError
+        If ``system`` is given together with ``inner``, ``outer`` or bearing keywords (they
+        would be ignored: the system is already assembled).
     """
     speeds = np.asarray(speeds, dtype=float)
     if system is None:
+        inner = "61905" if inner is None else inner
+        outer = "61907" if outer is None else outer
         system = assemble(double_layer_bearing(inner, outer, **bearing),
                           outputs=["Rs", "M_shaft"])
+    else:
+        ignored = ([k for k, v in (("inner", inner), ("outer", outer)) if v is not None]
+                   + sorted(bearing))
+        if ignored:
+            raise ParameterError(
+                f"speed_ratio_sweep: {', '.join(ignored)} cannot be combined with system= "
+                "(the system is already assembled); give either the bearing or the system"
+            )
     rs, torque = np.empty_like(speeds), np.empty_like(speeds)
     x = None
     for k, w in enumerate(speeds):

@@ -1,0 +1,172 @@
+"""Argument checks of simulate, table inputs and the double-layer entry points.
+
+Each case was silently accepted (or failed with a misleading error) before: a CasADi backend
+with a scipy method, output times outside the run, ``max_step`` ignored by CVODES, tables
+extrapolated past their ends, unchecked middle-ring types and kinematic-level options, and
+study arguments ignored next to ``system=``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim import Assembly, Input, Variable
+from bearingsim.assemblies import double_layer_bearing
+from bearingsim.assemblies.double_layer import DoubleLayerBearing
+from bearingsim.errors import ParameterError
+from bearingsim.solver import assemble, simulate
+from bearingsim.studies.double_layer import speed_ratio_sweep, steady_ratio
+
+SPEED = {"shaft_speed": 100.0}
+
+
+@pytest.fixture(scope="module")
+def torque_system():
+    return assemble(double_layer_bearing("61905", "61907", fidelity="torque"),
+                    outputs=["Rs", "w_shaft", "M_shaft"])
+
+
+# ------------------------------------------------------------------ backend and method
+@pytest.mark.parametrize(("backend", "method", "owner"), [
+    ("casadi", "Radau", "scipy"), ("casadi", "BDF", "scipy"), ("scipy", "cvodes", "casadi"),
+    ("scipy", "IDAS", "casadi"),
+])
+def test_method_of_the_other_backend_is_rejected(torque_system, backend, method, owner):
+    with pytest.raises(ParameterError, match=rf"method '{method}' belongs to backend '{owner}'"
+                       r".*'scipy': BDF, Radau.*'casadi': cvodes, idas"):
+        simulate(torque_system, 0.1, inputs=SPEED, backend=backend, method=method)
+    # each backend alone picks its default method
+    assert simulate(torque_system, 0.1, inputs=SPEED, backend="casadi",
+                    n_points=3).stats["method"] == "cvodes"
+    assert simulate(torque_system, 0.1, inputs=SPEED, n_points=3).stats["method"] == "BDF"
+
+
+def test_unknown_method_lists_the_methods_per_backend(torque_system):
+    with pytest.raises(ParameterError, match=r"unknown method 'rk4'.*backend 'scipy': BDF"):
+        simulate(torque_system, 0.1, inputs=SPEED, method="rk4")
+
+
+# ------------------------------------------------------------------ output times
+@pytest.mark.parametrize("method", ["BDF", "cvodes", "idas"])
+@pytest.mark.parametrize(("t_start", "t_eval", "message"), [
+    (0.0, [0.0, 0.5, 2.0], r"t_eval = array with min 0, max 2 \[s\] is outside the valid "
+                           r"range \[0, 1\] \[s\]"),
+    (0.5, [0.0, 0.7, 1.0], r"t_eval = .* outside the valid range \[0.5, 1\] \[s\]"),
+    (0.0, [0.5, 0.2, 1.0], r"t_eval must be strictly increasing \[s\], got t_eval\[1\] = 0.2"),
+    (0.0, [0.0, 0.5, 0.5], r"t_eval must be strictly increasing"),
+    (0.0, [0.0, np.nan, 1.0], r"t_eval must be finite"),
+    (0.0, [], r"t_eval must be a non-empty one-dimensional array"),
+])
+def test_t_eval_must_lie_in_the_run_and_increase(torque_system, method, t_start, t_eval,
+                                                  message):
+    with pytest.raises(ParameterError, match=message):
+        simulate(torque_system, 1.0, t_start=t_start, inputs=SPEED, t_eval=t_eval,
+                 method=method)
+    # times inside the run come back exactly, the start and end included
+    res = simulate(torque_system, 1.0, t_start=0.25, inputs=SPEED, t_eval=[0.25, 0.5, 1.0],
+                   method=method)
+    np.testing.assert_array_equal(res.t, [0.25, 0.5, 1.0])
+
+
+@pytest.mark.parametrize(("n_points", "message"), [
+    (0, r"n_points = 0 \[1\] is outside the valid range \[2, inf\)"),
+    (1, r"n_points = 1 \[1\] is outside the valid range \[2, inf\)"),
+    (2.5, r"n_points must be an integer >= 2"),
+    ("11", r"n_points must be an integer >= 2"),
+])
+def test_n_points_must_be_an_integer_of_at_least_two(torque_system, n_points, message):
+    with pytest.raises(ParameterError, match=message):
+        simulate(torque_system, 1.0, inputs=SPEED, n_points=n_points)
+
+
+# ------------------------------------------------------------------ max_step
+@pytest.mark.parametrize("method", ["cvodes", "idas"])
+def test_sundials_methods_honour_max_step(torque_system, method):
+    free = simulate(torque_system, 0.1, inputs=SPEED, method=method, n_points=3)
+    limited = simulate(torque_system, 0.1, inputs=SPEED, method=method, n_points=3,
+                       max_step=1e-4)
+    assert free.stats["nsteps"] < 500
+    assert limited.stats["nsteps"] >= 1000
+    np.testing.assert_allclose(limited["Rs"], free["Rs"], rtol=1e-3, atol=1e-6)
+
+
+@pytest.mark.parametrize("max_step", [0.0, -1.0, np.nan])
+def test_max_step_must_be_positive(torque_system, max_step):
+    with pytest.raises(ParameterError, match=r"simulate: max_step"):
+        simulate(torque_system, 0.1, inputs=SPEED, max_step=max_step)
+
+
+# ------------------------------------------------------------------ table inputs
+@pytest.mark.parametrize("method", ["BDF", "cvodes"])
+def test_table_inputs_hold_their_end_values(torque_system, method):
+    after = simulate(torque_system, 3.0, inputs={"shaft_speed": ([0.0, 1.0], [0.0, 100.0])},
+                     n_points=7, method=method)
+    np.testing.assert_allclose(after["w_shaft"], [0, 50, 100, 100, 100, 100, 100], atol=1e-9)
+    before = simulate(torque_system, 3.0,
+                      inputs={"shaft_speed": ([1.0, 2.0], [50.0, 100.0])}, n_points=7,
+                      method=method)
+    np.testing.assert_allclose(before["w_shaft"], [50, 50, 50, 75, 100, 100, 100], atol=1e-9)
+
+
+# ------------------------------------------------------------------ double-layer assemblies
+@pytest.mark.parametrize("structure", ["X", "i", "z"])
+def test_quasi_static_level_checks_the_structure(structure):
+    with pytest.raises(ParameterError, match=r"double_layer_bearing: structure must be 'I' or "
+                       rf"'Z', got '{structure}'"):
+        double_layer_bearing("61905", "61907", structure=structure, fidelity="quasi-static")
+
+
+def test_quasi_static_level_keeps_the_i_type_fit_check():
+    with pytest.raises(ParameterError, match="I-type"):
+        double_layer_bearing("61905", "61907", structure="I", fidelity="quasi-static")
+    assert double_layer_bearing("61905", "61909", fidelity="quasi-static").structure == "I"
+
+
+@pytest.mark.parametrize("fidelity", ["kinematic", "kinematic_approx"])
+def test_kinematic_levels_reject_unused_layer_options(fidelity):
+    with pytest.raises(ParameterError, match=rf"layer_options 'nonsense' not used at fidelity "
+                       rf"'{fidelity}'; its only option is 'k'"):
+        double_layer_bearing("61905", "61907", fidelity=fidelity,
+                             layer_options={"k": 5.0, "nonsense": 1})
+    system = assemble(double_layer_bearing("61905", "61907", fidelity=fidelity,
+                                           layer_options={"k": 5.0}))
+    p = dict(zip(system.parameter_names, system.p0(), strict=True))
+    assert p["inner_layer.k"] == p["outer_layer.k"] == 5.0
+
+
+# ------------------------------------------------------------------ studies
+def test_sweep_refuses_bearing_arguments_next_to_a_system(torque_system):
+    for kwargs in ({"inner": "61906"}, {"outer": "61908"}, {"structure": "Z"}):
+        with pytest.raises(ParameterError, match=r"speed_ratio_sweep: .* cannot be combined "
+                           r"with system="):
+            speed_ratio_sweep([100.0], system=torque_system, **kwargs)
+
+
+class _LoadedByDefault(Assembly):
+    """A torque-level bearing whose radial load is an input with a non-zero start value."""
+
+    def __init__(self):
+        super().__init__("loaded")
+        self.bearing = DoubleLayerBearing("61905", "61907", fidelity="torque",
+                                          layer_options={"load_dependent": True})
+        self.shaft_speed = Input(0.0, "rad/s", "shaft speed")
+        self.load = Input(2000.0, "N", "radial load", low=0.0)
+        self.Rs = Variable(unit="1")
+        self.M_shaft = Variable(unit="N.m")
+
+    def equations(self):
+        b = self.bearing
+        return [b.shaft_speed == self.shaft_speed, b.Fr == self.load, b.Fa == 0.0,
+                self.Rs == b.Rs, self.M_shaft == b.M_shaft]
+
+
+def test_steady_ratio_evaluates_with_the_default_inputs():
+    system = assemble(_LoadedByDefault(), outputs=["Rs", "M_shaft"])
+    rs, torque, x = steady_ratio(system, 100.0)
+    u = system.u_default()
+    u[system.input_names.index("shaft_speed")] = 100.0
+    obs = system.observe(0.0, x, u, system.p0())
+    assert u[system.input_names.index("load")] == 2000.0
+    assert torque == pytest.approx(obs["M_shaft"], rel=1e-12)
+    assert rs == pytest.approx(obs["Rs"], rel=1e-12)
