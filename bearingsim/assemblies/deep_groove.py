@@ -18,7 +18,9 @@ enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import numbers
 from collections.abc import Callable
 from typing import Any
 
@@ -37,10 +39,11 @@ from bearingsim.components.dynamic import (
     TiltGuide,
 )
 from bearingsim.components.dynamic.design import BRASS, BearingDesign, bearing_design
+from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.components.dynamic.static import StaticState, static_state
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
-from bearingsim.errors import ParameterError, check_choice
+from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
@@ -93,8 +96,9 @@ class DeepGrooveBallBearing(Assembly):
         the connector ``outer_flange`` (a nested bearing's middle ring). The epicyclic cage
         speed and the slip then use both ring speeds.
     loads : dict
-        ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] on the inner ring: constants, functions of time or
-        ``None`` for inputs (missing keys are inputs with default 0).
+        ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] on the inner ring: finite constants, functions of
+        time or ``None`` for inputs (missing keys are inputs with default 0); any other key
+        raises :class:`~bearingsim.errors.ParameterError`.
     free_tilt : bool
         Whether the inner ring tilts (else the shaft holds it straight).
     inner_ring : {"body", "frame"}
@@ -117,11 +121,11 @@ class DeepGrooveBallBearing(Assembly):
         the tangent contact stiffness, see :class:`~bearingsim.components.dynamic.RaceContact`);
         default :data:`FILM_DAMPING` with a viscous lubricant, 0 dry.
     n_slices : int
-        ``2 n + 1`` traction slices per contact.
+        ``2 n + 1`` traction slices per contact, an integer >= 0.
     drag : bool
         Ball drag in the oil-air mixture (only with a viscous lubricant).
     oil_fraction : float
-        Oil volume fraction of the cavity mixture [-] (drag).
+        Oil volume fraction of the cavity mixture [-] (drag), in (0, 1].
     traction_scale : float
         Multiplier of the race traction [-] (0: frictionless races).
     pocket_mu, land_mu : float
@@ -177,9 +181,11 @@ class DeepGrooveBallBearing(Assembly):
         if len(offset) != 3 or (outer_support == "housing" and any(offset)):
             raise ParameterError(f"deep_groove_ball_bearing: outer_start must be (x, y, z) [m], "
                                  f"nonzero only with outer_support='frame', got {outer_start!r}")
+        check_range(oil_fraction, "oil_fraction", "-", 0.0, 1.0, low_inclusive=False,
+                    where=where)
         g, cage = design.geometry, design.cage
         self.design, self.lubricant = design, lubricant
-        loads = dict(loads or {})
+        loads = check_loads(loads, where)
         constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
         if inner_ring == "frame" and len(constant) != len(loads):
             raise ParameterError("deep_groove_ball_bearing: with inner_ring='frame' the loads "
@@ -342,25 +348,49 @@ class QuasiStaticDeepGroove(Assembly):
     with the external load (its displacement is algebraic, solved by the assembler's Newton).
 
     With ``speed`` > 0 the row uses its Jones-Harris form (centrifugal force, gyroscopic moment)
-    at that inner-ring speed; the shaft holds the ring straight (no tilt).
+    at that inner-ring speed; the shaft holds the ring straight (no tilt), so the ring takes no
+    moment.
 
     Parameters
     ----------
     geometry : BearingGeometry
+        Its ``radial_clearance`` (diametral clearance Pd) sets the free contact angle.
     loads : dict
-        ``Fx, Fy, Fz`` [N] (constants or None for inputs; moments are taken by the shaft).
+        ``Fx, Fy, Fz`` [N]: finite constants, functions of time or None for inputs (missing
+        keys are inputs with default 0). ``Mx, My`` may only be absent or 0 (the shaft takes
+        the moments); other keys raise :class:`~bearingsim.errors.ParameterError`.
     speed : float
-        Inner-ring speed [rad/s], >= 0.
+        Constant inner-ring speed [rad/s], >= 0.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown load key, a non-finite constant load, a moment load, or a speed that
+        is not a finite number >= 0 (a function of time or an input needs a dynamic level).
     """
 
     def __init__(self, geometry, loads: dict[str, Any] | None = None, speed: float = 0.0,
                  name="bearing"):
         super().__init__(name)
+        where = "deep_groove_ball_bearing(quasi-static)"
+        loads = check_loads(loads, where)
+        for key in ("Mx", "My"):
+            if key in loads and loads[key] != 0.0:
+                raise ParameterError(f"{where}: loads[{key!r}] = {loads[key]!r} [N.m], but the "
+                                     f"shaft holds the inner ring straight at this level and "
+                                     f"takes the moments; give only Fx, Fy, Fz (or use a dynamic "
+                                     f"fidelity with free_tilt=True)")
+        if callable(speed) or speed is None or isinstance(speed, bool) \
+                or not isinstance(speed, numbers.Real):
+            raise ParameterError(f"{where}: speed must be a constant number >= 0 [rad/s], got "
+                                 f"{speed!r}; a speed that varies in time or an input "
+                                 f"shaft_speed needs a dynamic fidelity")
+        speed = float(check_range(speed, "speed", "rad/s", 0.0, where=where))
         self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0)
-        self.row.inner_speed = float(speed)
+        self.row.inner_speed = speed
         self.housing = FixedFrame()
         self.guide = TiltGuide()
-        self.load = RingLoad({**(loads or {}), "Mx": 0.0, "My": 0.0})
+        self.load = RingLoad({**loads, "Mx": 0.0, "My": 0.0})
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)
 
@@ -385,22 +415,29 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         ``Oil``, ``Grease``, ``Dry`` or a name for
         :func:`~bearingsim.physics.lubricant.get_lubricant`.
     clearance : float, optional
-        Diametral clearance Pd [m]; default: catalogue.
+        Diametral clearance Pd [m]; default: catalogue (at every fidelity).
     housing : {"fixed"}
         The outer ring is fixed to a rigid housing (the only option of the dynamic levels).
     speed : callable or float or None
-        Inner-ring speed [rad/s] (``None``: input ``shaft_speed``).
+        Inner-ring speed [rad/s]. Dynamic levels: a function of time, a constant or ``None``
+        (input ``shaft_speed``). Quasi-static level: a constant >= 0 (centrifugal and
+        gyroscopic ball loads when > 0) or ``None`` for a bearing at rest (no input); a
+        function of time raises :class:`~bearingsim.errors.ParameterError`.
     loads : dict, optional
-        External loads on the inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]; constants,
-        functions of time or None (inputs).
+        External loads on the inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]; finite
+        constants, functions of time or None (inputs); other keys raise
+        :class:`~bearingsim.errors.ParameterError`. At the quasi-static level the shaft holds
+        the ring straight and takes the moments: ``Mx, My`` must then be absent or 0.
     **options
-        Further keyword arguments of :class:`DeepGrooveBallBearing` (``drive``, ``damping``,
-        ``n_slices``, ``drag``, ``traction_scale``, ...), and ``pocket_clearance``,
-        ``guide_clearance`` of :func:`~bearingsim.components.dynamic.design.bearing_design`.
+        Dynamic levels only: further keyword arguments of :class:`DeepGrooveBallBearing`
+        (``drive``, ``damping``, ``n_slices``, ``drag``, ``traction_scale``, ...), and
+        ``pocket_clearance``, ``guide_clearance`` of
+        :func:`~bearingsim.components.dynamic.design.bearing_design`. The quasi-static level
+        takes none and raises :class:`~bearingsim.errors.ParameterError` if any is given.
 
     Returns
     -------
-    DeepGrooveBallBearing
+    DeepGrooveBallBearing or QuasiStaticDeepGroove
     """
     if fidelity not in FIDELITIES:
         raise ParameterError(f"deep_groove_ball_bearing: fidelity must be one of "
@@ -412,11 +449,15 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     if not isinstance(lub, (Lubricant, Oil)):
         raise ParameterError(f"deep_groove_ball_bearing: lubricant must be a Lubricant or a "
                              f"name, got {type(lubricant).__name__}")
+    if fidelity == "quasi-static" and options:
+        raise ParameterError(f"deep_groove_ball_bearing: the quasi-static level takes no "
+                             f"options (they belong to the dynamic levels), got "
+                             f"{', '.join(sorted(options))}")
     cage_keys = ("pocket_clearance", "guide_clearance")
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":
-        speed_value = float(speed) if isinstance(speed, (int, float)) else 0.0
-        return QuasiStaticDeepGroove(design.geometry, loads, speed_value)
+        geometry = dataclasses.replace(design.geometry, radial_clearance=design.clearance)
+        return QuasiStaticDeepGroove(geometry, loads, 0.0 if speed is None else speed)
     return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
                                  speed=speed, loads=loads, **options)

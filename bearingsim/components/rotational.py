@@ -316,9 +316,16 @@ def _check_signal(source, name: str, unit: str, component: Component):
     return float(check_range(source, name, unit, where=f"{type(component).__name__}"))
 
 
-def _signal(source, component: Component, input_name: str):
+def _signal(source, component: Component, input_name: str, unit: str = "-"):
+    """The symbolic value of a signal: its input ``input_name``, ``source(time)`` or a constant.
+
+    A constant must be a finite number (:class:`~bearingsim.errors.ParameterError` naming the
+    component, the signal and its ``unit`` otherwise).
+    """
     if source is None:
         return getattr(component, input_name)
     if callable(source):
         return source(component.time)
-    return ca.SX(float(source))
+    where = component.display_name
+    check_range(source, input_name, unit, where=where)  # not a number: a clear message
+    return ca.SX(float(check_range(float(source), input_name, unit, where=where)))

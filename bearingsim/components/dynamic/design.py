@@ -184,7 +184,13 @@ def bearing_design(
     ball, ring : Material
         Ball and ring materials.
     pocket_clearance, guide_clearance : float, optional
-        Cage clearances [m], > 0.
+        Cage clearances [m], > 0 and below ``0.2 Dw``; the guide clearance must be smaller than
+        the pocket clearance.
+
+    Raises
+    ------
+    ParameterError
+        For a clearance out of range or a guide clearance not below the pocket clearance.
 
     Returns
     -------
@@ -204,6 +210,11 @@ def bearing_design(
                 where=where)
     check_range(guide_clearance, "guide_clearance", "m", 0.0, 0.2 * dw, low_inclusive=False,
                 where=where)
+    if guide_clearance >= pocket_clearance:
+        raise ParameterError(f"{where}: guide_clearance = {guide_clearance:g} m must be smaller "
+                             f"than pocket_clearance = {pocket_clearance:g} m (the land, not the "
+                             f"pockets, guides the cage; defaults 0.015 Dw = {0.015 * dw:g} m "
+                             f"and 0.03 Dw = {0.03 * dw:g} m)")
     alpha0 = math.acos(1.0 - pd / (2.0 * g.groove_centre_distance))
     e_eff = effective_modulus(ball, ring)
     rxi, ryi = raceway_radii(dw, dm, g.fi, alpha0, "inner")

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import numbers
+
 from bearingsim import _ops as op
 from bearingsim.components.dynamic.frames import (
     BallFrame,
@@ -31,6 +33,16 @@ _Q_SMOOTH = 1e-4
 _V_ROLL_REG = 1e-3
 """Regularization speed [m/s] of the direction of the rolling resistance (the ball centre moves
 relative to the race at about the entrainment speed, metres per second)."""
+
+
+def _slice_count(n_slices) -> int:
+    """``n_slices`` as an int, or ParameterError if it is not a whole number >= 0."""
+    whole = isinstance(n_slices, numbers.Integral) or (
+        isinstance(n_slices, numbers.Real) and float(n_slices).is_integer())
+    if isinstance(n_slices, bool) or not whole or n_slices < 0:
+        raise ParameterError(f"RaceContact: n_slices must be an integer >= 0 (2 n + 1 traction "
+                             f"slices) [-], got {n_slices!r}")
+    return int(n_slices)
 
 
 class RaceContact(Component):
@@ -97,7 +109,7 @@ class RaceContact(Component):
     film_damping : float
         Stiffness-proportional (lubricant film) damping time constant beta [s], >= 0.
     n_slices : int
-        ``2 n + 1`` slices.
+        ``2 n + 1`` slices, an integer >= 0.
     smooth : float
         Width of the smooth contact ramp [m].
     traction_scale : float
@@ -134,7 +146,8 @@ class RaceContact(Component):
         if not isinstance(lubricant, Lubricant):
             raise ParameterError(f"RaceContact: lubricant must be a Lubricant, got "
                                  f"{type(lubricant).__name__}")
-        self.race, self.moving, self.n_slices = race, bool(moving), int(n_slices)
+        self.race, self.moving = race, bool(moving)
+        self.n_slices = _slice_count(n_slices)
         self.lubricant, self.smooth = lubricant, float(smooth)
         self.rho = Parameter(rho, "m", "groove curvature-centre radius", low=0.0,
                              low_inclusive=False)

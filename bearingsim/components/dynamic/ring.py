@@ -2,14 +2,79 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import difflib
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
+from bearingsim._ops import is_symbolic
 from bearingsim.components.dynamic.ball import MICRON
 from bearingsim.components.frame import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.rotational import _signal
+from bearingsim.errors import ParameterError, check_range
 from bearingsim.language import Component, Input, Parameter, Variable, der
 
-__all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide"]
+__all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide", "check_loads", "load_unit"]
+
+
+_LOAD_HINTS = {
+    "fr": "; did you mean 'Fx' or 'Fy'? (radial forces; z is the bearing axis)",
+    "fa": "; did you mean 'Fz'? (axial force; z is the bearing axis)",
+    "mz": "; the torque about the axis is not a ring load: it goes through the shaft flange",
+}
+"""Hints for common load names that are not frame flows (keys in lower case)."""
+
+
+def load_unit(key: str) -> str:
+    """Unit of the ring-load component ``key``: ``"N"`` for forces, ``"N.m"`` for moments."""
+    return "N" if key.startswith("F") else "N.m"
+
+
+def check_loads(loads: Mapping[str, Any] | None, where: str = "RingLoad") -> dict[str, Any]:
+    """Validate a dict of ring loads before it is applied or used for start values.
+
+    Parameters
+    ----------
+    loads : dict or None
+        ``{"Fx": ..., "Fy": ..., "Fz": ..., "Mx": ..., "My": ...}`` [N, N m]: constants,
+        symbolic functions of time or ``None`` (inputs).
+    where : str
+        Component or function name for the messages.
+
+    Returns
+    -------
+    dict
+        A copy of ``loads`` with the numeric constants as floats.
+
+    Raises
+    ------
+    ParameterError
+        For a key other than the frame flows ``Fx, Fy, Fz, Mx, My`` (the message suggests the
+        nearest one), or a constant that is not a finite number.
+    """
+    if loads is None:
+        return {}
+    if not isinstance(loads, Mapping):
+        raise ParameterError(f"{where}: loads must be a dict with keys {', '.join(FRAME_FLOWS)}, "
+                             f"got {type(loads).__name__}")
+    checked: dict[str, Any] = {}
+    for key, value in loads.items():
+        if key not in FRAME_FLOWS:
+            lower = {k.lower(): k for k in FRAME_FLOWS}
+            close = difflib.get_close_matches(str(key).lower(), list(lower), n=1, cutoff=0.5)
+            hint = _LOAD_HINTS.get(str(key).lower())
+            if hint is None:
+                hint = f"; did you mean {lower[close[0]]!r}?" if close else ""
+            raise ParameterError(f"{where}: unknown load {key!r}; the loads are "
+                                 f"{', '.join(FRAME_FLOWS)} (forces [N], moments [N.m]){hint}")
+        if value is None or callable(value) or is_symbolic(value):
+            checked[key] = value
+        else:
+            if isinstance(value, (bool, str, bytes)):
+                raise ParameterError(f"{where}: loads[{key!r}] must be a number in "
+                                     f"{load_unit(key)}, got {value!r}")
+            checked[key] = float(check_range(value, f"loads[{key!r}]", load_unit(key),
+                                             where=where))
+    return checked
 
 
 class RingBody(Component):
@@ -101,7 +166,8 @@ class RingLoad(Component):
     ----------
     loads : dict
         ``{"Fx": ..., "Fy": ..., "Fz": ..., "Mx": ..., "My": ...}``; missing keys are inputs
-        with default 0.
+        with default 0. Other keys and constants that are not finite numbers raise
+        :class:`~bearingsim.errors.ParameterError` (see :func:`check_loads`).
 
     Connectors
     ----------
@@ -111,14 +177,14 @@ class RingLoad(Component):
     def __init__(self, loads: dict[str, float | Callable | None] | None = None, name=None):
         super().__init__(name)
         self.frame = RingFrame()
-        self._loads = dict(loads or {})
+        self._loads = check_loads(loads, type(self).__name__)
         for key in FRAME_FLOWS:
             if self._loads.get(key) is None:
-                unit = "N" if key.startswith("F") else "N.m"
-                self.add(key, Input(0.0, unit, f"external load {key} on the ring"))
+                self.add(key, Input(0.0, load_unit(key), f"external load {key} on the ring"))
 
     def equations(self):
-        return [getattr(self.frame, key) == -_signal(self._loads.get(key), self, key)
+        return [getattr(self.frame, key) == -_signal(self._loads.get(key), self, key,
+                                                     load_unit(key))
                 for key in FRAME_FLOWS]
 
 
