@@ -13,6 +13,7 @@ from typing import Any
 
 from bearingsim._ops import cos, exp, power, smooth_abs, sqrt
 from bearingsim.errors import check_range
+from bearingsim.physics.hertz import check_radii
 
 __all__ = [
     "dimensionless_speed",
@@ -114,15 +115,15 @@ def ellipticity(Rx: Any, Ry: Any) -> Any:  # noqa: N803
     Parameters
     ----------
     Rx, Ry : float, array or casadi.SX
-        Reduced radii in the rolling and transverse direction [m], > 0.
+        Reduced radii in the rolling and transverse direction [m], > 0, ``Ry >= Rx``
+        (:func:`bearingsim.physics.hertz.check_radii`; swapped radii are rejected).
 
     Returns
     -------
     float, array or casadi.SX
-        ``k`` [-].
+        ``k`` [-], >= 1.0339.
     """
-    _pos(Rx, "Rx", "m", "ellipticity")
-    _pos(Ry, "Ry", "m", "ellipticity")
+    check_radii(Rx, Ry, "ellipticity")
     return 1.0339 * power(Ry / Rx, 0.636)
 
 
@@ -235,7 +236,8 @@ def hamrock_dowson(
     u : float, array or casadi.SX
         Entrainment speed [m/s], >= 0 (:func:`entrainment_speed`).
     Rx, Ry : float, array or casadi.SX
-        Reduced radii [m], > 0.
+        Reduced radii along and across the rolling direction [m], > 0, ``Ry >= Rx``
+        (swapped radii raise ParameterError).
     E_eff : float
         Effective modulus ``E'`` [Pa] (2.275e11 for steel on steel).
     eta0 : float, array or casadi.SX
@@ -248,6 +250,7 @@ def hamrock_dowson(
     FilmThickness
         ``h_min``, ``h_c`` [m] and ``U, G, W, k`` [-].
     """
+    check_radii(Rx, Ry, "hamrock_dowson")
     U = dimensionless_speed(eta0, u, E_eff, Rx)  # noqa: N806
     G = dimensionless_material(alpha, E_eff)  # noqa: N806
     W = dimensionless_load(Q, E_eff, Rx)  # noqa: N806

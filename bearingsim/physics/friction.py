@@ -18,9 +18,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from bearingsim._ops import exp, fmax, if_else, power, sin, smooth_abs, smooth_max0
+from bearingsim._ops import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
 from bearingsim.errors import CatalogError, ParameterError, check_range
 from bearingsim.physics.drag import orbital_drag_force
+from bearingsim.physics.geometry import check_count
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
 
 if TYPE_CHECKING:
@@ -301,7 +302,7 @@ def palmgren_torque(
     lubricant: Lubricant,
     bearing_type: str,
     load_P1: Any = 0.0,  # noqa: N803
-    P0: Any = 0.0,  # noqa: N803
+    P0: Any = None,  # noqa: N803
     C0: float | None = None,  # noqa: N803
     smooth: bool = True,
     T: Any = None,  # noqa: N803
@@ -325,12 +326,19 @@ def palmgren_torque(
         Oil, Grease or Dry object (:mod:`bearingsim.physics.lubricant`).
     bearing_type : str
         Key of :data:`PALMGREN_F0`.
-    load_P1 : float or casadi.SX
-        Friction-determining load ``P1`` [N] (see :func:`palmgren_p1`), >= 0.
-    P0 : float or casadi.SX
-        Equivalent static load [N], >= 0.
+    load_P1 : float, array or casadi.SX
+        Friction-determining load ``P1`` [N] (see :func:`palmgren_p1`), >= 0. Zero (a Python or
+        numpy zero, or an array of zeros) means no load: ``M1`` is then not evaluated and
+        ``P0``, ``C0`` are not needed.
+    P0 : float, array or casadi.SX, optional
+        Static equivalent load [N] of ``f1 = z (P0/C0)^y`` (ISO 76, e.g.
+        :func:`bearingsim.components.bearing_torque.static_equivalent_load`). Required, and
+        > 0 wherever ``load_P1 > 0``, for the ball bearing types (``y > 0``): no default value
+        is documented (Palmgren 1959; Harris & Kotzalas), and ``P0 = 0`` would make
+        ``f1 = 0`` and drop ``M1`` silently. Optional (and ignored) for the roller types, whose
+        ``f1`` is constant (``y = 0``).
     C0 : float, optional
-        Basic static load rating [N]; required when ``load_P1 > 0``.
+        Basic static load rating [N], > 0; required when ``load_P1 > 0``.
     smooth : bool
         Smooth ``M0`` branch blend (for equations) or exact piecewise form.
     T : float or casadi.SX, optional
@@ -349,12 +357,42 @@ def palmgren_torque(
     speed = smooth_abs(omega_rel, omega_reg)
     f0 = lubricant.palmgren_f0(bearing_type)
     magnitude = palmgren_m0(lubricant.kinematic_viscosity(T), speed, dm, f0, smooth)
-    has_load = not (isinstance(load_P1, (int, float)) and load_P1 == 0.0)
-    if has_load:
+    if P0 is not None:
+        check_range(P0, "P0", "N", 0.0, None, where=where)
+    if _has_load(load_P1):
         if C0 is None:
             raise ParameterError(f"{where}: C0 [N] is required when load_P1 is given")
-        magnitude = magnitude + palmgren_f1(bearing_type, P0, C0) * load_P1 * dm
+        _z, y = _lookup(PALMGREN_F1, bearing_type, "bearing type")
+        if y > 0.0:
+            _check_static_load(load_P1, P0, where)
+        p0 = 0.0 if P0 is None else P0
+        magnitude = magnitude + palmgren_f1(bearing_type, p0, C0) * load_P1 * dm
     return _signed(magnitude, omega_rel, omega_reg, where)
+
+
+def _has_load(load: Any) -> bool:
+    """Whether a load may be nonzero: symbolic, or a number/array with a nonzero entry."""
+    if is_symbolic(load):
+        return True
+    return bool(np.any(np.asarray(load, dtype=float) != 0.0))
+
+
+def _check_static_load(load_P1: Any, P0: Any, where: str) -> None:  # noqa: N803
+    """``P0`` must be given, and > 0 wherever ``load_P1 > 0`` (numbers; symbols pass)."""
+    if P0 is None:
+        raise ParameterError(
+            f"{where}: P0 [N] (static equivalent load, > 0) is required when load_P1 > 0: "
+            f"f1 = z (P0/C0)^y, and P0 = 0 would drop the load-dependent torque M1"
+        )
+    if is_symbolic(load_P1, P0):
+        return
+    loaded = np.asarray(load_P1, dtype=float) > 0.0
+    p0 = np.broadcast_to(np.asarray(P0, dtype=float), loaded.shape)
+    if np.any(p0[loaded] <= 0.0):
+        raise ParameterError(
+            f"{where}: P0 = {P0} [N] is outside the valid range (0, inf) [N] where load_P1 > 0 "
+            f"(f1 = z (P0/C0)^y would be 0 and drop M1)"
+        )
 
 
 @dataclass(frozen=True)
@@ -367,19 +405,31 @@ class SkfSeal:
     Attributes
     ----------
     ks1 : float
-        Constant KS1 [N mm^(1-beta)].
+        Constant KS1 [N mm^(1-beta)], >= 0.
     ks2 : float
-        Constant KS2 [N mm].
+        Constant KS2 [N mm], >= 0.
     beta : float
-        Exponent [-].
+        Exponent [-], >= 0.
     ds_mm : float
-        Seal counterface diameter [mm].
+        Seal counterface diameter [mm], > 0.
+
+    Raises
+    ------
+    ParameterError
+        For a value outside these ranges (a negative ``ds_mm`` would give a complex moment).
     """
 
     ks1: float
     ks2: float
     beta: float
     ds_mm: float
+
+    def __post_init__(self) -> None:
+        where = "SkfSeal"
+        check_range(self.ks1, "ks1", "N mm^(1-beta)", 0.0, None, where=where)
+        check_range(self.ks2, "ks2", "N mm", 0.0, None, where=where)
+        check_range(self.beta, "beta", "-", 0.0, None, where=where)
+        check_range(self.ds_mm, "ds_mm", "mm", 0.0, None, low_inclusive=False, where=where)
 
 
 @dataclass(frozen=True)
@@ -508,9 +558,9 @@ def skf_friction_components(
     oil_level : float, optional
         Oil level above the lowest point of the ball pitch circle [m], for the drag term.
     Dw : float, optional
-        Ball diameter [m], for the drag term.
+        Ball diameter [m], for the drag term, in (0, dm).
     Z : int, optional
-        Number of balls, for the drag term.
+        Number of balls [-], for the drag term, a whole number >= 1.
     omega_reg : float
         Regularization speed of ``|omega_rel|`` [rad/s].
 
@@ -547,6 +597,9 @@ def skf_friction_components(
         if Dw is None or Z is None:
             raise ParameterError(f"{where}: Dw [m] and Z [-] are required with oil_level")
         check_range(oil_level, "oil_level", "m", 0.0, None, where=where)
+        check_range(Dw, "Dw", "m", 0.0, dm, low_inclusive=False, high_inclusive=False,
+                    where=where)
+        check_count(Z, "Z", 1, where=where)
         fraction = float(np.arccos(1.0 - 2.0 * min(oil_level / dm, 1.0)) / np.pi)
         gamma = Dw / dm
         omega_cage = 0.5 * (1.0 - gamma) * speed

@@ -33,6 +33,7 @@ __all__ = [
     "SILICON_NITRIDE",
     "EllipticParameters",
     "HertzContact",
+    "check_radii",
     "effective_modulus",
     "raceway_radii",
     "curvature_sum",
@@ -138,7 +139,25 @@ def _check_method(method: str) -> None:
         raise ParameterError(f"method must be one of {METHODS}, got {method!r}")
 
 
-def _check_radii(rx, ry, where: str):
+def check_radii(rx, ry, where: str):
+    """Check reduced radii of an elliptical contact: ``Rx > 0``, ``Ry > 0`` and ``Ry >= Rx``.
+
+    The Hertz, Hamrock-Dowson and rolling-resistance formulas of bearingsim take ``Rx`` along
+    and ``Ry`` across the rolling direction and assume ``Ry >= Rx`` (ellipticity ``k = a/b
+    >= 1``). Symbolic (CasADi) radii are checked for sign only when numbers are bound.
+
+    Parameters
+    ----------
+    rx, ry : float, array or casadi.SX
+        Reduced radii along and across the rolling direction [m], > 0, ``ry >= rx``.
+    where : str
+        Function name, used in the message.
+
+    Raises
+    ------
+    ParameterError
+        For non-positive or non-finite radii, or ``Ry < Rx`` (swapped radii).
+    """
     check_range(rx, "Rx", "m", 0.0, low_inclusive=False, where=where)
     check_range(ry, "Ry", "m", 0.0, low_inclusive=False, where=where)
     if not op.is_symbolic(rx, ry) and np.any(np.asarray(ry) < np.asarray(rx)):
@@ -207,13 +226,13 @@ def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, r
 
 def curvature_sum(rx, ry):
     """Curvature sum ``1/Rx + 1/Ry`` [1/m] (Harris's sum rho)."""
-    _check_radii(rx, ry, "curvature_sum")
+    check_radii(rx, ry, "curvature_sum")
     return 1.0 / rx + 1.0 / ry
 
 
 def curvature_difference(rx, ry):
     """Curvature difference ``F(rho) = (1/Rx - 1/Ry) / (1/Rx + 1/Ry)`` [-] (Harris)."""
-    _check_radii(rx, ry, "curvature_difference")
+    check_radii(rx, ry, "curvature_difference")
     return (ry - rx) / (ry + rx)
 
 
@@ -284,7 +303,7 @@ def elliptic_parameters(rx, ry, method: str = "exact") -> EllipticParameters:
     J. Lubr. Technol. 105(2), 171-177 (the later ``alpha_r^(2/pi)`` forms).
     """
     _check_method(method)
-    _check_radii(rx, ry, "elliptic_parameters")
+    check_radii(rx, ry, "elliptic_parameters")
     alpha_r = op.fmax(ry / rx, 1.0)
     if method == "hamrock_brewe":
         return EllipticParameters(*_hamrock_brewe(alpha_r))

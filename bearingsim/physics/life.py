@@ -24,6 +24,7 @@ from bearingsim import _ops as op
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.physics.geometry import (
     ball_pass_ratio,
+    check_count,
     pitch_ratio,
 )
 
@@ -157,7 +158,7 @@ def _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, row
     check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
     check_range(ball_count, "ball_count", "-", 3, where=where)
     check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where=where)
-    check_range(rows, "rows", "-", 1, where=where)
+    check_count(rows, "rows", 1, where=where)
     return pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
 
 
@@ -181,7 +182,7 @@ def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle
     contact_angle : float or array or SX
         Nominal contact angle [rad], 0 to 45 deg.
     rows : int
-        Number of rows i [-].
+        Number of rows i [-], a whole number >= 1.
     bm : float
         Rating factor for contemporary material and manufacturing quality [-]: 1.3 for radial
         ball bearings (1.1 for filling-slot and insert bearings).
@@ -193,7 +194,8 @@ def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle
     Raises
     ------
     ParameterError
-        If gamma lies outside the table, 0.01 to 0.40.
+        If gamma lies outside the table, 0.01 to 0.40, the contact angle outside [0, 45] deg or
+        ``rows`` is not a whole number >= 1.
     """
     where = "dynamic_load_rating"
     gamma = _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows, where)
@@ -213,8 +215,10 @@ def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
     interpolated linearly in ``gamma = Dw cos(a) / dm`` from 0 to 0.40. It is also the f0 of the
     relative axial load ``f0 Fa / C0`` in :func:`xy_factors`.
 
-    Parameters are those of :func:`dynamic_load_rating`. Returns f0 [N/mm^2].
+    Parameters are those of :func:`dynamic_load_rating` (contact angle [rad] in [0, 45] deg,
+    the range of the ISO 76 / ISO 281 ball bearing tables used here). Returns f0 [N/mm^2].
     """
+    check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where="static_factor")
     gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
     return _interp(_within_table(gamma, _F0_GAMMA, "static_factor"), _F0_GAMMA, _F0)
 
@@ -366,10 +370,11 @@ def rating_life(c, p, exponent=3.0):
     p : float or array or SX
         Equivalent dynamic load P [N], > 0.
     exponent : float
-        Life exponent [-].
+        Life exponent [-], finite and > 0 (3 for ball bearings).
     """
     check_range(c, "c", "N", 0.0, low_inclusive=False, where="rating_life")
     check_range(p, "p", "N", 0.0, low_inclusive=False, where="rating_life")
+    check_range(exponent, "exponent", "-", 0.0, low_inclusive=False, where="rating_life")
     return op.power(c / p, exponent)
 
 
@@ -570,15 +575,24 @@ def raceway_equivalent_load(loads, rotating: bool):
     Parameters
     ----------
     loads : sequence or array or SX column
-        Contact load of every ball on this raceway, including unloaded balls [N], >= 0.
+        Contact load of every ball on this raceway, including unloaded balls [N], >= 0; at
+        least one ball.
     rotating : bool
         Whether the raceway rotates relative to the load.
 
     Returns
     -------
     Qe [N]
+
+    Raises
+    ------
+    ParameterError
+        For an empty ``loads`` or a negative or non-finite load.
     """
     q = _balls(loads)
+    if not q:
+        raise ParameterError(
+            "raceway_equivalent_load: loads [N] needs one entry per ball (at least one), got none")
     for value in q:
         check_range(value, "loads", "N", 0.0, where="raceway_equivalent_load")
     w = 3.0 if rotating else 10.0 / 3.0
@@ -634,7 +648,7 @@ def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, row
     contact_angle : float or array or SX
         Nominal contact angle [rad].
     rows : int
-        Number of rows i [-].
+        Number of rows i [-], a whole number >= 1.
     """
     where = "raceway_dynamic_ratings"
     check_range(c, "c", "N", 0.0, low_inclusive=False, where=where)
@@ -643,6 +657,7 @@ def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, row
     check_range(gamma, "gamma", "-", 0.0, 1.0, high_inclusive=False, where=where)
     check_range(ball_count, "ball_count", "-", 3, where=where)
     check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where=where)
+    check_count(rows, "rows", 1, where=where)
     x = 1.044 * op.power((1.0 - gamma) / (1.0 + gamma), 1.72) * op.power(
         fi * (2.0 * fo - 1.0) / (fo * (2.0 * fi - 1.0)), 0.41)
     base = c / (ball_count * op.power(rows, 0.7) * op.cos(contact_angle))
@@ -669,7 +684,8 @@ def reference_rating_life(loads_inner, loads_outer, c, fi, fo, gamma, contact_an
     Parameters
     ----------
     loads_inner, loads_outer : sequence or array or SX column
-        Contact loads of every ball (including unloaded balls) on the inner and outer raceway [N].
+        Contact loads of every ball (including unloaded balls) on the inner and outer raceway
+        [N], the same number of entries (one per ball) in both.
     c : float or array or SX
         Basic dynamic radial load rating C [N] (:func:`dynamic_load_rating` or catalogue).
     fi, fo, gamma, contact_angle, rows
@@ -680,8 +696,18 @@ def reference_rating_life(loads_inner, loads_outer, c, fi, fo, gamma, contact_an
     Returns
     -------
     L10r [10^6 revolutions]
+
+    Raises
+    ------
+    ParameterError
+        If ``loads_inner`` and ``loads_outer`` differ in length (Z is taken from them).
     """
     z = len(_balls(loads_inner))
+    z_outer = len(_balls(loads_outer))
+    if z != z_outer:
+        raise ParameterError(
+            f"reference_rating_life: loads_inner and loads_outer [N] need one entry per ball "
+            f"each, got {z} and {z_outer}")
     qci, qce = raceway_dynamic_ratings(c, fi, fo, gamma, z, contact_angle, rows)
     qei = raceway_equivalent_load(loads_inner, rotating=inner_rotating)
     qee = raceway_equivalent_load(loads_outer, rotating=not inner_rotating)

@@ -7,6 +7,7 @@ Catalogue data (mm^2/s at degC, ISO VG grades) are converted in the constructors
 
 from __future__ import annotations
 
+import copy
 from abc import ABC, abstractmethod
 from typing import Any
 
@@ -269,16 +270,26 @@ class Grease(Lubricant):
         ``k_t`` [-], >= 0 (2 for a generic lithium soap grease).
     name : str
         Name shown in messages.
+    temperature : float, optional
+        Operating temperature [K], in [200, 600] (the range of :class:`Oil`). Given, the grease
+        uses a copy of ``base_oil`` at this temperature (``base_oil`` itself is not changed);
+        default the base oil's operating temperature. This lets
+        ``get_lubricant("lithium grease", temperature=343.15)`` work like it does for the oils.
     """
 
     def __init__(self, base_oil: Oil, fill_fraction: float = 1.0 / 3.0,
-                 thickener_factor: float = 2.0, *, name: str = "grease") -> None:
+                 thickener_factor: float = 2.0, *, name: str = "grease",
+                 temperature: float | None = None) -> None:
         where = f"Grease {name!r}"
         if not isinstance(base_oil, Oil):
             raise ParameterError(f"{where}: base_oil must be an Oil, got {type(base_oil).__name__}")
         check_range(fill_fraction, "fill_fraction", "-", 0.0, 1.0, low_inclusive=False,
                     where=where)
         check_range(thickener_factor, "thickener_factor", "-", 0.0, 100.0, where=where)
+        if temperature is not None:
+            check_range(temperature, "temperature", "K", 200.0, 600.0, where=where)
+            base_oil = copy.copy(base_oil)
+            base_oil.temperature = float(temperature)
         self.base_oil, self.name, self.method = base_oil, name, "grease"
         self.fill_fraction, self.thickener_factor = float(fill_fraction), float(thickener_factor)
         self.temperature = base_oil.temperature
@@ -394,7 +405,8 @@ def get_lubricant(name: str, **kwargs: Any) -> Lubricant:
         Lubricant name.
     **kwargs
         Constructor arguments that override the defaults (:class:`Oil` for the oils, e.g.
-        ``temperature=343.15``; :class:`Grease` for the grease, e.g. ``fill_fraction=0.25``).
+        ``temperature=343.15``; :class:`Grease` for the grease, e.g. ``fill_fraction=0.25`` or
+        ``temperature=343.15``, the operating temperature of its base oil).
 
     Returns
     -------

@@ -22,6 +22,7 @@ from bearingsim.physics.film import (
     dimensionless_speed,
     ellipticity,
 )
+from bearingsim.physics.hertz import check_radii
 
 __all__ = ["ROLLING_FORCE_COEFFICIENT", "ROLLING_FORCE_EXPONENTS",
            "hydrodynamic_rolling_force", "rolling_resistance"]
@@ -95,7 +96,8 @@ def rolling_resistance(Q: Any, u: Any, Rx: Any, Ry: Any, E_eff: Any, eta0: Any, 
     u : float, array or casadi.SX
         Entrainment speed [m/s], >= 0.
     Rx, Ry : float, array or casadi.SX
-        Reduced radii along and across the rolling direction [m], > 0.
+        Reduced radii along and across the rolling direction [m], > 0, ``Ry >= Rx``
+        (swapped radii raise ParameterError, as in :mod:`bearingsim.physics.hertz`).
     E_eff : float, array or casadi.SX
         Effective modulus ``E'`` [Pa], > 0.
     eta0 : float, array or casadi.SX
@@ -108,6 +110,7 @@ def rolling_resistance(Q: Any, u: Any, Rx: Any, Ry: Any, E_eff: Any, eta0: Any, 
     float, array or casadi.SX
         ``F_R`` [N].
     """
+    check_radii(Rx, Ry, "rolling_resistance")
     return hydrodynamic_rolling_force(
         dimensionless_speed(eta0, u, E_eff, Rx), dimensionless_material(alpha, E_eff),
         dimensionless_load(Q, E_eff, Rx), ellipticity(Rx, Ry), E_eff, Rx)

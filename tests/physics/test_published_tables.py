@@ -23,6 +23,7 @@ them): the single-row X, Y and e of 20 deg (ISO 281 Table 3), the Palmgren f0/f1
 SKF "73B" constants; see docs/physics.md, "Verification".
 """
 
+import dataclasses
 import math
 
 import casadi as ca
@@ -477,3 +478,67 @@ def test_xy_factors_rejects_symbolic_rows_and_uncovered_angles_for_double_row():
         life.xy_factors(100.0, 1000.0, C0_TEST, F0_TEST, np.radians(10.0), rows=2)
     with pytest.raises(ParameterError, match="outside the tables"):
         life.xy_factors(100.0, 1000.0, C0_TEST, F0_TEST, np.radians(46.0), rows=2)
+
+
+# ISO 76 static factors X0, Y0 (bearingsim.components.bearing_torque.static_equivalent_load).
+def _p0(alpha_deg, fr, fa):
+    from bearingsim.components.bearing_torque import static_equivalent_load
+
+    g = get_bearing("7020C")
+    g = dataclasses.replace(g, contact_angle=math.radians(alpha_deg)) if alpha_deg else \
+        get_bearing("6205")
+    return float(static_equivalent_load(fr, fa, g))
+
+
+def _x0_y0(alpha_deg):
+    """(X0, Y0) read back from P0 at two heavy-axial load points (P0 = X0 Fr + Y0 Fa there, up to
+    the 1 N smoothing of the maximum, which changes the values read back by < 1e-7)."""
+    p_a, p_b = _p0(alpha_deg, 1000.0, 10000.0), _p0(alpha_deg, 2000.0, 10000.0)
+    x0 = (p_b - p_a) / 1000.0
+    return x0, (p_a - x0 * 1000.0) / 10000.0
+
+
+def test_static_factors_are_the_nsk_printed_values():
+    """NSK CAT. No. E1102e prints X0, Y0 with its bearing tables:
+
+    * deep groove, pp. B8-B11 (e.g. B9): P0 = 0.6 Fr + 0.5 Fa for Fa/Fr > 0.8, P0 = Fr for
+      Fa/Fr <= 0.8, i.e. P0 = max(Fr, 0.6 Fr + 0.5 Fa);
+    * angular contact, pp. B50-B61 (e.g. B55, B57), "Single, DT": X0 = 0.5 and Y0 = 0.46
+      (15 deg), 0.38 (25 deg), 0.33 (30 deg), 0.26 (40 deg); "When Fr > 0.5 Fr + Y0 Fa use
+      P0 = Fr".
+
+    Before the fix the 40 deg bearings used Y0 = 0.33 (the 30 deg value)."""
+    printed = {0.0: (0.6, 0.5), 15.0: (0.5, 0.46), 25.0: (0.5, 0.38), 30.0: (0.5, 0.33),
+               40.0: (0.5, 0.26)}
+    for alpha, factors in printed.items():
+        assert _x0_y0(alpha) == pytest.approx(factors, abs=1e-6), alpha
+    # the maximum: P0 = Fr below Fa/Fr = 0.8 (deep groove), 0.5/Y0 (angular contact), within the
+    # 1 N smoothing width
+    assert _p0(0.0, 1000.0, 700.0) == pytest.approx(1000.0, abs=0.5)
+    assert _p0(0.0, 1000.0, 900.0) == pytest.approx(1050.0, abs=0.5)
+    assert _p0(40.0, 1000.0, 1800.0) == pytest.approx(1000.0, abs=0.5)
+
+
+def test_static_factors_are_the_skf_printed_values():
+    """SKF General Catalogue 6000 (Russian ed., 2006 data):
+
+    * p. 415, single-row 72 B/73 B (40 deg, p. 410), single or tandem: P0 = 0.5 Fr + 0.26 Fa,
+      P0 = Fr if that is larger; DB/DF: P0 = Fr + 0.52 Fa;
+    * p. 440, Table 3, double-row bearings, P0 = Fr + Y0 Fa: Y0 0.66 (32 A/33 A, 30 deg), 0.52
+      (33 DNRCBM, 40 deg), 0.44 (33 D, 45 deg);
+    * p. 455, four-point contact QJ 2/QJ 3 (35 deg, p. 452, rated as a double row):
+      P0 = Fr + 0.58 Fa.
+
+    The double-row Y0 is twice the single-row Y0: NSK E1102e prints both (pp. B50-B61, "DB or DF"
+    X0 1, Y0 0.92/0.76/0.66/0.52 against single-row 0.46/0.38/0.33/0.26 at 15/25/30/40 deg), and
+    SKF's 72 B pair (0.52) against its single bearing (0.26). So the SKF double-row values give
+    single-row Y0 0.33 (30 deg), 0.29 (35 deg), 0.26 (40 deg), 0.22 (45 deg). Before the fix
+    35, 40 and 45 deg all used 0.33."""
+    assert _x0_y0(40.0) == pytest.approx((0.5, 0.26), abs=1e-6)  # p. 415
+    double_row = {30.0: 0.66, 35.0: 0.58, 40.0: 0.52, 45.0: 0.44}  # pp. 440, 455
+    for alpha, y0_double in double_row.items():
+        x0, y0 = _x0_y0(alpha)
+        assert x0 == pytest.approx(0.5, abs=1e-6)
+        assert 2.0 * y0 == pytest.approx(y0_double, abs=1e-6), alpha
+    nsk_db_df = {15.0: 0.92, 25.0: 0.76, 30.0: 0.66, 40.0: 0.52}
+    assert all(2.0 * _x0_y0(a)[1] == pytest.approx(v, abs=1e-6) for a, v in nsk_db_df.items())
