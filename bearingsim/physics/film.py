@@ -13,7 +13,7 @@ from typing import Any
 
 from bearingsim._ops import cos, exp, power, smooth_abs, sqrt
 from bearingsim.errors import check_range
-from bearingsim.physics.hertz import check_radii
+from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter, check_radii
 
 __all__ = [
     "dimensionless_speed",
@@ -301,9 +301,10 @@ def rolling_entrainment_speed(
     omega_rel : float, array or casadi.SX
         Inner minus outer ring speed [rad/s].
     Dw : float
-        Ball diameter [m], > 0.
+        Ball diameter [m], in (0, 0.5] (a larger value is taken for millimetres, see
+        :func:`~bearingsim.physics.hertz.check_diameter`).
     dm : float
-        Pitch diameter [m], > Dw.
+        Pitch diameter [m], > Dw and at most 6.
     contact_angle : float
         Contact angle [rad], in [0, pi/2].
     v_reg : float
@@ -315,7 +316,8 @@ def rolling_entrainment_speed(
         ``u`` [m/s], >= 0.
     """
     where = "rolling_entrainment_speed"
-    _pos(Dw, "Dw", "m", where)
+    check_diameter(Dw, "Dw", where, MAX_BALL_DIAMETER)
+    check_diameter(dm, "dm", where)
     check_range(dm, "dm", "m", Dw, None, low_inclusive=False, where=where)
     check_range(contact_angle, "contact_angle", "rad", 0.0, 1.5707963267948966, where=where)
     check_range(omega_rel, "omega_rel", "rad/s", where=where)

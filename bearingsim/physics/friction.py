@@ -22,6 +22,7 @@ from bearingsim._ops import exp, fmax, if_else, is_symbolic, power, sin, smooth_
 from bearingsim.errors import CatalogError, ParameterError, check_range
 from bearingsim.physics.drag import orbital_drag_force
 from bearingsim.physics.geometry import check_count
+from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
 
 if TYPE_CHECKING:
@@ -265,7 +266,8 @@ def palmgren_m0(nu: Any, n_abs: Any, dm: float, f0: float, smooth: bool = True) 
     n_abs : float, array or casadi.SX
         Magnitude of the relative speed [rad/s], >= 0.
     dm : float
-        Pitch diameter [m], > 0.
+        Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
+        :func:`~bearingsim.physics.hertz.check_diameter`).
     f0 : float
         Palmgren factor [-], >= 0.
     smooth : bool
@@ -278,7 +280,7 @@ def palmgren_m0(nu: Any, n_abs: Any, dm: float, f0: float, smooth: bool = True) 
     """
     check_range(nu, "nu", "m^2/s", 0.0, None, where="palmgren_m0")
     check_range(n_abs, "n_abs", "rad/s", 0.0, None, where="palmgren_m0")
-    check_range(dm, "dm", "m", 0.0, None, low_inclusive=False, where="palmgren_m0")
+    check_diameter(dm, "dm", "palmgren_m0")
     check_range(f0, "f0", "-", 0.0, None, where="palmgren_m0")
     nu_n = m2_s_to_cst(nu) * rad_s_to_rpm(n_abs)
     speed_term = power(nu_n, 2.0 / 3.0)
@@ -321,7 +323,8 @@ def palmgren_torque(
     omega_rel : float, array or casadi.SX
         Speed of the ring relative to the other ring [rad/s].
     dm : float
-        Pitch diameter [m], > 0.
+        Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
+        :func:`~bearingsim.physics.hertz.check_diameter`).
     lubricant : Lubricant
         Oil, Grease or Dry object (:mod:`bearingsim.physics.lubricant`).
     bearing_type : str
@@ -354,6 +357,7 @@ def palmgren_torque(
     where = "palmgren_torque"
     check_range(omega_rel, "omega_rel", "rad/s", where=where)
     check_range(load_P1, "load_P1", "N", 0.0, None, where=where)
+    check_diameter(dm, "dm", where)
     speed = smooth_abs(omega_rel, omega_reg)
     f0 = lubricant.palmgren_f0(bearing_type)
     magnitude = palmgren_m0(lubricant.kinematic_viscosity(T), speed, dm, f0, smooth)
@@ -539,7 +543,8 @@ def skf_friction_components(
     omega_rel : float or casadi.SX
         Relative ring speed [rad/s].
     dm : float
-        Pitch diameter [m].
+        Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
+        :func:`~bearingsim.physics.hertz.check_diameter`).
     lubricant : Lubricant
         Oil or Grease (the base oil viscosity is used); Dry gives zero rolling moment.
     series : str
@@ -550,7 +555,7 @@ def skf_friction_components(
     C0 : float
         Basic static load rating [N].
     d, D : float
-        Bore and outside diameter [m].
+        Bore and outside diameter [m], ``0 < d < D <= 6``.
     T : float or casadi.SX, optional
         Lubricant temperature [K].
     seal : SkfSeal, optional
@@ -558,7 +563,7 @@ def skf_friction_components(
     oil_level : float, optional
         Oil level above the lowest point of the ball pitch circle [m], for the drag term.
     Dw : float, optional
-        Ball diameter [m], for the drag term, in (0, dm).
+        Ball diameter [m], for the drag term, in (0, dm) and at most 0.5.
     Z : int, optional
         Number of balls [-], for the drag term, a whole number >= 1.
     omega_reg : float
@@ -571,11 +576,12 @@ def skf_friction_components(
     """
     where = "skf_friction_components"
     check_range(omega_rel, "omega_rel", "rad/s", where=where)
-    check_range(dm, "dm", "m", 0.0, None, low_inclusive=False, where=where)
+    check_diameter(dm, "dm", where)
     check_range(Fr, "Fr", "N", 0.0, None, where=where)
     check_range(Fa, "Fa", "N", 0.0, None, where=where)
     check_range(C0, "C0", "N", 0.0, None, low_inclusive=False, where=where)
-    check_range(d, "d", "m", 0.0, None, low_inclusive=False, where=where)
+    check_diameter(d, "d", where)
+    check_diameter(D, "D", where)
     check_range(D, "D", "m", d, None, low_inclusive=False, where=where)
     speed = smooth_abs(omega_rel, omega_reg)
     n = rad_s_to_rpm(speed)
@@ -597,6 +603,7 @@ def skf_friction_components(
         if Dw is None or Z is None:
             raise ParameterError(f"{where}: Dw [m] and Z [-] are required with oil_level")
         check_range(oil_level, "oil_level", "m", 0.0, None, where=where)
+        check_diameter(Dw, "Dw", where, MAX_BALL_DIAMETER)
         check_range(Dw, "Dw", "m", 0.0, dm, low_inclusive=False, high_inclusive=False,
                     where=where)
         check_count(Z, "Z", 1, where=where)

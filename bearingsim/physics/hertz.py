@@ -34,6 +34,9 @@ __all__ = [
     "EllipticParameters",
     "HertzContact",
     "check_radii",
+    "check_diameter",
+    "MAX_BEARING_DIAMETER",
+    "MAX_BALL_DIAMETER",
     "effective_modulus",
     "raceway_radii",
     "curvature_sum",
@@ -53,6 +56,11 @@ __all__ = [
 ]
 
 METHODS = ("exact", "hamrock_brewe")
+MAX_BEARING_DIAMETER = 6.0
+"""Largest plausible pitch, bore or outside diameter [m] (large slewing bearings: a few metres);
+a larger value is taken for a millimetre value passed as metres."""
+MAX_BALL_DIAMETER = 0.5
+"""Largest plausible ball diameter [m] (slewing-bearing balls stay below about 0.15 m)."""
 _NEWTON_STEPS = 5
 _M_MIN = 1e-12  # smallest elliptic parameter used: k - 1 < 1e-12 (circular contact)
 _M_MAX = 1.0 - 1e-15
@@ -139,6 +147,43 @@ def _check_method(method: str) -> None:
         raise ParameterError(f"method must be one of {METHODS}, got {method!r}")
 
 
+def check_diameter(value, name: str, where: str, high: float = MAX_BEARING_DIAMETER):
+    """Check a diameter in metres: finite, > 0 and at most ``high`` (a catalogue-unit slip).
+
+    Bearing catalogues give diameters in millimetres; the SI functions of bearingsim take
+    metres. A value above ``high`` is reported as a likely millimetre value. Symbolic (CasADi)
+    values are passed through unchecked.
+
+    Parameters
+    ----------
+    value : float, array or casadi.SX
+        The diameter [m].
+    name : str
+        Argument name, used in the message.
+    where : str
+        Function name, used in the message.
+    high : float
+        Largest plausible value [m]: :data:`MAX_BEARING_DIAMETER` (pitch, bore and outside
+        diameters) or :data:`MAX_BALL_DIAMETER` (balls).
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> = 40 [m] is outside the valid range (0, 6] [m] (did you pass
+        mm?)"`` above ``high``; the usual range message for a value <= 0 or not finite.
+    """
+    check_range(value, name, "m", 0.0, low_inclusive=False, where=where)
+    try:
+        check_range(value, name, "m", 0.0, high, low_inclusive=False, where=where)
+    except ParameterError as exc:
+        raise ParameterError(f"{exc} (did you pass mm?)") from None
+    return value
+
+
 def check_radii(rx, ry, where: str):
     """Check reduced radii of an elliptical contact: ``Rx > 0``, ``Ry > 0`` and ``Ry >= Rx``.
 
@@ -195,9 +240,9 @@ def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, r
     Parameters
     ----------
     ball_diameter : float or array or SX
-        Ball diameter Dw [m].
+        Ball diameter Dw [m], in (0, 0.5] (:data:`MAX_BALL_DIAMETER`).
     pitch_diameter : float or array or SX
-        Pitch diameter dm [m].
+        Pitch diameter dm [m], in (0, 6] (:data:`MAX_BEARING_DIAMETER`).
     groove_factor : float or array or SX
         Groove curvature factor f = groove radius / Dw [-], > 0.5.
     contact_angle : float or array or SX
@@ -211,8 +256,8 @@ def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, r
         Effective radii along and across the rolling direction [m].
     """
     where = "raceway_radii"
-    check_range(ball_diameter, "ball_diameter", "m", 0.0, low_inclusive=False, where=where)
-    check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_diameter(ball_diameter, "ball_diameter", where, MAX_BALL_DIAMETER)
+    check_diameter(pitch_diameter, "pitch_diameter", where)
     check_range(groove_factor, "groove_factor", "-", 0.5, 1.0, low_inclusive=False, where=where)
     check_range(contact_angle, "contact_angle", "rad", -np.pi / 2, np.pi / 2, where=where)
     check_choice(race, "race", ("inner", "outer"), where)
@@ -529,7 +574,8 @@ def contact_load(k_const, delta, smooth=None):
     k_const : float or array or SX
         Load-deflection constant K [N/m^1.5], >= 0.
     delta : float or array or SX
-        Approach (overlap, positive in compression) [m].
+        Approach (overlap, positive in compression) [m], finite (any sign: a negative value
+        is a gap and gives no load).
     smooth : float, optional
         If given, ``max(delta, 0)`` is replaced by the smooth
         ``(delta + sqrt(delta^2 + smooth^2)) / 2`` [m], differentiable everywhere for use in
@@ -538,8 +584,15 @@ def contact_load(k_const, delta, smooth=None):
     Returns
     -------
     Q [N], non-negative and non-decreasing in delta.
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-finite ``k_const``, a NaN or infinite ``delta`` or a
+        non-positive ``smooth`` (symbolic values are passed through unchecked).
     """
     check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_load")
+    check_range(delta, "delta", "m", where="contact_load")
     return k_const * op.power(_compression(delta, smooth), 1.5)
 
 
@@ -551,6 +604,7 @@ def contact_stiffness(k_const, delta, smooth=None):
     :func:`contact_load`.
     """
     check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_stiffness")
+    check_range(delta, "delta", "m", where="contact_stiffness")
     stiffness = 1.5 * k_const * op.sqrt(_compression(delta, smooth))
     if smooth is None:
         return stiffness

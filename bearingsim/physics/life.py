@@ -27,6 +27,7 @@ from bearingsim.physics.geometry import (
     check_count,
     pitch_ratio,
 )
+from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter
 
 __all__ = [
     "dynamic_load_rating",
@@ -154,8 +155,8 @@ def _within_table(gamma, table: Sequence[float], where: str):
 
 
 def _check_bearing(ball_diameter, pitch_diameter, ball_count, contact_angle, rows, where):
-    check_range(ball_diameter, "ball_diameter", "m", 0.0, low_inclusive=False, where=where)
-    check_range(pitch_diameter, "pitch_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_diameter(ball_diameter, "ball_diameter", where, MAX_BALL_DIAMETER)
+    check_diameter(pitch_diameter, "pitch_diameter", where)
     check_range(ball_count, "ball_count", "-", 3, where=where)
     check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where=where)
     check_count(rows, "rows", 1, where=where)
@@ -174,9 +175,10 @@ def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle
     Parameters
     ----------
     ball_diameter : float or array or SX
-        Ball diameter Dw [m].
+        Ball diameter Dw [m], in (0, 0.5] (a larger value is taken for millimetres, see
+        :func:`~bearingsim.physics.hertz.check_diameter`).
     pitch_diameter : float or array or SX
-        Pitch diameter dm [m].
+        Pitch diameter dm [m], in (0, 6].
     ball_count : int or float or SX
         Balls per row Z [-].
     contact_angle : float or array or SX
@@ -218,6 +220,8 @@ def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
     Parameters are those of :func:`dynamic_load_rating` (contact angle [rad] in [0, 45] deg,
     the range of the ISO 76 / ISO 281 ball bearing tables used here). Returns f0 [N/mm^2].
     """
+    check_diameter(ball_diameter, "ball_diameter", "static_factor", MAX_BALL_DIAMETER)
+    check_diameter(pitch_diameter, "pitch_diameter", "static_factor")
     check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where="static_factor")
     gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
     return _interp(_within_table(gamma, _F0_GAMMA, "static_factor"), _F0_GAMMA, _F0)
@@ -409,7 +413,7 @@ def raceway_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_
     Parameters
     ----------
     ball_diameter, pitch_diameter : float or array or SX
-        Dw, dm [m].
+        Dw in (0, 0.5], dm in (0, 6] [m] (larger values are taken for millimetres).
     groove_factor : float or array or SX
         Groove curvature factor f of this raceway [-], > 0.5.
     ball_count : int or float

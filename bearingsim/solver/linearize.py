@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.errors import ParameterError, check_range
 from bearingsim.solver.result import Result
 from bearingsim.solver.system import System
 
@@ -67,38 +68,65 @@ def linearize(
     system: System,
     operating_point: dict[str, float] | Result | np.ndarray | None = None,
     *,
-    t: float = 0.0,
+    t: float | None = None,
     inputs: dict[str, float] | None = None,
     parameters: dict[str, float] | None = None,
 ) -> LinearModel:
     """Linearize a system around an operating point.
 
+    With a :class:`~bearingsim.solver.Result` from :func:`~bearingsim.solver.simulate` the
+    operating point is the run's end point: its final states, the input values at its last
+    output time, its parameter values and that time. ``inputs`` and ``parameters`` override
+    single entries of it by name. Any other operating point uses the inputs' default values and
+    the default parameters unless ``inputs`` / ``parameters`` say otherwise.
+
     Parameters
     ----------
     system : System
+        From :func:`~bearingsim.solver.assemble`.
     operating_point : dict or Result or array, optional
-        State values by name (others at their start values), the last point of a result, or a
-        full state vector. Default: the start values.
-    t : float
-        Time [s].
+        State values by name (others at their start values), a result (its last point, inputs
+        and parameters) or a full state vector. Default: the start values.
+    t : float, optional
+        Time [s]; default the result's last time, else 0.
     inputs : dict, optional
-        Constant input values by name (default: input defaults).
+        Constant input values by name, overriding the result's (or the default) values.
     parameters : dict, optional
-        Parameter overrides.
+        Parameter values by name, overriding the result's (or the default) values.
 
     Returns
     -------
     LinearModel
+
+    Raises
+    ------
+    ParameterError
+        For an unknown input or parameter name, a bad value, an operating-point vector of the
+        wrong size, or a result whose recorded inputs or parameters are not this system's.
     """
-    p = system.p0(parameters)
     x = _state_vector(system, operating_point)
+    run = operating_point if isinstance(operating_point, Result) else None
+    p = system.p0()
     u = system.u_default()
+    if run is not None:
+        _take_recorded(p, system.parameter_names, run.parameters, "parameters")
+        _take_recorded(u, system.input_names, run.inputs, "inputs")
+        if t is None:
+            t = float(run.t[-1])
+    if parameters:
+        given = system.p0(parameters)
+        for name in parameters:
+            k = system.parameter_names.index(name)
+            p[k] = given[k]
     for name, val in (inputs or {}).items():
         if name not in system.input_names:
-            from bearingsim.errors import ParameterError
-
-            raise ParameterError(f"unknown input {name!r}; inputs: {system.input_names}")
-        u[system.input_names.index(name)] = float(val)
+            raise ParameterError(
+                f"linearize: unknown input {name!r}; inputs: {system.input_names}"
+            )
+        sig = system.inputs[system.input_names.index(name)]
+        u[system.input_names.index(name)] = float(
+            check_range(val, name, sig.unit, sig.low, sig.high, where="linearize: inputs"))
+    t = 0.0 if t is None else float(check_range(t, "t", "s", where="linearize"))
     fns = system.functions
 
     def dense(key: str) -> np.ndarray:
@@ -110,6 +138,23 @@ def linearize(
                        x, u, lam, fn, zeta, shapes)
 
 
+def _take_recorded(vector: np.ndarray, names: list[str], recorded: dict[str, float],
+                   what: str) -> None:
+    """Copy a result's recorded values into ``vector`` (in place), checking that they match."""
+    if not recorded:
+        return
+    if set(recorded) != set(names):
+        extra = sorted(set(recorded) - set(names))
+        missing = sorted(set(names) - set(recorded))
+        raise ParameterError(
+            f"linearize: the result's recorded {what} are not this system's "
+            f"(not in the system: {extra}; not in the result: {missing}); was the result "
+            f"made with another system?"
+        )
+    for k, name in enumerate(names):
+        vector[k] = float(recorded[name])
+
+
 def _state_vector(system: System, op: Any) -> np.ndarray:
     if op is None:
         return system.x0()
@@ -119,7 +164,7 @@ def _state_vector(system: System, op: Any) -> np.ndarray:
         return system.x0(op)
     x = np.asarray(op, dtype=float).ravel()
     if x.size != system.n_states:
-        from bearingsim.errors import ParameterError
-
-        raise ParameterError(f"operating point has {x.size} values for {system.n_states} states")
+        raise ParameterError(
+            f"linearize: operating point has {x.size} values for {system.n_states} states"
+        )
     return x

@@ -18,14 +18,35 @@ class Result:
     """Time series of every observed variable of a run.
 
     ``res["j1.w"]`` is the series of one variable; ``res.t`` the time points [s].
+
+    Attributes
+    ----------
+    t : ndarray
+        Output times [s].
+    names : list of str
+        Dotted names of the observed variables.
+    values : ndarray
+        Shape (len(names), len(t)).
+    units : dict
+        Unit of each variable by name.
+    stats : dict
+        Integrator statistics (method, counts, wall time).
+    inputs : dict
+        Value of every system input at the last output time ``t[-1]``, by name, in the
+        input's unit (what the run's constants, time functions or tables gave there). Empty
+        for a result not made by :func:`~bearingsim.solver.simulate`.
+    parameters : dict
+        The parameter values of the run (defaults and the run's overrides), by dotted name.
+        Empty for a result not made by :func:`~bearingsim.solver.simulate`.
     """
 
     t: np.ndarray
     names: list[str]
     values: np.ndarray
-    """Shape (len(names), len(t))."""
     units: dict[str, str] = field(default_factory=dict)
     stats: dict[str, object] = field(default_factory=dict)
+    inputs: dict[str, float] = field(default_factory=dict)
+    parameters: dict[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self._index = {n: k for k, n in enumerate(self.names)}

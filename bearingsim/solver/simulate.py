@@ -153,6 +153,9 @@ def simulate(
     Returns
     -------
     Result
+        The series, with ``inputs`` (every input's value at the last output time) and
+        ``parameters`` (the run's parameter values) recorded, so that
+        :func:`~bearingsim.solver.linearize` can linearize at the run's end point.
 
     Raises
     ------
@@ -194,7 +197,10 @@ def simulate(
         values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
                             dtype=float)
     units = _units(system)
-    return Result(ts, list(system.observed_names), values, units, stats)
+    u_end = np.asarray(closed.u(ts[-1]), dtype=float).ravel()
+    return Result(ts, list(system.observed_names), values, units, stats,
+                  inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
+                  parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)))
 
 
 def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:
