@@ -19,6 +19,7 @@ enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
 import numbers
 from collections.abc import Callable
@@ -57,6 +58,55 @@ FILM_DAMPING = 1e-5
 """Damping of a lubricated race contact over its tangent stiffness [s] (Kramer 1993: rolling
 bearings damp 0.25e-5 .. 2.5e-5 times their stiffness; see
 :class:`~bearingsim.components.dynamic.RaceContact`)."""
+
+
+def keyword_names(func: Callable, exclude: tuple[str, ...] = ()) -> tuple[str, ...]:
+    """Names ``func`` accepts as keywords, from its signature (``self`` and ``exclude`` left out).
+
+    Parameters
+    ----------
+    func : callable
+        A function or class (its constructor's signature).
+    exclude : tuple of str
+        Names the caller sets itself.
+
+    Returns
+    -------
+    tuple of str
+        In signature order; a ``**kwargs`` catch-all is not listed.
+    """
+    kinds = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
+    return tuple(n for n, p in inspect.signature(func).parameters.items()
+                 if p.kind in kinds and n != "self" and n not in exclude)
+
+
+def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str,
+                  what: str, context: str = "") -> None:
+    """Raise for keyword options that are not among ``accepted``.
+
+    Parameters
+    ----------
+    options : dict
+        The options given.
+    accepted : tuple of str
+        The valid option names (e.g. from :func:`keyword_names`).
+    where : str
+        Function or component name, used in the message.
+    what : str
+        What the options are called (e.g. ``"layer_options"``).
+    context : str
+        Appended to the name list (e.g. ``"at fidelity 'torque'"``).
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: unknown <what> 'a', 'b' <context>; accepted: ..."``.
+    """
+    unknown = [k for k in options if k not in accepted]
+    if unknown:
+        ctx = f" {context}" if context else ""
+        raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
+                             f"accepted: {', '.join(accepted) or 'none'}")
 
 
 def _lubricant(lubricant: Lubricant | str) -> Lubricant:
@@ -100,7 +150,10 @@ class DeepGrooveBallBearing(Assembly):
         time or ``None`` for inputs (missing keys are inputs with default 0); any other key
         raises :class:`~bearingsim.errors.ParameterError`.
     free_tilt : bool
-        Whether the inner ring tilts (else the shaft holds it straight).
+        Whether the inner ring tilts under the moments ``Mx, My``. With False the shaft holds
+        it straight and takes the moments as a reaction: ``loads`` may then give ``Mx, My``
+        only as 0 (a constant moment, a function of time or ``None`` raises
+        :class:`~bearingsim.errors.ParameterError`; missing keys stay inputs, without effect).
     inner_ring : {"body", "frame"}
         ``"body"``: the inner ring is a 5-DOF ``RingBody`` (``ring``) loaded by ``loads``
         (``load``); ``"frame"``: no ring body and no load, the inner race contacts' ring frame
@@ -115,23 +168,28 @@ class DeepGrooveBallBearing(Assembly):
         With ``outer_support="frame"``: start displacement (x, y, z) of the outer race [m]; the
         inner ring and the balls start shifted by it.
     damping : float
-        Hunt-Crossley coefficient of the race contacts [s/m].
+        Hunt-Crossley coefficient of the race contacts [s/m], >= 0.
     film_damping : float, optional
-        Film damping time constant of the race contacts [s] (damping = ``film_damping`` times
-        the tangent contact stiffness, see :class:`~bearingsim.components.dynamic.RaceContact`);
-        default :data:`FILM_DAMPING` with a viscous lubricant, 0 dry.
+        Film damping time constant of the race contacts [s], >= 0 (damping = ``film_damping``
+        times the tangent contact stiffness, see
+        :class:`~bearingsim.components.dynamic.RaceContact`); default :data:`FILM_DAMPING`
+        with a viscous lubricant, 0 dry. A value given with a ``Dry`` lubricant is applied
+        (as stiffness-proportional contact damping).
     n_slices : int
         ``2 n + 1`` traction slices per contact, an integer >= 0.
-    drag : bool
-        Ball drag in the oil-air mixture (only with a viscous lubricant).
+    drag : bool, optional
+        Ball drag in the oil-air mixture; default: on with a viscous lubricant, off with
+        ``Dry``. ``drag=True`` with a ``Dry`` lubricant raises
+        :class:`~bearingsim.errors.ParameterError`.
     oil_fraction : float
         Oil volume fraction of the cavity mixture [-] (drag), in (0, 1].
     traction_scale : float
-        Multiplier of the race traction [-] (0: frictionless races).
-    pocket_mu, land_mu : float
-        Coulomb coefficients of pocket and land contacts [-].
+        Multiplier of the race traction [-], >= 0 (0: frictionless races).
+    pocket_mu, land_mu : float, optional
+        Coulomb coefficients of pocket and land contacts [-], in [0, 2]; default the ``mu``
+        of a ``Dry`` lubricant, else 0.1.
     cage_damping : float
-        Hunt-Crossley coefficient of the pocket and land contacts [s/m].
+        Hunt-Crossley coefficient of the pocket and land contacts [s/m], >= 0.
     rolling_resistance : bool
         EHL hydrodynamic rolling resistance at every race contact (viscous lubricants only;
         see :class:`~bearingsim.components.dynamic.RaceContact`). Default False.
@@ -146,6 +204,12 @@ class DeepGrooveBallBearing(Assembly):
     shaft : Flange (the inner ring's rotation)
     inner_frame : RingFrame (with ``inner_ring="frame"``)
     outer_frame : RingFrame (with ``outer_support="frame"``)
+
+    Raises
+    ------
+    ParameterError
+        For a choice, load, option or range outside the ones above, naming
+        ``deep_groove_ball_bearing``, the argument, its unit and valid range.
 
     Attributes
     ----------
@@ -163,7 +227,7 @@ class DeepGrooveBallBearing(Assembly):
                  speed: Callable | float | None = None, drive: str = "speed",
                  loads: dict[str, Any] | None = None, free_tilt: bool = False,
                  damping: float = 1.0, film_damping: float | None = None,
-                 n_slices: int = 2, drag: bool = True,
+                 n_slices: int = 2, drag: bool | None = None,
                  oil_fraction: float = 0.05, traction_scale: float = 1.0,
                  pocket_mu: float | None = None, land_mu: float | None = None,
                  cage_damping: float = 10.0, outer_ring: str = "fixed",
@@ -183,9 +247,26 @@ class DeepGrooveBallBearing(Assembly):
                                  f"nonzero only with outer_support='frame', got {outer_start!r}")
         check_range(oil_fraction, "oil_fraction", "-", 0.0, 1.0, low_inclusive=False,
                     where=where)
+        # the components check these too, but before they are named; name them here
+        for key, value, unit, high in (("damping", damping, "s/m", None),
+                                       ("film_damping", film_damping, "s", None),
+                                       ("traction_scale", traction_scale, "1", None),
+                                       ("pocket_mu", pocket_mu, "1", 2.0),
+                                       ("land_mu", land_mu, "1", 2.0),
+                                       ("cage_damping", cage_damping, "s/m", None)):
+            if value is not None:
+                _check_number(value, key, unit, high, where)
         g, cage = design.geometry, design.cage
         self.design, self.lubricant = design, lubricant
         loads = check_loads(loads, where)
+        if not free_tilt:
+            for key in ("Mx", "My"):
+                if key in loads and loads[key] != 0.0:
+                    raise ParameterError(
+                        f"{where}: loads[{key!r}] = {loads[key]!r} [N.m] is not applied with "
+                        f"free_tilt=False: the shaft holds the inner ring straight and takes "
+                        f"the moments as a reaction; give free_tilt=True to tilt the ring, or "
+                        f"{key} = 0 (or leave it out)")
         constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
         if inner_ring == "frame" and len(constant) != len(loads):
             raise ParameterError("deep_groove_ball_bearing: with inner_ring='frame' the loads "
@@ -198,6 +279,11 @@ class DeepGrooveBallBearing(Assembly):
                                  f"need a viscous lubricant, got {lubricant.describe()}")
         if film_damping is None:
             film_damping = FILM_DAMPING if eta > 0.0 else 0.0
+        if drag and eta <= 0.0:
+            raise ParameterError(f"{where}: drag=True needs a viscous lubricant (the ball drag "
+                                 f"is that of an oil-air mixture), got {lubricant.describe()}; "
+                                 f"leave drag out or give drag=False")
+        drag = eta > 0.0 if drag is None else bool(drag)
         mu_dry = getattr(lubricant, "mu", 0.1)
         pocket_mu = mu_dry if pocket_mu is None else pocket_mu
         land_mu = mu_dry if land_mu is None else land_mu
@@ -249,7 +335,7 @@ class DeepGrooveBallBearing(Assembly):
             pockets.append(PocketContact(j, nz, 0.5 * dm, 0.5 * dw,
                                          0.5 * dw + cage.pocket_clearance, cage.pocket_straight,
                                          cage.web, k_pocket, pocket_mu, eta, cage_damping))
-            if drag and eta > 0.0:
+            if drag:
                 drags.append(BallDrag(dm, dw, oil_fraction * float(lubricant.density()),
                                       oil_fraction * eta))
         self.ball = balls
@@ -342,6 +428,14 @@ class DeepGrooveBallBearing(Assembly):
         return power
 
 
+def _check_number(value: Any, name: str, unit: str, high: float | None, where: str) -> None:
+    """A real number (not a bool or string) in ``[0, high]``."""
+    if isinstance(value, (bool, str, bytes)) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"{where}: {name} must be a number in [{unit}], got {value!r} "
+                             f"({type(value).__name__})")
+    check_range(value, name, unit, 0.0, high, where=where)
+
+
 class QuasiStaticDeepGroove(Assembly):
     """Quasi-static deep-groove bearing: a :class:`~bearingsim.components.ball_row.BallRow`
     (``reference="centred"``) between the fixed outer ring and an inner ring in force balance
@@ -395,6 +489,10 @@ class QuasiStaticDeepGroove(Assembly):
         connect(self.row.inner, self.load.frame, self.guide.frame)
 
 
+_SET_BY_FACTORY = ("design", "lubricant", "massive_balls", "speed", "loads")
+"""Arguments of :class:`DeepGrooveBallBearing` that :func:`deep_groove_ball_bearing` sets."""
+
+
 def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
                              lubricant: Lubricant | str = "ISO VG 32",
                              clearance: float | None = None, housing: str = "fixed",
@@ -432,8 +530,9 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         Dynamic levels only: further keyword arguments of :class:`DeepGrooveBallBearing`
         (``drive``, ``damping``, ``n_slices``, ``drag``, ``traction_scale``, ...), and
         ``pocket_clearance``, ``guide_clearance`` of
-        :func:`~bearingsim.components.dynamic.design.bearing_design`. The quasi-static level
-        takes none and raises :class:`~bearingsim.errors.ParameterError` if any is given.
+        :func:`~bearingsim.components.dynamic.design.bearing_design`; another name raises
+        :class:`~bearingsim.errors.ParameterError` listing the accepted ones. The quasi-static
+        level takes none and raises :class:`~bearingsim.errors.ParameterError` if any is given.
 
     Returns
     -------
@@ -454,6 +553,9 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
                              f"options (they belong to the dynamic levels), got "
                              f"{', '.join(sorted(options))}")
     cage_keys = ("pocket_clearance", "guide_clearance")
+    if options:
+        check_options(options, keyword_names(DeepGrooveBallBearing, _SET_BY_FACTORY) + cage_keys,
+                      "deep_groove_ball_bearing", "option(s)", f"at fidelity {fidelity!r}")
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":

@@ -20,7 +20,11 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
+from bearingsim.assemblies.deep_groove import (
+    DeepGrooveBallBearing,
+    check_options,
+    keyword_names,
+)
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
@@ -33,6 +37,7 @@ from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.physics.friction import skf_friction_components
 from bearingsim.solver import simulate
 
 __all__ = [
@@ -149,8 +154,44 @@ class MiddleRing(Assembly):
 KINEMATIC_OPTIONS = ("k",)
 """``layer_options`` of the kinematic levels (the drag coefficient of PureRollingLayer)."""
 
+FRICTION_MODELS = ("palmgren", "skf")
+_LAYER_SETS = ("bearing", "lubricant", "name")
+"""Arguments of the torque-level layer elements that :class:`DoubleLayerBearing` sets."""
+_SKF_SETS = ("omega_rel", "dm", "lubricant", "series", "Fr", "Fa", "C0", "d", "D",
+             "omega_reg")
+"""Arguments of ``skf_friction_components`` that :class:`SkfBearing` sets itself."""
+
+
+def layer_option_names(friction_model: str) -> tuple[str, ...]:
+    """The ``layer_options`` a torque-level layer accepts (from the constructor signatures).
+
+    Parameters
+    ----------
+    friction_model : {"palmgren", "skf"}
+        Friction torque model.
+
+    Returns
+    -------
+    tuple of str
+        Keyword arguments of :class:`~bearingsim.components.bearing_torque.PalmgrenBearing`,
+        or of :class:`~bearingsim.components.bearing_torque.SkfBearing` with the options it
+        passes on to :func:`~bearingsim.physics.friction.skf_friction_components`.
+    """
+    if friction_model == "palmgren":
+        return keyword_names(PalmgrenBearing, _LAYER_SETS)
+    return keyword_names(SkfBearing, _LAYER_SETS) + keyword_names(skf_friction_components,
+                                                                  _SKF_SETS)
+
+
+_POSITIVE_OPTIONS = {"k": "N.s/m", "omega_reg": "rad/s"}
+"""Numeric layer options (> 0), checked here so that the message names them."""
+
 
 def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dict):
+    for key, unit in _POSITIVE_OPTIONS.items():
+        if key in options:
+            check_range(options[key], f"layer_options[{key!r}]", unit, 0.0, None,
+                        low_inclusive=False, where="double_layer_bearing")
     if fidelity in ("kinematic", "kinematic_approx"):
         unused = sorted(set(options) - set(KINEMATIC_OPTIONS))
         if unused:
@@ -160,13 +201,11 @@ def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dic
                 f"[N s/m], > 0)"
             )
         return PureRollingLayer(geometry, exact=fidelity == "kinematic", **options)
+    check_options(options, layer_option_names(friction_model), "double_layer_bearing",
+                  "layer_options", f"of the {friction_model!r} friction model (torque level)")
     if friction_model == "palmgren":
         return PalmgrenBearing(geometry, lubricant, **options)
-    if friction_model == "skf":
-        return SkfBearing(geometry, lubricant, **options)
-    raise ParameterError(
-        f"friction_model must be 'palmgren' or 'skf', got {friction_model!r}"
-    )
+    return SkfBearing(geometry, lubricant, **options)
 
 
 def _structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) -> str:
@@ -210,9 +249,14 @@ class DoubleLayerBearing(Assembly):
         Pure rolling (exact with contact angles, or the ``Dp1/(Dp1+Dp2)`` approximation) or
         friction torque models.
     lubrication : lubricant or (lubricant, lubricant)
-        Lubricant of both layers, or of the (inner, outer) layer; names or objects.
+        Lubricant of both layers, or of the (inner, outer) layer; names or objects. Used at
+        the torque level only: the kinematic levels have no friction and ignore it (it is
+        still checked, so an unknown name raises :class:`~bearingsim.errors.CatalogError`).
+        It is not an error there because a scene with ``fidelity = "auto"`` passes its
+        lubricant to whichever level it picks.
     friction_model : {"palmgren", "skf"}
-        Friction torque model of the torque level.
+        Friction torque model of the torque level; checked but ignored at the kinematic levels
+        (as ``lubrication``).
     drive : {"speed", "flange"}
         ``"speed"``: an internal speed source drives the shaft at ``speed`` (an input
         ``shaft_speed`` [rad/s] when ``speed`` is None); ``"flange"``: the shaft flange is left
@@ -223,9 +267,18 @@ class DoubleLayerBearing(Assembly):
         Extra keyword arguments of the layer elements: at the torque level those of
         :class:`~bearingsim.components.bearing_torque.PalmgrenBearing` or
         :class:`~bearingsim.components.bearing_torque.SkfBearing` (e.g. ``smooth``,
-        ``load_dependent``); at the kinematic levels only ``k``, the drag coefficient of
-        :class:`~bearingsim.components.bearing_torque.PureRollingLayer` [N s/m] (others raise
-        :class:`~bearingsim.errors.ParameterError`).
+        ``load_dependent``; SKF: ``series``, ``omega_reg`` and the options of
+        :func:`~bearingsim.physics.friction.skf_friction_components` such as ``seal``,
+        ``oil_level``; see :func:`layer_option_names`); at the kinematic levels only ``k``, the
+        drag coefficient of :class:`~bearingsim.components.bearing_torque.PureRollingLayer`
+        [N s/m]. Others raise :class:`~bearingsim.errors.ParameterError` naming the accepted
+        ones.
+
+    Raises
+    ------
+    ParameterError
+        For a fidelity, structure, drive, friction model or layer option outside the ones
+        above.
 
     Connectors
     ----------
@@ -252,7 +305,8 @@ class DoubleLayerBearing(Assembly):
             )
         structure = _structure(gi, go, structure)
         _check_drive(drive)
-        lub_i, lub_o = _pair(lubrication)
+        check_choice(friction_model, "friction_model", FRICTION_MODELS, "double_layer_bearing")
+        lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
         opts = dict(layer_options or {})
         self.structure = structure
         self.geometries = (gi, go)
@@ -319,6 +373,12 @@ class SpeedRatioEstimate:
         return self.torques[0] > 0.0 > self.torques[1]
 
 
+_DYNAMIC_SETS = ("drive", "outer_ring", "ring_inertia", "speed", "loads", "drag",
+                 "massive_balls", "inner_ring", "outer_support", "outer_start",
+                 "rolling_resistance", "ring_drag")
+"""Arguments of the layers' :class:`DeepGrooveBallBearing` that the dynamic level sets."""
+
+
 class DynamicDoubleLayerBearing(Assembly):
     """A double-layer bearing with ball and cage dynamics in both layers.
 
@@ -364,7 +424,10 @@ class DynamicDoubleLayerBearing(Assembly):
     loads : dict, optional
         Loads on the shaft (the inner layer's inner ring), ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]
         (z is the axis); constants, functions of time or None, missing keys are inputs
-        (``inner_layer.load.Fx``, ...). The constant ones set the start values.
+        (``inner_layer.load.Fx``, ...). The constant ones set the start values. The shaft is
+        held straight, so ``Mx, My`` may only be 0 (anything else raises
+        :class:`~bearingsim.errors.ParameterError`; the missing ones stay inputs, without
+        effect).
     massive_balls : bool
         Balls' radial and axial motion with inertia (True, the fast ODE level) or quasi-static.
     rolling_resistance, ring_drag : bool
@@ -373,7 +436,9 @@ class DynamicDoubleLayerBearing(Assembly):
     w_middle0 : float
         Initial middle ring speed [rad/s].
     layer_options : dict, optional
-        Further keyword arguments of both layers (``n_slices``, ``damping``, ...).
+        Further keyword arguments of both layers (``n_slices``, ``damping``, ...), those of
+        :class:`~bearingsim.assemblies.deep_groove.DeepGrooveBallBearing` that this assembly
+        does not set; others raise :class:`~bearingsim.errors.ParameterError`.
 
     Connectors
     ----------
@@ -402,11 +467,23 @@ class DynamicDoubleLayerBearing(Assembly):
                 raise ParameterError(f"double_layer_bearing: the dynamic level needs viscous "
                                      f"lubricants (oil or grease), got {lub.describe()}")
         opts = dict(layer_options or {})
-        for key in ("drive", "outer_ring", "ring_inertia", "speed", "loads", "drag",
-                    "massive_balls", "inner_ring", "outer_support", "outer_start"):
+        for key in _DYNAMIC_SETS:
             if key in opts:
                 raise ParameterError(f"double_layer_bearing: layer_options may not set "
                                      f"{key!r} (the nested assembly sets it)")
+        if "oil_fraction" in opts:
+            raise ParameterError("double_layer_bearing: layer_options 'oil_fraction' is not "
+                                 "used: the dynamic level has no ball drag (drag=False)")
+        check_options(opts, keyword_names(DeepGrooveBallBearing, _DYNAMIC_SETS + _LAYER_SETS
+                                           + ("design", "oil_fraction")),
+                      "double_layer_bearing", "layer_options", "at the dynamic level")
+        if not opts.get("free_tilt", False):
+            for key in ("Mx", "My"):
+                if key in (loads or {}) and loads[key] != 0.0:
+                    raise ParameterError(
+                        f"double_layer_bearing: loads[{key!r}] = {loads[key]!r} [N.m] is not "
+                        f"applied: the shaft and the middle ring are held straight (free_tilt="
+                        f"False) and the moments are reactions; give {key} = 0 or leave it out")
         self.geometries = (gi, go)
         self.designs = (bearing_design(gi), bearing_design(go))
         loads = dict(loads or {})
@@ -543,21 +620,63 @@ class DynamicDoubleLayerBearing(Assembly):
         return eqs
 
 
+_DEFAULT_LUBRICATION = ("ISO VG 32", "ISO VG 32")
+
+
 def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity="torque",
-                         lubrication=("ISO VG 32", "ISO VG 32"), **kwargs):
+                         lubrication=_DEFAULT_LUBRICATION, **kwargs):
     """Build a double-layer bearing assembly.
 
     ``fidelity="quasi-static"`` returns a
     :class:`~bearingsim.assemblies.nested_static.NestedQuasiStatic` (load through both layers
-    in series; keyword ``axial``); ``fidelity="dynamic"`` a :class:`DynamicDoubleLayerBearing`
+    in series; keywords ``axial``, ``name``; it has no friction, so a ``lubrication`` other
+    than the default raises); ``fidelity="dynamic"`` a :class:`DynamicDoubleLayerBearing`
     (keywords ``drive``, ``speed``, ``loads``, ``massive_balls``, ``rolling_resistance``,
-    ``ring_drag``, ``w_middle0``, ``layer_options``); the other levels a
-    :class:`DoubleLayerBearing`.
+    ``ring_drag``, ``w_middle0``, ``layer_options``, ``name``); the other levels a
+    :class:`DoubleLayerBearing` (keywords ``friction_model``, ``drive``, ``speed``,
+    ``layer_options``, ``name``).
+
+    Parameters
+    ----------
+    inner, outer : str or BearingGeometry
+        Inner (shaft side) and outer (housing side) deep-groove bearing.
+    structure : {"I", "Z"} or None
+        Middle ring type (None: "I" when the inner bearing fits in the outer one's bore).
+    fidelity : {"kinematic", "kinematic_approx", "torque", "quasi-static", "dynamic"}
+        Fidelity level.
+    lubrication : lubricant or (lubricant, lubricant)
+        Lubricant of both layers or of (inner, outer).
+    **kwargs
+        Keywords of the class built for ``fidelity`` (above).
+
+    Returns
+    -------
+    DoubleLayerBearing or NestedQuasiStatic or DynamicDoubleLayerBearing
+
+    Raises
+    ------
+    ParameterError
+        For a keyword the chosen level does not take (listing the ones it takes), and the
+        checks of the class built.
     """
     if fidelity == "quasi-static":
         from bearingsim.assemblies.nested_static import NestedQuasiStatic
 
+        where = "double_layer_bearing"
+        check_options(kwargs, keyword_names(NestedQuasiStatic, ("inner", "outer", "structure")),
+                      where, "keyword(s)", "at fidelity 'quasi-static'")
+        if _pair(lubrication) != _pair(_DEFAULT_LUBRICATION):
+            raise ParameterError(f"{where}: lubrication = {lubrication!r} is not used: the "
+                                 f"quasi-static level has no friction (Hertz load sharing "
+                                 f"only); leave lubrication out")
         return NestedQuasiStatic(inner, outer, structure, **kwargs)
     if fidelity == "dynamic":
+        check_options(kwargs, keyword_names(DynamicDoubleLayerBearing,
+                                            ("inner", "outer", "structure", "lubrication")),
+                      "double_layer_bearing", "keyword(s)", "at fidelity 'dynamic'")
         return DynamicDoubleLayerBearing(inner, outer, structure, lubrication, **kwargs)
+    check_options(kwargs, keyword_names(DoubleLayerBearing,
+                                        ("inner", "outer", "structure", "fidelity",
+                                         "lubrication")),
+                  "double_layer_bearing", "keyword(s)", f"at fidelity {fidelity!r}")
     return DoubleLayerBearing(inner, outer, structure, fidelity, lubrication, **kwargs)

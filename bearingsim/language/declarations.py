@@ -213,26 +213,40 @@ class Parameter(Declaration):
     def validate(self, value: Any, where: str | None = None) -> float:
         """Check type and range of a candidate value; return it as float.
 
+        Parameters
+        ----------
+        value : Any
+            The candidate value.
+        where : str, optional
+            Shown in parentheses after the parameter's name in messages; the constructor passes
+            the description, since an unbound parameter has no path yet.
+
+        Returns
+        -------
+        float
+            The value as a float.
+
         Raises
         ------
         ParameterError
-            Naming the parameter path, unit and valid range.
+            Naming the parameter path (or, before it is bound, ``value`` and its description),
+            unit and valid range.
         """
         name = self.path if self.owner is not None else (self.attr or "value")
-        where = "" if where is None else where
+        label = f"{name} ({where})" if where else name
         if isinstance(value, bool) or not isinstance(value, (int, float)) and not hasattr(
             value, "__float__"
         ):
             raise ParameterError(
-                f"{name}{' (' + where + ')' if where else ''} must be a real number in "
+                f"{label} must be a real number in "
                 f"[{self.unit}], got {value!r} of type {type(value).__name__}"
             )
         value = float(value)
         if math.isnan(value):
-            raise ParameterError(f"{name} is NaN; expected a number in [{self.unit}]")
+            raise ParameterError(f"{label} is NaN; expected a number in [{self.unit}]")
         check_range(
             value,
-            name,
+            label,
             self.unit,
             self.low,
             self.high,

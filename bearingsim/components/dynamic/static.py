@@ -20,7 +20,7 @@ import scipy.optimize
 from bearingsim.components.dynamic.ball import POSITION_REGULARIZATION
 from bearingsim.components.dynamic.design import BearingDesign
 from bearingsim.components.dynamic.frames import groove_contact
-from bearingsim.errors import SimulationError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.physics.hertz import contact_load
 
 __all__ = ["StaticState", "static_state"]
@@ -82,8 +82,8 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
     smooth : float
         Smooth ramp of the Hertz law [m] (as in the components).
     free_tilt : bool
-        Whether the ring tilts under the moments (else the shaft holds it straight and the
-        moments ``Mx, My`` are ignored).
+        Whether the ring tilts under the moments; else the shaft holds it straight, takes the
+        moments as a reaction and ``Mx, My`` must be absent or 0.
 
     Returns
     -------
@@ -91,9 +91,18 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
 
     Raises
     ------
+    ParameterError
+        For a nonzero ``Mx`` or ``My`` with ``free_tilt=False`` (it would not be applied).
     SimulationError
         If Newton does not converge (e.g. a zero load with clearance: the ring floats).
     """
+    if not free_tilt:
+        for key in ("Mx", "My"):
+            if float(loads.get(key, 0.0)) != 0.0:
+                raise ParameterError(f"static_state: loads[{key!r}] = {loads[key]!r} [N.m] is "
+                                     f"not applied with free_tilt=False (the shaft holds the "
+                                     f"ring straight and takes the moments); give "
+                                     f"free_tilt=True or {key} = 0")
     g = design.geometry
     nz = g.ball_count
     theta = theta0 + 2.0 * np.pi * np.arange(nz) / nz
