@@ -24,6 +24,7 @@ __all__ = [
     "SimulationError",
     "CatalogError",
     "check_choice",
+    "check_count",
     "check_range",
 ]
 
@@ -194,3 +195,44 @@ def check_choice(value: Any, name: str, allowed: tuple, where: str = "") -> Any:
     options = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
     label = f"{where}: {name}" if where else name
     raise ParameterError(f"{label} must be {options}, got {value!r}")
+
+
+def check_count(value, name: str, low: int = 1, where: str = ""):
+    """Check that a count (number of rows, balls, ...) is a whole number ``>= low``.
+
+    Floats with an integral value (``2.0``) are accepted; booleans, fractions, NaN and
+    infinities are not. Symbolic (CasADi) values pass unchecked, as in
+    :func:`check_range`.
+
+    Parameters
+    ----------
+    value : int, float, array or casadi.SX
+        The count [-].
+    name : str
+        Argument name, used in the message.
+    low : int
+        Smallest valid count [-].
+    where : str
+        Function name, used in the message.
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> must be a whole number >= <low> [-], got <value>"``.
+    """
+    if is_symbolic(value):
+        return value
+    import numpy as np
+
+    label = f"{where}: {name}" if where else name
+    arr = np.asarray(value)
+    if arr.dtype == bool or arr.dtype.kind not in "iuf":
+        raise ParameterError(f"{label} must be a whole number >= {low} [-], got {value!r}")
+    check_range(value, name, "-", low, where=where)
+    if np.any(arr != np.round(arr)):
+        raise ParameterError(f"{label} must be a whole number >= {low} [-], got {value!r}")
+    return value

@@ -10,10 +10,9 @@ from __future__ import annotations
 import numpy as np
 
 from bearingsim import _ops as op
-from bearingsim.errors import ParameterError, check_choice, check_range
+from bearingsim.errors import check_choice, check_range
 
 __all__ = [
-    "check_count",
     "pitch_ratio",
     "cage_speed",
     "ball_rotation_speed",
@@ -23,45 +22,6 @@ __all__ = [
 
 
 _RIGHT_ANGLE = 0.5 * np.pi
-
-
-def check_count(value, name: str, low: int = 1, where: str = ""):
-    """Check that a count (number of rows, balls, ...) is a whole number ``>= low``.
-
-    Floats with an integral value (``2.0``) are accepted; booleans, fractions, NaN and
-    infinities are not. Symbolic (CasADi) values pass unchecked, as in
-    :func:`bearingsim.errors.check_range`.
-
-    Parameters
-    ----------
-    value : int, float, array or casadi.SX
-        The count [-].
-    name : str
-        Argument name, used in the message.
-    low : int
-        Smallest valid count [-].
-    where : str
-        Function name, used in the message.
-
-    Returns
-    -------
-    The value unchanged.
-
-    Raises
-    ------
-    ParameterError
-        ``"<where>: <name> must be a whole number >= <low> [-], got <value>"``.
-    """
-    if op.is_symbolic(value):
-        return value
-    label = f"{where}: {name}" if where else name
-    arr = np.asarray(value)
-    if arr.dtype == bool or arr.dtype.kind not in "iuf":
-        raise ParameterError(f"{label} must be a whole number >= {low} [-], got {value!r}")
-    check_range(value, name, "-", low, where=where)
-    if np.any(arr != np.round(arr)):
-        raise ParameterError(f"{label} must be a whole number >= {low} [-], got {value!r}")
-    return value
 
 
 def pitch_ratio(ball_diameter, pitch_diameter, contact_angle=0.0):

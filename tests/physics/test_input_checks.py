@@ -18,7 +18,7 @@ from bearingsim.components.bearing_torque import (
     static_equivalent_load,
     static_load_factors,
 )
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, check_count
 from bearingsim.physics import film, geometry, hertz, life, rolling
 from bearingsim.physics.friction import SkfSeal, palmgren_torque, skf_friction_components
 from bearingsim.physics.lubricant import Grease, Oil, get_lubricant
@@ -198,7 +198,7 @@ def test_pitch_ratio_contact_angle_range(angle):
 @pytest.mark.parametrize("value", [True, 2.5, 0, "2", None])
 def test_check_count(value):
     with pytest.raises(ParameterError, match=r"n"):
-        geometry.check_count(value, "n", 1, "where")
+        check_count(value, "n", 1, "where")
 
 
 # --- 7. grease temperature ----------------------------------------------------------------------
