@@ -21,12 +21,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from bearingsim.assembler import assemble  # noqa: E402
 from bearingsim.assemblies import double_layer_bearing, motor_drive  # noqa: E402
-from bearingsim.assemblies.theory import (  # noqa: E402
+from bearingsim.physics.double_layer_theory import (  # noqa: E402
     speed_ratio_palmgren,
     speed_ratio_pure_rolling,
 )
-from bearingsim.solver import assemble, simulate  # noqa: E402
+from bearingsim.simulation import simulate  # noqa: E402
 from bearingsim.studies.double_layer import speed_ratio_sweep  # noqa: E402
 from bearingsim.units import rad_s_to_rpm, rpm_to_rad_s  # noqa: E402
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from bearingsim._ops import is_symbolic
+from bearingsim.symbolic import is_symbolic
 
 __all__ = [
     "BearingsimError",

@@ -1,4 +1,4 @@
-"""Plot helpers shared by :meth:`bearingsim.solver.Result.plot` and the scene runner."""
+"""Plot helpers shared by :meth:`bearingsim.simulation.Result.plot` and the scene runner."""
 
 from __future__ import annotations
 

@@ -17,7 +17,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from bearingsim.solver import assemble
+from bearingsim.assembler import assemble
 from bench.common import (
     Section,
     fmt,

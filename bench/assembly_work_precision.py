@@ -16,8 +16,9 @@ import casadi as ca
 import matplotlib.pyplot as plt
 import numpy as np
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 from bench.common import Section, fmt, image_link, interp_loglog, markdown_table
 
 __all__ = ["run", "CASES"]

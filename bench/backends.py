@@ -2,7 +2,7 @@
 
 The same assembled system is evaluated (one right-hand side, one sparse Jacobian) and simulated
 with scipy's BDF and LSODA and with CVODES, on the interpreted CasADi virtual machine and on the
-compiled C backend (:func:`bearingsim.solver.compile.compile_system`), side by side in one run.
+compiled C backend (:func:`bearingsim.simulation.compile.compile_system`), side by side in one run.
 """
 
 from __future__ import annotations
@@ -13,11 +13,12 @@ from pathlib import Path
 
 import numpy as np
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
-from bearingsim.solver import assemble, simulate
-from bearingsim.solver.compile import compile_system
-from bearingsim.solver.fastcall import BufferedFunction
-from bearingsim.solver.simulate import close_inputs
+from bearingsim.simulation import simulate
+from bearingsim.simulation.compile import compile_system
+from bearingsim.simulation.fastcall import BufferedFunction
+from bearingsim.simulation.simulate import close_inputs
 from bench.common import Section, fmt, markdown_table, median_call_time
 from bench.models import TorsionChain
 
@@ -87,7 +88,7 @@ def run(quick: bool, img_dir: Path, out_md: Path, log=print) -> Section:
     body = "\n".join([
         "Call costs from Python with numpy arguments (median, µs). *plain*: "
         "`Function(t, x, p)` as CasADi's Python interface converts arguments; *buffered*: "
-        "`bearingsim.solver.fastcall.BufferedFunction` (zero-copy `Function.buffer`), which "
+        "`bearingsim.simulation.fastcall.BufferedFunction` (zero-copy `Function.buffer`), which "
         "`simulate` uses for scipy's integrators; *VM*: CasADi's SX virtual machine; *C*: the "
         "compiled backend (`compile_system`, gcc -O2).",
         "",

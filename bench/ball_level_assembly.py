@@ -15,10 +15,10 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.physics.lubricant import Oil
-from bearingsim.solver import assemble
 from bench.common import Section, fmt, markdown_table
 
 __all__ = ["run", "section"]

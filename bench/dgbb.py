@@ -22,10 +22,11 @@ import time
 import casadi as ca
 import numpy as np
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
-from bearingsim.solver import assemble, simulate
-from bearingsim.solver.fastcall import BufferedFunction
-from bearingsim.solver.simulate import close_inputs
+from bearingsim.simulation import simulate
+from bearingsim.simulation.fastcall import BufferedFunction
+from bearingsim.simulation.simulate import close_inputs
 from bearingsim.studies.deep_groove import DUTY_CYCLE
 from bearingsim.units import rpm_to_rad_s
 from bench.common import fmt, interp_loglog, markdown_table

@@ -15,8 +15,9 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
-from bearingsim.solver import assemble, simulate, steady_state
+from bearingsim.simulation import simulate, steady_state
 from bearingsim.units import rpm_to_rad_s
 from bench.common import Section, fmt, image_link, markdown_table
 

@@ -7,7 +7,7 @@ process with fmpy's ``FMU2Slave`` at a 1 ms communication step:
   Rodas3 stepper, tolerance 1e-6);
 * **pythonfmu**: a ``pythonfmu.Fmi2Slave`` (:class:`BearingsimPythonSlave`) built with
   ``pythonfmu build``; its ``do_step`` calls the system's compiled CasADi functions
-  (:func:`bearingsim.solver.compile.compile_system`, zero-copy ``Function.buffer`` calls) with a
+  (:func:`bearingsim.simulation.compile.compile_system`, zero-copy ``Function.buffer`` calls) with a
   simple implicit stepper: backward Euler, one step per millisecond, Newton with the exact
   Jacobian.
 
@@ -90,7 +90,7 @@ MODELS = {
 
 
 def _system(key: str):
-    from bearingsim.solver import assemble
+    from bearingsim.assembler import assemble
 
     _, factory, inputs, outputs = MODELS[key]
     return assemble(factory(), outputs=outputs), inputs, outputs
@@ -138,7 +138,7 @@ class PythonStepper:
     """
 
     def __init__(self, key: str, h_max: float = 1e-3):
-        from bearingsim.solver.compile import compile_system
+        from bearingsim.simulation.compile import compile_system
 
         system, inputs, outputs = _system(key)
         compiled = compile_system(system)
@@ -327,7 +327,7 @@ def _run(path: Path, unzip: Path, inputs: dict, outputs: list[str], t_end: float
 
 
 def _error(system, inputs, outputs, t_end, values) -> float:
-    from bearingsim.solver import simulate
+    from bearingsim.simulation import simulate
 
     n = int(round(t_end / COMM_STEP))
     ref = simulate(system, t_end, n_points=n + 1, inputs=inputs, rtol=1e-10, atol=1e-12,

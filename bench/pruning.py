@@ -19,9 +19,10 @@ import time
 import casadi as ca
 import numpy as np
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.language import Assembly
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 from bearingsim.units import rpm_to_rad_s
 
 __all__ = ["Machine", "run", "section", "OUTPUTS"]

@@ -14,7 +14,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from bearingsim.solver import assemble, simulate
+from bearingsim.assembler import assemble
+from bearingsim.simulation import simulate
 from bench.common import Section, fmt, image_link, interp_loglog, markdown_table
 from bench.models import TorsionChain, sine_torque
 

@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 from bearingsim import Component, Variable, der
+from bearingsim.assembler import assemble
 from bearingsim.errors import OverdeterminedError, ParameterError, UnderdeterminedError
-from bearingsim.solver import assemble, linearize, simulate
+from bearingsim.simulation import linearize, simulate
 from tests.models import (
     DampersInSeries,
     Pendulum,
@@ -230,7 +231,7 @@ def test_steady_initialization_starts_at_rest_state():
 
 
 def test_compiled_backend_gives_identical_results(tmp_path):
-    from bearingsim.solver.compile import compile_system
+    from bearingsim.simulation.compile import compile_system
 
     system = assemble(Pendulum())  # has a nonlinear Newton block: MX with fast_newton in C
     compiled = compile_system(system, cache_dir=tmp_path)
@@ -254,7 +255,7 @@ def test_idas_on_the_semi_explicit_dae_matches_the_ode_form():
 
 def test_line_search_newton_gives_the_fast_newton_result_and_refuses_code_generation(tmp_path):
     from bearingsim.fmu import export_fmu
-    from bearingsim.solver.compile import CompileError, compile_system
+    from bearingsim.simulation.compile import CompileError, compile_system
 
     fast = assemble(Pendulum())
     searched = assemble(Pendulum(), rootfinder="newton")

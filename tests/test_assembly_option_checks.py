@@ -12,10 +12,10 @@ from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
 from bearingsim.assemblies.deep_groove import keyword_names
 from bearingsim.assemblies.double_layer import layer_option_names
 from bearingsim.components.bearing_torque import PalmgrenBearing
-from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.dynamic.static import static_state
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.language import Parameter
+from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Dry
 
 LOADS = {"Fx": 500.0}

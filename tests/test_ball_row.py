@@ -11,6 +11,7 @@ import pytest
 import scipy.optimize
 
 from bearingsim import Assembly, connect
+from bearingsim.assembler import assemble
 from bearingsim.catalog import get_bearing
 from bearingsim.components.ball_row import (
     BallRow,
@@ -22,7 +23,7 @@ from bearingsim.components.ball_row import (
 from bearingsim.components.rings import Housing, InnerRing, OuterRing, Shaft
 from bearingsim.errors import ParameterError
 from bearingsim.physics.hertz import combined_load_deflection_constant
-from bearingsim.solver import assemble, steady_state
+from bearingsim.simulation import steady_state
 from bearingsim.units import deg, rpm_to_rad_s
 
 

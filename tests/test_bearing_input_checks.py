@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
 from bearingsim.components.dynamic import RingLoad, bearing_design
 from bearingsim.components.rotational import SpeedSource, _signal
 from bearingsim.errors import ParameterError
-from bearingsim.solver import assemble
 
 
 def _qs_row_loads(**kwargs):

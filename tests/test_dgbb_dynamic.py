@@ -7,10 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.components.dynamic import bearing_design, static_state
 from bearingsim.physics.lubricant import Dry
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 from bearingsim.studies.deep_groove import DUTY_CYCLE, duty_condition, post_process
 
 FAST = {"t_end": 0.03, "ramp": 0.01, "n_slices": 0, "n_points": 61}

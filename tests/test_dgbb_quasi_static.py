@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.components.dynamic import bearing_design, static_state
 from bearingsim.errors import ParameterError
 from bearingsim.physics.life import dynamic_load_rating, rating_life
-from bearingsim.solver import assemble
 
 
 def _row_loads(load):

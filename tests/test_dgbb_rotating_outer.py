@@ -7,11 +7,12 @@ import numpy as np
 import pytest
 
 from bearingsim import Assembly, connect
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
-from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.rotational import SpeedSource
+from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Oil
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 
 W = 100.0  # rad/s
 

@@ -8,20 +8,21 @@ import pytest
 from scipy.integrate import cumulative_trapezoid
 
 from bearingsim import Assembly, connect
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.assemblies.double_layer import middle_ring_bodies
-from bearingsim.assemblies.theory import (
+from bearingsim.catalog import get_bearing
+from bearingsim.components.bearing_torque import PalmgrenBearing
+from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
+from bearingsim.errors import ParameterError
+from bearingsim.physics.double_layer_theory import (
     design_report,
     optimal_speed_ratio,
     speed_ratio_palmgren,
     speed_ratio_pure_rolling,
 )
-from bearingsim.catalog import get_bearing
-from bearingsim.components.bearing_torque import PalmgrenBearing
-from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError
 from bearingsim.physics.lubricant import Grease, Oil
-from bearingsim.solver import assemble, simulate, steady_state
+from bearingsim.simulation import simulate, steady_state
 from bearingsim.units import rpm_to_rad_s
 
 W_SHAFT = rpm_to_rad_s(10_000)

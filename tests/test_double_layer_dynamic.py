@@ -9,18 +9,19 @@ import numpy as np
 import pytest
 
 from bearingsim import Assembly, connect
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
 from bearingsim.components.dynamic import RingDrag
 from bearingsim.components.dynamic.ball import MICRON
-from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.dynamic.static import static_state
 from bearingsim.components.rotational import Fixed, SpeedSource
 from bearingsim.errors import ParameterError
+from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import palmgren_torque
 from bearingsim.physics.lubricant import Dry, Grease, Oil
-from bearingsim.solver import assemble, simulate, steady_state
+from bearingsim.simulation import simulate, steady_state
 
 W = 300.0  # rad/s, shaft speed (2865 r/min)
 LOADS = {"Fx": 0.0, "Fy": 0.0, "Fz": 100.0, "Mx": 0.0, "My": 0.0}  # axial: all balls alike

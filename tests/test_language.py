@@ -20,9 +20,10 @@ from bearingsim import (
     connect,
     der,
 )
+from bearingsim.assembler import assemble
 from bearingsim.components.rotational import Fixed, Flange, Inertia, Spring, TorqueSource
 from bearingsim.errors import ConnectionError_, ModelError, ParameterError, UnconnectedInputError
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 
 
 class Pin(Connector):

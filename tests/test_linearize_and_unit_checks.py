@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from bearingsim import Component, Input, Parameter, Variable, der, time
+from bearingsim.assembler import assemble
 from bearingsim.errors import ParameterError
 from bearingsim.physics import film, hertz, life
 from bearingsim.physics.friction import (
@@ -22,7 +23,7 @@ from bearingsim.physics.friction import (
     skf_friction_torque,
 )
 from bearingsim.physics.lubricant import get_lubricant
-from bearingsim.solver import assemble, linearize, simulate
+from bearingsim.simulation import linearize, simulate
 
 OIL = get_lubricant("ISO VG 68")
 

@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.nested_static import nested_equilibrium
 from bearingsim.components.ball_row import RowParameters, row_stiffness
 from bearingsim.components.dynamic import bearing_design, static_state
 from bearingsim.errors import ParameterError
-from bearingsim.solver import assemble
 
 
 @pytest.fixture(scope="module")

@@ -12,6 +12,7 @@ import casadi as ca
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.scenes import (
     ExpressionError,
@@ -37,7 +38,7 @@ from bearingsim.scenes.sweep import (
     run_sweep,
     sample_points,
 )
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 from bearingsim.units import rpm_to_rad_s
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

@@ -12,10 +12,11 @@ import numpy as np
 import pytest
 
 from bearingsim import Assembly, Input, Variable
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.double_layer import DoubleLayerBearing
 from bearingsim.errors import ParameterError
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 from bearingsim.studies.double_layer import speed_ratio_sweep, steady_ratio
 
 SPEED = {"shaft_speed": 100.0}

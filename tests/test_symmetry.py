@@ -8,10 +8,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import duplex_pair
 from bearingsim.scenes.runner import prepare
 from bearingsim.scenes.scene import load_scene, parse_scene
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 
 OUTPUTS = ["shaft.z", "row[0].Q_i[0]", "row[1].Q_i[5]", "row[0].alpha_i[0]"]
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

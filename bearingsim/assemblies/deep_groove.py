@@ -39,13 +39,13 @@ from bearingsim.components.dynamic import (
     RingLoad,
     TiltGuide,
 )
-from bearingsim.components.dynamic.design import BRASS, BearingDesign, bearing_design
 from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.components.dynamic.static import StaticState, static_state
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
 
@@ -127,7 +127,7 @@ class DeepGrooveBallBearing(Assembly):
     Parameters
     ----------
     design : BearingDesign
-        From :func:`~bearingsim.components.dynamic.design.bearing_design`.
+        From :func:`~bearingsim.physics.bearing_design.bearing_design`.
     lubricant : Lubricant
         Oil, Grease or Dry (traction law, viscosity for film, drag and cage forces).
     massive_balls : bool
@@ -530,7 +530,7 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         Dynamic levels only: further keyword arguments of :class:`DeepGrooveBallBearing`
         (``drive``, ``damping``, ``n_slices``, ``drag``, ``traction_scale``, ...), and
         ``pocket_clearance``, ``guide_clearance`` of
-        :func:`~bearingsim.components.dynamic.design.bearing_design`; another name raises
+        :func:`~bearingsim.physics.bearing_design.bearing_design`; another name raises
         :class:`~bearingsim.errors.ParameterError` listing the accepted ones. The quasi-static
         level takes none and raises :class:`~bearingsim.errors.ParameterError` if any is given.
 

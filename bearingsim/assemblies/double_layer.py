@@ -33,12 +33,12 @@ from bearingsim.components.bearing_torque import (
     resolve_lubricant,
 )
 from bearingsim.components.dynamic import RingBody as MovingRing
-from bearingsim.components.dynamic.design import bearing_design
 from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import skf_friction_components
-from bearingsim.solver import simulate
+from bearingsim.simulation import simulate
 
 __all__ = [
     "MiddleRing",
@@ -539,7 +539,7 @@ class DynamicDoubleLayerBearing(Assembly):
         Returns
         -------
         dict
-            ``{state name: value}`` for :func:`~bearingsim.solver.simulate` (``x0``).
+            ``{state name: value}`` for :func:`~bearingsim.simulation.simulate` (``x0``).
         """
         prefix = self.path_prefix(states)
         start: dict[str, float] = {}

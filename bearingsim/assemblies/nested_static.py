@@ -8,7 +8,7 @@ The shaft and the middle ring are *aligned bodies*: they translate freely (x, y 
 ``axial=True``, z) while their tilts are held by the mounting (the spindle's other bearings),
 so a single deep-groove row needs no tilt stiffness of its own. Both bodies carry a small mass so
 the equilibrium is the steady state of a damped dynamic model: ``steady_state`` finds it and the
-exact Jacobians give the stiffness (:mod:`bearingsim.solver.statics`).
+exact Jacobians give the stiffness (:mod:`bearingsim.simulation.statics`).
 """
 
 from __future__ import annotations
@@ -17,15 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from bearingsim.assembler.system import System
 from bearingsim.catalog import resolve_bearing
 from bearingsim.components.ball_row import BallRow
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.rings import Housing
 from bearingsim.errors import ParameterError, SimulationError, check_range
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
-from bearingsim.solver import steady_state
-from bearingsim.solver.statics import static_stiffness
-from bearingsim.solver.system import System
+from bearingsim.simulation import steady_state
+from bearingsim.simulation.statics import static_stiffness
 
 __all__ = ["AlignedBody", "NestedQuasiStatic", "NestedEquilibrium", "nested_equilibrium"]
 

@@ -61,7 +61,7 @@ import casadi as ca
 import numpy as np
 import scipy.optimize
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.frame import RingFrame
 from bearingsim.components.qs_rigid import add, cross, rotate, rotation, scale

@@ -13,7 +13,6 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim._ops import smooth_abs, smooth_max0
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.rotational import Flange
 from bearingsim.errors import ParameterError, check_range
@@ -25,6 +24,7 @@ from bearingsim.physics.friction import (
     skf_friction_components,
 )
 from bearingsim.physics.lubricant import Lubricant, get_lubricant
+from bearingsim.symbolic import smooth_abs, smooth_max0
 
 __all__ = [
     "BearingTorqueElement",
@@ -105,7 +105,7 @@ def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
 
     ``X0, Y0`` from :func:`static_load_factors` (deep groove 0.6, 0.5; angular contact 0.5 and
     Y0 from 0.46 at 15 deg to 0.22 at 45 deg, ISO 76:2006 Table 1). The maximum is smoothed
-    with a width of 1 N (:func:`bearingsim._ops.smooth_max0`) so that it can enter equations.
+    with a width of 1 N (:func:`bearingsim.symbolic.smooth_max0`) so that it can enter equations.
 
     Parameters
     ----------
@@ -304,8 +304,9 @@ class PureRollingLayer(BearingTorqueElement):
     damper ``M = -k dm (1 - g^2) / 4 w_rel``; in a double-layer bearing it gives the pure-rolling
     speed ratio ``Rs = (1 - g1^2) Dp1 / ((1 - g1^2) Dp1 + (1 - g2^2) Dp2)`` exactly, with
     ``g_k = Dw_k cos(a_k) / Dp_k`` of layer k (the same ratio as
-    :func:`bearingsim.assemblies.theory.speed_ratio_pure_rolling`, which writes it with its own
-    ``g_k`` standing for ``gamma_k^2``). With ``exact=False`` the ``g^2`` term is dropped
+    :func:`bearingsim.physics.double_layer_theory.speed_ratio_pure_rolling`, which writes it
+    with its own ``g_k`` standing for ``gamma_k^2``). With ``exact=False`` the ``g^2`` term is
+    dropped
     (``Rs = Dp1 / (Dp1 + Dp2)``).
 
     Parameters

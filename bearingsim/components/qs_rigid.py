@@ -13,7 +13,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 
 __all__ = ["Vector", "rotation", "rotate", "cross", "add", "scale", "dot", "body_point"]
 

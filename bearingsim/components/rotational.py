@@ -210,7 +210,7 @@ class TorqueSource(Component):
     Parameters
     ----------
     torque : callable or float or None
-        ``torque(t)`` built from CasADi/`bearingsim._ops` math (kept symbolic), a constant, or
+        ``torque(t)`` built from CasADi/`bearingsim.symbolic` math (kept symbolic), a constant, or
         ``None`` for an input ``tau_in`` [N m].
     """
 

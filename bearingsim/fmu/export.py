@@ -40,9 +40,9 @@ def _identifier(name: str) -> str:
 
 
 def _system(model, outputs):
+    from bearingsim.assembler.pipeline import assemble
+    from bearingsim.assembler.system import System
     from bearingsim.language.component import Component
-    from bearingsim.solver.pipeline import assemble
-    from bearingsim.solver.system import System
 
     if isinstance(model, System):
         if model.rootfinder not in (None, "fast_newton"):
@@ -126,7 +126,7 @@ def export_fmu(
     ----------
     model : Component or System
         An assembly (assembled here, pruned to ``outputs``) or the result of
-        :func:`bearingsim.solver.assemble`.
+        :func:`bearingsim.assembler.assemble`.
     path : str or pathlib.Path
         The ``.fmu`` file to write.
     inputs : dict, optional

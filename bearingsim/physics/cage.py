@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim._ops import fmax, fmin, if_else, smooth_abs, smooth_max0, sqrt, tanh
 from bearingsim.errors import check_range
 from bearingsim.physics.traction import regularized_coulomb
+from bearingsim.symbolic import fmax, fmin, if_else, smooth_abs, smooth_max0, sqrt, tanh
 
 __all__ = [
     "SIGMA_BALL",

@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim._ops import smooth_abs, sqrt
 from bearingsim.errors import check_range
+from bearingsim.symbolic import smooth_abs, sqrt
 
 __all__ = [
     "sphere_drag_coefficient",

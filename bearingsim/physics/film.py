@@ -11,9 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from bearingsim._ops import cos, exp, power, smooth_abs, sqrt
 from bearingsim.errors import check_range
 from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter, check_radii
+from bearingsim.symbolic import cos, exp, power, smooth_abs, sqrt
 
 __all__ = [
     "dimensionless_speed",

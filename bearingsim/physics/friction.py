@@ -18,10 +18,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from bearingsim._ops import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
 from bearingsim.errors import CatalogError, ParameterError, check_count, check_range
 from bearingsim.physics.drag import orbital_drag_force
 from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter
+from bearingsim.symbolic import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
 
 if TYPE_CHECKING:

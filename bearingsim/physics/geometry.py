@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.errors import check_choice, check_range
 
 __all__ = [

@@ -1,7 +1,7 @@
 """Hertz theory of elastic point (elliptical) contact between a ball and a raceway.
 
 Every function works on floats, numpy arrays and CasADi SX alike (math through
-:mod:`bearingsim._ops`), so components can put them into symbolic equations.
+:mod:`bearingsim.symbolic`), so components can put them into symbolic equations.
 
 Notation (Hamrock, *Fundamentals of Fluid Film Lubrication*, chapter "Elastohydrodynamic
 lubrication of elliptical conjunctions" / "Simplified solutions for stresses and deformations"):
@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.errors import ParameterError, check_choice, check_range
 
 if TYPE_CHECKING:

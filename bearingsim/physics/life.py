@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.errors import ParameterError, check_choice, check_count, check_range
 from bearingsim.physics.geometry import ball_pass_ratio, pitch_ratio
 from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter

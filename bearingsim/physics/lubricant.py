@@ -13,10 +13,10 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim._ops import log, power
 from bearingsim.errors import CatalogError, ParameterError, check_range
 from bearingsim.physics.friction import LUBRICATION_METHODS, palmgren_f0
 from bearingsim.physics.traction import EHL_TRACTION_DEFAULT, ehl_traction, regularized_coulomb
+from bearingsim.symbolic import log, power
 from bearingsim.units import celsius_to_kelvin, cst_to_m2_s
 
 __all__ = [

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from bearingsim._ops import power
 from bearingsim.errors import check_range
 from bearingsim.physics.film import (
     dimensionless_load,
@@ -23,6 +22,7 @@ from bearingsim.physics.film import (
     ellipticity,
 )
 from bearingsim.physics.hertz import check_radii
+from bearingsim.symbolic import power
 
 __all__ = ["ROLLING_FORCE_COEFFICIENT", "ROLLING_FORCE_EXPONENTS",
            "hydrodynamic_rolling_force", "rolling_resistance"]

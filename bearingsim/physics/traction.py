@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim._ops import exp, smooth_abs, sqrt
 from bearingsim.errors import ParameterError, check_range
+from bearingsim.symbolic import exp, smooth_abs, sqrt
 
 __all__ = [
     "EHL_TRACTION_DEFAULT",

@@ -1,4 +1,4 @@
-"""Ship an assembled :class:`~bearingsim.solver.System` to other processes.
+"""Ship an assembled :class:`~bearingsim.assembler.System` to other processes.
 
 CasADi functions do not pickle without a context, and parameter declarations point into the
 instance tree. :func:`pack` turns a system into plain data: every CasADi function through
@@ -15,8 +15,8 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.solver.dae import Param
-from bearingsim.solver.system import System
+from bearingsim.assembler.dae import Param
+from bearingsim.assembler.system import System
 
 __all__ = ["pack", "unpack", "load_cached"]
 

@@ -17,12 +17,13 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.assembler import System, assemble
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.registry import AssemblySpec, PostQuantity, min_fidelity
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
-from bearingsim.solver import Result, System, assemble, simulate
+from bearingsim.simulation import Result, simulate
 
 __all__ = [
     "Prepared",

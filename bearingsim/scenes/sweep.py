@@ -309,7 +309,7 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
 # --------------------------------------------------------------------------- execution
 def run_point(packed: dict[str, Any], job: dict[str, Any]) -> dict[str, Any]:
     """Run one sweep point (on a worker): returns final values or the error; never raises."""
-    from bearingsim.solver import simulate
+    from bearingsim.simulation import simulate
 
     t0 = time.perf_counter()
     out = {"index": job["index"], "pid": os.getpid(), "token": packed["token"]}

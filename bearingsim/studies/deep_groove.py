@@ -12,8 +12,9 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
-from bearingsim.components.dynamic.design import BearingDesign
+from bearingsim.physics.bearing_design import BearingDesign
 from bearingsim.physics.film import hamrock_dowson
 from bearingsim.physics.geometry import ball_revolutions_per_revolution
 from bearingsim.physics.life import (
@@ -27,7 +28,7 @@ from bearingsim.physics.life import (
     reference_rating_life,
 )
 from bearingsim.physics.lubricant import Dry, Lubricant, get_lubricant
-from bearingsim.solver import Result, assemble, simulate
+from bearingsim.simulation import Result, simulate
 from bearingsim.units import rpm_to_rad_s
 
 __all__ = ["DUTY_CYCLE", "VALIDATION", "RunSummary", "outputs_for", "run_bearing",
@@ -110,7 +111,7 @@ def run_bearing(speed, load: float, t_end: float, *, designation: str = "6304",
     designation, lubricant, fidelity
         As in :func:`~bearingsim.assemblies.deep_groove.deep_groove_ball_bearing`.
     method, rtol, atol, n_points
-        As in :func:`~bearingsim.solver.simulate`.
+        As in :func:`~bearingsim.simulation.simulate`.
     **options
         Further bearing options (``n_slices``, ``damping``, ...).
 

@@ -6,10 +6,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from bearingsim.assembler import assemble
+from bearingsim.assembler.system import System
 from bearingsim.assemblies.double_layer import double_layer_bearing
 from bearingsim.errors import ParameterError
-from bearingsim.solver import assemble, steady_state
-from bearingsim.solver.system import System
+from bearingsim.simulation import steady_state
 
 __all__ = ["SpeedRatioSweep", "speed_ratio_sweep", "steady_ratio"]
 

@@ -29,6 +29,7 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.duplex import (
     ARRANGEMENTS,
     DuplexPair,
@@ -39,8 +40,8 @@ from bearingsim.assemblies.duplex import (
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
-from bearingsim.solver import assemble, steady_state
-from bearingsim.solver.statics import static_stiffness
+from bearingsim.simulation import steady_state
+from bearingsim.simulation.statics import static_stiffness
 from bearingsim.units import to_deg
 
 __all__ = [
@@ -90,7 +91,7 @@ class Equilibrium:
     displacement : ndarray (5,)
         Shaft (x, y, z, tx, ty) at the centre of mass [m, rad].
     state : ndarray
-        Full state vector (for :func:`~bearingsim.solver.linearize`).
+        Full state vector (for :func:`~bearingsim.simulation.linearize`).
     inputs : dict
         External loads by input name [N, N m].
     parameters : dict

@@ -5,8 +5,8 @@ from __future__ import annotations
 import casadi as ca
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.fmu import export_fmu
-from bearingsim.solver import assemble
 from tests.fmu.fmu_models import DrivenInertia, SpeedDrivenLoad, StiffChain
 from tests.models import TwoInertiaDrive
 

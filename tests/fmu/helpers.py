@@ -18,7 +18,7 @@ from fmpy.fmi2 import (
     free,
 )
 
-from bearingsim.solver import simulate
+from bearingsim.simulation import simulate
 
 
 def rel_err(a, ref) -> float:

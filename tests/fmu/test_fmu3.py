@@ -16,10 +16,10 @@ from fmpy import read_model_description
 from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.motor_drive import motor_drive
 from bearingsim.fmu import export_fmu
 from bearingsim.fmu.build import fmi_header_dir
-from bearingsim.solver import assemble
 from tests.fmu.conftest import DRIVE_OUTPUTS, DRIVEN_OUTPUTS
 from tests.fmu.helpers import reference, rel_err, run_fmu
 

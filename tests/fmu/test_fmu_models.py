@@ -6,9 +6,9 @@ from __future__ import annotations
 import pytest
 from fmpy.validation import validate_fmu
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.motor_drive import motor_drive
 from bearingsim.fmu import export_fmu
-from bearingsim.solver import assemble
 from tests.fmu.fmu_models import ImplicitDecay
 from tests.fmu.helpers import reference, rel_err, run_fmu
 

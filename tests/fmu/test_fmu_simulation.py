@@ -8,7 +8,7 @@ import ctypes
 import numpy as np
 import pytest
 
-from bearingsim.solver import simulate
+from bearingsim.simulation import simulate
 from tests.fmu.conftest import DRIVE_OUTPUTS, DRIVEN_OUTPUTS
 from tests.fmu.helpers import open_fmu, reference, rel_err, run_fmu
 

@@ -8,9 +8,10 @@ import pytest
 from fmpy.ssp.simulation import simulate_ssp
 from fmpy.ssp.ssd import read_ssd
 
+from bearingsim.assembler import assemble
 from bearingsim.errors import ParameterError
 from bearingsim.fmu import export_fmu, write_ssp
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 from tests.fmu.fmu_models import CoupledDrive, DrivenInertia
 
 CONNECTIONS = [("driven.rotor.w", "load.w_in"), ("load.sensor.tau", "driven.tau_load")]

@@ -13,11 +13,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.errors import BearingsimError, CatalogError, ParameterError, SimulationError
 from bearingsim.scenes import ExpressionError, SceneError, compile_expression, parse_scene
 from bearingsim.scenes.scene import scene_from_dict
-from bearingsim.solver import assemble, simulate
+from bearingsim.simulation import simulate
 
 FAST = {"n_points": 5, "max_step": 0.05, "progress": False}
 

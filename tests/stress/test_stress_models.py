@@ -11,13 +11,14 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.catalog import get_bearing
 from bearingsim.components.bearing_torque import resolve_lubricant
 from bearingsim.errors import BearingsimError
 from bearingsim.physics.lubricant import known_lubricants
 from bearingsim.scenes import Scene, Simulation, run_scene
-from bearingsim.solver import assemble, simulate, steady_state
+from bearingsim.simulation import simulate, steady_state
 from bearingsim.units import rpm_to_rad_s
 
 SETTINGS = settings(max_examples=25, deadline=None, derandomize=True,

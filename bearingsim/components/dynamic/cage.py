@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.components.dynamic.ball import MICRON
 from bearingsim.components.dynamic.frames import (
     BallFrame,

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.components.dynamic.frames import BallFrame
 from bearingsim.language import Component, Parameter
 from bearingsim.physics.drag import orbital_drag_force, spin_drag_moment

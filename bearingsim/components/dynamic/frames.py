@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.language import Connector, Flow, Potential
 
 __all__ = ["BallFrame", "CageFrame", "Vec", "add", "sub", "scale", "dot", "cross", "norm",

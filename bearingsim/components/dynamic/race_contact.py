@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numbers
 
-from bearingsim import _ops as op
+from bearingsim import symbolic as op
 from bearingsim.components.dynamic.frames import (
     BallFrame,
     Vec,

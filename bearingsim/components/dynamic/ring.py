@@ -6,12 +6,12 @@ import difflib
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from bearingsim._ops import is_symbolic
 from bearingsim.components.dynamic.ball import MICRON
 from bearingsim.components.frame import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.rotational import _signal
 from bearingsim.errors import ParameterError, check_range
 from bearingsim.language import Component, Input, Parameter, Variable, der
+from bearingsim.symbolic import is_symbolic
 
 __all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide", "check_loads", "load_unit"]
 

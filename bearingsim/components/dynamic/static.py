@@ -18,9 +18,9 @@ import numpy as np
 import scipy.optimize
 
 from bearingsim.components.dynamic.ball import POSITION_REGULARIZATION
-from bearingsim.components.dynamic.design import BearingDesign
 from bearingsim.components.dynamic.frames import groove_contact
 from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.physics.bearing_design import BearingDesign
 from bearingsim.physics.hertz import contact_load
 
 __all__ = ["StaticState", "static_state"]

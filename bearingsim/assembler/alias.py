@@ -9,7 +9,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from bearingsim.solver.dae import DAE, Eq, Var
+from bearingsim.assembler.dae import DAE, Eq, Var
 
 __all__ = ["eliminate_aliases"]
 

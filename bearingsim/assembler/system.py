@@ -8,8 +8,8 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from bearingsim.assembler.dae import Param
 from bearingsim.errors import ParameterError, check_range
-from bearingsim.solver.dae import Param
 
 __all__ = ["Signal", "System"]
 

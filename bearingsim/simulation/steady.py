@@ -7,8 +7,8 @@ from typing import Any
 import numpy as np
 import scipy.optimize
 
+from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
-from bearingsim.solver.system import System
 
 __all__ = ["steady_state", "integrator_states"]
 
@@ -62,7 +62,7 @@ def steady_state(
     numpy.ndarray
         The steady state vector.
     """
-    from bearingsim.solver.simulate import close_inputs
+    from bearingsim.simulation.simulate import close_inputs
 
     closed = closed if closed is not None else close_inputs(system, inputs)
     p = system.p0(parameters) if p is None else p

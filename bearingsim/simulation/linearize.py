@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, check_range
-from bearingsim.solver.result import Result
-from bearingsim.solver.system import System
+from bearingsim.simulation.result import Result
 
 __all__ = ["LinearModel", "linearize"]
 
@@ -74,7 +74,7 @@ def linearize(
 ) -> LinearModel:
     """Linearize a system around an operating point.
 
-    With a :class:`~bearingsim.solver.Result` from :func:`~bearingsim.solver.simulate` the
+    With a :class:`~bearingsim.simulation.Result` from :func:`~bearingsim.simulation.simulate` the
     operating point is the run's end point: its final states, the input values at its last
     output time, its parameter values and that time. ``inputs`` and ``parameters`` override
     single entries of it by name. Any other operating point uses the inputs' default values and
@@ -83,7 +83,7 @@ def linearize(
     Parameters
     ----------
     system : System
-        From :func:`~bearingsim.solver.assemble`.
+        From :func:`~bearingsim.assembler.assemble`.
     operating_point : dict or Result or array, optional
         State values by name (others at their start values), a result (its last point, inputs
         and parameters) or a full state vector. Default: the start values.

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import casadi as ca
 
-from bearingsim.solver.dae import DAE, Eq, Var
+from bearingsim.assembler.dae import DAE, Eq, Var
 
 __all__ = ["NonlinearBlock", "Causal", "causalize"]
 

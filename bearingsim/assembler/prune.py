@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import difflib
 
+from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.errors import ModelError
-from bearingsim.solver.dae import DAE, Eq, Var
 
 __all__ = ["resolve_names", "prune"]
 

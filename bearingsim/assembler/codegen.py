@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import casadi as ca
 
-from bearingsim.solver.causalize import Causal
-from bearingsim.solver.dae import DAE, Var
+from bearingsim.assembler.causalize import Causal
+from bearingsim.assembler.dae import DAE, Var
 
 __all__ = ["ROOTFINDERS", "build_functions"]
 

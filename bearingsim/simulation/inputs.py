@@ -15,8 +15,8 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
-from bearingsim.solver.system import System
 
 __all__ = ["input_expression", "check_input_ranges"]
 
@@ -45,7 +45,7 @@ def _one(name: str, spec: Any, t: ca.SX) -> ca.SX:
         except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
             raise ParameterError(
                 f"input {name}: the function could not be evaluated symbolically ({exc}); "
-                "write it with casadi or bearingsim._ops math"
+                "write it with casadi or bearingsim.symbolic math"
             ) from None
         return ca.SX(out)
     raise ParameterError(

@@ -34,10 +34,10 @@ class Result:
     inputs : dict
         Value of every system input at the last output time ``t[-1]``, by name, in the
         input's unit (what the run's constants, time functions or tables gave there). Empty
-        for a result not made by :func:`~bearingsim.solver.simulate`.
+        for a result not made by :func:`~bearingsim.simulation.simulate`.
     parameters : dict
         The parameter values of the run (defaults and the run's overrides), by dotted name.
-        Empty for a result not made by :func:`~bearingsim.solver.simulate`.
+        Empty for a result not made by :func:`~bearingsim.simulation.simulate`.
     """
 
     t: np.ndarray

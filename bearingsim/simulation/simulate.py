@@ -11,11 +11,11 @@ import numpy as np
 import scipy.integrate
 import scipy.optimize
 
+from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError, check_choice, check_range
-from bearingsim.solver.fastcall import BufferedFunction
-from bearingsim.solver.inputs import check_input_ranges, input_expression
-from bearingsim.solver.result import Result
-from bearingsim.solver.system import System
+from bearingsim.simulation.fastcall import BufferedFunction
+from bearingsim.simulation.inputs import check_input_ranges, input_expression
+from bearingsim.simulation.result import Result
 
 __all__ = ["ClosedModel", "close_inputs", "simulate", "initial_state"]
 
@@ -86,7 +86,7 @@ def initial_state(
             )
         x[free] = sol.x
     if steady:
-        from bearingsim.solver.steady import steady_state
+        from bearingsim.simulation.steady import steady_state
 
         x = steady_state(system, closed=closed, p=p, x_guess=x, t=t0)
     return x
@@ -115,7 +115,7 @@ def simulate(
     Parameters
     ----------
     system : System
-        From :func:`bearingsim.solver.assemble`.
+        From :func:`bearingsim.assembler.assemble`.
     t_end : float
         End time [s].
     t_start : float
@@ -155,7 +155,7 @@ def simulate(
     Result
         The series, with ``inputs`` (every input's value at the last output time) and
         ``parameters`` (the run's parameter values) recorded, so that
-        :func:`~bearingsim.solver.linearize` can linearize at the run's end point.
+        :func:`~bearingsim.simulation.linearize` can linearize at the run's end point.
 
     Raises
     ------

@@ -14,11 +14,19 @@ from typing import Any
 
 import casadi as ca
 
+from bearingsim.assembler import (
+    alias,
+    causalize,
+    codegen,
+    flatten,
+    index_reduction,
+    prune,
+    structure,
+)
+from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.system import Signal, System
 from bearingsim.errors import StructuralError, check_choice
 from bearingsim.language.component import Component
-from bearingsim.solver import alias, causalize, codegen, flatten, index_reduction, prune, structure
-from bearingsim.solver.dae import DAE, Eq, Var
-from bearingsim.solver.system import Signal, System
 
 __all__ = ["AssemblyState", "PASSES", "assemble"]
 
@@ -183,7 +191,7 @@ def assemble(
     rootfinder : {"fast_newton", "newton"}, optional
         CasADi plugin of the nonlinear loops: ``"fast_newton"`` (plain Newton, generates C:
         needed by :func:`~bearingsim.fmu.export_fmu` and
-        :func:`~bearingsim.solver.compile.compile_system`) or ``"newton"`` (with a line
+        :func:`~bearingsim.simulation.compile.compile_system`) or ``"newton"`` (with a line
         search). Default: ``"newton"`` if a component of the assembly declares
         ``needs_line_search`` (e.g. the quasi-static ball), else ``"fast_newton"``.
 

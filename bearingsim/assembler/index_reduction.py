@@ -15,9 +15,9 @@ import casadi as ca
 import numpy as np
 import scipy.linalg
 
+from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.structure import incidence_map, maximum_matching
 from bearingsim.errors import ModelError, SingularBlockError
-from bearingsim.solver.dae import DAE, Eq, Var
-from bearingsim.solver.structure import incidence_map, maximum_matching
 
 __all__ = ["pantelides", "dummy_derivatives", "reduce_index"]
 

@@ -12,12 +12,12 @@ from typing import Any
 
 import casadi as ca
 
+from bearingsim.assembler.dae import DAE, Eq, Param, Var
 from bearingsim.errors import ModelError, UnconnectedInputError
 from bearingsim.language.component import Component, flow_sign
 from bearingsim.language.connector import Connector
 from bearingsim.language.declarations import Declaration, Input, Parameter, Variable
 from bearingsim.language.symbols import readable, time
-from bearingsim.solver.dae import DAE, Eq, Param, Var
 
 __all__ = ["flatten", "to_residuals"]
 

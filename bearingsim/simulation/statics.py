@@ -12,8 +12,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
-from bearingsim.solver.system import System
 
 __all__ = ["static_compliance", "static_stiffness"]
 
@@ -34,7 +34,7 @@ def static_compliance(system: System, x: np.ndarray, displacements: Sequence[str
     ----------
     system : System
     x : array
-        Steady state (e.g. from :func:`bearingsim.solver.steady_state`).
+        Steady state (e.g. from :func:`bearingsim.simulation.steady_state`).
     displacements : sequence of str
         State names of the displacements (rows).
     loads : sequence of str

@@ -18,8 +18,8 @@ from pathlib import Path
 
 import casadi as ca
 
+from bearingsim.assembler.system import System
 from bearingsim.errors import BearingsimError
-from bearingsim.solver.system import System
 
 __all__ = ["compile_system", "CompileError", "default_cache_dir"]
 

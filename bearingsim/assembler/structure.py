@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import networkx as nx
 
+from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.errors import OverdeterminedError, SingularBlockError, UnderdeterminedError
-from bearingsim.solver.dae import DAE, Eq, Var
 
 __all__ = ["incidence_map", "maximum_matching", "check_structure", "match", "blt_blocks"]
 
