@@ -23,7 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from bearingsim.components.dynamic import static_state  # noqa: E402
+from bearingsim.physics.ball_equilibrium import static_state  # noqa: E402
 from bearingsim.physics.lubricant import Dry  # noqa: E402
 from bearingsim.studies.deep_groove import (  # noqa: E402
     DUTY_CYCLE,

@@ -11,9 +11,10 @@ import pytest
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
-from bearingsim.components.dynamic import RingLoad, bearing_design
+from bearingsim.components.dynamic import RingLoad
 from bearingsim.components.rotational import SpeedSource, _signal
 from bearingsim.errors import ParameterError
+from bearingsim.physics.bearing_design import bearing_design
 
 
 def _qs_row_loads(**kwargs):

@@ -9,7 +9,8 @@ import pytest
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
-from bearingsim.components.dynamic import bearing_design, static_state
+from bearingsim.physics.ball_equilibrium import static_state
+from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Dry
 from bearingsim.simulation import simulate
 from bearingsim.studies.deep_groove import DUTY_CYCLE, duty_condition, post_process

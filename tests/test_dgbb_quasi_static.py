@@ -8,8 +8,9 @@ import pytest
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
-from bearingsim.components.dynamic import bearing_design, static_state
 from bearingsim.errors import ParameterError
+from bearingsim.physics.ball_equilibrium import static_state
+from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.life import dynamic_load_rating, rating_life
 
 

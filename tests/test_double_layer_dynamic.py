@@ -15,9 +15,9 @@ from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
 from bearingsim.components.dynamic import RingDrag
 from bearingsim.components.dynamic.ball import MICRON
-from bearingsim.components.dynamic.static import static_state
 from bearingsim.components.rotational import Fixed, SpeedSource
 from bearingsim.errors import ParameterError
+from bearingsim.physics.ball_equilibrium import static_state
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import palmgren_torque
 from bearingsim.physics.lubricant import Dry, Grease, Oil

@@ -21,7 +21,8 @@ from bearingsim import (
     der,
 )
 from bearingsim.assembler import assemble
-from bearingsim.components.rotational import Fixed, Flange, Inertia, Spring, TorqueSource
+from bearingsim.components.connectors import Flange
+from bearingsim.components.rotational import Fixed, Inertia, Spring, TorqueSource
 from bearingsim.errors import ConnectionError_, ModelError, ParameterError, UnconnectedInputError
 from bearingsim.simulation import simulate
 

@@ -9,8 +9,9 @@ from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.nested_static import nested_equilibrium
 from bearingsim.components.ball_row import RowParameters, row_stiffness
-from bearingsim.components.dynamic import bearing_design, static_state
 from bearingsim.errors import ParameterError
+from bearingsim.physics.ball_equilibrium import static_state
+from bearingsim.physics.bearing_design import bearing_design
 
 
 @pytest.fixture(scope="module")

@@ -26,6 +26,7 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.components.ball_row import BallRow
+from bearingsim.components.connectors import Flange, RingFrame
 from bearingsim.components.dynamic import (
     Ball,
     BallDrag,
@@ -40,11 +41,10 @@ from bearingsim.components.dynamic import (
     TiltGuide,
 )
 from bearingsim.components.dynamic.ring import check_loads
-from bearingsim.components.dynamic.static import StaticState, static_state
-from bearingsim.components.frame import RingFrame
-from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
+from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant

@@ -32,8 +32,9 @@ from bearingsim.components.bearing_torque import (
     SkfBearing,
     resolve_lubricant,
 )
+from bearingsim.components.connectors import Flange
 from bearingsim.components.dynamic import RingBody as MovingRing
-from bearingsim.components.rotational import Fixed, Flange, Inertia, SpeedSource
+from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design

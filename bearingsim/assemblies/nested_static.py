@@ -20,7 +20,7 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.catalog import resolve_bearing
 from bearingsim.components.ball_row import BallRow
-from bearingsim.components.frame import RingFrame
+from bearingsim.components.connectors import RingFrame
 from bearingsim.components.rings import Housing
 from bearingsim.errors import ParameterError, SimulationError, check_range
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der

@@ -15,7 +15,7 @@ centres are ``A = (fi + fo - 1) Dw`` apart) or both at axial position 0 (``refer
 a deep-groove bearing with its rings centred and the radial clearance ``Pd = 2 A (1 - cos a0)``).
 ``s = direction = +-1`` is the axial direction in which the inner ring must move relative to
 the outer ring to load the row. The groove centres move with their rings by exact rigid-body
-kinematics (:mod:`bearingsim.components.qs_rigid`; the small-angle form is an option).
+kinematics (:mod:`bearingsim.vectors`; the small-angle form is an option).
 
 **Classic form** (``speed_effects=False``). Without body forces each ball is a two-force member:
 its contact loads act along the line through both groove centres, the inner and outer contact
@@ -63,8 +63,7 @@ import scipy.optimize
 
 from bearingsim import symbolic as op
 from bearingsim.catalog import BearingGeometry, resolve_bearing
-from bearingsim.components.frame import RingFrame
-from bearingsim.components.qs_rigid import add, cross, rotate, rotation, scale
+from bearingsim.components.connectors import RingFrame
 from bearingsim.errors import ParameterError, check_choice, check_range
 from bearingsim.language import Component, Parameter, Variable
 from bearingsim.physics.hertz import (
@@ -74,6 +73,7 @@ from bearingsim.physics.hertz import (
     combined_load_deflection_constant,
     contact_load,
 )
+from bearingsim.vectors import add, cross, rotate, rotation, scale
 
 __all__ = [
     "BallRow",

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
-from bearingsim.components.rotational import Flange
+from bearingsim.components.connectors import Flange
 from bearingsim.errors import ParameterError, check_range
 from bearingsim.language import Component, Input, Parameter, Variable, der
 from bearingsim.physics.friction import (

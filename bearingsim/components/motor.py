@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from bearingsim.components.blocks import PIController
-from bearingsim.components.rotational import Flange
+from bearingsim.components.connectors import Flange
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
 
 __all__ = ["DCMotor", "PMSM", "DCMotorDrive", "PMSMDrive"]

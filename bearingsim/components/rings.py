@@ -1,6 +1,6 @@
 """Rigid rings, spacers, shaft and housing of the 5-DOF ring-frame domain.
 
-Bodies move with exact rigid-body kinematics (:mod:`bearingsim.components.qs_rigid`): a frame at
+Bodies move with exact rigid-body kinematics (:mod:`bearingsim.vectors`): a frame at
 body position ``p`` of a body whose reference point is displaced by ``u`` and tilted by
 ``R = Rx(tx) Ry(ty)`` sits at ``u + R p`` (relative to its reference position). Loads are
 transported with the lever ``R p`` of the current configuration, so static equilibria and their
@@ -8,18 +8,18 @@ Jacobians (stiffness matrices) are exact for finite tilts. The shaft's inertia t
 linear rotor-dynamics form (tilt rates as angular velocities), which is exact at equilibrium
 and for the small vibrations that the stiffness and modal studies need.
 
-Flows of a :class:`~bearingsim.components.frame.RingFrame` are the loads acting on the body that
-owns the connector.
+Flows of a :class:`~bearingsim.components.connectors.RingFrame` are the loads acting on the
+body that owns the connector.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
-from bearingsim.components.frame import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
-from bearingsim.components.qs_rigid import body_point, cross, rotate, rotation
+from bearingsim.components.connectors import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Parameter, Variable, der
+from bearingsim.vectors import body_point, cross, rotate, rotation
 
 __all__ = ["PartialRigidLink", "InnerRing", "OuterRing", "Spacer", "Shaft", "Housing",
            "ConstantLoad", "frame_lever_moment"]

@@ -10,14 +10,12 @@ from collections.abc import Callable
 
 import casadi as ca
 
+from bearingsim.components.connectors import Flange
 from bearingsim.errors import check_range
 from bearingsim.language import (
     Component,
-    Connector,
-    Flow,
     Input,
     Parameter,
-    Potential,
     Variable,
     der,
 )
@@ -38,21 +36,6 @@ __all__ = [
 ]
 
 TimeFunction = Callable[[ca.SX], ca.SX]
-
-
-class Flange(Connector):
-    """Rotational flange.
-
-    Connectors
-    ----------
-    phi : Potential [rad]
-        Absolute rotation angle.
-    tau : Flow [N m]
-        Cut torque into the owning component.
-    """
-
-    phi = Potential(unit="rad", description="absolute rotation angle")
-    tau = Flow(unit="N.m", description="cut torque acting on the component")
 
 
 class Inertia(Component):

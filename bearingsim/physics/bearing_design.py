@@ -26,8 +26,8 @@ from bearingsim.physics.hertz import (
     semi_axes,
 )
 
-__all__ = ["BRASS", "STEEL_DENSITY", "BRASS_DENSITY", "CageDesign", "BearingDesign",
-           "bearing_design"]
+__all__ = ["BRASS", "STEEL_DENSITY", "BRASS_DENSITY", "POSITION_REGULARIZATION", "CageDesign",
+           "BearingDesign", "bearing_design"]
 
 BRASS = Material("machined brass (CuZn39Pb3)", 100e9, 0.34)
 """Cage material of machined, outer-ring guided cages (E, nu of leaded brass)."""
@@ -35,6 +35,13 @@ STEEL_DENSITY = 7850.0
 """Bearing steel density [kg/m^3]."""
 BRASS_DENSITY = 8500.0
 """Brass density [kg/m^3]."""
+
+POSITION_REGULARIZATION = 1e3
+"""Stiffness [N/m] of the weak spring that holds a quasi-static ball towards the pitch circle.
+
+An unloaded ball in the clearance has no stiffness; this spring keeps the Newton iteration
+regular. Loaded balls move some 10 um from the pitch circle, so the force error is about 0.01 N.
+"""
 
 
 @dataclass(frozen=True)

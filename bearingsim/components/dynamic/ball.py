@@ -2,17 +2,11 @@
 
 from __future__ import annotations
 
-from bearingsim.components.dynamic.frames import BallFrame
+from bearingsim.components.connectors import BallFrame
 from bearingsim.language import Component, Parameter, Variable, der
+from bearingsim.physics.bearing_design import POSITION_REGULARIZATION
 
-__all__ = ["Ball", "POSITION_REGULARIZATION"]
-
-POSITION_REGULARIZATION = 1e3
-"""Stiffness [N/m] of the weak spring that holds a quasi-static ball towards the pitch circle.
-
-An unloaded ball in the clearance has no stiffness; this spring keeps the Newton iteration
-regular. Loaded balls move some 10 um from the pitch circle, so the force error is about 0.01 N.
-"""
+__all__ = ["Ball"]
 
 VELOCITY_REGULARIZATION = 1e-2
 """Damping coefficient [N s/m] of a quasi-static ball's radial and axial motion.

@@ -5,18 +5,8 @@ from __future__ import annotations
 import math
 
 from bearingsim import symbolic as op
+from bearingsim.components.connectors import BallFrame, CageFrame, Flange
 from bearingsim.components.dynamic.ball import MICRON
-from bearingsim.components.dynamic.frames import (
-    BallFrame,
-    CageFrame,
-    add,
-    azimuth_frame,
-    cross,
-    dot,
-    scale,
-    sub,
-)
-from bearingsim.components.rotational import Flange
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.cage import (
     SIGMA_BALL,
@@ -26,6 +16,7 @@ from bearingsim.physics.cage import (
     pocket_gap,
 )
 from bearingsim.physics.traction import regularized_coulomb
+from bearingsim.vectors import add, azimuth_frame, cross, dot, scale, sub
 
 __all__ = ["Cage", "PocketContact", "LandGuidance"]
 

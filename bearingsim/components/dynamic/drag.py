@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from bearingsim import symbolic as op
-from bearingsim.components.dynamic.frames import BallFrame
+from bearingsim.components.connectors import BallFrame
 from bearingsim.language import Component, Parameter
 from bearingsim.physics.drag import orbital_drag_force, spin_drag_moment
 

@@ -6,25 +6,15 @@ from __future__ import annotations
 import numbers
 
 from bearingsim import symbolic as op
-from bearingsim.components.dynamic.frames import (
-    BallFrame,
-    Vec,
-    add,
-    azimuth_frame,
-    cross,
-    dot,
-    groove_contact,
-    scale,
-    sub,
-)
-from bearingsim.components.frame import RingFrame
-from bearingsim.components.rotational import Flange
+from bearingsim.components.connectors import BallFrame, Flange, RingFrame
 from bearingsim.errors import ParameterError, check_choice
 from bearingsim.language import Component, Parameter, Variable, der
+from bearingsim.physics.groove_contact import groove_contact
 from bearingsim.physics.hertz import contact_load, contact_stiffness
 from bearingsim.physics.lubricant import Lubricant
 from bearingsim.physics.rolling import rolling_resistance
 from bearingsim.physics.traction import slice_traction
+from bearingsim.vectors import Vec, add, azimuth_frame, cross, dot, scale, sub
 
 __all__ = ["RaceContact"]
 
@@ -49,7 +39,7 @@ class RaceContact(Component):
     """Contact of one ball with the inner or outer raceway of a (possibly displaced) ring.
 
     Geometry: approach ``delta`` and normal ``n`` (ball centre to contact) from the exact
-    rigid-ring kinematics of :func:`~bearingsim.components.dynamic.frames.groove_contact`
+    rigid-ring kinematics of :func:`~bearingsim.physics.groove_contact.groove_contact`
     (the groove centre moves with the ring's 5-DOF displacement).
 
     Normal load: ``Q = < K <delta>^1.5 (1 + c_d d(delta)/dt) + beta k(delta) d(delta)/dt >``:

@@ -6,8 +6,8 @@ import difflib
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
+from bearingsim.components.connectors import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.dynamic.ball import MICRON
-from bearingsim.components.frame import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.rotational import _signal
 from bearingsim.errors import ParameterError, check_range
 from bearingsim.language import Component, Input, Parameter, Variable, der

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from bearingsim import symbolic as op
-from bearingsim.components.rotational import Flange
+from bearingsim.components.connectors import Flange
 from bearingsim.language import Component, Input, Parameter, Variable, der
 from bearingsim.physics.friction import palmgren_m0
 from bearingsim.physics.lubricant import Lubricant

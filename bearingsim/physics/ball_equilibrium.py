@@ -1,7 +1,7 @@
 """Quasi-static equilibrium of the balls and the inner ring (start values and reference).
 
 The same contact geometry as the dynamic components
-(:func:`~bearingsim.components.dynamic.frames.groove_contact`) and the same smooth Hertz law,
+(:func:`~bearingsim.physics.groove_contact.groove_contact`) and the same smooth Hertz law,
 solved in numbers by Newton (scipy ``root``): for every ball the radial and axial force balance
 with the centrifugal force ``m r w_c^2``, for the inner ring the balance with the external load
 (Jones 1960; Harris & Kotzalas, *Advanced Concepts*, ch. "High-speed operation"). Traction,
@@ -17,10 +17,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.optimize
 
-from bearingsim.components.dynamic.ball import POSITION_REGULARIZATION
-from bearingsim.components.dynamic.frames import groove_contact
 from bearingsim.errors import ParameterError, SimulationError
-from bearingsim.physics.bearing_design import BearingDesign
+from bearingsim.physics.bearing_design import POSITION_REGULARIZATION, BearingDesign
+from bearingsim.physics.groove_contact import groove_contact
 from bearingsim.physics.hertz import contact_load
 
 __all__ = ["StaticState", "static_state"]
