@@ -32,7 +32,7 @@ from bearingsim.physics.double_layer_theory import (  # noqa: E402
 )
 from bearingsim.physics.lubricant import Grease, Oil  # noqa: E402
 from bearingsim.simulation import steady_state  # noqa: E402
-from bearingsim.studies.double_layer import speed_ratio_sweep  # noqa: E402
+from bearingsim.studies.double_layer import speed_ratio, speed_ratio_sweep  # noqa: E402
 from bearingsim.units import rad_s_to_rpm, rpm_to_rad_s  # noqa: E402
 
 PAIRINGS = (("61905", "61907", "Z"), ("61905", "61908", "Z"), ("61905", "61909", "I"))
@@ -75,7 +75,7 @@ def dynamic_rows() -> list[list]:
         for rpm in DYNAMIC_SPEEDS_RPM:
             w = float(rpm_to_rad_s(rpm))
             rs_torque = _torque_level_rs(lubrication, w)
-            est = bearing.speed_ratio(system, w, (0.95 * rs_torque, 1.05 * rs_torque),
+            est = speed_ratio(bearing, system, w, (0.95 * rs_torque, 1.05 * rs_torque),
                                       parameters)
             rows.append([label, rpm, est.rs, rs_torque, est.bracketed])
             print(f"61905/61907 dynamic {label:<11s} {rpm:6g} r/min  Rs {est.rs:.4f}  "

@@ -9,7 +9,6 @@ import math
 import pytest
 
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
-from bearingsim.assemblies.deep_groove import keyword_names
 from bearingsim.assemblies.double_layer import layer_option_names
 from bearingsim.components.bearing_torque import PalmgrenBearing
 from bearingsim.errors import CatalogError, ParameterError
@@ -17,6 +16,7 @@ from bearingsim.language import Parameter
 from bearingsim.physics.ball_equilibrium import static_state
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Dry
+from bearingsim.validation import keyword_names
 
 LOADS = {"Fx": 500.0}
 

@@ -10,9 +10,9 @@ from scipy.integrate import cumulative_trapezoid
 from bearingsim import Assembly, connect
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
-from bearingsim.assemblies.double_layer import middle_ring_bodies
 from bearingsim.catalog import get_bearing
 from bearingsim.components.bearing_torque import PalmgrenBearing
+from bearingsim.components.middle_ring import middle_ring_bodies
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.physics.double_layer_theory import (

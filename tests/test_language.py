@@ -256,7 +256,8 @@ def test_ad_hoc_assembly_without_subclassing():
 
 
 def test_check_choice_names_the_argument_and_the_valid_values():
-    from bearingsim.errors import ParameterError, check_choice
+    from bearingsim.errors import ParameterError
+    from bearingsim.validation import check_choice
 
     assert check_choice("Z", "structure", ("I", "Z"), "double_layer_bearing") == "Z"
     with pytest.raises(ParameterError) as info:

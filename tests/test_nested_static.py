@@ -7,11 +7,11 @@ import pytest
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
-from bearingsim.assemblies.nested_static import nested_equilibrium
 from bearingsim.components.ball_row import RowParameters, row_stiffness
 from bearingsim.errors import ParameterError
 from bearingsim.physics.ball_equilibrium import static_state
 from bearingsim.physics.bearing_design import bearing_design
+from bearingsim.studies.nested_equilibrium import nested_equilibrium
 
 
 @pytest.fixture(scope="module")

@@ -25,8 +25,9 @@ from bearingsim.assembler import (
 )
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.system import Signal, System
-from bearingsim.errors import StructuralError, check_choice
+from bearingsim.errors import StructuralError
 from bearingsim.language.component import Component
+from bearingsim.validation import check_choice
 
 __all__ = ["AssemblyState", "PASSES", "assemble"]
 

@@ -9,7 +9,8 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import Param
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
+from bearingsim.validation import check_range
 
 __all__ = ["Signal", "System"]
 

@@ -19,7 +19,6 @@ enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
 from __future__ import annotations
 
 import dataclasses
-import inspect
 import math
 import numbers
 from collections.abc import Callable
@@ -42,12 +41,19 @@ from bearingsim.components.dynamic import (
 )
 from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError, check_choice, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
+from bearingsim.validation import (
+    check_choice,
+    check_number,
+    check_options,
+    check_range,
+    keyword_names,
+)
 
 __all__ = ["FIDELITIES", "FILM_DAMPING", "DeepGrooveBallBearing", "QuasiStaticDeepGroove",
            "deep_groove_ball_bearing"]
@@ -58,55 +64,6 @@ FILM_DAMPING = 1e-5
 """Damping of a lubricated race contact over its tangent stiffness [s] (Kramer 1993: rolling
 bearings damp 0.25e-5 .. 2.5e-5 times their stiffness; see
 :class:`~bearingsim.components.dynamic.RaceContact`)."""
-
-
-def keyword_names(func: Callable, exclude: tuple[str, ...] = ()) -> tuple[str, ...]:
-    """Names ``func`` accepts as keywords, from its signature (``self`` and ``exclude`` left out).
-
-    Parameters
-    ----------
-    func : callable
-        A function or class (its constructor's signature).
-    exclude : tuple of str
-        Names the caller sets itself.
-
-    Returns
-    -------
-    tuple of str
-        In signature order; a ``**kwargs`` catch-all is not listed.
-    """
-    kinds = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
-    return tuple(n for n, p in inspect.signature(func).parameters.items()
-                 if p.kind in kinds and n != "self" and n not in exclude)
-
-
-def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str,
-                  what: str, context: str = "") -> None:
-    """Raise for keyword options that are not among ``accepted``.
-
-    Parameters
-    ----------
-    options : dict
-        The options given.
-    accepted : tuple of str
-        The valid option names (e.g. from :func:`keyword_names`).
-    where : str
-        Function or component name, used in the message.
-    what : str
-        What the options are called (e.g. ``"layer_options"``).
-    context : str
-        Appended to the name list (e.g. ``"at fidelity 'torque'"``).
-
-    Raises
-    ------
-    ParameterError
-        ``"<where>: unknown <what> 'a', 'b' <context>; accepted: ..."``.
-    """
-    unknown = [k for k in options if k not in accepted]
-    if unknown:
-        ctx = f" {context}" if context else ""
-        raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
-                             f"accepted: {', '.join(accepted) or 'none'}")
 
 
 def _lubricant(lubricant: Lubricant | str) -> Lubricant:
@@ -255,7 +212,7 @@ class DeepGrooveBallBearing(Assembly):
                                        ("land_mu", land_mu, "1", 2.0),
                                        ("cage_damping", cage_damping, "s/m", None)):
             if value is not None:
-                _check_number(value, key, unit, high, where)
+                check_number(value, key, unit, high, where)
         g, cage = design.geometry, design.cage
         self.design, self.lubricant = design, lubricant
         loads = check_loads(loads, where)
@@ -426,14 +383,6 @@ class DeepGrooveBallBearing(Assembly):
         for ball, drag in zip(self.ball, getattr(self, "drag", []), strict=False):
             power = power + ball_port(drag.ball, ball)
         return power
-
-
-def _check_number(value: Any, name: str, unit: str, high: float | None, where: str) -> None:
-    """A real number (not a bool or string) in ``[0, high]``."""
-    if isinstance(value, (bool, str, bytes)) or not isinstance(value, numbers.Real):
-        raise ParameterError(f"{where}: {name} must be a number in [{unit}], got {value!r} "
-                             f"({type(value).__name__})")
-    check_range(value, name, unit, 0.0, high, where=where)
 
 
 class QuasiStaticDeepGroove(Assembly):

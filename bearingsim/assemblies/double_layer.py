@@ -13,19 +13,11 @@ dynamics of both layers (``dynamic``, :class:`DynamicDoubleLayerBearing`).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
-from bearingsim.assemblies.deep_groove import (
-    DeepGrooveBallBearing,
-    check_options,
-    keyword_names,
-)
-from bearingsim.catalog import BearingGeometry, resolve_bearing
+from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
+from bearingsim.catalog import resolve_bearing
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
     PureRollingLayer,
@@ -33,125 +25,23 @@ from bearingsim.components.bearing_torque import (
     resolve_lubricant,
 )
 from bearingsim.components.connectors import Flange
-from bearingsim.components.dynamic import RingBody as MovingRing
-from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError, check_choice, check_range
+from bearingsim.components.dynamic import RingBody
+from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies, middle_ring_structure
+from bearingsim.components.rotational import Fixed, SpeedSource
+from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import skf_friction_components
-from bearingsim.simulation import simulate
+from bearingsim.validation import check_choice, check_options, check_range, keyword_names
 
 __all__ = [
-    "MiddleRing",
-    "RingBody",
     "DoubleLayerBearing",
     "DynamicDoubleLayerBearing",
-    "SpeedRatioEstimate",
     "double_layer_bearing",
-    "middle_ring_bodies",
     "FIDELITIES",
 ]
 
 FIDELITIES = ("kinematic", "kinematic_approx", "torque", "quasi-static", "dynamic")
-STEEL_DENSITY = 7850.0
-"""Bearing steel density [kg/m^3]."""
-
-
-@dataclass(frozen=True)
-class RingBody:
-    """Mass properties of one part of the middle ring."""
-
-    name: str
-    mass: float
-    """[kg]"""
-    inertia: float
-    """Polar moment of inertia [kg m^2]."""
-
-
-def _tube(name: str, r_in: float, r_out: float, width: float, rho: float) -> RingBody:
-    m = rho * math.pi * (r_out**2 - r_in**2) * width
-    return RingBody(name, m, 0.5 * m * (r_out**2 + r_in**2))
-
-
-def middle_ring_bodies(
-    inner: BearingGeometry, outer: BearingGeometry, structure: str, wall: float = 2.5e-3,
-    density: float = STEEL_DENSITY,
-) -> list[RingBody]:
-    """Mass and polar inertia of the three parts of the middle ring.
-
-    The rings are hollow cylinders: the inner bearing's outer ring from the outer land radius
-    ``dm/2 + 0.3 Dw`` to ``D/2``; the outer bearing's inner ring from ``d/2`` to the inner land
-    radius ``dm/2 - 0.3 Dw`` (an estimate of the land heights of deep-groove rings). The sleeve
-    is a plain tube between ``D1/2`` and ``d2/2`` (I-type), or a Z section (Z-type): a hub of
-    thickness ``wall`` around the inner bearing, a hub of thickness ``wall`` inside the outer
-    bearing's bore, joined by a radial web of thickness ``wall``.
-
-    Parameters
-    ----------
-    inner, outer : BearingGeometry
-        Inner (1) and outer (2) bearing.
-    structure : {"I", "Z"}
-        Middle ring type.
-    wall : float
-        Wall thickness of the Z-section sleeve [m].
-    density : float
-        Material density [kg/m^3].
-
-    Returns
-    -------
-    list of RingBody
-        Inner bearing's outer ring, sleeve, outer bearing's inner ring.
-    """
-    check_range(wall, "wall", "m", 0.0, None, low_inclusive=False, where="middle_ring_bodies")
-    ring1 = _tube("inner bearing outer ring", inner.pitch_diameter / 2 + 0.3 * inner.ball_diameter,
-                  inner.outside_diameter / 2, inner.width, density)
-    ring2 = _tube("outer bearing inner ring", outer.bore / 2,
-                  outer.pitch_diameter / 2 - 0.3 * outer.ball_diameter, outer.width, density)
-    r1, r2 = inner.outside_diameter / 2, outer.bore / 2
-    if structure == "I":
-        sleeve = _tube("sleeve", r1, r2, max(inner.width, outer.width), density)
-    else:
-        hub1 = _tube("", r1, r1 + wall, inner.width, density)
-        hub2 = _tube("", r2 - wall, r2, outer.width, density)
-        web = _tube("", min(r2 - wall, r1), max(r1 + wall, r2), wall, density)
-        sleeve = RingBody("sleeve", hub1.mass + hub2.mass + web.mass,
-                          hub1.inertia + hub2.inertia + web.inertia)
-    return [ring1, sleeve, ring2]
-
-
-class MiddleRing(Assembly):
-    """The middle ring: three rigid bodies joined by connections (not a hand-merged inertia).
-
-    Connectors
-    ----------
-    inner_side : Flange (the inner bearing's outer ring)
-    outer_side : Flange (the outer bearing's inner ring)
-
-    Variables
-    ---------
-    w [rad/s] : speed of the middle ring
-    """
-
-    def __init__(self, bodies: list[RingBody], w0: float = 0.0, name=None):
-        super().__init__(name)
-        ring1, sleeve, ring2 = bodies
-        self.inner_ring_of_inner_bearing = Inertia(ring1.inertia, w0=w0)
-        self.sleeve = Inertia(sleeve.inertia, w0=w0)
-        self.outer_ring_of_outer_bearing = Inertia(ring2.inertia, w0=w0)
-        self.J = sum(b.inertia for b in bodies)
-        self.inner_side = Flange()
-        self.outer_side = Flange()
-        self.w = Variable(unit="rad/s", description="middle ring speed")
-        self.mass = sum(b.mass for b in bodies)
-        connect(self.inner_side, self.inner_ring_of_inner_bearing.flange_a)
-        connect(self.inner_ring_of_inner_bearing.flange_b, self.sleeve.flange_a)
-        connect(self.sleeve.flange_b, self.outer_ring_of_outer_bearing.flange_a)
-        connect(self.outer_ring_of_outer_bearing.flange_b, self.outer_side)
-
-    def equations(self):
-        return [self.w == self.sleeve.w]
-
-
 KINEMATIC_OPTIONS = ("k",)
 """``layer_options`` of the kinematic levels (the drag coefficient of PureRollingLayer)."""
 
@@ -207,20 +97,6 @@ def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dic
     if friction_model == "palmgren":
         return PalmgrenBearing(geometry, lubricant, **options)
     return SkfBearing(geometry, lubricant, **options)
-
-
-def _structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) -> str:
-    """Checked middle-ring type: "I" needs ``D1 <= d2``; None chooses "I" when it fits."""
-    fits = gi.outside_diameter <= go.bore
-    structure = structure or ("I" if fits else "Z")
-    check_choice(structure, "structure", ("I", "Z"), "double_layer_bearing")
-    if structure == "I" and not fits:
-        raise ParameterError(
-            f"double_layer_bearing: an I-type middle ring needs the inner bearing's outside "
-            f"diameter ({gi.outside_diameter * 1e3:g} mm) <= the outer bearing's bore "
-            f"({go.bore * 1e3:g} mm); use structure='Z'"
-        )
-    return structure
 
 
 def _check_drive(drive: str) -> None:
@@ -304,7 +180,7 @@ class DoubleLayerBearing(Assembly):
                 f"{fidelity!r} (the quasi-static and dynamic levels are built by "
                 f"double_layer_bearing)"
             )
-        structure = _structure(gi, go, structure)
+        structure = middle_ring_structure(gi, go, structure)
         _check_drive(drive)
         check_choice(friction_model, "friction_model", FRICTION_MODELS, "double_layer_bearing")
         lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
@@ -347,31 +223,6 @@ class DoubleLayerBearing(Assembly):
         if hasattr(self, "shaft_speed"):
             eqs.append(self.drive.w_in == self.shaft_speed)
         return eqs
-
-
-@dataclass(frozen=True)
-class SpeedRatioEstimate:
-    """Result of :meth:`DynamicDoubleLayerBearing.speed_ratio`.
-
-    Attributes
-    ----------
-    rs : float
-        Speed ratio where the net middle-ring torque vanishes (secant root) [-].
-    bracket : (float, float)
-        The two speed ratios run [-].
-    torques : (float, float)
-        Mean net torque on the middle ring at each [N m]; opposite signs (positive first)
-        when the bracket holds the result.
-    """
-
-    rs: float
-    bracket: tuple[float, float]
-    torques: tuple[float, float]
-
-    @property
-    def bracketed(self) -> bool:
-        """Whether the middle ring speeds up below and slows down above the bracket."""
-        return self.torques[0] > 0.0 > self.torques[1]
 
 
 _DYNAMIC_SETS = ("drive", "outer_ring", "ring_inertia", "speed", "loads", "drag",
@@ -460,7 +311,7 @@ class DynamicDoubleLayerBearing(Assembly):
                  layer_options: dict | None = None, name="bearing"):
         super().__init__(name)
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
-        self.structure = _structure(gi, go, structure)
+        self.structure = middle_ring_structure(gi, go, structure)
         _check_drive(drive)
         lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
         for lub in (lub_i, lub_o):
@@ -498,7 +349,7 @@ class DynamicDoubleLayerBearing(Assembly):
                                                  loads=constant, inner_ring="frame", **common)
         start = self.outer_layer.start
         middle0 = tuple(float(v) for v in start.ring[:3]) if start else (0.0, 0.0, 0.0)
-        self.middle_body = MovingRing(self.middle.mass, 0.5 * self.middle.J,
+        self.middle_body = RingBody(self.middle.mass, 0.5 * self.middle.J,
                                       start=(*middle0, 0.0, 0.0))
         # an imposed shaft speed needs no shaft inertia (which would need the input's derivative)
         self.inner_layer = DeepGrooveBallBearing(self.designs[0], lub_i, outer_ring="flange",
@@ -557,49 +408,6 @@ class DynamicDoubleLayerBearing(Assembly):
             start[f"middle.{body}.w"] = w_middle
         start["inner_layer.rotor.w"] = w_shaft
         return {prefix + k: v for k, v in start.items() if prefix + k in states}
-
-    def speed_ratio(self, system, w_shaft: float, bracket: tuple[float, float],
-                    parameters: dict | None = None, t_run: float = 0.02) -> SpeedRatioEstimate:
-        """Steady speed ratio from the net middle-ring torque of two short runs.
-
-        Each run starts in pure rolling (:meth:`rolling_start`) with the middle ring at
-        ``Rs * w_shaft`` for one ``Rs`` of ``bracket`` and lasts ``t_run`` (the balls and cages
-        settle within some milliseconds, the middle ring's own time constant is a large
-        fraction of a second); the net torque ``M_middle`` is averaged over the second half.
-        The ratio is the secant root of the two torques.
-
-        Parameters
-        ----------
-        system : System
-            This assembly assembled as the root, with the input ``shaft_speed``
-            (``drive="speed"``, ``speed=None``) and ``M_middle`` among its outputs.
-        w_shaft : float
-            Shaft speed [rad/s], > 0.
-        bracket : (float, float)
-            Two speed ratios [-], ideally on either side of the result.
-        parameters : dict, optional
-            Parameter overrides (e.g. ``{"inner_layer.ring_drag.f0": 1.62}``).
-        t_run : float
-            Length of each run [s].
-
-        Returns
-        -------
-        SpeedRatioEstimate
-        """
-        check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False,
-                    where="speed_ratio")
-        if "shaft_speed" not in system.input_names or "M_middle" not in system.output_names:
-            raise ParameterError("speed_ratio: assemble the bearing as the root with "
-                                 "drive='speed', speed=None and outputs=['M_middle', ...]")
-        torques = []
-        for rs in bracket:
-            x0 = self.rolling_start(w_shaft, rs * w_shaft, system.state_names)
-            res = simulate(system, t_run, x0=x0, inputs={"shaft_speed": w_shaft},
-                           parameters=parameters, method="cvodes", rtol=1e-5, atol=1e-8,
-                           n_points=21, progress=False)
-            torques.append(float(np.mean(res["M_middle"][res.t >= 0.5 * t_run])))
-        (r0, r1), (m0, m1) = bracket, torques
-        return SpeedRatioEstimate(r0 - m0 * (r1 - r0) / (m1 - m0), tuple(bracket), tuple(torques))
 
     def path_prefix(self, states: list[str]) -> str:
         """Prefix of this assembly's state names in a system (empty when it is the root)."""

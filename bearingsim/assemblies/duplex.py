@@ -34,9 +34,10 @@ from bearingsim.components.rings import (
     Shaft,
     Spacer,
 )
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, connect
 from bearingsim.physics.lubricant import Lubricant, get_lubricant
+from bearingsim.validation import check_range
 
 __all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
            "preload_offset", "preload_force", "offset_preload"]

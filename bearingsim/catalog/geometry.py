@@ -10,7 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
+from bearingsim.validation import check_range
 
 __all__ = ["BearingGeometry", "PreloadClasses"]
 

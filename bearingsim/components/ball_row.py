@@ -64,7 +64,7 @@ import scipy.optimize
 from bearingsim import symbolic as op
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.connectors import RingFrame
-from bearingsim.errors import ParameterError, check_choice, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Parameter, Variable
 from bearingsim.physics.hertz import (
     STEEL,
@@ -73,6 +73,7 @@ from bearingsim.physics.hertz import (
     combined_load_deflection_constant,
     contact_load,
 )
+from bearingsim.validation import check_choice, check_range
 from bearingsim.vectors import add, cross, rotate, rotation, scale
 
 __all__ = [

@@ -15,7 +15,7 @@ import numpy as np
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.connectors import Flange
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Parameter, Variable, der
 from bearingsim.physics.friction import (
     palmgren_f1,
@@ -25,6 +25,7 @@ from bearingsim.physics.friction import (
 )
 from bearingsim.physics.lubricant import Lubricant, get_lubricant
 from bearingsim.symbolic import smooth_abs, smooth_max0
+from bearingsim.validation import check_range
 
 __all__ = [
     "BearingTorqueElement",

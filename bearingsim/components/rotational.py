@@ -11,7 +11,6 @@ from collections.abc import Callable
 import casadi as ca
 
 from bearingsim.components.connectors import Flange
-from bearingsim.errors import check_range
 from bearingsim.language import (
     Component,
     Input,
@@ -19,6 +18,7 @@ from bearingsim.language import (
     Variable,
     der,
 )
+from bearingsim.validation import check_range
 
 __all__ = [
     "Flange",

@@ -11,8 +11,9 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.errors import ModelError, ParameterError, check_range
+from bearingsim.errors import ModelError, ParameterError
 from bearingsim.language.symbols import new_symbol
+from bearingsim.validation import check_range
 
 __all__ = [
     "Declaration",

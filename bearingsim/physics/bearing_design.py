@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 
 from bearingsim.catalog import BearingGeometry, get_bearing
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.physics.hertz import (
     STEEL,
     Material,
@@ -25,6 +25,7 @@ from bearingsim.physics.hertz import (
     raceway_radii,
     semi_axes,
 )
+from bearingsim.validation import check_range
 
 __all__ = ["BRASS", "STEEL_DENSITY", "BRASS_DENSITY", "POSITION_REGULARIZATION", "CageDesign",
            "BearingDesign", "bearing_design"]

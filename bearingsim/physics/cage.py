@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import check_range
 from bearingsim.physics.traction import regularized_coulomb
 from bearingsim.symbolic import fmax, fmin, if_else, smooth_abs, smooth_max0, sqrt, tanh
+from bearingsim.validation import check_range
 
 __all__ = [
     "SIGMA_BALL",

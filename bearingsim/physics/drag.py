@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import check_range
 from bearingsim.symbolic import smooth_abs, sqrt
+from bearingsim.validation import check_range
 
 __all__ = [
     "sphere_drag_coefficient",

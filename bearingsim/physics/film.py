@@ -11,9 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from bearingsim.errors import check_range
-from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter, check_radii
 from bearingsim.symbolic import cos, exp, power, smooth_abs, sqrt
+from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_radii, check_range
 
 __all__ = [
     "dimensionless_speed",
@@ -116,7 +115,7 @@ def ellipticity(Rx: Any, Ry: Any) -> Any:  # noqa: N803
     ----------
     Rx, Ry : float, array or casadi.SX
         Reduced radii in the rolling and transverse direction [m], > 0, ``Ry >= Rx``
-        (:func:`bearingsim.physics.hertz.check_radii`; swapped radii are rejected).
+        (:func:`bearingsim.validation.check_radii`; swapped radii are rejected).
 
     Returns
     -------
@@ -302,7 +301,7 @@ def rolling_entrainment_speed(
         Inner minus outer ring speed [rad/s].
     Dw : float
         Ball diameter [m], in (0, 0.5] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.physics.hertz.check_diameter`).
+        :func:`~bearingsim.validation.check_diameter`).
     dm : float
         Pitch diameter [m], > Dw and at most 6.
     contact_angle : float

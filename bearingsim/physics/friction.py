@@ -18,11 +18,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from bearingsim.errors import CatalogError, ParameterError, check_count, check_range
+from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.drag import orbital_drag_force
-from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.symbolic import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
+from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
 
 if TYPE_CHECKING:
     from bearingsim.physics.lubricant import Lubricant
@@ -266,7 +266,7 @@ def palmgren_m0(nu: Any, n_abs: Any, dm: float, f0: float, smooth: bool = True) 
         Magnitude of the relative speed [rad/s], >= 0.
     dm : float
         Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.physics.hertz.check_diameter`).
+        :func:`~bearingsim.validation.check_diameter`).
     f0 : float
         Palmgren factor [-], >= 0.
     smooth : bool
@@ -323,7 +323,7 @@ def palmgren_torque(
         Speed of the ring relative to the other ring [rad/s].
     dm : float
         Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.physics.hertz.check_diameter`).
+        :func:`~bearingsim.validation.check_diameter`).
     lubricant : Lubricant
         Oil, Grease or Dry object (:mod:`bearingsim.physics.lubricant`).
     bearing_type : str
@@ -543,7 +543,7 @@ def skf_friction_components(
         Relative ring speed [rad/s].
     dm : float
         Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.physics.hertz.check_diameter`).
+        :func:`~bearingsim.validation.check_diameter`).
     lubricant : Lubricant
         Oil or Grease (the base oil viscosity is used); Dry gives zero rolling moment.
     series : str

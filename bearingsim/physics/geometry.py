@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from bearingsim import symbolic as op
-from bearingsim.errors import check_choice, check_range
+from bearingsim.validation import check_choice, check_range
 
 __all__ = [
     "pitch_ratio",

@@ -22,7 +22,14 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from bearingsim import symbolic as op
-from bearingsim.errors import ParameterError, check_choice, check_range
+from bearingsim.errors import ParameterError
+from bearingsim.validation import (
+    MAX_BALL_DIAMETER,
+    check_choice,
+    check_diameter,
+    check_radii,
+    check_range,
+)
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry
@@ -33,10 +40,6 @@ __all__ = [
     "SILICON_NITRIDE",
     "EllipticParameters",
     "HertzContact",
-    "check_radii",
-    "check_diameter",
-    "MAX_BEARING_DIAMETER",
-    "MAX_BALL_DIAMETER",
     "effective_modulus",
     "raceway_radii",
     "curvature_sum",
@@ -56,11 +59,6 @@ __all__ = [
 ]
 
 METHODS = ("exact", "hamrock_brewe")
-MAX_BEARING_DIAMETER = 6.0
-"""Largest plausible pitch, bore or outside diameter [m] (large slewing bearings: a few metres);
-a larger value is taken for a millimetre value passed as metres."""
-MAX_BALL_DIAMETER = 0.5
-"""Largest plausible ball diameter [m] (slewing-bearing balls stay below about 0.15 m)."""
 _NEWTON_STEPS = 5
 _M_MIN = 1e-12  # smallest elliptic parameter used: k - 1 < 1e-12 (circular contact)
 _M_MAX = 1.0 - 1e-15
@@ -145,71 +143,6 @@ class HertzContact:
 def _check_method(method: str) -> None:
     if method not in METHODS:
         raise ParameterError(f"method must be one of {METHODS}, got {method!r}")
-
-
-def check_diameter(value, name: str, where: str, high: float = MAX_BEARING_DIAMETER):
-    """Check a diameter in metres: finite, > 0 and at most ``high`` (a catalogue-unit slip).
-
-    Bearing catalogues give diameters in millimetres; the SI functions of bearingsim take
-    metres. A value above ``high`` is reported as a likely millimetre value. Symbolic (CasADi)
-    values are passed through unchecked.
-
-    Parameters
-    ----------
-    value : float, array or casadi.SX
-        The diameter [m].
-    name : str
-        Argument name, used in the message.
-    where : str
-        Function name, used in the message.
-    high : float
-        Largest plausible value [m]: :data:`MAX_BEARING_DIAMETER` (pitch, bore and outside
-        diameters) or :data:`MAX_BALL_DIAMETER` (balls).
-
-    Returns
-    -------
-    The value unchanged.
-
-    Raises
-    ------
-    ParameterError
-        ``"<where>: <name> = 40 [m] is outside the valid range (0, 6] [m] (did you pass
-        mm?)"`` above ``high``; the usual range message for a value <= 0 or not finite.
-    """
-    check_range(value, name, "m", 0.0, low_inclusive=False, where=where)
-    try:
-        check_range(value, name, "m", 0.0, high, low_inclusive=False, where=where)
-    except ParameterError as exc:
-        raise ParameterError(f"{exc} (did you pass mm?)") from None
-    return value
-
-
-def check_radii(rx, ry, where: str):
-    """Check reduced radii of an elliptical contact: ``Rx > 0``, ``Ry > 0`` and ``Ry >= Rx``.
-
-    The Hertz, Hamrock-Dowson and rolling-resistance formulas of bearingsim take ``Rx`` along
-    and ``Ry`` across the rolling direction and assume ``Ry >= Rx`` (ellipticity ``k = a/b
-    >= 1``). Symbolic (CasADi) radii are checked for sign only when numbers are bound.
-
-    Parameters
-    ----------
-    rx, ry : float, array or casadi.SX
-        Reduced radii along and across the rolling direction [m], > 0, ``ry >= rx``.
-    where : str
-        Function name, used in the message.
-
-    Raises
-    ------
-    ParameterError
-        For non-positive or non-finite radii, or ``Ry < Rx`` (swapped radii).
-    """
-    check_range(rx, "Rx", "m", 0.0, low_inclusive=False, where=where)
-    check_range(ry, "Ry", "m", 0.0, low_inclusive=False, where=where)
-    if not op.is_symbolic(rx, ry) and np.any(np.asarray(ry) < np.asarray(rx)):
-        raise ParameterError(
-            f"{where}: need Ry >= Rx (Ry across, Rx along the rolling direction) [m], "
-            f"got Rx = {rx}, Ry = {ry}; swap the radii for a contact elongated along x"
-        )
 
 
 def effective_modulus(body1: Material = STEEL, body2: Material = STEEL) -> float:

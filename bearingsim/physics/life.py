@@ -21,9 +21,15 @@ from typing import Any
 import numpy as np
 
 from bearingsim import symbolic as op
-from bearingsim.errors import ParameterError, check_choice, check_count, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.physics.geometry import ball_pass_ratio, pitch_ratio
-from bearingsim.physics.hertz import MAX_BALL_DIAMETER, check_diameter
+from bearingsim.validation import (
+    MAX_BALL_DIAMETER,
+    check_choice,
+    check_count,
+    check_diameter,
+    check_range,
+)
 
 __all__ = [
     "dynamic_load_rating",
@@ -172,7 +178,7 @@ def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle
     ----------
     ball_diameter : float or array or SX
         Ball diameter Dw [m], in (0, 0.5] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.physics.hertz.check_diameter`).
+        :func:`~bearingsim.validation.check_diameter`).
     pitch_diameter : float or array or SX
         Pitch diameter dm [m], in (0, 6].
     ball_count : int or float or SX

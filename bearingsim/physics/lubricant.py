@@ -13,11 +13,12 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import CatalogError, ParameterError, check_range
+from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.friction import LUBRICATION_METHODS, palmgren_f0
 from bearingsim.physics.traction import EHL_TRACTION_DEFAULT, ehl_traction, regularized_coulomb
 from bearingsim.symbolic import log, power
 from bearingsim.units import celsius_to_kelvin, cst_to_m2_s
+from bearingsim.validation import check_range
 
 __all__ = [
     "Lubricant",

@@ -14,15 +14,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from bearingsim.errors import check_range
 from bearingsim.physics.film import (
     dimensionless_load,
     dimensionless_material,
     dimensionless_speed,
     ellipticity,
 )
-from bearingsim.physics.hertz import check_radii
 from bearingsim.symbolic import power
+from bearingsim.validation import check_radii, check_range
 
 __all__ = ["ROLLING_FORCE_COEFFICIENT", "ROLLING_FORCE_EXPONENTS",
            "hydrodynamic_rolling_force", "rolling_resistance"]

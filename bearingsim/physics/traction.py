@@ -16,8 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.symbolic import exp, smooth_abs, sqrt
+from bearingsim.validation import check_range
 
 __all__ = [
     "EHL_TRACTION_DEFAULT",

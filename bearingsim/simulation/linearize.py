@@ -8,8 +8,9 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assembler.system import System
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.simulation.result import Result
+from bearingsim.validation import check_range
 
 __all__ = ["LinearModel", "linearize"]
 

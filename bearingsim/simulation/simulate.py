@@ -12,10 +12,11 @@ import scipy.integrate
 import scipy.optimize
 
 from bearingsim.assembler.system import System
-from bearingsim.errors import ParameterError, SimulationError, check_choice, check_range
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.fastcall import BufferedFunction
 from bearingsim.simulation.inputs import check_input_ranges, input_expression
 from bearingsim.simulation.result import Result
+from bearingsim.validation import check_choice, check_range
 
 __all__ = ["ClosedModel", "close_inputs", "simulate", "initial_state"]
 

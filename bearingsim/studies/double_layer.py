@@ -8,11 +8,13 @@ import numpy as np
 
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System
-from bearingsim.assemblies.double_layer import double_layer_bearing
+from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double_layer_bearing
 from bearingsim.errors import ParameterError
-from bearingsim.simulation import steady_state
+from bearingsim.simulation import simulate, steady_state
+from bearingsim.validation import check_range
 
-__all__ = ["SpeedRatioSweep", "speed_ratio_sweep", "steady_ratio"]
+__all__ = ["SpeedRatioEstimate", "SpeedRatioSweep", "speed_ratio", "speed_ratio_sweep",
+           "steady_ratio"]
 
 
 @dataclass
@@ -112,3 +114,75 @@ def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), paramete
     for k, w in enumerate(speeds):
         rs[k], torque[k], x = steady_ratio(system, w, loads, parameters, x_guess=x)
     return SpeedRatioSweep(speeds, rs, torque)
+
+
+@dataclass(frozen=True)
+class SpeedRatioEstimate:
+    """Result of :func:`speed_ratio`.
+
+    Attributes
+    ----------
+    rs : float
+        Speed ratio where the net middle-ring torque vanishes (secant root) [-].
+    bracket : (float, float)
+        The two speed ratios run [-].
+    torques : (float, float)
+        Mean net torque on the middle ring at each [N m]; opposite signs (positive first)
+        when the bracket holds the result.
+    """
+
+    rs: float
+    bracket: tuple[float, float]
+    torques: tuple[float, float]
+
+    @property
+    def bracketed(self) -> bool:
+        """Whether the middle ring speeds up below and slows down above the bracket."""
+        return self.torques[0] > 0.0 > self.torques[1]
+
+
+def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: float,
+                bracket: tuple[float, float], parameters: dict | None = None,
+                t_run: float = 0.02) -> SpeedRatioEstimate:
+    """Steady speed ratio from the net middle-ring torque of two short runs.
+
+    Each run starts in pure rolling (``bearing.rolling_start``) with the middle ring at
+    ``Rs * w_shaft`` for one ``Rs`` of ``bracket`` and lasts ``t_run`` (the balls and cages
+    settle within some milliseconds, the middle ring's own time constant is a large
+    fraction of a second); the net torque ``M_middle`` is averaged over the second half.
+    The ratio is the secant root of the two torques.
+
+    Parameters
+    ----------
+    bearing : DynamicDoubleLayerBearing
+        The assembly (for its pure-rolling start values).
+    system : System
+        ``bearing`` assembled as the root, with the input ``shaft_speed``
+        (``drive="speed"``, ``speed=None``) and ``M_middle`` among its outputs.
+    w_shaft : float
+        Shaft speed [rad/s], > 0.
+    bracket : (float, float)
+        Two speed ratios [-], ideally on either side of the result.
+    parameters : dict, optional
+        Parameter overrides (e.g. ``{"inner_layer.ring_drag.f0": 1.62}``).
+    t_run : float
+        Length of each run [s].
+
+    Returns
+    -------
+    SpeedRatioEstimate
+    """
+    check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False,
+                where="speed_ratio")
+    if "shaft_speed" not in system.input_names or "M_middle" not in system.output_names:
+        raise ParameterError("speed_ratio: assemble the bearing as the root with "
+                             "drive='speed', speed=None and outputs=['M_middle', ...]")
+    torques = []
+    for rs in bracket:
+        x0 = bearing.rolling_start(w_shaft, rs * w_shaft, system.state_names)
+        res = simulate(system, t_run, x0=x0, inputs={"shaft_speed": w_shaft},
+                       parameters=parameters, method="cvodes", rtol=1e-5, atol=1e-8,
+                       n_points=21, progress=False)
+        torques.append(float(np.mean(res["M_middle"][res.t >= 0.5 * t_run])))
+    (r0, r1), (m0, m1) = bracket, torques
+    return SpeedRatioEstimate(r0 - m0 * (r1 - r0) / (m1 - m0), tuple(bracket), tuple(torques))

@@ -18,10 +18,11 @@ from bearingsim.components.bearing_torque import (
     static_equivalent_load,
     static_load_factors,
 )
-from bearingsim.errors import ParameterError, check_count
+from bearingsim.errors import ParameterError
 from bearingsim.physics import film, geometry, hertz, life, rolling
 from bearingsim.physics.friction import SkfSeal, palmgren_torque, skf_friction_components
 from bearingsim.physics.lubricant import Grease, Oil, get_lubricant
+from bearingsim.validation import check_count
 
 OIL = get_lubricant("ISO VG 68")
 DW, DM = 0.00794, 0.0385

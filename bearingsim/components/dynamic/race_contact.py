@@ -7,13 +7,14 @@ import numbers
 
 from bearingsim import symbolic as op
 from bearingsim.components.connectors import BallFrame, Flange, RingFrame
-from bearingsim.errors import ParameterError, check_choice
+from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.groove_contact import groove_contact
 from bearingsim.physics.hertz import contact_load, contact_stiffness
 from bearingsim.physics.lubricant import Lubricant
 from bearingsim.physics.rolling import rolling_resistance
 from bearingsim.physics.traction import slice_traction
+from bearingsim.validation import check_choice
 from bearingsim.vectors import Vec, add, azimuth_frame, cross, dot, scale, sub
 
 __all__ = ["RaceContact"]

@@ -9,9 +9,10 @@ from typing import Any
 from bearingsim.components.connectors import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.dynamic.ball import MICRON
 from bearingsim.components.rotational import _signal
-from bearingsim.errors import ParameterError, check_range
+from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Parameter, Variable, der
 from bearingsim.symbolic import is_symbolic
+from bearingsim.validation import check_range
 
 __all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide", "check_loads", "load_unit"]
 

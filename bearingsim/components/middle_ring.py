@@ -1,0 +1,150 @@
+"""The middle ring of a double-layer (nested) bearing: its parts, their mass properties and
+its rotation (models.md section A).
+
+The inner bearing's outer ring, an intermediate sleeve and the outer bearing's inner ring form
+the middle ring. I-type: both bearings in one radial plane, the sleeve a plain tube; Z-type:
+the bearings offset axially, the sleeve a Z section.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from bearingsim.catalog import BearingGeometry
+from bearingsim.components.connectors import Flange
+from bearingsim.components.rotational import Inertia
+from bearingsim.errors import ParameterError
+from bearingsim.language import Assembly, Variable, connect
+from bearingsim.physics.bearing_design import STEEL_DENSITY
+from bearingsim.validation import check_choice, check_range
+
+__all__ = ["MiddleRing", "MiddleRingPart", "middle_ring_bodies", "middle_ring_structure"]
+
+
+def middle_ring_structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) -> str:
+    """Checked middle-ring type: "I" needs ``D1 <= d2``; None chooses "I" when it fits.
+
+    Parameters
+    ----------
+    gi, go : BearingGeometry
+        Inner (shaft-side) and outer (housing-side) bearing.
+    structure : {"I", "Z"} or None
+        Requested type.
+
+    Returns
+    -------
+    str
+        "I" or "Z".
+
+    Raises
+    ------
+    ParameterError
+        For another value, or "I" when the inner bearing does not fit in the outer one's bore.
+    """
+    fits = gi.outside_diameter <= go.bore
+    structure = structure or ("I" if fits else "Z")
+    check_choice(structure, "structure", ("I", "Z"), "double_layer_bearing")
+    if structure == "I" and not fits:
+        raise ParameterError(
+            f"double_layer_bearing: an I-type middle ring needs the inner bearing's outside "
+            f"diameter ({gi.outside_diameter * 1e3:g} mm) <= the outer bearing's bore "
+            f"({go.bore * 1e3:g} mm); use structure='Z'"
+        )
+    return structure
+
+
+
+@dataclass(frozen=True)
+class MiddleRingPart:
+    """Mass properties of one part of the middle ring."""
+
+    name: str
+    mass: float
+    """[kg]"""
+    inertia: float
+    """Polar moment of inertia [kg m^2]."""
+
+
+def _tube(name: str, r_in: float, r_out: float, width: float, rho: float) -> MiddleRingPart:
+    m = rho * math.pi * (r_out**2 - r_in**2) * width
+    return MiddleRingPart(name, m, 0.5 * m * (r_out**2 + r_in**2))
+
+
+def middle_ring_bodies(
+    inner: BearingGeometry, outer: BearingGeometry, structure: str, wall: float = 2.5e-3,
+    density: float = STEEL_DENSITY,
+) -> list[MiddleRingPart]:
+    """Mass and polar inertia of the three parts of the middle ring.
+
+    The rings are hollow cylinders: the inner bearing's outer ring from the outer land radius
+    ``dm/2 + 0.3 Dw`` to ``D/2``; the outer bearing's inner ring from ``d/2`` to the inner land
+    radius ``dm/2 - 0.3 Dw`` (an estimate of the land heights of deep-groove rings). The sleeve
+    is a plain tube between ``D1/2`` and ``d2/2`` (I-type), or a Z section (Z-type): a hub of
+    thickness ``wall`` around the inner bearing, a hub of thickness ``wall`` inside the outer
+    bearing's bore, joined by a radial web of thickness ``wall``.
+
+    Parameters
+    ----------
+    inner, outer : BearingGeometry
+        Inner (1) and outer (2) bearing.
+    structure : {"I", "Z"}
+        Middle ring type.
+    wall : float
+        Wall thickness of the Z-section sleeve [m].
+    density : float
+        Material density [kg/m^3].
+
+    Returns
+    -------
+    list of MiddleRingPart
+        Inner bearing's outer ring, sleeve, outer bearing's inner ring.
+    """
+    check_range(wall, "wall", "m", 0.0, None, low_inclusive=False, where="middle_ring_bodies")
+    ring1 = _tube("inner bearing outer ring", inner.pitch_diameter / 2 + 0.3 * inner.ball_diameter,
+                  inner.outside_diameter / 2, inner.width, density)
+    ring2 = _tube("outer bearing inner ring", outer.bore / 2,
+                  outer.pitch_diameter / 2 - 0.3 * outer.ball_diameter, outer.width, density)
+    r1, r2 = inner.outside_diameter / 2, outer.bore / 2
+    if structure == "I":
+        sleeve = _tube("sleeve", r1, r2, max(inner.width, outer.width), density)
+    else:
+        hub1 = _tube("", r1, r1 + wall, inner.width, density)
+        hub2 = _tube("", r2 - wall, r2, outer.width, density)
+        web = _tube("", min(r2 - wall, r1), max(r1 + wall, r2), wall, density)
+        sleeve = MiddleRingPart("sleeve", hub1.mass + hub2.mass + web.mass,
+                          hub1.inertia + hub2.inertia + web.inertia)
+    return [ring1, sleeve, ring2]
+
+
+class MiddleRing(Assembly):
+    """The middle ring: three rigid bodies joined by connections (not a hand-merged inertia).
+
+    Connectors
+    ----------
+    inner_side : Flange (the inner bearing's outer ring)
+    outer_side : Flange (the outer bearing's inner ring)
+
+    Variables
+    ---------
+    w [rad/s] : speed of the middle ring
+    """
+
+    def __init__(self, bodies: list[MiddleRingPart], w0: float = 0.0, name=None):
+        super().__init__(name)
+        ring1, sleeve, ring2 = bodies
+        self.inner_ring_of_inner_bearing = Inertia(ring1.inertia, w0=w0)
+        self.sleeve = Inertia(sleeve.inertia, w0=w0)
+        self.outer_ring_of_outer_bearing = Inertia(ring2.inertia, w0=w0)
+        self.J = sum(b.inertia for b in bodies)
+        self.inner_side = Flange()
+        self.outer_side = Flange()
+        self.w = Variable(unit="rad/s", description="middle ring speed")
+        self.mass = sum(b.mass for b in bodies)
+        connect(self.inner_side, self.inner_ring_of_inner_bearing.flange_a)
+        connect(self.inner_ring_of_inner_bearing.flange_b, self.sleeve.flange_a)
+        connect(self.sleeve.flange_b, self.outer_ring_of_outer_bearing.flange_a)
+        connect(self.outer_ring_of_outer_bearing.flange_b, self.outer_side)
+
+    def equations(self):
+        return [self.w == self.sleeve.w]

@@ -1,0 +1,304 @@
+"""Argument checks shared by every layer: numbers and ranges, choices, counts, diameters in
+metres, contact radii and keyword options. Each raises
+:class:`~bearingsim.errors.ParameterError` naming the argument, its unit and valid range.
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+import numbers
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from bearingsim import symbolic as op
+from bearingsim.errors import ParameterError
+from bearingsim.symbolic import is_symbolic
+
+__all__ = [
+    "MAX_BALL_DIAMETER",
+    "MAX_BEARING_DIAMETER",
+    "check_choice",
+    "check_count",
+    "check_diameter",
+    "check_number",
+    "check_options",
+    "check_radii",
+    "check_range",
+    "keyword_names",
+]
+
+MAX_BEARING_DIAMETER = 6.0
+"""Largest plausible pitch, bore or outside diameter [m] (large slewing bearings: a few metres);
+a larger value is taken for a millimetre value passed as metres."""
+MAX_BALL_DIAMETER = 0.5
+"""Largest plausible ball diameter [m] (slewing-bearing balls stay below about 0.15 m)."""
+
+def check_range(
+    value: Any,
+    name: str,
+    unit: str = "-",
+    low: float | None = None,
+    high: float | None = None,
+    *,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+    where: str = "",
+) -> Any:
+    """Check that a numeric value (scalar or array) is finite and within ``[low, high]``.
+
+    Symbolic (CasADi) values are passed through unchecked: they are checked when numbers are bound.
+
+    Parameters
+    ----------
+    value : float or array_like or casadi.SX
+        The value to check.
+    name : str
+        Name of the parameter or variable, used in the message.
+    unit : str
+        Unit shown in the message.
+    low, high : float, optional
+        Bounds; ``None`` means unbounded.
+    low_inclusive, high_inclusive : bool
+        Whether the bounds themselves are allowed.
+    where : str
+        Component path or function name, used in the message.
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        If the value is not a number, is NaN or infinite, or lies outside the range.
+    """
+    if is_symbolic(value):
+        return value
+    label = f"{where}: {name}" if where else name
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(
+            f"{label} must be a number in {unit}, got {value!r} ({type(value).__name__})"
+        ) from None
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{label} must be finite, got {value!r} [{unit}]")
+    lo_ok = True if low is None else np.all(arr >= low if low_inclusive else arr > low)
+    hi_ok = True if high is None else np.all(arr <= high if high_inclusive else arr < high)
+    if not (lo_ok and hi_ok):
+        lo = "-inf" if low is None else f"{low:g}"
+        hi = "inf" if high is None else f"{high:g}"
+        lb = "[" if (low is None or low_inclusive) and low is not None else "("
+        rb = "]" if (high is None or high_inclusive) and high is not None else ")"
+        if low is None:
+            lb = "("
+        if high is None:
+            rb = ")"
+        shown = value if arr.ndim == 0 else f"array with min {arr.min():g}, max {arr.max():g}"
+        raise ParameterError(
+            f"{label} = {shown} [{unit}] is outside the valid range {lb}{lo}, {hi}{rb} [{unit}]"
+        )
+    if arr.ndim == 0 and not math.isfinite(float(arr)):
+        raise ParameterError(f"{label} must be finite [{unit}]")
+    return value
+
+
+def check_choice(value: Any, name: str, allowed: tuple, where: str = "") -> Any:
+    """Check that ``value`` is one of ``allowed``.
+
+    Parameters
+    ----------
+    value : Any
+        The value to check.
+    name : str
+        Name of the argument, used in the message.
+    allowed : tuple
+        The valid values.
+    where : str
+        Component path or function name, used in the message.
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> must be 'a', 'b' or 'c', got <value>"``.
+    """
+    if value in allowed:
+        return value
+    names = [repr(a) for a in allowed]
+    options = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+    label = f"{where}: {name}" if where else name
+    raise ParameterError(f"{label} must be {options}, got {value!r}")
+
+
+def check_count(value, name: str, low: int = 1, where: str = ""):
+    """Check that a count (number of rows, balls, ...) is a whole number ``>= low``.
+
+    Floats with an integral value (``2.0``) are accepted; booleans, fractions, NaN and
+    infinities are not. Symbolic (CasADi) values pass unchecked, as in
+    :func:`check_range`.
+
+    Parameters
+    ----------
+    value : int, float, array or casadi.SX
+        The count [-].
+    name : str
+        Argument name, used in the message.
+    low : int
+        Smallest valid count [-].
+    where : str
+        Function name, used in the message.
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> must be a whole number >= <low> [-], got <value>"``.
+    """
+    if is_symbolic(value):
+        return value
+    label = f"{where}: {name}" if where else name
+    arr = np.asarray(value)
+    if arr.dtype == bool or arr.dtype.kind not in "iuf":
+        raise ParameterError(f"{label} must be a whole number >= {low} [-], got {value!r}")
+    check_range(value, name, "-", low, where=where)
+    if np.any(arr != np.round(arr)):
+        raise ParameterError(f"{label} must be a whole number >= {low} [-], got {value!r}")
+    return value
+
+
+def check_number(value: Any, name: str, unit: str, high: float | None, where: str) -> None:
+    """Check a real number (not a bool or string) in ``[0, high]``.
+
+    Raises
+    ------
+    ParameterError
+        For a non-number or a value outside the range, naming ``name``, ``unit`` and ``where``.
+    """
+    if isinstance(value, (bool, str, bytes)) or not isinstance(value, numbers.Real):
+        raise ParameterError(f"{where}: {name} must be a number in [{unit}], got {value!r} "
+                             f"({type(value).__name__})")
+    check_range(value, name, unit, 0.0, high, where=where)
+
+
+def check_diameter(value, name: str, where: str, high: float = MAX_BEARING_DIAMETER):
+    """Check a diameter in metres: finite, > 0 and at most ``high`` (a catalogue-unit slip).
+
+    Bearing catalogues give diameters in millimetres; the SI functions of bearingsim take
+    metres. A value above ``high`` is reported as a likely millimetre value. Symbolic (CasADi)
+    values are passed through unchecked.
+
+    Parameters
+    ----------
+    value : float, array or casadi.SX
+        The diameter [m].
+    name : str
+        Argument name, used in the message.
+    where : str
+        Function name, used in the message.
+    high : float
+        Largest plausible value [m]: :data:`MAX_BEARING_DIAMETER` (pitch, bore and outside
+        diameters) or :data:`MAX_BALL_DIAMETER` (balls).
+
+    Returns
+    -------
+    The value unchanged.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> = 40 [m] is outside the valid range (0, 6] [m] (did you pass
+        mm?)"`` above ``high``; the usual range message for a value <= 0 or not finite.
+    """
+    check_range(value, name, "m", 0.0, low_inclusive=False, where=where)
+    try:
+        check_range(value, name, "m", 0.0, high, low_inclusive=False, where=where)
+    except ParameterError as exc:
+        raise ParameterError(f"{exc} (did you pass mm?)") from None
+    return value
+
+
+def check_radii(rx, ry, where: str):
+    """Check reduced radii of an elliptical contact: ``Rx > 0``, ``Ry > 0`` and ``Ry >= Rx``.
+
+    The Hertz, Hamrock-Dowson and rolling-resistance formulas of bearingsim take ``Rx`` along
+    and ``Ry`` across the rolling direction and assume ``Ry >= Rx`` (ellipticity ``k = a/b
+    >= 1``). Symbolic (CasADi) radii are checked for sign only when numbers are bound.
+
+    Parameters
+    ----------
+    rx, ry : float, array or casadi.SX
+        Reduced radii along and across the rolling direction [m], > 0, ``ry >= rx``.
+    where : str
+        Function name, used in the message.
+
+    Raises
+    ------
+    ParameterError
+        For non-positive or non-finite radii, or ``Ry < Rx`` (swapped radii).
+    """
+    check_range(rx, "Rx", "m", 0.0, low_inclusive=False, where=where)
+    check_range(ry, "Ry", "m", 0.0, low_inclusive=False, where=where)
+    if not op.is_symbolic(rx, ry) and np.any(np.asarray(ry) < np.asarray(rx)):
+        raise ParameterError(
+            f"{where}: need Ry >= Rx (Ry across, Rx along the rolling direction) [m], "
+            f"got Rx = {rx}, Ry = {ry}; swap the radii for a contact elongated along x"
+        )
+
+
+def keyword_names(func: Callable, exclude: tuple[str, ...] = ()) -> tuple[str, ...]:
+    """Names ``func`` accepts as keywords, from its signature (``self`` and ``exclude`` left out).
+
+    Parameters
+    ----------
+    func : callable
+        A function or class (its constructor's signature).
+    exclude : tuple of str
+        Names the caller sets itself.
+
+    Returns
+    -------
+    tuple of str
+        In signature order; a ``**kwargs`` catch-all is not listed.
+    """
+    kinds = (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
+    return tuple(n for n, p in inspect.signature(func).parameters.items()
+                 if p.kind in kinds and n != "self" and n not in exclude)
+
+
+def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str,
+                  what: str, context: str = "") -> None:
+    """Raise for keyword options that are not among ``accepted``.
+
+    Parameters
+    ----------
+    options : dict
+        The options given.
+    accepted : tuple of str
+        The valid option names (e.g. from :func:`keyword_names`).
+    where : str
+        Function or component name, used in the message.
+    what : str
+        What the options are called (e.g. ``"layer_options"``).
+    context : str
+        Appended to the name list (e.g. ``"at fidelity 'torque'"``).
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: unknown <what> 'a', 'b' <context>; accepted: ..."``.
+    """
+    unknown = [k for k in options if k not in accepted]
+    if unknown:
+        ctx = f" {context}" if context else ""
+        raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
+                             f"accepted: {', '.join(accepted) or 'none'}")
