@@ -1,16 +1,16 @@
-"""A motor driving a shaft that runs in a bearing assembly, with an optional load torque."""
+"""A motor driving a shaft that runs in a bearing assembly, with an optional load torque; and the
+motor side alone (:class:`MotorShaft`), loaded by a bearing torque input, for co-simulation."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
 from bearingsim.assemblies.double_layer import DoubleLayerBearing, double_layer_bearing
-from bearingsim.components.motor import DCMotorDrive, PMSMDrive
+from bearingsim.components.motor import speed_controlled_motor
 from bearingsim.components.rotational import Inertia, TorqueSource
-from bearingsim.errors import ParameterError
-from bearingsim.language import Assembly, Component, connect
+from bearingsim.language import Assembly, Component, Input, Variable, connect
 
-__all__ = ["MotorDrive", "motor_drive"]
+__all__ = ["MotorDrive", "MotorShaft", "motor_drive"]
 
 
 class MotorDrive(Assembly):
@@ -39,11 +39,7 @@ class MotorDrive(Assembly):
                  load_torque: Callable | float | None = 0.0, shaft_inertia: float = 1e-3,
                  motor_options: dict | None = None, name="drive"):
         super().__init__(name)
-        drives = {"dc": DCMotorDrive, "pmsm": PMSMDrive}
-        if motor not in drives:
-            raise ParameterError(f"motor_drive: motor must be one of {', '.join(drives)}, got "
-                                 f"{motor!r}")
-        self.motor = drives[motor](speed_ref, **(motor_options or {}))
+        self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "motor_drive")
         self.shaft = Inertia(shaft_inertia)
         self.bearing = bearing if bearing is not None else double_layer_bearing(drive="flange")
         self.load = TorqueSource(load_torque)
@@ -54,3 +50,46 @@ class MotorDrive(Assembly):
 def motor_drive(bearing: DoubleLayerBearing | None = None, **kwargs) -> MotorDrive:
     """Build a :class:`MotorDrive`."""
     return MotorDrive(bearing, **kwargs)
+
+
+class MotorShaft(Assembly):
+    """A speed-controlled motor on a shaft inertia, loaded by the bearing's friction torque.
+
+    Parameters
+    ----------
+    motor : {"dc", "pmsm"}
+        :class:`~bearingsim.components.motor.DCMotorDrive` or
+        :class:`~bearingsim.components.motor.PMSMDrive` (with their PI speed control).
+    speed_ref : callable or float or None
+        Speed reference [rad/s]: ``f(t)``, constant, or None for the input ``w_ref``.
+    shaft_inertia : float
+        Shaft (and spindle) inertia [kg m^2], as in ``motor_drive``.
+    motor_options : dict, optional
+        Passed to the motor drive.
+
+    Variables
+    ---------
+    w_ref (input) [rad/s], M_bearing (input) [N m]: friction torque of the bearing on the shaft
+    (positive drives the shaft), w_shaft [rad/s]
+    """
+
+    def __init__(self, motor: str = "dc", speed_ref: Callable | float | None = None,
+                 shaft_inertia: float = 1e-3, motor_options: dict | None = None,
+                 name="motor_shaft"):
+        super().__init__(name)
+        self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "MotorShaft")
+        self.shaft = Inertia(shaft_inertia)
+        self.bearing_torque = TorqueSource(None)
+        self.M_bearing = Input(0.0, "N.m", "friction torque of the bearing on the shaft")
+        self.w_shaft = Variable(unit="rad/s", description="shaft speed")
+        self._has_ref = speed_ref is None
+        if self._has_ref:
+            self.w_ref = Input(0.0, "rad/s", "speed reference")
+        connect(self.motor.flange, self.shaft.flange_a)
+        connect(self.shaft.flange_b, self.bearing_torque.flange)
+
+    def equations(self):
+        eqs = [self.bearing_torque.tau_in == self.M_bearing, self.w_shaft == self.shaft.w]
+        if self._has_ref:
+            eqs.append(self.motor.w_ref == self.w_ref)
+        return eqs

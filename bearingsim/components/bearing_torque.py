@@ -8,10 +8,7 @@ an assembled system is a parameter change, not a recompilation.
 
 from __future__ import annotations
 
-import math
 from typing import Any
-
-import numpy as np
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.connectors import Flange
@@ -23,9 +20,9 @@ from bearingsim.physics.friction import (
     palmgren_p1,
     skf_friction_components,
 )
+from bearingsim.physics.life import static_equivalent_load
 from bearingsim.physics.lubricant import Lubricant, get_lubricant
-from bearingsim.symbolic import smooth_abs, smooth_max0
-from bearingsim.validation import check_range
+from bearingsim.symbolic import smooth_abs
 
 __all__ = [
     "BearingTorqueElement",
@@ -33,95 +30,12 @@ __all__ = [
     "SkfBearing",
     "PureRollingLayer",
     "resolve_lubricant",
-    "static_equivalent_load",
-    "static_load_factors",
 ]
 
 
 def resolve_lubricant(lubricant: str | Lubricant) -> Lubricant:
     """A named lubricant or a lubricant object."""
     return lubricant if isinstance(lubricant, Lubricant) else get_lubricant(lubricant)
-
-
-# ISO 76:2006, Table 1: static factors of single-row radial ball bearings. Deep groove:
-# X0 = 0.6, Y0 = 0.5. Single-row angular contact: X0 = 0.5 and Y0 by nominal contact angle below,
-# interpolated linearly in the angle between the rows (our choice; ISO 76 lists the rows only).
-# The standard's text was not retrievable; checked against published catalogue values
-# (tests/physics/test_published_tables.py, test_static_factors_*):
-# * Deep groove 0.6, 0.5: NSK CAT. No. E1102e, deep-groove tables pp. B8-B11 (e.g. B9: "P0 =
-#   0.6 Fr + 0.5 Fa" for Fa/Fr > 0.8, "P0 = Fr" for Fa/Fr <= 0.8, i.e. the maximum).
-# * 15, 25, 30, 40 deg (0.46, 0.38, 0.33, 0.26; X0 0.5): NSK E1102e prints them ("Single, DT")
-#   with every angular contact table, pp. B50-B61 (e.g. B55, B57), and "DB or DF" X0 1, Y0 0.92,
-#   0.76, 0.66, 0.52 beside them: exactly twice the single-row Y0 at every angle.
-# * 40 deg also: SKF General Catalogue 6000 (Russian ed., 2006 data), p. 415, series 72 B/73 B
-#   (40 deg, p. 410): single and tandem P0 = 0.5 Fr + 0.26 Fa (P0 = Fr if larger); DB/DF
-#   P0 = Fr + 0.52 Fa.
-# * 30, 45 deg through double-row bearings (Y0 twice the single-row one, as NSK shows): SKF
-#   p. 440, Table 3, P0 = Fr + Y0 Fa with Y0 0.66 (32 A/33 A, 30 deg), 0.52 (33 DNRCBM, 40 deg),
-#   0.44 (33 D, 45 deg), so 45 deg single row = 0.22.
-# * 35 deg: SKF p. 455, four-point contact QJ 2/QJ 3 (35 deg, p. 452; rated as a double row):
-#   P0 = Fr + 0.58 Fa, so single row 0.29.
-# * 20 deg (0.42): UNVERIFIED. No retrieved catalogue prints a 20 deg Y0; the value sits on the
-#   line between 15 and 25 deg (0.46, 0.38), so interpolating 15-25 would give the same.
-_Y0_ANGLE_DEG = (15.0, 20.0, 25.0, 30.0, 35.0, 40.0, 45.0)
-_Y0_ANGULAR = (0.46, 0.42, 0.38, 0.33, 0.29, 0.26, 0.22)
-_X0_ANGULAR = 0.5
-_X0_DEEP_GROOVE, _Y0_DEEP_GROOVE = 0.6, 0.5
-
-
-def static_load_factors(geometry: BearingGeometry) -> tuple[float, float]:
-    """ISO 76:2006 static radial and axial load factors ``(X0, Y0)`` [-] of a single-row bearing.
-
-    Deep groove: ``(0.6, 0.5)``. Angular contact: ``X0 = 0.5`` and ``Y0`` 0.46, 0.42, 0.38,
-    0.33, 0.29, 0.26, 0.22 at 15, 20, 25, 30, 35, 40, 45 deg (ISO 76 Table 1), linear in the
-    contact angle between these rows. Checked against NSK CAT. No. E1102e pp. B8-B11 and
-    B50-B61 and SKF General Catalogue 6000 pp. 415, 440, 455; the 20 deg row is unverified
-    (see the comment above :data:`_Y0_ANGULAR` in the source).
-
-    Parameters
-    ----------
-    geometry : BearingGeometry
-        The bearing; its nominal contact angle [rad] selects the row.
-
-    Returns
-    -------
-    (X0, Y0) : tuple of float [-]
-
-    Raises
-    ------
-    ParameterError
-        For an angular contact bearing whose contact angle lies outside the ISO 76 rows,
-        [15, 45] deg.
-    """
-    if geometry.bearing_type == "deep_groove":
-        return _X0_DEEP_GROOVE, _Y0_DEEP_GROOVE
-    alpha_deg = round(math.degrees(geometry.contact_angle), 9)
-    check_range(alpha_deg, "contact_angle", "deg", _Y0_ANGLE_DEG[0], _Y0_ANGLE_DEG[-1],
-                where=f"static_load_factors ({geometry.designation}, ISO 76 angular contact)")
-    return _X0_ANGULAR, float(np.interp(alpha_deg, _Y0_ANGLE_DEG, _Y0_ANGULAR))
-
-
-def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
-    """ISO 76 static equivalent load ``P0 = max(Fr, X0 Fr + Y0 Fa)`` [N] (smooth maximum).
-
-    ``X0, Y0`` from :func:`static_load_factors` (deep groove 0.6, 0.5; angular contact 0.5 and
-    Y0 from 0.46 at 15 deg to 0.22 at 45 deg, ISO 76:2006 Table 1). The maximum is smoothed
-    with a width of 1 N (:func:`bearingsim.symbolic.smooth_max0`) so that it can enter equations.
-
-    Parameters
-    ----------
-    Fr, Fa : float, array or casadi.SX
-        Radial and axial load [N], >= 0.
-    geometry : BearingGeometry
-        The bearing (single row).
-
-    Returns
-    -------
-    float, array or casadi.SX
-        ``P0`` [N].
-    """
-    x0, y0 = static_load_factors(geometry)
-    return Fr + smooth_max0((x0 - 1.0) * Fr + y0 * Fa, 1.0)
 
 
 def friction_bearing_type(geometry: BearingGeometry) -> str:

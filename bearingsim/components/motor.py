@@ -11,8 +11,10 @@ from collections.abc import Callable
 from bearingsim.components.blocks import PIController
 from bearingsim.components.connectors import Flange
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
+from bearingsim.validation import check_choice
 
-__all__ = ["DCMotor", "PMSM", "DCMotorDrive", "PMSMDrive"]
+__all__ = ["DCMotor", "PMSM", "DCMotorDrive", "PMSMDrive", "MOTOR_DRIVES",
+           "speed_controlled_motor"]
 
 
 def _positive(value, unit, description):
@@ -217,6 +219,34 @@ class PMSMDrive(Assembly):
             m.vd == self.id_pi.y - we * m.Lq * m.iq,
             m.vq == self.iq_pi.y + we * (m.Ld * m.id + m.psi),
         ]
+
+
+MOTOR_DRIVES = {"dc": DCMotorDrive, "pmsm": PMSMDrive}
+"""Speed-controlled motor drives by the name assemblies and scenes use."""
+
+
+def speed_controlled_motor(motor: str, speed_ref: Callable | float | None,
+                           motor_options: dict | None, where: str) -> DCMotorDrive | PMSMDrive:
+    """A speed-controlled motor drive of :data:`MOTOR_DRIVES` by name.
+
+    Parameters
+    ----------
+    motor : {"dc", "pmsm"}
+        Motor type.
+    speed_ref : callable or float or None
+        Speed reference [rad/s]: ``f(t)``, constant, or None for the drive's input ``w_ref``.
+    motor_options : dict, optional
+        Keyword arguments of the drive (gains, motor constants).
+    where : str
+        Caller's name, used in the message.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown motor type.
+    """
+    check_choice(motor, "motor", tuple(MOTOR_DRIVES), where)
+    return MOTOR_DRIVES[motor](speed_ref, **(motor_options or {}))
 
 
 def _reference(ref, component):

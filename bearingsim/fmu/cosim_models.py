@@ -22,16 +22,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from bearingsim.components.motor import DCMotorDrive, PMSMDrive
-from bearingsim.components.rotational import Inertia, TorqueSource
-from bearingsim.errors import ParameterError
-from bearingsim.language import Assembly, Input, Variable, connect
+from bearingsim.assemblies.motor_drive import MotorShaft
 
 __all__ = [
     "BEARING_OUTPUTS",
     "MOTOR_BEARING_CONNECTIONS",
     "MOTOR_OUTPUTS",
-    "MotorShaft",
     "bearing_model",
     "export_motor_bearing",
 ]
@@ -47,53 +43,6 @@ MOTOR_BEARING_CONNECTIONS = [
     ("bearing.M_shaft", "motor.M_bearing"),
 ]
 """SSP connections of the pair (components named ``motor`` and ``bearing``)."""
-
-
-class MotorShaft(Assembly):
-    """A speed-controlled motor on a shaft inertia, loaded by the bearing's friction torque.
-
-    Parameters
-    ----------
-    motor : {"dc", "pmsm"}
-        :class:`~bearingsim.components.motor.DCMotorDrive` or
-        :class:`~bearingsim.components.motor.PMSMDrive` (with their PI speed control).
-    speed_ref : callable or float or None
-        Speed reference [rad/s]: ``f(t)``, constant, or None for the input ``w_ref``.
-    shaft_inertia : float
-        Shaft (and spindle) inertia [kg m^2], as in ``motor_drive``.
-    motor_options : dict, optional
-        Passed to the motor drive.
-
-    Variables
-    ---------
-    w_ref (input) [rad/s], M_bearing (input) [N m]: friction torque of the bearing on the shaft
-    (positive drives the shaft), w_shaft [rad/s]
-    """
-
-    def __init__(self, motor: str = "dc", speed_ref: Callable | float | None = None,
-                 shaft_inertia: float = 1e-3, motor_options: dict | None = None,
-                 name="motor_shaft"):
-        super().__init__(name)
-        drives = {"dc": DCMotorDrive, "pmsm": PMSMDrive}
-        if motor not in drives:
-            raise ParameterError(f"MotorShaft: motor must be one of {', '.join(drives)}, got "
-                                 f"{motor!r}")
-        self.motor = drives[motor](speed_ref, **(motor_options or {}))
-        self.shaft = Inertia(shaft_inertia)
-        self.bearing_torque = TorqueSource(None)
-        self.M_bearing = Input(0.0, "N.m", "friction torque of the bearing on the shaft")
-        self.w_shaft = Variable(unit="rad/s", description="shaft speed")
-        self._has_ref = speed_ref is None
-        if self._has_ref:
-            self.w_ref = Input(0.0, "rad/s", "speed reference")
-        connect(self.motor.flange, self.shaft.flange_a)
-        connect(self.shaft.flange_b, self.bearing_torque.flange)
-
-    def equations(self):
-        eqs = [self.bearing_torque.tau_in == self.M_bearing, self.w_shaft == self.shaft.w]
-        if self._has_ref:
-            eqs.append(self.motor.w_ref == self.w_ref)
-        return eqs
 
 
 def bearing_model(**kwargs):

@@ -334,7 +334,7 @@ def palmgren_torque(
         ``P0``, ``C0`` are not needed.
     P0 : float, array or casadi.SX, optional
         Static equivalent load [N] of ``f1 = z (P0/C0)^y`` (ISO 76, e.g.
-        :func:`bearingsim.components.bearing_torque.static_equivalent_load`). Required, and
+        :func:`bearingsim.physics.life.static_equivalent_load`). Required, and
         > 0 wherever ``load_P1 > 0``, for the ball bearing types (``y > 0``): no default value
         is documented (Palmgren 1959; Harris & Kotzalas), and ``P0 = 0`` would make
         ``f1 = 0`` and drop ``M1`` silently. Optional (and ignored) for the roller types, whose

@@ -10,8 +10,8 @@ from fmpy import read_model_description
 from fmpy.ssp.simulation import simulate_ssp
 
 from bearingsim.assembler import assemble
-from bearingsim.assemblies.motor_drive import motor_drive
-from bearingsim.fmu.cosim_models import BEARING_OUTPUTS, MOTOR_OUTPUTS, MotorShaft
+from bearingsim.assemblies.motor_drive import MotorShaft, motor_drive
+from bearingsim.fmu.cosim_models import BEARING_OUTPUTS, MOTOR_OUTPUTS
 from bearingsim.simulation import simulate
 from tests.fmu.conftest import COSIM_FR, cosim_ramp
 

@@ -13,14 +13,11 @@ import numpy as np
 import pytest
 
 from bearingsim.catalog import get_bearing
-from bearingsim.components.bearing_torque import (
-    PureRollingLayer,
-    static_equivalent_load,
-    static_load_factors,
-)
+from bearingsim.components.bearing_torque import PureRollingLayer
 from bearingsim.errors import ParameterError
 from bearingsim.physics import film, geometry, hertz, life, rolling
 from bearingsim.physics.friction import SkfSeal, palmgren_torque, skf_friction_components
+from bearingsim.physics.life import static_equivalent_load, static_load_factors
 from bearingsim.physics.lubricant import Grease, Oil, get_lubricant
 from bearingsim.validation import check_count
 

@@ -480,9 +480,9 @@ def test_xy_factors_rejects_symbolic_rows_and_uncovered_angles_for_double_row():
         life.xy_factors(100.0, 1000.0, C0_TEST, F0_TEST, np.radians(46.0), rows=2)
 
 
-# ISO 76 static factors X0, Y0 (bearingsim.components.bearing_torque.static_equivalent_load).
+# ISO 76 static factors X0, Y0 (bearingsim.physics.life.static_equivalent_load).
 def _p0(alpha_deg, fr, fa):
-    from bearingsim.components.bearing_torque import static_equivalent_load
+    from bearingsim.physics.life import static_equivalent_load
 
     g = get_bearing("7020C")
     g = dataclasses.replace(g, contact_angle=math.radians(alpha_deg)) if alpha_deg else \
