@@ -16,9 +16,9 @@ import numpy as np
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.simulation import simulate
+from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.compile import compile_system
 from bearingsim.simulation.fastcall import BufferedFunction
-from bearingsim.simulation.simulate import close_inputs
 from bench.common import Section, fmt, markdown_table, median_call_time
 from bench.models import TorsionChain
 

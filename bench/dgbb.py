@@ -25,8 +25,8 @@ import numpy as np
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.simulation import simulate
+from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.fastcall import BufferedFunction
-from bearingsim.simulation.simulate import close_inputs
 from bearingsim.studies.deep_groove import DUTY_CYCLE
 from bearingsim.units import rpm_to_rad_s
 from bench.common import fmt, interp_loglog, markdown_table

@@ -25,6 +25,7 @@ import numpy as np
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.registry import REGISTRY, ArgSpec, AssemblySpec
+from bearingsim.simulation.integrators import METHODS
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -43,7 +44,6 @@ __all__ = [
     "line_of",
 ]
 
-METHODS = ("BDF", "Radau", "LSODA", "RK45", "DOP853", "RK23", "cvodes", "idas")
 TOP_KEYS = ("title", "description", "outputs", "assembly", "inputs", "parameters", "initial",
             "simulation", "output")
 TABLE_KEYS = ("file", "column", "time_column", "times", "values")
@@ -540,7 +540,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         if k not in Simulation.__dataclass_fields__:
             _unknown(c, "simulation", k, Simulation.__dataclass_fields__)
         elif k == "method":
-            if v not in METHODS:
+            if not (isinstance(v, str) and v in METHODS):
                 c.add(key, f"{v!r} is not a solver", ", ".join(METHODS))
             else:
                 sim.method = v

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import scipy.optimize
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
+from bearingsim.simulation.closed import ClosedModel, close_inputs
 
 __all__ = ["steady_state", "integrator_states"]
 
@@ -23,7 +22,7 @@ def integrator_states(system: System) -> list[int]:
 def steady_state(
     system: System,
     *,
-    closed: Any = None,
+    closed: ClosedModel | None = None,
     inputs: dict | None = None,
     parameters: dict | None = None,
     p: np.ndarray | None = None,
@@ -62,8 +61,6 @@ def steady_state(
     numpy.ndarray
         The steady state vector.
     """
-    from bearingsim.simulation.simulate import close_inputs
-
     closed = closed if closed is not None else close_inputs(system, inputs)
     p = system.p0(parameters) if p is None else p
     x = system.x0() if x_guess is None else np.array(x_guess, dtype=float)

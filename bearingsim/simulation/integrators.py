@@ -1,0 +1,335 @@
+"""Integrator backends behind one small interface, and the table of methods by name.
+
+An :class:`Integrator` takes an :class:`IntegrationProblem` (a closed system, parameters, start
+state, time span, output times, tolerances) and returns a :class:`Trajectory`. Contract for
+subclasses:
+
+1. set ``name`` (the ``method`` a user passes to :func:`~bearingsim.simulation.simulate`) and
+   ``backend`` (``"scipy"`` or ``"casadi"``);
+2. implement :meth:`Integrator.run`: the states at every output time in ``problem.t_eval``
+   (``t_eval[0]`` may equal ``t0``), and, where the integrator computes them itself, the observed
+   variables at those times (else ``None``; :func:`~bearingsim.simulation.simulate` evaluates
+   them);
+3. on failure raise :class:`~bearingsim.errors.SimulationError` naming the time reached and the
+   states that diverged (:func:`diverged`).
+
+:data:`METHODS` maps every method name to its integrator; scenes and the command line read it.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import Any
+
+import casadi as ca
+import numpy as np
+import scipy.integrate
+
+from bearingsim.assembler.system import System
+from bearingsim.errors import SimulationError
+from bearingsim.simulation.closed import ClosedModel, close_inputs
+from bearingsim.simulation.fastcall import BufferedFunction
+
+__all__ = [
+    "BACKENDS",
+    "METHODS",
+    "IntegrationProblem",
+    "Integrator",
+    "ScipyIntegrator",
+    "SundialsIntegrator",
+    "Trajectory",
+    "diverged",
+    "methods_of",
+]
+
+
+@dataclass(frozen=True)
+class IntegrationProblem:
+    """Everything an integrator needs for one run."""
+
+    system: System
+    closed: ClosedModel
+    """The system with its inputs bound (numeric functions)."""
+    inputs: dict[str, Any] | None
+    """The user's input specification (for integrators that close the inputs themselves)."""
+    p: np.ndarray
+    """Parameter vector."""
+    x0: np.ndarray
+    """Consistent start state at ``t0``."""
+    t0: float
+    """Start time [s]."""
+    t1: float
+    """End time [s]."""
+    t_eval: np.ndarray
+    """Output times [s], increasing, within ``[t0, t1]``."""
+    rtol: float
+    """Relative tolerance [-]."""
+    atol: float
+    """Absolute tolerance [state units]."""
+    max_step: float
+    """Largest step [s] (``inf``: no limit)."""
+    progress: bool | None
+    """Progress bar: on, off, or only for runs longer than about 2 s (None)."""
+
+
+@dataclass
+class Trajectory:
+    """What an integrator returns."""
+
+    t: np.ndarray
+    """Output times [s]."""
+    x: np.ndarray
+    """States, one column per output time."""
+    values: np.ndarray | None
+    """Observed variables, one column per output time, if the integrator computed them."""
+    stats: dict[str, Any]
+    """Solver statistics (``method`` and counts)."""
+
+
+class Integrator(ABC):
+    """Base class of the integrator backends (contract in the module docstring)."""
+
+    name: str
+    backend: str
+
+    @abstractmethod
+    def run(self, problem: IntegrationProblem) -> Trajectory:
+        """Integrate ``problem`` and return the trajectory at its output times."""
+
+
+def diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
+    """The non-finite states of ``x``, or the five that grew most from ``x0``, for messages."""
+    bad = [n for n, v in zip(system.state_names, x, strict=True) if not np.isfinite(v)]
+    if bad:
+        return "non-finite: " + ", ".join(bad[:10])
+    growth = np.abs(x) / (np.abs(x0) + 1.0)
+    order = np.argsort(growth)[::-1][:5]
+    return "largest growth: " + ", ".join(
+        f"{system.state_names[k]}={x[k]:.3g}" for k in order
+    )
+
+
+def _progress_bar(t0: float, t1: float, progress: bool | None):
+    if progress is False:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=t1 - t0, unit="s(sim)", delay=0 if progress else 2.0, leave=False,
+                bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s [{elapsed}<{remaining}]")
+
+
+class ScipyIntegrator(Integrator):
+    """scipy's ``solve_ivp``; the implicit methods get the exact sparse Jacobian.
+
+    Parameters
+    ----------
+    name : str
+        ``solve_ivp`` method: "BDF", "Radau", "LSODA" (implicit) or "RK45", "DOP853", "RK23".
+    implicit : bool
+        Whether the method uses the Jacobian (LSODA gets it dense).
+    """
+
+    backend = "scipy"
+
+    def __init__(self, name: str, implicit: bool):
+        self.name = name
+        self.implicit = implicit
+
+    def run(self, problem: IntegrationProblem) -> Trajectory:
+        """Integrate with ``solve_ivp`` (see :class:`Integrator`)."""
+        pb, system = problem, problem.system
+        f, jac = BufferedFunction(pb.closed.f), BufferedFunction(pb.closed.jac)
+        n_f = [0]
+        bar = _progress_bar(pb.t0, pb.t1, pb.progress)
+        last = [pb.t0, pb.x0]
+
+        def fun(t, x):
+            n_f[0] += 1
+            out = f.vector(t, x, pb.p)
+            if not np.all(np.isfinite(out)):
+                bad = [n for n, v in zip(system.state_names, out, strict=True)
+                       if not np.isfinite(v)]
+                raise SimulationError(
+                    f"the right-hand side is not finite at t = {t:.6g} s for "
+                    f"der({', '.join(bad[:8])}); states there: {diverged(system, x, pb.x0)}"
+                )
+            if t > last[0]:
+                if bar is not None:
+                    bar.update(t - last[0])
+                last[0] = t
+            last[1] = x
+            return out
+
+        kwargs: dict[str, Any] = {}
+        if self.implicit:
+            def jacobian(t, x):
+                matrix = jac.sparse(t, x, pb.p)
+                return matrix.toarray() if self.name == "LSODA" else matrix
+            kwargs["jac"] = jacobian
+        try:
+            sol = scipy.integrate.solve_ivp(
+                fun, (pb.t0, pb.t1), pb.x0, method=self.name, t_eval=pb.t_eval, rtol=pb.rtol,
+                atol=pb.atol, max_step=pb.max_step, **kwargs,
+            )
+        except (ArithmeticError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
+            if isinstance(exc, SimulationError):
+                raise
+            raise SimulationError(
+                f"{self.name} failed near t = {last[0]:.6g} s of {pb.t1:g} s "
+                f"({type(exc).__name__}: {exc}); {diverged(system, last[1], pb.x0)}"
+            ) from None
+        finally:
+            if bar is not None:
+                bar.close()
+        if sol.status < 0:
+            t_reached = sol.t[-1] if sol.t.size else pb.t0
+            raise SimulationError(
+                f"{self.name} failed at t = {t_reached:.6g} s of {pb.t1:g} s: {sol.message}; "
+                f"{diverged(system, last[1], pb.x0)}"
+            )
+        stats = {"method": self.name, "nfev": sol.nfev, "njev": sol.njev, "nlu": sol.nlu,
+                 "n_rhs_calls": n_f[0]}
+        return Trajectory(sol.t, sol.y, None, stats)
+
+
+class SundialsIntegrator(Integrator):
+    """SUNDIALS CVODES or IDAS through CasADi's ``integrator`` on the ODE form.
+
+    IDAS on a system with nonlinear blocks integrates the semi-explicit DAE form instead
+    (``dae_ode``, ``dae_alg``): the blocks' tearing variables become algebraic states that IDAS
+    iterates on, warm-started from step to step.
+
+    Parameters
+    ----------
+    name : {"cvodes", "idas"}
+        CasADi integrator plugin.
+    """
+
+    backend = "casadi"
+
+    def __init__(self, name: str):
+        self.name = name
+
+    def options(self, problem: IntegrationProblem) -> dict[str, Any]:
+        """CasADi integrator options (``max_step_size`` only when the step is bounded)."""
+        opts: dict[str, Any] = {"abstol": problem.atol, "reltol": problem.rtol,
+                                "max_num_steps": 100000}
+        if np.isfinite(problem.max_step):
+            opts["max_step_size"] = float(problem.max_step)
+        return opts
+
+    def run(self, problem: IntegrationProblem) -> Trajectory:
+        """Integrate with CVODES or IDAS (see :class:`Integrator`)."""
+        if self.name == "idas" and "dae_ode" in problem.system.functions:
+            return self._run_dae(problem)
+        return self._run_ode(problem)
+
+    @staticmethod
+    def _with_start(problem: IntegrationProblem, grid: np.ndarray, *columns):
+        """Prepend the start values when the first output time is ``t0``."""
+        if problem.t_eval[0] <= problem.t0:
+            return (np.concatenate([[problem.t0], grid]),
+                    *(np.hstack([c0[:, None], c]) for c0, c in columns))
+        return (grid, *(c for _, c in columns))
+
+    def _run_ode(self, problem: IntegrationProblem) -> Trajectory:
+        pb, system = problem, problem.system
+        closed = close_inputs(system, pb.inputs, symbolic=True)
+        sym = ca.SX if closed.symbolic else ca.MX
+        x, pp, t = sym.sym("x", system.n_states), sym.sym("p", len(pb.p)), sym.sym("t")
+        dae = {"x": x, "p": pp, "t": t, "ode": closed.f(t, x, pp)}
+        grid = pb.t_eval[pb.t_eval > pb.t0]
+        opts = self.options(pb)
+        integ = ca.integrator(self.name, self.name, dae, float(pb.t0), grid, opts)
+        try:
+            out = integ(x0=pb.x0, p=pb.p)
+        except RuntimeError:
+            self._locate_failure(pb, dae, opts, grid)
+            raise
+        xs = np.asarray(out["xf"], dtype=float)
+        if not np.all(np.isfinite(xs)):
+            k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
+            raise SimulationError(
+                f"{self.name.upper()} produced non-finite states by t = {grid[k]:.6g} s; "
+                f"{diverged(system, xs[:, k], pb.x0)}"
+            )
+        ts, xs = self._with_start(pb, grid, (pb.x0, xs))
+        stats = {"method": self.name}
+        st = integ.stats()
+        for key in ("nsteps", "nfevals", "nlinsetups"):
+            if key in st:
+                stats[key] = st[key]
+        return Trajectory(ts, xs, None, stats)
+
+    def _run_dae(self, problem: IntegrationProblem) -> Trajectory:
+        pb, system = problem, problem.system
+        funcs = system.symbolic_functions or system.functions
+        f, g, obs, z_of = (funcs[k] for k in ("dae_ode", "dae_alg", "dae_observe", "dae_z"))
+        t = ca.MX.sym("t")
+        x = ca.MX.sym("x", system.n_states)
+        z = ca.MX.sym("z", g.size1_out(0))
+        pp = ca.MX.sym("p", len(pb.p))
+        u = pb.closed.u(t)
+        dae = {"x": x, "z": z, "p": pp, "t": t, "ode": f(t, x, z, u, pp),
+               "alg": g(t, x, z, u, pp)}
+        grid = pb.t_eval[pb.t_eval > pb.t0]
+        integ = ca.integrator("idas_dae", "idas", dae, float(pb.t0), grid, self.options(pb))
+        u0 = np.asarray(pb.closed.u(pb.t0), dtype=float).ravel()
+        z0 = np.asarray(z_of(pb.t0, pb.x0, u0, pb.p), dtype=float).ravel()
+        try:
+            out = integ(x0=pb.x0, z0=z0, p=pb.p)
+        except RuntimeError as exc:
+            raise SimulationError(f"IDAS (DAE form) failed: {str(exc).splitlines()[0]}; start "
+                                  f"states: {diverged(system, pb.x0, pb.x0)}") from None
+        xs = np.asarray(out["xf"], dtype=float)
+        zs = np.asarray(out["zf"], dtype=float).reshape(z0.size, grid.size)
+        ts, xs, zs = self._with_start(pb, grid, (pb.x0, xs), (z0, zs))
+        us = np.asarray(pb.closed.u.map(ts.size)(ts[None, :]), dtype=float).reshape(-1, ts.size)
+        values = np.asarray(obs.map(ts.size)(ts[None, :], xs, zs, us,
+                                             np.repeat(pb.p[:, None], ts.size, axis=1)),
+                            dtype=float)
+        stats = {"method": "idas (dae)", "algebraic_states": int(z0.size)}
+        return Trajectory(ts, xs, values, stats)
+
+    def _locate_failure(self, problem: IntegrationProblem, dae: dict, opts: dict,
+                        grid: np.ndarray) -> None:
+        """Integrate interval by interval to report where a run failed (failure path only)."""
+        pb, name = problem, self.name
+        x, t_prev = np.asarray(pb.x0, dtype=float), float(pb.t0)
+        for t_next in grid:
+            step = ca.integrator(name, name, dae, t_prev, [float(t_next)], opts)
+            try:
+                x_new = np.asarray(step(x0=x, p=pb.p)["xf"], dtype=float).ravel()
+            except RuntimeError:
+                x_new = None
+            if x_new is None or not np.all(np.isfinite(x_new)):
+                raise SimulationError(
+                    f"{name.upper()} failed between t = {t_prev:.6g} s and {t_next:.6g} s; "
+                    f"states at t = {t_prev:.6g} s: {diverged(pb.system, x, pb.x0)}"
+                ) from None
+            x, t_prev = x_new, float(t_next)
+        raise SimulationError(f"{name.upper()} failed (not reproducible interval by interval)")
+
+
+METHODS: dict[str, Integrator] = {
+    m.name: m for m in (
+        ScipyIntegrator("BDF", implicit=True),
+        ScipyIntegrator("Radau", implicit=True),
+        ScipyIntegrator("LSODA", implicit=True),
+        ScipyIntegrator("RK45", implicit=False),
+        ScipyIntegrator("DOP853", implicit=False),
+        ScipyIntegrator("RK23", implicit=False),
+        SundialsIntegrator("cvodes"),
+        SundialsIntegrator("idas"),
+    )
+}
+"""Every integration method by the name :func:`~bearingsim.simulation.simulate` takes."""
+
+BACKENDS: dict[str, str] = {"scipy": "BDF", "casadi": "cvodes"}
+"""Integrator families and their default methods."""
+
+
+def methods_of(backend: str) -> tuple[str, ...]:
+    """Names of the methods of one backend, in :data:`METHODS` order."""
+    return tuple(name for name, m in METHODS.items() if m.backend == backend)
