@@ -11,6 +11,7 @@ import uuid
 from collections.abc import Sequence
 from pathlib import Path
 
+from bearingsim.assembler import System, assemble
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
@@ -22,7 +23,7 @@ from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
 from bearingsim.fmu.model_c import write_model_c
 from bearingsim.fmu.model_description import model_description_xml
-from bearingsim.fmu.model_description3 import model_description3_xml
+from bearingsim.language import Component
 
 __all__ = ["FMI_VERSIONS", "export_fmu"]
 
@@ -40,10 +41,6 @@ def _identifier(name: str) -> str:
 
 
 def _system(model, outputs):
-    from bearingsim.assembler.pipeline import assemble
-    from bearingsim.assembler.system import System
-    from bearingsim.language.component import Component
-
     if isinstance(model, System):
         if model.rootfinder not in (None, "fast_newton"):
             raise ParameterError(
@@ -104,6 +101,14 @@ def _input_starts(system, inputs):
             raise ParameterError(f"export_fmu: start value of input {name} must be finite")
         u[system.input_names.index(name)] = value
     return u
+
+
+def _description(model, system: System) -> str:
+    """One line about the model: the first docstring line of the assembly's class, or, for an
+    already assembled system (whose class docstring describes ``System`` itself), its name."""
+    if isinstance(model, System):
+        return f"{system.name} (an assembled bearingsim system)"
+    return (type(model).__doc__ or "").strip().split("\n")[0]
 
 
 def export_fmu(
@@ -177,9 +182,8 @@ def export_fmu(
     functions = fmu_functions(system, names)
     iface = build_interface(system, functions, names, units, descriptions, u0, p0)
     guid = "{" + str(uuid.uuid4()) + "}"
-    writer = model_description_xml if fmi_version == "2.0" else model_description3_xml
-    xml = writer(iface, name, ident, guid, kinds,
-                 description=(type(model).__doc__ or "").strip().split("\n")[0])
+    xml = model_description_xml(iface, fmi_version, name, ident, guid, kinds,
+                                description=_description(model, system))
     with tempfile.TemporaryDirectory(prefix="bearingsim_fmu_") as tmp:
         src = Path(tmp) / "sources"
         src.mkdir()

@@ -41,6 +41,8 @@ def test_only_fmi_functions_are_exported(drive_fmu, tmp_path):
 def test_model_description(drive_fmu, drive_system):
     md = read_model_description(str(drive_fmu))
     v = {x.name: x for x in md.modelVariables}
+    # exported from an assembled system: its name, not the System class docstring
+    assert md.description == f"{drive_system.name} (an assembled bearingsim system)"
     assert md.modelExchange.providesDirectionalDerivative
     assert md.coSimulation.canGetAndSetFMUstate and md.coSimulation.canSerializeFMUstate
     # states: local or (when requested as output) output, with exact start values
@@ -116,3 +118,4 @@ def test_export_from_assembly_with_inputs_and_parameters(tmp_path):
     v = {x.name: x for x in md.modelVariables}
     assert float(v["tau_drive"].start) == 3.0 and float(v["rotor.J"].start) == 0.25
     assert [u.variable.name for u in md.outputs] == ["rotor.w"]  # an input is not an output
+    assert md.description == DrivenInertia.__doc__.strip().split("\n")[0]
