@@ -414,7 +414,9 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     if own:
         client, cluster = _client(scheduler, n_workers)
     try:
-        shipped = {k: client.scatter(v, broadcast=True) for k, v in plan.packed.items()}
+        # a dict given to scatter is stored key by key ("token", "fields": the same keys for
+        # every model), so each packed model goes in a list of its own
+        shipped = {k: client.scatter([v], broadcast=True)[0] for k, v in plan.packed.items()}
         futures = {}
         for job in plan.jobs:
             fut = client.submit(run_point, shipped[job["structure"]], job, pure=False,
