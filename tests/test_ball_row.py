@@ -101,7 +101,7 @@ def test_numeric_row_agrees_with_closed_form_and_component():
 
 
 def test_deep_groove_radial_load_follows_stribeck():
-    g = dataclasses.replace(get_bearing("6204"), radial_clearance=0.0)
+    g = dataclasses.replace(get_bearing("6204"), diametral_clearance=0.0)
     system = assemble(SingleRow(g, reference="centred"))
     fr, z = 2000.0, g.ball_count
     _, obs = _solve(system, {"Fx": fr}, (5e-6, 0, 0, 0, 0))

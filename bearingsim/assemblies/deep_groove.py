@@ -397,7 +397,7 @@ class QuasiStaticDeepGroove(Assembly):
     Parameters
     ----------
     geometry : BearingGeometry
-        Its ``radial_clearance`` (diametral clearance Pd) sets the free contact angle.
+        Its ``diametral_clearance`` Pd sets the free contact angle.
     loads : dict
         ``Fx, Fy, Fz`` [N]: finite constants, functions of time or None for inputs (missing
         keys are inputs with default 0). ``Mx, My`` may only be absent or 0 (the shaft takes
@@ -508,7 +508,7 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":
-        geometry = dataclasses.replace(design.geometry, radial_clearance=design.clearance)
+        geometry = dataclasses.replace(design.geometry, diametral_clearance=design.clearance)
         return QuasiStaticDeepGroove(geometry, loads, 0.0 if speed is None else speed)
     return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
                                  speed=speed, loads=loads, **options)

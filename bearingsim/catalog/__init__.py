@@ -56,7 +56,7 @@ def _row_to_geometry(row: dict[str, str]) -> BearingGeometry:
         fi=float(row["fi"]),
         fo=float(row["fo"]),
         contact_angle=deg(float(row["alpha_deg"])),
-        radial_clearance=float(row["Pd_um"]) * 1e-6,
+        diametral_clearance=float(row["Pd_um"]) * 1e-6,
         dynamic_load_rating=_optional(row["C_kN"], 1e3),
         static_load_rating=_optional(row["C0_kN"], 1e3),
         reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),

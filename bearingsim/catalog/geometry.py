@@ -74,8 +74,9 @@ class BearingGeometry:
         Inner and outer groove curvature factors (groove radius / Dw) [-], each in (0.5, 1).
     contact_angle : float
         Nominal contact angle [rad], 0 for a deep-groove bearing, at most 45 deg.
-    radial_clearance : float
-        Diametral (radial) internal clearance Pd [m], non-negative.
+    diametral_clearance : float
+        Diametral clearance Pd [m], non-negative: the total radial play of one ring against
+        the other (ISO 5753's radial internal clearance), twice the clearance per side.
     dynamic_load_rating, static_load_rating : float or None
         Catalogue basic dynamic and static radial load ratings C, C0 [N].
     reference_speed, limiting_speed : float or None
@@ -103,7 +104,7 @@ class BearingGeometry:
     fi: float
     fo: float
     contact_angle: float = 0.0
-    radial_clearance: float = 0.0
+    diametral_clearance: float = 0.0
     dynamic_load_rating: float | None = None
     static_load_rating: float | None = None
     reference_speed: float | None = None
@@ -125,7 +126,7 @@ class BearingGeometry:
         check_range(self.fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
         check_range(self.contact_angle, "contact_angle", "rad", 0.0, _MAX_CONTACT_ANGLE,
                     where=where)
-        check_range(self.radial_clearance, "radial_clearance", "m", 0.0, where=where)
+        check_range(self.diametral_clearance, "diametral_clearance", "m", 0.0, where=where)
         for name in ("dynamic_load_rating", "static_load_rating", "reference_speed",
                      "limiting_speed"):
             if getattr(self, name) is not None:
@@ -144,10 +145,10 @@ class BearingGeometry:
                 f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
                 f"{dm * math.sin(math.pi / self.ball_count):g} m)"
             )
-        cos_free = 1.0 - self.radial_clearance / (2.0 * self.groove_centre_distance)
+        cos_free = 1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance)
         if cos_free < math.cos(_MAX_CONTACT_ANGLE):
             raise ParameterError(
-                f"{where}: radial_clearance = {self.radial_clearance:g} m gives a free contact "
+                f"{where}: diametral_clearance = {self.diametral_clearance:g} m gives a free contact "
                 f"angle above 45 deg; valid range [0, "
                 f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
             )
@@ -186,7 +187,7 @@ class BearingGeometry:
         """
         if self.bearing_type == "angular_contact":
             return self.contact_angle
-        return math.acos(1.0 - self.radial_clearance / (2.0 * self.groove_centre_distance))
+        return math.acos(1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance))
 
     @property
     def inner_groove_centre_radius(self) -> float:

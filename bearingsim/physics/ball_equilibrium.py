@@ -134,7 +134,7 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
     f_r = np.hypot(f_ext[0], f_ext[1])
     guess = np.zeros(5 + 2 * nz)
     if f_r > 0:
-        shift = (g.radial_clearance / 2 + (f_r / (design.k_inner * 0.5)) ** (2 / 3)) / scale_r
+        shift = (g.diametral_clearance / 2 + (f_r / (design.k_inner * 0.5)) ** (2 / 3)) / scale_r
         guess[:2] = f_ext[:2] / f_r * shift
         guess[5:5 + nz] = 0.5 * np.maximum(guess[0] * np.cos(theta) + guess[1] * np.sin(theta), 0)
     if f_ext[2] != 0.0:

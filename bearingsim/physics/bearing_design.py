@@ -209,7 +209,7 @@ def bearing_design(
     if g.contact_angle != 0.0:
         raise ParameterError(f"{where}: the dynamic model is for deep-groove bearings (contact "
                              f"angle 0), got {g.contact_angle:g} rad")
-    pd = g.radial_clearance if clearance is None else clearance
+    pd = g.diametral_clearance if clearance is None else clearance
     check_range(pd, "clearance", "m", 0.0, 0.2 * g.groove_centre_distance, where=where)
     dw, dm = g.ball_diameter, g.pitch_diameter
     pocket_clearance = 0.03 * dw if pocket_clearance is None else pocket_clearance

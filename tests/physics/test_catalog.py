@@ -33,7 +33,7 @@ def test_6304_models_md_section_c():
     assert g.pitch_diameter == pytest.approx(36e-3)
     assert g.ball_diameter / 2 == pytest.approx(4.76e-3)
     # Pd = outer groove bottom diameter - inner groove bottom diameter - 2 Dw
-    assert g.radial_clearance == pytest.approx(2 * 22.77e-3 - 2 * 13.24e-3 - 2 * 9.52e-3)
+    assert g.diametral_clearance == pytest.approx(2 * 22.77e-3 - 2 * 13.24e-3 - 2 * 9.52e-3)
     assert g.bearing_type == "deep_groove"
     assert g.preload is None
 
@@ -97,11 +97,11 @@ def _valid(**changes):
     (dict(fo=0.49), ["fo"]),
     (dict(ball_count=2), ["ball_count", "3"]),
     (dict(ball_count=8.0), ["integer"]),
-    (dict(radial_clearance=-1e-6), ["radial_clearance", "m"]),
+    (dict(diametral_clearance=-1e-6), ["diametral_clearance", "m"]),
     (dict(contact_angle=math.radians(50)), ["contact_angle", "rad"]),
     (dict(ball_diameter=0.015), ["do not fit"]),
     (dict(ball_count=14), ["pitch circle"]),
-    (dict(radial_clearance=1e-3), ["free contact angle"]),
+    (dict(diametral_clearance=1e-3), ["free contact angle"]),
     (dict(bore=float("nan")), ["bore", "finite"]),
 ])
 def test_invalid_geometry_rejected(changes, words):
