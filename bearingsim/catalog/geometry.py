@@ -148,8 +148,8 @@ class BearingGeometry:
         cos_free = 1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance)
         if cos_free < math.cos(_MAX_CONTACT_ANGLE):
             raise ParameterError(
-                f"{where}: diametral_clearance = {self.diametral_clearance:g} m gives a free contact "
-                f"angle above 45 deg; valid range [0, "
+                f"{where}: diametral_clearance = {self.diametral_clearance:g} m gives a free "
+                f"contact angle above 45 deg; valid range [0, "
                 f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
             )
 
