@@ -18,6 +18,7 @@ __all__ = [
     "UnconnectedInputError",
     "SimulationError",
     "CatalogError",
+    "PlasticDeformationWarning",
 ]
 
 
@@ -84,3 +85,8 @@ class UnconnectedInputError(ModelError):
 
 class SimulationError(BearingsimError, RuntimeError):
     """The integrator failed; the message names the time reached and the diverging variables."""
+
+
+class PlasticDeformationWarning(UserWarning):
+    """A load beyond the static load rating: the contacts deform permanently (ISO 76's limit of
+    4 200 MPa Hertz pressure for ball bearings is exceeded)."""

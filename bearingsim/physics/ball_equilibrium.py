@@ -25,6 +25,10 @@ from bearingsim.physics.hertz import contact_load
 __all__ = ["StaticState", "static_state"]
 
 
+_UNIT = np.array([1e-6, 1e-6, 1e-6, 1e-4, 1e-4])
+"""Scale of the ring unknowns in the iteration [m, m, m, rad, rad]."""
+
+
 @dataclass(frozen=True)
 class StaticState:
     """Quasi-static solution.
@@ -66,7 +70,7 @@ def _contacts(design: BearingDesign, ring, r, z, theta, smooth):
 
 def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float = 0.0,
                  theta0: float = 0.0, smooth: float = 2e-8,
-                 free_tilt: bool = False) -> StaticState:
+                 free_tilt: bool = False, guess: StaticState | None = None) -> StaticState:
     """Solve the quasi-static equilibrium for a load and cage speed.
 
     Parameters
@@ -83,6 +87,12 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
     free_tilt : bool
         Whether the ring tilts under the moments; else the shaft holds it straight, takes the
         moments as a reaction and ``Mx, My`` must be absent or 0.
+    guess : StaticState, optional
+        Start of the iteration (e.g. the solution of a nearby load). Default: the *seated*
+        start: each loaded direction of the ring alone brought to balance by a
+        one-dimensional root of the two-force ball model (balls on the line of their groove
+        centres, no centrifugal force), which also holds for zero clearance, where the centred
+        position has no stiffness.
 
     Returns
     -------
@@ -110,8 +120,7 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
     scale_r = 1e-6
 
     def unpack(v):
-        return v[:5] * np.array([scale_r] * 3 + [1e-4] * 2), v[5:5 + nz] * scale_r, \
-            v[5 + nz:] * scale_r
+        return v[:5] * _UNIT, v[5:5 + nz] * scale_r, v[5 + nz:] * scale_r
 
     def residual(v):
         ring, dr, z = unpack(v)
@@ -131,17 +140,14 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
             res_ring[3:] = v[3:5]
         return np.concatenate([res_ring, res_ball_r, res_ball_z]) * 1e-2
 
-    f_r = np.hypot(f_ext[0], f_ext[1])
-    guess = np.zeros(5 + 2 * nz)
-    if f_r > 0:
-        shift = (g.diametral_clearance / 2 + (f_r / (design.k_inner * 0.5)) ** (2 / 3)) / scale_r
-        guess[:2] = f_ext[:2] / f_r * shift
-        guess[5:5 + nz] = 0.5 * np.maximum(guess[0] * np.cos(theta) + guess[1] * np.sin(theta), 0)
-    if f_ext[2] != 0.0:
-        z_free = g.groove_centre_distance * np.sin(design.free_contact_angle) / scale_r
-        guess[2] = np.sign(f_ext[2]) * 1.2 * z_free
-        guess[5 + nz:] = 0.5 * guess[2]
-    sol = scipy.optimize.root(residual, guess, method="hybr", tol=1e-12)
+    if guess is not None:
+        start = np.concatenate([np.asarray(guess.ring, dtype=float) / _UNIT,
+                                (np.asarray(guess.r) - 0.5 * g.pitch_diameter) / scale_r,
+                                np.asarray(guess.z) / scale_r])
+    else:
+        start = _seated_guess(design, f_ext, theta, free_tilt) / np.concatenate(
+            [_UNIT, np.full(2 * nz, scale_r)])
+    sol = scipy.optimize.root(residual, start, method="hybr", tol=1e-12)
     if np.max(np.abs(residual(sol.x))) > 1e-6:
         sol = scipy.optimize.root(residual, sol.x, method="lm", tol=1e-14)
     if not np.all(np.isfinite(sol.x)) or np.max(np.abs(residual(sol.x))) > 1e-6:
@@ -152,3 +158,54 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
     c = _contacts(design, ring, r, z, theta, smooth)
     return StaticState(ring=ring, r=r, z=z, q_inner=c["inner"][0], q_outer=c["outer"][0],
                        alpha_inner=c["inner"][2], alpha_outer=c["outer"][2])
+
+
+def _two_force_balls(design: BearingDesign, ring: np.ndarray, theta: np.ndarray):
+    """Balls as two-force members between their groove centres (no body forces).
+
+    Returns the loads on the ring ``(Fx, Fy, Fz, Mx, My)`` and the ball centres ``(dr, z)``
+    (radial offset from the pitch circle, axial position) [N, N m, m].
+    """
+    g = design.geometry
+    x, y, z, tx, ty = ring
+    e_r = np.array([np.cos(theta), np.sin(theta), 0.0 * theta])
+    lever = design.rho_inner * e_r
+    o_inner = lever + np.array([x, y, z])[:, None]
+    o_inner[2] += design.rho_inner * (tx * e_r[1] - ty * e_r[0])
+    o_outer = design.rho_outer * e_r
+    d = o_inner - o_outer
+    d_r, d_z = np.sum(d * e_r, axis=0), d[2]
+    length = np.hypot(d_r, d_z)
+    a = (g.fi + g.fo - 1.0) * g.ball_diameter
+    k = (design.k_inner ** (-2 / 3) + design.k_outer ** (-2 / 3)) ** -1.5
+    q = k * np.maximum(length - a, 0.0) ** 1.5
+    n = np.array([d_r / length * e_r[0], d_r / length * e_r[1], d_z / length])
+    force = -(q * n)
+    moment = np.cross((o_inner - np.array([x, y, z])[:, None]).T, force.T).T
+    approach_o = (q / design.k_outer) ** (2 / 3)
+    reach = (g.fo - 0.5) * g.ball_diameter + approach_o
+    ball_r = design.rho_outer + reach * d_r / length
+    ball_z = reach * d_z / length
+    return (np.concatenate([force.sum(axis=1), moment[:2].sum(axis=1)]),
+            ball_r - 0.5 * g.pitch_diameter, ball_z)
+
+
+def _seated_guess(design: BearingDesign, f_ext: np.ndarray, theta: np.ndarray,
+                  free_tilt: bool) -> np.ndarray:
+    """Ring displacement that balances each loaded direction alone (1-D roots), summed, with the
+    two-force ball centres there: ``(ring (5), dr (Z), z (Z))`` [m, rad]."""
+    ring = np.zeros(5)
+    for k in np.flatnonzero(f_ext[:5 if free_tilt else 3]):
+        unit = np.zeros(5)
+        unit[k] = np.sign(f_ext[k]) * _UNIT[k]
+
+        def residual(t, unit=unit, k=k):
+            return _two_force_balls(design, t * unit, theta)[0][k] + f_ext[k]
+
+        hi = 1.0
+        while np.sign(residual(hi)) == np.sign(residual(0.0)) and hi < 1e7:
+            hi *= 2.0
+        if np.sign(residual(hi)) != np.sign(residual(0.0)):
+            ring += scipy.optimize.brentq(residual, 0.0, hi, xtol=1e-12) * unit
+    _, dr, z = _two_force_balls(design, ring, theta)
+    return np.concatenate([ring, dr, z])
