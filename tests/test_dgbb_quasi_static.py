@@ -59,3 +59,74 @@ def test_bad_inputs_name_the_parameter():
         deep_groove_ball_bearing("6304", clearance=-1e-6)
     with pytest.raises(ParameterError, match="housing"):
         deep_groove_ball_bearing("6304", housing="soft")
+
+
+# ------------------------------------------------------------------ at speed (issue 17)
+def _at_speed(factor: float, loads):
+    from bearingsim.catalog import get_bearing
+
+    w = factor * get_bearing("6304").limiting_speed
+    return w, assemble(deep_groove_ball_bearing("6304", "quasi-static", speed=w, loads=loads))
+
+
+@pytest.mark.parametrize("factor", [0.1, 0.5, 1.0, 1.5])
+def test_quasi_static_level_solves_at_speed_up_to_one_and_a_half_limiting_speeds(factor):
+    """Centrifugal and gyroscopic ball loads (Jones-Harris form): once NaN at every speed (the
+    Newton blocks started every ball on the pitch circle, out of contact). The unloaded balls
+    now press on the outer race with their centrifugal force m (dm/2) w_c^2, w_c the cage
+    speed of pure rolling at the inner contact angle 0."""
+    from bearingsim.simulation import linearize, simulate
+
+    w, system = _at_speed(factor, {"Fx": 500.0})
+    res = simulate(system, 1e-3, n_points=3)
+    q_i = np.array([res[f"row.Q_i[{j}]"][-1] for j in range(7)])
+    q_o = np.array([res[f"row.Q_o[{j}]"][-1] for j in range(7)])
+    assert np.all(np.isfinite(q_i)) and np.all(np.isfinite(q_o))
+    g = bearing_design("6304").geometry
+    theta = 2 * np.pi * np.arange(7) / 7
+    assert np.sum(q_i * np.cos(theta) * np.cos([res[f"row.alpha_i[{j}]"][-1]
+                                                 for j in range(7)])) == pytest.approx(500.0,
+                                                                                     rel=1e-6)
+    gamma = g.ball_diameter / g.pitch_diameter
+    w_cage = 0.5 * (1 - gamma) * w
+    mass = 7850.0 * np.pi * g.ball_diameter**3 / 6
+    f_c = mass * 0.5 * g.pitch_diameter * w_cage**2
+    unloaded = q_i < 1e-3
+    assert unloaded.any()
+    np.testing.assert_allclose(q_o[unloaded], f_c, rtol=0.02)
+    assert np.all(np.isfinite(linearize(system).D))
+
+
+def test_load_inputs_at_speed_solve_like_constant_loads():
+    """With load inputs the equilibrium moves away from the start values: the blocks get a line
+    search, and the result equals the system built for the constant load."""
+    from bearingsim.simulation import simulate
+
+    _, constant = _at_speed(1.0, {"Fx": 800.0, "Fy": 0.0, "Fz": 200.0})
+    _, inputs = _at_speed(1.0, None)
+    assert inputs.rootfinder == "newton" and constant.rootfinder == "fast_newton"
+    a = simulate(constant, 1e-3, n_points=3)
+    b = simulate(inputs, 1e-3, n_points=3, inputs={"load.Fx": 800.0, "load.Fz": 200.0})
+    for j in range(7):
+        assert b[f"row.Q_o[{j}]"][-1] == pytest.approx(a[f"row.Q_o[{j}]"][-1], rel=1e-6,
+                                                       abs=1e-6)
+
+
+def test_a_speed_without_ball_equilibrium_is_named():
+    from bearingsim.catalog import get_bearing
+
+    w = 30 * get_bearing("6304").limiting_speed
+    with pytest.raises(ParameterError, match=r"no quasi-static ball equilibrium at the "
+                                             r"inner-ring speed .* r/min"):
+        deep_groove_ball_bearing("6304", "quasi-static", speed=w, loads={"Fx": 500.0})
+
+
+def test_non_finite_variables_raise_a_named_simulation_error():
+    """A Newton block that finds no solution used to come back as NaN series."""
+    from bearingsim.errors import SimulationError
+    from bearingsim.simulation import simulate
+
+    system = assemble(deep_groove_ball_bearing("6304", "quasi-static", speed=2000.0),
+                      rootfinder="fast_newton")
+    with pytest.raises(SimulationError, match=r"not finite at t = 0 s: row\..*nonlinear blocks"):
+        simulate(system, 1e-3, n_points=3, inputs={"load.Fx": 500.0})

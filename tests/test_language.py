@@ -265,3 +265,20 @@ def test_check_choice_names_the_argument_and_the_valid_values():
     assert str(info.value) == "double_layer_bearing: structure must be 'I' or 'Z', got 'T'"
     with pytest.raises(ParameterError, match=r"^race must be 'a', 'b' or 'c', got 2$"):
         check_choice(2, "race", ("a", "b", "c"))
+
+
+def test_connector_guess_sets_start_values_of_potentials_only():
+    from bearingsim.components.connectors import RingFrame
+
+    class Holder(Component):
+        def __init__(self):
+            super().__init__("holder")
+            self.frame = RingFrame()
+
+    h = Holder()
+    h.frame.guess(x=1e-5, tx=2e-4)
+    assert h.frame.fields["x"].start == 1e-5 and h.frame.fields["tx"].start == 2e-4
+    with pytest.raises(ModelError, match="'Fx' is not a potential of RingFrame"):
+        h.frame.guess(Fx=1.0)
+    with pytest.raises(ModelError, match="assign the connector to a component first"):
+        RingFrame().guess(x=0.0)

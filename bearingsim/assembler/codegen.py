@@ -95,7 +95,8 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
         prev_sx = ca.vertcat(base_sx, *z_sx)
         g = ca.Function(f"g{k}", [zb, prev_sx], [blk.residuals])
         opts = ({"abstol": newton_tol, "max_iter": 50} if rootfinder == "fast_newton"
-                else {"abstol": newton_tol, "max_iter": 100, "line_search": True})
+                else {"abstol": newton_tol, "max_iter": 100, "line_search": True,
+                      "show_eval_warnings": False})
         solver = ca.rootfinder(f"newton{k}", rootfinder, g, opts)
         zk = solver(ca.DM(blk.guess), ca.vertcat(base_mx, *z_mx))
         z_sx.append(zb)

@@ -24,7 +24,7 @@ import numbers
 from collections.abc import Callable
 from typing import Any
 
-from bearingsim.components.ball_row import BallRow
+from bearingsim.components.ball_row import BallRow, row_equilibrium, row_parameters
 from bearingsim.components.connectors import Flange, RingFrame
 from bearingsim.components.dynamic import (
     Ball,
@@ -41,7 +41,7 @@ from bearingsim.components.dynamic import (
 )
 from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
@@ -392,7 +392,10 @@ class QuasiStaticDeepGroove(Assembly):
 
     With ``speed`` > 0 the row uses its Jones-Harris form (centrifugal force, gyroscopic moment)
     at that inner-ring speed; the shaft holds the ring straight (no tilt), so the ring takes no
-    moment.
+    moment. The Newton blocks start from the numeric equilibrium at the constant loads
+    (:func:`~bearingsim.components.ball_row.row_equilibrium`; load inputs count as 0 there); with
+    load inputs at speed the assembler gives the blocks a line search (CasADi's ``newton``
+    rootfinder, which generates no C code), without them plain Newton (``fast_newton``).
 
     Parameters
     ----------
@@ -408,8 +411,10 @@ class QuasiStaticDeepGroove(Assembly):
     Raises
     ------
     ParameterError
-        For an unknown load key, a non-finite constant load, a moment load, or a speed that
-        is not a finite number >= 0 (a function of time or an input needs a dynamic level).
+        For an unknown load key, a non-finite constant load, a moment load, a speed that is not
+        a finite number >= 0 (a function of time or an input needs a dynamic level), or a speed
+        at which the balls have no quasi-static equilibrium under the constant loads (the
+        message names the speed).
     """
 
     def __init__(self, geometry, loads: dict[str, Any] | None = None, speed: float = 0.0,
@@ -429,11 +434,29 @@ class QuasiStaticDeepGroove(Assembly):
                                  f"{speed!r}; a speed that varies in time or an input "
                                  f"shaft_speed needs a dynamic fidelity")
         speed = float(check_range(speed, "speed", "rad/s", 0.0, where=where))
-        self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0)
+        # start values of the Newton blocks (ring translation, ball centres at speed): the
+        # equilibrium at the constant loads (inputs count as 0)
+        constant = [float(v) if isinstance(v, (int, float)) else 0.0
+                    for v in (loads.get(k) for k in ("Fx", "Fy", "Fz"))]
+        try:
+            start = row_equilibrium(row_parameters(geometry), geometry.ball_count, constant,
+                                    speeds=(speed, 0.0), speed_effects=speed > 0.0)
+        except SimulationError as exc:
+            raise ParameterError(
+                f"{where}: no quasi-static ball equilibrium at the inner-ring speed {speed:g} "
+                f"rad/s ({speed * 30.0 / math.pi:.0f} r/min) under the loads {constant} N; "
+                f"the balls' equilibrium is lost there ({exc})") from None
+        self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0,
+                           centre_start=start.centres)
+        # load inputs move the equilibrium away from the start values; at speed the Jones-Harris
+        # ball equations then need Newton with a line search (CasADi's "newton": no C code)
+        self.needs_line_search = speed > 0.0 and any(
+            not isinstance(loads.get(k, None), (int, float)) for k in ("Fx", "Fy", "Fz"))
         self.row.inner_speed = speed
         self.housing = FixedFrame()
         self.guide = TiltGuide()
         self.load = RingLoad({**loads, "Mx": 0.0, "My": 0.0})
+        self.row.inner.guess(**dict(zip(("x", "y", "z"), start.inner.tolist(), strict=True)))
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)
 

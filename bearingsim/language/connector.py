@@ -54,6 +54,31 @@ class Connector:
             setattr(self, key, decl.bind(self, key))
             self.fields[key] = decl
 
+    def guess(self, **values: float) -> None:
+        """Start values of potential fields, used as the guesses of the Newton iterations that
+        solve them when the assembler finds them algebraic (e.g. a ring displacement in force
+        balance).
+
+        Parameters
+        ----------
+        **values : float
+            Field name -> start value [field unit].
+
+        Raises
+        ------
+        ModelError
+            Before the connector belongs to a component, or for a name that is not a potential.
+        """
+        if self.owner is None:
+            raise ModelError(f"{type(self).__name__}.guess: assign the connector to a component "
+                             f"first")
+        names = [d.attr for d in self.potentials]
+        for key, value in values.items():
+            if key not in names:
+                raise ModelError(f"{self.path}.guess: {key!r} is not a potential of "
+                                 f"{type(self).__name__}; potentials: {', '.join(names)}")
+            self.fields[key].start = float(value)
+
     @property
     def path(self) -> str:
         """Dotted name relative to the root."""

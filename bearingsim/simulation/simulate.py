@@ -156,6 +156,7 @@ def simulate(
         obs = closed.observe.map(ts.size)
         values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
                             dtype=float)
+    _check_finite(system, ts, values)
     units = _units(system)
     u_end = np.asarray(closed.u(ts[-1]), dtype=float).ravel()
     return Result(ts, list(system.observed_names), values, units, stats,
@@ -215,6 +216,21 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
             f"{times[k + 1]:g} s after t_eval[{k}] = {times[k]:g} s"
         )
     return times
+
+
+def _check_finite(system: System, ts: np.ndarray, values: np.ndarray) -> None:
+    """Raise if a variable is not finite at an output time (e.g. a Newton block of an algebraic
+    loop that did not converge), naming the first time and the variables."""
+    bad = ~np.isfinite(values)
+    if not bad.any():
+        return
+    k = int(np.argmax(bad.any(axis=0)))
+    names = [n for n, b in zip(system.observed_names, bad[:, k], strict=True) if b]
+    raise SimulationError(
+        f"{system.name}: {len(names)} variable(s) are not finite at t = {ts[k]:.6g} s: "
+        f"{', '.join(names[:8])}{', ...' if len(names) > 8 else ''}; "
+        + ("the nonlinear blocks (algebraic loops) found no solution there"
+           if system.rootfinder else "the model evaluates to NaN or inf there"))
 
 
 def _units(system: System) -> dict[str, str]:

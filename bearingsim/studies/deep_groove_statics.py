@@ -13,12 +13,11 @@ Two forms of the same problem:
   the standard's spring constant and ratings. Use it to compare with tools that implement the
   standard.
 
-The equilibrium is found by a Levenberg-Marquardt iteration on the exact Jacobian (CasADi) from
-a seated start: each loaded direction alone is solved first (a one-dimensional root, which
-exists for any clearance including zero, where the Jacobian at the centred position is
-singular), their sum is the start, and a load path with step halving takes over if the direct
-solve fails. Directions without load and without stiffness (the axial play of a bearing with
-clearance under a radial load) stay where symmetry puts them. The result carries the ball loads,
+The equilibrium is found by :class:`~bearingsim.physics.ring_equilibrium.EquilibriumProblem`:
+Levenberg-Marquardt on the exact Jacobian (CasADi) from a seated start (each loaded direction
+alone solved first, a one-dimensional root that exists for any clearance including zero, where
+the Jacobian at the centred position is singular), with the axial play as further starts and a
+load path as the last resort. The result carries the ball loads,
 contact angles, the 5x5 stiffness (exact Jacobian) and the ISO/TS 16281 basic reference rating
 life.
 """
@@ -33,11 +32,10 @@ from dataclasses import dataclass
 
 import casadi as ca
 import numpy as np
-import scipy.optimize
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import row_loads, row_parameters
-from bearingsim.errors import ParameterError, PlasticDeformationWarning, SimulationError
+from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics import iso_ts_16281 as iso
 from bearingsim.physics.hertz import (
     STEEL,
@@ -53,6 +51,7 @@ from bearingsim.physics.life import (
     raceway_dynamic_ratings,
     raceway_equivalent_load,
 )
+from bearingsim.physics.ring_equilibrium import EquilibriumProblem
 from bearingsim.validation import check_choice, check_range
 
 __all__ = ["DeepGrooveStatics", "LOAD_NAMES", "METHODS", "STATIC_PRESSURE_LIMIT",
@@ -159,7 +158,7 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     f_ext = _load_vector(loads, where)
     x0 = None if guess is None else _guess_vector(guess, where)
     problem = _Problem(g, method, ball_material, ring_material, ball_position_angle)
-    state = problem.solve(f_ext, x0)
+    state = problem.equilibrium.solve(f_ext, x0)
     q, alpha = problem.balls(state)
     stiffness = -np.asarray(problem.jacobian(state), dtype=float)
     p_max = problem.max_pressure(q, alpha)
@@ -229,117 +228,19 @@ class _Problem:
             balls = [cp * ca.power(ca.fmax(d, 0.0), 1.5) for d in delta]
             ring_load = iso.ring_loads(g, balls, angles, ball_position_angle)
         ring_load = ca.vertcat(*ring_load)
-        self._loads = ca.Function("ring_load", [qs], [ring_load])
-        self._jac = ca.Function("ring_jac", [qs], [ca.jacobian(ring_load, qs)])
+        self.equilibrium = EquilibriumProblem(
+            ca.Function("ring_load", [qs], [ring_load]), 5, _SCALE,
+            [1.0, 1.0, 1.0] + [2.0 / g.pitch_diameter] * 2,
+            play=g.groove_centre_distance * math.sin(g.free_contact_angle), axial=2,
+            name=f"deep_groove_statics({g.designation})")
         self._balls = ca.Function("balls", [qs], [ca.vertcat(*balls), ca.vertcat(*angles)])
 
-    def ring_load(self, x: np.ndarray) -> np.ndarray:
-        return np.asarray(self._loads(x), dtype=float).ravel()
-
     def jacobian(self, x: np.ndarray) -> np.ndarray:
-        return np.asarray(self._jac(x), dtype=float)
+        return self.equilibrium.jacobian(x)
 
     def balls(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         q, a = self._balls(x)
         return np.asarray(q, dtype=float).ravel(), np.asarray(a, dtype=float).ravel()
-
-    # ------------------------------------------------------------------ solving
-    def _force_scale(self, f_ext: np.ndarray) -> float:
-        """Typical force [N]: the largest force or moment / pitch radius, at least 1 N."""
-        return max(float(np.max(np.abs(f_ext[:3]))),
-                   float(np.max(np.abs(f_ext[3:]))) / (0.5 * self.g.pitch_diameter), 1.0)
-
-    def _converged(self, x: np.ndarray, f_ext: np.ndarray) -> bool:
-        """Forces balanced to 1e-9 of the force scale, moments to that times the pitch radius."""
-        res = (self.ring_load(x) + f_ext) * self._weight / self._force_scale(f_ext)
-        return bool(np.all(np.isfinite(x)) and np.max(np.abs(res)) <= 1e-9)
-
-    @property
-    def _weight(self) -> np.ndarray:
-        """Forces as they are, moments divided by the pitch radius."""
-        return np.array([1.0, 1.0, 1.0] + [2.0 / self.g.pitch_diameter] * 2)
-
-    def _iterate(self, f_ext: np.ndarray, x0: np.ndarray) -> np.ndarray:
-        """Levenberg-Marquardt on the scaled unknowns and the exact Jacobian."""
-        force, weight = self._force_scale(f_ext), self._weight
-
-        def fun(v):
-            return (self.ring_load(v * _SCALE) + f_ext) * weight / force
-
-        def jac(v):
-            return self.jacobian(v * _SCALE) * _SCALE[None, :] * weight[:, None] / force
-
-        sol = scipy.optimize.least_squares(fun, x0 / _SCALE, jac=jac, method="lm", xtol=1e-15,
-                                           ftol=1e-15, gtol=1e-15, max_nfev=400)
-        return sol.x * _SCALE
-
-    def _seated(self, f_ext: np.ndarray) -> np.ndarray:
-        """Each loaded direction solved alone (a one-dimensional root); their sum."""
-        x = np.zeros(5)
-        for k in np.flatnonzero(f_ext):
-            unit = np.zeros(5)
-            unit[k] = np.sign(f_ext[k]) * _SCALE[k]
-
-            def residual(t, unit=unit, k=k):
-                return self.ring_load(t * unit)[k] + f_ext[k]
-
-            hi = 1.0
-            while np.sign(residual(hi)) == np.sign(residual(0.0)) and hi < 1e6:
-                hi *= 2.0
-            if np.sign(residual(hi)) != np.sign(residual(0.0)):
-                x += scipy.optimize.brentq(residual, 0.0, hi, xtol=1e-12) * unit
-        return x
-
-    def _starts(self, f_ext: np.ndarray) -> list[np.ndarray]:
-        """The seated start, and, with clearance and no axial load, the same with the ring
-        shifted by the axial play either way (a moment with a radial load seats the balls on
-        one shoulder, a solution the centred start may not reach)."""
-        seated = self._seated(f_ext)
-        play = self.g.groove_centre_distance * math.sin(self.g.free_contact_angle)
-        if f_ext[2] != 0.0 or play == 0.0 or not np.any(f_ext[3:]):
-            return [seated]
-        return [seated] + [seated + np.array([0.0, 0.0, side * play, 0.0, 0.0])
-                           for side in (1.0, -1.0)]
-
-    def _solve_from_starts(self, f_ext: np.ndarray) -> np.ndarray | None:
-        for start in self._starts(f_ext):
-            x = self._iterate(f_ext, start)
-            if self._converged(x, f_ext):
-                return x
-        return None
-
-    def solve(self, f_ext: np.ndarray, x0: np.ndarray | None) -> np.ndarray:
-        if not np.any(f_ext):
-            return np.zeros(5) if x0 is None else self._iterate(f_ext, x0)
-        if x0 is not None:
-            x = self._iterate(f_ext, x0)
-            if self._converged(x, f_ext):
-                return x
-        x = self._solve_from_starts(f_ext)
-        if x is not None:
-            return x
-        # load path from a tenth of the load, each step started from the last, step halving
-        x = self._solve_from_starts(0.1 * f_ext)
-        if x is None:
-            raise SimulationError(f"deep_groove_statics({self.g.designation}): no equilibrium "
-                                  f"found for 10 % of the load {self._named(f_ext)}")
-        done, step = 0.1, 0.1
-        while done < 1.0:
-            trial = min(1.0, done + step)
-            x_new = self._iterate(trial * f_ext, x)
-            if self._converged(x_new, trial * f_ext):
-                x, done, step = x_new, trial, min(2.0 * step, 0.25)
-                continue
-            step /= 2.0
-            if step < 1e-3:
-                raise SimulationError(
-                    f"deep_groove_statics({self.g.designation}): no equilibrium found beyond "
-                    f"{done:.3g} of the load {self._named(f_ext)}")
-        return x
-
-    @staticmethod
-    def _named(f_ext: np.ndarray) -> str:
-        return ", ".join(f"{n} = {v:g}" for n, v in zip(LOAD_NAMES, f_ext, strict=True) if v)
 
     # ------------------------------------------------------------------ results
     def max_pressure(self, q: np.ndarray, alpha: np.ndarray) -> float:
