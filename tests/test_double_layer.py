@@ -218,3 +218,41 @@ def test_optimal_ratio_and_design_report():
 def test_unknown_fidelity_is_a_clear_error():
     with pytest.raises(ParameterError, match="fidelity"):
         double_layer_bearing(fidelity="ball-level")
+
+
+# ------------------------------------------------------------------ zero load (issue 15)
+def test_palmgren_at_zero_load_gives_the_load_free_ratio():
+    """Palmgren's M0 does not depend on the load: at zero load Rs is the M0 balance."""
+    from bearingsim.studies.double_layer import steady_ratio
+
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="torque"))
+    rs, torque, _ = steady_ratio(system, rpm_to_rad_s(10_000), loads=(0.0, 0.0))
+    assert rs == pytest.approx(speed_ratio_palmgren("61905", "61907"), rel=2e-3)
+    assert torque < 0.0
+
+
+def test_skf_at_zero_load_is_a_named_error_not_the_start_guess():
+    """The SKF model without seals or drag has no torque at zero load in either layer; the
+    steady solver used to return its start guess (Rs = 0) as the answer."""
+    from bearingsim.errors import SimulationError
+    from bearingsim.studies.double_layer import steady_ratio
+
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="torque",
+                                           friction_model="skf"))
+    with pytest.raises(SimulationError, match=r"not unique.*middle\..*w.*SKF without seals"):
+        steady_ratio(system, rpm_to_rad_s(10_000), loads=(0.0, 0.0))
+    rs, _, _ = steady_ratio(system, rpm_to_rad_s(10_000), loads=(100.0, 0.0))
+    assert 0.1 < rs < 0.4
+
+
+def test_a_steady_state_that_is_not_unique_raises_unless_any_will_do():
+    from bearingsim.errors import SimulationError
+    from bearingsim.simulation import steady_state
+    from tests.models import DampersInSeries
+
+    system = assemble(DampersInSeries())  # any common speed of both inertias is steady
+    with pytest.raises(SimulationError, match=r"not unique.*j\d\.w"):
+        steady_state(system)
+    x = steady_state(system, require_unique=False)
+    assert x[system.state_names.index("j1.w")] == pytest.approx(
+        x[system.state_names.index("j2.w")])

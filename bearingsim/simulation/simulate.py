@@ -22,6 +22,7 @@ from bearingsim.simulation.integrators import (
     methods_of,
 )
 from bearingsim.simulation.result import Result
+from bearingsim.simulation.steady import steady_state
 from bearingsim.validation import check_choice, check_range
 
 __all__ = ["simulate", "initial_state"]
@@ -51,9 +52,7 @@ def initial_state(
             )
         x[free] = sol.x
     if steady:
-        from bearingsim.simulation.steady import steady_state
-
-        x = steady_state(system, closed=closed, p=p, x_guess=x, t=t0)
+        x = steady_state(system, closed=closed, p=p, x_guess=x, t=t0, require_unique=False)
     return x
 
 

@@ -30,6 +30,7 @@ def steady_state(
     t: float = 0.0,
     tol: float = 1e-12,
     residual_tol: float = 1e-9,
+    require_unique: bool = True,
 ) -> np.ndarray:
     """Solve ``dx/dt = 0`` for every state that some derivative depends on.
 
@@ -55,11 +56,22 @@ def steady_state(
     residual_tol : float
         A solution whose largest derivative is below this is accepted even if the solver
         stalls [state units/s].
+    require_unique : bool
+        Raise when the steady state is not unique (the Jacobian is singular at the solution,
+        e.g. two free bodies coupled by dampers, or a ring without any torque): the solver's
+        answer then depends on the guess. ``False`` accepts any one of the steady states (as
+        a start for a simulation).
 
     Returns
     -------
     numpy.ndarray
         The steady state vector.
+
+    Raises
+    ------
+    SimulationError
+        If no steady state is found, or if it is not unique (the Jacobian is singular there,
+        naming the states that stay undetermined).
     """
     closed = closed if closed is not None else close_inputs(system, inputs)
     p = system.p0(parameters) if p is None else p
@@ -87,5 +99,26 @@ def steady_state(
             f"{np.max(np.abs(res(sol.x))):.3g} for states "
             + ", ".join(system.state_names[k] for k in free)
         )
+    if require_unique:
+        _check_determined(system, jac(sol.x), free)
     x[free] = sol.x
     return x
+
+
+def _check_determined(system: System, jacobian: np.ndarray, free: list[int],
+                      rcond: float = 1e-12) -> None:
+    """Raise if the steady state is not unique: a (numerically) singular Jacobian means some
+    states can take any value (e.g. a ring that no torque acts on), and the solver has only
+    returned its start guess for them."""
+    if jacobian.size == 0:
+        return
+    _, sv, vt = np.linalg.svd(jacobian)
+    if sv[0] > 0.0 and sv[-1] > rcond * sv[0]:
+        return
+    null = np.abs(vt[-1])
+    names = [system.state_names[free[k]] for k in np.flatnonzero(null > 0.1 * null.max())]
+    raise SimulationError(
+        "steady state not unique: no derivative depends on " + ", ".join(names[:8])
+        + " at the solution (singular Jacobian, condition above "
+        f"{1.0 / rcond:.0e}); they keep their start values, which are no answer. A body with "
+        "no load acting on it at this point (e.g. no friction torque) has no steady value")

@@ -9,7 +9,7 @@ import numpy as np
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double_layer_bearing
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import simulate, steady_state
 from bearingsim.validation import check_range
 
@@ -53,11 +53,24 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
     (Rs [1], M_shaft [N m], steady state vector)
         Evaluated with the inputs above and every other input at its start value
         (``system.u_default()``), the values the steady state was solved with.
+
+    Raises
+    ------
+    SimulationError
+        If the steady state is not found or not unique (e.g. the SKF model at zero load: no
+        friction in either layer, so nothing sets the middle ring's speed).
     """
     inputs = {"shaft_speed": float(speed)}
     if "Fr" in system.input_names:
         inputs.update({"Fr": float(loads[0]), "Fa": float(loads[1])})
-    x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+    try:
+        x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+    except SimulationError as exc:
+        raise SimulationError(
+            f"steady_ratio at {speed:g} rad/s, loads Fr, Fa = {tuple(loads)} N: {exc}. Without "
+            "load, a friction model with no load-independent torque (SKF without seals or "
+            "drag) turns neither layer, so the middle ring's speed and Rs are undetermined: "
+            "give a load, seals or an oil level") from None
     u = system.u_default()
     for name, value in inputs.items():
         u[system.input_names.index(name)] = value
