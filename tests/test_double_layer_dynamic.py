@@ -192,3 +192,16 @@ def test_shaft_load_goes_through_both_layers_in_series(nested):
     assert middle == pytest.approx(outer, rel=DISPLACEMENT_TOLERANCE)
     assert shaft == pytest.approx(inner + outer, rel=DISPLACEMENT_TOLERANCE)
     assert abs(res["middle_body.x"][-1]) < 1e-9 and abs(res["middle_body.y"][-1]) < 1e-9
+
+
+@pytest.mark.slow
+def test_speed_ratio_finds_its_own_bracket_and_does_not_depend_on_the_start(nested):
+    """One secant step from a user bracket moved the answer with the bracket (0.0757 / 0.0773 /
+    0.0780 for three brackets of 61905/61909); the search now iterates to convergence."""
+    bearing, system = nested
+    found = [speed_ratio(bearing, system, W, bracket, t_run=0.01)
+             for bracket in (None, (0.15, 0.25), (0.20, 0.21), (0.30, 0.31))]
+    rs = [e.rs for e in found]
+    assert max(rs) - min(rs) < 1e-3
+    assert all(e.bracketed for e in found)
+    assert len(found[0].evaluations) <= 8

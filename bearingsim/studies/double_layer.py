@@ -136,17 +136,20 @@ class SpeedRatioEstimate:
     Attributes
     ----------
     rs : float
-        Speed ratio where the net middle-ring torque vanishes (secant root) [-].
+        Speed ratio where the net middle-ring torque vanishes [-].
     bracket : (float, float)
-        The two speed ratios run [-].
+        The last two speed ratios on either side of ``rs`` [-].
     torques : (float, float)
-        Mean net torque on the middle ring at each [N m]; opposite signs (positive first)
-        when the bracket holds the result.
+        Mean net torque on the middle ring at each [N m]: positive (the ring speeds up) at
+        the lower, negative at the upper.
+    evaluations : tuple of (float, float)
+        Every (speed ratio [-], mean net torque [N m]) run, in order.
     """
 
     rs: float
     bracket: tuple[float, float]
     torques: tuple[float, float]
+    evaluations: tuple[tuple[float, float], ...] = ()
 
     @property
     def bracketed(self) -> bool:
@@ -155,15 +158,19 @@ class SpeedRatioEstimate:
 
 
 def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: float,
-                bracket: tuple[float, float], parameters: dict | None = None,
-                t_run: float = 0.02) -> SpeedRatioEstimate:
-    """Steady speed ratio from the net middle-ring torque of two short runs.
+                bracket: tuple[float, float] | None = None, parameters: dict | None = None,
+                t_run: float = 0.02, tol: float = 1e-4,
+                max_runs: int = 16) -> SpeedRatioEstimate:
+    """Steady speed ratio from the net middle-ring torque of short runs.
 
     Each run starts in pure rolling (``bearing.rolling_start``) with the middle ring at
-    ``Rs * w_shaft`` for one ``Rs`` of ``bracket`` and lasts ``t_run`` (the balls and cages
-    settle within some milliseconds, the middle ring's own time constant is a large
-    fraction of a second); the net torque ``M_middle`` is averaged over the second half.
-    The ratio is the secant root of the two torques.
+    ``Rs * w_shaft`` and lasts ``t_run`` (the balls and cages settle within some milliseconds,
+    the middle ring's own time constant is a large fraction of a second); the net torque
+    ``M_middle`` averaged over the second half says whether the ring would speed up (> 0) or
+    slow down. From a start (``bracket``, or the torque level's ratio for the layers'
+    lubricants and 5 % beside it) the search widens until the torque changes sign and then
+    narrows the bracket by regula falsi (Illinois variant) until two successive ratios differ
+    by less than ``tol``: the answer no longer depends on where the search started.
 
     Parameters
     ----------
@@ -174,28 +181,99 @@ def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: flo
         (``drive="speed"``, ``speed=None``) and ``M_middle`` among its outputs.
     w_shaft : float
         Shaft speed [rad/s], > 0.
-    bracket : (float, float)
-        Two speed ratios [-], ideally on either side of the result.
+    bracket : (float, float), optional
+        Two speed ratios to start from [-], in (0, 1); default: the torque level's.
     parameters : dict, optional
         Parameter overrides (e.g. ``{"inner_layer.ring_drag.f0": 1.62}``).
     t_run : float
-        Length of each run [s].
+        Length of each run [s], > 0.
+    tol : float
+        Convergence of the ratio [-], > 0.
+    max_runs : int
+        Most runs before giving up.
 
     Returns
     -------
     SpeedRatioEstimate
+
+    Raises
+    ------
+    SimulationError
+        If the net torque does not change sign within ``(0, 1)`` or the search does not
+        converge within ``max_runs`` runs.
     """
-    check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False,
-                where="speed_ratio")
+    where = "speed_ratio"
+    check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False, where=where)
+    check_range(t_run, "t_run", "s", 0.0, None, low_inclusive=False, where=where)
+    check_range(tol, "tol", "-", 0.0, None, low_inclusive=False, where=where)
     if "shaft_speed" not in system.input_names or "M_middle" not in system.output_names:
         raise ParameterError("speed_ratio: assemble the bearing as the root with "
                              "drive='speed', speed=None and outputs=['M_middle', ...]")
-    torques = []
-    for rs in bracket:
+    runs: list[tuple[float, float]] = []
+
+    def torque(rs: float) -> float:
+        if len(runs) >= max_runs:
+            raise SimulationError(f"{where}: no convergence to {tol:g} within {max_runs} runs; "
+                                  f"runs (Rs, M_middle [N m]): {runs}")
         x0 = bearing.rolling_start(w_shaft, rs * w_shaft, system.state_names)
         res = simulate(system, t_run, x0=x0, inputs={"shaft_speed": w_shaft},
                        parameters=parameters, method="cvodes", rtol=1e-5, atol=1e-8,
                        n_points=21, progress=False)
-        torques.append(float(np.mean(res["M_middle"][res.t >= 0.5 * t_run])))
-    (r0, r1), (m0, m1) = bracket, torques
-    return SpeedRatioEstimate(r0 - m0 * (r1 - r0) / (m1 - m0), tuple(bracket), tuple(torques))
+        m = float(np.mean(res["M_middle"][res.t >= 0.5 * t_run]))
+        runs.append((rs, m))
+        return m
+
+    if bracket is None:
+        seed = _torque_level_ratio(bearing, w_shaft)
+        bracket = (seed, 1.05 * seed)
+    for rs in bracket:
+        check_range(rs, "bracket", "-", 0.0, 1.0, low_inclusive=False, high_inclusive=False,
+                    where=where)
+    (r_a, r_b) = sorted(float(r) for r in bracket)
+    m_a, m_b = torque(r_a), torque(r_b)
+    # widen until the net torque changes sign: speeding up below, slowing down above
+    while m_a <= 0.0 or m_b >= 0.0:
+        width = r_b - r_a
+        if m_a <= 0.0:
+            r_b, m_b, r_a = r_a, m_a, max(0.5 * r_a, r_a - 2.0 * width)
+            m_a = torque(r_a)
+        else:
+            r_a, m_a, r_b = r_b, m_b, min(0.5 * (1.0 + r_b), r_b + 2.0 * width)
+            m_b = torque(r_b)
+        if r_a < 1e-6 or r_b > 1.0 - 1e-6:
+            raise SimulationError(f"{where}: the net middle-ring torque does not change sign "
+                                  f"in (0, 1); runs (Rs, M_middle [N m]): {runs}")
+    # regula falsi, Illinois variant: halve the kept end's torque when an end repeats
+    rs, side = r_a, 0
+    while True:
+        new = r_b - m_b * (r_b - r_a) / (m_b - m_a)
+        if abs(new - rs) < tol:
+            rs = new
+            break
+        rs = new
+        m = torque(rs)
+        if m > 0.0:
+            r_a, m_a = rs, m
+            if side == -1:
+                m_b *= 0.5
+            side = -1
+        else:
+            r_b, m_b = rs, m
+            if side == 1:
+                m_a *= 0.5
+            side = 1
+    final_a = max((r for r, m in runs if m > 0.0 and r <= rs), default=r_a)
+    final_b = min((r for r, m in runs if m <= 0.0 and r >= rs), default=r_b)
+    torques = dict(runs)
+    return SpeedRatioEstimate(rs, (final_a, final_b), (torques[final_a], torques[final_b]),
+                              tuple(runs))
+
+
+def _torque_level_ratio(bearing: DynamicDoubleLayerBearing, w_shaft: float) -> float:
+    """Rs of the Palmgren torque level with the layers' lubricants (a start for the search)."""
+    twin = double_layer_bearing(*bearing.geometries, structure=bearing.structure,
+                                fidelity="torque",
+                                lubrication=(bearing.inner_layer.lubricant,
+                                             bearing.outer_layer.lubricant))
+    rs, _, _ = steady_ratio(assemble(twin), w_shaft)
+    return float(rs)
