@@ -171,3 +171,43 @@ def test_steady_ratio_evaluates_with_the_default_inputs():
     assert u[system.input_names.index("load")] == 2000.0
     assert torque == pytest.approx(obs["M_shaft"], rel=1e-12)
     assert rs == pytest.approx(obs["Rs"], rel=1e-12)
+
+
+# ------------------------------------------------------------------ between the output points
+@pytest.mark.parametrize(("name", "text", "match"), [
+    ("shaft_speed", "tan(pi/2)", r"pole pi/2 \+ k pi of tan"),
+    ("shaft_speed", "tan(t + 1.0)", r"tan at its pole .* between t = 0\.57079"),
+    ("shaft_speed", "1/(t - 0.1234567)", r"division by zero between t = 0\.123456[67]"),
+    ("shaft_speed", "1e300*t", r"overflow"),
+    ("shaft_speed", "log(t - 0.5)", r"logarithm of a non-positive number between t = 0 s"),
+    ("shaft_speed", "sqrt(0.25 - t)", r"square root of a negative number between t = 0\.2499"),
+    ("Fr", "-5 * step(0.0051) * (1 - step(0.0052))",
+     r"input Fr \[N\]: below its valid minimum 0 between t = 0\.005099"),
+])
+def test_input_signals_are_checked_between_the_output_points(torque_system, name, text, match):
+    """Singularities, overflow and range violations that fall between the output points (three
+    points over 1 s here) were accepted: the check looked at the output grid only. Interval
+    arithmetic now bounds each input over the whole run and bisects to the span at fault."""
+    from bearingsim.scenes.expressions import compile_expression
+
+    inputs = {**SPEED, name: compile_expression(text, f"inputs.{name}")}
+    with pytest.raises(ParameterError, match=match):
+        simulate(torque_system, 1.0, inputs=inputs, n_points=3)
+
+
+def test_interval_check_passes_kinks_guards_and_tables(torque_system):
+    from bearingsim.scenes.expressions import compile_expression
+
+    inputs = {"shaft_speed": compile_expression("rpm(3000) * ramp(0, 0.2)"),
+              "Fr": compile_expression("1/(t - 2) + 1 if t < 1 else 0"),
+              "Fa": ([0.0, 0.3, 0.30001, 1.0], [100.0, 100.0, 0.0, 0.0])}
+    res = simulate(torque_system, 1.0, inputs=inputs, n_points=5)
+    assert np.all(np.isfinite(res["Rs"]))
+
+
+@pytest.mark.parametrize("text", ["ramp(0.5, 0.5)", "ramp(1, 0)"])
+def test_ramp_needs_a_rising_time_span(text):
+    from bearingsim.scenes.expressions import ExpressionError, compile_expression
+
+    with pytest.raises(ExpressionError, match=r"ramp\(t0, t1\) .* needs t1 > t0"):
+        compile_expression(text, "inputs.shaft_speed")

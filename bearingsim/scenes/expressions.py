@@ -27,6 +27,7 @@ from collections.abc import Callable
 from typing import Any
 
 import casadi as ca
+import numpy as np
 
 from bearingsim.errors import ParameterError
 
@@ -219,8 +220,22 @@ def _check(node: ast.AST, name: str, text: str) -> None:
             if isinstance(a, ast.Starred):
                 raise _fail(name, text, "starred arguments are not allowed")
             _check(a, name, text)
+        if node.func.id == "ramp":
+            _check_ramp(node, name, text)
         return
     raise _fail(name, text, f"{type(node).__name__} is not allowed")
+
+
+def _check_ramp(node: ast.Call, name: str, text: str) -> None:
+    """``ramp(t0, t1)`` needs ``t1 > t0`` [s] (checked here for constant arguments; others are
+    checked over the simulated span by interval arithmetic)."""
+    try:
+        t0, t1 = (float(ast.literal_eval(a)) for a in node.args)
+    except (ValueError, TypeError, SyntaxError):
+        return
+    if not t1 > t0:
+        raise _fail(name, text, f"ramp(t0, t1) rises from 0 at t0 to 1 at t1 and needs t1 > t0 "
+                                f"[s], got ramp({t0:g}, {t1:g}); use step(t0) for a jump")
 
 
 def _eval(node: ast.AST, t, name: str, text: str):
@@ -249,5 +264,12 @@ def _eval(node: ast.AST, t, name: str, text: str):
         _, fn = FUNCTIONS[node.func.id]
         args = [_eval(a, t, name, text) for a in node.args]
         args = [ca.DM(a) if isinstance(a, float) else a for a in args]
-        return fn(t, *args)
+        if node.func.id == "tan" and isinstance(args[0], ca.DM):
+            x = float(args[0])
+            if abs(math.cos(x)) < 1e-12 * max(1.0, abs(x)):
+                raise _fail(name, text, f"tan({x:g}) is at the pole pi/2 + k pi of tan")
+        value = fn(t, *args)
+        if isinstance(value, ca.DM) and not np.all(np.isfinite(np.asarray(value))):
+            raise _fail(name, text, f"{ast.unparse(node)} is not a finite number")
+        return value
     raise _fail(name, text, f"{type(node).__name__} is not allowed")  # pragma: no cover

@@ -17,6 +17,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
+from bearingsim.simulation.intervals import locate_problem
 
 __all__ = ["input_expression", "check_input_ranges"]
 
@@ -94,19 +95,44 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
 
 
 def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
-    """Check every input signal at the given times against its declared range.
+    """Check every input signal against its declared range and for singularities, at the given
+    times and, by interval arithmetic (:mod:`~bearingsim.simulation.intervals`), everywhere
+    between the first and the last of them.
 
     Raises
     ------
     ParameterError
-        Naming the input, its unit and range, and the first time it leaves the range.
+        Naming the input, its unit and range, and the first time it leaves the range; or the
+        time span in which it is singular (a pole, a log of a non-positive number), undefined
+        or overflows.
     """
     if not system.inputs or times.size == 0:
         return
+    t = ca.SX.sym("t")
+    u = u_fn(t)
+    for k, sig in enumerate(system.inputs):
+        component = ca.Function(f"u{k}", [t], [u[k]])
+        problem = locate_problem(component, float(times[0]), float(times[-1]), sig.low,
+                                 sig.high)
+        if problem is not None:
+            raise ParameterError(
+                f"input {sig.name} [{sig.unit}]: {problem.reason} between t = "
+                f"{problem.t_lo:.9g} s and {problem.t_hi:.9g} s (checked by interval "
+                f"arithmetic over [{times[0]:g}, {times[-1]:g}] s, between the output points "
+                f"too)")
+    _check_sampled(system, u_fn, times)
+
+
+def _check_sampled(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
+    """Every input at ``times``: finite and within its declared range."""
     values = np.asarray(u_fn.map(times.size)(times[None, :]), dtype=float).reshape(
         len(system.inputs), times.size)
     for sig, row in zip(system.inputs, values, strict=True):
         bad = ~np.isfinite(row)
+        if bad.any():
+            k = int(np.argmax(bad))
+            raise ParameterError(f"input {sig.name} = {row[k]:g} [{sig.unit}] at t = "
+                                 f"{times[k]:g} s is not a finite number")
         if sig.low is not None:
             bad |= row < sig.low
         if sig.high is not None:
