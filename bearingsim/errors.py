@@ -19,6 +19,7 @@ __all__ = [
     "SimulationError",
     "CatalogError",
     "PlasticDeformationWarning",
+    "LongRunWarning",
 ]
 
 
@@ -90,3 +91,7 @@ class SimulationError(BearingsimError, RuntimeError):
 class PlasticDeformationWarning(UserWarning):
     """A load beyond the static load rating: the contacts deform permanently (ISO 76's limit of
     4 200 MPa Hertz pressure for ball bearings is exceeded)."""
+
+
+class LongRunWarning(UserWarning):
+    """A run whose size (steps forced by ``max_step``, output bytes) makes it long or large."""

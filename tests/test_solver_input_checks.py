@@ -71,8 +71,8 @@ def test_t_eval_must_lie_in_the_run_and_increase(torque_system, method, t_start,
 
 
 @pytest.mark.parametrize(("n_points", "message"), [
-    (0, r"n_points = 0 \[1\] is outside the valid range \[2, inf\)"),
-    (1, r"n_points = 1 \[1\] is outside the valid range \[2, inf\)"),
+    (0, r"n_points = 0 \[1\] is outside the valid range \[2, 1\.34218e\+08\]"),
+    (1, r"n_points = 1 \[1\] is outside the valid range \[2, 1\.34218e\+08\]"),
     (2.5, r"n_points must be an integer >= 2"),
     ("11", r"n_points must be an integer >= 2"),
 ])
@@ -211,3 +211,56 @@ def test_ramp_needs_a_rising_time_span(text):
 
     with pytest.raises(ExpressionError, match=r"ramp\(t0, t1\) .* needs t1 > t0"):
         compile_expression(text, "inputs.shaft_speed")
+
+
+# ------------------------------------------------------------------ bounded work (issue 17)
+class _Doubler(Assembly):
+    """y = 2 u: no states."""
+
+    def __init__(self):
+        super().__init__("doubler")
+        self.u = Input(1.0, "N", "input")
+        self.y = Variable(unit="N", description="output")
+
+    def equations(self):
+        return [self.y == 2 * self.u]
+
+
+def test_runs_too_large_to_be_meant_are_refused_with_the_estimate(torque_system):
+    from bearingsim.errors import LongRunWarning
+
+    with pytest.raises(ParameterError, match=r"n_points = 1000000000000 .* outside the valid"):
+        simulate(torque_system, 1.0, inputs=SPEED, n_points=int(1e12))
+    with pytest.raises(ParameterError, match=r"would take \d+\.\d GiB"):
+        simulate(torque_system, 1.0, inputs=SPEED, n_points=100_000_000)
+    with pytest.raises(ParameterError, match=r"forces at least 1e\+09 steps"):
+        simulate(torque_system, 1.0, inputs=SPEED, max_step=1e-9)
+    doubler = assemble(_Doubler())  # no states: nothing is integrated, only checked
+    with pytest.warns(LongRunWarning, match=r"forces at least 2e\+06 steps"):
+        simulate(doubler, 0.002, max_step=1e-9, n_points=3)
+
+
+def test_an_interrupted_write_leaves_no_partial_file(tmp_path, torque_system, monkeypatch):
+    """Ctrl-C while a result is written: no file under the final name (write to a temporary
+    name, rename at the end)."""
+    import csv as csv_module
+
+    res = simulate(torque_system, 0.1, inputs=SPEED, n_points=11)
+
+    class Interrupting:
+        def __init__(self, fh):
+            self.rows = 0
+
+        def writerow(self, row):
+            self.rows += 1
+
+        def writerows(self, rows):
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(csv_module, "writer", Interrupting)
+    with pytest.raises(KeyboardInterrupt):
+        res.to_csv(tmp_path / "run.csv")
+    assert list(tmp_path.iterdir()) == []
+    monkeypatch.undo()
+    assert res.to_csv(tmp_path / "run.csv").exists()
+    assert [p.name for p in tmp_path.iterdir()] == ["run.csv"]

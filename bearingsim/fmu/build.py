@@ -10,6 +10,7 @@ from importlib import resources
 from pathlib import Path
 
 from bearingsim.errors import BearingsimError
+from bearingsim.files import atomic_path
 
 __all__ = ["BINARY_PLATFORMS", "FmuBuildError", "RUNTIME_FILES", "TEMPLATE_FILES",
            "compile_shared_library", "copy_templates", "fmi_header_dir", "write_archive"]
@@ -121,11 +122,9 @@ def write_archive(path: Path, model_description: str, binary: Path, platform: st
     pathlib.Path
     """
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(path.suffix + ".part")
-    with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
+    with atomic_path(path) as tmp, zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("modelDescription.xml", model_description)
         z.write(binary, f"binaries/{platform}/{model_identifier}.so")
         for src in sources:
             z.write(src, f"sources/{src.name}")
-    tmp.replace(path)
     return path

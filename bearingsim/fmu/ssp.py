@@ -9,6 +9,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from bearingsim.errors import ParameterError
+from bearingsim.files import atomic_path
 from bearingsim.fmu.units import BASE_UNITS, parse_unit
 
 __all__ = ["write_ssp"]
@@ -139,7 +140,7 @@ def write_ssp(
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+    with atomic_path(path) as tmp, zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("SystemStructure.ssd", xml)
         for element, fmu in fmus.items():
             z.write(fmu, f"resources/{element}.fmu")

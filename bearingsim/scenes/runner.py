@@ -19,6 +19,7 @@ import numpy as np
 
 from bearingsim.assembler import System, assemble
 from bearingsim.errors import ModelError, ParameterError
+from bearingsim.files import atomic_path
 from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.registry import AssemblySpec, PostQuantity, min_fidelity
@@ -306,7 +307,7 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
 def write_csv(path: Path, t: np.ndarray, series: dict[str, np.ndarray],
               units: dict[str, str]) -> Path:
     """``time`` and the series, with a unit row."""
-    with path.open("w", newline="") as fh:
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
         w = csv.writer(fh)
         names = list(series)
         w.writerow(["time", *names])
@@ -345,7 +346,8 @@ def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.nda
         fig.suptitle(title, fontsize=10)
         fig.tight_layout()
         path = folder / (f"{stem}.png" if k == 0 else f"{stem}_{k // 6 + 1}.png")
-        fig.savefig(path, dpi=110)
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=110)
         plt.close(fig)
         files.append(path)
     return files
@@ -399,7 +401,8 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
         summary_path = folder / f"{stem}.summary.json"
         files.append(summary_path)
         data = summary(prep, result, series, files)
-        summary_path.write_text(json.dumps(data, indent=2))
+        with atomic_path(summary_path) as tmp:
+            tmp.write_text(json.dumps(data, indent=2))
     else:
         data = summary(prep, result, series, files)
     return SceneRun(prep, result, series, data, files)

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.files import atomic_path
 from bearingsim.scenes.portable import LOADS, load_cached, pack
 from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare, simulate_inputs
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, load_scene
@@ -356,7 +357,7 @@ def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str) -> list[Pa
             if k not in cols:
                 cols.append(k)
     path = folder / f"{stem}.csv"
-    with path.open("w", newline="") as fh:
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=cols)
         w.writeheader()
         for r in rows:
@@ -476,7 +477,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
             "wall_s": round(res.wall_s, 3),
         }
         path = folder / f"{stem}.json"
-        path.write_text(json.dumps(summary, indent=2, default=str))
+        with atomic_path(path) as tmp:
+            tmp.write_text(json.dumps(summary, indent=2, default=str))
         res.files.append(path)
     return res
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bearingsim.files import atomic_path
 from bearingsim.plotting import set_value_scale
 
 __all__ = ["Result"]
@@ -74,7 +75,7 @@ class Result:
         """Write ``time`` and the chosen variables (default all) as CSV with a unit row."""
         path = Path(path)
         names = names or self.names
-        with path.open("w", newline="") as fh:
+        with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(["time"] + names)
             w.writerow(["s"] + [self.units.get(n, "") for n in names])
@@ -85,7 +86,10 @@ class Result:
     def to_npz(self, path: str | Path) -> Path:
         """Write all series to a compressed NumPy archive."""
         path = Path(path)
-        np.savez_compressed(path, t=self.t, names=np.array(self.names), values=self.values)
+        if path.suffix != ".npz":  # numpy appends it; return the file actually written
+            path = path.with_name(path.name + ".npz")
+        with atomic_path(path) as tmp:
+            np.savez_compressed(tmp, t=self.t, names=np.array(self.names), values=self.values)
         return path
 
     def plot(self, names: list[str] | None = None, path: str | Path | None = None, title=None):
@@ -110,6 +114,7 @@ class Result:
             fig.suptitle(title)
         fig.tight_layout()
         if path is not None:
-            fig.savefig(path, dpi=120)
+            with atomic_path(path) as tmp:
+                fig.savefig(tmp, dpi=120)
             plt.close(fig)
         return fig

@@ -4,6 +4,7 @@ integrator chosen from :data:`~bearingsim.simulation.integrators.METHODS`, obser
 from __future__ import annotations
 
 import time as _time
+import warnings
 from typing import Any
 
 import numpy as np
@@ -11,7 +12,7 @@ import scipy.integrate
 import scipy.optimize
 
 from bearingsim.assembler.system import System
-from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.closed import ClosedModel, close_inputs
 from bearingsim.simulation.inputs import check_input_ranges
 from bearingsim.simulation.integrators import (
@@ -138,6 +139,7 @@ def simulate(
     method, backend = _method_backend(method, backend)
     check_choice(initial, "initial", ("start", "steady"), "simulate")
     t_eval = _output_times(t_start, t_end, n_points, t_eval)
+    _check_work(system, t_start, t_end, t_eval.size, max_step)
     p = system.p0(parameters)
     closed = close_inputs(system, inputs)
     x_start = initial_state(system, closed, p, system.x0(x0), t_start, initial == "steady")
@@ -187,6 +189,39 @@ def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:
     return name, owner
 
 
+MAX_OUTPUT_BYTES = 2 * 1024**3
+"""Largest result a run may produce (output points x observed variables x 8 bytes)."""
+WARN_OUTPUT_BYTES = 256 * 1024**2
+MAX_STEPS = 10_000_000
+"""Most steps ``max_step`` may force on a run ((t_end - t_start) / max_step)."""
+WARN_STEPS = 1_000_000
+
+
+def _check_work(system: System, t_start: float, t_end: float, n_out: int,
+                max_step: float) -> None:
+    """Refuse (above the MAX_ limits) or warn about runs whose size alone makes them minutes or
+    gigabytes long, with the estimate."""
+    size = n_out * (len(system.observed_names) + 1) * 8
+    if size > MAX_OUTPUT_BYTES:
+        raise ParameterError(
+            f"simulate: {n_out} output points x {len(system.observed_names)} variables would "
+            f"take {size / 1024**3:.1f} GiB (limit {MAX_OUTPUT_BYTES / 1024**3:.0f} GiB); ask for "
+            f"fewer n_points or prune the model to the outputs you need (assemble(outputs=...))")
+    if size > WARN_OUTPUT_BYTES:
+        warnings.warn(f"simulate: the result will take {size / 1024**2:.0f} MiB ({n_out} points "
+                      f"x {len(system.observed_names)} variables)", LongRunWarning, stacklevel=3)
+    if np.isfinite(max_step):
+        steps = (t_end - t_start) / max_step
+        if steps > MAX_STEPS:
+            raise ParameterError(
+                f"simulate: max_step = {max_step:g} s over {t_end - t_start:g} s forces at least "
+                f"{steps:.3g} steps (limit {MAX_STEPS:.0e}); give a larger max_step [s] or a "
+                f"shorter run")
+        if steps > WARN_STEPS:
+            warnings.warn(f"simulate: max_step = {max_step:g} s forces at least {steps:.3g} "
+                          f"steps", LongRunWarning, stacklevel=3)
+
+
 def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> np.ndarray:
     """Checked output times: ``t_eval`` or ``n_points`` equally spaced in [t_start, t_end]."""
     if t_eval is None:
@@ -194,7 +229,7 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
             raise ParameterError(
                 f"simulate: n_points must be an integer >= 2 [1], got {n_points!r}"
             )
-        check_range(n_points, "n_points", "1", 2, None, where="simulate")
+        check_range(n_points, "n_points", "1", 2, MAX_OUTPUT_BYTES // 16, where="simulate")
         return np.linspace(t_start, t_end, int(n_points))
     try:
         times = np.asarray(t_eval, dtype=float)
