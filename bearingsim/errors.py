@@ -20,6 +20,7 @@ __all__ = [
     "CatalogError",
     "PlasticDeformationWarning",
     "LongRunWarning",
+    "SpeedLimitWarning",
 ]
 
 
@@ -95,3 +96,7 @@ class PlasticDeformationWarning(UserWarning):
 
 class LongRunWarning(UserWarning):
     """A run whose size (steps forced by ``max_step``, output bytes) makes it long or large."""
+
+
+class SpeedLimitWarning(UserWarning):
+    """A speed above the catalogue limiting speed of a bearing."""

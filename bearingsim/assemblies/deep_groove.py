@@ -21,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import numbers
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -41,11 +42,12 @@ from bearingsim.components.dynamic import (
 )
 from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.errors import ParameterError, PlasticDeformationWarning, SimulationError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
+from bearingsim.physics.life import static_equivalent_load
 from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
 from bearingsim.validation import (
     check_choice,
@@ -320,6 +322,8 @@ class DeepGrooveBallBearing(Assembly):
             connect(self.ring_drag.inner, self.shaft)
             connect(self.ring_drag.outer, outer_rotation)
         if drive == "speed":
+            if isinstance(speed, (int, float)):
+                g.check_speed(speed, f"deep_groove_ball_bearing({g.designation})")
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft, *[c.flange for c in inner])
             if speed is None:
@@ -434,6 +438,7 @@ class QuasiStaticDeepGroove(Assembly):
                                  f"{speed!r}; a speed that varies in time or an input "
                                  f"shaft_speed needs a dynamic fidelity")
         speed = float(check_range(speed, "speed", "rad/s", 0.0, where=where))
+        geometry.check_speed(speed, where)
         # start values of the Newton blocks (ring translation, ball centres at speed): the
         # equilibrium at the constant loads (inputs count as 0)
         constant = [float(v) if isinstance(v, (int, float)) else 0.0
@@ -446,6 +451,7 @@ class QuasiStaticDeepGroove(Assembly):
                 f"{where}: no quasi-static ball equilibrium at the inner-ring speed {speed:g} "
                 f"rad/s ({speed * 30.0 / math.pi:.0f} r/min) under the loads {constant} N; "
                 f"the balls' equilibrium is lost there ({exc})") from None
+        _warn_beyond_static_rating(geometry, constant, where)
         self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0,
                            centre_start=start.centres)
         # load inputs move the equilibrium away from the start values; at speed the Jones-Harris
@@ -459,6 +465,20 @@ class QuasiStaticDeepGroove(Assembly):
         self.row.inner.guess(**dict(zip(("x", "y", "z"), start.inner.tolist(), strict=True)))
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)
+
+
+def _warn_beyond_static_rating(geometry, forces, where: str) -> None:
+    """Warn when the static equivalent load of constant forces ``(Fx, Fy, Fz)`` exceeds C0
+    (ISO 76: 4 200 MPa at the most loaded contact, permanent deformation beyond)."""
+    if geometry.static_load_rating is None:
+        return
+    p0 = float(static_equivalent_load(math.hypot(forces[0], forces[1]), abs(forces[2]),
+                                      geometry))
+    if p0 > geometry.static_load_rating:
+        warnings.warn(f"{where}: the static equivalent load {p0:.0f} N exceeds the static load "
+                      f"rating C0 = {geometry.static_load_rating:.0f} N of "
+                      f"{geometry.designation}: the raceways deform permanently",
+                      PlasticDeformationWarning, stacklevel=3)
 
 
 _SET_BY_FACTORY = ("design", "lubricant", "massive_balls", "speed", "loads")

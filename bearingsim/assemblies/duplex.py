@@ -317,6 +317,7 @@ class DuplexPair(Assembly):
                 offset = preload_offset(g, self.preload_force, arrangement, contact_angle)
         self.preload = preload
         self.speed = float(speed)
+        g.check_speed(self.speed, f"duplex_pair({g.designation})")
         self.contact_angle = None if contact_angle is None else float(contact_angle)
         self.ball_position_angle = float(ball_position_angle)
         self.spacer_offset = None if spacer_offset is None else float(spacer_offset)

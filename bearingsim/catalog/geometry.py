@@ -8,9 +8,10 @@ contact angle, groove curvature centre loci).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.validation import check_range
 
 __all__ = ["BearingGeometry", "PreloadClasses"]
@@ -152,6 +153,23 @@ class BearingGeometry:
                 f"contact angle above 45 deg; valid range [0, "
                 f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
             )
+
+    def check_speed(self, speed: float, where: str) -> None:
+        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed.
+
+        The limiting speed bounds the bearing's kinematic and thermal safe operation (cage,
+        lubricant); above it the models still compute, but the catalogue no longer vouches for
+        the bearing. Nothing is checked without a catalogue limiting speed.
+
+        Warns
+        -----
+        SpeedLimitWarning
+        """
+        if self.limiting_speed is not None and abs(float(speed)) > self.limiting_speed:
+            warnings.warn(
+                f"{where}: {abs(float(speed)):g} rad/s ({abs(float(speed)) * 30 / math.pi:.0f} "
+                f"r/min) exceeds the limiting speed of {self.designation}, "
+                f"{self.limiting_speed * 30 / math.pi:.0f} r/min", SpeedLimitWarning, stacklevel=3)
 
     @property
     def bearing_type(self) -> str:

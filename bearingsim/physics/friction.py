@@ -13,12 +13,13 @@ power ``M * omega_rel <= 0``) and passes smoothly through zero speed,
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from bearingsim.errors import CatalogError, ParameterError
+from bearingsim.errors import CatalogError, ParameterError, PlasticDeformationWarning
 from bearingsim.physics.drag import orbital_drag_force
 from bearingsim.symbolic import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
@@ -188,10 +189,20 @@ def palmgren_f1(bearing_type: str, P0: Any, C0: float) -> Any:  # noqa: N803
     -------
     float or casadi.SX
         f1 [-].
+
+    Warns
+    -----
+    PlasticDeformationWarning
+        For a numeric ``P0 > C0`` (the formula's catalogue range ends at C0).
     """
     z, y = _lookup(PALMGREN_F1, bearing_type, "bearing type")
     check_range(P0, "P0", "N", 0.0, None, where="palmgren_f1")
     check_range(C0, "C0", "N", 0.0, None, low_inclusive=False, where="palmgren_f1")
+    if not is_symbolic(P0) and np.any(np.asarray(P0) > C0):
+        warnings.warn(f"palmgren_f1: P0 = {np.max(P0):g} N exceeds the static load rating "
+                      f"C0 = {C0:g} N: the contacts deform permanently, and f1 = z (P0/C0)^y is "
+                      f"extrapolated beyond the catalogue range", PlasticDeformationWarning,
+                      stacklevel=2)
     return z * power(P0 / C0, y) if y else z + 0.0 * P0
 
 
@@ -351,7 +362,10 @@ def palmgren_torque(
     Returns
     -------
     float, array or casadi.SX
-        Friction torque on the ring [N m], opposite in sign to ``omega_rel``.
+        Friction torque on the ring [N m], opposite in sign to ``omega_rel``: the torque the
+        other ring exerts through the bearing on the ring that turns at ``+omega_rel``
+        relative to it (negative for a positive speed; bearingsim's one sign convention of
+        friction torques).
     """
     where = "palmgren_torque"
     check_range(omega_rel, "omega_rel", "rad/s", where=where)

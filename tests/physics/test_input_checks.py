@@ -257,3 +257,60 @@ def test_static_y0_is_linear_between_iso76_rows():
         flt = static_equivalent_load(x, y, g)
         assert float(f(x, y)) == pytest.approx(flt, rel=1e-12)
         assert arr[i] == pytest.approx(flt, rel=1e-12)
+
+
+# --- issue 17: domains stated and checked -----------------------------------------------------
+def test_palmgren_f1_warns_beyond_the_static_load_rating():
+    import warnings as warnings_module
+
+    from bearingsim.errors import PlasticDeformationWarning
+    from bearingsim.physics.friction import palmgren_f1
+
+    with warnings_module.catch_warnings():
+        warnings_module.simplefilter("error")
+        assert palmgren_f1("deep_groove_ball", 5000.0, 10000.0) > 0.0
+    with pytest.warns(PlasticDeformationWarning, match=r"P0 = 50000 N exceeds .* C0 = 10000 N"):
+        palmgren_f1("deep_groove_ball", 50000.0, 10000.0)
+
+
+def test_material_modulus_in_gpa_is_caught():
+    with pytest.raises(ParameterError, match=r"youngs_modulus = 208.0 \[Pa\].*did you pass GPa"):
+        hertz.Material("steel in GPa", 208.0, 0.3)
+    assert hertz.Material("PA66 cage", 3e9, 0.4).youngs_modulus == 3e9
+
+
+def test_quasi_static_level_warns_beyond_the_static_load_rating():
+    import warnings as warnings_module
+
+    from bearingsim.assemblies import deep_groove_ball_bearing
+    from bearingsim.errors import PlasticDeformationWarning
+
+    c0 = get_bearing("6304").static_load_rating
+    with warnings_module.catch_warnings():
+        warnings_module.simplefilter("error")
+        deep_groove_ball_bearing("6304", "quasi-static", loads={"Fx": 0.5 * c0})
+    with pytest.warns(PlasticDeformationWarning, match=r"exceeds the static load rating"):
+        deep_groove_ball_bearing("6304", "quasi-static", loads={"Fx": 5.0 * c0})
+
+
+@pytest.mark.parametrize("build", ["qs", "dynamic", "duplex"])
+def test_constant_speeds_above_the_limiting_speed_warn(build):
+    import warnings as warnings_module
+
+    from bearingsim.assemblies import deep_groove_ball_bearing, duplex_pair
+    from bearingsim.errors import SpeedLimitWarning
+
+    def make(factor):
+        if build == "duplex":
+            return duplex_pair("7014C", preload=500.0,
+                               speed=factor * get_bearing("7014C").limiting_speed)
+        w = factor * get_bearing("6304").limiting_speed
+        if build == "qs":
+            return deep_groove_ball_bearing("6304", "quasi-static", speed=w, loads={"Fx": 100.0})
+        return deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=w)
+
+    with warnings_module.catch_warnings():
+        warnings_module.simplefilter("error")
+        make(0.9)
+    with pytest.warns(SpeedLimitWarning, match=r"exceeds the limiting speed of"):
+        make(1.2)
