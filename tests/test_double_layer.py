@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid
 
-from bearingsim import Assembly, connect
+from bearingsim import Assembly, Input, Variable, connect
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.catalog import get_bearing
-from bearingsim.components.bearing_torque import PalmgrenBearing
+from bearingsim.components.bearing_torque import PalmgrenBearing, PureRollingLayer
 from bearingsim.components.middle_ring import middle_ring_bodies
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
 from bearingsim.errors import ParameterError
@@ -63,13 +63,44 @@ def test_kinematic_model_returns_pure_rolling_formula(exact):
             g1.pitch_diameter / (g1.pitch_diameter + g2.pitch_diameter), rel=1e-12)
 
 
+class _EqualLayers(Assembly):
+    """Two equal layer elements in series through a free ring: the PDR = 1 limit of models.md
+    A, which no real double-layer bearing reaches (the inner bearing sits inside the outer)."""
+
+    def __init__(self, layer):
+        super().__init__("equal")
+        self.drive = SpeedSource(None)
+        self.inner_layer, self.outer_layer = layer(), layer()
+        self.middle = Inertia(1e-4)
+        self.housing = Fixed()
+        self.shaft_speed = Input(0.0, "rad/s", "shaft speed")
+        self.Rs = Variable(unit="1", description="speed ratio")
+        connect(self.drive.flange, self.inner_layer.inner)
+        connect(self.inner_layer.outer, self.middle.flange_a)
+        connect(self.middle.flange_b, self.outer_layer.inner)
+        connect(self.outer_layer.outer, self.housing.flange)
+
+    def equations(self):
+        return [self.drive.w_in == self.shaft_speed,
+                self.Rs == self.middle.w / self.shaft_speed]
+
+
 @pytest.mark.parametrize("fidelity", ["kinematic", "torque"])
 def test_equal_pitch_diameters_give_one_half(fidelity):
-    inner = outer = get_bearing("61905")  # PDR = 1: two equal bearings, offset axially
-    opts = {"smooth": False, "load_dependent": False} if fidelity == "torque" else None
-    system = assemble(double_layer_bearing(inner, outer, structure="Z", fidelity=fidelity,
-                                           layer_options=opts))
+    def layer():
+        if fidelity == "torque":
+            return PalmgrenBearing("61905", "ISO VG 32", smooth=False, load_dependent=False)
+        return PureRollingLayer("61905")
+
+    system = assemble(_EqualLayers(layer))
     assert _steady_rs(system) == pytest.approx(0.5, rel=1e-6)
+
+
+@pytest.mark.parametrize(("inner", "outer"), [("61905", "61905"), ("61909", "61905")])
+def test_an_inner_bearing_that_does_not_fit_inside_the_outer_is_rejected(inner, outer):
+    """Two equal bearings, or the larger inside the smaller, built a bearing without a word."""
+    with pytest.raises(ParameterError, match=r"must be smaller than the outer one"):
+        double_layer_bearing(inner, outer, structure="Z")
 
 
 def test_more_friction_in_inner_layer_raises_ratio():

@@ -12,11 +12,18 @@ import warnings
 from dataclasses import dataclass
 
 from bearingsim.errors import ParameterError, SpeedLimitWarning
-from bearingsim.validation import check_range
+from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_range
 
 __all__ = ["BearingGeometry", "PreloadClasses"]
 
 _MAX_CONTACT_ANGLE = math.radians(45.0)
+_SPECIFIC_RATING = (1.0, 100.0)
+"""Valid range of a ball bearing's load rating per ball area, C / (Z Dw^2) [N/mm^2]: about 25
+for small deep-groove bearings, 3 for a slewing ring of 100 balls of 100 mm (ISO 281's
+fc Dw^1.4 / Z^(1/3)); a rating in kN is 1000 times below."""
+_RATING_RATIO = (0.2, 5.0)
+"""Valid range of C0 / C of a ball bearing [-] (deep groove about 0.5, angular contact 0.6 to
+1.3, large slewing rings up to about 4)."""
 
 
 @dataclass(frozen=True)
@@ -121,8 +128,9 @@ class BearingGeometry:
                 f"{where}: ball_count must be an integer >= 3 [-], got {self.ball_count!r}"
             )
         check_range(self.ball_count, "ball_count", "-", 3, where=where)
-        for name in ("bore", "outside_diameter", "width", "ball_diameter", "pitch_diameter"):
-            check_range(getattr(self, name), name, "m", 0.0, low_inclusive=False, where=where)
+        for name in ("bore", "outside_diameter", "width", "pitch_diameter"):
+            check_diameter(getattr(self, name), name, where)
+        check_diameter(self.ball_diameter, "ball_diameter", where, MAX_BALL_DIAMETER)
         check_range(self.fi, "fi", "-", 0.5, 1.0, low_inclusive=False, where=where)
         check_range(self.fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
         check_range(self.contact_angle, "contact_angle", "rad", 0.0, _MAX_CONTACT_ANGLE,
@@ -133,6 +141,7 @@ class BearingGeometry:
             if getattr(self, name) is not None:
                 check_range(getattr(self, name), name, "N" if "rating" in name else "rad/s",
                             0.0, low_inclusive=False, where=where)
+        self._check_rating_units(where)
         d, big_d, dw, dm = self.bore, self.outside_diameter, self.ball_diameter, self.pitch_diameter
         if not (d < dm - dw and dm + dw < big_d):
             raise ParameterError(
@@ -153,6 +162,29 @@ class BearingGeometry:
                 f"contact angle above 45 deg; valid range [0, "
                 f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
             )
+
+    def _check_rating_units(self, where: str) -> None:
+        """Catch ratings in kN and swapped or mistyped ratings: a ball bearing's C and C0 per
+        unit ball area, ``C / (Z Dw^2)`` and ``C0 / (Z Dw^2)`` with Dw in mm, lie within
+        :data:`_SPECIFIC_RATING` (6304: 25.1 and 12.5 N/mm^2), and C0 / C within
+        :data:`_RATING_RATIO`."""
+        area = self.ball_count * (self.ball_diameter * 1e3) ** 2  # mm^2
+        for name in ("dynamic_load_rating", "static_load_rating"):
+            value = getattr(self, name)
+            if value is not None and not _SPECIFIC_RATING[0] <= value / area \
+                    <= _SPECIFIC_RATING[1]:
+                raise ParameterError(
+                    f"{where}: {name} = {value:g} N is not a rating of {self.ball_count} balls "
+                    f"of {self.ball_diameter * 1e3:g} mm: {name} / (Z Dw^2) = "
+                    f"{value / area:.3g} N/mm^2, valid range [{_SPECIFIC_RATING[0]:g}, "
+                    f"{_SPECIFIC_RATING[1]:g}] N/mm^2 (did you pass kN?)")
+        c, c0 = self.dynamic_load_rating, self.static_load_rating
+        if c is not None and c0 is not None and not _RATING_RATIO[0] <= c0 / c \
+                <= _RATING_RATIO[1]:
+            raise ParameterError(
+                f"{where}: static_load_rating / dynamic_load_rating = {c0 / c:.3g}, valid range "
+                f"[{_RATING_RATIO[0]:g}, {_RATING_RATIO[1]:g}] for ball bearings (swapped or "
+                f"mistyped ratings?)")
 
     def check_speed(self, speed: float, where: str) -> None:
         """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed.

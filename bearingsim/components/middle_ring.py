@@ -42,6 +42,14 @@ def middle_ring_structure(gi: BearingGeometry, go: BearingGeometry, structure: s
     ParameterError
         For another value, or "I" when the inner bearing does not fit in the outer one's bore.
     """
+    if not (gi.pitch_diameter < go.pitch_diameter and gi.outside_diameter
+            < go.outside_diameter and gi.bore < go.bore):
+        raise ParameterError(
+            f"double_layer_bearing: the inner bearing ({gi.designation}: d {gi.bore * 1e3:g}, D "
+            f"{gi.outside_diameter * 1e3:g}, dm {gi.pitch_diameter * 1e3:g} mm) must be smaller "
+            f"than the outer one ({go.designation}: d {go.bore * 1e3:g}, D "
+            f"{go.outside_diameter * 1e3:g}, dm {go.pitch_diameter * 1e3:g} mm) in bore, "
+            f"outside and pitch diameter: it sits inside it")
     fits = gi.outside_diameter <= go.bore
     structure = structure or ("I" if fits else "Z")
     check_choice(structure, "structure", ("I", "Z"), "double_layer_bearing")

@@ -103,6 +103,12 @@ def _valid(**changes):
     (dict(ball_count=14), ["pitch circle"]),
     (dict(diametral_clearance=1e-3), ["free contact angle"]),
     (dict(bore=float("nan")), ["bore", "finite"]),
+    # issue 17: millimetres for metres, kN for N, C0 ten times C
+    (dict(bore=20.0, outside_diameter=47.0, width=14.0, ball_diameter=7.938,
+          pitch_diameter=33.5), ["bore", "did you pass mm?"]),
+    (dict(dynamic_load_rating=12.7), ["dynamic_load_rating = 12.7 N", "did you pass kN?"]),
+    (dict(dynamic_load_rating=12700.0, static_load_rating=127000.0),
+     ["static_load_rating / dynamic_load_rating = 10", "swapped or mistyped"]),
 ])
 def test_invalid_geometry_rejected(changes, words):
     with pytest.raises(ParameterError) as err:
