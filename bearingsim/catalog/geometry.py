@@ -177,7 +177,9 @@ class BearingGeometry:
                     f"{where}: {name} = {value:g} N is not a rating of {self.ball_count} balls "
                     f"of {self.ball_diameter * 1e3:g} mm: {name} / (Z Dw^2) = "
                     f"{value / area:.3g} N/mm^2, valid range [{_SPECIFIC_RATING[0]:g}, "
-                    f"{_SPECIFIC_RATING[1]:g}] N/mm^2 (did you pass kN?)")
+                    f"{_SPECIFIC_RATING[1]:g}] N/mm^2 ("
+                    + ("did you pass kN?)" if value / area < _SPECIFIC_RATING[0]
+                       else "mistyped, or not this ball set's rating?)"))
         c, c0 = self.dynamic_load_rating, self.static_load_rating
         if c is not None and c0 is not None and not _RATING_RATIO[0] <= c0 / c \
                 <= _RATING_RATIO[1]:

@@ -107,8 +107,9 @@ def _valid(**changes):
     (dict(bore=20.0, outside_diameter=47.0, width=14.0, ball_diameter=7.938,
           pitch_diameter=33.5), ["bore", "did you pass mm?"]),
     (dict(dynamic_load_rating=12.7), ["dynamic_load_rating = 12.7 N", "did you pass kN?"]),
-    (dict(dynamic_load_rating=12700.0, static_load_rating=127000.0),
+    (dict(dynamic_load_rating=4000.0, static_load_rating=40000.0),
      ["static_load_rating / dynamic_load_rating = 10", "swapped or mistyped"]),
+    (dict(static_load_rating=127000.0), ["252 N/mm^2", "not this ball set's rating"]),
 ])
 def test_invalid_geometry_rejected(changes, words):
     with pytest.raises(ParameterError) as err:
