@@ -5,10 +5,12 @@ metres, contact radii and keyword options. Each raises
 
 from __future__ import annotations
 
+import difflib
+import functools
 import inspect
 import math
 import numbers
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -18,6 +20,10 @@ from bearingsim.errors import ParameterError
 from bearingsim.symbolic import is_symbolic
 
 __all__ = [
+    "entry_point",
+    "check_flag",
+    "check_mapping",
+    "check_vector",
     "MAX_BALL_DIAMETER",
     "MAX_BEARING_DIAMETER",
     "check_choice",
@@ -78,6 +84,9 @@ def check_range(
     if is_symbolic(value):
         return value
     label = f"{where}: {name}" if where else name
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise ParameterError(
+            f"{label} must be a number in {unit}, got {value!r} ({type(value).__name__})")
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -302,3 +311,98 @@ def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str
         ctx = f" {context}" if context else ""
         raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
                              f"accepted: {', '.join(accepted) or 'none'}")
+
+
+def check_mapping(value: Any, name: str, where: str, what: str = "names") -> dict:
+    """A dict (``None`` is an empty one), else a named error.
+
+    Parameters
+    ----------
+    value : dict or None
+        The argument.
+    name : str
+        Argument name, used in the message.
+    where : str
+        Function name, used in the message.
+    what : str
+        What the keys are (e.g. ``"input names"``), used in the message.
+
+    Returns
+    -------
+    dict
+        A shallow copy.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: <name> must be a dict of <what> -> values, got list"``.
+    """
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping):
+        raise ParameterError(f"{where}: {name} must be a dict of {what} -> values, got "
+                             f"{type(value).__name__} {value!r:.60}")
+    return dict(value)
+
+
+def check_flag(value: Any, name: str, where: str, allow_none: bool = False) -> Any:
+    """``True`` or ``False`` (or ``None`` when allowed), else a named error.
+
+    Raises
+    ------
+    ParameterError
+        For anything else (``"yes"``, 1, ...).
+    """
+    if isinstance(value, (bool, np.bool_)) or (allow_none and value is None):
+        return value
+    allowed = "True, False or None" if allow_none else "True or False"
+    raise ParameterError(f"{where}: {name} must be {allowed}, got {value!r}")
+
+
+def check_vector(value: Any, size: int, name: str, unit: str, where: str) -> np.ndarray:
+    """A finite real vector of ``size`` entries.
+
+    Raises
+    ------
+    ParameterError
+        For text, the wrong length, or entries that are not finite numbers.
+    """
+    if isinstance(value, (str, bytes, Mapping)):
+        raise ParameterError(f"{where}: {name} must be {size} numbers [{unit}], got "
+                             f"{type(value).__name__}")
+    try:
+        vec = np.asarray(value, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError(f"{where}: {name} must be {size} numbers [{unit}], got "
+                             f"{value!r:.60}") from None
+    if vec.size != size:
+        raise ParameterError(f"{where}: {name} must have {size} entries [{unit}], got "
+                             f"{vec.size}")
+    check_range(vec, name, unit, where=where)
+    return vec
+
+
+def entry_point(func: Callable) -> Callable:
+    """Decorator of public entry points: a call with unknown or missing arguments raises
+    :class:`~bearingsim.errors.ParameterError` naming the function, the argument (with a
+    did-you-mean hint) and the accepted ones, instead of Python's bare ``TypeError``."""
+    signature = inspect.signature(func)
+    accepted = [n for n, p in signature.parameters.items()
+                if p.kind not in (inspect.Parameter.VAR_POSITIONAL,
+                                  inspect.Parameter.VAR_KEYWORD)]
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            signature.bind(*args, **kwargs)
+        except TypeError as exc:
+            hint = ""
+            unknown = [k for k in kwargs if k not in signature.parameters]
+            if unknown:
+                close = difflib.get_close_matches(unknown[0], accepted, n=1)
+                hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise ParameterError(f"{func.__name__}: {exc}{hint}; its arguments are "
+                                 f"{', '.join(accepted)}") from None
+        return func(*args, **kwargs)
+
+    return wrapper

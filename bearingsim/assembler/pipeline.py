@@ -25,9 +25,9 @@ from bearingsim.assembler import (
 )
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.system import Signal, System
-from bearingsim.errors import StructuralError
+from bearingsim.errors import ParameterError, StructuralError
 from bearingsim.language.component import Component
-from bearingsim.validation import check_choice
+from bearingsim.validation import check_choice, check_range, entry_point
 
 __all__ = ["AssemblyState", "PASSES", "assemble"]
 
@@ -174,6 +174,7 @@ PASSES: list[Pass] = [
 """(name, function, check balance afterwards) in execution order."""
 
 
+@entry_point
 def assemble(
     assembly: Component, outputs: list[str] | None = None, *, newton_tol: float = 1e-12,
     rootfinder: str | None = None,
@@ -201,6 +202,15 @@ def assemble(
     System
         Compiled functions with names, units, start values and the pass report.
     """
+    if not isinstance(assembly, Component):
+        raise ParameterError(f"assemble: expected a component or assembly (a model to "
+                             f"assemble), got {type(assembly).__name__}")
+    if outputs is not None and (isinstance(outputs, str) or not all(
+            isinstance(o, str) for o in outputs)):
+        raise ParameterError(f"assemble: outputs must be a list of variable names, got "
+                             f"{outputs!r:.80}")
+    check_range(newton_tol, "newton_tol", "1", 0.0, None, low_inclusive=False,
+                where="assemble")
     if rootfinder is None:
         rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
                       else "fast_newton")

@@ -10,9 +10,10 @@ import numpy as np
 
 from bearingsim.assembler.dae import Param
 from bearingsim.errors import ParameterError
-from bearingsim.validation import check_range
+from bearingsim.language.component import Component
+from bearingsim.validation import check_mapping, check_range
 
-__all__ = ["Signal", "System"]
+__all__ = ["Signal", "System", "as_system"]
 
 
 @dataclass(frozen=True)
@@ -94,7 +95,7 @@ class System:
     def x0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
         """Start values of the states, with optional overrides by name."""
         x = np.array([s.start for s in self.states], dtype=float)
-        for name, val in (overrides or {}).items():
+        for name, val in check_mapping(overrides, "x0", self.name, "state names").items():
             if name not in self.state_names:
                 raise ParameterError(
                     f"initial value given for {name!r}, which is not a state; states: "
@@ -110,7 +111,8 @@ class System:
         """Parameter vector: defaults, then validated overrides by dotted name."""
         p = np.array([q.value for q in self.params], dtype=float)
         names = self.parameter_names
-        for name, val in (overrides or {}).items():
+        for name, val in check_mapping(overrides, "parameters", self.name,
+                                       "parameter names").items():
             if name not in names:
                 import difflib
 
@@ -153,3 +155,22 @@ class System:
         for s in self.skipped:
             lines.append(f"  skipped: {s}")
         return "\n".join(lines)
+
+
+def as_system(value: Any, where: str) -> System:
+    """An assembled :class:`System`, else a named error (a component that still needs
+    assembling says so).
+
+    Raises
+    ------
+    ParameterError
+        For anything that is not a System.
+    """
+    if isinstance(value, System):
+        return value
+    if isinstance(value, Component):
+        raise ParameterError(f"{where}: got the component {value.display_name!r}, which is not "
+                             f"assembled yet; pass assemble({type(value).__name__}(...)) "
+                             f"(bearingsim.assembler.assemble)")
+    raise ParameterError(f"{where}: expected an assembled System (from "
+                         f"bearingsim.assembler.assemble), got {type(value).__name__}")

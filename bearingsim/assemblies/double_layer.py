@@ -32,7 +32,13 @@ from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import skf_friction_components
-from bearingsim.validation import check_choice, check_options, check_range, keyword_names
+from bearingsim.validation import (
+    check_choice,
+    check_mapping,
+    check_options,
+    check_range,
+    keyword_names,
+)
 
 __all__ = [
     "DoubleLayerBearing",
@@ -184,7 +190,8 @@ class DoubleLayerBearing(Assembly):
         _check_drive(drive)
         check_choice(friction_model, "friction_model", FRICTION_MODELS, "double_layer_bearing")
         lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
-        opts = dict(layer_options or {})
+        opts = check_mapping(layer_options, "layer_options", "double_layer_bearing",
+                             "option names")
         self.structure = structure
         self.geometries = (gi, go)
         self.shaft = Flange()
@@ -318,7 +325,8 @@ class DynamicDoubleLayerBearing(Assembly):
             if float(lub.dynamic_viscosity()) <= 0.0:
                 raise ParameterError(f"double_layer_bearing: the dynamic level needs viscous "
                                      f"lubricants (oil or grease), got {lub.describe()}")
-        opts = dict(layer_options or {})
+        opts = check_mapping(layer_options, "layer_options", "double_layer_bearing",
+                             "option names")
         for key in _DYNAMIC_SETS:
             if key in opts:
                 raise ParameterError(f"double_layer_bearing: layer_options may not set "

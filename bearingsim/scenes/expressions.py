@@ -162,6 +162,7 @@ def compile_expression(text: str, name: str = "input") -> Callable[[Any], Any]:
     def f(t):
         return _eval(tree.body, t, name, text)
 
+    f(ca.SX.sym("t"))  # constant parts (tan(pi/2), 1/0) fail now, not at the first run
     f.expression = text  # type: ignore[attr-defined]
     return f
 

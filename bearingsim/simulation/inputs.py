@@ -18,25 +18,41 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.intervals import locate_problem
+from bearingsim.validation import check_mapping
 
 __all__ = ["input_expression", "check_input_ranges"]
 
 
-def _one(name: str, spec: Any, t: ca.SX) -> ca.SX:
-    if isinstance(spec, (int, float, np.floating)):
+def _table_column(values: Any, name: str, what: str, unit: str) -> np.ndarray:
+    """One column of a (times, values) table: finite real numbers."""
+    if isinstance(values, (str, bytes)):
+        raise ParameterError(f"input {name}: table {what} must be numbers [{unit}], got text")
+    try:
+        column = np.asarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError(f"input {name}: table {what} must be numbers [{unit}], got "
+                             f"{values!r:.60}") from None
+    if not np.all(np.isfinite(column)):
+        raise ParameterError(f"input {name}: table {what} must be finite [{unit}]")
+    return column
+
+
+def _one(name: str, spec: Any, t: ca.SX, unit: str) -> ca.SX:
+    if isinstance(spec, (bool, np.bool_)):
+        raise ParameterError(f"input {name} must be a number in {unit}, a function of time or "
+                             f"a (times, values) table, got {spec!r}")
+    if isinstance(spec, (int, float, np.floating, np.integer)):
         if not np.isfinite(spec):
             raise ParameterError(f"input {name} must be finite, got {spec!r}")
         return ca.SX(float(spec))
     if isinstance(spec, tuple) and len(spec) == 2:
-        times = np.asarray(spec[0], dtype=float).ravel()
-        vals = np.asarray(spec[1], dtype=float).ravel()
+        times = _table_column(spec[0], name, "times", "s")
+        vals = _table_column(spec[1], name, "values", unit)
         if times.size != vals.size or times.size < 2 or np.any(np.diff(times) <= 0):
             raise ParameterError(
                 f"input {name}: a table needs two equally long arrays (times strictly "
                 "increasing, at least two points)"
             )
-        if not np.all(np.isfinite(vals)):
-            raise ParameterError(f"input {name}: table values must be finite")
         # hold the end values outside the table (pw_lin alone would extrapolate linearly)
         held = ca.fmin(ca.fmax(t, float(times[0])), float(times[-1]))
         return ca.pw_lin(held, ca.DM(times), ca.DM(vals))
@@ -79,7 +95,7 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
     ParameterError
         For an unknown input name or a malformed value.
     """
-    inputs = dict(inputs or {})
+    inputs = check_mapping(inputs, "inputs", "simulate", "input names")
     unknown = set(inputs) - set(system.input_names)
     if unknown:
         raise ParameterError(
@@ -88,7 +104,7 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
         )
     exprs = []
     for sig in system.inputs:
-        exprs.append(_one(sig.name, inputs.get(sig.name, sig.start), t))
+        exprs.append(_one(sig.name, inputs.get(sig.name, sig.start), t, sig.unit))
     return ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
 
 

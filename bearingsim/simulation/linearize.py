@@ -7,10 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.assembler.system import System
+from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.result import Result
-from bearingsim.validation import check_range
+from bearingsim.validation import check_mapping, check_range, check_vector, entry_point
 
 __all__ = ["LinearModel", "linearize"]
 
@@ -65,6 +65,7 @@ def _modes(a: np.ndarray, tol: float = 1e-6):
     return lam, wn / (2.0 * np.pi), zeta, shapes
 
 
+@entry_point
 def linearize(
     system: System,
     operating_point: dict[str, float] | Result | np.ndarray | None = None,
@@ -105,6 +106,7 @@ def linearize(
         For an unknown input or parameter name, a bad value, an operating-point vector of the
         wrong size, or a result whose recorded inputs or parameters are not this system's.
     """
+    system = as_system(system, "linearize")
     x = _state_vector(system, operating_point)
     run = operating_point if isinstance(operating_point, Result) else None
     p = system.p0()
@@ -119,7 +121,7 @@ def linearize(
         for name in parameters:
             k = system.parameter_names.index(name)
             p[k] = given[k]
-    for name, val in (inputs or {}).items():
+    for name, val in check_mapping(inputs, "inputs", "linearize", "input names").items():
         if name not in system.input_names:
             raise ParameterError(
                 f"linearize: unknown input {name!r}; inputs: {system.input_names}"
@@ -163,9 +165,7 @@ def _state_vector(system: System, op: Any) -> np.ndarray:
         return np.array([op.final(n) for n in system.state_names])
     if isinstance(op, dict):
         return system.x0(op)
-    x = np.asarray(op, dtype=float).ravel()
-    if x.size != system.n_states:
-        raise ParameterError(
-            f"linearize: operating point has {x.size} values for {system.n_states} states"
-        )
-    return x
+    if isinstance(op, (str, bytes)):
+        raise ParameterError(f"linearize: operating_point must be a dict of state values, a "
+                             f"Result or a state vector, got {op!r}")
+    return check_vector(op, system.n_states, "operating_point", "state units", "linearize")

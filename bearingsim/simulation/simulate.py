@@ -11,7 +11,7 @@ import numpy as np
 import scipy.integrate
 import scipy.optimize
 
-from bearingsim.assembler.system import System
+from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.closed import ClosedModel, close_inputs
 from bearingsim.simulation.inputs import check_input_ranges
@@ -24,7 +24,7 @@ from bearingsim.simulation.integrators import (
 )
 from bearingsim.simulation.result import Result
 from bearingsim.simulation.steady import steady_state
-from bearingsim.validation import check_choice, check_range
+from bearingsim.validation import check_choice, check_flag, check_range, entry_point
 
 __all__ = ["simulate", "initial_state"]
 
@@ -57,6 +57,7 @@ def initial_state(
     return x
 
 
+@entry_point
 def simulate(
     system: System,
     t_end: float,
@@ -130,6 +131,8 @@ def simulate(
     SimulationError
         With the time reached and the variables that diverged.
     """
+    system = as_system(system, "simulate")
+    check_flag(progress, "progress", "simulate", allow_none=True)
     check_range(t_start, "t_start", "s", where="simulate")
     check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
     check_range(rtol, "rtol", "1", 0.0, 1.0, low_inclusive=False, where="simulate")

@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import scipy.optimize
 
-from bearingsim.assembler.system import System
+from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.closed import ClosedModel, close_inputs
+from bearingsim.validation import check_flag, check_range, check_vector, entry_point
 
 __all__ = ["steady_state", "integrator_states"]
 
@@ -19,6 +20,7 @@ def integrator_states(system: System) -> list[int]:
     return [k for k in range(system.n_states) if k not in cols]
 
 
+@entry_point
 def steady_state(
     system: System,
     *,
@@ -52,10 +54,10 @@ def steady_state(
     t : float
         Time at which inputs are evaluated [s].
     tol : float
-        Relative step tolerance of the solver.
+        Relative step tolerance of the solver, in (0, 1].
     residual_tol : float
         A solution whose largest derivative is below this is accepted even if the solver
-        stalls [state units/s].
+        stalls [state units/s], > 0 and finite.
     require_unique : bool
         Raise when the steady state is not unique (the Jacobian is singular at the solution,
         e.g. two free bodies coupled by dampers, or a ring without any torque): the solver's
@@ -73,9 +75,17 @@ def steady_state(
         If no steady state is found, or if it is not unique (the Jacobian is singular there,
         naming the states that stay undetermined).
     """
+    where = "steady_state"
+    system = as_system(system, where)
+    check_range(t, "t", "s", where=where)
+    check_range(tol, "tol", "1", 0.0, 1.0, low_inclusive=False, where=where)
+    check_range(residual_tol, "residual_tol", "state units/s", 0.0, None, low_inclusive=False,
+                where=where)
+    check_flag(require_unique, "require_unique", where)
     closed = closed if closed is not None else close_inputs(system, inputs)
     p = system.p0(parameters) if p is None else p
-    x = system.x0() if x_guess is None else np.array(x_guess, dtype=float)
+    x = (system.x0() if x_guess is None
+         else check_vector(x_guess, system.n_states, "x_guess", "state units", where))
     skip = set(integrator_states(system))
     free = [k for k in range(system.n_states) if k not in skip]
     if not free:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from bearingsim.assembler import assemble
-from bearingsim.assembler.system import System
+from bearingsim.assembler.system import System, as_system
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double_layer_bearing
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import simulate, steady_state
@@ -60,6 +60,7 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
         If the steady state is not found or not unique (e.g. the SKF model at zero load: no
         friction in either layer, so nothing sets the middle ring's speed).
     """
+    system = as_system(system, "steady_ratio")
     inputs = {"shaft_speed": float(speed)}
     if "Fr" in system.input_names:
         inputs.update({"Fr": float(loads[0]), "Fa": float(loads[1])})
@@ -203,6 +204,7 @@ def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: flo
         converge within ``max_runs`` runs.
     """
     where = "speed_ratio"
+    system = as_system(system, where)
     check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False, where=where)
     check_range(t_run, "t_run", "s", 0.0, None, low_inclusive=False, where=where)
     check_range(tol, "tol", "-", 0.0, None, low_inclusive=False, where=where)

@@ -43,6 +43,7 @@ from bearingsim.errors import BearingsimError, ParameterError, SimulationError
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 from bearingsim.units import to_deg
+from bearingsim.validation import check_mapping
 
 __all__ = [
     "MODE_NAMES",
@@ -267,7 +268,8 @@ class DuplexModel:
     pair_options: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        options = dict(self.pair_options)
+        options = check_mapping(self.pair_options, "pair_options", "DuplexModel",
+                                "DuplexPair option names")
         bad = sorted(set(options) & {"bearing", "arrangement"})
         if bad:
             raise ParameterError(f"DuplexModel: give {', '.join(bad)} as DuplexModel's own "

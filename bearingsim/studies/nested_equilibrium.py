@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from bearingsim.assembler.system import System
+from bearingsim.assembler.system import System, as_system
 from bearingsim.components.aligned_body import AXES
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import steady_state
@@ -59,6 +59,7 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     -------
     NestedEquilibrium
     """
+    system = as_system(system, "nested_equilibrium")
     check_range(radial, "radial", "N", 0.0, None, where="nested_equilibrium")
     check_range(axial, "axial", "N", where="nested_equilibrium")
     if radial == 0.0 and not axial:
