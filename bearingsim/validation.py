@@ -20,6 +20,12 @@ from bearingsim.errors import ParameterError
 from bearingsim.symbolic import is_symbolic
 
 __all__ = [
+    "MIN_LENGTH",
+    "MODULUS_RANGE",
+    "MIN_REGULARIZATION",
+    "check_modulus",
+    "check_finite",
+    "check_regularization",
     "entry_point",
     "check_flag",
     "check_mapping",
@@ -36,6 +42,12 @@ __all__ = [
     "keyword_names",
 ]
 
+MIN_LENGTH = 1e-9
+"""Smallest contact radius or film length [m] (1 nm, a few atoms): below it a length is a
+unit or sign slip, and its square underflows in the dimensionless groups."""
+MODULUS_RANGE = (1e8, 1e13)
+"""Valid Young's or effective modulus [Pa]: polymers about 3e9, steel 2.08e11, ceramics 3.1e11
+(a value in GPa falls below)."""
 MAX_BEARING_DIAMETER = 6.0
 """Largest plausible pitch, bore or outside diameter [m] (large slewing bearings: a few metres);
 a larger value is taken for a millimetre value passed as metres."""
@@ -255,8 +267,8 @@ def check_radii(rx, ry, where: str):
     ParameterError
         For non-positive or non-finite radii, or ``Ry < Rx`` (swapped radii).
     """
-    check_range(rx, "Rx", "m", 0.0, low_inclusive=False, where=where)
-    check_range(ry, "Ry", "m", 0.0, low_inclusive=False, where=where)
+    check_range(rx, "Rx", "m", MIN_LENGTH, where=where)
+    check_range(ry, "Ry", "m", MIN_LENGTH, where=where)
     if not op.is_symbolic(rx, ry) and np.any(np.asarray(ry) < np.asarray(rx)):
         raise ParameterError(
             f"{where}: need Ry >= Rx (Ry across, Rx along the rolling direction) [m], "
@@ -406,3 +418,47 @@ def entry_point(func: Callable) -> Callable:
         return func(*args, **kwargs)
 
     return wrapper
+
+
+MIN_REGULARIZATION = 1e-100
+"""Smallest regularization width: its square must stay a normal float (a width of 1e-300
+squares to 0, and ``x / sqrt(x^2 + w^2)`` becomes 0/0 at x = 0)."""
+
+
+def check_regularization(value: Any, name: str, unit: str, where: str) -> Any:
+    """A regularization width (of ``|x|``, a sign, an eccentricity): finite and at least
+    :data:`MIN_REGULARIZATION`.
+
+    Raises
+    ------
+    ParameterError
+        Naming the argument, its unit and the valid range.
+    """
+    return check_range(value, name, unit, MIN_REGULARIZATION, None, where=where)
+
+
+def check_finite(where: str, unit: str, **values: Any) -> None:
+    """Each of ``values`` (name -> number, array or SX) is a finite number [``unit``].
+
+    Raises
+    ------
+    ParameterError
+        For the first that is not.
+    """
+    for name, value in values.items():
+        check_range(value, name, unit, where=where)
+
+
+def check_modulus(value: Any, name: str, where: str) -> Any:
+    """A Young's or effective modulus [Pa] within :data:`MODULUS_RANGE`.
+
+    Raises
+    ------
+    ParameterError
+        Outside it, with a hint for a value in GPa.
+    """
+    try:
+        return check_range(value, name, "Pa", *MODULUS_RANGE, where=where)
+    except ParameterError as exc:
+        raise ParameterError(f"{exc} (bearing materials: polymers about 3e9 Pa, steel "
+                             f"2.08e11 Pa, ceramics 3.1e11 Pa; did you pass GPa?)") from None

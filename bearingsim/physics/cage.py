@@ -16,7 +16,7 @@ import numpy as np
 
 from bearingsim.physics.traction import regularized_coulomb
 from bearingsim.symbolic import fmax, fmin, if_else, smooth_abs, smooth_max0, sqrt, tanh
-from bearingsim.validation import check_range
+from bearingsim.validation import check_finite, check_range, check_regularization
 
 __all__ = [
     "SIGMA_BALL",
@@ -44,7 +44,12 @@ _EPS_OFFSET = float(0.5 * (-_EPS_MAX + np.hypot(_EPS_MAX, _EPS_WIDTH)))
 
 
 def _saturate(eps: Any) -> Any:
-    """Smooth ``min(eps, 0.98)``: 0 at 0, below 0.9801 always, within 1e-3 of ``eps`` up to 0.95."""
+    """Smooth ``min(eps, 0.98)``: 0 at 0, below 0.9801 always, within 1e-3 of ``eps`` up to 0.95.
+
+    Ratios beyond 10 (a journal far outside its clearance, which the land contact prevents)
+    are first clipped to 10, where the smooth minimum is exact to 1e-6; without the clip its
+    cancellation at ratios of 1e14 and more returned values above 1 (and NaN forces)."""
+    eps = fmin(eps, 10.0)
     return eps - (smooth_max0(eps - _EPS_MAX, _EPS_WIDTH) - _EPS_OFFSET)
 
 
@@ -121,6 +126,10 @@ def journal_film_force(
         Force on the journal.
     """
     where = "journal_film_force"
+    check_finite(where, "m", ex=ex, ey=ey)
+    check_finite(where, "m/s", vx=vx, vy=vy)
+    check_range(omega_sum, "omega_sum", "rad/s", where=where)
+    check_regularization(e_reg, "e_reg", "m", where)
     check_range(eta, "eta", "Pa s", 0.0, None, where=where)
     for name, value in (("R", R), ("L", L), ("c", c)):
         check_range(value, name, "m", 0.0, None, low_inclusive=False, where=where)
@@ -202,6 +211,8 @@ def pocket_gap(
         Gap, normal and which part is faced.
     """
     where = "pocket_gap"
+    check_finite(where, "m", x=x, y=y)
+    check_regularization(d_reg, "d_reg", "m", where)
     check_range(Rb, "Rb", "m", 0.0, None, low_inclusive=False, where=where)
     check_range(Rp, "Rp", "m", Rb, None, where=where)
     check_range(Sp, "Sp", "m", 0.0, None, where=where)
@@ -403,6 +414,7 @@ def cage_guidance_force(
     CageGuidance
         Forces and moment on the cage.
     """
+    check_finite("cage_guidance_force", "rad/s", omega_cage=omega_cage, omega_ring=omega_ring)
     film = journal_film_force(ex, ey, vx, vy, omega_cage + omega_ring, eta, Rg, Bg, Cg)
     moment = (-2.0 * np.pi * eta * Rg**3 * Bg * (omega_cage - omega_ring)
               / (Cg * sqrt(1.0 - film.eps * film.eps)))

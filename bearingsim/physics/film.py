@@ -12,7 +12,15 @@ from dataclasses import dataclass
 from typing import Any
 
 from bearingsim.symbolic import cos, exp, power, smooth_abs, sqrt
-from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_radii, check_range
+from bearingsim.validation import (
+    MAX_BALL_DIAMETER,
+    MIN_LENGTH,
+    check_diameter,
+    check_modulus,
+    check_radii,
+    check_range,
+    check_regularization,
+)
 
 __all__ = [
     "dimensionless_speed",
@@ -55,8 +63,8 @@ def dimensionless_speed(eta0: Any, u: Any, E_eff: Any, Rx: Any) -> Any:  # noqa:
     where = "dimensionless_speed"
     _pos(eta0, "eta0", "Pa s", where, strict=False)
     _pos(u, "u", "m/s", where, strict=False)
-    _pos(E_eff, "E_eff", "Pa", where)
-    _pos(Rx, "Rx", "m", where)
+    check_modulus(E_eff, "E_eff", where)
+    check_range(Rx, "Rx", "m", MIN_LENGTH, where=where)
     return eta0 * u / (E_eff * Rx)
 
 
@@ -76,7 +84,7 @@ def dimensionless_material(alpha: Any, E_eff: Any) -> Any:  # noqa: N803
         ``G`` [-].
     """
     _pos(alpha, "alpha", "1/Pa", "dimensionless_material", strict=False)
-    _pos(E_eff, "E_eff", "Pa", "dimensionless_material")
+    check_modulus(E_eff, "E_eff", "dimensionless_material")
     return alpha * E_eff
 
 
@@ -98,8 +106,8 @@ def dimensionless_load(Q: Any, E_eff: Any, Rx: Any) -> Any:  # noqa: N803
         ``W`` [-].
     """
     _pos(Q, "Q", "N", "dimensionless_load")
-    _pos(E_eff, "E_eff", "Pa", "dimensionless_load")
-    _pos(Rx, "Rx", "m", "dimensionless_load")
+    check_modulus(E_eff, "E_eff", "dimensionless_load")
+    check_range(Rx, "Rx", "m", MIN_LENGTH, where="dimensionless_load")
     return Q / (E_eff * Rx * Rx)
 
 
@@ -183,7 +191,7 @@ def _check_dimensionless(U, G, W, k, Rx, where):  # noqa: N803
     _pos(G, "G", "-", where, strict=False)
     _pos(W, "W", "-", where)
     _pos(k, "k", "-", where)
-    _pos(Rx, "Rx", "m", where)
+    check_range(Rx, "Rx", "m", MIN_LENGTH, where=where)
 
 
 @dataclass(frozen=True)
@@ -279,6 +287,7 @@ def entrainment_speed(u_a: Any, u_b: Any, v_reg: float = 1e-9) -> Any:
     """
     check_range(u_a, "u_a", "m/s", where="entrainment_speed")
     check_range(u_b, "u_b", "m/s", where="entrainment_speed")
+    check_regularization(v_reg, "v_reg", "m/s", "entrainment_speed")
     return smooth_abs(0.5 * (u_a + u_b), v_reg)
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from bearingsim import symbolic as op
-from bearingsim.validation import check_choice, check_range
+from bearingsim.validation import check_choice, check_finite, check_range
 
 __all__ = [
     "pitch_ratio",
@@ -68,6 +68,7 @@ def cage_speed(omega_inner, omega_outer, gamma):
         Pitch ratio Dw cos(alpha) / dm [-], see :func:`pitch_ratio`.
     """
     check_range(gamma, "gamma", "-", 0.0, 1.0, high_inclusive=False, where="cage_speed")
+    check_finite("cage_speed", "rad/s", omega_inner=omega_inner, omega_outer=omega_outer)
     return 0.5 * ((1.0 - gamma) * omega_inner + (1.0 + gamma) * omega_outer)
 
 

@@ -27,6 +27,7 @@ from bearingsim.validation import (
     MAX_BALL_DIAMETER,
     check_choice,
     check_diameter,
+    check_modulus,
     check_radii,
     check_range,
 )
@@ -86,11 +87,7 @@ class Material:
         where = f"Material({self.name})"
         check_range(self.youngs_modulus, "youngs_modulus", "Pa", 0.0, low_inclusive=False,
                     where=where)
-        try:
-            check_range(self.youngs_modulus, "youngs_modulus", "Pa", 1e8, 1e13, where=where)
-        except ParameterError as exc:
-            raise ParameterError(f"{exc} (bearing materials: polymers about 3e9 Pa, steel "
-                                 f"2.08e11 Pa, ceramics 3.1e11 Pa; did you pass GPa?)") from None
+        check_modulus(self.youngs_modulus, "youngs_modulus", where)
         check_range(self.poisson_ratio, "poisson_ratio", "-", 0.0, 0.5, high_inclusive=False,
                     where=where)
 

@@ -99,6 +99,7 @@ def inner_groove_centre_radius(geometry: BearingGeometry) -> float:
 
 
 def _azimuths(geometry: BearingGeometry, ball_position_angle: float) -> np.ndarray:
+    check_range(ball_position_angle, "ball_position_angle", "rad", where="iso_ts_16281")
     z = geometry.ball_count
     return ball_position_angle + 2.0 * np.pi * np.arange(z) / z
 

@@ -326,6 +326,8 @@ def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
     float, array or casadi.SX
         ``P0`` [N].
     """
+    check_range(Fr, "Fr", "N", 0.0, where="static_equivalent_load")
+    check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
     x0, y0 = static_load_factors(geometry)
     return Fr + op.smooth_max0((x0 - 1.0) * Fr + y0 * Fa, 1.0)
 

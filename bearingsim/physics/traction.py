@@ -18,7 +18,7 @@ import numpy as np
 
 from bearingsim.errors import ParameterError
 from bearingsim.symbolic import exp, smooth_abs, sqrt
-from bearingsim.validation import check_range
+from bearingsim.validation import check_range, check_regularization
 
 __all__ = [
     "EHL_TRACTION_DEFAULT",
@@ -67,7 +67,7 @@ def regularized_coulomb(slip_speed: Any, mu: float, v_reg: float = 1e-3) -> Any:
         Friction coefficient with the sign of ``slip_speed`` [-].
     """
     check_range(mu, "mu", "-", 0.0, 2.0, where="regularized_coulomb")
-    check_range(v_reg, "v_reg", "m/s", 0.0, None, low_inclusive=False, where="regularized_coulomb")
+    check_regularization(v_reg, "v_reg", "m/s", "regularized_coulomb")
     check_range(slip_speed, "slip_speed", "m/s", where="regularized_coulomb")
     return mu * slip_speed / smooth_abs(slip_speed, v_reg)
 

@@ -158,8 +158,13 @@ def simulate(
     stats["wall_time"] = _time.perf_counter() - wall
     if values is None:
         obs = closed.observe.map(ts.size)
-        values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
-                            dtype=float)
+        try:
+            values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
+                                dtype=float)
+        except RuntimeError as exc:  # a Newton block of an algebraic loop did not converge
+            raise SimulationError(
+                f"{system.name}: the variables could not be evaluated at the output times: "
+                f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
     units = _units(system)
     u_end = np.asarray(closed.u(ts[-1]), dtype=float).ravel()
