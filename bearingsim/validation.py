@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim import symbolic as op
-from bearingsim.errors import ParameterError
+from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.symbolic import is_symbolic
 
 __all__ = [
@@ -40,6 +40,7 @@ __all__ = [
     "check_radii",
     "check_range",
     "keyword_names",
+    "table_entry",
 ]
 
 MIN_LENGTH = 1e-9
@@ -462,3 +463,33 @@ def check_modulus(value: Any, name: str, where: str) -> Any:
     except ParameterError as exc:
         raise ParameterError(f"{exc} (bearing materials: polymers about 3e9 Pa, steel "
                              f"2.08e11 Pa, ceramics 3.1e11 Pa; did you pass GPa?)") from None
+
+
+def table_entry(table: Mapping[Any, Any], key: Any, what: str) -> Any:
+    """The entry of a data table (catalogue constants by bearing type, series, method, ...).
+
+    Parameters
+    ----------
+    table : Mapping
+        The table.
+    key : Any
+        The key asked for.
+    what : str
+        What the keys are, used in the message (e.g. ``"bearing type"``).
+
+    Returns
+    -------
+    The entry ``table[key]``.
+
+    Raises
+    ------
+    CatalogError
+        ``"unknown <what> <key>; known: ..."``, with a did-you-mean hint for a near-miss text key.
+    """
+    try:
+        return table[key]
+    except (KeyError, TypeError):
+        known = sorted(map(str, table))
+        close = difflib.get_close_matches(key, known, n=1) if isinstance(key, str) else []
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise CatalogError(f"unknown {what} {key!r}; known: {', '.join(known)}{hint}") from None

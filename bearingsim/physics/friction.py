@@ -15,28 +15,29 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import CatalogError, ParameterError, PlasticDeformationWarning
+from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics.drag import orbital_drag_force
+from bearingsim.physics.lubricant import Lubricant
 from bearingsim.symbolic import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
-from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
-
-if TYPE_CHECKING:
-    from bearingsim.physics.lubricant import Lubricant
+from bearingsim.validation import (
+    MAX_BALL_DIAMETER,
+    check_count,
+    check_diameter,
+    check_range,
+    table_entry,
+)
 
 __all__ = [
-    "LUBRICATION_METHODS",
-    "PALMGREN_F0",
     "PALMGREN_F1",
     "SKF_DEEP_GROOVE",
     "SKF_ANGULAR_CONTACT",
     "SKF_KRS",
     "SKF_KZ",
-    "palmgren_f0",
     "palmgren_f1",
     "palmgren_p1",
     "palmgren_m0",
@@ -46,34 +47,6 @@ __all__ = [
     "skf_friction_components",
     "skf_friction_torque",
 ]
-
-LUBRICATION_METHODS = ("grease", "oil_mist", "oil_bath", "oil_jet", "vertical_shaft")
-"""Lubrication methods distinguished by the Palmgren f0 table."""
-
-# Palmgren f0 by bearing type and lubrication method. Source: Harris & Kotzalas, Rolling Bearing
-# Analysis, 5th ed., Essential Concepts, table "f0 versus bearing type and method of lubrication"
-# (after Palmgren, Ball and Roller Bearing Engineering, 1959). Where the table gives a range the
-# middle is used. "vertical_shaft" and "oil_jet" share the table's "oil bath (vertical shaft) or
-# oil jet" column.
-# Issue 3: UNVERIFIED (written from memory). None of the catalogues retrieved in the search (NSK
-# E1102e, SKF 6000 (2006), NTN CAT. No. 2202, Koyo CAT. NO. 203E-1, GMN 4000 0813 EN, the FAG/INA
-# document found was a price list) prints a Palmgren f0 table or f1 formula; NTN and Koyo give
-# friction coefficients mu instead, SKF only its four-component model.
-_F0_ROWS = {
-    #                          grease, oil_mist, oil_bath, oil_jet / vertical_shaft
-    "deep_groove_ball": (1.35, 1.0, 2.0, 4.0),
-    "self_aligning_ball": (1.75, 0.85, 1.75, 3.5),
-    "angular_contact_ball": (2.0, 1.7, 3.3, 6.6),
-    "angular_contact_ball_pair": (4.0, 3.4, 6.6, 13.2),
-    "thrust_ball": (5.5, 0.8, 1.5, 3.0),
-    "cylindrical_roller": (0.8, 2.15, 3.1, 3.1),
-    "spherical_roller": (5.25, 2.6, 5.25, 10.5),
-    "tapered_roller": (6.0, 3.0, 6.0, 9.0),
-}
-PALMGREN_F0: dict[str, dict[str, float]] = {
-    btype: dict(zip(LUBRICATION_METHODS, (*row, row[3]), strict=True))
-    for btype, row in _F0_ROWS.items()
-}
 
 PALMGREN_F1: dict[str, tuple[float, float]] = {
     # bearing type: (z, y) in f1 = z (P0/C0)^y. Ball bearings: Palmgren (1959) as given in
@@ -141,34 +114,6 @@ _PALMGREN_BLEND = 3.2  # smoothing width of the M0 branch blend, 2 % of the 160 
 _NU_N_BRANCH_CUBE_ROOT = 160.0  # 160 = the low-speed plateau of (nu n)^(2/3)
 
 
-def _lookup(table: dict, key: str, what: str) -> Any:
-    try:
-        return table[key]
-    except (KeyError, TypeError):
-        raise CatalogError(
-            f"unknown {what} {key!r}; known: {', '.join(sorted(table))}"
-        ) from None
-
-
-def palmgren_f0(bearing_type: str, method: str) -> float:
-    """Palmgren load-independent friction factor f0 [-] (table :data:`PALMGREN_F0`).
-
-    Parameters
-    ----------
-    bearing_type : str
-        One of the keys of :data:`PALMGREN_F0`, e.g. ``"deep_groove_ball"``.
-    method : str
-        Lubrication method, one of :data:`LUBRICATION_METHODS`.
-
-    Returns
-    -------
-    float
-        f0 [-] (Harris & Kotzalas, 5th ed., Essential Concepts, f0 table, after Palmgren 1959).
-    """
-    row = _lookup(PALMGREN_F0, bearing_type, "bearing type")
-    return _lookup(row, method, "lubrication method")
-
-
 def palmgren_f1(bearing_type: str, P0: Any, C0: float) -> Any:  # noqa: N803
     """Palmgren load-dependent friction factor ``f1 = z (P0/C0)^y`` [-].
 
@@ -195,7 +140,7 @@ def palmgren_f1(bearing_type: str, P0: Any, C0: float) -> Any:  # noqa: N803
     PlasticDeformationWarning
         For a numeric ``P0 > C0`` (the formula's catalogue range ends at C0).
     """
-    z, y = _lookup(PALMGREN_F1, bearing_type, "bearing type")
+    z, y = table_entry(PALMGREN_F1, bearing_type, "bearing type")
     check_range(P0, "P0", "N", 0.0, None, where="palmgren_f1")
     check_range(C0, "C0", "N", 0.0, None, low_inclusive=False, where="palmgren_f1")
     if not is_symbolic(P0) and np.any(np.asarray(P0) > C0):
@@ -237,7 +182,7 @@ def palmgren_p1(
     float or casadi.SX
         P1 [N].
     """
-    _lookup(PALMGREN_F1, bearing_type, "bearing type")
+    table_entry(PALMGREN_F1, bearing_type, "bearing type")
     check_range(Fr, "Fr", "N", 0.0, None, where="palmgren_p1")
     check_range(Fa, "Fa", "N", 0.0, None, where="palmgren_p1")
     check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 2, low_inclusive=False,
@@ -338,7 +283,7 @@ def palmgren_torque(
     lubricant : Lubricant
         Oil, Grease or Dry object (:mod:`bearingsim.physics.lubricant`).
     bearing_type : str
-        Key of :data:`PALMGREN_F0`.
+        Key of :data:`~bearingsim.physics.lubrication.PALMGREN_F0`.
     load_P1 : float, array or casadi.SX
         Friction-determining load ``P1`` [N] (see :func:`palmgren_p1`), >= 0. Zero (a Python or
         numpy zero, or an array of zeros) means no load: ``M1`` is then not evaluated and
@@ -379,7 +324,7 @@ def palmgren_torque(
     if _has_load(load_P1):
         if C0 is None:
             raise ParameterError(f"{where}: C0 [N] is required when load_P1 is given")
-        _z, y = _lookup(PALMGREN_F1, bearing_type, "bearing type")
+        _z, y = table_entry(PALMGREN_F1, bearing_type, "bearing type")
         if y > 0.0:
             _check_static_load(load_P1, P0, where)
         p0 = 0.0 if P0 is None else P0
@@ -488,7 +433,7 @@ def _skf_g_factors(series, dm_mm, n_rpm, Fr, Fa, C0):  # noqa: N803
         g_sl = c["S1"] * dm_mm**0.26 * (
             power(Fr + fg_sl, 4.0 / 3.0) + c["S2"] * power(Fa, 4.0 / 3.0))
         return g_rr, g_sl, "angular_contact_ball"
-    c = _lookup(SKF_DEEP_GROOVE, series, "SKF bearing series")
+    c = table_entry(SKF_DEEP_GROOVE, series, "SKF bearing series")
     # Catalogue: Fa > 0 uses the alpha_F forms; Fa = 0 the radial forms. Fa is floored so that
     # both branches stay finite (if_else evaluates both).
     fa = fmax(Fa, 1e-9 * C0)

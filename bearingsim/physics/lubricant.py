@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import CatalogError, ParameterError
-from bearingsim.physics.friction import LUBRICATION_METHODS, palmgren_f0
+from bearingsim.physics.lubrication import LUBRICATION_METHODS, palmgren_f0
 from bearingsim.physics.traction import EHL_TRACTION_DEFAULT, ehl_traction, regularized_coulomb
 from bearingsim.symbolic import log, power
 from bearingsim.units import celsius_to_kelvin, cst_to_m2_s
@@ -57,7 +57,7 @@ class Lubricant(ABC):
     Contract for subclasses:
 
     1. set ``name`` (str), ``method`` (lubrication method, one of
-       :data:`~bearingsim.physics.friction.LUBRICATION_METHODS`, or ``"dry"``), ``temperature``
+       :data:`~bearingsim.physics.lubrication.LUBRICATION_METHODS`, or ``"dry"``), ``temperature``
        (operating temperature [K]), ``mu_bl`` and ``mu_ehl`` (boundary and full-film sliding
        friction coefficients [-], used by the SKF model);
     2. implement :meth:`kinematic_viscosity`, :meth:`density`, :meth:`pressure_viscosity`,
@@ -107,7 +107,7 @@ class Lubricant(ABC):
     def palmgren_f0(self, bearing_type: str) -> float:
         """Palmgren factor f0 [-] for this lubricant's method, times :meth:`churning_factor`.
 
-        Table: :data:`~bearingsim.physics.friction.PALMGREN_F0` (Harris & Kotzalas, after
+        Table: :data:`~bearingsim.physics.lubrication.PALMGREN_F0` (Harris & Kotzalas, after
         Palmgren).
         """
         if self.churning_factor() == 0.0:
@@ -151,7 +151,7 @@ class Oil(Lubricant):
     alpha : float, optional
         Fixed pressure-viscosity coefficient [1/Pa]; None: Gold et al. correlation.
     method : str
-        Lubrication method (:data:`~bearingsim.physics.friction.LUBRICATION_METHODS`).
+        Lubrication method (:data:`~bearingsim.physics.lubrication.LUBRICATION_METHODS`).
     traction : dict, optional
         Coefficients ``A, B, C, D`` of :func:`~bearingsim.physics.traction.ehl_traction`.
     mu_bl, mu_ehl : float

@@ -9,9 +9,7 @@ from scipy.optimize import brentq
 
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.friction import (
-    PALMGREN_F0,
     SkfSeal,
-    palmgren_f0,
     palmgren_f1,
     palmgren_m0,
     palmgren_p1,
@@ -20,6 +18,7 @@ from bearingsim.physics.friction import (
     skf_friction_torque,
 )
 from bearingsim.physics.lubricant import Dry, Grease, Oil
+from bearingsim.physics.lubrication import PALMGREN_F0, palmgren_f0
 from bearingsim.units import rpm_to_rad_s
 
 # An oil with exactly 20 mm^2/s at 40 degC, operating at 40 degC.
