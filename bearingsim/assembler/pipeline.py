@@ -14,16 +14,18 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.assembler import (
-    alias,
-    causalize,
+from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.passes import (
+    alias_elimination,
+    blt,
     codegen,
     flatten,
     index_reduction,
-    prune,
-    structure,
+    matching,
+    pruning,
+    structural_check,
+    tearing,
 )
-from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.system import Signal, System
 from bearingsim.errors import ParameterError, StructuralError
 from bearingsim.language.component import Component
@@ -45,7 +47,7 @@ class AssemblyState:
     dae: DAE | None = None
     matching: dict[Eq, Var] = field(default_factory=dict)
     blocks: list = field(default_factory=list)
-    causal: causalize.Causal | None = None
+    causal: tearing.Causal | None = None
     system: System | None = None
     report: dict[str, Any] = field(default_factory=dict)
 
@@ -57,12 +59,12 @@ def _flatten(s: AssemblyState) -> None:
 
 def _alias(s: AssemblyState) -> None:
     n = len(s.dae.vars)
-    alias.eliminate_aliases(s.dae)
+    alias_elimination.eliminate_aliases(s.dae)
     s.report["aliases eliminated"] = n - len(s.dae.vars)
 
 
 def _structural_check(s: AssemblyState) -> None:
-    structure.check_structure(s.dae)
+    structural_check.check_structure(s.dae)
 
 
 def _index_reduction(s: AssemblyState) -> None:
@@ -75,20 +77,20 @@ def _index_reduction(s: AssemblyState) -> None:
 
 
 def _matching(s: AssemblyState) -> None:
-    s.matching = structure.match(s.dae)
+    s.matching = matching.match(s.dae)
 
 
 def _pruning(s: AssemblyState) -> None:
     if s.outputs:
-        s.dae.skipped.extend(prune.prune(s.dae, s.matching, s.outputs))
+        s.dae.skipped.extend(pruning.prune(s.dae, s.matching, s.outputs))
 
 
 def _blt(s: AssemblyState) -> None:
-    s.blocks = structure.blt_blocks(s.dae, s.matching)
+    s.blocks = blt.blt_blocks(s.dae, s.matching)
 
 
 def _tearing(s: AssemblyState) -> None:
-    s.causal = causalize.causalize(s.dae, s.blocks)
+    s.causal = tearing.causalize(s.dae, s.blocks)
     c = s.causal
     s.report["blocks"] = (
         f"{c.n_blocks} (largest {c.largest_block}; {c.n_linear_loops} linear loop(s) solved "

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import casadi as ca
 
-from bearingsim.assembler.causalize import Causal
 from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.passes.tearing import Causal
 
 __all__ = ["ROOTFINDERS", "build_functions"]
 

@@ -16,7 +16,7 @@ import numpy as np
 import scipy.linalg
 
 from bearingsim.assembler.dae import DAE, Eq, Var
-from bearingsim.assembler.structure import incidence_map, maximum_matching
+from bearingsim.assembler.graph import incidence_map, maximum_matching
 from bearingsim.errors import ModelError, SingularBlockError
 
 __all__ = ["pantelides", "dummy_derivatives", "reduce_index"]

@@ -1,0 +1,27 @@
+"""Matching: pair every (index-1) equation with the unknown it determines."""
+
+from __future__ import annotations
+
+from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.graph import incidence_map, maximum_matching
+from bearingsim.errors import SingularBlockError
+
+__all__ = ["match"]
+
+
+def match(dae: DAE) -> dict[Eq, Var]:
+    """Perfect matching of the (index-1) equations to the unknowns, or a named error."""
+    unknowns = dae.unknowns()
+    inc = incidence_map(dae, dae.eqs, unknowns)
+    matching = maximum_matching(inc, unknowns)
+    if len(matching) < len(dae.eqs):
+        matched = set(matching.values())
+        bad_eqs = [e for e in dae.eqs if e not in matching]
+        bad_vars = [v for v in unknowns if v not in matched]
+        raise SingularBlockError(
+            "the equations are structurally singular: these equations and unknowns cannot be "
+            "paired",
+            equations=[e.describe() for e in bad_eqs],
+            unknowns=[v.name for v in bad_vars],
+        )
+    return matching
