@@ -6,12 +6,20 @@ The eliminated variables are kept in ``dae.aliases`` so results can still report
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 
-__all__ = ["eliminate_aliases"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "eliminate_aliases"]
+
+NAME = "alias elimination"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def _classify_all(dae: DAE) -> list[tuple]:
@@ -223,3 +231,11 @@ def _deriv_placeholder(dae, v, d, r, s, const_val):
     v.derivative = nd
     target = ca.SX(s * const_val[r]) if r in const_val else s * r.sym
     return nd.sym - target
+
+
+def run(state: AssemblyState) -> None:
+    """Eliminate the aliases of ``state.dae`` in place; report how many variables went."""
+    state.require(NAME, "dae")
+    n = len(state.dae.vars)
+    eliminate_aliases(state.dae)
+    state.report["aliases eliminated"] = n - len(state.dae.vars)

@@ -2,15 +2,26 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import networkx as nx
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.graph import incidence_map
 
-__all__ = ["blt_blocks"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "Block", "run", "blt_blocks"]
+
+NAME = "BLT sorting"
+"""The pass name in timings, logs and ``extra_passes``."""
+
+Block = list[tuple[Eq, Var]]
+"""One block of the BLT form: (equation, the unknown it determines) pairs solved together."""
 
 
-def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[list[tuple[Eq, Var]]]:
+def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[Block]:
     """Block lower triangular order: strongly connected components in topological order."""
     var_eq = {v: e for e, v in matching.items()}
     unknowns = list(var_eq)
@@ -30,3 +41,9 @@ def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[list[tuple[Eq, Var]]]:
         members = sorted(cond.nodes[node]["members"], key=position.__getitem__)
         blocks.append([(eq_by_id[i], matching[eq_by_id[i]]) for i in members])
     return blocks
+
+
+def run(state: AssemblyState) -> None:
+    """Set ``state.blocks`` from ``state.dae`` and ``state.matching``."""
+    state.require(NAME, "dae", "matching")
+    state.blocks = blt_blocks(state.dae, state.matching)

@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.graph import incidence_map, maximum_matching
 from bearingsim.errors import SingularBlockError
 
-__all__ = ["match"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "match"]
+
+NAME = "matching"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def match(dae: DAE) -> dict[Eq, Var]:
@@ -25,3 +33,9 @@ def match(dae: DAE) -> dict[Eq, Var]:
             unknowns=[v.name for v in bad_vars],
         )
     return matching
+
+
+def run(state: AssemblyState) -> None:
+    """Set ``state.matching``: each equation of ``state.dae`` -> the unknown it determines."""
+    state.require(NAME, "dae")
+    state.matching = match(state.dae)

@@ -3,11 +3,18 @@
 from __future__ import annotations
 
 import difflib
+from typing import TYPE_CHECKING
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.errors import ModelError
 
-__all__ = ["resolve_names", "prune"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "resolve_names", "prune"]
+
+NAME = "pruning"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
@@ -67,3 +74,10 @@ def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
     if dropped_eqs:
         skipped.append(f"{len(dropped_eqs)} equation(s) not needed by the requested outputs")
     return skipped
+
+
+def run(state: AssemblyState) -> None:
+    """With ``state.outputs``, prune ``state.dae`` and ``state.matching`` to what they need."""
+    state.require(NAME, "dae", "matching")
+    if state.outputs:
+        state.dae.skipped.extend(prune(state.dae, state.matching, state.outputs))

@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from bearingsim.assembler.dae import DAE
 from bearingsim.assembler.graph import incidence_map, maximum_matching
 from bearingsim.errors import OverdeterminedError, UnderdeterminedError
 
-__all__ = ["check_structure"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "check_structure"]
+
+NAME = "structural check"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def check_structure(dae: DAE) -> None:
@@ -39,3 +47,9 @@ def check_structure(dae: DAE) -> None:
         equations=[e.describe() for e in extra],
         unknowns=vs,
     )
+
+
+def run(state: AssemblyState) -> None:
+    """Check that the equations and unknowns of ``state.dae`` balance."""
+    state.require(NAME, "dae")
+    check_structure(state.dae)
