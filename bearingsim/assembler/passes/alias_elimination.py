@@ -6,12 +6,13 @@ The eliminated variables are kept in ``dae.aliases`` so results can still report
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
 
-from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.dae import DAE, Alias, Eq, Var
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
@@ -162,22 +163,22 @@ def _one_round(dae: DAE) -> bool:
     removed = [v for v in dae.vars if v in parent or v in const_val]
     syms, repl = [], []
     for v in removed:
-        dae.alias_declarations[v.name] = (v.unit, v.description)
         if v in const_val:
             val = const_val[v]
             syms.append(v.sym)
             repl.append(ca.SX(val))
-            dae.aliases[v.name] = (0.0, None, val)
+            dae.aliases[v.name] = Alias(v.name, 0.0, None, val, v.unit, v.description)
             continue
         r, s = find(v)
         if r in const_val:
             syms.append(v.sym)
             repl.append(ca.SX(s * const_val[r]))
-            dae.aliases[v.name] = (0.0, None, s * const_val[r])
+            dae.aliases[v.name] = Alias(v.name, 0.0, None, s * const_val[r], v.unit,
+                                        v.description)
         else:
             syms.append(v.sym)
             repl.append(s * r.sym)
-            dae.aliases[v.name] = (s, r, 0.0)
+            dae.aliases[v.name] = Alias(v.name, s, r, 0.0, v.unit, v.description)
             if r.start is None and v.start is not None:
                 r.start, r.fixed = s * v.start, v.fixed
             if v.is_input:
@@ -203,13 +204,14 @@ def _one_round(dae: DAE) -> bool:
                 v.derivative = r
     # re-point alias entries whose representative was itself removed later
     dae.eqs = remaining
-    for name, (s, r, off) in list(dae.aliases.items()):
-        if r is not None and id(r) in removed_ids:
-            rr, s2 = find(r)
+    for name, a in list(dae.aliases.items()):
+        if a.representative is not None and id(a.representative) in removed_ids:
+            rr, s2 = find(a.representative)
             if rr in const_val:
-                dae.aliases[name] = (0.0, None, s * s2 * const_val[rr] + off)
+                dae.aliases[name] = replace(a, scale=0.0, representative=None,
+                                            offset=a.scale * s2 * const_val[rr] + a.offset)
             else:
-                dae.aliases[name] = (s * s2, rr, off)
+                dae.aliases[name] = replace(a, scale=a.scale * s2, representative=rr)
     return True
 
 

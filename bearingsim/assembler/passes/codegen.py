@@ -64,11 +64,12 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     index = {v.name: v for v in dae.vars}
     if dae.aliases:
         scales, reps, offsets = [], [], []
-        for name, (scale, rep, offset) in dae.aliases.items():
-            observed_names.append(name)
-            scales.append(scale if rep is not None else 0.0)
+        for a in dae.aliases.values():
+            observed_names.append(a.name)
+            rep = a.representative
+            scales.append(a.scale if rep is not None else 0.0)
             reps.append(_value_expr(rep, causal) if rep is not None else ca.SX(0))
-            offsets.append(offset)
+            offsets.append(a.offset)
         observed.append(ca.DM(offsets) + ca.DM(scales) * ca.vertcat(*reps))
     obs = ca.vertcat(*observed) if observed else ca.SX(0, 1)
     obs_pos = {n: k for k, n in enumerate(observed_names)}
@@ -192,10 +193,9 @@ def run(state: AssemblyState) -> None:
                                                  state.rootfinder)
     units = {v.name: v.unit for v in dae.vars}
     descs = {v.name: v.description for v in dae.vars}
-    for name, (_, rep, _) in dae.aliases.items():
-        decl = dae.alias_declarations.get(name)
-        units[name] = decl[0] if decl else (rep.unit if rep is not None else "1")
-        descs[name] = decl[1] if decl else ""
+    for a in dae.aliases.values():
+        units[a.name] = a.unit
+        descs[a.name] = a.description
     states = [
         Signal(v.name, v.unit, v.description, v.start if v.start is not None else 0.0, v.fixed,
                v.nominal)

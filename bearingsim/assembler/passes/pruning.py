@@ -25,7 +25,7 @@ def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
         if name in by_path:
             out.append(by_path[name])
         elif name in dae.aliases:
-            _, rep, _ = dae.aliases[name]
+            rep = dae.aliases[name].representative
             if rep is not None:
                 out.append(rep)
         else:
@@ -66,7 +66,7 @@ def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
     dae.vars = [v for v in dae.vars if v in needed or v.is_input]
     kept = set(dae.vars)
     dae.aliases = {
-        k: a for k, a in dae.aliases.items() if a[1] is None or a[1] in kept
+        k: a for k, a in dae.aliases.items() if a.representative is None or a.representative in kept
     }
     skipped = []
     if dropped_states:
