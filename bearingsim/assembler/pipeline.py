@@ -11,12 +11,15 @@ module (or object) with a ``NAME`` and a ``run(state)`` on the shared
 * ``post``: from the sorted equations to compiled functions.
 
 Every pass is timed (debug log of ``bearingsim.assembler`` and :attr:`System.timings`).
+``assemble(..., extra_passes=...)`` runs user passes right after named ones, in the stage of the
+pass they follow.
 """
 
 from __future__ import annotations
 
 import logging
 import time as _time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -35,7 +38,7 @@ from bearingsim.assembler.state import AssemblyState
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
-from bearingsim.validation import check_choice, check_range, entry_point
+from bearingsim.validation import check_choice, check_mapping, check_range, entry_point
 
 __all__ = ["Pass", "Stage", "STAGES", "PASS_NAMES", "assemble"]
 
@@ -71,13 +74,41 @@ STAGES: tuple[Stage, ...] = (
 """The built-in pipeline, in execution order."""
 
 PASS_NAMES: tuple[str, ...] = tuple(p.NAME for stage in STAGES for p in stage.passes)
-"""Names of the built-in passes, in execution order."""
+"""Names of the built-in passes, in execution order: the valid keys of ``extra_passes``."""
+
+
+def _with_extra_passes(extra_passes: Mapping[str, Pass | Sequence[Pass]] | None,
+                       ) -> tuple[Stage, ...]:
+    """:data:`STAGES` with each extra pass right after the pass its key names."""
+    after: dict[str, list[Pass]] = {}
+    names = set(PASS_NAMES)
+    for point, value in check_mapping(extra_passes, "extra_passes", "assemble",
+                                      "pass names").items():
+        check_choice(point, "extra_passes key", PASS_NAMES, "assemble")
+        passes = list(value) if isinstance(value, (list, tuple)) else [value]
+        for p in passes:
+            name = getattr(p, "NAME", None)
+            if not isinstance(name, str) or not name or not callable(getattr(p, "run", None)):
+                raise ParameterError(f"assemble: extra_passes[{point!r}] must be a pass or a "
+                                     f"list of passes, each with a NAME (text) and a run(state) "
+                                     f"method; got {p!r:.80}")
+            if name in names:
+                raise ParameterError(f"assemble: extra_passes[{point!r}]: a pass named {name!r} "
+                                     f"is already in the pipeline; give each pass its own NAME")
+            names.add(name)
+        after[point] = passes
+    return tuple(
+        Stage(stage.name, tuple(q for p in stage.passes for q in (p, *after.get(p.NAME, ()))),
+              stage.check_balance)
+        for stage in STAGES
+    )
 
 
 @entry_point
 def assemble(
     assembly: Component, outputs: list[str] | None = None, *, newton_tol: float = 1e-12,
     rootfinder: str | None = None,
+    extra_passes: Mapping[str, Pass | Sequence[Pass]] | None = None,
 ) -> System:
     """Flatten, reduce and compile an assembly.
 
@@ -96,6 +127,12 @@ def assemble(
         :func:`~bearingsim.simulation.compile.compile_system`) or ``"newton"`` (with a line
         search). Default: ``"newton"`` if a component of the assembly declares
         ``needs_line_search`` (e.g. the quasi-static ball), else ``"fast_newton"``.
+    extra_passes : dict, optional
+        Built-in pass name (one of :data:`PASS_NAMES`) -> a pass or a list of passes to run
+        right after it, in that order. A pass is a module or object with a ``NAME`` (text, not
+        used by another pass) and a ``run(state)`` method on the
+        :class:`~bearingsim.assembler.state.AssemblyState`; it is timed like the built-in
+        passes, and in the main stage followed by the balance check.
 
     Returns
     -------
@@ -115,9 +152,10 @@ def assemble(
         rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
                       else "fast_newton")
     check_choice(rootfinder, "rootfinder", codegen.ROOTFINDERS, "assemble")
+    stages = _with_extra_passes(extra_passes)
     state = AssemblyState(assembly, list(outputs) if outputs else None, newton_tol, rootfinder)
     timings = []
-    for stage in STAGES:
+    for stage in stages:
         for p in stage.passes:
             t0 = _time.perf_counter()
             p.run(state)
