@@ -112,7 +112,7 @@ class Alias:
 
 @dataclass
 class DAE:
-    """The state object shared by all passes."""
+    """The flat model: flatten builds it, the structural passes transform it in place."""
 
     vars: list[Var]
     eqs: list[Eq]
@@ -121,9 +121,8 @@ class DAE:
     initial_eqs: list[Eq] = field(default_factory=list)
     aliases: dict[str, Alias] = field(default_factory=dict)
     """Eliminated variables by name, each expressed through a remaining variable (or constant)."""
-    timings: list[tuple[str, float]] = field(default_factory=list)
-    log: list[str] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
+    """What pruning dropped, for :attr:`System.skipped`."""
 
     # ---------------------------------------------------------------- lookups
     def by_name(self) -> dict[str, Var]:
