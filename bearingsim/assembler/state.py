@@ -21,6 +21,7 @@ from bearingsim.language.component import Component
 
 __all__ = ["AssemblyState"]
 
+
 def _set_by(name: str, **kwargs: Any) -> Any:
     """A dataclass field whose metadata names the pass that sets it."""
     return field(metadata={"set_by": name}, **kwargs)
