@@ -17,6 +17,7 @@ __all__ = [
     "SingularBlockError",
     "UnconnectedInputError",
     "SimulationError",
+    "PassOrderError",
     "CatalogError",
     "PlasticDeformationWarning",
     "LongRunWarning",
@@ -87,6 +88,11 @@ class UnconnectedInputError(ModelError):
 
 class SimulationError(BearingsimError, RuntimeError):
     """The integrator failed; the message names the time reached and the diverging variables."""
+
+
+class PassOrderError(BearingsimError, RuntimeError):
+    """An assembler pass ran before the pass that produces what it needs (an extra pass
+    inserted too early, or an internal error)."""
 
 
 class PlasticDeformationWarning(UserWarning):

@@ -2,11 +2,14 @@
 
 ``assemble`` flattens an assembly and runs the reduction passes (alias elimination, structural
 checks, index reduction, matching, pruning, BLT sorting, tearing, code generation) over one
-state; the result is a :class:`System` of CasADi functions with names, units and start values,
-which :mod:`bearingsim.simulation` integrates, linearizes and solves.
+typed :class:`AssemblyState`, as the staged lists :data:`STAGES`; the result is a
+:class:`System` of CasADi functions with names, units and start values, which
+:mod:`bearingsim.simulation` integrates, linearizes and solves.
 """
 
-from bearingsim.assembler.pipeline import PASSES, assemble
+from bearingsim.assembler.pipeline import PASS_NAMES, STAGES, Pass, Stage, assemble
+from bearingsim.assembler.state import AssemblyState
 from bearingsim.assembler.system import Signal, System
 
-__all__ = ["PASSES", "Signal", "System", "assemble"]
+__all__ = ["PASS_NAMES", "STAGES", "AssemblyState", "Pass", "Signal", "Stage", "System",
+           "assemble"]

@@ -14,7 +14,7 @@ import casadi as ca
 from bearingsim.errors import StructuralError
 from bearingsim.language.symbols import readable
 
-__all__ = ["Var", "Eq", "Param", "DAE"]
+__all__ = ["Var", "Eq", "Param", "Alias", "DAE"]
 
 
 @dataclass
@@ -92,22 +92,37 @@ class Param:
     declaration: object = None
 
 
+@dataclass(frozen=True)
+class Alias:
+    """A variable that alias elimination removed: ``value = scale * representative + offset``.
+
+    With ``representative`` None the variable is the constant ``offset`` (and ``scale`` is 0).
+    """
+
+    name: str
+    """Dotted name of the eliminated variable."""
+    scale: float
+    representative: Var | None
+    offset: float
+    unit: str = "1"
+    """Unit of the eliminated variable's declaration."""
+    description: str = ""
+    """Description of the eliminated variable's declaration."""
+
+
 @dataclass
 class DAE:
-    """The state object shared by all passes."""
+    """The flat model: flatten builds it, the structural passes transform it in place."""
 
     vars: list[Var]
     eqs: list[Eq]
     params: list[Param]
     time: ca.SX
     initial_eqs: list[Eq] = field(default_factory=list)
-    aliases: dict[str, tuple[float, Var | None, float]] = field(default_factory=dict)
-    """Eliminated name -> (scale, representative or None, offset): v = scale * rep + offset."""
-    alias_declarations: dict[str, tuple[str, str]] = field(default_factory=dict)
-    """Eliminated name -> (unit, description) of its declaration."""
-    timings: list[tuple[str, float]] = field(default_factory=list)
-    log: list[str] = field(default_factory=list)
+    aliases: dict[str, Alias] = field(default_factory=dict)
+    """Eliminated variables by name, each expressed through a remaining variable (or constant)."""
     skipped: list[str] = field(default_factory=list)
+    """What pruning dropped, for :attr:`System.skipped`."""
 
     # ---------------------------------------------------------------- lookups
     def by_name(self) -> dict[str, Var]:

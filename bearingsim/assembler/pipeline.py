@@ -1,183 +1,114 @@
-"""``assemble``: the ordered list of named passes from an instance tree to a :class:`System`.
+"""``assemble``: the passes from an instance tree to a :class:`System`, as staged lists.
 
-Each pass is a small function of the shared :class:`AssemblyState`; the pipeline times every
-pass (debug log) and checks after each one that equations and unknowns still balance.
+As in OpenModelica's new backend, the pipeline is three stages of named pass modules, each a
+module (or object) with a ``NAME`` and a ``run(state)`` on the shared
+:class:`~bearingsim.assembler.state.AssemblyState`:
+
+* ``pre``: build and simplify the flat DAE. It need not balance yet: the structural check that
+  opens the main stage names what is missing or extra.
+* ``main``: the structural passes. Equations and unknowns must balance after each one (an
+  internal :class:`~bearingsim.errors.StructuralError` otherwise).
+* ``post``: from the sorted equations to compiled functions.
+
+Every pass is timed (debug log of ``bearingsim.assembler`` and :attr:`System.timings`).
+``assemble(..., extra_passes=...)`` runs user passes right after named ones, in the stage of the
+pass they follow.
 """
 
 from __future__ import annotations
 
 import logging
 import time as _time
-from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Protocol
 
-import casadi as ca
-
-from bearingsim.assembler import (
-    alias,
-    causalize,
+from bearingsim.assembler.passes import (
+    alias_elimination,
+    blt,
     codegen,
     flatten,
     index_reduction,
-    prune,
-    structure,
+    matching,
+    pruning,
+    structural_check,
+    tearing,
 )
-from bearingsim.assembler.dae import DAE, Eq, Var
-from bearingsim.assembler.system import Signal, System
-from bearingsim.errors import ParameterError, StructuralError
+from bearingsim.assembler.state import AssemblyState
+from bearingsim.assembler.system import System
+from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
-from bearingsim.validation import check_choice, check_range, entry_point
+from bearingsim.validation import check_choice, check_mapping, check_range, entry_point
 
-__all__ = ["AssemblyState", "PASSES", "assemble"]
+__all__ = ["Pass", "Stage", "STAGES", "PASS_NAMES", "assemble"]
 
 log = logging.getLogger("bearingsim.assembler")
 
 
-@dataclass
-class AssemblyState:
-    """Everything the passes share."""
+class Pass(Protocol):
+    """One step of the pipeline: a module or an object with a name and a ``run``."""
 
-    root: Component
-    outputs: list[str] | None
-    newton_tol: float = 1e-12
-    rootfinder: str = "fast_newton"
-    dae: DAE | None = None
-    matching: dict[Eq, Var] = field(default_factory=dict)
-    blocks: list = field(default_factory=list)
-    causal: causalize.Causal | None = None
-    system: System | None = None
-    report: dict[str, Any] = field(default_factory=dict)
+    NAME: str
+    """Its name in timings, logs and the keys of ``extra_passes``."""
+
+    def run(self, state: AssemblyState) -> None:
+        """Read and update ``state`` (in place)."""
 
 
-def _flatten(s: AssemblyState) -> None:
-    s.dae = flatten.flatten(s.root)
-    s.report["flat"] = f"{len(s.dae.vars)} variables, {len(s.dae.eqs)} equations"
+@dataclass(frozen=True)
+class Stage:
+    """A named list of passes run in order."""
+
+    name: str
+    passes: tuple[Pass, ...]
+    check_balance: bool
+    """Whether equations and unknowns must balance after each of its passes."""
 
 
-def _alias(s: AssemblyState) -> None:
-    n = len(s.dae.vars)
-    alias.eliminate_aliases(s.dae)
-    s.report["aliases eliminated"] = n - len(s.dae.vars)
+STAGES: tuple[Stage, ...] = (
+    Stage("pre", (flatten, alias_elimination), check_balance=False),
+    Stage("main", (structural_check, index_reduction, matching, pruning, blt),
+          check_balance=True),
+    Stage("post", (tearing, codegen), check_balance=False),
+)
+"""The built-in pipeline, in execution order."""
+
+PASS_NAMES: tuple[str, ...] = tuple(p.NAME for stage in STAGES for p in stage.passes)
+"""Names of the built-in passes, in execution order: the valid keys of ``extra_passes``."""
 
 
-def _structural_check(s: AssemblyState) -> None:
-    structure.check_structure(s.dae)
-
-
-def _index_reduction(s: AssemblyState) -> None:
-    info = index_reduction.reduce_index(s.dae)
-    if info["differentiated_equations"]:
-        s.report["index reduction"] = (
-            f"{info['differentiated_equations']} equation(s) differentiated; dummy derivatives: "
-            + (", ".join(info["dummy_derivatives"]) or "none")
-        )
-
-
-def _matching(s: AssemblyState) -> None:
-    s.matching = structure.match(s.dae)
-
-
-def _pruning(s: AssemblyState) -> None:
-    if s.outputs:
-        s.dae.skipped.extend(prune.prune(s.dae, s.matching, s.outputs))
-
-
-def _blt(s: AssemblyState) -> None:
-    s.blocks = structure.blt_blocks(s.dae, s.matching)
-
-
-def _tearing(s: AssemblyState) -> None:
-    s.causal = causalize.causalize(s.dae, s.blocks)
-    c = s.causal
-    s.report["blocks"] = (
-        f"{c.n_blocks} (largest {c.largest_block}; {c.n_linear_loops} linear loop(s) solved "
-        f"symbolically; {len(c.nonlinear)} nonlinear loop(s) by Newton)"
+def _with_extra_passes(extra_passes: Mapping[str, Pass | Sequence[Pass]] | None,
+                       ) -> tuple[Stage, ...]:
+    """:data:`STAGES` with each extra pass right after the pass its key names."""
+    after: dict[str, list[Pass]] = {}
+    names = set(PASS_NAMES)
+    for point, value in check_mapping(extra_passes, "extra_passes", "assemble",
+                                      "pass names").items():
+        check_choice(point, "extra_passes key", PASS_NAMES, "assemble")
+        passes = list(value) if isinstance(value, (list, tuple)) else [value]
+        for p in passes:
+            name = getattr(p, "NAME", None)
+            if not isinstance(name, str) or not name or not callable(getattr(p, "run", None)):
+                raise ParameterError(f"assemble: extra_passes[{point!r}] must be a pass or a "
+                                     f"list of passes, each with a NAME (text) and a run(state) "
+                                     f"method; got {p!r:.80}")
+            if name in names:
+                raise ParameterError(f"assemble: extra_passes[{point!r}]: a pass named {name!r} "
+                                     f"is already in the pipeline; give each pass its own NAME")
+            names.add(name)
+        after[point] = passes
+    return tuple(
+        Stage(stage.name, tuple(q for p in stage.passes for q in (p, *after.get(p.NAME, ()))),
+              stage.check_balance)
+        for stage in STAGES
     )
-
-
-def _codegen(s: AssemblyState) -> None:
-    dae = s.dae
-    funcs, observed, out_names = codegen.build_functions(dae, s.causal, s.outputs, s.newton_tol,
-                                                       s.rootfinder)
-    units = {v.name: v.unit for v in dae.vars}
-    descs = {v.name: v.description for v in dae.vars}
-    for name, (_, rep, _) in dae.aliases.items():
-        decl = dae.alias_declarations.get(name)
-        units[name] = decl[0] if decl else (rep.unit if rep is not None else "1")
-        descs[name] = decl[1] if decl else ""
-    states = [
-        Signal(v.name, v.unit, v.description, v.start if v.start is not None else 0.0, v.fixed,
-               v.nominal)
-        for v in dae.states
-    ]
-    inputs = [Signal(v.name, v.unit, v.description, v.default or 0.0, low=v.low, high=v.high)
-              for v in dae.inputs]
-    outputs = [Signal(n, units.get(n, "1"), descs.get(n, "")) for n in out_names]
-    init_fn, free = _initial_problem(dae, funcs)
-    s.system = System(
-        name=s.root.display_name,
-        states=states,
-        inputs=inputs,
-        outputs=outputs,
-        params=dae.params,
-        functions=funcs,
-        observed_names=observed,
-        observed_units={n: units.get(n, "1") for n in observed},
-        observed_descriptions={n: descs.get(n, "") for n in observed},
-        init_residual=init_fn,
-        free_initial_states=free,
-        skipped=list(dae.skipped),
-        rootfinder=s.rootfinder if s.causal.nonlinear else None,
-    )
-
-
-def _initial_problem(dae: DAE, funcs: dict) -> tuple[ca.Function | None, list[int]]:
-    """Residual of the initial equations as a function of (t, x, u, p), and the free states."""
-    if not dae.initial_eqs:
-        return None, []
-    states = dae.states
-    free = [k for k, v in enumerate(states) if not v.fixed]
-    if len(free) != len(dae.initial_eqs):
-        raise StructuralError(
-            f"{len(dae.initial_eqs)} initial equation(s) for {len(free)} state(s) without a "
-            "fixed start value; give fixed=False exactly to the states the initial equations "
-            "determine",
-            equations=[e.describe() for e in dae.initial_eqs],
-            unknowns=[states[k].name for k in free],
-        )
-    values = ca.vertcat(*[v.sym for v in dae.vars])
-    p = ca.vertcat(*[q.sym for q in dae.params]) if dae.params else ca.SX(0, 1)
-    res = ca.vertcat(*[e.residual for e in dae.initial_eqs])
-    r_fn = ca.Function("init_r", [values, dae.time, p], [res])
-    obs = funcs["observe"]
-    mt, mx = ca.MX.sym("t"), ca.MX.sym("x", obs.size1_in(1))
-    mu, mp = ca.MX.sym("u", obs.size1_in(2)), ca.MX.sym("p", obs.size1_in(3))
-    all_vals = obs(mt, mx, mu, mp)[: len(dae.vars)]
-    res_mx = r_fn(all_vals, mt, mp)
-    return ca.Function("init", [mt, mx, mu, mp], [res_mx], ["t", "x", "u", "p"], ["r"]), free
-
-
-Pass = tuple[str, Callable[[AssemblyState], None], bool]
-
-PASSES: list[Pass] = [
-    ("flatten", _flatten, False),
-    ("alias elimination", _alias, False),
-    ("structural check", _structural_check, True),
-    ("index reduction", _index_reduction, True),
-    ("matching", _matching, True),
-    ("pruning", _pruning, True),
-    ("BLT sorting", _blt, True),
-    ("tearing and block solving", _tearing, False),
-    ("code generation", _codegen, False),
-]
-"""(name, function, check balance afterwards) in execution order."""
 
 
 @entry_point
 def assemble(
     assembly: Component, outputs: list[str] | None = None, *, newton_tol: float = 1e-12,
     rootfinder: str | None = None,
+    extra_passes: Mapping[str, Pass | Sequence[Pass]] | None = None,
 ) -> System:
     """Flatten, reduce and compile an assembly.
 
@@ -196,6 +127,12 @@ def assemble(
         :func:`~bearingsim.simulation.compile.compile_system`) or ``"newton"`` (with a line
         search). Default: ``"newton"`` if a component of the assembly declares
         ``needs_line_search`` (e.g. the quasi-static ball), else ``"fast_newton"``.
+    extra_passes : dict, optional
+        Built-in pass name (one of :data:`PASS_NAMES`) -> a pass or a list of passes to run
+        right after it, in that order. A pass is a module or object with a ``NAME`` (text, not
+        used by another pass) and a ``run(state)`` method on the
+        :class:`~bearingsim.assembler.state.AssemblyState`; it is timed like the built-in
+        passes, and in the main stage followed by the balance check.
 
     Returns
     -------
@@ -215,16 +152,19 @@ def assemble(
         rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
                       else "fast_newton")
     check_choice(rootfinder, "rootfinder", codegen.ROOTFINDERS, "assemble")
+    stages = _with_extra_passes(extra_passes)
     state = AssemblyState(assembly, list(outputs) if outputs else None, newton_tol, rootfinder)
     timings = []
-    for name, fn, check in PASSES:
-        t0 = _time.perf_counter()
-        fn(state)
-        dt = _time.perf_counter() - t0
-        timings.append((name, dt))
-        log.debug("pass %-26s %8.2f ms", name, dt * 1e3)
-        if check:
-            state.dae.check_balance(name)
+    for stage in stages:
+        for p in stage.passes:
+            t0 = _time.perf_counter()
+            p.run(state)
+            dt = _time.perf_counter() - t0
+            timings.append((p.NAME, dt))
+            log.debug("pass %-26s %8.2f ms", p.NAME, dt * 1e3)
+            if stage.check_balance:
+                state.dae.check_balance(p.NAME)
+    state.require("assemble", "system")
     state.system.timings = timings
     state.system.report = state.report
     return state.system

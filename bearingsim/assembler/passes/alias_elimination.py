@@ -6,12 +6,21 @@ The eliminated variables are kept in ``dae.aliases`` so results can still report
 
 from __future__ import annotations
 
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
 import casadi as ca
 import numpy as np
 
-from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.dae import DAE, Alias, Eq, Var
 
-__all__ = ["eliminate_aliases"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "eliminate_aliases"]
+
+NAME = "alias elimination"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def _classify_all(dae: DAE) -> list[tuple]:
@@ -154,22 +163,22 @@ def _one_round(dae: DAE) -> bool:
     removed = [v for v in dae.vars if v in parent or v in const_val]
     syms, repl = [], []
     for v in removed:
-        dae.alias_declarations[v.name] = (v.unit, v.description)
         if v in const_val:
             val = const_val[v]
             syms.append(v.sym)
             repl.append(ca.SX(val))
-            dae.aliases[v.name] = (0.0, None, val)
+            dae.aliases[v.name] = Alias(v.name, 0.0, None, val, v.unit, v.description)
             continue
         r, s = find(v)
         if r in const_val:
             syms.append(v.sym)
             repl.append(ca.SX(s * const_val[r]))
-            dae.aliases[v.name] = (0.0, None, s * const_val[r])
+            dae.aliases[v.name] = Alias(v.name, 0.0, None, s * const_val[r], v.unit,
+                                        v.description)
         else:
             syms.append(v.sym)
             repl.append(s * r.sym)
-            dae.aliases[v.name] = (s, r, 0.0)
+            dae.aliases[v.name] = Alias(v.name, s, r, 0.0, v.unit, v.description)
             if r.start is None and v.start is not None:
                 r.start, r.fixed = s * v.start, v.fixed
             if v.is_input:
@@ -195,13 +204,14 @@ def _one_round(dae: DAE) -> bool:
                 v.derivative = r
     # re-point alias entries whose representative was itself removed later
     dae.eqs = remaining
-    for name, (s, r, off) in list(dae.aliases.items()):
-        if r is not None and id(r) in removed_ids:
-            rr, s2 = find(r)
+    for name, a in list(dae.aliases.items()):
+        if a.representative is not None and id(a.representative) in removed_ids:
+            rr, s2 = find(a.representative)
             if rr in const_val:
-                dae.aliases[name] = (0.0, None, s * s2 * const_val[rr] + off)
+                dae.aliases[name] = replace(a, scale=0.0, representative=None,
+                                            offset=a.scale * s2 * const_val[rr] + a.offset)
             else:
-                dae.aliases[name] = (s * s2, rr, off)
+                dae.aliases[name] = replace(a, scale=a.scale * s2, representative=rr)
     return True
 
 
@@ -223,3 +233,11 @@ def _deriv_placeholder(dae, v, d, r, s, const_val):
     v.derivative = nd
     target = ca.SX(s * const_val[r]) if r in const_val else s * r.sym
     return nd.sym - target
+
+
+def run(state: AssemblyState) -> None:
+    """Eliminate the aliases of ``state.dae`` in place; report how many variables went."""
+    state.require(NAME, "dae")
+    n = len(state.dae.vars)
+    eliminate_aliases(state.dae)
+    state.report["aliases eliminated"] = n - len(state.dae.vars)

@@ -3,11 +3,18 @@
 from __future__ import annotations
 
 import difflib
+from typing import TYPE_CHECKING
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.errors import ModelError
 
-__all__ = ["resolve_names", "prune"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "resolve_names", "prune"]
+
+NAME = "pruning"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
@@ -18,7 +25,7 @@ def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
         if name in by_path:
             out.append(by_path[name])
         elif name in dae.aliases:
-            _, rep, _ = dae.aliases[name]
+            rep = dae.aliases[name].representative
             if rep is not None:
                 out.append(rep)
         else:
@@ -59,7 +66,7 @@ def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
     dae.vars = [v for v in dae.vars if v in needed or v.is_input]
     kept = set(dae.vars)
     dae.aliases = {
-        k: a for k, a in dae.aliases.items() if a[1] is None or a[1] in kept
+        k: a for k, a in dae.aliases.items() if a.representative is None or a.representative in kept
     }
     skipped = []
     if dropped_states:
@@ -67,3 +74,10 @@ def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
     if dropped_eqs:
         skipped.append(f"{len(dropped_eqs)} equation(s) not needed by the requested outputs")
     return skipped
+
+
+def run(state: AssemblyState) -> None:
+    """With ``state.outputs``, prune ``state.dae`` and ``state.matching`` to what they need."""
+    state.require(NAME, "dae", "matching")
+    if state.outputs:
+        state.dae.skipped.extend(prune(state.dae, state.matching, state.outputs))

@@ -8,7 +8,7 @@ other parameters are substituted.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import casadi as ca
 
@@ -19,7 +19,13 @@ from bearingsim.language.connector import Connector
 from bearingsim.language.declarations import Declaration, Input, Parameter, Variable
 from bearingsim.language.symbols import readable, time
 
-__all__ = ["flatten", "to_residuals"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "flatten", "to_residuals"]
+
+NAME = "flatten"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def to_residuals(item: Any, origin: str) -> list[ca.SX]:
@@ -229,3 +235,7 @@ def _substitute_bindings(eqs, init_eqs, bound_syms, bound_exprs, params) -> None
         e.residual = res[i]
 
 
+def run(state: AssemblyState) -> None:
+    """Flatten ``state.root`` into ``state.dae``."""
+    state.dae = flatten(state.root)
+    state.report["flat"] = f"{len(state.dae.vars)} variables, {len(state.dae.eqs)} equations"

@@ -9,12 +9,22 @@ not code-generatable); all other models are pure SX.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import casadi as ca
 
-from bearingsim.assembler.causalize import Causal
 from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.passes.tearing import Causal
+from bearingsim.assembler.system import Signal, System
+from bearingsim.errors import StructuralError
 
-__all__ = ["ROOTFINDERS", "build_functions"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "ROOTFINDERS", "run", "build_functions", "initial_problem"]
+
+NAME = "code generation"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 ROOTFINDERS = ("fast_newton", "newton")
 """CasADi rootfinder plugins the assembler can put in nonlinear blocks."""
@@ -54,11 +64,12 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     index = {v.name: v for v in dae.vars}
     if dae.aliases:
         scales, reps, offsets = [], [], []
-        for name, (scale, rep, offset) in dae.aliases.items():
-            observed_names.append(name)
-            scales.append(scale if rep is not None else 0.0)
+        for a in dae.aliases.values():
+            observed_names.append(a.name)
+            rep = a.representative
+            scales.append(a.scale if rep is not None else 0.0)
             reps.append(_value_expr(rep, causal) if rep is not None else ca.SX(0))
-            offsets.append(offset)
+            offsets.append(a.offset)
         observed.append(ca.DM(offsets) + ca.DM(scales) * ca.vertcat(*reps))
     obs = ca.vertcat(*observed) if observed else ca.SX(0, 1)
     obs_pos = {n: k for k, n in enumerate(observed_names)}
@@ -145,3 +156,67 @@ def _semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs) -> dict
         "dae_observe": ca.Function("dae_observe", args, [obs], names, ["observe"]),
         "dae_z": ca.Function("dae_z", margs, [ca.vertcat(*z_mx)], ["t", "x", "u", "p"], ["z"]),
     }
+
+
+def initial_problem(dae: DAE, funcs: dict) -> tuple[ca.Function | None, list[int]]:
+    """Residual of the initial equations as a function of (t, x, u, p), and the free states."""
+    if not dae.initial_eqs:
+        return None, []
+    states = dae.states
+    free = [k for k, v in enumerate(states) if not v.fixed]
+    if len(free) != len(dae.initial_eqs):
+        raise StructuralError(
+            f"{len(dae.initial_eqs)} initial equation(s) for {len(free)} state(s) without a "
+            "fixed start value; give fixed=False exactly to the states the initial equations "
+            "determine",
+            equations=[e.describe() for e in dae.initial_eqs],
+            unknowns=[states[k].name for k in free],
+        )
+    values = ca.vertcat(*[v.sym for v in dae.vars])
+    p = ca.vertcat(*[q.sym for q in dae.params]) if dae.params else ca.SX(0, 1)
+    res = ca.vertcat(*[e.residual for e in dae.initial_eqs])
+    r_fn = ca.Function("init_r", [values, dae.time, p], [res])
+    obs = funcs["observe"]
+    mt, mx = ca.MX.sym("t"), ca.MX.sym("x", obs.size1_in(1))
+    mu, mp = ca.MX.sym("u", obs.size1_in(2)), ca.MX.sym("p", obs.size1_in(3))
+    all_vals = obs(mt, mx, mu, mp)[: len(dae.vars)]
+    res_mx = r_fn(all_vals, mt, mp)
+    return ca.Function("init", [mt, mx, mu, mp], [res_mx], ["t", "x", "u", "p"], ["r"]), free
+
+
+def run(state: AssemblyState) -> None:
+    """Set ``state.system``: the functions of ``state.dae`` solved as ``state.causal`` says,
+    with the names, units, descriptions and start values of states, inputs and outputs."""
+    state.require(NAME, "dae", "causal")
+    dae, causal = state.dae, state.causal
+    funcs, observed, out_names = build_functions(dae, causal, state.outputs, state.newton_tol,
+                                                 state.rootfinder)
+    units = {v.name: v.unit for v in dae.vars}
+    descs = {v.name: v.description for v in dae.vars}
+    for a in dae.aliases.values():
+        units[a.name] = a.unit
+        descs[a.name] = a.description
+    states = [
+        Signal(v.name, v.unit, v.description, v.start if v.start is not None else 0.0, v.fixed,
+               v.nominal)
+        for v in dae.states
+    ]
+    inputs = [Signal(v.name, v.unit, v.description, v.default or 0.0, low=v.low, high=v.high)
+              for v in dae.inputs]
+    outputs = [Signal(n, units.get(n, "1"), descs.get(n, "")) for n in out_names]
+    init_fn, free = initial_problem(dae, funcs)
+    state.system = System(
+        name=state.root.display_name,
+        states=states,
+        inputs=inputs,
+        outputs=outputs,
+        params=dae.params,
+        functions=funcs,
+        observed_names=observed,
+        observed_units={n: units.get(n, "1") for n in observed},
+        observed_descriptions={n: descs.get(n, "") for n in observed},
+        init_residual=init_fn,
+        free_initial_states=free,
+        skipped=list(dae.skipped),
+        rootfinder=state.rootfinder if causal.nonlinear else None,
+    )

@@ -11,12 +11,20 @@ generation turns into a CasADi ``fast_newton`` rootfinder.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.passes.blt import Block
 
-__all__ = ["NonlinearBlock", "Causal", "causalize"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "NonlinearBlock", "Causal", "causalize"]
+
+NAME = "tearing and block solving"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 @dataclass
@@ -57,7 +65,7 @@ def _solve_linear_scalar(r: ca.SX, v: Var, coef: ca.SX | None = None) -> ca.SX:
     return -rest / coef
 
 
-def _tear(block: list[tuple[Eq, Var]], residuals: dict[Eq, ca.SX]):
+def _tear(block: Block, residuals: dict[Eq, ca.SX]):
     """Greedy tearing. Returns (ordered explicit (eq, var) pairs, tear vars, residual eqs)."""
     eqs = [e for e, _ in block]
     unknown = {v for _, v in block}
@@ -85,7 +93,7 @@ def _tear(block: list[tuple[Eq, Var]], residuals: dict[Eq, ca.SX]):
     return solved, tears, remaining_eqs
 
 
-def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
+def causalize(dae: DAE, blocks: list[Block]) -> Causal:
     """Express every unknown through base symbols, block by block."""
     out = Causal(n_blocks=len(blocks))
     solved_by_name: dict[str, Var] = {}
@@ -154,3 +162,13 @@ def causalize(dae: DAE, blocks: list[list[tuple[Eq, Var]]]) -> Causal:
 
 def _guess(v: Var) -> float:
     return float(v.start) if v.start is not None else 0.0
+
+
+def run(state: AssemblyState) -> None:
+    """Set ``state.causal`` by solving ``state.blocks`` in order; report the loops."""
+    state.require(NAME, "dae", "blocks")
+    c = state.causal = causalize(state.dae, state.blocks)
+    state.report["blocks"] = (
+        f"{c.n_blocks} (largest {c.largest_block}; {c.n_linear_loops} linear loop(s) solved "
+        f"symbolically; {len(c.nonlinear)} nonlinear loop(s) by Newton)"
+    )

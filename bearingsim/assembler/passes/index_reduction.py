@@ -10,16 +10,23 @@ selection uses the Jacobian at the start values with column pivoting (static sta
 from __future__ import annotations
 
 import sys
+from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
 import scipy.linalg
 
 from bearingsim.assembler.dae import DAE, Eq, Var
-from bearingsim.assembler.structure import incidence_map, maximum_matching
+from bearingsim.assembler.graph import incidence_map, maximum_matching
 from bearingsim.errors import ModelError, SingularBlockError
 
-__all__ = ["pantelides", "dummy_derivatives", "reduce_index"]
+if TYPE_CHECKING:
+    from bearingsim.assembler.state import AssemblyState
+
+__all__ = ["NAME", "run", "pantelides", "dummy_derivatives", "reduce_index"]
+
+NAME = "index reduction"
+"""The pass name in timings, logs and ``extra_passes``."""
 
 
 def _derivative_var(dae: DAE, v: Var, lookup: dict[str, Var]) -> Var:
@@ -214,3 +221,14 @@ def reduce_index(dae: DAE) -> dict:
     added = pantelides(dae)
     dummies = dummy_derivatives(dae) if added else []
     return {"differentiated_equations": added, "dummy_derivatives": dummies}
+
+
+def run(state: AssemblyState) -> None:
+    """Reduce ``state.dae`` to index 1 in place; report what was differentiated."""
+    state.require(NAME, "dae")
+    info = reduce_index(state.dae)
+    if info["differentiated_equations"]:
+        state.report["index reduction"] = (
+            f"{info['differentiated_equations']} equation(s) differentiated; dummy derivatives: "
+            + (", ".join(info["dummy_derivatives"]) or "none")
+        )

@@ -1,0 +1,1 @@
+"""The assembler's passes, one module each."""
