@@ -25,6 +25,7 @@ import warnings
 from collections.abc import Callable
 from typing import Any
 
+from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
 from bearingsim.components.ball_row import BallRow, row_equilibrium, row_parameters
 from bearingsim.components.connectors import Flange, RingFrame
 from bearingsim.components.dynamic import (
@@ -57,10 +58,11 @@ from bearingsim.validation import (
     keyword_names,
 )
 
-__all__ = ["FIDELITIES", "FILM_DAMPING", "DeepGrooveBallBearing", "QuasiStaticDeepGroove",
-           "deep_groove_ball_bearing"]
+__all__ = ["FIDELITIES", "FILM_DAMPING", "SCENE_SPEC", "DeepGrooveBallBearing",
+           "QuasiStaticDeepGroove", "deep_groove_ball_bearing"]
 
 FIDELITIES = ("quasi-static", "dynamic", "dynamic_massive_balls")
+"""Fidelity levels, lowest first."""
 _W_REG = 1e-2  # rad/s, regularization of the slip ratio at standstill
 FILM_DAMPING = 1e-5
 """Damping of a lubricated race contact over its tangent stiffness [s] (Kramer 1993: rolling
@@ -555,3 +557,34 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         return QuasiStaticDeepGroove(geometry, loads, 0.0 if speed is None else speed)
     return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
                                  speed=speed, loads=loads, **options)
+
+
+# --------------------------------------------------------------------------- scene spec
+def _deep_groove_from_scene(args: dict[str, Any], fidelity: str):
+    """Build the bearing from the scene arguments of :data:`SCENE_SPEC` (defaults filled in)."""
+    return deep_groove_ball_bearing(args["bearing"], fidelity=fidelity,
+                                    lubricant=args["lubricant"])
+
+
+_QUASI_STATIC, _DYNAMIC, _MASSIVE_BALLS = FIDELITIES
+
+SCENE_SPEC = AssemblySpec(
+    name="deep_groove_ball_bearing",
+    description="single deep-groove ball bearing: quasi-static load distribution, or ball "
+                "and cage dynamics (cage slip, pocket forces); inputs shaft_speed [rad/s] "
+                "(dynamic levels), load.Fx, Fy, Fz [N]",
+    build=_deep_groove_from_scene,
+    args={
+        "bearing": ArgSpec("bearing", factory_default(deep_groove_ball_bearing, "designation"),
+                           "catalogue designation"),
+        "lubricant": ArgSpec("lubricant", factory_default(deep_groove_ball_bearing, "lubricant"),
+                             "lubricant name"),
+    },
+    fidelities=FIDELITIES,
+    auto_fidelities=(_QUASI_STATIC, _MASSIVE_BALLS),
+    output_fidelity=[("row.*", _QUASI_STATIC), ("load.*", _QUASI_STATIC),
+                     *((pattern, _MASSIVE_BALLS) for pattern in
+                       ("w_cage", "slip", "inner*", "outer*", "pocket*", "shaft_speed"))],
+    default_outputs=["row.Q_i[0]", "row.alpha_i[0]"],
+)
+"""The single deep-groove ball bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

@@ -17,6 +17,7 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
+from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, PostQuantity, factory_default
 from bearingsim.catalog import resolve_bearing
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
@@ -26,12 +27,18 @@ from bearingsim.components.bearing_torque import (
 )
 from bearingsim.components.connectors import Flange
 from bearingsim.components.dynamic import RingBody
-from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies, middle_ring_structure
+from bearingsim.components.middle_ring import (
+    STRUCTURES,
+    MiddleRing,
+    middle_ring_bodies,
+    middle_ring_structure,
+)
 from bearingsim.components.rotational import Fixed, SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import skf_friction_components
+from bearingsim.physics.life import basic_rating_life_hours
 from bearingsim.validation import (
     check_choice,
     check_mapping,
@@ -44,10 +51,13 @@ __all__ = [
     "DoubleLayerBearing",
     "DynamicDoubleLayerBearing",
     "double_layer_bearing",
+    "double_layer_from_scene",
     "FIDELITIES",
+    "SCENE_SPEC",
 ]
 
-FIDELITIES = ("kinematic", "kinematic_approx", "torque", "quasi-static", "dynamic")
+FIDELITIES = ("kinematic_approx", "kinematic", "torque", "quasi-static", "dynamic")
+"""Fidelity levels; the first three (lowest first) are built by :class:`DoubleLayerBearing`."""
 KINEMATIC_OPTIONS = ("k",)
 """``layer_options`` of the kinematic levels (the drag coefficient of PureRollingLayer)."""
 
@@ -497,3 +507,102 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
                                          "lubrication")),
                   "double_layer_bearing", "keyword(s)", f"at fidelity {fidelity!r}")
     return DoubleLayerBearing(inner, outer, structure, fidelity, lubrication, **kwargs)
+
+
+# --------------------------------------------------------------------------- scene spec
+_KINEMATIC_NAMES = ("Rs", "w_shaft", "w_middle", "shaft_speed", "middle.*", "shaft.phi",
+                    "drive.*", "der(*phi)")
+"""Names the kinematic (pure rolling) level provides. Its shaft torque is a numerical drag, not
+a friction torque, so ``M_shaft``, the losses, the loads and every other name need ``torque``."""
+
+
+def double_layer_from_scene(args: dict[str, Any], fidelity: str,
+                            drive: str = "speed") -> DoubleLayerBearing:
+    """Build the bearing from the scene arguments of :data:`SCENE_SPEC`.
+
+    Parameters
+    ----------
+    args : dict
+        Every argument of ``SCENE_SPEC.args`` (defaults filled in).
+    fidelity : {"kinematic_approx", "kinematic", "torque"}
+        Fidelity level.
+    drive : {"speed", "flange"}
+        Imposed shaft speed (input ``shaft_speed`` [rad/s]) or a free shaft flange.
+    """
+    options = {k: v for k, v in (args["layer_options"] or {}).items() if v is not None}
+    return double_layer_bearing(
+        args["inner"], args["outer"], structure=args["structure"], fidelity=fidelity,
+        lubrication=args["lubrication"], friction_model=args["friction_model"], drive=drive,
+        layer_options=options or None,
+    )
+
+
+def _layer_life(geometry, layer: str) -> PostQuantity:
+    name = f"{layer}.L10h"
+    needs = ("Fr", "Fa", f"{layer}.w_rel")
+
+    def compute(series):
+        return basic_rating_life_hours(geometry, *(series[n] for n in needs))
+
+    return PostQuantity(name, "h", f"ISO 281 basic rating life of the {layer.replace('_', ' ')} "
+                        f"({geometry.designation}) at the momentary load and relative speed "
+                        f"(inf when unloaded or at rest)", needs, compute, "torque")
+
+
+def _total_loss(series):
+    return series["inner_layer.P_loss"] + series["outer_layer.P_loss"]
+
+
+def _scene_post(args: dict[str, Any]) -> dict[str, PostQuantity]:
+    """ISO 281 basic rating life [h] of each layer with catalogue ratings, and the total friction
+    power [W]."""
+    out = {}
+    for layer in ("inner", "outer"):
+        geometry = resolve_bearing(args[layer])
+        if geometry.dynamic_load_rating is not None and geometry.static_load_rating is not None:
+            quantity = _layer_life(geometry, f"{layer}_layer")
+            out[quantity.name] = quantity
+    out["P_loss_total"] = PostQuantity("P_loss_total", "W", "friction power of both layers",
+                                       ("inner_layer.P_loss", "outer_layer.P_loss"), _total_loss,
+                                       "torque")
+    return out
+
+
+def _palmgren(args: dict[str, Any]) -> bool:
+    """The lubricant only changes parameter values (the viscosity) under Palmgren friction."""
+    return args["friction_model"] == "palmgren"
+
+
+SCENE_SPEC = AssemblySpec(
+    name="double_layer_bearing",
+    description="I/Z-type double-layer (nested) ball bearing driven at an imposed shaft speed "
+                "(input shaft_speed [rad/s]; torque level adds the loads Fr, Fa [N])",
+    build=double_layer_from_scene,
+    args={
+        "inner": ArgSpec("bearing", factory_default(double_layer_bearing, "inner"),
+                         "inner (shaft-side) deep-groove bearing"),
+        "outer": ArgSpec("bearing", factory_default(double_layer_bearing, "outer"),
+                         "outer (housing-side) deep-groove bearing"),
+        "structure": ArgSpec("choice", factory_default(double_layer_bearing, "structure"),
+                             "middle ring type (default: I if it fits, else Z)",
+                             choices=STRUCTURES),
+        "lubrication": ArgSpec("lubricant", factory_default(double_layer_bearing, "lubrication"),
+                               "lubricant of both layers, or [inner, outer]"),
+        "friction_model": ArgSpec("choice", factory_default(DoubleLayerBearing, "friction_model"),
+                                  "friction torque model (torque level)",
+                                  choices=FRICTION_MODELS),
+        "layer_options": ArgSpec("table", None, "options of the friction elements", table={
+            "smooth": ArgSpec("bool", None, "smooth blend of the Palmgren M0 branches"),
+            "load_dependent": ArgSpec("bool", None, "include the load-dependent torque M1"),
+            "omega_reg": ArgSpec("float", None, "friction sign regularization speed [rad/s]",
+                                 low=0.0),
+        }),
+    },
+    fidelities=FIDELITIES[:3],
+    auto_fidelities=("kinematic", "torque"),
+    output_fidelity=[(pattern, "kinematic") for pattern in _KINEMATIC_NAMES],
+    default_outputs=["w_shaft", "w_middle", "Rs", "M_shaft"],
+    post=_scene_post,
+    parametric_args={"lubrication": _palmgren},
+)
+"""The double-layer bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

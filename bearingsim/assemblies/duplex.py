@@ -23,7 +23,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
+from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import BallRow, axial_approach, row_loads, row_parameters
 from bearingsim.components.rings import (
@@ -40,7 +42,7 @@ from bearingsim.physics.lubricant import Lubricant, get_lubricant
 from bearingsim.validation import check_range
 
 __all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
-           "preload_offset", "preload_force", "offset_preload"]
+           "SCENE_SPEC", "preload_offset", "preload_force", "offset_preload"]
 
 ARRANGEMENTS = {"DF": (1, -1), "DB": (-1, 1), "DT": (1, 1)}
 """Axial loading direction ``s`` of (row 0, row 1) for each arrangement."""
@@ -372,3 +374,59 @@ def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str =
     """
     return DuplexPair(designation, arrangement, preload, speed, shaft, lubricant,
                       ball_position_angle, **kwargs)
+
+
+# --------------------------------------------------------------------------- scene spec
+_RADIAL_INPUTS = ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")
+
+
+def _duplex_from_scene(args: dict[str, Any], fidelity: str) -> DuplexPair:
+    """Build the pair from the scene arguments of :data:`SCENE_SPEC` (defaults filled in;
+    ``fidelity`` is unused: the pair has one level)."""
+    keywords = {k: v for k, v in args.items() if v is not None and k != "bearing"}
+    return duplex_pair(args["bearing"], **keywords)
+
+
+def _pure_axial(inputs: dict[str, Any]) -> bool:
+    """Every radial force and moment input absent or the constant 0."""
+    radial = [inputs.get(name, 0.0) for name in _RADIAL_INPUTS]
+    return all(isinstance(v, (int, float)) and v == 0.0 for v in radial)
+
+
+def _symmetry(args: dict[str, Any], inputs: dict[str, Any]) -> list[str]:
+    if args.get("axisymmetric"):
+        return ["pure axial load: one representative ball per row is solved (axisymmetric "
+                "rows); the other balls equal it and the rows carry no radial load or moment"]
+    return []
+
+
+def _symmetric_args(args: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
+    return {"axisymmetric": True} if _pure_axial(inputs) else {}
+
+
+SCENE_SPEC = AssemblySpec(
+    name="duplex_pair",
+    description="DF/DB/DT duplex pair of angular contact ball bearings on a rigid shaft "
+                "(quasi-static ball rows); inputs shaft.Fx, Fy, Fz [N], Mx, My [N m]",
+    build=_duplex_from_scene,
+    args={
+        "bearing": ArgSpec("bearing", factory_default(duplex_pair, "designation"),
+                           "bearing of both rows"),
+        "arrangement": ArgSpec("choice", factory_default(duplex_pair, "arrangement"),
+                               "arrangement", choices=tuple(ARRANGEMENTS)),
+        "preload": ArgSpec("choice", factory_default(duplex_pair, "preload"),
+                           "catalogue preload class (default: light)", choices=PRELOAD_CLASSES),
+        "speed": ArgSpec("float", factory_default(duplex_pair, "speed"), "shaft speed [rad/s]",
+                         low=-1e9),
+        "speed_effects": ArgSpec("bool", factory_default(DuplexPair, "speed_effects"),
+                                 "centrifugal and gyroscopic ball loads"),
+    },
+    fidelities=("quasi-static",),
+    auto_fidelities=("quasi-static",),
+    output_fidelity=[],
+    default_outputs=["shaft.x", "shaft.z", "shaft.ty"],
+    symmetry=_symmetry,
+    symmetric_args=_symmetric_args,
+    fidelity_arg=None,
+)
+"""The duplex pair as a scene assembly (:mod:`bearingsim.scenes`)."""

@@ -19,7 +19,11 @@ from bearingsim.language import Assembly, Variable, connect
 from bearingsim.physics.bearing_design import STEEL_DENSITY
 from bearingsim.validation import check_choice, check_range
 
-__all__ = ["MiddleRing", "MiddleRingPart", "middle_ring_bodies", "middle_ring_structure"]
+__all__ = ["STRUCTURES", "MiddleRing", "MiddleRingPart", "middle_ring_bodies",
+           "middle_ring_structure"]
+
+STRUCTURES = ("I", "Z")
+"""Middle ring types: I (both bearings in one radial plane) and Z (offset axially)."""
 
 
 def middle_ring_structure(gi: BearingGeometry, go: BearingGeometry, structure: str | None) -> str:
@@ -52,7 +56,7 @@ def middle_ring_structure(gi: BearingGeometry, go: BearingGeometry, structure: s
             f"outside and pitch diameter: it sits inside it")
     fits = gi.outside_diameter <= go.bore
     structure = structure or ("I" if fits else "Z")
-    check_choice(structure, "structure", ("I", "Z"), "double_layer_bearing")
+    check_choice(structure, "structure", STRUCTURES, "double_layer_bearing")
     if structure == "I" and not fits:
         raise ParameterError(
             f"double_layer_bearing: an I-type middle ring needs the inner bearing's outside "

@@ -47,6 +47,7 @@ __all__ = [
     "equivalent_dynamic_load",
     "rating_life",
     "life_hours",
+    "basic_rating_life_hours",
     "raceway_contact_capacity",
     "ball_contact_capacity",
     "contact_life",
@@ -488,6 +489,56 @@ def life_hours(life, speed):
     check_range(life, "life", "1e6 rev", 0.0, where="life_hours")
     check_range(speed, "speed", "rad/s", 0.0, low_inclusive=False, where="life_hours")
     return life * 1e6 * 2.0 * np.pi / (3600.0 * speed)
+
+
+def basic_rating_life_hours(geometry: BearingGeometry, radial_load, axial_load,
+                            speed) -> np.ndarray:
+    """ISO 281 basic rating life [h] of a single-row bearing over a series of operating points.
+
+    At each point ``L10h = (C / P)^3 10^6 / (60 n)`` with the equivalent dynamic load ``P`` of
+    :func:`equivalent_dynamic_load` (f0 of :func:`static_factor`) and ``n`` the relative ring
+    speed in r/min. The magnitudes of the loads and the speed are used. A point without load
+    (``Fr = Fa = 0``) or at rest (speed 0) has an infinite life.
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing: ball diameter, pitch diameter, contact angle and its ratings C and C0 [N].
+    radial_load, axial_load : float or array_like
+        Radial and axial load Fr, Fa [N], finite.
+    speed : float or array_like
+        Speed of the rotating ring relative to the other [rad/s], finite.
+
+    Returns
+    -------
+    numpy.ndarray
+        L10h [h] at each point (the broadcast shape of the inputs), ``inf`` where unloaded or
+        at rest.
+
+    Raises
+    ------
+    ParameterError
+        When the geometry has no dynamic or static load rating, or for non-finite loads or
+        speeds.
+    """
+    where = "basic_rating_life_hours"
+    c, c0 = geometry.dynamic_load_rating, geometry.static_load_rating
+    if c is None or c0 is None:
+        raise ParameterError(f"{where}: {geometry.designation} has no load ratings C and C0 "
+                             f"[N]; give dynamic_load_rating and static_load_rating")
+    fr, fa, w = np.broadcast_arrays(*(np.abs(np.asarray(check_range(v, n, u, where=where),
+                                                        dtype=float))
+                                      for v, n, u in ((radial_load, "radial_load", "N"),
+                                                      (axial_load, "axial_load", "N"),
+                                                      (speed, "speed", "rad/s"))))
+    hours = np.full(fr.shape, np.inf)
+    running = (fr + fa > 0.0) & (w > 0.0)
+    if np.any(running):
+        f0 = static_factor(geometry.ball_diameter, geometry.pitch_diameter,
+                           geometry.contact_angle)
+        p = equivalent_dynamic_load(fr[running], fa[running], c0, f0, geometry.contact_angle)
+        hours[running] = life_hours(rating_life(c, p), w[running])
+    return hours
 
 
 def _check_race(race: str, where: str) -> None:

@@ -6,7 +6,7 @@ outputs need (pruning, automatic fidelity), simulates and writes CSV, a JSON sum
 """
 
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
-from bearingsim.scenes.registry import REGISTRY, AssemblySpec, get_spec, register
+from bearingsim.scenes.registry import REGISTRY, get_spec, register, unregister
 from bearingsim.scenes.runner import (
     Prepared,
     SceneRun,
@@ -27,7 +27,6 @@ from bearingsim.scenes.scene import (
 
 __all__ = [
     "REGISTRY",
-    "AssemblySpec",
     "ExpressionError",
     "Output",
     "Prepared",
@@ -44,5 +43,6 @@ __all__ = [
     "prepare",
     "register",
     "run_scene",
+    "unregister",
     "validate_scene",
 ]

@@ -18,11 +18,12 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assembler import System, assemble
+from bearingsim.assemblies.spec import AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.files import atomic_path
 from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.expressions import compile_expression
-from bearingsim.scenes.registry import AssemblySpec, PostQuantity, min_fidelity
+from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.simulation import Result, simulate
 
@@ -96,9 +97,9 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     need = {}
     names = list(scene.outputs or spec.default_outputs)
     for n in names:
-        need[n] = post[n].fidelity if n in post else min_fidelity(spec, n)
+        need[n] = post[n].fidelity if n in post else spec.min_fidelity(n)
     for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial):
-        need[n] = min_fidelity(spec, n)
+        need[n] = spec.min_fidelity(n)
     level = 0
     for fid in need.values():
         level = max(level, order.index(fid) if fid in order else len(order) - 1)
@@ -136,7 +137,7 @@ def prepare(scene: Scene) -> Prepared:
     t0 = time.perf_counter()
     while True:
         try:
-            component = spec.build(args, fidelity)
+            component = build_component(spec, args, fidelity)
         except ParameterError as exc:
             raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
                              path=scene.path) from None
@@ -250,7 +251,7 @@ def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
     out = {}
     for n in prep.outputs:
         if n in prep.post:
-            out[n] = np.asarray(prep.post[n].compute(series, {"args": prep.args}), dtype=float)
+            out[n] = np.asarray(prep.post[n].compute(series), dtype=float)
         else:
             out[n] = series[n]
     return out

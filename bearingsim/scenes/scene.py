@@ -22,9 +22,10 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
-from bearingsim.scenes.registry import REGISTRY, ArgSpec, AssemblySpec
+from bearingsim.scenes.registry import REGISTRY
 from bearingsim.simulation.integrators import METHODS
 
 if sys.version_info >= (3, 11):

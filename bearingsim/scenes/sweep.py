@@ -34,6 +34,7 @@ import numpy as np
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.files import atomic_path
 from bearingsim.scenes.portable import LOADS, load_cached, pack
+from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare, simulate_inputs
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, load_scene
 
@@ -271,14 +272,14 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
                 raise SweepError(f"sweep point {pt}: {exc}") from None
             prepared[key] = prep
             packed[key] = pack(prep.system)
-            base_values[key] = _parameter_values(spec.build(prep.args, prep.fidelity))
+            base_values[key] = _parameter_values(build_component(spec, prep.args, prep.fidelity))
         prep = prepared[key]
         params: dict[str, float] = {}
         args = spec.with_defaults(sc.args)
         if json.dumps(args, sort_keys=True, default=str) != json.dumps(
                 prep.args, sort_keys=True, default=str):
             # parametric arguments differ from the assembled ones: parameter overrides
-            new = _parameter_values(spec.build(args, prep.fidelity))
+            new = _parameter_values(build_component(spec, args, prep.fidelity))
             if set(new) != set(base_values[key]):
                 raise SweepError(f"sweep point {pt}: the arguments change the model structure "
                                  "although declared parametric; please report")

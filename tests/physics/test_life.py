@@ -253,3 +253,43 @@ def test_ratings_finite_for_valid_geometry(dw, gamma, z, angle):
 def test_invalid_input_rejected(call, word):
     with pytest.raises(ParameterError, match=word):
         call()
+
+
+def _hand_bearing(**ratings):
+    """Dw = 5 mm on dm = 50 mm: gamma = 0.10, so f0 = 16.4 (ISO 76 Table 2) and, with Z = 10,
+    C0 = f0 Z Dw^2 = 4100 N."""
+    from bearingsim.catalog import BearingGeometry
+
+    return BearingGeometry("hand", bore=0.040, outside_diameter=0.060, width=0.012,
+                           ball_count=10, ball_diameter=0.005, pitch_diameter=0.050, fi=0.52,
+                           fo=0.53, **ratings)
+
+
+def test_basic_rating_life_hours_by_hand():
+    g = _hand_bearing(dynamic_load_rating=7000.0, static_load_rating=4100.0)
+    n = 1500.0  # r/min
+    w = n * 2.0 * np.pi / 60.0
+    fr = np.array([1000.0, 1000.0, 500.0, 0.0, 1000.0, 1000.0])
+    fa = np.array([0.0, 100.0, 257.5, 0.0, 0.0, 0.0])
+    speed = np.array([w, w, w, w, 0.0, -w])
+    hours = life.basic_rating_life_hours(g, fr, fa, speed)
+    pure_radial = (7000.0 / 1000.0) ** 3 * 1e6 / (60.0 * n)  # P = Fr: 3811.1 h
+    assert pure_radial == pytest.approx(3811.111, rel=1e-6)
+    # f0 Fa / C0 = 16.4 * 100 / 4100 = 0.4: e = 0.22 + 0.04 (0.4 - 0.345) / 0.344 = 0.226 > 0.1
+    assert hours[0] == pytest.approx(pure_radial, rel=1e-12)
+    assert hours[1] == pytest.approx(pure_radial, rel=1e-12)
+    # f0 Fa / C0 = 16.4 * 257.5 / 4100 = 1.03: e = 0.28 < Fa/Fr = 0.515, so X = 0.56, Y = 1.55
+    heavy_axial = (7000.0 / (0.56 * 500.0 + 1.55 * 257.5)) ** 3 * 1e6 / (60.0 * n)
+    assert hours[2] == pytest.approx(heavy_axial, rel=1e-9)
+    assert hours[3] == np.inf  # unloaded
+    assert hours[4] == np.inf  # at rest
+    assert hours[5] == pytest.approx(pure_radial, rel=1e-12)  # direction of rotation
+    assert life.basic_rating_life_hours(g, 1000.0, 0.0, w) == pytest.approx(pure_radial)
+
+
+def test_basic_rating_life_hours_needs_the_ratings():
+    with pytest.raises(ParameterError, match="no load ratings"):
+        life.basic_rating_life_hours(_hand_bearing(), 100.0, 0.0, 10.0)
+    g = _hand_bearing(dynamic_load_rating=7000.0, static_load_rating=4100.0)
+    with pytest.raises(ParameterError, match="radial_load"):
+        life.basic_rating_life_hours(g, np.nan, 0.0, 10.0)

@@ -1,0 +1,227 @@
+"""What a scene needs to know about an assembly: its arguments, fidelity levels and outputs.
+
+Each assembly module declares a ``SCENE_SPEC`` (an :class:`AssemblySpec`) beside its factory,
+built from the module's own constants and the defaults of the factory's signature;
+:data:`bearingsim.assemblies.SCENE_SPECS` lists them and :mod:`bearingsim.scenes` reads that list
+(users add their own with :func:`bearingsim.scenes.register`). A spec holds a build function,
+the arguments a scene may give (with their allowed values), the fidelity levels from lowest to
+highest, a table *name pattern -> lowest fidelity that provides it* (used by
+``fidelity = "auto"``), quantities computed after the integration (post-processing) and a
+symmetry hook.
+
+The table is conservative: a name that no pattern matches needs the assembly's highest automatic
+fidelity.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import inspect
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from bearingsim.errors import ParameterError
+from bearingsim.validation import check_choice
+
+__all__ = [
+    "ARG_KINDS",
+    "ArgSpec",
+    "AssemblySpec",
+    "PostQuantity",
+    "factory_default",
+    "nested_post",
+]
+
+ARG_KINDS = ("bearing", "lubricant", "choice", "float", "bool", "table", "floats", "signal")
+"""Kinds of scene arguments (see :class:`ArgSpec`)."""
+
+
+@dataclass(frozen=True)
+class ArgSpec:
+    """One argument a scene may give to an assembly.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`ARG_KINDS`: ``"bearing"`` (catalogue designation), ``"lubricant"`` (name,
+        or a list of one name per layer), ``"choice"`` (one of ``choices``), ``"float"`` (a
+        number, optionally > ``low``), ``"bool"``, ``"table"`` (a TOML table validated by the
+        specs in ``table``), ``"floats"`` (a table of named numbers) or ``"signal"`` (a number
+        or an expression of ``t``, see :mod:`bearingsim.scenes.expressions`; the build function
+        gets a number or a function ``f(t)``).
+    default : object
+        Value when the scene does not give the argument (None: the factory's own default).
+    doc : str
+        One line for ``bearingsim list`` and error messages, with the unit.
+    choices : tuple
+        Allowed values of a ``"choice"``.
+    low : float, optional
+        Lower bound of a ``"float"`` (exclusive).
+    table : dict of str to ArgSpec, optional
+        Entries of a ``"table"``.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown kind, a choice without choices or a table without entries.
+    """
+
+    kind: str
+    default: Any = None
+    doc: str = ""
+    choices: tuple = ()
+    low: float | None = None
+    table: dict[str, ArgSpec] | None = None
+
+    def __post_init__(self) -> None:
+        check_choice(self.kind, "kind", ARG_KINDS, "ArgSpec")
+        if self.kind == "choice" and not self.choices:
+            raise ParameterError("ArgSpec: a 'choice' argument needs its choices")
+        if self.kind == "table" and not self.table:
+            raise ParameterError("ArgSpec: a 'table' argument needs its entries (table=...)")
+
+
+@dataclass(frozen=True)
+class PostQuantity:
+    """A quantity computed from the saved series after the integration.
+
+    ``needs`` are model variables the computation reads (added to the assembled outputs);
+    ``compute(series)`` gets a dict name -> array (at least ``needs``) and returns an array in
+    ``unit``. ``fidelity`` is the lowest level whose model has every name in ``needs``.
+    """
+
+    name: str
+    unit: str
+    doc: str
+    needs: tuple[str, ...]
+    compute: Callable[[dict[str, np.ndarray]], np.ndarray]
+    fidelity: str
+
+
+def _no_post(args: dict[str, Any]) -> dict[str, PostQuantity]:
+    return {}
+
+
+def _no_symmetry(args: dict[str, Any], inputs: dict[str, Any]) -> list[str]:
+    return []
+
+
+def _no_symmetric_args(args: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
+    return {}
+
+
+@dataclass
+class AssemblySpec:
+    """What the scene layer knows about an assembly.
+
+    Raises
+    ------
+    ParameterError
+        When ``auto_fidelities`` or the levels of ``output_fidelity`` are not in
+        ``fidelities``.
+    """
+
+    name: str
+    description: str
+    build: Callable[[dict[str, Any], str], Any]
+    """``build(args, fidelity) -> Component``; ``args`` has every key of ``args`` (defaults
+    filled in), signal arguments as a number or ``f(t)``."""
+    args: dict[str, ArgSpec]
+    fidelities: tuple[str, ...]
+    """All levels, lowest first."""
+    auto_fidelities: tuple[str, ...]
+    """Levels ``auto`` may choose, lowest first."""
+    output_fidelity: list[tuple[str, str]]
+    """(fnmatch pattern of an output, input or parameter name, lowest fidelity providing it)."""
+    default_outputs: list[str]
+    post: Callable[[dict[str, Any]], dict[str, PostQuantity]] = _no_post
+    """Post-processed quantities for the given arguments."""
+    parametric_args: dict[str, Callable[[dict[str, Any]], bool]] = field(default_factory=dict)
+    """Arguments that only change parameter values (for sweeps without re-assembly), with a
+    predicate on the other arguments that says when this holds."""
+    symmetry: Callable[[dict[str, Any], dict[str, Any]], list[str]] = _no_symmetry
+    """``symmetry(args, inputs)`` -> notes on symmetric parts solved once."""
+    symmetric_args: Callable[[dict[str, Any], dict[str, Any]], dict[str, Any]] = (
+        _no_symmetric_args)
+    """``symmetric_args(args, inputs)`` -> assembly arguments that build the reduced model the
+    loads allow (merged into the arguments before building)."""
+    fidelity_arg: str | None = "fidelity"
+    """None for an assembly with a single level (scenes then give no fidelity)."""
+
+    def __post_init__(self) -> None:
+        where = f"AssemblySpec({self.name!r})"
+        levels = (*self.auto_fidelities, *(fid for _, fid in self.output_fidelity))
+        for level in levels:
+            check_choice(level, "fidelity level", self.fidelities, where)
+
+    def with_defaults(self, args: dict[str, Any]) -> dict[str, Any]:
+        """The arguments with the defaults of the ones not given (nested tables too)."""
+        return _defaults(self.args, args)
+
+    def min_fidelity(self, name: str) -> str:
+        """Lowest fidelity that provides ``name`` (an output, input or parameter name)."""
+        for pattern, fid in self.output_fidelity:
+            if fnmatch.fnmatchcase(name, pattern):
+                return fid
+        return self.auto_fidelities[-1]
+
+
+def _defaults(specs: dict[str, ArgSpec], args: dict[str, Any]) -> dict[str, Any]:
+    out = {}
+    for key, spec in specs.items():
+        if key in args:
+            val = args[key]
+            if spec.kind == "table" and isinstance(val, dict):
+                val = _defaults(spec.table or {}, val)
+            out[key] = val
+        elif spec.kind == "table":
+            out[key] = _defaults(spec.table or {}, {})
+        else:
+            out[key] = spec.default
+    return out
+
+
+def factory_default(factory: Callable, name: str) -> Any:
+    """The default value of the parameter ``name`` in the signature of ``factory``.
+
+    Lets a spec take its defaults from the factory instead of repeating them.
+
+    Raises
+    ------
+    ParameterError
+        When ``factory`` has no parameter ``name`` with a default.
+    """
+    parameter = inspect.signature(factory).parameters.get(name)
+    if parameter is None or parameter.default is inspect.Parameter.empty:
+        raise ParameterError(f"factory_default: {factory.__qualname__} has no parameter "
+                             f"{name!r} with a default")
+    return parameter.default
+
+
+def nested_post(quantities: dict[str, PostQuantity], prefix: str) -> dict[str, PostQuantity]:
+    """Post-processed quantities of a sub-assembly, named as seen from its parent.
+
+    Parameters
+    ----------
+    quantities : dict of str to PostQuantity
+        The sub-assembly's quantities (its spec's ``post(args)``).
+    prefix : str
+        The sub-assembly's path in the parent with a trailing dot, e.g. ``"bearing."``.
+
+    Returns
+    -------
+    dict of str to PostQuantity
+        The same quantities with ``prefix`` on their names and on the names they need.
+    """
+    out = {}
+    for q in quantities.values():
+        def compute(series, q=q):
+            return q.compute({n: series[prefix + n] for n in q.needs})
+
+        out[prefix + q.name] = PostQuantity(prefix + q.name, q.unit, q.doc,
+                                            tuple(prefix + n for n in q.needs), compute,
+                                            q.fidelity)
+    return out
