@@ -10,6 +10,8 @@ Models (``CASES``):
   semi-explicit DAE form;
 * ``qs_cvodes``: the ``dynamic`` level with its ``newton`` blocks inside CVODES' right-hand side
   (VM only: no C for ``newton``);
+* ``qs_fast_newton``: the same with ``fast_newton`` blocks (C: every ball's Newton iteration
+  and its implicit derivative inlined);
 * ``nested``: ``double_layer_bearing("61905", "61907", fidelity="dynamic")`` as the speed-ratio
   study runs it (oil mist, 100 N axial, ``n_slices=0``, outputs ``Rs``, ``M_middle``), started
   in pure rolling at ``Rs = 0.4``, ``shaft_speed = 300 rad/s``.
@@ -90,7 +92,7 @@ def _ramp_speed(rpm: float, ramp: float = 0.005):
     return lambda t: w * ca.fmin(t / ramp, 1.0)
 
 
-def _deep_groove(fidelity: str):
+def _deep_groove(fidelity: str, rootfinder: str | None = None):
     from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
     from bearingsim.studies.deep_groove import DUTY_CYCLE
 
@@ -98,7 +100,8 @@ def _deep_groove(fidelity: str):
         n_rpm, load = DUTY_CYCLE[0]
         bearing = deep_groove_ball_bearing("6304", fidelity, speed=None, loads={"Fx": load},
                                            n_slices=0)
-        return assemble(bearing), {"inputs": {"shaft_speed": _ramp_speed(n_rpm)}}
+        return (assemble(bearing, rootfinder=rootfinder),
+                {"inputs": {"shaft_speed": _ramp_speed(n_rpm)}})
     return build
 
 
@@ -131,6 +134,9 @@ CASES: dict[str, Case] = {
                _deep_groove("dynamic"), "idas", 0.05, 0.1),
     "qs_cvodes": Case("6304 quasi-static balls (CVODES, newton in the rhs), condition 1",
                       _deep_groove("dynamic"), "cvodes", 0.05, 0.1),
+    "qs_fast_newton": Case("6304 quasi-static balls (CVODES, fast_newton in the rhs), "
+                           "condition 1", _deep_groove("dynamic", "fast_newton"), "cvodes",
+                           0.05, 0.1),
     "nested": Case("61905/61907 nested dynamic (speed-ratio run)", _nested, "cvodes", 0.02,
                    0.05, atol=1e-8),
 }
@@ -257,7 +263,8 @@ def _run_with_kernel(case: Case, kern, common: dict):
     cache = kernels_module._system_cache(system)
     for key in [k for k in cache if k[0] == kern.form and k[1] is True]:
         del cache[key]
-    cache[(kern.form, True, kernels_module.DEFAULT_FLAGS, "None")] = kern
+    cache[(kern.form, True, kernels_module.DEFAULT_FLAGS,
+           str(kernels_module.default_cache_dir()))] = kern
     return case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=True)
 
 

@@ -130,3 +130,36 @@ def test_linear_solver_by_size_and_checked_choices(torque_level):
         simulate(torque_level, 0.1, method="cvodes", linear_solver="ma27")
     with pytest.raises(ParameterError, match="compiled"):
         simulate(torque_level, 0.1, method="cvodes", compiled="yes")
+
+
+def test_auto_runs_on_the_vm_while_c_compiles_in_the_background(cache, monkeypatch):
+    from bearingsim.simulation import kernels
+
+    monkeypatch.setattr(kernels, "AUTO_MIN_INSTRUCTIONS", 0)  # compile even a tiny model
+    system = assemble(SpringMassChain())
+    first = simulate(system, 1.0, method="cvodes", compiled="auto")
+    kernels.wait_for_compilations()
+    later = simulate(system, 1.0, method="cvodes", compiled="auto")
+    assert later.stats["backend"] == "compiled C"
+    if first.stats["backend"] == VM:  # the compiler had not finished at the first run
+        assert "background" in first.stats["backend_reason"]
+    _same_run(first, later)
+
+
+def test_a_failing_compiler_leaves_auto_on_the_vm_and_raises_for_true(cache, monkeypatch):
+    from bearingsim.simulation import kernels
+
+    monkeypatch.setattr(kernels, "AUTO_MIN_INSTRUCTIONS", 0)
+    monkeypatch.setenv("CC", "false")  # found on PATH, exits 1
+    system = assemble(SpringMassChain())
+    kernels.wait_for_compilations()
+    for _ in range(50):  # until the failed build is noticed
+        res = simulate(system, 0.5, method="cvodes", compiled="auto")
+        if res.stats["backend_reason"].startswith("compiling failed"):
+            break
+        kernels.wait_for_compilations()
+    assert res.stats["backend"] == VM
+    assert res.stats["backend_reason"].startswith("compiling failed")
+    with pytest.raises(CompileError, match="failed"):
+        simulate(system, 0.5, method="cvodes", compiled=True)
+    assert not list(cache.glob(".build_*"))  # no half-built leftovers

@@ -21,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import os
+import shlex
 import shutil
 import subprocess
 import tempfile
@@ -33,8 +34,9 @@ import casadi as ca
 from bearingsim.assembler.system import System
 from bearingsim.errors import BearingsimError
 
-__all__ = ["CompileError", "build_library", "c_compiler", "compilations", "compile_system",
-           "default_cache_dir", "DEFAULT_FLAGS"]
+__all__ = ["Build", "CompileError", "build_library", "c_compiler", "compilations", "compile_source",
+           "compile_system", "default_cache_dir", "generate_source", "library_path",
+           "DEFAULT_FLAGS"]
 
 DEFAULT_FLAGS: tuple[str, ...] = ("-O1",)
 """Compiler flags of the SUNDIALS kernels: -O1 compiles 2-3x faster than -O2 and runs as fast on
@@ -62,6 +64,95 @@ def c_compiler() -> str | None:
 def compilations() -> int:
     """How many times this process has run the C compiler (cache hits do not count)."""
     return _COMPILATIONS[0]
+
+
+def library_path(identity: str, *, flags: Sequence[str] = DEFAULT_FLAGS,
+                 cache_dir: str | Path | None = None, prefix: str = "bsm") -> Path:
+    """Where the library determined by ``identity`` (its C source, or a string that
+    determines the source) is kept: ``<cache>/<prefix>_<hash>.so``, the hash also over the
+    casadi version, the compiler and ``flags``.
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found.
+    """
+    cc = c_compiler()
+    if cc is None:
+        raise CompileError("no C compiler (gcc or cc) on PATH")
+    key = "\n".join([identity, ca.__version__, cc, *flags])
+    digest = hashlib.sha256(key.encode()).hexdigest()[:16]
+    out_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
+    return out_dir / f"{prefix}_{digest}.so"
+
+
+def generate_source(functions: Sequence[ca.Function], name: str = "bsm") -> str:
+    """C source of ``functions`` in one file (``casadi.CodeGenerator``, no header)."""
+    gen = ca.CodeGenerator(f"{name}.c", {"with_header": False})
+    for fn in functions:
+        gen.add(fn)
+    return gen.dump()
+
+
+class Build:
+    """A compilation of one library by the C compiler in a child process.
+
+    The child compiles into a private build directory inside the cache and renames the
+    library into place only when complete, so the library appears whole or not at all, a
+    concurrent build of the same library by another process is harmless, and a build outlives
+    the Python process that started it (no waiting at interpreter exit; the next process finds
+    the library).
+    """
+
+    def __init__(self, source: str, lib: Path, flags: Sequence[str]):
+        cc = c_compiler()
+        if cc is None:
+            raise CompileError("no C compiler (gcc or cc) on PATH")
+        lib.parent.mkdir(parents=True, exist_ok=True)
+        self.lib = lib
+        self._dir = Path(tempfile.mkdtemp(dir=lib.parent, prefix=".build_"))
+        source_path = self._dir / f"{lib.stem}.c"
+        source_path.write_text(source)
+        self._log = self._dir / "cc.log"
+        tmp_lib = self._dir / lib.name
+        self.command = [cc, "-shared", "-fPIC", *flags, str(source_path), "-o", str(tmp_lib),
+                        "-lm"]
+        script = (f"{shlex.join(self.command)} 2> {shlex.quote(str(self._log))} && "
+                  f"mv -f {shlex.quote(str(tmp_lib))} {shlex.quote(str(lib))} && "
+                  f"rm -rf {shlex.quote(str(self._dir))}")
+        self._proc = subprocess.Popen(["sh", "-c", script], stdin=subprocess.DEVNULL,
+                                      stdout=subprocess.DEVNULL, start_new_session=True)
+        with _LOCK:
+            _COMPILATIONS[0] += 1
+
+    def done(self) -> bool:
+        """Whether the compiler has finished (successfully or not)."""
+        return self._proc.poll() is not None
+
+    def wait(self) -> Path:
+        """Wait for the library.
+
+        Raises
+        ------
+        CompileError
+            With the compiler's messages, if it failed.
+        """
+        if self._proc.wait() != 0 or not self.lib.exists():
+            log = self._log.read_text()[-2000:] if self._log.exists() else ""
+            shutil.rmtree(self._dir, ignore_errors=True)
+            raise CompileError(f"{' '.join(self.command)} failed:\n{log}")
+        return self.lib
+
+
+def compile_source(source: str, lib: Path, *, flags: Sequence[str] = DEFAULT_FLAGS) -> Path:
+    """Compile ``source`` into the shared library ``lib`` and wait for it (:class:`Build`).
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found or compilation fails.
+    """
+    return Build(source, lib, flags).wait()
 
 
 def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Function]], *,
@@ -95,43 +186,16 @@ def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Fu
     CompileError
         If no C compiler is found or compilation fails.
     """
-    cc = c_compiler()
-    if cc is None:
-        raise CompileError("no C compiler (gcc or cc) on PATH")
     source = None
     if identity is None:
-        source = _source(functions, prefix)
-        identity = source
-    key = "\n".join([identity, ca.__version__, cc, *flags])
-    digest = hashlib.sha256(key.encode()).hexdigest()[:16]
-    out_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
-    out_dir.mkdir(parents=True, exist_ok=True)
-    lib = out_dir / f"{prefix}_{digest}.so"
+        source = generate_source(functions() if callable(functions) else functions, prefix)
+    lib = library_path(identity if identity is not None else source, flags=flags,
+                       cache_dir=cache_dir, prefix=prefix)
     if lib.exists():
         return lib
-    source = source if source is not None else _source(functions, prefix)
-    with tempfile.TemporaryDirectory() as tmp:
-        source_path = Path(tmp) / f"{prefix}.c"
-        source_path.write_text(source)
-        tmp_lib = Path(tmp) / lib.name
-        cmd = [cc, "-shared", "-fPIC", *flags, str(source_path), "-o", str(tmp_lib), "-lm"]
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        if proc.returncode != 0:
-            raise CompileError(f"{' '.join(cmd)} failed:\n{proc.stderr[-2000:]}")
-        with _LOCK:
-            _COMPILATIONS[0] += 1
-        # a rename within one file system is atomic: a concurrent build of the same library
-        # by another process is harmless
-        shutil.move(str(tmp_lib), lib)
-    return lib
-
-
-def _source(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Function]],
-            prefix: str) -> str:
-    gen = ca.CodeGenerator(f"{prefix}.c", {"with_header": False})
-    for fn in functions() if callable(functions) else functions:
-        gen.add(fn)
-    return gen.dump()
+    if source is None:
+        source = generate_source(functions() if callable(functions) else functions, prefix)
+    return compile_source(source, lib, flags=flags)
 
 
 def compile_system(system: System, cache_dir: str | Path | None = None,

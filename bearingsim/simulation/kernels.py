@@ -26,7 +26,10 @@ Two forms:
   rootfinder), with common subexpressions eliminated over both outputs.
 
 Kernels are cached per system (in memory, for the system's lifetime) and form; libraries on
-disk by content hash.
+disk by content hash (:func:`_identity`). With ``compiled="auto"`` a library that is not on
+disk yet is compiled in a background thread while the run goes on the VM; later runs pick it
+up when it is ready. Since both backends give the same numbers, a sweep whose first points
+ran on the VM is not perturbed by the switch.
 """
 
 from __future__ import annotations
@@ -44,12 +47,15 @@ from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.compile import (
     DEFAULT_FLAGS,
+    Build,
     CompileError,
-    build_library,
     c_compiler,
+    default_cache_dir,
+    generate_source,
+    library_path,
 )
 
-__all__ = ["COMPILED", "VM", "Kernel", "kernel", "clear_kernel_cache"]
+__all__ = ["COMPILED", "VM", "Kernel", "kernel", "clear_kernel_cache", "wait_for_compilations"]
 
 SOURCES = {"ode": ("ode", "observe"), "dae": ("dae_ode", "dae_alg", "dae_observe")}
 """The system functions each kernel form is made of (the last one observes)."""
@@ -107,7 +113,8 @@ class Kernel:
         return out
 
 
-_CACHE: dict[int, dict[tuple, Kernel]] = {}
+_CACHE: dict[int, dict[tuple, Any]] = {}
+"""Per system (id): kernels by request, interim VM kernels and library paths."""
 _LOCK = threading.Lock()
 
 
@@ -117,7 +124,7 @@ def clear_kernel_cache() -> None:
         _CACHE.clear()
 
 
-def _system_cache(system: System) -> dict[tuple, Kernel]:
+def _system_cache(system: System) -> dict[tuple, Any]:
     """The kernel cache of one system, dropped when the system is garbage collected."""
     key = id(system)
     with _LOCK:
@@ -140,10 +147,12 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     form : {"ode", "dae"}
         ``"dae"`` needs a system with nonlinear blocks (``dae_ode``, ``dae_alg``).
     compiled : bool or "auto"
-        ``True``: generated C (raises :class:`~bearingsim.simulation.compile.CompileError` if
-        that is impossible); ``False``: the CasADi VM; ``"auto"``: C when a compiler exists,
-        the form can be generated and the model is not tiny (:data:`AUTO_MIN_INSTRUCTIONS`),
-        else the VM (the reason is recorded).
+        ``True``: generated C, compiling it now if it is not cached (raises
+        :class:`~bearingsim.simulation.compile.CompileError` if that is impossible);
+        ``False``: the CasADi VM; ``"auto"``: C when a compiler exists, the form can be
+        generated and the model is not tiny (:data:`AUTO_MIN_INSTRUCTIONS`), else the VM; a
+        library not yet on disk is compiled in the background and the VM kernel returned
+        until it is ready (the reason is recorded in either case).
     flags : tuple of str
         Compiler flags.
     cache_dir : path, optional
@@ -158,26 +167,87 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     if form not in ("ode", "dae"):
         raise ParameterError(f"form must be 'ode' or 'dae', got {form!r}")
     cache = _system_cache(system)
-    key = (form, compiled, tuple(flags), str(cache_dir))
+    key = (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()))
     found = cache.get(key)
     if found is not None:
         return found
     start = time.perf_counter()
     sources = _sources(system, form)
     use_c, reason = _choose(system, form, compiled, sources)
-    if use_c:
-        lib = build_library(lambda: _generated(system, form), identity=_identity(form, sources),
-                            flags=flags, cache_dir=cache_dir, prefix=f"bsm_{form}")
-        diff = [name != "p" for name in sources[0].name_in()]
-        result = Kernel(ca.external(form, str(lib), {"is_diff_in": diff}),
-                        ca.external(sources[-1].name(), str(lib)), form, COMPILED, reason,
-                        lib, time.perf_counter() - start)
-    else:
-        fn, observe = _symbolic(system, form)
-        result = Kernel(_with_jacobian(fn, fn.jacobian()), observe, form, VM, reason, None,
-                        time.perf_counter() - start)
+    if not use_c:
+        fn, jac, observe = _generated(system, form)
+        result = _vm_kernel(form, fn, jac, observe, reason, start)
+        cache[key] = result
+        return result
+    prefix = f"bsm_{form}"
+    generated = source = None
+    lib = cache.get(("library", *key))
+    if lib is None:
+        identity = _identity(form, sources)
+        if identity is None:  # named by its C source
+            generated = _generated(system, form)
+            identity = source = generate_source(generated, prefix)
+        lib = cache[("library", *key)] = library_path(identity, flags=flags,
+                                                      cache_dir=cache_dir, prefix=prefix)
+    if not lib.exists():
+        with _LOCK:
+            pending = _PENDING.get(lib)
+        if pending is None:
+            generated = generated or _generated(system, form)
+            pending = _submit(lib, source or generate_source(generated, prefix), flags)
+        if compiled is True:
+            pending.wait()  # raises the CompileError of a failed build
+        elif not pending.done():
+            interim = cache.get(("interim", *key))
+            if interim is None:
+                fn, jac, observe = generated or _generated(system, form)
+                interim = cache[("interim", *key)] = _vm_kernel(
+                    form, fn, jac, observe, "C compiling in the background; the VM runs until "
+                    "it is ready (same numbers)", start)
+            return interim
+        else:
+            try:
+                pending.wait()
+            except CompileError as exc:
+                fn, jac, observe = generated or _generated(system, form)
+                result = cache[key] = _vm_kernel(form, fn, jac, observe,
+                                                 f"compiling failed: {exc}", start)
+                return result
+    diff = [name != "p" for name in sources[0].name_in()]
+    result = Kernel(ca.external(form, str(lib), {"is_diff_in": diff}),
+                    ca.external(sources[-1].name(), str(lib)), form, COMPILED, reason, lib,
+                    time.perf_counter() - start)
     cache[key] = result
     return result
+
+
+def _vm_kernel(form: str, fn: ca.Function, jac: ca.Function, observe: ca.Function,
+               reason: str, start: float) -> Kernel:
+    return Kernel(_with_jacobian(fn, jac), observe, form, VM, reason, None,
+                  time.perf_counter() - start)
+
+
+_PENDING: dict[Path, Build] = {}
+
+
+def _submit(lib: Path, source: str, flags: tuple[str, ...]) -> Build:
+    """Start compiling ``source`` into ``lib`` (once per library and process)."""
+    with _LOCK:
+        if lib not in _PENDING:
+            _PENDING[lib] = Build(source, lib, flags)
+        return _PENDING[lib]
+
+
+def wait_for_compilations() -> None:
+    """Block until every compilation this process started has finished (failures are
+    reported by the next :func:`kernel` call that needs the library)."""
+    with _LOCK:
+        pending = list(_PENDING.values())
+    for build in pending:
+        try:
+            build.wait()
+        except CompileError:
+            pass
 
 
 def _choose(system: System, form: str, compiled: bool | str,
@@ -242,8 +312,9 @@ def _symbolic(system: System, form: str) -> tuple[ca.Function, ca.Function]:
 
 
 def _generated(system: System, form: str) -> list[ca.Function]:
-    """What the kernel library holds: the kernel, its Jacobian (``jac_<form>``, which
-    ``casadi.external`` takes as the kernel's Jacobian) and the observe function."""
+    """The kernel, its Jacobian (``jac_<form>``, which ``casadi.external`` takes as the
+    kernel's Jacobian) and the observe function: what a library holds, and what the VM
+    evaluates."""
     fn, observe = _symbolic(system, form)
     return [fn, fn.jacobian(), observe]
 

@@ -125,10 +125,12 @@ def simulate(
         about 2 s.
     compiled : bool or "auto"
         Backend ``"casadi"``: evaluate the right-hand side (or DAE residual) and its exact
-        Jacobian as generated C (``True``; raises
+        Jacobian as generated C (``True``: compiling now if needed; raises
         :class:`~bearingsim.simulation.compile.CompileError` when impossible), on CasADi's VM
-        (``False``), or C when a compiler exists and the model is not tiny (``"auto"``).
-        ``Result.stats["backend"]`` says which ran and ``stats["backend_reason"]`` why.
+        (``False``), or ``"auto"``: C when a compiler exists and the model is not tiny, a
+        library not yet cached being compiled in the background while this run uses the VM
+        (both give the same numbers). ``Result.stats["backend"]`` says which ran and
+        ``stats["backend_reason"]`` why.
     linear_solver : str, optional
         Backend ``"casadi"``: the SUNDIALS linear solver, one of
         :data:`~bearingsim.simulation.sundials.LINEAR_SOLVERS`; default by size

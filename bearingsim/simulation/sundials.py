@@ -245,7 +245,9 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
                             "linear_solver": linear_solver, **(options or {})}
     if np.isfinite(max_step):
         opts["max_step_size"] = float(max_step) / span
-    key = (method, id(kernel), signal.key, grid_key,
+    # the kernel by what it evaluates (kernels are rebuilt after clear_kernel_cache)
+    kernel_key = (kernel.form, kernel.backend, str(kernel.library))
+    key = (method, kernel_key, signal.key, grid_key,
            tuple(sorted((k, repr(v)) for k, v in opts.items())))
     built = _INTEGRATORS.get(system, key)
     cached = built is not None
