@@ -1,9 +1,19 @@
-"""Compiled backend: a system's CasADi functions as native C, loaded back into CasADi.
+"""Compiled backend: CasADi functions as native C, loaded back into CasADi.
 
-All functions are generated into one C file (``casadi.CodeGenerator``), compiled with the system
-C compiler into a shared library and loaded with ``casadi.external``. The compiled system has
-the same interface as the original, so ``simulate``, ``linearize`` and ``steady_state`` use it
-unchanged. Libraries are cached by the hash of their source.
+Functions are generated into one C file (``casadi.CodeGenerator``), compiled with the system C
+compiler into a shared library and loaded with ``casadi.external``. Libraries are cached on disk
+by the hash of their source, the compiler and its flags, so a library is compiled once per
+machine; parameters are function arguments, so a parameter change never recompiles.
+
+:func:`build_library` is the one place that runs the compiler; :func:`compile_system` gives a
+copy of a system whose functions run as C (for scipy's integrators, ``steady_state`` and
+``linearize``), :mod:`~bearingsim.simulation.kernels` the right-hand sides and exact Jacobians
+that CVODES and IDAS evaluate.
+
+A generated function named ``jac_<name>`` with the signature of ``Function.jacobian()``
+(inputs: all inputs, then all outputs; outputs: ``jac_<out>_<in>`` for every output and
+input) in the same library is what ``casadi.external`` takes as the Jacobian of ``<name>``
+(CasADi 3.8: ``External::has_jacobian``), so CasADi differentiates the external by calling it.
 """
 
 from __future__ import annotations
@@ -11,9 +21,12 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import os
+import shlex
 import shutil
 import subprocess
 import tempfile
+import threading
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import casadi as ca
@@ -21,7 +34,16 @@ import casadi as ca
 from bearingsim.assembler.system import System
 from bearingsim.errors import BearingsimError
 
-__all__ = ["compile_system", "CompileError", "default_cache_dir"]
+__all__ = ["Build", "CompileError", "build_library", "c_compiler", "compilations", "compile_source",
+           "compile_system", "default_cache_dir", "generate_source", "library_path",
+           "DEFAULT_FLAGS"]
+
+DEFAULT_FLAGS: tuple[str, ...] = ("-O1",)
+"""Compiler flags of the SUNDIALS kernels: -O1 compiles 2-3x faster than -O2 and runs as fast on
+the ball-level models (``bench/sundials_compiled.py``)."""
+
+_COMPILATIONS = [0]
+_LOCK = threading.Lock()
 
 
 class CompileError(BearingsimError):
@@ -32,6 +54,148 @@ def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``."""
     root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
     return Path(root)
+
+
+def c_compiler() -> str | None:
+    """Path of the C compiler (``$CC``, else ``gcc``, else ``cc``), or None if there is none."""
+    return shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
+
+
+def compilations() -> int:
+    """How many times this process has run the C compiler (cache hits do not count)."""
+    return _COMPILATIONS[0]
+
+
+def library_path(identity: str, *, flags: Sequence[str] = DEFAULT_FLAGS,
+                 cache_dir: str | Path | None = None, prefix: str = "bsm") -> Path:
+    """Where the library determined by ``identity`` (its C source, or a string that
+    determines the source) is kept: ``<cache>/<prefix>_<hash>.so``, the hash also over the
+    casadi version, the compiler and ``flags``.
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found.
+    """
+    cc = c_compiler()
+    if cc is None:
+        raise CompileError("no C compiler (gcc or cc) on PATH")
+    key = "\n".join([identity, ca.__version__, cc, *flags])
+    digest = hashlib.sha256(key.encode()).hexdigest()[:16]
+    out_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
+    return out_dir / f"{prefix}_{digest}.so"
+
+
+def generate_source(functions: Sequence[ca.Function], name: str = "bsm") -> str:
+    """C source of ``functions`` in one file (``casadi.CodeGenerator``, no header)."""
+    gen = ca.CodeGenerator(f"{name}.c", {"with_header": False})
+    for fn in functions:
+        gen.add(fn)
+    return gen.dump()
+
+
+class Build:
+    """A compilation of one library by the C compiler in a child process.
+
+    The child compiles into a private build directory inside the cache and renames the
+    library into place only when complete, so the library appears whole or not at all, a
+    concurrent build of the same library by another process is harmless, and a build outlives
+    the Python process that started it (no waiting at interpreter exit; the next process finds
+    the library).
+    """
+
+    def __init__(self, source: str, lib: Path, flags: Sequence[str]):
+        cc = c_compiler()
+        if cc is None:
+            raise CompileError("no C compiler (gcc or cc) on PATH")
+        lib.parent.mkdir(parents=True, exist_ok=True)
+        self.lib = lib
+        self._dir = Path(tempfile.mkdtemp(dir=lib.parent, prefix=".build_"))
+        source_path = self._dir / f"{lib.stem}.c"
+        source_path.write_text(source)
+        self._log = self._dir / "cc.log"
+        tmp_lib = self._dir / lib.name
+        self.command = [cc, "-shared", "-fPIC", *flags, str(source_path), "-o", str(tmp_lib),
+                        "-lm"]
+        script = (f"{shlex.join(self.command)} 2> {shlex.quote(str(self._log))} && "
+                  f"mv -f {shlex.quote(str(tmp_lib))} {shlex.quote(str(lib))} && "
+                  f"rm -rf {shlex.quote(str(self._dir))}")
+        self._proc = subprocess.Popen(["sh", "-c", script], stdin=subprocess.DEVNULL,
+                                      stdout=subprocess.DEVNULL, start_new_session=True)
+        with _LOCK:
+            _COMPILATIONS[0] += 1
+
+    def done(self) -> bool:
+        """Whether the compiler has finished (successfully or not)."""
+        return self._proc.poll() is not None
+
+    def wait(self) -> Path:
+        """Wait for the library.
+
+        Raises
+        ------
+        CompileError
+            With the compiler's messages, if it failed.
+        """
+        if self._proc.wait() != 0 or not self.lib.exists():
+            log = self._log.read_text()[-2000:] if self._log.exists() else ""
+            shutil.rmtree(self._dir, ignore_errors=True)
+            raise CompileError(f"{' '.join(self.command)} failed:\n{log}")
+        return self.lib
+
+
+def compile_source(source: str, lib: Path, *, flags: Sequence[str] = DEFAULT_FLAGS) -> Path:
+    """Compile ``source`` into the shared library ``lib`` and wait for it (:class:`Build`).
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found or compilation fails.
+    """
+    return Build(source, lib, flags).wait()
+
+
+def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Function]], *,
+                  identity: str | None = None, flags: Sequence[str] = DEFAULT_FLAGS,
+                  cache_dir: str | Path | None = None, prefix: str = "bsm") -> Path:
+    """Generate C for ``functions`` into one shared library, compiling only on a cache miss.
+
+    Parameters
+    ----------
+    functions : sequence of casadi.Function, or a callable returning one
+        Functions to generate (each under its own name; a ``jac_<name>`` among them becomes
+        the Jacobian of ``<name>`` for ``casadi.external``). A callable is called only when
+        the library must be built (with ``identity``: a cache hit generates nothing).
+    identity : str, optional
+        A string that determines the generated source (e.g. the serialized functions and
+        how they are derived); the cache key is then its hash instead of the source's.
+    flags : sequence of str
+        Compiler flags (part of the cache key).
+    cache_dir : path, optional
+        Where libraries are kept (default :func:`default_cache_dir`).
+    prefix : str
+        File name prefix of the library.
+
+    Returns
+    -------
+    pathlib.Path
+        The shared library ``<prefix>_<hash>.so``.
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found or compilation fails.
+    """
+    source = None
+    if identity is None:
+        source = generate_source(functions() if callable(functions) else functions, prefix)
+    lib = library_path(identity if identity is not None else source, flags=flags,
+                       cache_dir=cache_dir, prefix=prefix)
+    if lib.exists():
+        return lib
+    if source is None:
+        source = generate_source(functions() if callable(functions) else functions, prefix)
+    return compile_source(source, lib, flags=flags)
 
 
 def compile_system(system: System, cache_dir: str | Path | None = None,
@@ -51,8 +215,7 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
     -------
     System
         Same names, parameters and metadata; ``functions`` replaced by compiled ones (the
-        originals stay in ``symbolic_functions`` for CasADi's own integrators, which
-        differentiate them).
+        originals stay in ``symbolic_functions``).
 
     Raises
     ------
@@ -66,29 +229,12 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
             f"{system.rootfinder!r} rootfinder, which generates no C code; assemble with "
             "rootfinder='fast_newton'"
         )
-    cc = shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
-    if cc is None:
-        raise CompileError("compile_system: no C compiler (gcc or cc) on PATH")
     names = sorted(system.functions)
-    with tempfile.TemporaryDirectory() as tmp:
-        gen = ca.CodeGenerator("bsm_model.c", {"with_header": False})
-        for key in names:
-            gen.add(system.functions[key])
-        source_path = Path(gen.generate(tmp + os.sep))
-        source = source_path.read_text()
-        digest = hashlib.sha256((source + " ".join(flags)).encode()).hexdigest()[:16]
-        out_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
-        out_dir.mkdir(parents=True, exist_ok=True)
-        lib = out_dir / f"bsm_{digest}.so"
-        if not lib.exists():
-            tmp_lib = Path(tmp) / lib.name
-            cmd = [cc, "-shared", "-fPIC", *flags, str(source_path), "-o", str(tmp_lib), "-lm"]
-            proc = subprocess.run(cmd, capture_output=True, text=True)
-            if proc.returncode != 0:
-                raise CompileError(
-                    f"compile_system: {' '.join(cmd)} failed:\n{proc.stderr[-2000:]}"
-                )
-            shutil.move(str(tmp_lib), lib)
+    try:
+        lib = build_library([system.functions[k] for k in names], flags=flags,
+                            cache_dir=cache_dir, prefix="bsm_model")
+    except CompileError as exc:
+        raise CompileError(f"compile_system: {exc}") from None
     functions = {key: ca.external(system.functions[key].name(), str(lib)) for key in names}
     return dataclasses.replace(
         system, functions=functions, symbolic_functions=system.functions,

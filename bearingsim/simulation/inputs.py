@@ -10,6 +10,7 @@ Python runs inside the integration; other callables are evaluated numerically.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import casadi as ca
@@ -20,7 +21,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.simulation.intervals import locate_problem
 from bearingsim.validation import check_mapping
 
-__all__ = ["input_expression", "check_input_ranges"]
+__all__ = ["InputSignal", "input_signal", "input_expression", "check_input_ranges"]
 
 
 def _table_column(values: Any, name: str, what: str, unit: str) -> np.ndarray:
@@ -37,14 +38,45 @@ def _table_column(values: Any, name: str, what: str, unit: str) -> np.ndarray:
     return column
 
 
-def _one(name: str, spec: Any, t: ca.SX, unit: str) -> ca.SX:
+@dataclass(frozen=True)
+class InputSignal:
+    """The inputs of a run as ``u(t, q)``: every number the user gave (constants, table rows)
+    lifted into the vector ``q``, so that runs whose inputs differ only in those numbers share
+    one function (and one integrator built on it).
+
+    Attributes
+    ----------
+    u : casadi.Function
+        ``u(t, q)`` -> the input vector in the system's input order (SX).
+    q : numpy.ndarray
+        The lifted numbers of this run.
+    key : str
+        The structure of ``u``: equal keys mean the same function of ``(t, q)``.
+    """
+
+    u: ca.Function
+    q: np.ndarray
+    key: str
+
+    def of_time(self) -> ca.Function:
+        """``u(t)`` with this run's numbers substituted."""
+        t = ca.SX.sym("t")
+        return ca.Function("u", [t], [self.u(t, ca.DM(self.q))], ["t"], ["u"])
+
+
+def _one(name: str, spec: Any, t: ca.SX, unit: str,
+         lifted: list[float]) -> tuple[ca.SX | None, str]:
+    """One input: its expression in ``t``, or None when its numbers were appended to
+    ``lifted`` (a constant: one number; a table: its times, then its values), and its
+    structure key."""
     if isinstance(spec, (bool, np.bool_)):
         raise ParameterError(f"input {name} must be a number in {unit}, a function of time or "
                              f"a (times, values) table, got {spec!r}")
     if isinstance(spec, (int, float, np.floating, np.integer)):
         if not np.isfinite(spec):
             raise ParameterError(f"input {name} must be finite, got {spec!r}")
-        return ca.SX(float(spec))
+        lifted.append(float(spec))
+        return None, "const"
     if isinstance(spec, tuple) and len(spec) == 2:
         times = _table_column(spec[0], name, "times", "s")
         vals = _table_column(spec[1], name, "values", unit)
@@ -53,9 +85,9 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str) -> ca.SX:
                 f"input {name}: a table needs two equally long arrays (times strictly "
                 "increasing, at least two points)"
             )
-        # hold the end values outside the table (pw_lin alone would extrapolate linearly)
-        held = ca.fmin(ca.fmax(t, float(times[0])), float(times[-1]))
-        return ca.pw_lin(held, ca.DM(times), ca.DM(vals))
+        lifted.extend(times.tolist())
+        lifted.extend(vals.tolist())
+        return None, f"table[{times.size}]"
     if callable(spec):
         try:
             out = spec(t)
@@ -64,15 +96,16 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str) -> ca.SX:
                 f"input {name}: the function could not be evaluated symbolically ({exc}); "
                 "write it with casadi or bearingsim.symbolic math"
             ) from None
-        return ca.SX(out)
+        expr = ca.SX(out)
+        return expr, f"f:{expr}"
     raise ParameterError(
         f"input {name}: expected a number, a function of time or a (times, values) table, "
         f"got {type(spec).__name__}"
     )
 
 
-def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) -> ca.SX:
-    """Vector of input expressions of ``t`` in the system's input order.
+def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
+    """The system's inputs as ``u(t, q)`` with the given numbers lifted into ``q``.
 
     Parameters
     ----------
@@ -82,13 +115,10 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
         Input name -> number, symbolic function of time, or ``(times, values)`` table
         (piecewise linear, the end values held outside ``[times[0], times[-1]]``). Inputs not
         given take their start values.
-    t : casadi.SX
-        The time symbol [s].
 
     Returns
     -------
-    casadi.SX
-        Column of the input expressions.
+    InputSignal
 
     Raises
     ------
@@ -102,12 +132,36 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
             f"unknown input(s) {', '.join(sorted(unknown))}; the system's inputs are: "
             + (", ".join(system.input_names) or "none")
         )
-    exprs = []
+    t = ca.SX.sym("t")
+    lifted: list[float] = []
+    exprs, keys, slices = [], [], []
     for sig in system.inputs:
-        exprs.append(_one(sig.name, inputs.get(sig.name, sig.start), t, sig.unit))
-    return ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
+        first = len(lifted)
+        expr, kind = _one(sig.name, inputs.get(sig.name, sig.start), t, sig.unit,
+                          lifted)
+        exprs.append(expr)
+        keys.append(f"{sig.name}={kind}")
+        slices.append((first, len(lifted)))
+    q = ca.SX.sym("q", len(lifted))
+    for k, (first, last) in enumerate(slices):
+        if last - first == 1:
+            exprs[k] = q[first]
+        elif last > first:
+            n = (last - first) // 2
+            times, vals = q[first:first + n], q[first + n:last]
+            # hold the end values outside the table (pw_lin alone would extrapolate linearly)
+            held = ca.fmin(ca.fmax(t, times[0]), times[n - 1])
+            exprs[k] = ca.pw_lin(held, times, vals)
+    u = ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
+    return InputSignal(ca.Function("u", [t, q], [u], ["t", "q"], ["u"]),
+                       np.array(lifted, dtype=float), "|".join(keys))
 
 
+def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) -> ca.SX:
+    """Vector of input expressions of ``t`` in the system's input order (numbers inlined; see
+    :func:`input_signal` for the arguments and errors)."""
+    signal = input_signal(system, inputs)
+    return signal.u(t, ca.DM(signal.q))
 
 
 def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> None:

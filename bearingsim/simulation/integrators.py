@@ -18,18 +18,21 @@ subclasses:
 
 from __future__ import annotations
 
+import time
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from typing import Any
 
-import casadi as ca
 import numpy as np
 import scipy.integrate
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
-from bearingsim.simulation.closed import ClosedModel, close_inputs
+from bearingsim.simulation.closed import ClosedModel
 from bearingsim.simulation.fastcall import BufferedFunction
+from bearingsim.simulation.inputs import InputSignal
+from bearingsim.simulation.kernels import kernel
+from bearingsim.simulation.sundials import sundials_run
 
 __all__ = [
     "BACKENDS",
@@ -49,8 +52,8 @@ class IntegrationProblem:
     """Everything an integrator needs for one run."""
 
     system: System
-    closed: ClosedModel
-    """The system with its inputs bound (numeric functions)."""
+    closed: ClosedModel | None
+    """The system with its inputs bound (numeric functions; built for scipy's methods)."""
     inputs: dict[str, Any] | None
     """The user's input specification (for integrators that close the inputs themselves)."""
     p: np.ndarray
@@ -71,6 +74,12 @@ class IntegrationProblem:
     """Largest step [s] (``inf``: no limit)."""
     progress: bool | None
     """Progress bar: on, off, or only for runs longer than about 2 s (None)."""
+    signal: InputSignal
+    """The inputs as ``u(t, q)`` with the run's numbers lifted out (SUNDIALS builds on it)."""
+    compiled: bool | str = "auto"
+    """Evaluation backend of the SUNDIALS kernels (True, False or "auto")."""
+    linear_solver: str | None = None
+    """SUNDIALS linear solver (None: by size)."""
 
 
 @dataclass
@@ -194,11 +203,13 @@ class ScipyIntegrator(Integrator):
 
 
 class SundialsIntegrator(Integrator):
-    """SUNDIALS CVODES or IDAS through CasADi's ``integrator`` on the ODE form.
+    """SUNDIALS CVODES or IDAS through CasADi (:mod:`~bearingsim.simulation.sundials`) on the
+    system's compiled (or VM) kernels, with kernels and integrators cached.
 
     IDAS on a system with nonlinear blocks integrates the semi-explicit DAE form instead
     (``dae_ode``, ``dae_alg``): the blocks' tearing variables become algebraic states that IDAS
-    iterates on, warm-started from step to step.
+    iterates on, warm-started from step to step; that form is pure SX and compiles whatever
+    rootfinder the blocks use.
 
     Parameters
     ----------
@@ -211,105 +222,21 @@ class SundialsIntegrator(Integrator):
     def __init__(self, name: str):
         self.name = name
 
-    def options(self, problem: IntegrationProblem) -> dict[str, Any]:
-        """CasADi integrator options (``max_step_size`` only when the step is bounded)."""
-        opts: dict[str, Any] = {"abstol": problem.atol, "reltol": problem.rtol,
-                                "max_num_steps": 100000}
-        if np.isfinite(problem.max_step):
-            opts["max_step_size"] = float(problem.max_step)
-        return opts
-
     def run(self, problem: IntegrationProblem) -> Trajectory:
         """Integrate with CVODES or IDAS (see :class:`Integrator`)."""
-        if self.name == "idas" and "dae_ode" in problem.system.functions:
-            return self._run_dae(problem)
-        return self._run_ode(problem)
-
-    @staticmethod
-    def _with_start(problem: IntegrationProblem, grid: np.ndarray, *columns):
-        """Prepend the start values when the first output time is ``t0``."""
-        if problem.t_eval[0] <= problem.t0:
-            return (np.concatenate([[problem.t0], grid]),
-                    *(np.hstack([c0[:, None], c]) for c0, c in columns))
-        return (grid, *(c for _, c in columns))
-
-    def _run_ode(self, problem: IntegrationProblem) -> Trajectory:
         pb, system = problem, problem.system
-        closed = close_inputs(system, pb.inputs, symbolic=True)
-        sym = ca.SX if closed.symbolic else ca.MX
-        x, pp, t = sym.sym("x", system.n_states), sym.sym("p", len(pb.p)), sym.sym("t")
-        dae = {"x": x, "p": pp, "t": t, "ode": closed.f(t, x, pp)}
-        grid = pb.t_eval[pb.t_eval > pb.t0]
-        opts = self.options(pb)
-        integ = ca.integrator(self.name, self.name, dae, float(pb.t0), grid, opts)
-        try:
-            out = integ(x0=pb.x0, p=pb.p)
-        except RuntimeError:
-            self._locate_failure(pb, dae, opts, grid)
-            raise
-        xs = np.asarray(out["xf"], dtype=float)
-        if not np.all(np.isfinite(xs)):
-            k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
-            raise SimulationError(
-                f"{self.name.upper()} produced non-finite states by t = {grid[k]:.6g} s; "
-                f"{diverged(system, xs[:, k], pb.x0)}"
-            )
-        ts, xs = self._with_start(pb, grid, (pb.x0, xs))
-        stats = {"method": self.name}
-        st = integ.stats()
-        for key in ("nsteps", "nfevals", "nlinsetups"):
-            if key in st:
-                stats[key] = st[key]
-        return Trajectory(ts, xs, None, stats)
-
-    def _run_dae(self, problem: IntegrationProblem) -> Trajectory:
-        pb, system = problem, problem.system
-        funcs = system.symbolic_functions or system.functions
-        f, g, obs, z_of = (funcs[k] for k in ("dae_ode", "dae_alg", "dae_observe", "dae_z"))
-        t = ca.MX.sym("t")
-        x = ca.MX.sym("x", system.n_states)
-        z = ca.MX.sym("z", g.size1_out(0))
-        pp = ca.MX.sym("p", len(pb.p))
-        u = pb.closed.u(t)
-        dae = {"x": x, "z": z, "p": pp, "t": t, "ode": f(t, x, z, u, pp),
-               "alg": g(t, x, z, u, pp)}
-        grid = pb.t_eval[pb.t_eval > pb.t0]
-        integ = ca.integrator("idas_dae", "idas", dae, float(pb.t0), grid, self.options(pb))
-        u0 = np.asarray(pb.closed.u(pb.t0), dtype=float).ravel()
-        z0 = np.asarray(z_of(pb.t0, pb.x0, u0, pb.p), dtype=float).ravel()
-        try:
-            out = integ(x0=pb.x0, z0=z0, p=pb.p)
-        except RuntimeError as exc:
-            raise SimulationError(f"IDAS (DAE form) failed: {str(exc).splitlines()[0]}; start "
-                                  f"states: {diverged(system, pb.x0, pb.x0)}") from None
-        xs = np.asarray(out["xf"], dtype=float)
-        zs = np.asarray(out["zf"], dtype=float).reshape(z0.size, grid.size)
-        ts, xs, zs = self._with_start(pb, grid, (pb.x0, xs), (z0, zs))
-        us = np.asarray(pb.closed.u.map(ts.size)(ts[None, :]), dtype=float).reshape(-1, ts.size)
-        values = np.asarray(obs.map(ts.size)(ts[None, :], xs, zs, us,
-                                             np.repeat(pb.p[:, None], ts.size, axis=1)),
-                            dtype=float)
-        stats = {"method": "idas (dae)", "algebraic_states": int(z0.size)}
-        return Trajectory(ts, xs, values, stats)
-
-    def _locate_failure(self, problem: IntegrationProblem, dae: dict, opts: dict,
-                        grid: np.ndarray) -> None:
-        """Integrate interval by interval to report where a run failed (failure path only)."""
-        pb, name = problem, self.name
-        x, t_prev = np.asarray(pb.x0, dtype=float), float(pb.t0)
-        for t_next in grid:
-            step = ca.integrator(name, name, dae, t_prev, [float(t_next)], opts)
-            try:
-                x_new = np.asarray(step(x0=x, p=pb.p)["xf"], dtype=float).ravel()
-            except RuntimeError:
-                x_new = None
-            if x_new is None or not np.all(np.isfinite(x_new)):
-                raise SimulationError(
-                    f"{name.upper()} failed between t = {t_prev:.6g} s and {t_next:.6g} s; "
-                    f"states at t = {t_prev:.6g} s: {diverged(pb.system, x, pb.x0)}"
-                ) from None
-            x, t_prev = x_new, float(t_next)
-        raise SimulationError(f"{name.upper()} failed (not reproducible interval by interval)")
+        form = "dae" if self.name == "idas" and "dae_ode" in system.functions else "ode"
+        start = time.perf_counter()
+        kern = kernel(system, form, pb.compiled)
+        kernel_time = time.perf_counter() - start
+        z0 = None
+        if form == "dae":
+            funcs = system.symbolic_functions or system.functions
+            u0 = np.asarray(pb.signal.u(pb.t0, pb.signal.q), dtype=float).ravel()
+            z0 = np.asarray(funcs["dae_z"](pb.t0, pb.x0, u0, pb.p), dtype=float).ravel()
+        run = sundials_run(self.name, system, kern, pb.signal, pb.p, pb.x0, pb.t0, pb.t1,
+                           pb.t_eval, pb.rtol, pb.atol, pb.max_step, pb.linear_solver, z0)
+        return Trajectory(run.t, run.x, run.values, {**run.stats, "kernel_time": kernel_time})
 
 
 METHODS: dict[str, Integrator] = {

@@ -7,14 +7,15 @@ import time as _time
 import warnings
 from typing import Any
 
+import casadi as ca
 import numpy as np
 import scipy.integrate
 import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
-from bearingsim.simulation.closed import ClosedModel, close_inputs
-from bearingsim.simulation.inputs import check_input_ranges
+from bearingsim.simulation.closed import close_inputs
+from bearingsim.simulation.inputs import check_input_ranges, input_signal
 from bearingsim.simulation.integrators import (
     BACKENDS,
     METHODS,
@@ -24,20 +25,25 @@ from bearingsim.simulation.integrators import (
 )
 from bearingsim.simulation.result import Result
 from bearingsim.simulation.steady import steady_state
+from bearingsim.simulation.sundials import LINEAR_SOLVERS
 from bearingsim.validation import check_choice, check_flag, check_range, entry_point
 
 __all__ = ["simulate", "initial_state"]
 
 
-
 def initial_state(
-    system: System, closed: ClosedModel, p: np.ndarray, x0: np.ndarray, t0: float, steady: bool
+    system: System, u: ca.Function, p: np.ndarray, x0: np.ndarray, t0: float,
+    steady: dict[str, Any] | None | bool,
 ) -> np.ndarray:
-    """Consistent initial states: initial equations and, on request, a steady state."""
+    """Consistent initial states: initial equations and, on request, a steady state.
+
+    ``u`` is the input vector as a function of time; ``steady`` is False for none, else the
+    run's input specification (``None`` or a dict) that the steady state is solved with.
+    """
     x = x0.copy()
     if system.init_residual is not None:
         free = system.free_initial_states
-        u0 = np.asarray(closed.u(t0), dtype=float).ravel()
+        u0 = np.asarray(u(t0), dtype=float).ravel()
 
         def res(z):
             xx = x.copy()
@@ -52,8 +58,8 @@ def initial_state(
                 + f": {sol.message}"
             )
         x[free] = sol.x
-    if steady:
-        x = steady_state(system, closed=closed, p=p, x_guess=x, t=t0, require_unique=False)
+    if steady is not False:
+        x = steady_state(system, inputs=steady, p=p, x_guess=x, t=t0, require_unique=False)
     return x
 
 
@@ -75,6 +81,8 @@ def simulate(
     t_eval: np.ndarray | None = None,
     max_step: float = np.inf,
     progress: bool | None = None,
+    compiled: bool | str = "auto",
+    linear_solver: str | None = None,
 ) -> Result:
     """Integrate a system and return every variable as a named series.
 
@@ -115,6 +123,18 @@ def simulate(
     progress : bool, optional
         Show a progress bar (scipy methods); default: only for runs that take longer than
         about 2 s.
+    compiled : bool or "auto"
+        Backend ``"casadi"``: evaluate the right-hand side (or DAE residual) and its exact
+        Jacobian as generated C (``True``: compiling now if needed; raises
+        :class:`~bearingsim.simulation.compile.CompileError` when impossible), on CasADi's VM
+        (``False``), or ``"auto"``: C when a compiler exists and the model is not tiny, a
+        library not yet cached being compiled in the background while this run uses the VM
+        (both give the same numbers). ``Result.stats["backend"]`` says which ran and
+        ``stats["backend_reason"]`` why.
+    linear_solver : str, optional
+        Backend ``"casadi"``: the SUNDIALS linear solver, one of
+        :data:`~bearingsim.simulation.sundials.LINEAR_SOLVERS`; default by size
+        (:func:`~bearingsim.simulation.sundials.choose_linear_solver`).
 
     Returns
     -------
@@ -143,20 +163,33 @@ def simulate(
     check_choice(initial, "initial", ("start", "steady"), "simulate")
     t_eval = _output_times(t_start, t_end, n_points, t_eval)
     _check_work(system, t_start, t_end, t_eval.size, max_step)
+    if compiled not in (True, False, "auto"):
+        raise ParameterError(f"simulate: compiled must be True, False or 'auto', got "
+                             f"{compiled!r}")
+    if linear_solver is not None:
+        check_choice(linear_solver, "linear_solver", LINEAR_SOLVERS, "simulate")
+    setup = _time.perf_counter()
     p = system.p0(parameters)
-    closed = close_inputs(system, inputs)
-    x_start = initial_state(system, closed, p, system.x0(x0), t_start, initial == "steady")
-    check_input_ranges(system, closed.u, np.union1d(t_eval, [t_start, t_end]))
+    signal = input_signal(system, inputs)
+    u_of_t = signal.of_time()
+    x_start = initial_state(system, u_of_t, p, system.x0(x0), t_start,
+                            inputs if initial == "steady" else False)
+    check_input_ranges(system, u_of_t, np.union1d(t_eval, [t_start, t_end]))
+    # scipy's integrators call the closed functions from Python; SUNDIALS builds its own
+    closed = close_inputs(system, inputs) if METHODS[method].backend == "scipy" else None
     wall = _time.perf_counter()
     if system.n_states == 0:
         traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {})
     else:
         problem = IntegrationProblem(system, closed, inputs, p, x_start, t_start, t_end, t_eval,
-                                     rtol, atol, max_step, progress)
+                                     rtol, atol, max_step, progress, signal, compiled,
+                                     linear_solver)
         traj = METHODS[method].run(problem)
     ts, xs, values, stats = traj.t, traj.x, traj.values, traj.stats
     stats["wall_time"] = _time.perf_counter() - wall
+    stats["prepare_time"] = wall - setup
     if values is None:
+        closed = closed or close_inputs(system, inputs)
         obs = closed.observe.map(ts.size)
         try:
             values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
@@ -167,7 +200,7 @@ def simulate(
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
     units = _units(system)
-    u_end = np.asarray(closed.u(ts[-1]), dtype=float).ravel()
+    u_end = np.asarray(u_of_t(ts[-1]), dtype=float).ravel()
     return Result(ts, list(system.observed_names), values, units, stats,
                   inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
                   parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)))

@@ -120,7 +120,7 @@ SKIP = {"static_state", "get_lubricant", "known_lubricants", "bearing_design",
         "bearing_load_deflection_constants", "contact_spring_constant"}
 """Functions with structured arguments, covered by their own tests and the model cases."""
 ALLOW_INF = {"contact_life", "bearing_life", "rating_life", "reference_rating_life",
-             "life_hours", "raceway_equivalent_load", "lambda_ratio"}
+             "life_hours", "raceway_equivalent_load", "lambda_ratio", "basic_rating_life_hours"}
 """Functions whose documented result is infinite for some valid inputs (e.g. no load)."""
 
 

@@ -1,0 +1,337 @@
+"""Kernels of the SUNDIALS integrators: a system's right-hand side (or DAE residual) with its
+exact Jacobian, evaluated as compiled C or, as the fallback, on CasADi's virtual machine.
+
+A :class:`Kernel` holds one CasADi function ``F`` whose ``F.jacobian()`` is the exact
+Jacobian, evaluated by the same backend:
+
+* **compiled C**: ``F`` and ``jac_F = F.jacobian()`` are generated into one library
+  (:func:`~bearingsim.simulation.compile.build_library`) and loaded with ``casadi.external``,
+  which takes the generated ``jac_F`` as the Jacobian of ``F``;
+* **CasADi VM**: the same two SX functions, ``F`` wrapped so that CasADi differentiates it by
+  calling ``jac_F`` (option ``custom_jacobian``; forward and reverse mode disabled) instead of
+  deriving new derivative functions.
+
+Both backends evaluate the same expression graphs in the same order, so a run gives the same
+numbers on either (bit for bit on x86-64 with gcc, which does not contract ``a*b+c`` into
+FMAs without ``-march`` flags). The parameters ``p`` are declared non-differentiable (no
+integrator asks for derivatives with respect to them), which keeps the generated Jacobian to
+the blocks of ``t, x, (z,) u``.
+
+Two forms:
+
+* ``"ode"``: ``ode(t, x, u, p)`` (models with ``newton`` rootfinders cannot be generated; they
+  stay on the VM);
+* ``"dae"``: ``dae(t, x, z, u, p) -> (ode, alg)``, the semi-explicit form of models with
+  nonlinear blocks (``dae_ode``, ``dae_alg``; pure SX, so it compiles whatever the
+  rootfinder), with common subexpressions eliminated over both outputs.
+
+Kernels are cached per system (in memory, for the system's lifetime) and form; libraries on
+disk by content hash (:func:`_identity`). With ``compiled="auto"`` a library that is not on
+disk yet is compiled in a background thread while the run goes on the VM; later runs pick it
+up when it is ready. Since both backends give the same numbers, a sweep whose first points
+ran on the VM is not perturbed by the switch.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+import weakref
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import casadi as ca
+
+from bearingsim.assembler.system import System
+from bearingsim.errors import ParameterError
+from bearingsim.simulation.compile import (
+    DEFAULT_FLAGS,
+    Build,
+    CompileError,
+    c_compiler,
+    default_cache_dir,
+    generate_source,
+    library_path,
+)
+
+__all__ = ["COMPILED", "VM", "Kernel", "kernel", "clear_kernel_cache", "wait_for_compilations"]
+
+SOURCES = {"ode": ("ode", "observe"), "dae": ("dae_ode", "dae_alg", "dae_observe")}
+"""The system functions each kernel form is made of (the last one observes)."""
+
+RECIPE = ("bearingsim kernel v1: F = the sources' outputs (cse, p not differentiable), "
+          "jac_F = F.jacobian(), observe (cse)")
+"""How a kernel library is derived from its sources (part of its cache key: change it when the
+derivation changes)."""
+
+COMPILED = "compiled C"
+"""``Kernel.backend`` of generated C."""
+VM = "CasADi VM"
+"""``Kernel.backend`` of CasADi's SX virtual machine."""
+
+AUTO_MIN_INSTRUCTIONS = 1000
+"""``compiled="auto"`` generates C for kernels from this many SX instructions (right-hand side
+or residual); below it a run is dominated by the integrator's own work and the compiler costs
+more than it saves (the 61905/61907 torque level has 122)."""
+
+
+@dataclass(frozen=True)
+class Kernel:
+    """A model function with its exact Jacobian on one evaluation backend.
+
+    Attributes
+    ----------
+    function : casadi.Function
+        ``ode(t, x, u, p)`` or ``dae(t, x, z, u, p) -> (ode, alg)``; ``function.jacobian()``
+        is its exact Jacobian, evaluated by the same backend.
+    observe : casadi.Function
+        Every observed variable: ``observe(t, x, u, p)`` or ``dae_observe(t, x, z, u, p)``.
+    form : {"ode", "dae"}
+    backend : {"compiled C", "CasADi VM"}
+    reason : str
+        Why the backend was chosen (for ``Result.stats``).
+    library : pathlib.Path or None
+        The shared library of a compiled kernel.
+    build_time : float
+        Wall time of generating and compiling (or loading) the kernel [s].
+    """
+
+    function: ca.Function
+    observe: ca.Function
+    form: str
+    backend: str
+    reason: str
+    library: Path | None
+    build_time: float
+
+    def describe(self) -> dict[str, Any]:
+        """The kernel's entries of ``Result.stats``."""
+        out: dict[str, Any] = {"backend": self.backend, "backend_reason": self.reason}
+        if self.library is not None:
+            out["library"] = str(self.library)
+        return out
+
+
+_CACHE: dict[int, dict[tuple, Any]] = {}
+"""Per system (id): kernels by request, interim VM kernels and library paths."""
+_LOCK = threading.Lock()
+
+
+def clear_kernel_cache() -> None:
+    """Forget every kernel built in this process (libraries on disk stay)."""
+    with _LOCK:
+        _CACHE.clear()
+
+
+def _system_cache(system: System) -> dict[tuple, Any]:
+    """The kernel cache of one system, dropped when the system is garbage collected."""
+    key = id(system)
+    with _LOCK:
+        cache = _CACHE.get(key)
+        if cache is None:
+            cache = _CACHE[key] = {}
+            weakref.finalize(system, _CACHE.pop, key, None)
+    return cache
+
+
+def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
+           flags: tuple[str, ...] = DEFAULT_FLAGS, cache_dir: str | Path | None = None) -> Kernel:
+    """The right-hand side (``form="ode"``) or DAE residual (``"dae"``) of ``system`` with its
+    exact Jacobian, built once per system, form and backend choice.
+
+    Parameters
+    ----------
+    system : System
+        An assembled system.
+    form : {"ode", "dae"}
+        ``"dae"`` needs a system with nonlinear blocks (``dae_ode``, ``dae_alg``).
+    compiled : bool or "auto"
+        ``True``: generated C, compiling it now if it is not cached (raises
+        :class:`~bearingsim.simulation.compile.CompileError` if that is impossible);
+        ``False``: the CasADi VM; ``"auto"``: C when a compiler exists, the form can be
+        generated and the model is not tiny (:data:`AUTO_MIN_INSTRUCTIONS`), else the VM; a
+        library not yet on disk is compiled in the background and the VM kernel returned
+        until it is ready (the reason is recorded in either case).
+    flags : tuple of str
+        Compiler flags.
+    cache_dir : path, optional
+        Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+
+    Returns
+    -------
+    Kernel
+    """
+    if compiled not in (True, False, "auto"):
+        raise ParameterError(f"compiled must be True, False or 'auto', got {compiled!r}")
+    if form not in ("ode", "dae"):
+        raise ParameterError(f"form must be 'ode' or 'dae', got {form!r}")
+    cache = _system_cache(system)
+    key = (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()))
+    found = cache.get(key)
+    if found is not None:
+        return found
+    start = time.perf_counter()
+    sources = _sources(system, form)
+    use_c, reason = _choose(system, form, compiled, sources)
+    if not use_c:
+        fn, jac, observe = _generated(system, form)
+        result = _vm_kernel(form, fn, jac, observe, reason, start)
+        cache[key] = result
+        return result
+    prefix = f"bsm_{form}"
+    generated = source = None
+    lib = cache.get(("library", *key))
+    if lib is None:
+        identity = _identity(form, sources)
+        if identity is None:  # named by its C source
+            generated = _generated(system, form)
+            identity = source = generate_source(generated, prefix)
+        lib = cache[("library", *key)] = library_path(identity, flags=flags,
+                                                      cache_dir=cache_dir, prefix=prefix)
+    if not lib.exists():
+        with _LOCK:
+            pending = _PENDING.get(lib)
+        if pending is None:
+            generated = generated or _generated(system, form)
+            pending = _submit(lib, source or generate_source(generated, prefix), flags)
+        if compiled is True:
+            pending.wait()  # raises the CompileError of a failed build
+        elif not pending.done():
+            interim = cache.get(("interim", *key))
+            if interim is None:
+                fn, jac, observe = generated or _generated(system, form)
+                interim = cache[("interim", *key)] = _vm_kernel(
+                    form, fn, jac, observe, "C compiling in the background; the VM runs until "
+                    "it is ready (same numbers)", start)
+            return interim
+        else:
+            try:
+                pending.wait()
+            except CompileError as exc:
+                fn, jac, observe = generated or _generated(system, form)
+                result = cache[key] = _vm_kernel(form, fn, jac, observe,
+                                                 f"compiling failed: {exc}", start)
+                return result
+    diff = [name != "p" for name in sources[0].name_in()]
+    result = Kernel(ca.external(form, str(lib), {"is_diff_in": diff}),
+                    ca.external(sources[-1].name(), str(lib)), form, COMPILED, reason, lib,
+                    time.perf_counter() - start)
+    cache[key] = result
+    return result
+
+
+def _vm_kernel(form: str, fn: ca.Function, jac: ca.Function, observe: ca.Function,
+               reason: str, start: float) -> Kernel:
+    return Kernel(_with_jacobian(fn, jac), observe, form, VM, reason, None,
+                  time.perf_counter() - start)
+
+
+_PENDING: dict[Path, Build] = {}
+
+
+def _submit(lib: Path, source: str, flags: tuple[str, ...]) -> Build:
+    """Start compiling ``source`` into ``lib`` (once per library and process)."""
+    with _LOCK:
+        if lib not in _PENDING:
+            _PENDING[lib] = Build(source, lib, flags)
+        return _PENDING[lib]
+
+
+def wait_for_compilations() -> None:
+    """Block until every compilation this process started has finished (failures are
+    reported by the next :func:`kernel` call that needs the library)."""
+    with _LOCK:
+        pending = list(_PENDING.values())
+    for build in pending:
+        try:
+            build.wait()
+        except CompileError:
+            pass
+
+
+def _choose(system: System, form: str, compiled: bool | str,
+            sources: list[ca.Function]) -> tuple[bool, str]:
+    """(generate C?, why) for a kernel request."""
+    if compiled is False:
+        return False, "compiled=False"
+    blocker = None
+    if c_compiler() is None:
+        blocker = "no C compiler on PATH"
+    elif form == "ode" and system.rootfinder not in (None, "fast_newton"):
+        blocker = (f"the {system.rootfinder!r} rootfinder of the nonlinear blocks has no C code "
+                   "generation (IDAS on the DAE form compiles)")
+    if blocker is not None:
+        if compiled is True:
+            raise CompileError(f"cannot compile the {form} kernel of {system.name!r}: {blocker}")
+        return False, blocker
+    if compiled is True:
+        return True, "compiled=True"
+    rhs = sources[:-1]
+    if all(f.is_a("SXFunction") for f in rhs):
+        size = sum(f.n_instructions() for f in rhs)
+        if size < AUTO_MIN_INSTRUCTIONS:
+            return False, f"tiny model ({size} instructions): the VM costs less than compiling"
+    return True, "C compiler found"
+
+
+def _identity(form: str, sources: list[ca.Function]) -> str | None:
+    """What determines a kernel library, without generating it: the recipe and the source
+    functions serialized with fresh input symbols (the assembler's symbol names carry global
+    counters, so the same model assembled after other models serializes differently). None for
+    MX sources (their rootfinders hold SX functions with those names): the library is then
+    named by its generated C source."""
+    if not all(f.is_a("SXFunction") for f in sources):
+        return None
+    parts = [RECIPE, form]
+    for f in sources:
+        fresh = [ca.SX.sym(f.name_in(i), f.sparsity_in(i)) for i in range(f.n_in())]
+        parts.append(ca.Function(f.name(), fresh, f.call(fresh), f.name_in(),
+                                 f.name_out()).serialize())
+    return "\n".join(parts)
+
+
+def _sources(system: System, form: str) -> list[ca.Function]:
+    """The system's functions a kernel is made of: the right-hand side (``ode``) or the
+    residual (``dae_ode``, ``dae_alg``), then the observe function."""
+    funcs = system.symbolic_functions or system.functions
+    if form == "dae" and "dae_ode" not in funcs:
+        raise ParameterError(f"{system.name!r} has no nonlinear blocks, so no DAE form")
+    return [funcs[k] for k in SOURCES[form]]
+
+
+def _symbolic(system: System, form: str) -> tuple[ca.Function, ca.Function]:
+    """The kernel function (``p`` not differentiable) and its observe function, symbolic; SX
+    functions with common subexpressions eliminated over all their outputs."""
+    *parts, obs = _sources(system, form)
+    names_in = parts[0].name_in()
+    diff = [name != "p" for name in names_in]
+    out_names = ["ode"] if form == "ode" else ["ode", "alg"]
+    return (_rebuilt(form, parts, names_in, out_names, {"is_diff_in": diff}),
+            _rebuilt(obs.name(), [obs], names_in, obs.name_out(), {}))
+
+
+def _generated(system: System, form: str) -> list[ca.Function]:
+    """The kernel, its Jacobian (``jac_<form>``, which ``casadi.external`` takes as the
+    kernel's Jacobian) and the observe function: what a library holds, and what the VM
+    evaluates."""
+    fn, observe = _symbolic(system, form)
+    return [fn, fn.jacobian(), observe]
+
+
+def _rebuilt(name: str, parts: list[ca.Function], names_in: list[str], names_out: list[str],
+             opts: dict[str, Any]) -> ca.Function:
+    """One function of the outputs of ``parts`` (same inputs), SX ones with ``cse``."""
+    sx = all(f.is_a("SXFunction") for f in parts)
+    sym = parts[0].sx_in() if sx else parts[0].mx_in()
+    outs = [out for f in parts for out in f.call(sym)]
+    return ca.Function(name, sym, outs, names_in, names_out, {**opts, "cse": True} if sx else opts)
+
+
+def _with_jacobian(fn: ca.Function, jac: ca.Function) -> ca.Function:
+    """``fn`` as a function that CasADi differentiates by calling ``jac`` (VM backend)."""
+    sym = fn.mx_in()
+    return ca.Function(fn.name(), sym, fn.call(sym), fn.name_in(), fn.name_out(),
+                       {"custom_jacobian": jac, "enable_forward": False,
+                        "enable_reverse": False, "never_inline": True,
+                        "is_diff_in": fn.is_diff_in()})

@@ -1,0 +1,345 @@
+"""CVODES and IDAS through CasADi, on compiled kernels, with the set-up paid once.
+
+What a run costs besides the integration itself, and where it is paid:
+
+1. the kernel (right-hand side or DAE residual with its exact Jacobian, generated C or the VM):
+   once per system and form (:func:`~bearingsim.simulation.kernels.kernel`); a library
+   once per machine (content hash);
+2. the integrator (``casadi.integrator`` on an MX oracle that calls the kernel, with the inputs
+   ``u(t, q)`` composed around the call): once per system, form, input structure, method,
+   tolerances, linear solver and *normalized* output grid (:class:`IntegratorCache`).
+
+CasADi fixes ``t0`` and the output times of an integrator when it is built. The oracle is
+therefore written in normalized time ``tau`` in [0, 1], ``t = t0 + T tau`` with ``t0`` and
+``T = t1 - t0`` appended to the integrator's parameter vector (and so are the lifted input
+numbers ``q``, :class:`~bearingsim.simulation.inputs.InputSignal`): runs that differ in start
+time, length, parameters, constant inputs or table values, with the same number of equally
+spaced output points, reuse one integrator. Stepping a one-interval integrator over the grid
+instead would restart the BDF method (order 1, tiny steps) at every output point.
+
+The Jacobian CVODES and IDAS factorize is the kernel's own (``casadi.external`` calls the
+generated ``jac_<name>``); CasADi's MX differentiation of the oracle multiplies it by its
+seed matrix, in one sweep when the number of directions is at most ``max_num_dir``
+(:data:`MAX_NUM_DIR`; with CasADi's default 64 the 76-state model called the Jacobian twice per
+evaluation).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+import weakref
+from dataclasses import dataclass
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from bearingsim.assembler.system import System
+from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.simulation.inputs import InputSignal
+from bearingsim.simulation.kernels import Kernel
+
+__all__ = ["LINEAR_SOLVERS", "SundialsRun", "choose_linear_solver", "clear_integrator_cache",
+           "sundials_run"]
+
+LINEAR_SOLVERS = ("lapacklu", "mumps", "csparse", "qr", "lapackqr")
+"""CasADi linear solver plugins for CVODES and IDAS (``linear_solver``): dense LAPACK LU and QR,
+MUMPS (sparse multifrontal), sparse LU (CSparse) and CasADi's own sparse QR (CasADi's
+default). Left out: ``ldl`` (symmetric matrices only: CVODES fails to start), ``ma27`` (needs
+an HSL library the casadi wheel does not ship)."""
+
+DENSE_LIMIT = 200
+"""Largest Newton matrix (states + algebraic states) that :func:`choose_linear_solver` gives
+dense LAPACK LU; above it MUMPS (sparse multifrontal) is faster on the ball-level models
+(massive-ball bearings with 7..18 balls and the nested double-layer bearing:
+``bench/sundials_compiled.py``, ``linsol``)."""
+
+MAX_NUM_DIR = 1024
+"""Directions per sweep when CasADi differentiates the oracle (all colours of the Jacobian's
+sparsity in one call of the kernel Jacobian)."""
+
+
+def choose_linear_solver(n: int, nnz: int) -> str:
+    """Linear solver for an ``n x n`` Newton matrix with ``nnz`` structural non-zeros.
+
+    Dense LAPACK LU up to :data:`DENSE_LIMIT` unknowns or above 30 % fill, else MUMPS when the
+    casadi build has it. CSparse and CasADi's QR are never chosen: the rows and columns of the
+    rings and cages couple every ball, and their fill-in makes them 2-3x slower than dense LU
+    from 100 unknowns on.
+    """
+    if n <= DENSE_LIMIT or nnz > 0.3 * n * n or not ca.has_linsol("mumps"):
+        return "lapacklu"
+    return "mumps"
+
+
+@dataclass(frozen=True)
+class SundialsRun:
+    """The outcome of :func:`sundials_run`.
+
+    Attributes
+    ----------
+    t, x : ndarray
+        Output times [s] and states (one column per time).
+    z : ndarray or None
+        Algebraic states (DAE form).
+    values : ndarray
+        Every observed variable, one column per time.
+    stats : dict
+        Counts, backend and set-up (see :func:`sundials_run`).
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    z: np.ndarray | None
+    values: np.ndarray
+    stats: dict[str, Any]
+
+
+@dataclass
+class _Built:
+    integrator: ca.Function
+    oracle: ca.Function
+    linear_solver: str
+    build_time: float
+
+
+class IntegratorCache:
+    """Integrators of one process, per system (dropped with the system) and set-up key."""
+
+    def __init__(self) -> None:
+        self._by_system: dict[int, dict[tuple, _Built]] = {}
+        self._lock = threading.Lock()
+
+    def get(self, system: System, key: tuple) -> _Built | None:
+        """The integrator built for ``key``, if any."""
+        with self._lock:
+            return self._by_system.get(id(system), {}).get(key)
+
+    def put(self, system: System, key: tuple, built: _Built) -> None:
+        """Keep ``built`` for later runs with ``key``."""
+        with self._lock:
+            per = self._by_system.get(id(system))
+            if per is None:
+                per = self._by_system[id(system)] = {}
+                weakref.finalize(system, self._by_system.pop, id(system), None)
+            per[key] = built
+
+    def clear(self) -> None:
+        """Forget every integrator."""
+        with self._lock:
+            self._by_system.clear()
+
+
+_INTEGRATORS = IntegratorCache()
+
+
+def clear_integrator_cache() -> None:
+    """Forget every integrator built in this process."""
+    _INTEGRATORS.clear()
+
+
+def _normalized_grid(t0: float, t1: float, t_out: np.ndarray) -> tuple[np.ndarray, tuple]:
+    """Output times in ``tau = (t - t0) / (t1 - t0)`` and their cache key: ``("linspace", n)``
+    for equally spaced times ending at ``t1`` (then exactly ``linspace(0, 1, n)[1:]``), else
+    the bytes of ``tau``."""
+    tau = (t_out - t0) / (t1 - t0)
+    n = tau.size
+    even = np.linspace(0.0, 1.0, n + 1)[1:]
+    if np.max(np.abs(tau - even)) <= 1e-12:
+        return even, ("linspace", n)
+    return tau, ("grid", tau.tobytes())
+
+
+def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int) -> ca.Function:
+    """The DAE in normalized time: ``dx/dtau = T f(t0 + T tau, x, [z,] u(t0 + T tau, q), p)``,
+    ``0 = g(...)``; integrator parameters ``[p, q, t0, T]``."""
+    tau, x = ca.MX.sym("t"), ca.MX.sym("x", n_x)
+    n_q = signal.q.size
+    pp = ca.MX.sym("p", n_p + n_q + 2)
+    p, q, t0, span = pp[:n_p], pp[n_p:n_p + n_q], pp[n_p + n_q], pp[n_p + n_q + 1]
+    t = t0 + span * tau
+    u = signal.u(t, q)
+    fn = kernel.function
+    if kernel.form == "dae":
+        z = ca.MX.sym("z", fn.size1_in(2))
+        ode, alg = fn(t, x, z, u, p)
+    else:
+        z = ca.MX(0, 1)
+        ode, alg = fn(t, x, u, p), ca.MX(0, 1)
+    return ca.Function("dae", [tau, x, z, pp, ca.MX(0, 1)],
+                       [span * ode, alg, ca.MX(0, 1), ca.MX(0, 1)],
+                       ["t", "x", "z", "p", "u"], ["ode", "alg", "quad", "zero"],
+                       {"max_num_dir": MAX_NUM_DIR})
+
+
+def _jacobian_size(kernel: Kernel, n_x: int) -> tuple[int, int]:
+    """(unknowns, structural non-zeros) of the Newton matrix ``I - gamma J``."""
+    jac = kernel.function.jacobian()
+    names = jac.name_out()
+    blocks = ["jac_ode_x"] + (["jac_ode_z", "jac_alg_x", "jac_alg_z"]
+                              if kernel.form == "dae" else [])
+    nnz = sum(jac.sparsity_out(names.index(b)).nnz() for b in blocks) + n_x
+    n = n_x + (kernel.function.size1_in(2) if kernel.form == "dae" else 0)
+    return n, nnz
+
+
+def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSignal,
+                 p: np.ndarray, x0: np.ndarray, t0: float, t1: float, t_eval: np.ndarray,
+                 rtol: float, atol: float, max_step: float = np.inf,
+                 linear_solver: str | None = None, z0: np.ndarray | None = None,
+                 options: dict[str, Any] | None = None) -> SundialsRun:
+    """Integrate with CVODES (``kernel.form == "ode"``) or IDAS (either form).
+
+    Parameters
+    ----------
+    method : {"cvodes", "idas"}
+    system : System
+        Owner of the kernel (cache scope, names in messages).
+    kernel : Kernel
+        From :func:`~bearingsim.simulation.kernels.kernel`.
+    signal : InputSignal
+        The run's inputs.
+    p : ndarray
+        Parameter vector.
+    x0 : ndarray
+        Consistent start state at ``t0``.
+    t0, t1 : float
+        Time span [s].
+    t_eval : ndarray
+        Output times in ``[t0, t1]``, increasing (``t_eval[0]`` may equal ``t0``).
+    rtol, atol : float
+        Tolerances.
+    max_step : float
+        Largest step [s].
+    linear_solver : str, optional
+        One of :data:`LINEAR_SOLVERS`; default :func:`choose_linear_solver`.
+    z0 : ndarray, optional
+        Algebraic start values (DAE form), a guess IDAS makes consistent.
+    options : dict, optional
+        Further CasADi integrator options (e.g. ``newton_scheme``), part of the cache key.
+
+    Returns
+    -------
+    SundialsRun
+        ``stats``: ``method``, ``form``, ``backend`` ("compiled C" or "CasADi VM") and
+        ``backend_reason``, ``library``, ``linear_solver``, ``setup_time`` [s] (building the
+        integrator; 0 when it came from the cache), ``integrator_cached``, and CVODES/IDAS
+        counts: ``nsteps``, ``nfevals`` (right-hand side or residual), ``njevals`` (exact
+        Jacobian), ``nlinsetups`` (factorizations), ``nniters``, ``netfails``,
+        ``rhs_time``/``jac_time`` [s] (CasADi's timers of those calls).
+    """
+    if method not in ("cvodes", "idas") or (method == "cvodes" and kernel.form != "ode"):
+        raise ParameterError(f"sundials_run: method {method!r} cannot integrate the "
+                             f"{kernel.form} form")
+    if linear_solver is not None and linear_solver not in LINEAR_SOLVERS:
+        raise ParameterError(f"linear_solver must be one of {', '.join(LINEAR_SOLVERS)}, got "
+                             f"{linear_solver!r}")
+    span = float(t1 - t0)
+    t_out = t_eval[t_eval > t0]
+    tau, grid_key = _normalized_grid(t0, t1, t_out)
+    n_x = system.n_states
+    if linear_solver is None:
+        linear_solver = choose_linear_solver(*_jacobian_size(kernel, n_x))
+    opts: dict[str, Any] = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000,
+                            "linear_solver": linear_solver, **(options or {})}
+    if np.isfinite(max_step):
+        opts["max_step_size"] = float(max_step) / span
+    # the kernel by what it evaluates (kernels are rebuilt after clear_kernel_cache)
+    kernel_key = (kernel.form, kernel.backend, str(kernel.library))
+    key = (method, kernel_key, signal.key, grid_key,
+           tuple(sorted((k, repr(v)) for k, v in opts.items())))
+    built = _INTEGRATORS.get(system, key)
+    cached = built is not None
+    if built is None:
+        start = time.perf_counter()
+        oracle = _oracle(kernel, signal, n_x, p.size)
+        integ = ca.integrator(f"{method}_{kernel.form}", method, oracle, 0.0, tau, opts)
+        built = _Built(integ, oracle, linear_solver, time.perf_counter() - start)
+        _INTEGRATORS.put(system, key, built)
+    p_ext = np.concatenate([p, signal.q, [t0, span]])
+    args = {"x0": x0, "p": p_ext}
+    if kernel.form == "dae":
+        args["z0"] = z0
+    try:
+        out = built.integrator(**args)
+    except RuntimeError as exc:
+        _locate_failure(method, system, built, opts, p_ext, x0, z0, t0, span, tau, exc)
+        raise
+    xs = np.asarray(out["xf"], dtype=float).reshape(n_x, tau.size)
+    if not np.all(np.isfinite(xs)):
+        from bearingsim.simulation.integrators import diverged
+
+        k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
+        raise SimulationError(
+            f"{method.upper()} produced non-finite states by t = {t_out[k]:.6g} s; "
+            f"{diverged(system, xs[:, k], x0)}"
+        )
+    zs = None
+    if kernel.form == "dae":
+        zs = np.asarray(out["zf"], dtype=float).reshape(z0.size, tau.size)
+    ts = t_out
+    if t_eval[0] <= t0:
+        ts = np.concatenate([[t0], t_out])
+        xs = np.hstack([x0[:, None], xs])
+        if zs is not None:
+            zs = np.hstack([np.asarray(z0, dtype=float)[:, None], zs])
+    values = _observe(kernel, signal, p, ts, xs, zs)
+    stats = _stats(method, kernel, built, cached)
+    return SundialsRun(ts, xs, zs, values, stats)
+
+
+def _observe(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,
+             xs: np.ndarray, zs: np.ndarray | None) -> np.ndarray:
+    """Every observed variable at the output times (the kernel's backend, one mapped call)."""
+    n = ts.size
+    us = np.asarray(signal.u.map(n)(ts[None, :], np.repeat(signal.q[:, None], n, axis=1)),
+                    dtype=float).reshape(-1, n)
+    ps = np.repeat(p[:, None], n, axis=1)
+    args = (ts[None, :], xs, us, ps) if zs is None else (ts[None, :], xs, zs, us, ps)
+    return np.asarray(kernel.observe.map(n)(*args), dtype=float)
+
+
+def _stats(method: str, kernel: Kernel, built: _Built, cached: bool) -> dict[str, Any]:
+    st = built.integrator.stats()
+    stats: dict[str, Any] = {"method": method if kernel.form == "ode" else f"{method} (dae)",
+                             "form": kernel.form, **kernel.describe(),
+                             "linear_solver": built.linear_solver,
+                             "setup_time": 0.0 if cached else built.build_time,
+                             "integrator_cached": cached}
+    for key in ("nsteps", "nfevals", "nlinsetups", "nniters", "netfails", "nncfails"):
+        if key in st:
+            stats[key] = int(st[key])
+    stats["njevals"] = int(st.get("n_call_jacF", 0))
+    stats["rhs_time"] = float(st.get("t_wall_daeF", 0.0))
+    stats["jac_time"] = float(st.get("t_wall_jacF", 0.0))
+    if kernel.form == "dae":
+        stats["algebraic_states"] = int(kernel.function.size1_in(2))
+    return stats
+
+
+def _locate_failure(method: str, system: System, built: _Built, opts: dict, p_ext: np.ndarray,
+                    x0: np.ndarray, z0: np.ndarray | None, t0: float, span: float,
+                    tau: np.ndarray, exc: RuntimeError) -> None:
+    """Integrate interval by interval to report where a run failed (failure path only)."""
+    from bearingsim.simulation.integrators import diverged
+
+    x, z, tau_prev = np.asarray(x0, dtype=float), z0, 0.0
+    for tau_next in tau:
+        step = ca.integrator("locate", method, built.oracle, tau_prev, [float(tau_next)], opts)
+        args = {"x0": x, "p": p_ext, **({"z0": z} if z is not None else {})}
+        try:
+            out = step(**args)
+            x_new = np.asarray(out["xf"], dtype=float).ravel()
+            z = np.asarray(out["zf"], dtype=float).ravel() if z is not None else None
+        except RuntimeError:
+            x_new = None
+        if x_new is None or not np.all(np.isfinite(x_new)):
+            a, b = t0 + span * tau_prev, t0 + span * tau_next
+            raise SimulationError(
+                f"{method.upper()} failed between t = {a:.6g} s and {b:.6g} s; states at "
+                f"t = {a:.6g} s: {diverged(system, x, x0)}"
+            ) from None
+        x, tau_prev = x_new, float(tau_next)
+    raise SimulationError(f"{method.upper()} failed ({str(exc).splitlines()[0]}; not "
+                          "reproducible interval by interval)")

@@ -1,0 +1,419 @@
+"""Benchmark: CVODES and IDAS on compiled kernels against the CasADi VM (issue 14).
+
+Models (``CASES``):
+
+* ``torque``: ``double_layer_bearing("61905", "61907", fidelity="torque")``, 3 states, spin-up
+  at ``shaft_speed = 1000 rad/s`` for 3 s;
+* ``massive``: ``deep_groove_ball_bearing("6304", "dynamic_massive_balls", n_slices=0)``,
+  duty condition 1 (938 N on ``Fx``; input ``shaft_speed`` ramped to 1730 r/min over 5 ms);
+* ``qs``: the same bearing at the ``dynamic`` level (quasi-static balls): IDAS on the
+  semi-explicit DAE form;
+* ``qs_cvodes``: the ``dynamic`` level with its ``newton`` blocks inside CVODES' right-hand side
+  (VM only: no C for ``newton``);
+* ``qs_fast_newton``: the same with ``fast_newton`` blocks (C: every ball's Newton iteration
+  and its implicit derivative inlined);
+* ``nested``: ``double_layer_bearing("61905", "61907", fidelity="dynamic")`` as the speed-ratio
+  study runs it (oil mist, 100 N axial, ``n_slices=0``, outputs ``Rs``, ``M_middle``), started
+  in pure rolling at ``Rs = 0.4``, ``shaft_speed = 300 rad/s``.
+
+Sections (``python -m bench.sundials_compiled SECTION [--cases a,b]``):
+
+* ``calls``: cost of one call [us] of the kernel (right-hand side or DAE residual) and of its
+  exact Jacobian, VM and C, measured inside CasADi (``Function.map(n, "serial")``, no Python
+  per call), and of a dense LU factorization and solve of the Newton matrix;
+* ``compile``: generate-and-compile time of the kernel library at -O0, -O1, -O2 (empty cache)
+  and the run time of the ``runs`` start-up with each;
+* ``runs``: start-up and steady running, VM and C: wall seconds per simulated second, steps,
+  right-hand-side and Jacobian evaluations per simulated second, the physical limit (compiled
+  per-call costs times the calls the run took) and the distance to it; VM = C check;
+* ``linsol``: every SUNDIALS linear solver on the start-up run (compiled kernels);
+* ``setup``: first run (kernel from the disk cache, integrator built) and repeated runs (all
+  cached) of a short run, as the secant speed ratio makes them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from bearingsim.assembler import assemble
+from bearingsim.assembler.system import System
+from bearingsim.simulation import simulate
+from bearingsim.simulation.inputs import input_signal
+from bearingsim.simulation.kernels import clear_kernel_cache, kernel
+from bearingsim.simulation.sundials import LINEAR_SOLVERS, clear_integrator_cache
+from bench.common import fmt, markdown_table
+
+__all__ = ["CASES", "Case", "main"]
+
+
+@dataclass
+class Case:
+    """One model and its runs: ``start`` (start-up) and ``steady`` (continued from its end)."""
+
+    label: str
+    build: Callable[[], tuple[System, dict[str, Any]]]
+    """-> (system, keyword arguments of ``simulate`` shared by the runs)."""
+    method: str
+    t_start_up: float
+    t_steady: float
+    rtol: float = 1e-5
+    atol: float = 1e-6
+    cache: dict = field(default_factory=dict)
+
+    def system(self) -> tuple[System, dict[str, Any]]:
+        """The assembled system (built once)."""
+        if "system" not in self.cache:
+            t0 = time.perf_counter()
+            self.cache["system"] = self.build()
+            self.cache["assemble_s"] = time.perf_counter() - t0
+        return self.cache["system"]
+
+    def run(self, t0: float, t1: float, x0: dict | None = None, **kw) -> Any:
+        """One ``simulate`` call of this case from ``t0`` to ``t1``."""
+        system, common = self.system()
+        args = {**common, **kw}
+        if x0 is not None:
+            args["x0"] = x0
+        return simulate(system, t1, t_start=t0, method=self.method, rtol=self.rtol,
+                        atol=self.atol, n_points=3, progress=False, **args)
+
+
+def _ramp_speed(rpm: float, ramp: float = 0.005):
+    w = rpm * np.pi / 30.0
+    return lambda t: w * ca.fmin(t / ramp, 1.0)
+
+
+def _deep_groove(fidelity: str, rootfinder: str | None = None):
+    from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
+    from bearingsim.studies.deep_groove import DUTY_CYCLE
+
+    def build():
+        n_rpm, load = DUTY_CYCLE[0]
+        bearing = deep_groove_ball_bearing("6304", fidelity, speed=None, loads={"Fx": load},
+                                           n_slices=0)
+        return (assemble(bearing, rootfinder=rootfinder),
+                {"inputs": {"shaft_speed": _ramp_speed(n_rpm)}})
+    return build
+
+
+def _torque():
+    from bearingsim.assemblies import double_layer_bearing
+
+    return (assemble(double_layer_bearing("61905", "61907", fidelity="torque")),
+            {"inputs": {"shaft_speed": 1000.0}})
+
+
+def _nested():
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.physics.lubricant import Oil
+
+    oil = Oil.from_iso_vg(32, method="oil_mist")
+    loads = {"Fx": 0.0, "Fy": 0.0, "Fz": 100.0, "Mx": 0.0, "My": 0.0}
+    bearing = double_layer_bearing("61905", "61907", fidelity="dynamic", lubrication=(oil, oil),
+                                   loads=loads, layer_options={"n_slices": 0})
+    system = assemble(bearing, outputs=["Rs", "M_middle"])
+    w = 300.0
+    x0 = bearing.rolling_start(w, 0.4 * w, system.state_names)
+    return system, {"inputs": {"shaft_speed": w}, "x0": x0}
+
+
+CASES: dict[str, Case] = {
+    "torque": Case("61905/61907 torque level (3 states)", _torque, "cvodes", 3.0, 3.0),
+    "massive": Case("6304 massive balls, condition 1", _deep_groove("dynamic_massive_balls"),
+                    "cvodes", 0.05, 0.1),
+    "qs": Case("6304 quasi-static balls (IDAS, DAE form), condition 1",
+               _deep_groove("dynamic"), "idas", 0.05, 0.1),
+    "qs_cvodes": Case("6304 quasi-static balls (CVODES, newton in the rhs), condition 1",
+                      _deep_groove("dynamic"), "cvodes", 0.05, 0.1),
+    "qs_fast_newton": Case("6304 quasi-static balls (CVODES, fast_newton in the rhs), "
+                           "condition 1", _deep_groove("dynamic", "fast_newton"), "cvodes",
+                           0.05, 0.1),
+    "nested": Case("61905/61907 nested dynamic (speed-ratio run)", _nested, "cvodes", 0.02,
+                   0.05, atol=1e-8),
+}
+
+
+# ------------------------------------------------------------------------------ per call
+def per_call_us(fn: ca.Function, args: list, n: int = 5000, repeats: int = 5) -> float:
+    """Median time of one call of ``fn`` [us]: zero-copy ``Function.buffer`` calls in a
+    Python loop, less the loop's own cost (a trivial function called the same way).
+    (``Function.map(n, "serial")`` is no substitute: it adds ~10 us per call of an external.)
+    """
+    return max(_loop_us(fn, args, n, repeats) - _loop_us(_trivial(fn), args, n, repeats), 0.0)
+
+
+def _trivial(fn: ca.Function) -> ca.Function:
+    sym = [ca.SX.sym(fn.name_in(i), fn.sparsity_in(i)) for i in range(fn.n_in())]
+    return ca.Function("trivial", sym, [sym[0]] * fn.n_out())
+
+
+def _loop_us(fn: ca.Function, args: list, n: int, repeats: int) -> float:
+    buf, evaluate = fn.buffer()
+    keep = []
+    for i, value in enumerate(args):
+        arr = np.ascontiguousarray(np.atleast_1d(np.asarray(value, dtype=float)).ravel(
+            order="F"))
+        keep.append(arr)
+        buf.set_arg(i, memoryview(arr))
+    for i in range(fn.n_out()):
+        arr = np.zeros(fn.nnz_out(i))
+        keep.append(arr)
+        buf.set_res(i, memoryview(arr))
+    evaluate()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(n):
+            evaluate()
+        times.append((time.perf_counter() - t0) / n * 1e6)
+    return statistics.median(times)
+
+
+def _operating_point(case: Case, form: str) -> list:
+    """Kernel arguments at the end of the start-up run."""
+    system, common = case.system()
+    res = case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=False)
+    x = np.array([res.final(n) for n in system.state_names])
+    signal = input_signal(system, common.get("inputs"))
+    u = np.asarray(signal.u(res.t[-1], signal.q), dtype=float).ravel()
+    p = system.p0()
+    if form == "dae":
+        funcs = system.symbolic_functions or system.functions
+        z = np.asarray(funcs["dae_z"](res.t[-1], x, u, p), dtype=float).ravel()
+        return [res.t[-1], x, z, u, p]
+    return [res.t[-1], x, u, p]
+
+
+def _form(case: Case) -> str:
+    return "dae" if case.method == "idas" else "ode"
+
+
+def calls(case: Case) -> dict[str, float]:
+    """Per-call costs [us] of the kernel, its Jacobian and a dense LU, VM and C."""
+    system, _ = case.system()
+    form = _form(case)
+    args = _operating_point(case, form)
+    out = {}
+    for label, comp in (("VM", False), ("C", True)):
+        try:
+            kern = kernel(system, form, comp)
+        except Exception as exc:  # noqa: BLE001 - report why C is missing
+            out[f"rhs {label}"] = out[f"jac {label}"] = float("nan")
+            out[f"note {label}"] = str(exc)
+            continue
+        fn = kern.function
+        jac = fn.jacobian()
+        if label == "VM":  # the SX functions themselves, not the MX wrapper around them
+            fn = ca.Function(fn.name(), fn.mx_in(), fn.call(fn.mx_in()))
+        value = fn(*args)
+        value = value if isinstance(value, (list, tuple)) else [value]
+        out[f"rhs {label}"] = per_call_us(fn, args)
+        out[f"jac {label}"] = per_call_us(jac, [*args, *value], n=1000)
+    n = system.n_states + (args[2].size if form == "dae" else 0)
+    a = ca.MX.sym("A", n * n)
+    b = ca.MX.sym("b", n)
+    lu = ca.Function("lu", [a, b], [ca.solve(ca.reshape(a, n, n), b, "lapacklu")])
+    rng = np.random.default_rng(0)
+    mat = np.eye(n) + 0.01 * rng.standard_normal((n, n))
+    out["lu fact+solve"] = per_call_us(lu, [mat.ravel(order="F"), np.ones(n)], n=500)
+    out["n"] = n
+    return out
+
+
+# ------------------------------------------------------------------------------ compile
+def compile_levels(case: Case, levels=("-O0", "-O1", "-O2")) -> list[list]:
+    """Compile time of the kernel library per optimisation level (empty cache), and the
+    start-up run's wall time with it."""
+    system, common = case.system()
+    rows = []
+    for flags in levels:
+        with tempfile.TemporaryDirectory() as tmp:
+            clear_kernel_cache()
+            clear_integrator_cache()
+            t0 = time.perf_counter()
+            kern = kernel(system, _form(case), True, flags=(flags,), cache_dir=tmp)
+            t_build = time.perf_counter() - t0
+            walls = []
+            for _ in range(3):
+                res = _run_with_kernel(case, kern, common)
+                walls.append(res.stats["wall_time"])
+            size = kern.library.stat().st_size
+            rows.append([flags, fmt(t_build), f"{size / 1e6:.2f}", fmt(min(walls)),
+                         fmt(res.stats["rhs_time"] / res.stats["nfevals"] * 1e6),
+                         fmt(res.stats["jac_time"] / max(res.stats["njevals"], 1) * 1e6)])
+    clear_kernel_cache()
+    clear_integrator_cache()
+    return rows
+
+
+def _run_with_kernel(case: Case, kern, common: dict):
+    """A start-up run on a given kernel (bypassing the kernel cache's flags)."""
+    from bearingsim.simulation import kernels as kernels_module
+
+    system, _ = case.system()
+    cache = kernels_module._system_cache(system)
+    for key in [k for k in cache if k[0] == kern.form and k[1] is True]:
+        del cache[key]
+    cache[(kern.form, True, kernels_module.DEFAULT_FLAGS,
+           str(kernels_module.default_cache_dir()))] = kern
+    return case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=True)
+
+
+# ------------------------------------------------------------------------------ runs
+def runs(case: Case, per_call: dict[str, float], repeats: int = 3) -> dict[str, Any]:
+    """Start-up and steady running on VM and C: walls, counts, limit."""
+    system, common = case.system()
+    out: dict[str, Any] = {}
+    finals = {}
+    for label, comp in (("VM", False), ("C", True)):
+        try:
+            kernel(system, _form(case), comp)
+        except Exception:  # noqa: BLE001 - no C for this case
+            continue
+        best = {}
+        for _ in range(repeats):
+            res0 = case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=comp)
+            x_mid = {n: res0.final(n) for n in system.state_names}
+            res1 = case.run(case.t_start_up, case.t_start_up + case.t_steady, x0=x_mid,
+                            compiled=comp)
+            for phase, res, span in (("start-up", res0, case.t_start_up),
+                                     ("steady", res1, case.t_steady)):
+                if phase not in best or res.stats["wall_time"] < best[phase][0].stats[
+                        "wall_time"]:
+                    best[phase] = (res, span, [])
+                best[phase][2].append(res.stats["wall_time"])
+        for phase, (res, span, walls) in best.items():
+            out[(label, phase)] = (res, span, walls)
+        finals[label] = best["steady"][0]
+    if {"VM", "C"} <= set(finals):
+        a, b = finals["VM"].values, finals["C"].values
+        scale = np.maximum(np.abs(a), 1e-300)
+        out["max rel diff"] = float(np.nanmax(np.abs(a - b) / scale))
+        out["same steps"] = finals["VM"].stats["nsteps"] == finals["C"].stats["nsteps"]
+    out["per_call"] = per_call
+    return out
+
+
+def run_rows(case: Case, data: dict) -> list[list]:
+    """Table rows of :func:`runs`."""
+    pc = data["per_call"]
+    rows = []
+    for (label, phase), (res, span, walls) in ((k, v) for k, v in data.items()
+                                                if isinstance(k, tuple)):
+        st = res.stats
+        wall = min(walls)
+        limit = (st["nfevals"] * pc["rhs C"] + st["njevals"] * pc["jac C"]) * 1e-6
+        limit_la = limit + st["nlinsetups"] * pc["lu fact+solve"] * 1e-6
+        rows.append([label, phase, fmt(span), fmt(wall / span), fmt(max(walls) / min(walls)),
+                     fmt(st["nsteps"] / span), fmt(st["nfevals"] / span),
+                     fmt(st["njevals"] / span), fmt(limit / span), fmt(wall / limit),
+                     fmt(limit_la / span), fmt(wall / limit_la),
+                     fmt(st["rhs_time"] / wall, 2), fmt(st["jac_time"] / wall, 2)])
+    return rows
+
+
+RUN_HEADER = ["backend", "phase", "sim [s]", "wall / sim s", "spread (max/min)",
+              "steps / sim s", "rhs / sim s", "jac / sim s", "limit / sim s (kernels)",
+              "wall / limit", "limit / sim s (+LU)", "wall / limit (+LU)", "rhs share",
+              "jac share"]
+
+
+# ------------------------------------------------------------------------------ linsol
+def linear_solvers(case: Case, solvers=LINEAR_SOLVERS, repeats: int = 3) -> list[list]:
+    """Every linear solver on the start-up run (C kernels where possible)."""
+    system, common = case.system()
+    rows = []
+    for solver in solvers:
+        walls, res = [], None
+        try:
+            for _ in range(repeats):
+                res = case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled="auto",
+                               linear_solver=solver)
+                walls.append(res.stats["wall_time"])
+        except Exception as exc:  # noqa: BLE001 - a solver may fail on a model
+            rows.append([solver, "failed", str(exc).splitlines()[0][:60], "", "", ""])
+            continue
+        st = res.stats
+        kern = st["rhs_time"] + st["jac_time"]
+        rows.append([solver, fmt(min(walls)), fmt(max(walls) / min(walls)), st["nsteps"],
+                     st["nlinsetups"], fmt((min(walls) - kern) / min(walls), 2)])
+    return rows
+
+
+# ------------------------------------------------------------------------------ set-up
+def setup_costs(case: Case, n: int = 5) -> list[list]:
+    """A short run (1 ms, or the case's start-up for the torque level) repeated: cold
+    (kernel from the disk cache and integrator built) and warm (both cached), and the same
+    with a changed parameter and constant input (still cached)."""
+    system, common = case.system()
+    t_run = min(case.t_start_up, 0.001)
+    rows = []
+    for comp in (False, True):
+        clear_kernel_cache()
+        clear_integrator_cache()
+        walls = []
+        for _ in range(n):
+            t0 = time.perf_counter()
+            res = case.run(0.0, t_run, x0=common.get("x0"), compiled=comp)
+            walls.append((time.perf_counter() - t0, res.stats))
+        first, rest = walls[0], walls[1:]
+        st = first[1]
+        rows.append([st["backend"], fmt(t_run), fmt(first[0] * 1e3),
+                     fmt(st["kernel_time"] * 1e3), fmt(st["setup_time"] * 1e3),
+                     fmt(statistics.median(w for w, _ in rest) * 1e3),
+                     fmt(statistics.median(s["prepare_time"] for _, s in rest) * 1e3)])
+    return rows
+
+
+# ------------------------------------------------------------------------------ main
+def main() -> None:
+    """Command line: one or more sections for the chosen cases, Markdown on stdout."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("sections", nargs="+",
+                        choices=["calls", "compile", "runs", "linsol", "setup"])
+    parser.add_argument("--cases", default="torque,massive,qs,nested")
+    parser.add_argument("--levels", default="-O0,-O1,-O2")
+    args = parser.parse_args()
+    for name in args.cases.split(","):
+        case = CASES[name]
+        system, _ = case.system()
+        print(f"\n## {case.label}: {system.n_states} states, method {case.method} "
+              f"(assembled in {case.cache['assemble_s']:.1f} s)\n", flush=True)
+        per_call = None
+        if "calls" in args.sections or "runs" in args.sections:
+            per_call = calls(case)
+            print(markdown_table(list(per_call), [[fmt(v) if isinstance(v, float) else v
+                                                   for v in per_call.values()]]), "\n",
+                  flush=True)
+        if "compile" in args.sections:
+            print(markdown_table(["flags", "generate + compile [s]", "library [MB]",
+                                  "start-up run [s]", "rhs [us] in run", "jac [us] in run"],
+                                 compile_levels(case, tuple(args.levels.split(",")))), "\n",
+                  flush=True)
+        if "runs" in args.sections:
+            data = runs(case, per_call)
+            print(markdown_table(RUN_HEADER, run_rows(case, data)), "\n", flush=True)
+            print(f"VM vs C: max relative difference {data.get('max rel diff', 'n/a')}, "
+                  f"same steps: {data.get('same steps', 'n/a')}\n", flush=True)
+        if "linsol" in args.sections:
+            print(markdown_table(["linear solver", "start-up wall [s]", "spread", "steps",
+                                  "factorizations", "share outside kernels"],
+                                 linear_solvers(case)), "\n", flush=True)
+        if "setup" in args.sections:
+            print(markdown_table(["backend", "run [s]", "first call [ms]", "kernel [ms]",
+                                  "integrator build [ms]", "later calls [ms]",
+                                  "prepare (inputs, x0) [ms]"], setup_costs(case)), "\n",
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,165 @@
+"""CVODES and IDAS on compiled kernels: same numbers as the VM, set-up paid once, fallback."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim.assembler import assemble
+from bearingsim.assemblies import double_layer_bearing
+from bearingsim.errors import ParameterError
+from bearingsim.simulation import simulate
+from bearingsim.simulation.compile import CompileError, compilations
+from bearingsim.simulation.inputs import input_signal
+from bearingsim.simulation.kernels import VM, clear_kernel_cache, kernel
+from bearingsim.simulation.sundials import (
+    DENSE_LIMIT,
+    choose_linear_solver,
+    clear_integrator_cache,
+)
+from tests.models import Pendulum, SpringMassChain
+
+
+@pytest.fixture()
+def cache(tmp_path, monkeypatch):
+    """A fresh library cache, and no kernels or integrators left from other tests."""
+    monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
+    clear_kernel_cache()
+    clear_integrator_cache()
+    yield tmp_path
+    clear_kernel_cache()
+    clear_integrator_cache()
+
+
+@pytest.fixture(scope="module")
+def torque_level():
+    return assemble(double_layer_bearing("61905", "61907", fidelity="torque"))
+
+
+def _same_run(a, b):
+    assert a.stats["nsteps"] == b.stats["nsteps"]
+    assert a.stats["nfevals"] == b.stats["nfevals"]
+    np.testing.assert_allclose(b.values, a.values, rtol=1e-10, atol=1e-300)
+
+
+@pytest.mark.parametrize("method", ["cvodes", "idas"])
+def test_compiled_and_vm_kernels_take_the_same_steps_to_the_same_numbers(cache, method):
+    system = assemble(Pendulum())  # fast_newton block: MX ODE form, SX DAE form for IDAS
+    vm = simulate(system, 2.0, method=method, rtol=1e-8, atol=1e-10, compiled=False)
+    c = simulate(system, 2.0, method=method, rtol=1e-8, atol=1e-10, compiled=True)
+    assert (vm.stats["backend"], c.stats["backend"]) == ("CasADi VM", "compiled C")
+    assert c.stats["form"] == ("dae" if method == "idas" else "ode")
+    _same_run(vm, c)
+    # the kernel path agrees with CasADi differentiating the model itself (main's old path)
+    np.testing.assert_allclose(c["x"] ** 2 + c["y"] ** 2, 1.0, atol=1e-7)
+
+
+def test_compiled_kernel_with_inputs_matches_vm(cache, torque_level):
+    inputs = {"shaft_speed": ([0.0, 0.5, 1.0], [0.0, 300.0, 500.0]), "Fa": 50.0}
+    vm = simulate(torque_level, 1.5, inputs=inputs, method="cvodes", compiled=False)
+    c = simulate(torque_level, 1.5, inputs=inputs, method="cvodes", compiled=True)
+    _same_run(vm, c)
+    assert c.inputs["shaft_speed"] == 500.0  # table held after its last row
+
+
+def test_parameter_and_input_changes_reuse_library_and_integrator(cache, torque_level):
+    first = simulate(torque_level, 1.0, inputs={"shaft_speed": 300.0}, method="cvodes",
+                     compiled=True)
+    assert not first.stats["integrator_cached"]
+    n = compilations()
+    name = torque_level.parameter_names[-1]
+    value = torque_level.p0()[-1] * 1.1 + 1e-3
+    again = simulate(torque_level, 2.0, t_start=0.5, inputs={"shaft_speed": 450.0},
+                     parameters={name: value}, method="cvodes", compiled=True)
+    assert compilations() == n  # no compiler run for new parameters, inputs or time span
+    assert again.stats["integrator_cached"] and again.stats["setup_time"] == 0.0
+    clear_kernel_cache()
+    clear_integrator_cache()
+    fresh = simulate(torque_level, 2.0, t_start=0.5, inputs={"shaft_speed": 450.0},
+                     parameters={name: value}, method="cvodes", compiled=True)
+    assert compilations() == n  # the library came from the disk cache
+    assert not fresh.stats["integrator_cached"]
+    _same_run(fresh, again)
+
+
+def test_without_a_compiler_auto_falls_back_to_the_vm_and_true_raises(cache, monkeypatch,
+                                                                      tmp_path):
+    empty = tmp_path / "empty_bin"
+    empty.mkdir()
+    monkeypatch.setenv("PATH", str(empty))
+    monkeypatch.setenv("CC", "no-such-compiler")
+    system = assemble(SpringMassChain())
+    res = simulate(system, 1.0, method="cvodes", compiled="auto")
+    assert res.stats["backend"] == VM
+    assert res.stats["backend_reason"] == "no C compiler on PATH"
+    with pytest.raises(CompileError, match="no C compiler"):
+        simulate(system, 1.0, method="cvodes", compiled=True)
+
+
+def test_auto_keeps_tiny_models_on_the_vm_and_says_why(cache):
+    system = assemble(SpringMassChain())
+    k = kernel(system, "ode", "auto")
+    assert k.backend == VM and k.reason.startswith("tiny model")
+    assert k.library is None
+
+
+def test_newton_blocks_cannot_be_compiled_in_the_ode_form(cache):
+    system = assemble(Pendulum(), rootfinder="newton")
+    assert kernel(system, "ode", "auto").backend == VM
+    with pytest.raises(CompileError, match="IDAS on the DAE form compiles"):
+        kernel(system, "ode", True)
+    assert kernel(system, "dae", True).backend == "compiled C"
+
+
+def test_input_signal_lifts_numbers_and_keeps_the_structure(torque_level):
+    a = input_signal(torque_level, {"shaft_speed": ([0.0, 1.0], [0.0, 10.0]), "Fa": 5.0})
+    b = input_signal(torque_level, {"shaft_speed": ([0.0, 2.0], [1.0, 30.0]), "Fa": 7.0})
+    assert a.key == b.key and not np.array_equal(a.q, b.q)
+    k = torque_level.input_names.index("shaft_speed")
+    assert float(a.u(0.5, a.q)[k]) == pytest.approx(5.0)
+    assert float(b.u(5.0, b.q)[k]) == pytest.approx(30.0)  # held after the table
+    c = input_signal(torque_level, {"shaft_speed": lambda t: 3.0 * t})
+    assert c.key != a.key
+
+
+def test_linear_solver_by_size_and_checked_choices(torque_level):
+    assert choose_linear_solver(76, 1400) == "lapacklu"
+    assert choose_linear_solver(DENSE_LIMIT + 1, 5000) in ("mumps", "lapacklu")
+    assert choose_linear_solver(500, 100_000) == "lapacklu"  # dense enough for LAPACK
+    with pytest.raises(ParameterError, match="linear_solver"):
+        simulate(torque_level, 0.1, method="cvodes", linear_solver="ma27")
+    with pytest.raises(ParameterError, match="compiled"):
+        simulate(torque_level, 0.1, method="cvodes", compiled="yes")
+
+
+def test_auto_runs_on_the_vm_while_c_compiles_in_the_background(cache, monkeypatch):
+    from bearingsim.simulation import kernels
+
+    monkeypatch.setattr(kernels, "AUTO_MIN_INSTRUCTIONS", 0)  # compile even a tiny model
+    system = assemble(SpringMassChain())
+    first = simulate(system, 1.0, method="cvodes", compiled="auto")
+    kernels.wait_for_compilations()
+    later = simulate(system, 1.0, method="cvodes", compiled="auto")
+    assert later.stats["backend"] == "compiled C"
+    if first.stats["backend"] == VM:  # the compiler had not finished at the first run
+        assert "background" in first.stats["backend_reason"]
+    _same_run(first, later)
+
+
+def test_a_failing_compiler_leaves_auto_on_the_vm_and_raises_for_true(cache, monkeypatch):
+    from bearingsim.simulation import kernels
+
+    monkeypatch.setattr(kernels, "AUTO_MIN_INSTRUCTIONS", 0)
+    monkeypatch.setenv("CC", "false")  # found on PATH, exits 1
+    system = assemble(SpringMassChain())
+    kernels.wait_for_compilations()
+    for _ in range(50):  # until the failed build is noticed
+        res = simulate(system, 0.5, method="cvodes", compiled="auto")
+        if res.stats["backend_reason"].startswith("compiling failed"):
+            break
+        kernels.wait_for_compilations()
+    assert res.stats["backend"] == VM
+    assert res.stats["backend_reason"].startswith("compiling failed")
+    with pytest.raises(CompileError, match="failed"):
+        simulate(system, 0.5, method="cvodes", compiled=True)
+    assert not list(cache.glob(".build_*"))  # no half-built leftovers
