@@ -11,7 +11,7 @@ subclasses:
    variables at those times (else ``None``; :func:`~bearingsim.simulation.simulate` evaluates
    them);
 3. on failure raise :class:`~bearingsim.errors.SimulationError` naming the time reached and the
-   states that diverged (:func:`diverged`).
+   states that diverged (:func:`~bearingsim.simulation.diagnostics.diverged`).
 
 :data:`METHODS` maps every method name to its integrator; scenes and the command line read it.
 """
@@ -29,6 +29,7 @@ import scipy.integrate
 from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.closed import ClosedModel
+from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.fastcall import BufferedFunction
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
@@ -42,7 +43,6 @@ __all__ = [
     "ScipyIntegrator",
     "SundialsIntegrator",
     "Trajectory",
-    "diverged",
     "methods_of",
 ]
 
@@ -105,18 +105,6 @@ class Integrator(ABC):
     @abstractmethod
     def run(self, problem: IntegrationProblem) -> Trajectory:
         """Integrate ``problem`` and return the trajectory at its output times."""
-
-
-def diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
-    """The non-finite states of ``x``, or the five that grew most from ``x0``, for messages."""
-    bad = [n for n, v in zip(system.state_names, x, strict=True) if not np.isfinite(v)]
-    if bad:
-        return "non-finite: " + ", ".join(bad[:10])
-    growth = np.abs(x) / (np.abs(x0) + 1.0)
-    order = np.argsort(growth)[::-1][:5]
-    return "largest growth: " + ", ".join(
-        f"{system.state_names[k]}={x[k]:.3g}" for k in order
-    )
 
 
 def _progress_bar(t0: float, t1: float, progress: bool | None):

@@ -37,6 +37,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
 
@@ -268,8 +269,6 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         raise
     xs = np.asarray(out["xf"], dtype=float).reshape(n_x, tau.size)
     if not np.all(np.isfinite(xs)):
-        from bearingsim.simulation.integrators import diverged
-
         k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
         raise SimulationError(
             f"{method.upper()} produced non-finite states by t = {t_out[k]:.6g} s; "
@@ -322,8 +321,6 @@ def _locate_failure(method: str, system: System, built: _Built, opts: dict, p_ex
                     x0: np.ndarray, z0: np.ndarray | None, t0: float, span: float,
                     tau: np.ndarray, exc: RuntimeError) -> None:
     """Integrate interval by interval to report where a run failed (failure path only)."""
-    from bearingsim.simulation.integrators import diverged
-
     x, z, tau_prev = np.asarray(x0, dtype=float), z0, 0.0
     for tau_next in tau:
         step = ca.integrator("locate", method, built.oracle, tau_prev, [float(tau_next)], opts)
