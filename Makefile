@@ -13,8 +13,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(PY) -m bearingsim.cli run scenes/motor_drive_spinup.toml --out demo_output
-	$(PY) -m bearingsim.cli run scenes/double_layer_friction.toml --out demo_output
+	$(PY) -m bearingsim.cli demo --out demo_output
 
 test: $(STAMP)
 	$(PY) -m ruff check bearingsim tests bench examples

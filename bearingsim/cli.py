@@ -38,6 +38,7 @@ def _components() -> dict[str, list[str]]:
 def _list(_: argparse.Namespace) -> int:
     from bearingsim.catalog import get_bearing, list_bearings
     from bearingsim.physics.lubricant import known_lubricants
+    from bearingsim.scenes.library import builtin_scenes
     from bearingsim.scenes.registry import REGISTRY
 
     print("assemblies (scene [assembly] name):")
@@ -60,13 +61,15 @@ def _list(_: argparse.Namespace) -> int:
               f"B={g.width * 1e3:4.1f} mm  Z={g.ball_count:2d} Dw={g.ball_diameter * 1e3:6.3f} mm"
               f"  dm={g.pitch_diameter * 1e3:6.2f} mm")
     print("lubricants: " + ", ".join(known_lubricants()))
+    print("built-in scenes (bearingsim run NAME): " + ", ".join(builtin_scenes()))
     return 0
 
 
 def _demo(args: argparse.Namespace) -> int:
-    from bearingsim.demo import main as demo_main
+    from bearingsim.scenes.library import DEMO_SCENES, builtin_scene_path
 
-    demo_main(["--out", args.out])
+    for name in DEMO_SCENES:
+        _run(argparse.Namespace(scene=builtin_scene_path(name), out=args.out))
     return 0
 
 
@@ -151,7 +154,7 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="bearingsim", description="bearing system simulator")
     sub = parser.add_subparsers(dest="command", required=True)
     p_run = sub.add_parser("run", help="run a scene file: CSV, JSON summary and PNG plots")
-    p_run.add_argument("scene", help="scene TOML file")
+    p_run.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_run.add_argument("--out", help="output folder (default: the scene's output.folder)")
     p_val = sub.add_parser("validate", help="check a scene file without running it")
     p_val.add_argument("scene", help="scene TOML file")
@@ -173,7 +176,8 @@ def _parser() -> argparse.ArgumentParser:
     p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
     p_sw.add_argument("--no-progress", action="store_true", help="no progress bar")
     sub.add_parser("list", help="assemblies, components, catalogue bearings and lubricants")
-    p_demo = sub.add_parser("demo", help="the built-in demo (PMSM spin-up, speed-ratio sweep)")
+    p_demo = sub.add_parser("demo", help="run the built-in demo scenes (PMSM spin-up of a "
+                            "double-layer bearing; its speed ratio against friction torque)")
     p_demo.add_argument("--out", default="demo_output")
     p_exp = sub.add_parser("export-fmu", help="export an assembly as an FMU", add_help=False)
     p_exp.add_argument("rest", nargs=argparse.REMAINDER)

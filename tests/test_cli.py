@@ -9,7 +9,9 @@ from pathlib import Path
 
 import pytest
 
+import bearingsim
 from bearingsim.cli import main
+from bearingsim.scenes import SceneError
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 
@@ -113,3 +115,27 @@ def test_demo_and_export_fmu_commands_are_kept():
     parser = _parser()
     assert parser.parse_args(["demo", "--out", "x"]).out == "x"
     assert parser.parse_args(["export-fmu", "a", "b"]).rest == ["a", "b"]
+
+
+def test_demo_runs_the_built_in_demo_scenes(tmp_path, capsys):
+    from bearingsim.scenes.library import DEMO_SCENES
+
+    assert main(["demo", "--out", str(tmp_path)]) == 0
+    for name in DEMO_SCENES:
+        for suffix in (".csv", ".png", ".summary.json"):
+            assert (tmp_path / f"{name}{suffix}").is_file()
+    summary = json.loads((tmp_path / "double_layer_friction.summary.json").read_text())
+    rs = summary["outputs"]["Rs"]["final"]
+    assert 0.0 < rs < 0.5  # between a standing and a rolling middle ring (pure rolling: 0.43)
+
+
+def test_built_in_scenes_are_package_data_and_run_by_name(tmp_path):
+    from bearingsim.scenes import load_scene
+    from bearingsim.scenes.library import FOLDER, builtin_scenes
+
+    names = builtin_scenes()
+    assert "double_layer_rs" in names and len(names) >= 7
+    assert Path(FOLDER).is_relative_to(Path(bearingsim.__file__).parent)
+    assert load_scene("double_layer_rs").path.endswith("double_layer_rs.toml")
+    with pytest.raises(SceneError, match="built-in scenes: .*double_layer_rs"):
+        load_scene(tmp_path / "missing.toml")

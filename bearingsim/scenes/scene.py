@@ -25,6 +25,7 @@ import numpy as np
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
+from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
 from bearingsim.simulation.integrators import METHODS
 
@@ -623,16 +624,27 @@ def parse_scene(text: str, path: str | None = None) -> Scene:
 def load_scene(path: str | Path) -> Scene:
     """Read, parse and validate a scene file (without assembling the model).
 
+    Parameters
+    ----------
+    path : str or Path
+        A scene TOML file, or the name of a built-in scene
+        (:func:`~bearingsim.scenes.library.builtin_scenes`, e.g. ``"double_layer_rs"``) when no
+        such file exists.
+
     Raises
     ------
     SceneError
-        Naming the key, the line and the allowed values.
+        Naming the key, the line and the allowed values; for a missing file, the built-in
+        scene names.
     """
     p = Path(path)
+    if not p.exists() and builtin_scene_path(str(path)) is not None:
+        p = builtin_scene_path(str(path))
     try:
         text = p.read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise SceneError(f"scene file {str(p)!r} not found", path=str(p)) from None
+        raise SceneError(f"scene file {str(p)!r} not found; built-in scenes: "
+                         f"{', '.join(builtin_scenes())}", path=str(p)) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneError(f"cannot read scene file: {exc}", path=str(p)) from None
     return parse_scene(text, str(p))
