@@ -49,7 +49,7 @@ from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
 from bearingsim.physics.life import static_equivalent_load
-from bearingsim.physics.lubricant import Lubricant, Oil, get_lubricant
+from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
 from bearingsim.validation import (
     check_choice,
     check_number,
@@ -68,10 +68,6 @@ FILM_DAMPING = 1e-5
 """Damping of a lubricated race contact over its tangent stiffness [s] (Kramer 1993: rolling
 bearings damp 0.25e-5 .. 2.5e-5 times their stiffness; see
 :class:`~bearingsim.components.dynamic.RaceContact`)."""
-
-
-def _lubricant(lubricant: Lubricant | str) -> Lubricant:
-    return get_lubricant(lubricant) if isinstance(lubricant, str) else lubricant
 
 
 def _pocket_constant(design: BearingDesign) -> float:
@@ -235,17 +231,17 @@ class DeepGrooveBallBearing(Assembly):
         start = static_state(design, constant, free_tilt=free_tilt) if constant else None
         self.start: StaticState | None = start
         eta = float(lubricant.dynamic_viscosity())
-        if (rolling_resistance or ring_drag) and eta <= 0.0:
+        if (rolling_resistance or ring_drag) and not lubricant.is_viscous:
             raise ParameterError(f"deep_groove_ball_bearing: rolling_resistance and ring_drag "
                                  f"need a viscous lubricant, got {lubricant.describe()}")
         if film_damping is None:
-            film_damping = FILM_DAMPING if eta > 0.0 else 0.0
-        if drag and eta <= 0.0:
+            film_damping = FILM_DAMPING if lubricant.is_viscous else 0.0
+        if drag and not lubricant.is_viscous:
             raise ParameterError(f"{where}: drag=True needs a viscous lubricant (the ball drag "
                                  f"is that of an oil-air mixture), got {lubricant.describe()}; "
                                  f"leave drag out or give drag=False")
-        drag = eta > 0.0 if drag is None else bool(drag)
-        mu_dry = getattr(lubricant, "mu", 0.1)
+        drag = lubricant.is_viscous if drag is None else bool(drag)
+        mu_dry = lubricant.contact_friction
         pocket_mu = mu_dry if pocket_mu is None else pocket_mu
         land_mu = mu_dry if land_mu is None else land_mu
         nz, dw, dm = g.ball_count, g.ball_diameter, g.pitch_diameter
@@ -538,7 +534,7 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     if housing != "fixed":
         raise ParameterError(f"deep_groove_ball_bearing: housing must be 'fixed', got "
                              f"{housing!r}")
-    lub = _lubricant(lubricant)
+    lub = as_lubricant(lubricant, "deep_groove_ball_bearing")
     if not isinstance(lub, (Lubricant, Oil)):
         raise ParameterError(f"deep_groove_ball_bearing: lubricant must be a Lubricant or a "
                              f"name, got {type(lubricant).__name__}")

@@ -23,7 +23,6 @@ from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
     PureRollingLayer,
     SkfBearing,
-    resolve_lubricant,
 )
 from bearingsim.components.connectors import Flange
 from bearingsim.components.dynamic import RingBody
@@ -39,6 +38,7 @@ from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import skf_friction_components
 from bearingsim.physics.life import basic_rating_life_hours
+from bearingsim.physics.lubricant import as_lubricant
 from bearingsim.validation import (
     check_choice,
     check_mapping,
@@ -199,7 +199,7 @@ class DoubleLayerBearing(Assembly):
         structure = middle_ring_structure(gi, go, structure)
         _check_drive(drive)
         check_choice(friction_model, "friction_model", FRICTION_MODELS, "double_layer_bearing")
-        lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
+        lub_i, lub_o = (as_lubricant(x, "double_layer_bearing") for x in _pair(lubrication))
         opts = check_mapping(layer_options, "layer_options", "double_layer_bearing",
                              "option names")
         self.structure = structure
@@ -330,9 +330,9 @@ class DynamicDoubleLayerBearing(Assembly):
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
         self.structure = middle_ring_structure(gi, go, structure)
         _check_drive(drive)
-        lub_i, lub_o = (resolve_lubricant(x) for x in _pair(lubrication))
+        lub_i, lub_o = (as_lubricant(x, "double_layer_bearing") for x in _pair(lubrication))
         for lub in (lub_i, lub_o):
-            if float(lub.dynamic_viscosity()) <= 0.0:
+            if not lub.is_viscous:
                 raise ParameterError(f"double_layer_bearing: the dynamic level needs viscous "
                                      f"lubricants (oil or grease), got {lub.describe()}")
         opts = check_mapping(layer_options, "layer_options", "double_layer_bearing",

@@ -38,7 +38,7 @@ from bearingsim.components.rings import (
 )
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, connect
-from bearingsim.physics.lubricant import Lubricant, get_lubricant
+from bearingsim.physics.lubricant import Lubricant, as_lubricant
 from bearingsim.validation import check_range
 
 __all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
@@ -299,8 +299,7 @@ class DuplexPair(Assembly):
         self.arrangement = arrangement
         self.directions = ARRANGEMENTS[arrangement]
         self.shaft_spec = spec = _shaft_spec(shaft)
-        self.lubricant = (lubricant if lubricant is None or isinstance(lubricant, Lubricant)
-                          else get_lubricant(lubricant))
+        self.lubricant = None if lubricant is None else as_lubricant(lubricant, "duplex_pair")
         if spacer_offset is not None and arrangement != "DT":
             if preload is not None:
                 raise ParameterError(

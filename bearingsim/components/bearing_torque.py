@@ -21,7 +21,7 @@ from bearingsim.physics.friction import (
     skf_friction_components,
 )
 from bearingsim.physics.life import static_equivalent_load
-from bearingsim.physics.lubricant import Lubricant, get_lubricant
+from bearingsim.physics.lubricant import as_lubricant
 from bearingsim.symbolic import smooth_abs
 
 __all__ = [
@@ -29,13 +29,7 @@ __all__ = [
     "PalmgrenBearing",
     "SkfBearing",
     "PureRollingLayer",
-    "resolve_lubricant",
 ]
-
-
-def resolve_lubricant(lubricant: str | Lubricant) -> Lubricant:
-    """A named lubricant or a lubricant object."""
-    return lubricant if isinstance(lubricant, Lubricant) else get_lubricant(lubricant)
 
 
 def friction_bearing_type(geometry: BearingGeometry) -> str:
@@ -88,7 +82,7 @@ class _LubricatedBearing(BearingTorqueElement):
     def __init__(self, bearing, lubricant, omega_reg: float, name=None):
         super().__init__(name)
         self.geometry = resolve_bearing(bearing)
-        self.lubricant = resolve_lubricant(lubricant)
+        self.lubricant = as_lubricant(lubricant, type(self).__name__)
         g = self.geometry
         self.dm = Parameter(g.pitch_diameter, "m", "pitch diameter", low=0.0, low_inclusive=False)
         self.omega_reg = Parameter(

@@ -1,5 +1,9 @@
 """Lubricants as swappable objects with one interface: :class:`Oil`, :class:`Grease`, :class:`Dry`.
 
+Lubricants are plug-ins: a name in the registry (:func:`register_lubricant`) or any object of a
+:class:`Lubricant` subclass is accepted wherever a lubricant is asked for (assemblies, scenes,
+``bearingsim list``), through the one converter :func:`as_lubricant`.
+
 Every property method takes an optional temperature ``T`` [K] (float, array or CasADi symbol);
 ``None`` means the lubricant's operating temperature. Values are SI (Pa s, m^2/s, kg/m^3, 1/Pa).
 Catalogue data (mm^2/s at degC, ISO VG grades) are converted in the constructors.
@@ -9,6 +13,7 @@ from __future__ import annotations
 
 import copy
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -26,8 +31,11 @@ __all__ = [
     "Grease",
     "Dry",
     "ISO_VG_NU100",
+    "as_lubricant",
     "get_lubricant",
     "known_lubricants",
+    "register_lubricant",
+    "unregister_lubricant",
 ]
 
 ISO_VG_NU100: dict[int, float] = {
@@ -71,6 +79,15 @@ class Lubricant(ABC):
     temperature: float
     mu_bl: float
     mu_ehl: float
+    contact_friction: float = 0.1
+    """Sliding friction coefficient [-] of the cage pockets and guiding lands, used where no
+    film model applies (lubricated steel on polymer or brass: about 0.1)."""
+
+    @property
+    def is_viscous(self) -> bool:
+        """True when the lubricant has a viscosity at its operating temperature (oil, grease):
+        it forms an EHL film, drags the balls and churns; False for :class:`Dry`."""
+        return float(self.kinematic_viscosity()) > 0.0
 
     def _t(self, T: Any) -> Any:  # noqa: N803
         return self.temperature if T is None else check_range(
@@ -348,7 +365,7 @@ class Dry(Lubricant):
         check_range(temperature, "temperature", "K", 200.0, 600.0, where=f"Dry {name!r}")
         self.mu, self.v_reg, self.temperature = float(mu), float(v_reg), float(temperature)
         self.name, self.method = name, "dry"
-        self.mu_bl = self.mu_ehl = self.mu
+        self.mu_bl = self.mu_ehl = self.contact_friction = self.mu
 
     def kinematic_viscosity(self, T: Any = None) -> Any:  # noqa: N803
         """0 [m^2/s]."""
@@ -378,25 +395,94 @@ def _normalize(name: str) -> str:
     return "".join(ch for ch in str(name).lower() if ch.isalnum())
 
 
-def _named() -> dict[str, Any]:
-    named: dict[str, Any] = {
-        f"ISO VG {g}": (lambda g=g, **kw: Oil.from_iso_vg(g, **kw)) for g in ISO_VG_NU100
-    }
-    named["lithium grease"] = lambda **kw: Grease(
-        Oil.from_iso_vg(100, method="grease", name="ISO VG 100"),
-        **{"name": "lithium grease", **kw},
-    )
-    return named
+def _lithium_grease(**kwargs: Any) -> Grease:
+    return Grease(Oil.from_iso_vg(100, method="grease", name="ISO VG 100"),
+                  **{"name": "lithium grease", **kwargs})
+
+
+_REGISTRY: dict[str, Callable[..., Lubricant]] = {
+    **{f"ISO VG {g}": (lambda g=g, **kw: Oil.from_iso_vg(g, **kw)) for g in ISO_VG_NU100},
+    "lithium grease": _lithium_grease,
+}
+"""Lubricant name -> factory (keyword arguments override its defaults)."""
+
+
+def register_lubricant(name: str, factory: Callable[..., Lubricant], *,
+                       replace: bool = False) -> None:
+    """Make a lubricant known by name to assemblies, scenes and ``bearingsim list``.
+
+    Parameters
+    ----------
+    name : str
+        The name users give (matched ignoring case, spaces, hyphens and underscores).
+    factory : callable
+        Called with the user's keyword arguments (e.g. ``temperature=343.15``); returns a new
+        :class:`Lubricant`.
+    replace : bool
+        Allow replacing a registered lubricant of the same name.
+
+    Raises
+    ------
+    ParameterError
+        For an empty name, a factory that is not callable, or a name already registered (without
+        ``replace``).
+
+    Examples
+    --------
+    >>> from bearingsim.physics.lubricant import Oil, register_lubricant, unregister_lubricant
+    >>> register_lubricant("spindle oil 10", lambda **kw: Oil(10.0, 40.0, 2.7, 100.0,
+    ...                    **{"name": "spindle oil 10", **kw}))
+    >>> as_lubricant("Spindle-Oil 10").name
+    'spindle oil 10'
+    >>> unregister_lubricant("spindle oil 10")
+    """
+    if not isinstance(name, str) or not _normalize(name):
+        raise ParameterError(f"register_lubricant: name must be a non-empty string, got {name!r}")
+    if not callable(factory):
+        raise ParameterError(f"register_lubricant: factory for {name!r} must be callable "
+                             f"(keyword arguments -> Lubricant), got {type(factory).__name__}")
+    taken = _find(name)
+    if taken is not None and not replace:
+        raise ParameterError(f"register_lubricant: {name!r} is already registered (as "
+                             f"{taken!r}); give replace=True to replace it")
+    if taken is not None:
+        del _REGISTRY[taken]
+    _REGISTRY[name] = factory
+
+
+def unregister_lubricant(name: str) -> None:
+    """Remove a registered lubricant.
+
+    Raises
+    ------
+    CatalogError
+        For a name that is not registered.
+    """
+    taken = _find(name)
+    if taken is None:
+        raise CatalogError(f"unknown lubricant {name!r}; known: {', '.join(known_lubricants())}")
+    del _REGISTRY[taken]
+
+
+def _find(name: str) -> str | None:
+    """The registered name that ``name`` stands for, or None."""
+    key = _normalize(name)
+    for known in _REGISTRY:
+        canonical = _normalize(known)
+        if key in (canonical, canonical.removeprefix("iso")):
+            return known
+    return None
 
 
 def known_lubricants() -> list[str]:
-    """Names accepted by :func:`get_lubricant`."""
-    return list(_named())
+    """Names accepted by :func:`get_lubricant` (the registry, in registration order)."""
+    return list(_REGISTRY)
 
 
 def get_lubricant(name: str, **kwargs: Any) -> Lubricant:
-    """A named lubricant: ``"ISO VG 10"`` ... ``"ISO VG 460"`` (mineral oils, oil bath) or
-    ``"lithium grease"`` (ISO VG 100 base oil, one-third fill, thickener factor 2).
+    """A named lubricant from the registry: built in are ``"ISO VG 10"`` ... ``"ISO VG 460"``
+    (mineral oils, oil bath) and ``"lithium grease"`` (ISO VG 100 base oil, one-third fill,
+    thickener factor 2); more with :func:`register_lubricant`.
 
     Case, spaces, hyphens and underscores are ignored (``"iso_vg_68"``, ``"VG68"`` work).
 
@@ -419,9 +505,42 @@ def get_lubricant(name: str, **kwargs: Any) -> Lubricant:
     CatalogError
         For an unknown name; the message lists the known ones.
     """
-    key = _normalize(name)
-    for known, factory in _named().items():
-        canonical = _normalize(known)
-        if key in (canonical, canonical.removeprefix("iso")):
-            return factory(**kwargs)
-    raise CatalogError(f"unknown lubricant {name!r}; known: {', '.join(known_lubricants())}")
+    known = _find(name)
+    if known is None:
+        raise CatalogError(f"unknown lubricant {name!r}; known: {', '.join(known_lubricants())}")
+    lubricant = _REGISTRY[known](**kwargs)
+    if not isinstance(lubricant, Lubricant):
+        raise ParameterError(f"lubricant {known!r}: its registered factory returned "
+                             f"{type(lubricant).__name__}, not a Lubricant")
+    return lubricant
+
+
+def as_lubricant(value: Lubricant | str, where: str = "lubricant") -> Lubricant:
+    """The lubricant ``value`` stands for: a :class:`Lubricant` object as it is, a name through
+    :func:`get_lubricant`.
+
+    Parameters
+    ----------
+    value : Lubricant or str
+        An object of any :class:`Lubricant` subclass, or a registered name.
+    where : str
+        The component or argument asking, named in the error.
+
+    Returns
+    -------
+    Lubricant
+
+    Raises
+    ------
+    CatalogError
+        For an unknown name (listing the known ones).
+    ParameterError
+        For anything else.
+    """
+    if isinstance(value, Lubricant):
+        return value
+    if isinstance(value, str):
+        return get_lubricant(value)
+    raise ParameterError(f"{where}: a lubricant must be a Lubricant object (Oil, Grease, Dry, "
+                         f"...) or one of the names {', '.join(known_lubricants())}; got "
+                         f"{type(value).__name__} {value!r:.60}")

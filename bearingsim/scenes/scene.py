@@ -299,7 +299,8 @@ def _number(c: _Collector, key: str, v: Any, unit: str, low=None, high=None, str
 
 def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
     from bearingsim.catalog import list_bearings
-    from bearingsim.physics.lubricant import get_lubricant, known_lubricants
+    from bearingsim.errors import BearingsimError
+    from bearingsim.physics.lubricant import as_lubricant, known_lubricants
 
     if v is None:
         return None
@@ -316,10 +317,8 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
             return v
         for item in values:
             try:
-                if not isinstance(item, str):
-                    raise TypeError
-                get_lubricant(item)
-            except Exception:  # noqa: BLE001 - any failure means an unknown name
+                as_lubricant(item, key)
+            except BearingsimError:
                 c.add(key, f"unknown lubricant {item!r}", ", ".join(known_lubricants()))
         return v
     if spec.kind == "choice":

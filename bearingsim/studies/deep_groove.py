@@ -27,7 +27,7 @@ from bearingsim.physics.life import (
     rating_life,
     reference_rating_life,
 )
-from bearingsim.physics.lubricant import Dry, Lubricant, get_lubricant
+from bearingsim.physics.lubricant import Dry, Lubricant, as_lubricant
 from bearingsim.simulation import Result, simulate
 from bearingsim.units import rpm_to_rad_s
 
@@ -233,7 +233,7 @@ def post_process(res: Result, design: BearingDesign, lubricant: Lubricant | str,
     ``(C/P)^3`` with C from the geometry and ``P = Fr``; ISO/TS 16281
     (:func:`~bearingsim.physics.life.reference_rating_life`).
     """
-    lub = get_lubricant(lubricant) if isinstance(lubricant, str) else lubricant
+    lub = as_lubricant(lubricant, "deep_groove")
     g = design.geometry
     nz, dw, dm, a0 = g.ball_count, g.ball_diameter, g.pitch_diameter, design.free_contact_angle
     sel = res.t >= res.t[0] + (1.0 - window) * (res.t[-1] - res.t[0])

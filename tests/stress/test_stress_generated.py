@@ -118,7 +118,12 @@ SKIP = {"static_state", "get_lubricant", "known_lubricants", "bearing_design",
         "design_report", "slice_traction", "groove_contact", "combined_contact_life",
         "skf_friction_torque", "hertz_slice_weights", "ring_loads", "effective_modulus",
         "bearing_load_deflection_constants", "contact_spring_constant"}
-"""Functions with structured arguments, covered by their own tests and the model cases."""
+REGISTRY_FUNCTIONS = {"register_lubricant", "unregister_lubricant"}
+"""Functions that change the lubricant registry (global state shared by the other tests),
+tested in tests/physics/test_lubricant_registry.py."""
+SKIP |= REGISTRY_FUNCTIONS
+"""Functions with structured arguments, covered by their own tests and the model cases, and the
+registry functions."""
 ALLOW_INF = {"contact_life", "bearing_life", "rating_life", "reference_rating_life",
              "life_hours", "raceway_equivalent_load", "lambda_ratio", "basic_rating_life_hours"}
 """Functions whose documented result is infinite for some valid inputs (e.g. no load)."""

@@ -14,9 +14,8 @@ from hypothesis import strategies as st
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
 from bearingsim.catalog import get_bearing
-from bearingsim.components.bearing_torque import resolve_lubricant
 from bearingsim.errors import BearingsimError
-from bearingsim.physics.lubricant import known_lubricants
+from bearingsim.physics.lubricant import as_lubricant, known_lubricants
 from bearingsim.scenes import Scene, Simulation, run_scene
 from bearingsim.simulation import simulate, steady_state
 from bearingsim.units import rpm_to_rad_s
@@ -44,7 +43,7 @@ def drive(motor="dc"):
 
 def lubricant_parameters(name: str) -> dict[str, float]:
     """Viscosity of a named lubricant as parameters of both layers (no re-assembly)."""
-    nu = float(resolve_lubricant(name).kinematic_viscosity())
+    nu = float(as_lubricant(name).kinematic_viscosity())
     return {"inner_layer.nu": nu, "outer_layer.nu": nu}
 
 

@@ -11,7 +11,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.groove_contact import groove_contact
 from bearingsim.physics.hertz import contact_load, contact_stiffness
-from bearingsim.physics.lubricant import Lubricant
+from bearingsim.physics.lubricant import Lubricant, as_lubricant
 from bearingsim.physics.rolling import rolling_resistance
 from bearingsim.physics.traction import slice_traction
 from bearingsim.validation import check_choice
@@ -134,9 +134,7 @@ class RaceContact(Component):
                  ry: float | None = None, e_eff: float | None = None, name=None):
         super().__init__(name)
         check_choice(race, "race", ("inner", "outer"), "RaceContact")
-        if not isinstance(lubricant, Lubricant):
-            raise ParameterError(f"RaceContact: lubricant must be a Lubricant, got "
-                                 f"{type(lubricant).__name__}")
+        lubricant = as_lubricant(lubricant, "RaceContact")
         self.race, self.moving = race, bool(moving)
         self.n_slices = _slice_count(n_slices)
         self.lubricant, self.smooth = lubricant, float(smooth)
@@ -155,8 +153,7 @@ class RaceContact(Component):
             if rx is None or ry is None or e_eff is None:
                 raise ParameterError("RaceContact: rolling_resistance needs rx, ry [m] and "
                                      "e_eff [Pa]")
-            eta = float(lubricant.dynamic_viscosity())
-            if eta <= 0.0:
+            if not lubricant.is_viscous:
                 raise ParameterError(f"RaceContact: rolling_resistance needs a viscous "
                                      f"lubricant, got {lubricant.describe()}")
             self.Rx = Parameter(rx, "m", "reduced radius along rolling", low=0.0,
@@ -165,7 +162,8 @@ class RaceContact(Component):
                                 low_inclusive=False)
             self.E_eff = Parameter(e_eff, "Pa", "effective modulus E'", low=0.0,
                                    low_inclusive=False)
-            self.eta = Parameter(eta, "Pa.s", "lubricant viscosity at the inlet", low=0.0)
+            self.eta = Parameter(float(lubricant.dynamic_viscosity()), "Pa.s",
+                                 "lubricant viscosity at the inlet", low=0.0)
             self.alpha_p = Parameter(float(lubricant.pressure_viscosity()), "1/Pa",
                                      "pressure-viscosity coefficient", low=0.0)
             self.F_rr = Variable(unit="N", description="rolling resistance on the ball along "
