@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test bench lint clean
+.PHONY: demo test bench lint docs clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -21,6 +21,9 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) -m bench.run_all --out docs/benchmarks.md
+
+docs: $(STAMP)
+	$(PY) -m bearingsim.reference docs/components.md
 
 lint: $(STAMP)
 	$(PY) -m ruff check bearingsim tests bench examples

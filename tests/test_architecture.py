@@ -27,7 +27,7 @@ LAYERS: dict[str, int] = {
     "assembler": 4,
     "simulation": 5,
     "studies": 7, "fmu": 7,
-    "scenes": 8,
+    "scenes": 8, "reference": 8,
     "cli": 9,
 }
 """Layer of every top-level module or subpackage of bearingsim (a module may import only its own

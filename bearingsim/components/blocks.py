@@ -16,6 +16,9 @@ class PIController(Component):
         Proportional gain [unit of y / unit of e], >= 0.
     ki : float
         Integral gain [unit of y / (unit of e s)], >= 0.
+    unit_e, unit_y : str
+        Units of the error (reference and measurement) and of the output, e.g. ``"rad/s"`` and
+        ``"V"`` (default ``"1"``, dimensionless).
 
     Variables
     ---------

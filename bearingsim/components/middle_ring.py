@@ -132,6 +132,14 @@ def middle_ring_bodies(
 class MiddleRing(Assembly):
     """The middle ring: three rigid bodies joined by connections (not a hand-merged inertia).
 
+    Parameters
+    ----------
+    bodies : list of MiddleRingPart
+        Mass and polar inertia of its three parts, from the inner outward
+        (:func:`middle_ring_bodies`).
+    w0 : float
+        Start speed [rad/s].
+
     Connectors
     ----------
     inner_side : Flange (the inner bearing's outer ring)

@@ -56,6 +56,8 @@ class DCMotor(_Machine):
         Torque and back-EMF constant [N m/A] = [V s/rad].
     J : float
         Rotor inertia [kg m^2].
+    w0 : float
+        Start speed of the rotor [rad/s].
 
     Variables
     ---------
@@ -105,6 +107,8 @@ class PMSM(_Machine):
         Permanent-magnet flux linkage [Wb].
     J : float
         Rotor inertia [kg m^2].
+    w0 : float
+        Start speed of the rotor [rad/s].
 
     Variables
     ---------
