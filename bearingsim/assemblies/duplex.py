@@ -154,6 +154,14 @@ def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
     return float(preload)
 
 
+def _spacer_arrangement(arrangement: str, where: str) -> tuple[float, float]:
+    """The row directions of a DF or DB pair (those a spacer width difference preloads)."""
+    if arrangement not in ("DF", "DB"):
+        raise ParameterError(f"{where}: arrangement must be 'DF' or 'DB', got "
+                             f"{arrangement!r} (a DT pair is preloaded by an axial force)")
+    return ARRANGEMENTS[arrangement]
+
+
 def preload_offset(bearing: str | BearingGeometry, preload: float, arrangement: str = "DF",
                    contact_angle: float | None = None) -> float:
     """Spacer width difference that preloads a DF or DB pair of identical rows [m].
@@ -176,12 +184,9 @@ def preload_offset(bearing: str | BearingGeometry, preload: float, arrangement: 
     float
         The width difference [m] (negative for DF, positive for DB).
     """
-    if arrangement not in ("DF", "DB"):
-        raise ParameterError(f"preload_offset: arrangement must be 'DF' or 'DB', got "
-                             f"{arrangement!r} (a DT pair is preloaded by an axial force)")
+    s0, s1 = _spacer_arrangement(arrangement, "preload_offset")
     g = resolve_bearing(bearing)
     delta = axial_approach(row_parameters(g, contact_angle), g.ball_count, preload)
-    s0, s1 = ARRANGEMENTS[arrangement]
     return (s1 - s0) * delta
 
 
@@ -212,10 +217,7 @@ def offset_preload(bearing: str | BearingGeometry, offset: float, arrangement: s
     ParameterError
         For a DT arrangement or an offset of the wrong sign (axial play).
     """
-    if arrangement not in ("DF", "DB"):
-        raise ParameterError(f"offset_preload: arrangement must be 'DF' or 'DB', got "
-                             f"{arrangement!r} (a DT pair is preloaded by an axial force)")
-    s0, s1 = ARRANGEMENTS[arrangement]
+    s0, s1 = _spacer_arrangement(arrangement, "offset_preload")
     if not offset * (s1 - s0) > 0.0:
         raise ParameterError(
             f"duplex_pair: a spacer width difference of {offset:g} m leaves both rows of the "

@@ -167,11 +167,7 @@ class DCMotorDrive(Assembly):
         super().__init__(name)
         self.motor = DCMotor(**motor)
         self.speed_pi = PIController(kp, ki, "rad/s", "V")
-        self.flange = Flange()
-        self._ref = speed_ref
-        if speed_ref is None:
-            self.w_ref = Input(0.0, "rad/s", "speed reference")
-        connect(self.flange, self.motor.flange)
+        _shaft_and_reference(self, speed_ref)
 
     def equations(self):
         return [
@@ -204,11 +200,7 @@ class PMSMDrive(Assembly):
         self.speed_pi = PIController(kp_w, ki_w, "rad/s", "A")
         self.id_pi = PIController(kp_i, ki_i, "A", "V")
         self.iq_pi = PIController(kp_i, ki_i, "A", "V")
-        self.flange = Flange()
-        self._ref = speed_ref
-        if speed_ref is None:
-            self.w_ref = Input(0.0, "rad/s", "speed reference")
-        connect(self.flange, self.motor.flange)
+        _shaft_and_reference(self, speed_ref)
 
     def equations(self):
         m = self.motor
@@ -251,6 +243,16 @@ def speed_controlled_motor(motor: str, speed_ref: Callable | float | None,
     """
     check_choice(motor, "motor", tuple(MOTOR_DRIVES), where)
     return MOTOR_DRIVES[motor](speed_ref, **(motor_options or {}))
+
+
+def _shaft_and_reference(drive: Assembly, speed_ref: SpeedReference) -> None:
+    """The drive's shaft flange (connected to its motor's) and its speed reference: kept for
+    :func:`_reference`, or an input ``w_ref`` [rad/s] when None."""
+    drive.flange = Flange()
+    drive._ref = speed_ref
+    if speed_ref is None:
+        drive.w_ref = Input(0.0, "rad/s", "speed reference")
+    connect(drive.flange, drive.motor.flange)
 
 
 def _reference(ref, component):

@@ -260,6 +260,23 @@ class _Collector:
                              problems=list(self.problems))
 
 
+def _section(c: _Collector, d: dict[str, Any], section: str,
+             fields: Any) -> list[tuple[str, Any, str]]:
+    """The known keys of a scene table as ``(key, value, dotted key)``; a table that is not a
+    table and unknown keys are reported to ``c``."""
+    raw = d.get(section, {})
+    if not isinstance(raw, dict):
+        c.add(section, "must be a table", ", ".join(fields))
+        return []
+    known = []
+    for k, v in raw.items():
+        if k in fields:
+            known.append((k, v, f"{section}.{k}"))
+        else:
+            _unknown(c, section, k, fields)
+    return known
+
+
 def _is_number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
@@ -532,15 +549,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
                 values[section][k] = float(v)
     # simulation
     sim = Simulation()
-    raw = d.get("simulation", {})
-    if not isinstance(raw, dict):
-        c.add("simulation", "must be a table", ", ".join(Simulation.__dataclass_fields__))
-        raw = {}
-    for k, v in raw.items():
-        key = f"simulation.{k}"
-        if k not in Simulation.__dataclass_fields__:
-            _unknown(c, "simulation", k, Simulation.__dataclass_fields__)
-        elif k == "method":
+    for k, v, key in _section(c, d, "simulation", Simulation.__dataclass_fields__):
+        if k == "method":
             if not (isinstance(v, str) and v in METHODS):
                 c.add(key, f"{v!r} is not a solver", ", ".join(METHODS))
             else:
@@ -560,22 +570,15 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "[1]", low,
                        high, strict) is not None:
                 setattr(sim, k, float(v))
-    if "t_end" not in raw:
+    if "t_end" not in (d.get("simulation") if isinstance(d.get("simulation"), dict) else {}):
         c.add("simulation.t_end", "missing: the end time of the run", "a number in s > t_start")
     elif sim.t_end <= sim.t_start:
         c.add("simulation.t_end", f"{sim.t_end!r} must be after t_start = {sim.t_start!r}",
               f"a number in s > {sim.t_start!r}")
     # output
     out = Output()
-    raw = d.get("output", {})
-    if not isinstance(raw, dict):
-        c.add("output", "must be a table", ", ".join(Output.__dataclass_fields__))
-        raw = {}
-    for k, v in raw.items():
-        key = f"output.{k}"
-        if k not in Output.__dataclass_fields__:
-            _unknown(c, "output", k, Output.__dataclass_fields__)
-        elif k == "folder":
+    for k, v, key in _section(c, d, "output", Output.__dataclass_fields__):
+        if k == "folder":
             if not isinstance(v, str) or not v:
                 c.add(key, "must be a folder name", "a non-empty text")
             else:

@@ -243,24 +243,24 @@ def _check_work(system: System, t_start: float, t_end: float, n_out: int,
     """Refuse (above the MAX_ limits) or warn about runs whose size alone makes them minutes or
     gigabytes long, with the estimate."""
     size = n_out * (len(system.observed_names) + 1) * 8
-    if size > MAX_OUTPUT_BYTES:
-        raise ParameterError(
-            f"simulate: {n_out} output points x {len(system.observed_names)} variables would "
-            f"take {size / 1024**3:.1f} GiB (limit {MAX_OUTPUT_BYTES / 1024**3:.0f} GiB); ask for "
-            f"fewer n_points or prune the model to the outputs you need (assemble(outputs=...))")
-    if size > WARN_OUTPUT_BYTES:
-        warnings.warn(f"simulate: the result will take {size / 1024**2:.0f} MiB ({n_out} points "
-                      f"x {len(system.observed_names)} variables)", LongRunWarning, stacklevel=3)
-    if np.isfinite(max_step):
-        steps = (t_end - t_start) / max_step
-        if steps > MAX_STEPS:
-            raise ParameterError(
-                f"simulate: max_step = {max_step:g} s over {t_end - t_start:g} s forces at least "
-                f"{steps:.3g} steps (limit {MAX_STEPS:.0e}); give a larger max_step [s] or a "
-                f"shorter run")
-        if steps > WARN_STEPS:
-            warnings.warn(f"simulate: max_step = {max_step:g} s forces at least {steps:.3g} "
-                          f"steps", LongRunWarning, stacklevel=3)
+    shape = f"{n_out} output points x {len(system.observed_names)} variables"
+    _bound(size, MAX_OUTPUT_BYTES, WARN_OUTPUT_BYTES,
+           f"{shape} would take {size / 1024**3:.1f} GiB",
+           f"(limit {MAX_OUTPUT_BYTES / 1024**3:.0f} GiB); ask for fewer n_points or prune the "
+           f"model to the outputs you need (assemble(outputs=...))")
+    steps = (t_end - t_start) / max_step
+    _bound(steps, MAX_STEPS, WARN_STEPS,
+           f"max_step = {max_step:g} s over {t_end - t_start:g} s forces at least {steps:.3g} "
+           f"steps", f"(limit {MAX_STEPS:.0e}); give a larger max_step [s] or a shorter run")
+
+
+def _bound(amount: float, limit: float, warn_above: float, what: str, remedy: str) -> None:
+    """Raise ParameterError when ``amount`` exceeds ``limit``, warn (LongRunWarning) above
+    ``warn_above``."""
+    if amount > limit:
+        raise ParameterError(f"simulate: {what} {remedy}")
+    if amount > warn_above:
+        warnings.warn(f"simulate: {what}", LongRunWarning, stacklevel=4)
 
 
 def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> np.ndarray:
@@ -272,12 +272,7 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
             )
         check_range(n_points, "n_points", "1", 2, MAX_OUTPUT_BYTES // 16, where="simulate")
         return np.linspace(t_start, t_end, int(n_points))
-    try:
-        times = np.asarray(t_eval, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(
-            f"simulate: t_eval must be an array of times [s], got {type(t_eval).__name__}"
-        ) from None
+    times = np.asarray(check_range(t_eval, "t_eval", "s", where="simulate"), dtype=float)
     if times.ndim != 1 or times.size == 0:
         raise ParameterError(
             f"simulate: t_eval must be a non-empty one-dimensional array of times [s], got "
