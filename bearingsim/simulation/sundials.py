@@ -26,9 +26,12 @@ evaluation).
 
 from __future__ import annotations
 
+import contextlib
+import signal
 import threading
 import time
 import weakref
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -263,8 +266,11 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     if kernel.form == "dae":
         args["z0"] = z0
     try:
-        out = built.integrator(**args)
+        with _interrupts() as interrupted:
+            out = built.integrator(**args)
     except RuntimeError as exc:
+        if interrupted.is_set():  # CasADi reports Ctrl-C as a failed evaluation
+            raise KeyboardInterrupt(f"{method.upper()} run interrupted") from None
         _locate_failure(method, system, built, opts, p_ext, x0, z0, t0, span, tau, exc)
         raise
     xs = np.asarray(out["xf"], dtype=float).reshape(n_x, tau.size)
@@ -286,6 +292,31 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     values = _observe(kernel, signal, p, ts, xs, zs)
     stats = _stats(method, kernel, built, cached)
     return SundialsRun(ts, xs, zs, values, stats)
+
+
+@contextlib.contextmanager
+def _interrupts() -> Iterator[threading.Event]:
+    """Record Ctrl-C (SIGINT) during a SUNDIALS run: CasADi checks for it between evaluations
+    and turns it into a failed evaluation (a RuntimeError); the event tells the two apart, so
+    an interrupted run raises KeyboardInterrupt instead of being diagnosed as a failure.
+    Outside the main thread (where Python delivers signals) the event stays clear."""
+    event = threading.Event()
+    if threading.current_thread() is not threading.main_thread():
+        yield event
+        return
+    previous = signal.getsignal(signal.SIGINT)
+
+    def handler(signum, frame):
+        event.set()
+        if callable(previous):
+            previous(signum, frame)
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, handler)
+    try:
+        yield event
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _observe(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,

@@ -1,0 +1,45 @@
+"""Long runs are interruptible: Ctrl-C (SIGINT) during a SUNDIALS run raises KeyboardInterrupt
+promptly (CasADi reports it as a failed evaluation, which used to start the interval-by-interval
+failure diagnosis of a 200 s run, i.e. a hang) and leaves no partial output file."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+SCRIPT = """
+import sys
+from bearingsim.assembler import assemble
+from bearingsim.assemblies import deep_groove_ball_bearing
+from bearingsim.simulation import simulate
+
+system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", n_slices=0))
+print("running", flush=True)
+res = simulate(system, 200.0, inputs={"shaft_speed": 1500.0, "load.Fx": 2000.0},
+               method="cvodes", compiled=False, n_points=2001)
+res.to_csv(sys.argv[1] + "/result.csv")
+print("finished", flush=True)
+"""
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT to a child process")
+def test_ctrl_c_stops_a_cvodes_run_and_writes_nothing(tmp_path):
+    proc = subprocess.Popen([sys.executable, "-c", SCRIPT, str(tmp_path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "running"
+    time.sleep(1.5)  # inside the integration (the whole run takes minutes)
+    sent = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    try:
+        _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("the run did not stop within 60 s of Ctrl-C")
+    assert time.perf_counter() - sent < 30.0
+    assert proc.returncode != 0
+    assert "KeyboardInterrupt: CVODES run interrupted" in err
+    assert list(tmp_path.iterdir()) == []
