@@ -52,6 +52,11 @@ nominal VI 86 (VG 10, the one-decimal rounding of 2.64-2.66), 95-103 for the oth
 3.3 (VI 80) and is corrected to 3.4 (VI 98). See ``tests/physics/test_published_contact_film.py``.
 No manufacturer's data sheet was compared."""
 
+MIN_OIL_VISCOSITY_CST = 0.5
+"""Smallest kinematic viscosity [mm^2/s] an :class:`Oil` accepts: Walther's
+``log10(log10(nu + 0.7))`` needs ``nu > 0.3``, and ASTM D341's form holds above about 2 (the
+thinnest lubricating oils, ISO VG 2, have about 2 mm^2/s at 40 degC)."""
+
 _LOG10 = float(np.log(10.0))
 
 
@@ -193,7 +198,14 @@ class Oil(Lubricant):
         mu_ehl: float = 0.05,
     ) -> None:
         where = f"Oil {name!r}"
-        check_range(nu1_cst, "nu1_cst", "mm^2/s", 0.0, 1e6, low_inclusive=False, where=where)
+        for value, label in ((nu1_cst, "nu1_cst"), (nu2_cst, "nu2_cst")):
+            try:
+                check_range(value, label, "mm^2/s", MIN_OIL_VISCOSITY_CST, 1e6, where=where)
+            except ParameterError as exc:
+                raise ParameterError(
+                    f"{exc}; lubricating oils have 1 to 1e5 mm^2/s (cSt) and the Walther "
+                    f"equation needs more than {MIN_OIL_VISCOSITY_CST} mm^2/s (did you pass "
+                    f"m^2/s? 32 mm^2/s = 3.2e-5 m^2/s)") from None
         check_range(nu2_cst, "nu2_cst", "mm^2/s", 0.0, nu1_cst, low_inclusive=False,
                     high_inclusive=False, where=where)
         check_range(t1_degc, "t1_degc", "degC", -50.0, 300.0, where=where)
