@@ -26,8 +26,11 @@ evaluation).
 
 from __future__ import annotations
 
+import atexit
 import contextlib
+import os
 import signal
+import sys
 import threading
 import time
 import weakref
@@ -126,16 +129,59 @@ class IntegratorCache:
             per = self._by_system.get(id(system))
             if per is None:
                 per = self._by_system[id(system)] = {}
-                weakref.finalize(system, self._by_system.pop, id(system), None)
+                weakref.finalize(system, self._drop, id(system))
             per[key] = built
+
+    def _drop(self, system_id: int) -> None:
+        with self._lock, _quiet_stdout():
+            self._by_system.pop(system_id, None)
 
     def clear(self) -> None:
         """Forget every integrator."""
-        with self._lock:
+        with self._lock, _quiet_stdout():
             self._by_system.clear()
 
 
+@contextlib.contextmanager
+def _quiet_stdout() -> Iterator[None]:
+    """Send the process's standard output (file descriptor 1) to the null device: MUMPS prints
+    a banner on standard output when CasADi destroys one of its solvers, and has no option
+    against it (CasADi's MUMPS interface sets none)."""
+    try:
+        sys.stdout.flush()
+        saved = os.dup(1)
+    except (OSError, ValueError, AttributeError):  # no standard output to protect
+        yield
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(devnull)
+
+
 _INTEGRATORS = IntegratorCache()
+_MUMPS_USED = threading.Event()
+
+
+def _discard_native_stdout_at_exit() -> None:
+    """After a process used MUMPS: at exit, flush Python's standard output, then destroy the
+    integrators and send what native code still writes to file descriptor 1 (the MUMPS banner,
+    buffered by the Fortran runtime until the process ends) to the null device."""
+    if not _MUMPS_USED.is_set():
+        return
+    _INTEGRATORS.clear()
+    try:
+        sys.stdout.flush()
+        os.dup2(os.open(os.devnull, os.O_WRONLY), 1)
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
+atexit.register(_discard_native_stdout_at_exit)
 
 
 def clear_integrator_cache() -> None:
@@ -260,6 +306,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         oracle = _oracle(kernel, signal, n_x, p.size)
         integ = ca.integrator(f"{method}_{kernel.form}", method, oracle, 0.0, tau, opts)
         built = _Built(integ, oracle, linear_solver, time.perf_counter() - start)
+        if linear_solver == "mumps":
+            _MUMPS_USED.set()
         _INTEGRATORS.put(system, key, built)
     p_ext = np.concatenate([p, signal.q, [t0, span]])
     args = {"x0": x0, "p": p_ext}
@@ -352,6 +400,13 @@ def _locate_failure(method: str, system: System, built: _Built, opts: dict, p_ex
                     x0: np.ndarray, z0: np.ndarray | None, t0: float, span: float,
                     tau: np.ndarray, exc: RuntimeError) -> None:
     """Integrate interval by interval to report where a run failed (failure path only)."""
+    with _quiet_stdout():
+        _locate(method, system, built, opts, p_ext, x0, z0, t0, span, tau, exc)
+
+
+def _locate(method: str, system: System, built: _Built, opts: dict, p_ext: np.ndarray,
+            x0: np.ndarray, z0: np.ndarray | None, t0: float, span: float, tau: np.ndarray,
+            exc: RuntimeError) -> None:
     x, z, tau_prev = np.asarray(x0, dtype=float), z0, 0.0
     for tau_next in tau:
         step = ca.integrator("locate", method, built.oracle, tau_prev, [float(tau_next)], opts)
