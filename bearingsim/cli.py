@@ -86,6 +86,8 @@ def _run(args: argparse.Namespace) -> int:
     s = run.summary
     print(f"{s['title']}: {s['assembly']} at fidelity {s['fidelity']['chosen']} "
           f"({s['fidelity']['reason']})")
+    for text in s["fidelity"].get("rejected", []):
+        print(f"  rejected {text}")
     print(f"  {s['system']['states']} states; assemble {s['timings_s']['assemble']:.2f} s, "
           f"simulate {s['timings_s']['simulate']:.2f} s")
     for kind, items in s["skipped"].items():

@@ -48,7 +48,7 @@ def test_list_shows_assemblies_components_bearings_and_lubricants(capsys):
 def test_validate_ok(scene_file, capsys):
     assert main(["validate", str(scene_file)]) == 0
     out = capsys.readouterr().out
-    assert "valid" in out and "kinematic" in out and "pruned" in out
+    assert "valid" in out and "torque" in out and "pruned" in out
 
 
 def test_validate_without_assembling(scene_file, capsys):
@@ -79,7 +79,7 @@ def test_run_writes_files_into_the_scene_folder(scene_file, tmp_path, monkeypatc
     files = sorted(p.name for p in (tmp_path / "out").iterdir())
     assert files == ["fast.csv", "fast.png", "fast.summary.json"]
     summary = json.loads((tmp_path / "out" / "fast.summary.json").read_text())
-    assert summary["fidelity"]["chosen"] == "kinematic"
+    assert summary["fidelity"]["chosen"] == "torque"  # kinematic Rs: outside 5 %
 
 
 def test_run_reports_a_failed_simulation_with_exit_1(tmp_path, capsys):

@@ -17,7 +17,13 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
-from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, PostQuantity, factory_default
+from bearingsim.assemblies.spec import (
+    ArgSpec,
+    AssemblySpec,
+    PostQuantity,
+    declared_errors,
+    factory_default,
+)
 from bearingsim.catalog import resolve_bearing
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
@@ -604,5 +610,7 @@ SCENE_SPEC = AssemblySpec(
     default_outputs=["w_shaft", "w_middle", "Rs", "M_shaft"],
     post=_scene_post,
     parametric_args={"lubrication": _palmgren},
+    reference_fidelity=declared_errors("double_layer_bearing")[0],
+    level_errors=declared_errors("double_layer_bearing")[1],
 )
 """The double-layer bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

@@ -17,8 +17,10 @@ from __future__ import annotations
 
 import fnmatch
 import inspect
+import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -31,9 +33,25 @@ __all__ = [
     "ArgSpec",
     "AssemblySpec",
     "PostQuantity",
+    "FIDELITY_ERRORS_FILE",
+    "declared_errors",
     "factory_default",
     "nested_post",
 ]
+
+FIDELITY_ERRORS_FILE = Path(__file__).resolve().parent / "fidelity_errors.json"
+"""Measured errors of the lower fidelity levels per quantity, written by
+:mod:`bearingsim.studies.fidelity_errors` (never by hand)."""
+
+
+def declared_errors(assembly: str) -> tuple[str | None, dict[str, dict[str, float]]]:
+    """The reference level and the measured errors (level -> quantity pattern -> relative
+    error [-]) of an assembly from :data:`FIDELITY_ERRORS_FILE`; ``(None, {})`` when it has
+    none."""
+    entry = json.loads(FIDELITY_ERRORS_FILE.read_text(encoding="utf-8")).get(assembly)
+    if entry is None:
+        return None, {}
+    return entry["reference"], entry["errors"]
 
 ARG_KINDS = ("bearing", "lubricant", "choice", "float", "bool", "table", "floats", "signal")
 """Kinds of scene arguments (see :class:`ArgSpec`)."""
@@ -150,6 +168,13 @@ class AssemblySpec:
     loads allow (merged into the arguments before building)."""
     fidelity_arg: str | None = "fidelity"
     """None for an assembly with a single level (scenes then give no fidelity)."""
+    level_errors: dict[str, dict[str, float]] = field(default_factory=dict)
+    """Level -> output name pattern -> measured relative error [-] of that level's value
+    against the same quantity at ``reference_fidelity`` (:func:`declared_errors`). A level
+    below the reference that provides a quantity the reference also answers declares it here;
+    ``auto`` never picks a level whose error exceeds the scene's tolerance."""
+    reference_fidelity: str | None = None
+    """The level the errors are measured against."""
 
     def __post_init__(self) -> None:
         where = f"AssemblySpec({self.name!r})"
@@ -160,6 +185,14 @@ class AssemblySpec:
     def with_defaults(self, args: dict[str, Any]) -> dict[str, Any]:
         """The arguments with the defaults of the ones not given (nested tables too)."""
         return _defaults(self.args, args)
+
+    def level_error(self, level: str, name: str) -> float | None:
+        """Declared relative error [-] of ``name`` at ``level`` against the reference level
+        (None: not declared, i.e. the level is the only one or the reference for it)."""
+        for pattern, error in self.level_errors.get(level, {}).items():
+            if fnmatch.fnmatchcase(name, pattern):
+                return float(error)
+        return None
 
     def min_fidelity(self, name: str) -> str:
         """Lowest fidelity that provides ``name`` (an output, input or parameter name)."""

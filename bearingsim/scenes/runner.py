@@ -55,6 +55,8 @@ class Prepared:
     symmetry: list[str]
     assemble_s: float
     fidelity_attempts: list[str] = field(default_factory=list)
+    fidelity_rejected: list[str] = field(default_factory=list)
+    """Lower levels ``auto`` rejected because their measured error exceeds the tolerance."""
 
     @property
     def outputs(self) -> list[str]:
@@ -83,16 +85,19 @@ def _check(scene: Scene) -> Scene:
 
 
 def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]
-                    ) -> tuple[str, str]:
-    """The fidelity to assemble and why.
+                    ) -> tuple[str, str, list[str]]:
+    """The fidelity to assemble, why, and the lower levels rejected for accuracy.
 
     ``auto`` takes the lowest level in ``spec.auto_fidelities`` that provides every requested
-    output, every input and parameter the scene sets, and every post-processed quantity.
+    output, every input and parameter the scene sets, and every post-processed quantity, and
+    whose measured error (:meth:`~bearingsim.assemblies.spec.AssemblySpec.level_error`) on each
+    requested output is within ``scene.tolerance``; a level that is too inaccurate for one
+    output is rejected for the whole scene.
     """
     if spec.fidelity_arg is None:
-        return spec.fidelities[0], "the assembly has a single fidelity level"
+        return spec.fidelities[0], "the assembly has a single fidelity level", []
     if scene.fidelity != "auto":
-        return scene.fidelity, "requested by the scene"
+        return scene.fidelity, "requested by the scene", []
     order = list(spec.auto_fidelities)
     need = {}
     names = list(scene.outputs or spec.default_outputs)
@@ -103,14 +108,29 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     level = 0
     for fid in need.values():
         level = max(level, order.index(fid) if fid in order else len(order) - 1)
-    chosen = order[level]
-    drivers = sorted(n for n, f in need.items() if f == chosen)
-    if level == 0:
-        reason = f"'{chosen}' (the lowest level) provides every requested name"
+    provided = order[level]
+    rejected = []
+    for candidate in order[level:]:
+        too_far = {n: e for n in names
+                   if (e := spec.level_error(candidate, n)) is not None and e > scene.tolerance}
+        if not too_far or candidate == order[-1]:
+            break
+        worst = max(too_far, key=too_far.get)
+        rejected.append(
+            f"{candidate}: {', '.join(sorted(too_far))} off by up to {too_far[worst]:.0%} "
+            f"against '{spec.reference_fidelity}' (measured; tolerance {scene.tolerance:.0%})")
+    chosen = candidate
+    drivers = sorted(n for n, f in need.items() if f == provided)
+    if chosen != provided:
+        reason = (f"'{chosen}' is the lowest level whose measured error on the requested "
+                  f"outputs is within the tolerance of {scene.tolerance:.0%}")
+    elif level == 0:
+        reason = (f"'{chosen}' (the lowest level) provides every requested name within the "
+                  f"tolerance of {scene.tolerance:.0%}")
     else:
         reason = (f"'{chosen}' is the lowest level that provides "
                   + ", ".join(drivers[:8]) + (" ..." if len(drivers) > 8 else ""))
-    return chosen, reason
+    return chosen, reason, rejected
 
 
 def prepare(scene: Scene) -> Prepared:
@@ -132,7 +152,7 @@ def prepare(scene: Scene) -> Prepared:
     model_outputs = [n for n in requested if n not in post]
     for q in post.values():
         model_outputs += [n for n in q.needs if n not in model_outputs]
-    fidelity, reason = choose_fidelity(scene, spec, post)
+    fidelity, reason, rejected = choose_fidelity(scene, spec, post)
     attempts = []
     t0 = time.perf_counter()
     while True:
@@ -163,7 +183,7 @@ def prepare(scene: Scene) -> Prepared:
     _check_names(scene, system)
     symmetry = spec.symmetry(args, scene.inputs)
     return Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
-                    symmetry, assemble_s, attempts)
+                    symmetry, assemble_s, attempts, rejected)
 
 
 def _check_names(scene: Scene, system: System) -> None:
@@ -278,7 +298,9 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
         "assembly": spec.name,
         "arguments": prep.args,
         "fidelity": {"requested": prep.scene.fidelity, "chosen": prep.fidelity,
-                     "reason": prep.fidelity_reason, "attempts": prep.fidelity_attempts},
+                     "reason": prep.fidelity_reason, "attempts": prep.fidelity_attempts,
+                     "tolerance": prep.scene.tolerance,
+                     "rejected": prep.fidelity_rejected},
         "system": {"states": system.n_states, "inputs": system.input_names,
                    "parameters": len(system.params), "report": system.report},
         "skipped": {

@@ -46,8 +46,11 @@ __all__ = [
     "line_of",
 ]
 
-TOP_KEYS = ("title", "description", "outputs", "assembly", "inputs", "parameters", "initial",
-            "simulation", "output")
+TOP_KEYS = ("title", "description", "outputs", "tolerance", "assembly", "inputs", "parameters",
+            "initial", "simulation", "output")
+DEFAULT_TOLERANCE = 0.05
+"""Largest relative error of the requested outputs a scene accepts from ``fidelity = "auto"``
+when it gives no ``tolerance`` [-]."""
 TABLE_KEYS = ("file", "column", "time_column", "times", "values")
 
 
@@ -147,6 +150,11 @@ class Scene:
         defaults.
     simulation, output : Simulation, Output
     title : str
+    tolerance : float
+        Largest relative error [-] of the requested outputs that ``fidelity = "auto"`` may
+        accept from a lower level (its measured error against the reference level,
+        :attr:`~bearingsim.assemblies.spec.AssemblySpec.level_errors`); default
+        :data:`DEFAULT_TOLERANCE`.
     path : str, optional
         The scene file (for error messages and relative table paths).
     text : str, optional
@@ -163,6 +171,7 @@ class Scene:
     simulation: Simulation = field(default_factory=Simulation)
     output: Output = field(default_factory=Output)
     title: str = ""
+    tolerance: float = DEFAULT_TOLERANCE
     path: str | None = None
     text: str | None = field(default=None, repr=False)
 
@@ -182,6 +191,7 @@ class Scene:
         return {
             "title": self.title,
             "outputs": list(self.outputs),
+            "tolerance": self.tolerance,
             "assembly": {"name": self.assembly, "fidelity": self.fidelity, **self.args},
             "inputs": inputs,
             "parameters": dict(self.parameters),
@@ -603,12 +613,15 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     if not isinstance(title, str):
         c.add("title", "must be text", "a string")
         title = ""
+    tolerance = d.get("tolerance", DEFAULT_TOLERANCE)
+    if _number(c, "tolerance", tolerance, "[1] (relative error)", 0.0, 10.0, True) is None:
+        tolerance = DEFAULT_TOLERANCE
     c.raise_if_any()
     return Scene(
         assembly=name, args=args, fidelity=fidelity, inputs=inputs,
         parameters=values["parameters"], initial=values["initial"], outputs=list(outputs),
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
-        path=path, text=text,
+        tolerance=float(tolerance), path=path, text=text,
     )
 
 

@@ -237,7 +237,7 @@ def _structure(sc: Scene) -> tuple[str, str]:
     args = spec.with_defaults(sc.args)
     post_all = spec.post(args)
     post = {n: post_all[n] for n in (sc.outputs or spec.default_outputs) if n in post_all}
-    fidelity, _ = choose_fidelity(sc, spec, post)
+    fidelity, _, _ = choose_fidelity(sc, spec, post)
     stripped = copy.deepcopy(args)
     for key, holds in spec.parametric_args.items():
         if holds(args):
