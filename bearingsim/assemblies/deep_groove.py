@@ -314,7 +314,7 @@ class DeepGrooveBallBearing(Assembly):
             ports = [balls[j].frame, inner[j].ball, outer[j].ball, pockets[j].ball]
             connect(*(ports + ([drags[j].ball] if drags else [])))
         if ring_drag:
-            self.ring_drag = RingDrag(dm, lubricant)
+            self.ring_drag = RingDrag(dm, lubricant, series=g.series)
             self.P_resolved = Variable(unit="W", description="viscous loss resolved at ball "
                                                              "level (rolling resistance, drag)")
             connect(self.ring_drag.inner, self.shaft)

@@ -8,6 +8,7 @@ contact angle, groove curvature centre loci).
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from dataclasses import dataclass
 
@@ -204,6 +205,19 @@ class BearingGeometry:
                 f"{where}: {abs(float(speed)):g} rad/s ({abs(float(speed)) * 30 / math.pi:.0f} "
                 f"r/min) exceeds the limiting speed of {self.designation}, "
                 f"{self.limiting_speed * 30 / math.pi:.0f} r/min", SpeedLimitWarning, stacklevel=3)
+
+    @property
+    def series(self) -> str | None:
+        """The catalogue series of the designation (``"619"`` for 61905, ``"63"`` for 6304,
+        ``"160"`` for 16004, ``"70"`` for 7014C), or None when the designation does not follow
+        the ISO numbering (a user geometry)."""
+        digits = re.match(r"\d+", self.designation.strip())
+        if digits is None or len(digits.group()) < 4:
+            return None
+        number = digits.group()
+        if len(number) == 5 and number[:3] in ("618", "619", "160"):
+            return number[:3]
+        return number[:2] if len(number) == 4 else None
 
     @property
     def bearing_type(self) -> str:

@@ -134,7 +134,7 @@ class PalmgrenBearing(_LubricatedBearing):
             "kinematic viscosity of the (base) oil at operating temperature", low=0.0,
         )
         self.f0 = Parameter(
-            float(self.lubricant.palmgren_f0(self.bearing_type)), "1",
+            float(self.lubricant.palmgren_f0(self.bearing_type, self.geometry.series)), "1",
             "Palmgren load-independent friction factor f0", low=0.0,
         )
         self._smooth = smooth

@@ -264,6 +264,7 @@ def palmgren_torque(
     smooth: bool = True,
     T: Any = None,  # noqa: N803
     omega_reg: float = 0.1,
+    series: str | None = None,
 ) -> Any:
     """Palmgren friction torque ``M = M0 + M1`` of a bearing [N m], signed against the rotation.
 
@@ -303,6 +304,9 @@ def palmgren_torque(
         Lubricant temperature [K]; default the lubricant's operating temperature.
     omega_reg : float
         Regularization speed of the sign [rad/s], > 0.
+    series : str, optional
+        Catalogue series of the bearing (e.g. ``"619"``) for the f0 of
+        :data:`~bearingsim.physics.lubrication.PALMGREN_F0_BY_SERIES`.
 
     Returns
     -------
@@ -317,7 +321,7 @@ def palmgren_torque(
     check_range(load_P1, "load_P1", "N", 0.0, None, where=where)
     check_diameter(dm, "dm", where)
     speed = smooth_abs(omega_rel, omega_reg)
-    f0 = lubricant.palmgren_f0(bearing_type)
+    f0 = lubricant.palmgren_f0(bearing_type, series)
     magnitude = palmgren_m0(lubricant.kinematic_viscosity(T), speed, dm, f0, smooth)
     if P0 is not None:
         check_range(P0, "P0", "N", 0.0, None, where=where)

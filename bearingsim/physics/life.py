@@ -73,8 +73,11 @@ _DW_LARGE_MM = 25.4
 #   ISO 281 has one e column for single and double row from 20 deg up). By the same argument
 #   e = 0.95 at 35 deg equals the limit of SKF's 35 deg four-point contact bearings QJ 2/QJ 3
 #   (same catalogue, p. 455: P = Fr + 0.66 Fa for Fa/Fr <= 0.95, else 0.6 Fr + 1.07 Fa, i.e. the
-#   ISO double-row factors). The single-row X, Y at 20, 35 and 45 deg and e at 20 deg are in no
-#   retrieved catalogue and remain UNVERIFIED (entered from memory).
+#   ISO double-row factors). The single-row X, Y at 20, 35 and 45 deg and e at 20 deg: GOST
+#   18855-2013 (ISO 281:2007, MOD), Table 3, p. 9 (scanned standard, read from the page image);
+#   the 20 deg row also in NSK's super precision catalogue, Table 1.1 p. 139, labelled 18 deg
+#   (NSK applies the 20 deg factors to its 18 deg BNR series; bearingsim interpolates between
+#   15 and 20 deg at 18 deg, so enter 20 deg to compare with NSK's BNR figures).
 #   (tests/physics/test_published_tables.py)
 # * Double-row X, Y (rows=2; also two single-row bearings back-to-back DB or face-to-face DF):
 #   15 deg (e, Y1 for Fa/Fr <= e, X2 and Y2 for Fa/Fr > e; rows 0.178 to 5.35), 25, 30 and
@@ -84,8 +87,8 @@ _DW_LARGE_MM = 25.4
 #   p. B20; Koyo adds the 7.14 row and prints
 #   Y2 2.21 for the 0.714 row, a misprint: NSK 2.11 = 2^0.7 x 1.30 keeps P continuous at e).
 #   30, 40, 45 deg: SKF GC 6000, p. 440, Table 3 (32 A/33 A, 33 DNRCBM, 33 D); 35 deg: SKF,
-#   p. 455 (QJ four-point contact). The 20 deg double-row factors (Y1 1.09, X2 0.70, Y2 1.63) are
-#   in no retrieved catalogue: UNVERIFIED (ISO 281 from memory), like the single-row 20 deg row.
+#   p. 455 (QJ four-point contact). The 20 deg double-row factors (Y1 1.09, X2 0.70, Y2 1.63):
+#   GOST 18855-2013, Table 3, p. 9, and NSK's "DB or DF" columns of its 18 deg row (Table 1.1).
 #   Corroborated only loosely: Koyo p. B21 prints its 24 deg (52/53 series) and 32 deg (32/33
 #   series) double-row factors, and its 32 deg row is exactly our linear interpolation between
 #   30 and 35 deg; its 24 deg row (0.66, 0.95, 0.68, 1.45) is too if the 20 deg row is ours
@@ -105,10 +108,12 @@ _DW_LARGE_MM = 25.4
 #   f0 Z Dw^2 reproduces NSK's C0r within 0.5 %; elsewhere corroborated by the same public
 #   implementations and by the 4 200 MPa Hertz basis of ISO 76 (tests/physics/test_life.py).
 # ISO 281:2007, Table 2: fc for single-row radial contact and angular contact groove ball bearings.
-_FC_GAMMA = (0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.12, 0.14, 0.16, 0.18,
-             0.20, 0.22, 0.24, 0.26, 0.28, 0.30, 0.32, 0.34, 0.36, 0.38, 0.40)
-_FC = (29.1, 35.8, 40.3, 43.8, 46.7, 49.1, 51.1, 52.8, 54.3, 55.5, 57.5, 58.8, 59.6, 59.9,
-       59.9, 59.6, 59.0, 58.2, 57.1, 56.0, 54.6, 53.2, 51.7, 50.0, 48.4)
+# Every hundredth of gamma as GOST 18855-2013 (ISO 281:2007, MOD), Table 2, pp. 5-6, prints it
+# (the odd hundredths above 0.10 were interpolated before; they differed by at most 0.1).
+_FC_GAMMA = tuple(round(0.01 * j, 2) for j in range(1, 41))
+_FC = (29.1, 35.8, 40.3, 43.8, 46.7, 49.1, 51.1, 52.8, 54.3, 55.5, 56.6, 57.5, 58.2, 58.8,
+       59.3, 59.6, 59.8, 59.9, 60.0, 59.9, 59.8, 59.6, 59.3, 59.0, 58.6, 58.2, 57.7, 57.1,
+       56.6, 56.0, 55.3, 54.6, 53.9, 53.2, 52.4, 51.7, 50.9, 50.0, 49.2, 48.4)
 
 # ISO 76:2006, Table 2: f0 for radial contact and angular contact groove ball bearings.
 _F0_GAMMA = tuple(round(0.01 * j, 2) for j in range(41))
@@ -135,7 +140,7 @@ _AC_FIXED = ((20.0, 0.57, 0.43, 1.00), (25.0, 0.68, 0.41, 0.87), (30.0, 0.80, 0.
 _AC15_Y1 = (1.65, 1.57, 1.46, 1.38, 1.34, 1.26, 1.14, 1.12, 1.12)
 _AC15_X2 = 0.72
 _AC15_Y2 = (2.39, 2.28, 2.11, 2.00, 1.93, 1.82, 1.66, 1.63, 1.63)
-# 20 to 45 deg: (alpha, Y1, X2, Y2); the 20 deg row is UNVERIFIED (see the comment above).
+# 20 to 45 deg: (alpha, Y1, X2, Y2); GOST 18855-2013, Table 3 (see the comment above).
 _AC2_FIXED = ((20.0, 1.09, 0.70, 1.63), (25.0, 0.92, 0.67, 1.41), (30.0, 0.78, 0.63, 1.24),
               (35.0, 0.66, 0.60, 1.07), (40.0, 0.55, 0.57, 0.93), (45.0, 0.47, 0.54, 0.81))
 
@@ -268,8 +273,9 @@ def static_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=
 #   0.44 (33 D, 45 deg), so 45 deg single row = 0.22.
 # * 35 deg: SKF p. 455, four-point contact QJ 2/QJ 3 (35 deg, p. 452; rated as a double row):
 #   P0 = Fr + 0.58 Fa, so single row 0.29.
-# * 20 deg (0.42): UNVERIFIED. No retrieved catalogue prints a 20 deg Y0; the value sits on the
-#   line between 15 and 25 deg (0.46, 0.38), so interpolating 15-25 would give the same.
+# * 20 deg (0.42), and every single-row (0.46 ... 0.22 at 15 ... 45 deg) and double-row (0.92
+#   ... 0.44) Y0: GOST 18854-94 (ISO 76-87), Table 2, p. 5; the 20 deg row also in NSK's super
+#   precision catalogue, Table 2.1 p. 146, labelled 18 deg (X0 0.5, Y0 0.42; DB/DF 1, 0.84).
 _Y0_ANGLE_DEG = (15.0, 20.0, 25.0, 30.0, 35.0, 40.0, 45.0)
 _Y0_ANGULAR = (0.46, 0.42, 0.38, 0.33, 0.29, 0.26, 0.22)
 _X0_ANGULAR = 0.5
@@ -390,7 +396,6 @@ def xy_factors(radial_load, axial_load, c0, f0, contact_angle: float = 0.0, rows
       between the tabulated 15, 20, 25, 30, 35, 40 and 45 deg. e is the same for one and two rows.
       Use rows = 2 for double-row bearings and for two single-row bearings mounted back-to-back
       (DB) or face-to-face (DF); rows = 1 for a single bearing and for bearings in tandem (DT).
-      The double-row 20 deg factors are unverified (see the module comments).
 
     Values between the rows of the 15 deg and deep-groove tables are interpolated linearly;
     relative axial loads beyond a table take its end rows.

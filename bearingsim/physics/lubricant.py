@@ -126,15 +126,13 @@ class Lubricant(ABC):
         """Dynamic viscosity ``eta = nu rho`` [Pa s] at temperature ``T`` [K]."""
         return self.kinematic_viscosity(T) * self.density(T)
 
-    def palmgren_f0(self, bearing_type: str) -> float:
-        """Palmgren factor f0 [-] for this lubricant's method, times :meth:`churning_factor`.
-
-        Table: :data:`~bearingsim.physics.lubrication.PALMGREN_F0` (Harris & Kotzalas, after
-        Palmgren).
-        """
+    def palmgren_f0(self, bearing_type: str, series: str | None = None) -> float:
+        """Palmgren factor f0 [-] for this lubricant's method (and the bearing's catalogue
+        ``series`` where the catalogue table has it), times :meth:`churning_factor`
+        (:func:`~bearingsim.physics.lubrication.palmgren_f0`)."""
         if self.churning_factor() == 0.0:
             return 0.0
-        return palmgren_f0(bearing_type, self.method) * self.churning_factor()
+        return palmgren_f0(bearing_type, self.method, series) * self.churning_factor()
 
     def __repr__(self) -> str:
         return f"<{self.describe()}>"

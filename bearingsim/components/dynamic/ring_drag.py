@@ -49,6 +49,9 @@ class RingDrag(Component):
         Key of the Palmgren f0 table (default deep-groove ball bearing).
     omega_reg : float
         Regularization speed of the sign and of ``|w_rel|`` [rad/s], > 0.
+    series : str, optional
+        Catalogue series (e.g. ``"63"``) for f0 by series
+        (:data:`~bearingsim.physics.lubrication.PALMGREN_F0_BY_SERIES`).
 
     Connectors
     ----------
@@ -62,12 +65,13 @@ class RingDrag(Component):
     """
 
     def __init__(self, pitch_diameter: float, lubricant: Lubricant,
-                 bearing_type: str = "deep_groove_ball", omega_reg: float = 0.1, name=None):
+                 bearing_type: str = "deep_groove_ball", omega_reg: float = 0.1,
+                 series: str | None = None, name=None):
         super().__init__(name)
         self.dm = Parameter(pitch_diameter, "m", "pitch diameter", low=0.0, low_inclusive=False)
         self.nu = Parameter(float(lubricant.kinematic_viscosity()), "m2/s",
                             "kinematic viscosity of the (base) oil", low=0.0)
-        self.f0 = Parameter(float(lubricant.palmgren_f0(bearing_type)), "1",
+        self.f0 = Parameter(float(lubricant.palmgren_f0(bearing_type, series)), "1",
                             "Palmgren load-independent friction factor f0", low=0.0)
         self.omega_reg = Parameter(omega_reg, "rad/s", "regularization speed", low=0.0,
                                    low_inclusive=False)
