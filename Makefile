@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test bench lint docs clean
+.PHONY: demo test bench validate lint docs clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -16,17 +16,20 @@ demo: $(STAMP)
 	$(PY) -m bearingsim.cli demo --out demo_output
 
 test: $(STAMP)
-	$(PY) -m ruff check bearingsim tests bench examples
+	$(PY) -m ruff check bearingsim tests bench examples tools
 	$(PY) -m pytest -q -n 2 tests
 
 bench: $(STAMP)
 	$(PY) -m bench.run_all --out docs/benchmarks.md
 
+validate: $(STAMP)
+	$(PY) -m tools.validation_report docs/validation.md
+
 docs: $(STAMP)
 	$(PY) -m bearingsim.reference docs/components.md
 
 lint: $(STAMP)
-	$(PY) -m ruff check bearingsim tests bench examples
+	$(PY) -m ruff check bearingsim tests bench examples tools
 
 clean:
 	rm -rf $(VENV) demo_output build *.egg-info
