@@ -98,11 +98,13 @@ SKF_ANGULAR_CONTACT: dict[str, dict[str, float]] = {
 }
 SKF_KRS: dict[str, float] = {
     # Replenishment/starvation constant Krs: 3e-8 for low-level oil bath and oil jet, 6e-8 for
-    # grease and oil-air (oil mist). Verified against the SKF General Catalogue 6000 (Russian ed.,
-    # 2006 data), p. 98. "vertical_shaft" has no catalogue value; the oil-bath value is used.
+    # grease and oil-air (oil mist). SKF General Catalogue 6000 (Russian ed., 2006 data), p. 98;
+    # SKF "Rolling bearings" PUB BU/P1 10000/3 (2017), p. 102, which applies phi_rs only to oil-air,
+    # oil jet, grease and an oil bath whose level is below the centre of the lowest rolling
+    # element. An oil bath with a given level (at or above that centre) and a vertical shaft get
+    # no starvation factor (phi_rs = 1). Oil mist is not named by SKF; the oil-air value is used.
     "oil_bath": 3e-8,
     "oil_jet": 3e-8,
-    "vertical_shaft": 3e-8,
     "grease": 6e-8,
     "oil_mist": 6e-8,
 }
@@ -488,7 +490,10 @@ def skf_friction_components(
       reproduced in tests/physics/test_published_examples.py).
     * ``phi_rs = exp(-Krs nu n (d + D) sqrt(Kz / (2 (D - d))))`` (kinematic replenishment /
       starvation), ``Krs`` from :data:`SKF_KRS` by lubrication method (same catalogue, p. 98;
-      its example on p. 105, 0.8 with Kz = 5.5, is reproduced).
+      its example on p. 105, 0.8 with Kz = 5.5, is reproduced). As SKF applies it (2017
+      edition, p. 102): oil-air/oil mist, oil jet, grease and an oil bath below the lowest ball
+      centre (an oil bath without ``oil_level``); an oil bath with ``oil_level`` (>= 0: at or
+      above that centre) and a vertical shaft have ``phi_rs = 1``.
     * ``Mseal = KS1 ds^beta + KS2`` (:class:`SkfSeal`), 0 without seals.
     * ``Mdrag``: SKF's drag term needs the ``VM`` diagram, which is not reproduced here; instead
       the drag of the immersed balls is computed from
@@ -551,7 +556,10 @@ def skf_friction_components(
     dm_mm, d_mm, big_d_mm = dm * 1e3, d * 1e3, D * 1e3
     g_rr, g_sl, kind = _skf_g_factors(series, dm_mm, n, Fr, Fa, C0)
     phi_ish = 1.0 / (1.0 + 1.84e-9 * power(n * dm_mm, 1.28) * power(nu, 0.64))
-    krs = SKF_KRS.get(lubricant.method, 0.0)  # a Dry lubricant has no replenishment (nu = 0)
+    # a Dry lubricant has no replenishment (nu = 0); a full oil bath (its level given, at or
+    # above the lowest ball centre) and a vertical shaft are not starved (SKF 2017, p. 102)
+    full_bath = lubricant.method == "oil_bath" and oil_level is not None
+    krs = 0.0 if full_bath else SKF_KRS.get(lubricant.method, 0.0)
     kz_term = np.sqrt(SKF_KZ[kind] / (2.0 * (big_d_mm - d_mm)))
     phi_rs = exp(-krs * nu * n * (d_mm + big_d_mm) * kz_term)
     phi_bl = exp(-2.6e-8 * power(n * nu, 1.4) * dm_mm)

@@ -232,3 +232,26 @@ def test_skf_constants_match_checked_sources():
     assert SKF_DEEP_GROOVE["62"] == {"R1": 3.9e-7, "R2": 1.7, "S1": 3.23e-3, "S2": 36.5}
     assert (SKF_KRS["oil_bath"], SKF_KRS["grease"]) == (3e-8, 6e-8)
     assert SKF_KZ == {"deep_groove_ball": 3.1, "angular_contact_ball": 4.4}
+
+
+def test_skf_starvation_factor_only_where_skf_applies_it():
+    """SKF "Rolling bearings" 10000/3 (2017), p. 102: phi_rs applies to oil-air, oil jet, grease
+    and an oil bath whose level is below the centre of the lowest rolling element. A given oil
+    level (>= 0 above the lowest ball centre) means a full bath: phi_rs = 1; so does a vertical
+    shaft. Without a level the bath is taken as low (Krs 3e-8)."""
+    from bearingsim.units import rpm_to_rad_s
+
+    def phi_rs(method, oil_level=None):
+        oil = Oil.from_iso_vg(32, method=method)
+        kwargs = {"oil_level": oil_level, "Dw": 4.0e-3, "Z": 13} if oil_level is not None else {}
+        return float(skf_friction_components(
+            rpm_to_rad_s(10_000.0), 0.0335, oil, "619", 200.0, 0.0, C0=4300.0, d=0.025,
+            D=0.042, **kwargs).phi_rs)
+
+    low_bath = phi_rs("oil_bath")
+    assert 0.0 < low_bath < 0.99  # starved: Krs 3e-8
+    assert phi_rs("oil_jet") == pytest.approx(low_bath, rel=1e-12)
+    assert phi_rs("oil_bath", oil_level=0.0) == 1.0
+    assert phi_rs("oil_bath", oil_level=0.01) == 1.0
+    assert phi_rs("vertical_shaft") == 1.0
+    assert phi_rs("grease") < low_bath  # Krs 6e-8
