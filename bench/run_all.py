@@ -22,6 +22,7 @@ from bench import (
     double_layer_steady,
     duplex,
     pruning,
+    sundials_compiled,
     work_precision,
 )
 from bench import fmu as fmu_bench
@@ -105,6 +106,7 @@ def main(argv: list[str] | None = None) -> int:
             "modes)", dgbb.run(True))),
         ("ball-level assembly", ball_level_assembly.section),
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
+        ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
     ]
     for k, (label, bench_fn) in enumerate(steps, start=1):
         print(f"{k}/{len(steps)} {label}", flush=True)

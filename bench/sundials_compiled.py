@@ -50,9 +50,9 @@ from bearingsim.simulation import simulate
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
 from bearingsim.simulation.sundials import LINEAR_SOLVERS, clear_integrator_cache
-from bench.common import fmt, markdown_table
+from bench.common import Section, fmt, markdown_table
 
-__all__ = ["CASES", "Case", "main"]
+__all__ = ["CASES", "Case", "main", "report", "section"]
 
 
 @dataclass
@@ -375,6 +375,62 @@ def setup_costs(case: Case, n: int = 5) -> list[list]:
 
 
 # ------------------------------------------------------------------------------ main
+def report(sections: tuple[str, ...], cases: tuple[str, ...],
+           levels: tuple[str, ...] = ("-O0", "-O1", "-O2")) -> str:
+    """The Markdown of the chosen sections for the chosen cases."""
+    out: list[str] = []
+    for name in cases:
+        case = CASES[name]
+        system, _ = case.system()
+        out.append(f"### {case.label}: {system.n_states} states, method {case.method} "
+                   f"(assembled in {case.cache['assemble_s']:.1f} s)\n")
+        per_call = None
+        if "calls" in sections or "runs" in sections:
+            per_call = calls(case)
+            out.append("Cost of one call [us], measured inside CasADi:\n")
+            out.append(markdown_table(list(per_call), [[fmt(v) if isinstance(v, float) else v
+                                                        for v in per_call.values()]]) + "\n")
+        if "compile" in sections:
+            out.append(markdown_table(["flags", "generate + compile [s]", "library [MB]",
+                                       "start-up run [s]", "rhs [us] in run",
+                                       "jac [us] in run"],
+                                      compile_levels(case, levels)) + "\n")
+        if "runs" in sections:
+            data = runs(case, per_call)
+            out.append(markdown_table(RUN_HEADER, run_rows(case, data)) + "\n")
+            out.append(f"VM vs C: max relative difference {data.get('max rel diff', 'n/a')}, "
+                       f"same steps: {data.get('same steps', 'n/a')}\n")
+        if "linsol" in sections:
+            out.append(markdown_table(["linear solver", "start-up wall [s]", "spread", "steps",
+                                       "factorizations", "share outside kernels"],
+                                      linear_solvers(case)) + "\n")
+        if "setup" in sections:
+            out.append(markdown_table(["backend", "run [s]", "first call [ms]", "kernel [ms]",
+                                       "integrator build [ms]", "later calls [ms]",
+                                       "prepare (inputs, x0) [ms]"], setup_costs(case)) + "\n")
+    return "\n".join(out)
+
+
+def section(quick: bool = False) -> Section:
+    """The run_all section: calls, runs and set-up of the torque level, the 6304 massive-ball
+    level and the nested dynamic bearing (the torque level only with ``quick``)."""
+    cases = ("torque",) if quick else ("torque", "massive", "nested")
+    intro = (
+        "`simulate(..., method=\"cvodes\")` on CasADi's VM (`compiled=False`) and on generated "
+        "C (`compiled=True`: right-hand side and exact Jacobian as a library loaded with "
+        "`casadi.external`), same integrator, same steps. *wall / sim s*: wall seconds per "
+        "simulated second; *limit*: the compiled per-call costs times the calls the run took "
+        "(kernels only, and with the dense LU of the Newton matrix), the physical limit of this "
+        "machine; *wall / limit*: the distance to it. Goals of issue 14: at most 1 s per "
+        "simulated second for the 6304 massive-ball level, 10 s for the nested dynamic bearing. "
+        "Set-up: a 1 ms run repeated, first call (kernel from the disk cache, integrator built) "
+        "and later calls (both cached).\n\n"
+        "Command: `python -m bench.sundials_compiled calls runs setup --cases "
+        + ",".join(cases) + "`\n")
+    return Section("SUNDIALS on compiled kernels", intro + "\n" + report(
+        ("calls", "runs", "setup"), cases))
+
+
 def main() -> None:
     """Command line: one or more sections for the chosen cases, Markdown on stdout."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -383,36 +439,8 @@ def main() -> None:
     parser.add_argument("--cases", default="torque,massive,qs,nested")
     parser.add_argument("--levels", default="-O0,-O1,-O2")
     args = parser.parse_args()
-    for name in args.cases.split(","):
-        case = CASES[name]
-        system, _ = case.system()
-        print(f"\n## {case.label}: {system.n_states} states, method {case.method} "
-              f"(assembled in {case.cache['assemble_s']:.1f} s)\n", flush=True)
-        per_call = None
-        if "calls" in args.sections or "runs" in args.sections:
-            per_call = calls(case)
-            print(markdown_table(list(per_call), [[fmt(v) if isinstance(v, float) else v
-                                                   for v in per_call.values()]]), "\n",
-                  flush=True)
-        if "compile" in args.sections:
-            print(markdown_table(["flags", "generate + compile [s]", "library [MB]",
-                                  "start-up run [s]", "rhs [us] in run", "jac [us] in run"],
-                                 compile_levels(case, tuple(args.levels.split(",")))), "\n",
-                  flush=True)
-        if "runs" in args.sections:
-            data = runs(case, per_call)
-            print(markdown_table(RUN_HEADER, run_rows(case, data)), "\n", flush=True)
-            print(f"VM vs C: max relative difference {data.get('max rel diff', 'n/a')}, "
-                  f"same steps: {data.get('same steps', 'n/a')}\n", flush=True)
-        if "linsol" in args.sections:
-            print(markdown_table(["linear solver", "start-up wall [s]", "spread", "steps",
-                                  "factorizations", "share outside kernels"],
-                                 linear_solvers(case)), "\n", flush=True)
-        if "setup" in args.sections:
-            print(markdown_table(["backend", "run [s]", "first call [ms]", "kernel [ms]",
-                                  "integrator build [ms]", "later calls [ms]",
-                                  "prepare (inputs, x0) [ms]"], setup_costs(case)), "\n",
-                  flush=True)
+    print(report(tuple(args.sections), tuple(args.cases.split(",")),
+                 tuple(args.levels.split(","))))
 
 
 if __name__ == "__main__":
