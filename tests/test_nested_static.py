@@ -98,3 +98,27 @@ def test_invalid_loads_are_rejected(radial_system):
         nested_equilibrium(radial_system, 0.0)
     with pytest.raises(ParameterError, match="axial"):
         nested_equilibrium(radial_system, 100.0, 50.0)
+
+
+def test_study_fits_set_each_layers_operating_clearance():
+    """models.md section A mounts the layers with k6 shafts and H7 bores. With the CN clearance
+    (NSK Table 9.9) the inner layer keeps 1.6 um; the outer layer sits on the middle ring, a
+    thinner seat that gives way, so it keeps more (I-type 61909 on a 1.5 mm sleeve: 8.6 um);
+    the mounted pair is stiffer than the unmounted one (catalogue rows: the CN mean, 12.5 um)."""
+    from bearingsim.catalog import get_bearing
+    from bearingsim.components.middle_ring import mounted_geometries
+    from bearingsim.errors import ParameterError
+    from bearingsim.studies.nested_equilibrium import nested_equilibrium
+
+    gi, go = mounted_geometries(get_bearing("61905"), get_bearing("61909"), "I")
+    assert gi.diametral_clearance == pytest.approx(1.63e-6, abs=0.05e-6)
+    assert go.diametral_clearance == pytest.approx(8.57e-6, abs=0.05e-6)
+    _, solid = mounted_geometries(get_bearing("61905"), get_bearing("61907"), "Z")
+    assert solid.diametral_clearance < go.diametral_clearance
+    with pytest.raises(ParameterError, match="internal preload of .* um"):
+        mounted_geometries(get_bearing("61905"), get_bearing("61907"), "Z", band="largest")
+    mounted = nested_equilibrium(assemble(double_layer_bearing(
+        "61905", "61907", fidelity="quasi-static", fits=True)), 200.0)
+    unmounted = nested_equilibrium(assemble(double_layer_bearing(
+        "61905", "61907", fidelity="quasi-static")), 200.0)
+    assert mounted.shaft_displacement[0] < unmounted.shaft_displacement[0] - 5e-6

@@ -37,6 +37,7 @@ from bearingsim.components.middle_ring import (
     MiddleRing,
     middle_ring_bodies,
     middle_ring_structure,
+    mounted_geometries,
 )
 from bearingsim.components.rotational import Fixed, SpeedSource
 from bearingsim.errors import ParameterError
@@ -47,6 +48,7 @@ from bearingsim.physics.life import basic_rating_life_hours
 from bearingsim.physics.lubricant import as_lubricant
 from bearingsim.validation import (
     check_choice,
+    check_flag,
     check_mapping,
     check_options,
     check_range,
@@ -310,6 +312,11 @@ class DynamicDoubleLayerBearing(Assembly):
         level's M0 and the ratio follows its lubricant dependence).
     w_middle0 : float
         Initial middle ring speed [rad/s].
+    fits : bool
+        Mount both layers with the study's fits (k6 shaft seats, H7 bores): each layer's
+        clearance becomes its operating clearance
+        (:func:`~bearingsim.components.middle_ring.mounted_geometries`); default False, the
+        clearance before mounting (catalogue rows: the CN mean).
     layer_options : dict, optional
         Further keyword arguments of both layers (``n_slices``, ``damping``, ...), those of
         :class:`~bearingsim.assemblies.deep_groove.DeepGrooveBallBearing` that this assembly
@@ -330,11 +337,14 @@ class DynamicDoubleLayerBearing(Assembly):
                  lubrication=("ISO VG 32", "ISO VG 32"), drive: str = "speed",
                  speed: Callable | float | None = None, loads: dict[str, Any] | None = None,
                  massive_balls: bool = True, rolling_resistance: bool = True,
-                 ring_drag: bool = True, w_middle0: float = 0.0,
+                 ring_drag: bool = True, w_middle0: float = 0.0, fits: bool = False,
                  layer_options: dict | None = None, name="bearing"):
         super().__init__(name)
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
         self.structure = middle_ring_structure(gi, go, structure)
+        check_flag(fits, "fits", "double_layer_bearing")
+        if fits:
+            gi, go = mounted_geometries(gi, go, self.structure)
         _check_drive(drive)
         lub_i, lub_o = (as_lubricant(x, "double_layer_bearing") for x in _pair(lubrication))
         for lub in (lub_i, lub_o):

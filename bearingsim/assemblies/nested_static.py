@@ -17,9 +17,10 @@ from __future__ import annotations
 from bearingsim.catalog import resolve_bearing
 from bearingsim.components.aligned_body import AXES, AlignedBody
 from bearingsim.components.ball_row import BallRow
-from bearingsim.components.middle_ring import middle_ring_structure
+from bearingsim.components.middle_ring import middle_ring_structure, mounted_geometries
 from bearingsim.components.rings import Housing
 from bearingsim.language import Assembly, connect
+from bearingsim.validation import check_flag
 
 __all__ = ["NestedQuasiStatic"]
 
@@ -39,6 +40,11 @@ class NestedQuasiStatic(Assembly):
         Let the bodies move axially (needed for axial loads); with ``False`` the axial
         positions stay centred (a deep-groove bearing with clearance has axial play and no axial
         stiffness without an axial load).
+    fits : bool
+        Mount both layers with the study's fits (k6 shaft seats, H7 bores): each layer's
+        clearance becomes its operating clearance
+        (:func:`~bearingsim.components.middle_ring.mounted_geometries`); default False, the
+        clearance before mounting (catalogue rows: the CN mean).
 
     Inputs
     ------
@@ -46,10 +52,13 @@ class NestedQuasiStatic(Assembly):
     """
 
     def __init__(self, inner="61905", outer="61907", structure: str | None = None,
-                 axial: bool = True, name="nested"):
+                 axial: bool = True, fits: bool = False, name="nested"):
         super().__init__(name)
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
         structure = middle_ring_structure(gi, go, structure)
+        check_flag(fits, "fits", "double_layer_bearing")
+        if fits:
+            gi, go = mounted_geometries(gi, go, structure)
         self.structure = structure
         offset = 0.0 if structure == "I" else -(gi.width + go.width) / 2
         free = AXES if axial else ("x", "y")

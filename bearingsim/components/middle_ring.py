@@ -8,6 +8,7 @@ the bearings offset axially, the sleeve a Z section.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -17,10 +18,11 @@ from bearingsim.components.rotational import Inertia
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Variable, connect
 from bearingsim.physics.bearing_design import STEEL_DENSITY
+from bearingsim.physics.fits import operating_clearance
 from bearingsim.validation import check_choice, check_range
 
 __all__ = ["STRUCTURES", "MiddleRing", "MiddleRingPart", "middle_ring_bodies",
-           "middle_ring_structure"]
+           "middle_ring_structure", "mounted_geometries"]
 
 STRUCTURES = ("I", "Z")
 """Middle ring types: I (both bearings in one radial plane) and Z (offset axially)."""
@@ -168,3 +170,57 @@ class MiddleRing(Assembly):
 
     def equations(self):
         return [self.w == self.sleeve.w]
+
+
+def mounted_geometries(inner: BearingGeometry, outer: BearingGeometry, structure: str,
+                       wall: float = 2.5e-3, band: str = "mean"
+                       ) -> tuple[BearingGeometry, BearingGeometry]:
+    """The two layers with the operating clearance of the study's fits (models.md section A:
+    inner fits k6, outer fits H7).
+
+    The inner bearing sits on the shaft with k6 (solid shaft) and in the middle ring with H7;
+    the outer bearing sits on the middle ring with k6 and in the housing with H7 (rigid). The
+    middle ring is the "shaft" of the outer bearing: an I-type sleeve has the inner bearing's
+    outside diameter as its bore, a Z-type hub a wall of ``wall``; a thin seat gives way, so it
+    takes up less clearance (:func:`~bearingsim.physics.fits.raceway_factor_inner`). The H7
+    seats never have interference. Initial clearance: each geometry's own (the catalogue rows
+    hold the CN mean; :func:`~bearingsim.physics.fits.operating_clearance` for the sources).
+
+    Parameters
+    ----------
+    inner, outer : BearingGeometry
+        Inner (shaft-side) and outer (housing-side) bearing.
+    structure : {"I", "Z"}
+        Middle ring type.
+    wall : float
+        Wall thickness of the Z-type hub under the outer bearing [m].
+    band : {"mean", "smallest", "largest"}
+        Interference of the probable band.
+
+    Returns
+    -------
+    (BearingGeometry, BearingGeometry)
+        Copies with ``diametral_clearance`` the operating clearance.
+
+    Raises
+    ------
+    ParameterError
+        When a layer's operating clearance is negative (an internal preload, which the
+        quasi-static and dynamic levels do not model), naming the layer and the preload.
+    """
+    check_choice(structure, "structure", STRUCTURES, "mounted_geometries")
+    sleeve_bore = inner.outside_diameter if structure == "I" else outer.bore - 2.0 * wall
+    clearances = (operating_clearance(inner, "k6", "H7", band=band),
+                  operating_clearance(outer, "k6", "H7", shaft_bore=max(sleeve_bore, 0.0),
+                                      band=band))
+    mounted = []
+    for layer, g, c in zip(("inner", "outer"), (inner, outer), clearances, strict=True):
+        if c.operating < 0.0:
+            raise ParameterError(
+                f"mounted_geometries: the fits leave the {layer} layer ({g.designation}) an "
+                f"internal preload of {-c.operating * 1e6:.1f} um (clearance {c.initial * 1e6:.1f} "
+                f"um less {c.inner_reduction * 1e6:.1f} um on the shaft seat); the quasi-static "
+                f"and dynamic levels model clearance >= 0 only: give fits=False or "
+                f"band='smallest'")
+        mounted.append(dataclasses.replace(g, diametral_clearance=c.operating))
+    return mounted[0], mounted[1]
