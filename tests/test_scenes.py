@@ -419,3 +419,26 @@ def test_sweep_on_local_cluster_reports_failed_point_and_keeps_others(tmp_path):
     ok = [r for r in res.rows if r["status"] == "ok"]
     assert ok[0]["Rs"] == pytest.approx(ok[1]["Rs"], rel=1e-6)  # Rs independent of speed
     assert rpm_to_rad_s(1) > 0
+
+
+def test_a_missing_input_is_an_error_not_a_run_at_zero():
+    """Issue 16: a scene without shaft_speed ran with 0 rad/s and reported Rs = 0 (exit 0)."""
+    text = ('outputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+            '[simulation]\nt_end = 0.1\n')
+    with pytest.raises(SceneError, match=r"input\(s\) not given: shaft_speed \[rad/s\]") as err:
+        prepare(parse_scene(text, None))
+    assert "Fr, Fa" in err.value.allowed  # the loads may be left out (no load)
+    prep = prepare(parse_scene(text + "[inputs]\nshaft_speed = 100.0\n", None))
+    assert "Fr" in prep.system.input_names  # left out: held at 0 N
+
+
+def test_a_sweep_may_give_the_missing_input_in_its_grid(tmp_path):
+    from bearingsim.scenes.sweep import grid_points, run_sweep
+
+    text = ('outputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+            '[simulation]\nt_end = 0.05\nn_points = 3\n')
+    path = tmp_path / "no_speed.toml"
+    path.write_text(text)
+    result = run_sweep(path, grid_points({"inputs.shaft_speed": [50.0, 100.0]}), n_workers=2,
+                       progress=False)
+    assert len(result.ok) == 2

@@ -582,5 +582,6 @@ SCENE_SPEC = AssemblySpec(
                      *((pattern, _MASSIVE_BALLS) for pattern in
                        ("w_cage", "slip", "inner*", "outer*", "pocket*", "shaft_speed"))],
     default_outputs=["row.Q_i[0]", "row.alpha_i[0]"],
+    optional_inputs=("load.*",),  # no load on the inner ring
 )
 """The single deep-groove ball bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

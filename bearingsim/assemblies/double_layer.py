@@ -620,6 +620,7 @@ SCENE_SPEC = AssemblySpec(
     default_outputs=["w_shaft", "w_middle", "Rs", "M_shaft"],
     post=_scene_post,
     parametric_args={"lubrication": _palmgren},
+    optional_inputs=("Fr", "Fa"),  # no load
     reference_fidelity=declared_errors("double_layer_bearing")[0],
     level_errors=declared_errors("double_layer_bearing")[1],
 )

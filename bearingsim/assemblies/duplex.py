@@ -429,5 +429,6 @@ SCENE_SPEC = AssemblySpec(
     symmetry=_symmetry,
     symmetric_args=_symmetric_args,
     fidelity_arg=None,
+    optional_inputs=("shaft.*",),  # no external load (the preload alone)
 )
 """The duplex pair as a scene assembly (:mod:`bearingsim.scenes`)."""

@@ -96,6 +96,7 @@ SCENE_SPEC = AssemblySpec(
     post=lambda args: nested_post(_BEARING.post(args["bearing"]), "bearing."),
     parametric_args={"bearing." + name: (lambda args, holds=holds: holds(args["bearing"]))
                      for name, holds in _BEARING.parametric_args.items()},
+    optional_inputs=tuple("bearing." + p for p in _BEARING.optional_inputs),
     reference_fidelity=_BEARING.reference_fidelity,
     level_errors={level: {"motor.w_ref": 0.0,  # an input: exact at every level
                           **{"bearing." + pattern: error for pattern, error in errors.items()}}

@@ -175,6 +175,14 @@ class AssemblySpec:
     ``auto`` never picks a level whose error exceeds the scene's tolerance."""
     reference_fidelity: str | None = None
     """The level the errors are measured against."""
+    optional_inputs: tuple[str, ...] = ()
+    """fnmatch patterns of the inputs a scene may leave out (they keep their start value, e.g.
+    a load of 0); every other input of the assembled model must be given, so that a forgotten
+    shaft speed is an error, not a run at 0."""
+
+    def is_optional_input(self, name: str) -> bool:
+        """Whether a scene may leave the input ``name`` out."""
+        return any(fnmatch.fnmatchcase(name, p) for p in self.optional_inputs)
 
     def __post_init__(self) -> None:
         where = f"AssemblySpec({self.name!r})"

@@ -196,6 +196,14 @@ def _check_names(scene: Scene, system: System) -> None:
         if n not in system.input_names:
             add(f"inputs.{n}", f"the model has no input {n!r}",
                 ", ".join(system.input_names) or "none")
+    units = {sig.name: sig.unit for sig in system.inputs}
+    missing = [n for n in system.input_names
+               if n not in scene.inputs and not scene.spec.is_optional_input(n)]
+    if missing:
+        add("inputs", "input(s) not given: " + ", ".join(f"{n} [{units[n]}]" for n in missing)
+            + " (the run would hold them at their start value, e.g. a speed of 0)",
+            "a number, an expression of t or a table for each; inputs that may be left out: "
+            + (", ".join(scene.spec.optional_inputs) or "none"))
     for n, v in scene.parameters.items():
         try:
             system.p0({n: v})
