@@ -13,7 +13,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(PY) -m bearingsim.cli demo --out demo_output
+	$(PY) -m bearingsim.cli demo --out demo_output --overwrite
 
 test: $(STAMP)
 	$(PY) -m ruff check bearingsim tests bench examples tools

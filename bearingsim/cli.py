@@ -69,7 +69,8 @@ def _demo(args: argparse.Namespace) -> int:
     from bearingsim.scenes.library import DEMO_SCENES, builtin_scene_path
 
     for name in DEMO_SCENES:
-        _run(argparse.Namespace(scene=builtin_scene_path(name), out=args.out))
+        _run(argparse.Namespace(scene=builtin_scene_path(name), out=args.out,
+                                overwrite=args.overwrite))
     return 0
 
 
@@ -82,7 +83,7 @@ def _export(args: argparse.Namespace) -> int:
 def _run(args: argparse.Namespace) -> int:
     from bearingsim.scenes import run_scene
 
-    run = run_scene(args.scene, out=args.out)
+    run = run_scene(args.scene, out=args.out, overwrite=args.overwrite)
     s = run.summary
     print(f"{s['title']}: {s['assembly']} at fidelity {s['fidelity']['chosen']} "
           f"({s['fidelity']['reason']})")
@@ -158,6 +159,8 @@ def _parser() -> argparse.ArgumentParser:
     p_run = sub.add_parser("run", help="run a scene file: CSV, JSON summary and PNG plots")
     p_run.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_run.add_argument("--out", help="output folder (default: the scene's output.folder)")
+    p_run.add_argument("--overwrite", action="store_true",
+                       help="replace the files of an earlier run of this scene in the folder")
     p_val = sub.add_parser("validate", help="check a scene file without running it")
     p_val.add_argument("scene", help="scene TOML file")
     p_val.add_argument("--no-assemble", action="store_true",
@@ -181,6 +184,8 @@ def _parser() -> argparse.ArgumentParser:
     p_demo = sub.add_parser("demo", help="run the built-in demo scenes (PMSM spin-up of a "
                             "double-layer bearing; its speed ratio against friction torque)")
     p_demo.add_argument("--out", default="demo_output")
+    p_demo.add_argument("--overwrite", action="store_true",
+                        help="replace the files of an earlier demo run in the folder")
     p_exp = sub.add_parser("export-fmu", help="export an assembly as an FMU", add_help=False)
     p_exp.add_argument("rest", nargs=argparse.REMAINDER)
     return parser

@@ -139,3 +139,18 @@ def test_built_in_scenes_are_package_data_and_run_by_name(tmp_path):
     assert load_scene("double_layer_rs").path.endswith("double_layer_rs.toml")
     with pytest.raises(SceneError, match="built-in scenes: .*double_layer_rs"):
         load_scene(tmp_path / "missing.toml")
+
+
+def test_a_second_run_into_the_same_folder_needs_overwrite(tmp_path, capsys):
+    """Issue 16: runs overwrote their output folder silently."""
+    scene = str(SCENES / "double_layer_rs.toml")
+    assert main(["run", scene, "--out", str(tmp_path)]) == 0
+    first = (tmp_path / "double_layer_rs.summary.json").stat().st_mtime_ns
+    assert main(["run", scene, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "earlier run" in err and "double_layer_rs.csv" in err and "--overwrite" in err
+    assert (tmp_path / "double_layer_rs.summary.json").stat().st_mtime_ns == first
+    assert main(["run", scene, "--out", str(tmp_path), "--overwrite"]) == 0
+    (tmp_path / "other.csv").write_text("kept")  # files of other scenes do not count
+    assert main(["run", str(SCENES / "double_layer_friction.toml"), "--out",
+                 str(tmp_path)]) == 0

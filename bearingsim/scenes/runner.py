@@ -8,8 +8,10 @@ writes CSV, a JSON summary (with everything that was skipped) and PNG plots.
 from __future__ import annotations
 
 import csv
+import glob
 import json
 import math
+import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -384,8 +386,8 @@ def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.nda
     return files
 
 
-def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True
-              ) -> SceneRun:
+def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
+              overwrite: bool = False) -> SceneRun:
     """Run a scene and (by default) write CSV, JSON summary and plots to its output folder.
 
     Parameters
@@ -396,15 +398,34 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
         Output folder (default: the scene's ``output.folder``).
     write : bool
         Write the files; otherwise only return the results.
+    overwrite : bool
+        Replace the files of an earlier run of the same scene in the folder; without it they
+        are an error (checked before the run).
 
     Returns
     -------
     SceneRun
+
+    Raises
+    ------
+    SceneError
+        When the folder holds an earlier run's files and ``overwrite`` is False.
     """
     from bearingsim.scenes.scene import load_scene
 
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
+    folder = Path(out if out is not None else scene.output.folder)
+    stem = Path(scene.path).stem if scene.path else scene.assembly
+    if write and not overwrite and folder.is_dir():
+        earlier = sorted(p.name for p in folder.glob(f"{glob.escape(stem)}*")
+                         if p.name in (f"{stem}.csv", f"{stem}.summary.json")
+                         or re.fullmatch(re.escape(stem) + r"(_\d+)?\.png", p.name))
+        if earlier:
+            raise SceneError(f"{folder} holds the files of an earlier run ({', '.join(earlier)}); "
+                             f"give --overwrite (run_scene(..., overwrite=True)) to replace "
+                             f"them, or another output folder", "output.folder",
+                             line_of(scene.text, "output.folder"), path=scene.path)
     prep = prepare(scene)
     result = run_simulation(prep)
     series = output_series(prep, result)
@@ -414,9 +435,7 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     files: list[Path] = []
     units = {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
     if write:
-        folder = Path(out if out is not None else prep.scene.output.folder)
         folder.mkdir(parents=True, exist_ok=True)
-        stem = Path(prep.scene.path).stem if prep.scene.path else prep.spec.name
         if prep.scene.output.csv:
             files.append(write_csv(folder / f"{stem}.csv", result.t, series, units))
         if prep.scene.output.plots:
