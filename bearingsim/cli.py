@@ -74,12 +74,6 @@ def _demo(args: argparse.Namespace) -> int:
     return 0
 
 
-def _export(args: argparse.Namespace) -> int:
-    from bearingsim.fmu import cli_export
-
-    return cli_export(args.rest) or 0
-
-
 def _run(args: argparse.Namespace) -> int:
     from bearingsim.scenes import run_scene
 
@@ -154,7 +148,10 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
+    from bearingsim import __version__
+
     parser = argparse.ArgumentParser(prog="bearingsim", description="bearing system simulator")
+    parser.add_argument("--version", action="version", version=f"bearingsim {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     p_run = sub.add_parser("run", help="run a scene file: CSV, JSON summary and PNG plots")
     p_run.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
@@ -195,8 +192,13 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bearingsim`` command; returns the exit status."""
     from bearingsim.errors import BearingsimError, SimulationError
 
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["export-fmu"]:  # its own parser, its own --help
+        from bearingsim.fmu import cli_export
+
+        return cli_export(argv[1:]) or 0
     args = _parser().parse_args(argv)
-    handlers = {"list": _list, "demo": _demo, "export-fmu": _export, "run": _run,
+    handlers = {"list": _list, "demo": _demo, "run": _run,
                 "validate": _validate, "sweep": _sweep}
     try:
         return handlers[args.command](args)

@@ -154,3 +154,46 @@ def test_a_second_run_into_the_same_folder_needs_overwrite(tmp_path, capsys):
     (tmp_path / "other.csv").write_text("kept")  # files of other scenes do not count
     assert main(["run", str(SCENES / "double_layer_friction.toml"), "--out",
                  str(tmp_path)]) == 0
+
+
+def test_version_and_export_fmu_help(capsys):
+    """Issue 16: no --version; export-fmu --help exited 2."""
+    from bearingsim import __version__
+
+    with pytest.raises(SystemExit) as exit_:
+        main(["--version"])
+    assert exit_.value.code == 0 and __version__ in capsys.readouterr().out
+    with pytest.raises(SystemExit) as exit_:
+        main(["export-fmu", "--help"])
+    assert exit_.value.code == 0
+    out = capsys.readouterr().out
+    assert "--arg NAME=VALUE" in out and "FMI 2.0 or 3.0" in out
+
+
+FACTORY = '''
+from bearingsim.assemblies import double_layer_bearing
+
+
+def bearing(inner="61905", outer="61907", speed=100.0):
+    return double_layer_bearing(inner, outer, speed=speed)
+'''
+
+
+def test_export_fmu_from_a_file_and_the_current_folder_with_factory_arguments(tmp_path,
+                                                                               monkeypatch):
+    """Issue 16: ./mymod.py:F gave a raw TypeError, mymod:F could not be imported from the
+    current folder, and factory arguments could not be given."""
+    fmpy = pytest.importorskip("fmpy")
+    (tmp_path / "my_bearings.py").write_text(FACTORY)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", str(tmp_path))])
+    by_file = tmp_path / "by_file.fmu"
+    assert main(["export-fmu", "./my_bearings.py:bearing", str(by_file), "--kinds", "CS",
+                 "--arg", "outer=61908", "--arg", "speed=250.0", "--outputs", "Rs"]) == 0
+    fmpy.read_model_description(str(by_file))
+    by_module = tmp_path / "by_module.fmu"
+    assert main(["export-fmu", "my_bearings:bearing", str(by_module), "--kinds", "CS",
+                 "--outputs", "Rs"]) == 0
+    with pytest.raises(SystemExit, match="unexpected keyword argument 'colour'"):
+        main(["export-fmu", "./my_bearings.py:bearing", str(tmp_path / "x.fmu"),
+              "--arg", "colour=red"])

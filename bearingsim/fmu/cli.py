@@ -1,11 +1,25 @@
-"""Command line: ``bearingsim export-fmu pkg.module:factory model.fmu [options]``."""
+"""Command line: ``bearingsim export-fmu pkg.module:factory model.fmu [options]``.
+
+The factory is ``pkg.module:callable`` (importable, the current folder included) or
+``path/to/file.py:callable``; ``--arg NAME=VALUE`` passes keyword arguments to it (values read
+as TOML values: numbers, true/false, quoted or bare text, lists).
+"""
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import importlib.util
+import os
 import sys
 from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
 
 __all__ = ["build_parser", "cli_export"]
 
@@ -20,6 +34,17 @@ def _assignment(text: str) -> tuple[str, float]:
         raise argparse.ArgumentTypeError(f"{name}: {value!r} is not a number") from None
 
 
+def _factory_argument(text: str) -> tuple[str, Any]:
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip().isidentifier():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE with a Python name, got {text!r}")
+    try:
+        parsed = tomllib.loads(f"v = {value.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        parsed = value.strip()  # bare text, e.g. motor=pmsm
+    return name.strip(), parsed
+
+
 def _csv(text: str) -> list[str]:
     return [s.strip() for s in text.split(",") if s.strip()]
 
@@ -28,9 +53,10 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``export-fmu``."""
     parser = argparse.ArgumentParser(
         prog="bearingsim export-fmu",
-        description="Export an assembly as an FMU (FMI 2.0, Linux x86_64).",
+        description="Export an assembly as an FMU (FMI 2.0 or 3.0, Linux x86_64).",
     )
-    parser.add_argument("factory", help="pkg.module:callable returning an assembly or a System")
+    parser.add_argument("factory", help="pkg.module:callable or path/to/file.py:callable "
+                                        "returning an assembly or a System")
     parser.add_argument("output", help="path of the .fmu to write")
     parser.add_argument("--outputs", type=_csv, default=None,
                         help="comma-separated dotted names of the outputs")
@@ -41,24 +67,49 @@ def build_parser() -> argparse.ArgumentParser:
                         metavar="NAME=VALUE", help="parameter start value (repeatable)")
     parser.add_argument("--input", type=_assignment, action="append", default=[],
                         metavar="NAME=VALUE", help="input start value (repeatable)")
+    parser.add_argument("--arg", type=_factory_argument, action="append", default=[],
+                        metavar="NAME=VALUE", help="keyword argument of the factory, e.g. "
+                        "motor=pmsm or inner=\"61905\" (repeatable; TOML values)")
     parser.add_argument("--fmi-version", default="2.0", choices=["2.0", "3.0"],
                         help="FMI version (default 2.0)")
     return parser
 
 
-def _load(spec: str):
-    module, sep, attr = spec.partition(":")
+def _load(spec: str, kwargs: dict[str, Any]):
+    module, sep, attr = spec.rpartition(":")
     if not sep or not module or not attr:
-        raise SystemExit(f"export-fmu: expected pkg.module:callable, got {spec!r}")
-    try:
-        obj = importlib.import_module(module)
-    except ImportError as exc:
-        raise SystemExit(f"export-fmu: cannot import {module}: {exc}") from None
+        raise SystemExit(f"export-fmu: expected pkg.module:callable or file.py:callable, got "
+                         f"{spec!r}")
+    if module.endswith(".py"):
+        path = Path(module)
+        if not path.is_file():
+            raise SystemExit(f"export-fmu: no file {module}")
+        spec_obj = importlib.util.spec_from_file_location(path.stem, path)
+        obj = importlib.util.module_from_spec(spec_obj)
+        try:
+            spec_obj.loader.exec_module(obj)
+        except Exception as exc:  # noqa: BLE001 - report any failure of the user's file
+            raise SystemExit(f"export-fmu: cannot load {module}: {exc}") from None
+    else:
+        if os.getcwd() not in sys.path:
+            sys.path.insert(0, os.getcwd())  # modules in the current folder, as python -m does
+        try:
+            obj = importlib.import_module(module)
+        except ImportError as exc:
+            raise SystemExit(f"export-fmu: cannot import {module}: {exc}") from None
     for part in attr.split("."):
         if not hasattr(obj, part):
             raise SystemExit(f"export-fmu: {module} has no attribute {attr!r}")
         obj = getattr(obj, part)
-    return obj() if callable(obj) else obj
+    if not callable(obj):
+        if kwargs:
+            raise SystemExit(f"export-fmu: {attr} is not callable, so --arg cannot be given")
+        return obj
+    try:
+        return obj(**kwargs)
+    except TypeError as exc:
+        raise SystemExit(f"export-fmu: {attr}({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
+                         f" failed: {exc}") from None
 
 
 def cli_export(argv: Sequence[str] | None = None) -> int:
@@ -78,7 +129,7 @@ def cli_export(argv: Sequence[str] | None = None) -> int:
     from bearingsim.fmu.export import export_fmu
 
     args = build_parser().parse_args(argv)
-    model = _load(args.factory)
+    model = _load(args.factory, dict(args.arg))
     try:
         path = export_fmu(
             model, args.output, inputs=dict(args.input), outputs=args.outputs,
