@@ -287,3 +287,38 @@ def test_a_steady_state_that_is_not_unique_raises_unless_any_will_do():
     x = steady_state(system, require_unique=False)
     assert x[system.state_names.index("j1.w")] == pytest.approx(
         x[system.state_names.index("j2.w")])
+
+
+def test_oil_bath_level_reaches_each_layer_from_its_own_lowest_ball():
+    """Issue 15 item 5: one bath level, measured from the outer layer's lowest ball centre; the
+    inner layer sits (dm2 - dm1)/2 = 5.75 mm higher (61905/61907). At 2 mm only the outer
+    layer's balls are immersed (drag, no starvation): more torque outside, lower Rs. At 10 mm
+    both are. SKF model only (the drag term); before, the level given through layer_options
+    failed to assemble (a symbolic pitch diameter in a range check)."""
+    from bearingsim.studies.double_layer import steady_ratio
+
+    def rs(level):
+        system = assemble(double_layer_bearing("61905", "61907", friction_model="skf",
+                                               oil_level=level))
+        return steady_ratio(system, 1000.0, (200.0, 0.0))[0]
+
+    dry_bath, outer_only, both = rs(None), rs(0.002), rs(0.010)
+    assert outer_only < dry_bath < both
+    bearing = double_layer_bearing("61905", "61907", friction_model="skf", oil_level=0.002)
+    assert "oil_level" not in bearing.inner_layer._options
+    assert bearing.outer_layer._options["oil_level"] == 0.002
+    with pytest.raises(ParameterError, match="friction_model='skf'"):
+        double_layer_bearing("61905", "61907", oil_level=0.01)
+    with pytest.raises(ParameterError, match="once"):
+        double_layer_bearing("61905", "61907", friction_model="skf", oil_level=0.01,
+                             layer_options={"oil_level": 0.01})
+
+
+def test_lubrication_method_per_layer_sets_each_layers_f0():
+    """Oil bath inside, oil mist outside: Schaeffler HR 1 p. 58, 619 series: f0 1.7 and 1.1."""
+    system = assemble(double_layer_bearing("61905", "61907",
+                                           lubrication_method=("oil_bath", "oil_mist")))
+    p = dict(zip(system.parameter_names, system.p0(), strict=True))
+    assert (p["inner_layer.f0"], p["outer_layer.f0"]) == (1.7, 1.1)
+    with pytest.raises(ParameterError, match="lubrication_method"):
+        double_layer_bearing("61905", "61907", lubrication_method="splash")

@@ -13,6 +13,7 @@ dynamics of both layers (``dynamic``, :class:`DynamicDoubleLayerBearing`).
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
 from typing import Any
 
@@ -46,6 +47,7 @@ from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.friction import skf_friction_components
 from bearingsim.physics.life import basic_rating_life_hours
 from bearingsim.physics.lubricant import as_lubricant
+from bearingsim.physics.lubrication import LUBRICATION_METHODS
 from bearingsim.validation import (
     check_choice,
     check_flag,
@@ -123,6 +125,43 @@ def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dic
     return SkfBearing(geometry, lubricant, **options)
 
 
+def _with_method(lubricant, method: str):
+    """A copy of ``lubricant`` lubricating by ``method``."""
+    check_choice(method, "lubrication_method", LUBRICATION_METHODS, "double_layer_bearing")
+    if not lubricant.is_viscous:
+        raise ParameterError(f"double_layer_bearing: lubrication_method {method!r} needs an oil "
+                             f"or grease, got {lubricant.describe()}")
+    changed = copy.copy(lubricant)
+    changed.method = method
+    return changed
+
+
+def _bath_options(gi, go, lubricants, oil_level, friction_model: str, fidelity: str,
+                  options: dict) -> tuple[dict, dict]:
+    """Each layer's layer options with its own oil level (see :class:`DoubleLayerBearing`)."""
+    if oil_level is None:
+        return options, options
+    where = "double_layer_bearing"
+    check_range(oil_level, "oil_level", "m", 0.0, None, where=where)
+    if fidelity != "torque":  # checked, but the kinematic levels have no friction (as lubrication)
+        return options, options
+    if friction_model != "skf":
+        raise ParameterError(f"{where}: oil_level is used by friction_model='skf' at the torque "
+                             f"level (the drag of the immersed balls, the starvation factor); "
+                             f"Palmgren's f0 has no published oil-level dependence here")
+    if "oil_level" in options:
+        raise ParameterError(f"{where}: give the oil level once, as oil_level (each layer sees "
+                             f"it from its own lowest ball), not in layer_options")
+    levels = (oil_level - 0.5 * (go.pitch_diameter - gi.pitch_diameter), oil_level)
+    per_layer = []
+    for g, lub, level in zip((gi, go), lubricants, levels, strict=True):
+        layer = dict(options)
+        if lub.method == "oil_bath" and level >= 0.0:
+            layer.update(oil_level=level, Dw=g.ball_diameter, Z=g.ball_count)
+        per_layer.append(layer)
+    return per_layer[0], per_layer[1]
+
+
 def _check_drive(drive: str) -> None:
     check_choice(drive, "drive", ("speed", "flange"), "double_layer_bearing")
 
@@ -164,6 +203,21 @@ class DoubleLayerBearing(Assembly):
         for a motor.
     speed : callable or float or None
         Shaft speed [rad/s] for ``drive="speed"``.
+    lubrication_method : str or (str, str), optional
+        Lubrication method of both layers or of the (inner, outer) layer, one of
+        :data:`~bearingsim.physics.lubrication.LUBRICATION_METHODS` (default: each lubricant's
+        own, ``oil_bath`` for the named oils, ``grease`` for the greases). It sets Palmgren's
+        f0 and the SKF starvation constant of each layer.
+    oil_level : float, optional
+        Oil bath level [m] above the lowest point of the outer layer's pitch circle (the centre
+        of its lowest ball), used by ``friction_model="skf"`` at the torque level (an error with
+        Palmgren's model; checked but ignored at the kinematic levels). Each layer sees it from
+        its own lowest ball: the inner layer's level is ``oil_level - (dm2 - dm1) / 2``. A
+        layer whose level is >= 0 gets the drag of its immersed balls and no starvation factor;
+        a layer
+        above the oil (negative level) is a low-level bath (starvation factor, no drag; SKF
+        "Rolling bearings" 10000/3, 2017, p. 102). Only layers lubricated by ``oil_bath``
+        take it.
     layer_options : dict
         Extra keyword arguments of the layer elements: at the torque level those of
         :class:`~bearingsim.components.bearing_torque.PalmgrenBearing` or
@@ -194,7 +248,8 @@ class DoubleLayerBearing(Assembly):
     def __init__(self, inner="61905", outer="61907", structure: str | None = None,
                  fidelity: str = "torque", lubrication=("ISO VG 32", "ISO VG 32"),
                  friction_model: str = "palmgren", drive: str = "speed",
-                 speed: Callable | float | None = None, layer_options: dict | None = None,
+                 speed: Callable | float | None = None, lubrication_method=None,
+                 oil_level: float | None = None, layer_options: dict | None = None,
                  name="bearing"):
         super().__init__(name)
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
@@ -208,15 +263,20 @@ class DoubleLayerBearing(Assembly):
         _check_drive(drive)
         check_choice(friction_model, "friction_model", FRICTION_MODELS, "double_layer_bearing")
         lub_i, lub_o = (as_lubricant(x, "double_layer_bearing") for x in _pair(lubrication))
+        if lubrication_method is not None:
+            lub_i, lub_o = (_with_method(lub, m) for lub, m in
+                            zip((lub_i, lub_o), _pair(lubrication_method), strict=True))
         opts = check_mapping(layer_options, "layer_options", "double_layer_bearing",
                              "option names")
+        opts_i, opts_o = _bath_options(gi, go, (lub_i, lub_o), oil_level, friction_model,
+                                       fidelity, opts)
         self.structure = structure
         self.geometries = (gi, go)
         self.shaft = Flange()
         self.housing = Fixed()
         self.middle = MiddleRing(middle_ring_bodies(gi, go, structure))
-        self.inner_layer = _layer(gi, lub_i, fidelity, friction_model, opts)
-        self.outer_layer = _layer(go, lub_o, fidelity, friction_model, opts)
+        self.inner_layer = _layer(gi, lub_i, fidelity, friction_model, opts_i)
+        self.outer_layer = _layer(go, lub_o, fidelity, friction_model, opts_o)
         self.w_shaft = Variable(unit="rad/s", description="shaft (inner ring) speed")
         self.w_middle = Variable(unit="rad/s", description="middle ring speed")
         self.Rs = Variable(unit="1", description="speed distribution ratio n_z / n_i")
@@ -549,6 +609,7 @@ def double_layer_from_scene(args: dict[str, Any], fidelity: str,
     return double_layer_bearing(
         args["inner"], args["outer"], structure=args["structure"], fidelity=fidelity,
         lubrication=args["lubrication"], friction_model=args["friction_model"], drive=drive,
+        lubrication_method=args["lubrication_method"], oil_level=args["oil_level"],
         layer_options=options or None,
     )
 
@@ -607,6 +668,11 @@ SCENE_SPEC = AssemblySpec(
         "friction_model": ArgSpec("choice", factory_default(DoubleLayerBearing, "friction_model"),
                                   "friction torque model (torque level)",
                                   choices=FRICTION_MODELS),
+        "lubrication_method": ArgSpec("choice", None, "lubrication method of both layers "
+                                      "(default: the lubricant's own)",
+                                      choices=LUBRICATION_METHODS),
+        "oil_level": ArgSpec("float", None, "oil bath level above the outer layer's lowest ball "
+                             "centre [m] (SKF friction model)", low=0.0),
         "layer_options": ArgSpec("table", None, "options of the friction elements", table={
             "smooth": ArgSpec("bool", None, "smooth blend of the Palmgren M0 branches"),
             "load_dependent": ArgSpec("bool", None, "include the load-dependent torque M1"),

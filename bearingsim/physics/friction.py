@@ -22,7 +22,18 @@ import numpy as np
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics.drag import orbital_drag_force
 from bearingsim.physics.lubricant import Lubricant
-from bearingsim.symbolic import exp, fmax, if_else, is_symbolic, power, sin, smooth_abs, smooth_max0
+from bearingsim.symbolic import (
+    arccos,
+    exp,
+    fmax,
+    fmin,
+    if_else,
+    is_symbolic,
+    power,
+    sin,
+    smooth_abs,
+    smooth_max0,
+)
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
 from bearingsim.validation import (
     MAX_BALL_DIAMETER,
@@ -574,10 +585,11 @@ def skf_friction_components(
             raise ParameterError(f"{where}: Dw [m] and Z [-] are required with oil_level")
         check_range(oil_level, "oil_level", "m", 0.0, None, where=where)
         check_diameter(Dw, "Dw", where, MAX_BALL_DIAMETER)
-        check_range(Dw, "Dw", "m", 0.0, dm, low_inclusive=False, high_inclusive=False,
-                    where=where)
+        # dm is a model parameter (a symbol) inside components: compare with it when numeric
+        check_range(Dw, "Dw", "m", 0.0, None if is_symbolic(dm) else dm, low_inclusive=False,
+                    high_inclusive=False, where=where)
         check_count(Z, "Z", 1, where=where)
-        fraction = float(np.arccos(1.0 - 2.0 * min(oil_level / dm, 1.0)) / np.pi)
+        fraction = arccos(1.0 - 2.0 * fmin(oil_level / dm, 1.0)) / np.pi
         gamma = Dw / dm
         omega_cage = 0.5 * (1.0 - gamma) * speed
         force = orbital_drag_force(omega_cage, dm, Dw, lubricant.density(T),
