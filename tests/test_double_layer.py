@@ -21,7 +21,7 @@ from bearingsim.physics.double_layer_theory import (
     speed_ratio_palmgren,
     speed_ratio_pure_rolling,
 )
-from bearingsim.physics.lubricant import Grease, Oil
+from bearingsim.physics.lubricant import Grease, Oil, get_lubricant
 from bearingsim.simulation import simulate, steady_state
 from bearingsim.units import rpm_to_rad_s
 
@@ -322,3 +322,30 @@ def test_lubrication_method_per_layer_sets_each_layers_f0():
     assert (p["inner_layer.f0"], p["outer_layer.f0"]) == (1.7, 1.1)
     with pytest.raises(ParameterError, match="lubrication_method"):
         double_layer_bearing("61905", "61907", lubrication_method="splash")
+
+
+def test_middle_ring_drag_is_a_couette_damper_to_the_housing():
+    """Issue 15 item 5: the middle ring's own drag in the oil. At the steady state the torque the
+    inner layer passes on equals the outer layer's plus c w_middle (c: the laminar Couette
+    coefficient); the drag slows the middle ring, so Rs falls."""
+    from bearingsim.physics.drag import couette_damping, taylor_number
+    from bearingsim.studies.double_layer import steady_ratio
+
+    gap = {"radius": 0.0225, "gap": 0.5e-3, "length": 0.01}
+    plain = assemble(double_layer_bearing("61905", "61907"))
+    dragged = assemble(double_layer_bearing("61905", "61907", middle_ring_drag=gap))
+    rs_plain = steady_ratio(plain, 1000.0, (200.0, 0.0))[0]
+    rs, _, x = steady_ratio(dragged, 1000.0, (200.0, 0.0))
+    assert rs < rs_plain
+    u = dragged.u_default()
+    u[dragged.input_names.index("shaft_speed")] = 1000.0
+    u[dragged.input_names.index("Fr")] = 200.0
+    v = dragged.observe(0.0, x, u)
+    oil = get_lubricant("ISO VG 32")
+    c = couette_damping(0.0225, 0.5e-3, 0.01, float(oil.dynamic_viscosity()))
+    balance = -v["inner_layer.M"] - (-v["outer_layer.M"]) - c * v["w_middle"]
+    assert abs(balance) < 1e-9 * abs(v["inner_layer.M"])
+    assert v["middle_Ta"] == pytest.approx(
+        taylor_number(v["w_middle"], 0.0225, 0.5e-3, float(oil.kinematic_viscosity())))
+    with pytest.raises(ParameterError, match="needs gap"):
+        double_layer_bearing("61905", "61907", middle_ring_drag={"radius": 0.02, "length": 0.01})

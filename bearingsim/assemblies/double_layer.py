@@ -40,10 +40,11 @@ from bearingsim.components.middle_ring import (
     middle_ring_structure,
     mounted_geometries,
 )
-from bearingsim.components.rotational import Fixed, SpeedSource
+from bearingsim.components.rotational import Damper, Fixed, SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
+from bearingsim.physics.drag import TAYLOR_ONSET, couette_damping, taylor_number
 from bearingsim.physics.friction import skf_friction_components
 from bearingsim.physics.life import basic_rating_life_hours
 from bearingsim.physics.lubricant import as_lubricant
@@ -162,6 +163,25 @@ def _bath_options(gi, go, lubricants, oil_level, friction_model: str, fidelity: 
     return per_layer[0], per_layer[1]
 
 
+def _middle_ring_gap(options: Any, lubricant) -> tuple[float, ...]:
+    """(radius, gap, length, wetted, eta, nu) of the middle ring's oil gap, checked."""
+    where = "double_layer_bearing"
+    opts = check_mapping(options, "middle_ring_drag", where, "keys")
+    check_options(opts, ("radius", "gap", "length", "wetted"), where, "middle_ring_drag keys")
+    missing = [k for k in ("radius", "gap", "length") if k not in opts]
+    if missing:
+        raise ParameterError(f"{where}: middle_ring_drag needs {', '.join(missing)} [m] (the "
+                             f"turning cylinder's radius, the oil gap and the wetted length)")
+    if not lubricant.is_viscous:
+        raise ParameterError(f"{where}: middle_ring_drag needs an oil or grease in the outer "
+                             f"layer, got {lubricant.describe()}")
+    eta, nu = float(lubricant.dynamic_viscosity()), float(lubricant.kinematic_viscosity())
+    wetted = opts.get("wetted", 1.0)
+    couette_damping(opts["radius"], opts["gap"], opts["length"], eta, wetted)  # checks them
+    return (float(opts["radius"]), float(opts["gap"]), float(opts["length"]), float(wetted),
+            eta, nu)
+
+
 def _check_drive(drive: str) -> None:
     check_choice(drive, "drive", ("speed", "flange"), "double_layer_bearing")
 
@@ -218,6 +238,14 @@ class DoubleLayerBearing(Assembly):
         above the oil (negative level) is a low-level bath (starvation factor, no drag; SKF
         "Rolling bearings" 10000/3, 2017, p. 102). Only layers lubricated by ``oil_bath``
         take it.
+    middle_ring_drag : dict, optional
+        The middle ring's own viscous drag in the oil of the outer layer, at the torque level:
+        a cylinder of ``radius`` [m] turning in a fixed bore ``gap`` [m] wider, over ``length``
+        [m], on the ``wetted`` fraction of its circumference (default 1). The exact laminar
+        Couette torque (:func:`~bearingsim.physics.drag.couette_damping`, a linear damper
+        between the middle ring and the housing); the variable ``middle_Ta`` is the gap's
+        Taylor number, which must stay below
+        :data:`~bearingsim.physics.drag.TAYLOR_ONSET` (41.3) for the laminar torque to hold.
     layer_options : dict
         Extra keyword arguments of the layer elements: at the torque level those of
         :class:`~bearingsim.components.bearing_torque.PalmgrenBearing` or
@@ -249,8 +277,8 @@ class DoubleLayerBearing(Assembly):
                  fidelity: str = "torque", lubrication=("ISO VG 32", "ISO VG 32"),
                  friction_model: str = "palmgren", drive: str = "speed",
                  speed: Callable | float | None = None, lubrication_method=None,
-                 oil_level: float | None = None, layer_options: dict | None = None,
-                 name="bearing"):
+                 oil_level: float | None = None, middle_ring_drag: dict | None = None,
+                 layer_options: dict | None = None, name="bearing"):
         super().__init__(name)
         gi, go = resolve_bearing(inner), resolve_bearing(outer)
         if fidelity not in FIDELITIES[:3]:
@@ -294,6 +322,15 @@ class DoubleLayerBearing(Assembly):
             connect(self.drive.flange, self.shaft)
             if speed is None:
                 self.shaft_speed = Input(0.0, "rad/s", "imposed shaft speed")
+        self._gap = None
+        if middle_ring_drag is not None and fidelity == "torque":
+            self._gap = _middle_ring_gap(middle_ring_drag, lub_o)
+            radius, gap, length, wetted, eta, _ = self._gap
+            self.middle_drag = Damper(couette_damping(radius, gap, length, eta, wetted))
+            connect(self.middle.outer_side, self.middle_drag.flange_a)
+            connect(self.middle_drag.flange_b, self.housing.flange)
+            self.middle_Ta = Variable(unit="1", description="Taylor number of the middle ring's "
+                                      f"oil gap (laminar below {TAYLOR_ONSET})")
 
     def equations(self):
         eqs = [
@@ -307,6 +344,9 @@ class DoubleLayerBearing(Assembly):
                 eqs += [layer.Fr == self.Fr, layer.Fa == self.Fa]
         if hasattr(self, "shaft_speed"):
             eqs.append(self.drive.w_in == self.shaft_speed)
+        if self._gap is not None:
+            radius, gap, _, _, _, nu = self._gap
+            eqs.append(self.middle_Ta == taylor_number(self.w_middle, radius, gap, nu))
         return eqs
 
 
@@ -610,6 +650,8 @@ def double_layer_from_scene(args: dict[str, Any], fidelity: str,
         args["inner"], args["outer"], structure=args["structure"], fidelity=fidelity,
         lubrication=args["lubrication"], friction_model=args["friction_model"], drive=drive,
         lubrication_method=args["lubrication_method"], oil_level=args["oil_level"],
+        middle_ring_drag={k: v for k, v in (args["middle_ring_drag"] or {}).items()
+                          if v is not None} or None,
         layer_options=options or None,
     )
 
@@ -673,6 +715,13 @@ SCENE_SPEC = AssemblySpec(
                                       choices=LUBRICATION_METHODS),
         "oil_level": ArgSpec("float", None, "oil bath level above the outer layer's lowest ball "
                              "centre [m] (SKF friction model)", low=0.0),
+        "middle_ring_drag": ArgSpec("table", None, "the middle ring's laminar drag in the oil "
+                                    "(torque level)", table={
+            "radius": ArgSpec("float", None, "radius of the turning cylinder [m]", low=0.0),
+            "gap": ArgSpec("float", None, "oil gap to the fixed bore [m]", low=0.0),
+            "length": ArgSpec("float", None, "wetted length [m]", low=0.0),
+            "wetted": ArgSpec("float", None, "wetted fraction of the circumference", low=0.0),
+        }),
         "layer_options": ArgSpec("table", None, "options of the friction elements", table={
             "smooth": ArgSpec("bool", None, "smooth blend of the Palmgren M0 branches"),
             "load_dependent": ArgSpec("bool", None, "include the load-dependent torque M1"),

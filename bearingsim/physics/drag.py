@@ -1,4 +1,5 @@
-"""Viscous drag of the lubricant on the balls: orbital (translational) drag and spin drag moment.
+"""Viscous drag of the lubricant: on the balls (orbital drag and spin drag moment) and on a ring
+turning in an oil-filled annular gap (laminar Couette torque).
 
 Both are written so that the Stokes (creeping-flow) part is explicit and linear in the speed: they
 are finite and smooth through zero speed. Forces and moments returned act on the ball and oppose
@@ -12,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.symbolic import smooth_abs, sqrt
-from bearingsim.validation import check_range
+from bearingsim.validation import MIN_LENGTH, check_range
 
 __all__ = [
     "sphere_drag_coefficient",
@@ -20,7 +21,16 @@ __all__ = [
     "orbital_drag_force",
     "rotating_sphere_moment_coefficient",
     "spin_drag_moment",
+    "TAYLOR_ONSET",
+    "couette_damping",
+    "taylor_number",
 ]
+
+TAYLOR_ONSET = 41.3
+"""Taylor number ``Ta = (omega R1 d / nu) sqrt(d / R1)`` at which Taylor vortices appear between
+concentric cylinders with the inner one turning and a narrow gap d (Taylor 1923; the classical
+narrow-gap value, e.g. Schlichting, *Boundary-Layer Theory*). Below it the flow is the laminar
+Couette flow of :func:`couette_damping`; above it the torque is larger."""
 
 _ROTATING_SPHERE_BL = 5.32
 """Laminar boundary-layer coefficient of the rotating-sphere moment, ``C_m = 5.32 / sqrt(Re)``
@@ -204,3 +214,62 @@ def spin_drag_moment(
     boundary_layer = 0.5 * _ROTATING_SPHERE_BL * sqrt(rho * eta) * r**4
     return -(8.0 * np.pi * eta * r**3 * omega
              + boundary_layer * sqrt(smooth_abs(omega, omega_reg)) * omega)
+
+
+def couette_damping(radius: float, gap: float, length: float, eta: float,
+                    wetted: float = 1.0) -> float:
+    """Torque per unit speed [N m s/rad] of a cylinder turning inside a fixed coaxial bore
+    filled with oil (exact laminar Couette solution of the Navier-Stokes equations):
+
+        ``M = -4 pi eta L R1^2 R2^2 / (R2^2 - R1^2) omega``, ``R2 = R1 + gap``,
+
+    times the wetted fraction of the circumference. Valid while the Taylor number stays below
+    :data:`TAYLOR_ONSET` (:func:`taylor_number`); in the narrow-gap limit it is
+    ``2 pi eta L R1^3 / gap``.
+
+    Parameters
+    ----------
+    radius : float
+        Radius R1 of the turning cylinder [m], at least 1 nm.
+    gap : float
+        Radial gap to the fixed bore [m], at least 1 nm.
+    length : float
+        Wetted axial length [m], at least 1 nm.
+    eta : float
+        Dynamic viscosity of the oil [Pa s], > 0.
+    wetted : float
+        Wetted fraction of the circumference, in (0, 1] (e.g. a ring dipping into a bath).
+
+    Returns
+    -------
+    float
+        The damping coefficient c with ``M = -c omega`` [N m s/rad].
+    """
+    where = "couette_damping"
+    for value, name in ((radius, "radius"), (gap, "gap"), (length, "length")):
+        check_range(value, name, "m", MIN_LENGTH, 6.0, where=where)
+    check_range(eta, "eta", "Pa s", 0.0, None, low_inclusive=False, where=where)
+    check_range(wetted, "wetted", "1", 0.0, 1.0, low_inclusive=False, where=where)
+    r1, r2 = radius, radius + gap
+    return 4.0 * np.pi * eta * length * r1**2 * r2**2 / (r2**2 - r1**2) * wetted
+
+
+def taylor_number(omega: Any, radius: float, gap: float, nu: float) -> Any:
+    """Taylor number ``Ta = (|omega| R1 d / nu) sqrt(d / R1)`` [-] of the annular gap of
+    :func:`couette_damping` (laminar below :data:`TAYLOR_ONSET`).
+
+    Parameters
+    ----------
+    omega : float, array or casadi.SX
+        Speed of the inner cylinder [rad/s].
+    radius, gap : float
+        R1 and the gap d [m], > 0.
+    nu : float
+        Kinematic viscosity [m^2/s], > 0.
+    """
+    where = "taylor_number"
+    check_range(omega, "omega", "rad/s", where=where)
+    check_range(radius, "radius", "m", MIN_LENGTH, 6.0, where=where)
+    check_range(gap, "gap", "m", MIN_LENGTH, 6.0, where=where)
+    check_range(nu, "nu", "m^2/s", 0.0, None, low_inclusive=False, where=where)
+    return smooth_abs(omega, 1e-12) * radius * gap / nu * np.sqrt(gap / radius)

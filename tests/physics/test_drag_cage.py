@@ -174,3 +174,23 @@ def test_float_and_sx_agree():
 def test_invalid_input_is_rejected(call, match):
     with pytest.raises(ParameterError, match=match):
         call()
+
+
+def test_couette_damping_is_the_exact_laminar_solution():
+    """M = 4 pi eta L R1^2 R2^2 / (R2^2 - R1^2) omega (Couette flow between concentric
+    cylinders); in the narrow-gap limit 2 pi eta L R1^3 / d (a linear shear profile)."""
+    from bearingsim.physics.drag import couette_damping, taylor_number
+
+    eta, length, r1 = 0.03, 0.01, 0.0225
+    wide = couette_damping(r1, 0.005, length, eta)
+    r2 = r1 + 0.005
+    assert wide == pytest.approx(4 * np.pi * eta * length * r1**2 * r2**2 / (r2**2 - r1**2))
+    for gap in (1e-4, 1e-5):
+        narrow = 2 * np.pi * eta * length * r1**3 / gap
+        assert couette_damping(r1, gap, length, eta) == pytest.approx(narrow, rel=2 * gap / r1)
+    assert couette_damping(r1, 0.001, length, eta, wetted=0.25) == pytest.approx(
+        0.25 * couette_damping(r1, 0.001, length, eta))
+    assert taylor_number(100.0, r1, 0.001, 3e-5) == pytest.approx(
+        100.0 * r1 * 0.001 / 3e-5 * np.sqrt(0.001 / r1))
+    with pytest.raises(ParameterError, match="wetted"):
+        couette_damping(r1, 0.001, length, eta, wetted=0.0)
