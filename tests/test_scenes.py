@@ -442,3 +442,24 @@ def test_a_sweep_may_give_the_missing_input_in_its_grid(tmp_path):
     result = run_sweep(path, grid_points({"inputs.shaft_speed": [50.0, 100.0]}), n_workers=2,
                        progress=False)
     assert len(result.ok) == 2
+
+
+def test_sweep_over_per_layer_lubrication_pairs_parses_toml_lists():
+    """Issue 16: list values in --grid were split at their commas and accepted (a pair ran as
+    grease/grease and oil/oil). Each pair is one point, and each row equals a single run."""
+    grid = parse_grid(['assembly.lubrication=["lithium grease","ISO VG 32"],'
+                       '["ISO VG 32", "lithium grease"]'])
+    assert len(grid["assembly.lubrication"]) == 2
+    scene = _scene(["Rs"], fidelity="torque")
+    points = grid_points(grid)
+    res = run_sweep(scene, points, n_workers=2, progress=False)
+    assert len(res.ok) == 2
+    pairs = (["lithium grease", "ISO VG 32"], ["ISO VG 32", "lithium grease"])
+    rows = sorted(res.rows, key=lambda r: r["point"])
+    for row, pair in zip(rows, pairs, strict=True):
+        single = run_scene(scene.replace(args={"lubrication": pair}), write=False)
+        assert row["Rs"] == pytest.approx(single.series["Rs"][-1], rel=1e-9)
+    assert rows[0]["Rs"] > rows[1]["Rs"] + 0.01  # more friction inside: the middle ring faster
+    with pytest.raises(SweepError, match="not a TOML value"):
+        run_sweep(scene, grid_points(parse_grid(["assembly.lubrication=[grease, oil]"])),
+                  n_workers=2, progress=False)

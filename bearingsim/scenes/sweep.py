@@ -24,12 +24,18 @@ import itertools
 import json
 import math
 import os
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
 
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.files import atomic_path
@@ -67,16 +73,21 @@ class SweepResult:
 
 # --------------------------------------------------------------------------- specification
 def _split_values(text: str) -> list[str]:
-    """Split on ';' if present, else on commas outside parentheses."""
+    """Split on ';' if present, else on commas outside parentheses, brackets and quotes (a
+    TOML list such as ``["lithium grease", "ISO VG 32"]`` is one value)."""
     if ";" in text:
         return [v.strip() for v in text.split(";") if v.strip()]
-    out, depth, cur = [], 0, ""
+    out, depth, cur, quote = [], 0, "", ""
     for ch in text:
-        if ch == "(":
+        if quote:
+            quote = "" if ch == quote else quote
+        elif ch in "\"'":
+            quote = ch
+        elif ch in "([":
             depth += 1
-        elif ch == ")":
+        elif ch in ")]":
             depth -= 1
-        if ch == "," and depth == 0:
+        if ch == "," and depth == 0 and not quote:
             out.append(cur.strip())
             cur = ""
         else:
@@ -87,6 +98,14 @@ def _split_values(text: str) -> list[str]:
 
 
 def _value(text: str) -> Any:
+    """A grid value: a TOML list or quoted string as TOML reads it, true/false, a number, or
+    the text itself."""
+    if text.strip()[:1] in ("[", "\"", "'"):
+        try:
+            return tomllib.loads(f"v = {text.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            raise SweepError(f"grid value {text!r} is not a TOML value (a list needs quoted "
+                             f"text: [\"lithium grease\", \"ISO VG 32\"])") from None
     low = text.strip().lower()
     if low in ("true", "false"):
         return low == "true"
@@ -186,6 +205,10 @@ def _coerce(scene: Scene, key: str, value: Any) -> Any:
         for part in parts:
             arg = spec.get(part) if spec else None
             spec = arg.table if arg is not None and arg.table else None
+        if isinstance(value, str) and value.strip()[:1] in ("[", "\"", "'"):
+            value = _value(value)
+        if isinstance(value, list):
+            return [str(v) for v in value]
         if rest == "fidelity" or (arg is not None and arg.kind in text_kinds):
             return str(value) if not isinstance(value, str) else value
         if arg is not None and arg.kind == "signal" and isinstance(value, str):
