@@ -9,11 +9,12 @@ still work) and renames it to the final name only when the writer is done.
 from __future__ import annotations
 
 import contextlib
+import csv
 import os
 from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["atomic_path"]
+__all__ = ["atomic_path", "column_name", "write_series_csv"]
 
 
 @contextlib.contextmanager
@@ -39,3 +40,38 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     finally:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
+
+
+def column_name(name: str, unit: str) -> str:
+    """The CSV header of a series: ``"name [unit]"``, ``[-]`` for a dimensionless one."""
+    return f"{name} [{'-' if unit in ('', '1') else unit}]"
+
+
+def write_series_csv(path: str | Path, t, columns: dict, units: dict[str, str]) -> Path:
+    """Write time series as CSV with one header row ``time [s], name [unit], ...`` (readable by
+    ``pandas.read_csv`` without options), atomically (:func:`atomic_path`).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    t : array_like
+        Times [s].
+    columns : dict
+        Name -> values at the times.
+    units : dict
+        Name -> unit (missing: dimensionless).
+
+    Returns
+    -------
+    Path
+    """
+    import numpy as np
+
+    path = Path(path)
+    names = list(columns)
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow([column_name("time", "s"), *[column_name(n, units.get(n, "")) for n in names]])
+        w.writerows(np.vstack([t, *[columns[n] for n in names]]).T.tolist())
+    return path

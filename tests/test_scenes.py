@@ -255,9 +255,10 @@ def test_run_scene_writes_csv_summary_and_plots(tmp_path):
     assert names == ["double_layer_bearing.csv", "double_layer_bearing.png",
                      "double_layer_bearing.summary.json"]
     rows = list(csv.reader((tmp_path / "double_layer_bearing.csv").open()))
-    assert rows[0] == ["time", "Rs", "M_shaft", "P_loss_total", "inner_layer.L10h"]
-    assert rows[1][:4] == ["s", "1", "N.m", "W"]
-    assert len(rows) == 2 + 51
+    assert rows[0] == ["time [s]", "Rs [-]", "M_shaft [N.m]", "P_loss_total [W]",
+                       "inner_layer.L10h [h]"]
+    assert len(rows) == 1 + 51
+    float(rows[1][0])  # data from the second row on: pandas.read_csv reads it without options
     summary = json.loads((tmp_path / "double_layer_bearing.summary.json").read_text())
     skipped = summary["skipped"]
     assert any("state(s) not needed" in s for s in skipped["pruned"])
@@ -463,3 +464,20 @@ def test_sweep_over_per_layer_lubrication_pairs_parses_toml_lists():
     with pytest.raises(SweepError, match="not a TOML value"):
         run_sweep(scene, grid_points(parse_grid(["assembly.lubrication=[grease, oil]"])),
                   n_workers=2, progress=False)
+
+
+def test_result_csv_reads_with_pandas_and_feeds_a_table_input(tmp_path):
+    """Issue 16: result CSVs put a unit row where pandas expects data. Now one header row
+    ``name [unit]`` and numbers from the second row on (what pandas.read_csv reads without
+    options); a scene table input names the column without its unit."""
+    run = run_scene(_scene(["Rs", "w_shaft"], fidelity="torque"), out=tmp_path)
+    path = tmp_path / "double_layer_bearing.csv"
+    assert path.read_text().splitlines()[0] == "time [s],Rs [-],w_shaft [rad/s]"
+    data = np.loadtxt(path, delimiter=",", skiprows=1)
+    assert data.shape == (51, 3)
+    assert data[-1, 1] == pytest.approx(run.series["Rs"][-1], rel=1e-12)
+    replay = parse_scene(BASE.format(outputs='["Rs"]', fidelity="torque", extra_inputs="")
+                         .replace("shaft_speed = ", "# shaft_speed = ")
+                         + '\n[inputs.shaft_speed]\nfile = "double_layer_bearing.csv"\n'
+                         'column = "w_shaft"\n', str(tmp_path / "replay.toml"))
+    assert replay.inputs["shaft_speed"].values[-1] == pytest.approx(run.series["w_shaft"][-1])

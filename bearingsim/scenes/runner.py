@@ -7,7 +7,6 @@ writes CSV, a JSON summary (with everything that was skipped) and PNG plots.
 
 from __future__ import annotations
 
-import csv
 import glob
 import json
 import math
@@ -22,7 +21,7 @@ import numpy as np
 from bearingsim.assembler import System, assemble
 from bearingsim.assemblies.spec import AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
-from bearingsim.files import atomic_path
+from bearingsim.files import atomic_path, write_series_csv
 from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.registry import build_component
@@ -337,19 +336,6 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
     })
 
 
-def write_csv(path: Path, t: np.ndarray, series: dict[str, np.ndarray],
-              units: dict[str, str]) -> Path:
-    """``time`` and the series, with a unit row."""
-    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        names = list(series)
-        w.writerow(["time", *names])
-        w.writerow(["s", *[units.get(n, "") for n in names]])
-        cols = np.vstack([t, *[series[n] for n in names]]).T
-        w.writerows(cols.tolist())
-    return path
-
-
 def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.ndarray],
                 units: dict[str, str], groups: list[list[str]], title: str) -> list[Path]:
     """PNG figures: one panel per group (default: per output), at most 6 panels a figure."""
@@ -437,7 +423,7 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     if write:
         folder.mkdir(parents=True, exist_ok=True)
         if prep.scene.output.csv:
-            files.append(write_csv(folder / f"{stem}.csv", result.t, series, units))
+            files.append(write_series_csv(folder / f"{stem}.csv", result.t, series, units))
         if prep.scene.output.plots:
             groups = [g for g in prep.scene.output.plot_groups]
             missing = sorted({n for g in groups for n in g} - set(series))

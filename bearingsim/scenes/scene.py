@@ -419,7 +419,8 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path) -> TableInput | N
         except OSError as exc:
             c.add(f"{key}.file", f"cannot read {str(path)!r}: {exc}")
             return None
-        header = [h.strip() for h in rows[0]] if rows else []
+        # "name [unit]" headers (bearingsim's own CSVs) match the name alone
+        header = [re.sub(r"\s*\[[^\]]*\]$", "", h.strip()) for h in rows[0]] if rows else []
         if tcol not in header or col not in header:
             missing = "time_column" if tcol not in header else "column"
             c.add(f"{key}.{missing}", f"column {(tcol if missing == 'time_column' else col)!r} "

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from bearingsim.files import atomic_path
+from bearingsim.files import atomic_path, write_series_csv
 from bearingsim.plotting import set_value_scale
 
 __all__ = ["Result"]
@@ -72,16 +71,10 @@ class Result:
         return float(self[name][-1])
 
     def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
-        """Write ``time`` and the chosen variables (default all) as CSV with a unit row."""
-        path = Path(path)
+        """Write ``time`` and the chosen variables (default all) as CSV, one header row
+        ``time [s], name [unit], ...`` (:func:`~bearingsim.files.write_series_csv`)."""
         names = names or self.names
-        with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(["time"] + names)
-            w.writerow(["s"] + [self.units.get(n, "") for n in names])
-            cols = np.vstack([self.t] + [self[n] for n in names]).T
-            w.writerows(cols.tolist())
-        return path
+        return write_series_csv(path, self.t, {n: self[n] for n in names}, self.units)
 
     def to_npz(self, path: str | Path) -> Path:
         """Write all series to a compressed NumPy archive."""
