@@ -30,3 +30,27 @@ def test_narrow_signed_or_empty_series_stay_linear():
     set_value_scale(ax, [np.array([0.0, 0.2])])
     assert ax.get_yscale() == "linear"
     plt.close(fig)
+
+
+def test_result_plot_keeps_the_backend_and_draws_into_a_given_axes(tmp_path):
+    """Issue 16: Result.plot(path=...) switched the session to Agg (a notebook lost its inline
+    plots) and plotted through pyplot (shown twice); it now builds a Figure without pyplot."""
+    import matplotlib
+    from matplotlib.figure import Figure
+
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.simulation import simulate
+
+    system = assemble(double_layer_bearing())
+    res = simulate(system, 0.2, inputs={"shaft_speed": 100.0}, n_points=11)
+    backend = matplotlib.get_backend()
+    fig = res.plot(["Rs", "w_middle"], path=tmp_path / "rs.png")
+    assert matplotlib.get_backend() == backend
+    assert (tmp_path / "rs.png").is_file() and len(fig.axes) == 2
+    assert fig.axes[0].get_ylabel() == "Rs\n[-]"  # dimensionless: [-], not [1]
+    host = Figure()
+    ax = host.add_subplot()
+    assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 2
+    assert len(repr(res)) < 200 and "11 points" in repr(res)
+    assert len(repr(system)) < 200 and "states" in repr(system)

@@ -142,6 +142,11 @@ class System:
         vals = np.asarray(self.functions["observe"](t, x, u, p), dtype=float).ravel()
         return dict(zip(self.observed_names, vals, strict=True))
 
+    def __repr__(self) -> str:
+        return (f"<System {self.name}: {self.n_states} states, {len(self.inputs)} inputs, "
+                f"{len(self.outputs)} outputs, {len(self.params)} parameters; "
+                f".describe() for the details>")
+
     def describe(self) -> str:
         """A short text summary: sizes, pass timings and skipped parts."""
         lines = [

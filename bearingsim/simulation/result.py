@@ -85,29 +85,60 @@ class Result:
             np.savez_compressed(tmp, t=self.t, names=np.array(self.names), values=self.values)
         return path
 
-    def plot(self, names: list[str] | None = None, path: str | Path | None = None, title=None):
-        """Plot variables against time; save to ``path`` if given. Returns the figure."""
-        import matplotlib
+    def plot(self, names: list[str] | None = None, path: str | Path | None = None, title=None,
+             ax=None):
+        """Plot variables against time; save to ``path`` if given. Returns the figure.
 
-        if path is not None:
-            matplotlib.use("Agg", force=False)
-        import matplotlib.pyplot as plt
+        The figure is a :class:`matplotlib.figure.Figure` made without pyplot: the session's
+        backend is never changed (a notebook keeps its inline plots) and the figure is shown
+        once, by being returned (or through ``ax``'s figure).
+
+        Parameters
+        ----------
+        names : list of str, optional
+            Variables to plot (default: the first six), one axes each.
+        path : str or Path, optional
+            File to save the figure to (written atomically).
+        title : str, optional
+            Figure title.
+        ax : matplotlib.axes.Axes, optional
+            Draw every variable into this axes of the caller's figure instead.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from matplotlib.figure import Figure
 
         names = names or self.names[: min(6, len(self.names))]
-        fig, axes = plt.subplots(len(names), 1, sharex=True, figsize=(7, 1.8 * len(names) + 1))
-        axes = np.atleast_1d(axes)
-        for ax, n in zip(axes, names, strict=True):
-            ax.plot(self.t, self[n])
-            set_value_scale(ax, [self[n]])
+        if ax is not None:
+            fig, axes = ax.figure, [ax] * len(names)
+        else:
+            fig = Figure(figsize=(7, 1.8 * len(names) + 1))
+            axes = np.atleast_1d(fig.subplots(len(names), 1, sharex=True))
+        for axis, n in zip(axes, names, strict=True):
             unit = self.units.get(n, "")
-            ax.set_ylabel(f"{n}\n[{unit}]" if unit else n, fontsize=8)
-            ax.grid(True, alpha=0.3)
+            unit = "-" if unit in ("", "1") else unit  # dimensionless shown as [-]
+            axis.plot(self.t, self[n], label=f"{n} [{unit}]")
+            if ax is None:
+                set_value_scale(axis, [self[n]])
+                axis.set_ylabel(f"{n}\n[{unit}]", fontsize=8)
+            axis.grid(True, alpha=0.3)
         axes[-1].set_xlabel("time [s]")
+        if ax is not None:
+            ax.legend(fontsize=8)
         if title:
             fig.suptitle(title)
-        fig.tight_layout()
+        if ax is None:
+            fig.tight_layout()
         if path is not None:
             with atomic_path(path) as tmp:
                 fig.savefig(tmp, dpi=120)
-            plt.close(fig)
         return fig
+
+    def __repr__(self) -> str:
+        shown = ", ".join(self.names[:4]) + (", ..." if len(self.names) > 4 else "")
+        span = f"{self.t[0]:g} .. {self.t[-1]:g} s" if self.t.size else "no points"
+        method = self.stats.get("method", "")
+        return (f"<Result {span}, {self.t.size} points, {len(self.names)} variables ({shown})"
+                + (f", {method}>" if method else ">"))
