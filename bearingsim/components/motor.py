@@ -25,7 +25,9 @@ class _Machine(Component):
     """Rotor of an electric machine: inertia ``J`` (a parameter) on ``flange``, driven by the
     electromagnetic torque ``tau_em`` that the subclass defines together with ``P_el``."""
 
-    def _declare_rotor(self, w0: float) -> None:
+    def _declare_rotor(self, J: float, w0: float) -> None:  # noqa: N803 - the rotor inertia
+        self.J = _positive(J, "kg.m2", "rotor inertia")
+        self.flange = Flange()
         self.phi = Variable(0.0, "rad", "rotor angle")
         self.w = Variable(w0, "rad/s", "rotor speed")
         self.tau_em = Variable(unit="N.m", description="electromagnetic torque")
@@ -73,11 +75,9 @@ class DCMotor(_Machine):
         self.R = _positive(R, "Ohm", "armature resistance")
         self.L = _positive(L, "H", "armature inductance")
         self.k = _positive(k, "N.m/A", "torque constant")
-        self.J = _positive(J, "kg.m2", "rotor inertia")
-        self.flange = Flange()
+        self._declare_rotor(J, w0)
         self.v = Input(unit="V", description="terminal voltage")
         self.i = Variable(0.0, "A", "armature current")
-        self._declare_rotor(w0)
 
     def equations(self):
         return [
@@ -105,10 +105,8 @@ class PMSM(_Machine):
         d- and q-axis inductances [H].
     psi : float
         Permanent-magnet flux linkage [Wb].
-    J : float
-        Rotor inertia [kg m^2].
-    w0 : float
-        Start speed of the rotor [rad/s].
+    J, w0 : float
+        Rotor inertia [kg m^2] and its start speed [rad/s].
 
     Variables
     ---------
@@ -122,13 +120,11 @@ class PMSM(_Machine):
         self.Ld = _positive(Ld, "H", "d-axis inductance")
         self.Lq = _positive(Lq, "H", "q-axis inductance")
         self.psi = _positive(psi, "Wb", "permanent-magnet flux linkage")
-        self.J = _positive(J, "kg.m2", "rotor inertia")
-        self.flange = Flange()
+        self._declare_rotor(J, w0)
         self.vd = Input(unit="V", description="d-axis voltage")
         self.vq = Input(unit="V", description="q-axis voltage")
         self.id = Variable(0.0, "A", "d-axis current")
         self.iq = Variable(0.0, "A", "q-axis current")
-        self._declare_rotor(w0)
 
     def equations(self):
         we = self.p * self.w

@@ -229,12 +229,9 @@ class OperatingClearance:
 
     Attributes
     ----------
-    initial : float
-        Before mounting.
-    inner_reduction, outer_reduction : float
-        Taken up by the inner-ring and outer-ring fits.
-    operating : float
-        ``initial - inner_reduction - outer_reduction``.
+    initial, inner_reduction, outer_reduction : float
+        The clearance before mounting, and what the inner-ring and the outer-ring fit take up
+        of it; :attr:`operating` is what is left.
     """
 
     initial: float
