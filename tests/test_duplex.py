@@ -267,3 +267,30 @@ def test_pair_options_the_studies_cannot_honour_are_rejected():
         DuplexModel("7020C", "DF", pair_options={"preloads": "heavy"})
     with pytest.raises(ParameterError, match="arrangement"):
         DuplexModel("7020C", "DF", pair_options={"arrangement": "DB"})
+
+
+def test_a_speed_brings_its_effects_and_the_shaft_follows_the_bore():
+    """Issue 16: DuplexModel ignored a speed unless pair_options={'speed_effects': True}, and
+    every bearing got the 7020's 100 mm x 400 mm shaft without a word."""
+    from bearingsim.assemblies.duplex import ShaftSpec
+    from bearingsim.studies.duplex import DuplexModel
+
+    assert duplex_pair("7014C", preload=500.0, speed=500.0).row[0].speed_effects
+    assert not duplex_pair("7014C", preload=500.0).row[0].speed_effects
+    assert not duplex_pair("7014C", preload=500.0, speed=500.0,
+                           speed_effects=False).row[0].speed_effects
+    spec = duplex_pair("7014C", preload=500.0).shaft_spec
+    assert (spec.diameter, spec.length, spec.row_spacing) == pytest.approx((0.070, 0.280, 0.210))
+    default = duplex_pair("7020C").shaft_spec  # the study's 7020: unchanged
+    assert (default.diameter, default.length, default.row_spacing) == pytest.approx(
+        (0.100, 0.400, 0.300))
+    with pytest.warns(UserWarning, match="not the bore of 7014C"):
+        duplex_pair("7014C", preload=500.0, shaft=ShaftSpec())
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        duplex_pair("7014C", preload=500.0, shaft={"diameter": 0.070, "length": 0.3})
+    model = DuplexModel("7020C", "DF")
+    with pytest.raises(ParameterError, match="without speed effects"):
+        model.parameters(speed=800.0)
+    assert DuplexModel("7020C", "DF", pair_options={"speed_effects": True}).parameters(
+        speed=800.0)["shaft.speed"] == 800.0

@@ -22,6 +22,7 @@ preloaded by a constant axial (spring) force on the shaft instead.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -124,17 +125,25 @@ class ShaftSpec:
         return (self.centre_offset + half, self.centre_offset - half)
 
 
-def _shaft_spec(shaft: ShaftSpec | dict | None) -> ShaftSpec:
+def _shaft_spec(shaft: ShaftSpec | dict | None, geometry: BearingGeometry) -> ShaftSpec:
+    """The shaft: by default a solid steel shaft of the bearing's bore, four bores long, with
+    the rows three bores apart (the 7020 default: 100 mm x 400 mm, rows 300 mm apart); a given
+    shaft whose diameter is not the bore warns (its inner rings would not fit)."""
     if shaft is None:
-        return ShaftSpec()
-    if isinstance(shaft, ShaftSpec):
-        return shaft
+        bore = geometry.bore
+        return ShaftSpec(diameter=bore, length=4.0 * bore, row_spacing=3.0 * bore)
     if isinstance(shaft, dict):
         try:
-            return ShaftSpec(**shaft)
+            shaft = ShaftSpec(**shaft)
         except TypeError as exc:
             raise ParameterError(f"duplex_pair: bad shaft specification: {exc}") from None
-    raise ParameterError(f"duplex_pair: shaft must be a ShaftSpec or a dict, got {shaft!r}")
+    if not isinstance(shaft, ShaftSpec):
+        raise ParameterError(f"duplex_pair: shaft must be a ShaftSpec or a dict, got {shaft!r}")
+    if not math.isclose(shaft.diameter, geometry.bore, rel_tol=1e-6):
+        warnings.warn(f"duplex_pair: the shaft diameter {shaft.diameter * 1e3:g} mm is not the "
+                      f"bore of {geometry.designation} ({geometry.bore * 1e3:g} mm); its mass "
+                      f"properties are those of the shaft given", UserWarning, stacklevel=4)
+    return shaft
 
 
 def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
@@ -256,8 +265,9 @@ class DuplexPair(Assembly):
         other; ``preload_force`` is then the preload it gives, :func:`offset_preload`). For DT
         pairs it is a mismatch of the spacers (default 0): the spring still sets the preload,
         but the rows share it unequally.
-    speed_effects : bool
-        Jones-Harris rows with centrifugal force and gyroscopic moment.
+    speed_effects : bool, optional
+        Jones-Harris rows with centrifugal force and gyroscopic moment; default: on when a
+        ``speed`` other than 0 is given (a speed without them would change nothing).
     housing_stiffness, housing_damping : sequence of 5 float, optional
         Spring-damper support of each outer ring (default: rigid housing).
     exact : bool
@@ -289,7 +299,7 @@ class DuplexPair(Assembly):
                  preload: str | float | None = None, speed: float = 0.0,
                  shaft: ShaftSpec | dict | None = None, lubricant: str | Lubricant | None = None,
                  ball_position_angle: float = 0.0, contact_angle: float | None = None,
-                 spacer_offset: float | None = None, speed_effects: bool = False,
+                 spacer_offset: float | None = None, speed_effects: bool | None = None,
                  housing_stiffness=None, housing_damping=None, exact: bool = True,
                  smooth: float = 1e-9, axisymmetric: bool = False, name="pair"):
         super().__init__(name)
@@ -300,7 +310,7 @@ class DuplexPair(Assembly):
         self.geometry = g
         self.arrangement = arrangement
         self.directions = ARRANGEMENTS[arrangement]
-        self.shaft_spec = spec = _shaft_spec(shaft)
+        self.shaft_spec = spec = _shaft_spec(shaft, g)
         self.lubricant = None if lubricant is None else as_lubricant(lubricant, "duplex_pair")
         if spacer_offset is not None and arrangement != "DT":
             if preload is not None:
@@ -321,6 +331,8 @@ class DuplexPair(Assembly):
         self.preload = preload
         self.speed = float(speed)
         g.check_speed(self.speed, f"duplex_pair({g.designation})")
+        if speed_effects is None:
+            speed_effects = self.speed != 0.0
         self.contact_angle = None if contact_angle is None else float(contact_angle)
         self.ball_position_angle = float(ball_position_angle)
         self.spacer_offset = None if spacer_offset is None else float(spacer_offset)

@@ -369,6 +369,11 @@ class DuplexModel:
         g = self._geometry(bearing)
         contact_angle = self._contact_angle(contact_angle, bearing)
         speed = pair.speed if speed is None else speed
+        if speed != 0.0 and not pair.row[0].speed_effects:
+            raise ParameterError(
+                f"DuplexModel: speed = {speed:g} rad/s, but the pair was assembled without speed "
+                f"effects, so the speed would change nothing; build the model with "
+                f"pair_options={{'speed_effects': True}} (or a speed in pair_options)")
         if ball_position_angle is None:
             ball_position_angle = pair.ball_position_angle
         rp = row_parameters(g, contact_angle, ball_position_angle, self._smooth())
