@@ -2,7 +2,17 @@
 
 from __future__ import annotations
 
-from bearingsim import Assembly, Component, Parameter, Variable, connect, der
+from bearingsim import (
+    Assembly,
+    Component,
+    Connector,
+    Flow,
+    Parameter,
+    Potential,
+    Variable,
+    connect,
+    der,
+)
 from bearingsim.components.rotational import (
     Damper,
     Fixed,
@@ -99,3 +109,19 @@ class Pendulum(Component):
             self.m * der(self.vy) == -self.F * self.y / self.L - self.m * self.g,
             self.x**2 + self.y**2 == self.L**2,
         ]
+
+
+class Pin(Connector):
+    v = Potential(unit="V", description="potential")
+    i = Flow(unit="A", description="current into the component")
+
+
+class Resistor(Component):
+    def __init__(self, R=1.0, name=None):
+        super().__init__(name)
+        self.R = Parameter(R, "Ohm", "resistance", low=0.0, low_inclusive=False)
+        self.p = Pin()
+        self.n = Pin()
+
+    def equations(self):
+        return [self.p.v - self.n.v == self.R * self.p.i, self.p.i + self.n.i == 0]

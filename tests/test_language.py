@@ -11,11 +11,7 @@ from hypothesis import strategies as st
 from bearingsim import (
     Assembly,
     Component,
-    Connector,
-    Flow,
     Input,
-    Parameter,
-    Potential,
     Variable,
     connect,
     der,
@@ -25,22 +21,7 @@ from bearingsim.components.connectors import Flange
 from bearingsim.components.rotational import Fixed, Inertia, Spring, TorqueSource
 from bearingsim.errors import ConnectionError_, ModelError, ParameterError, UnconnectedInputError
 from bearingsim.simulation import simulate
-
-
-class Pin(Connector):
-    v = Potential(unit="V", description="potential")
-    i = Flow(unit="A", description="current into the component")
-
-
-class Resistor(Component):
-    def __init__(self, R=1.0, name=None):
-        super().__init__(name)
-        self.R = Parameter(R, "Ohm", "resistance", low=0.0, low_inclusive=False)
-        self.p = Pin()
-        self.n = Pin()
-
-    def equations(self):
-        return [self.p.v - self.n.v == self.R * self.p.i, self.p.i + self.n.i == 0]
+from tests.models import Pin, Resistor
 
 
 def test_out_of_range_parameter_names_path_unit_and_range():

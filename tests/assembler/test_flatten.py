@@ -8,10 +8,7 @@ import pytest
 from bearingsim import (
     Assembly,
     Component,
-    Connector,
-    Flow,
     Parameter,
-    Potential,
     Variable,
     connect,
     der,
@@ -19,22 +16,7 @@ from bearingsim import (
 from bearingsim.assembler import AssemblyState
 from bearingsim.assembler.passes import flatten
 from bearingsim.errors import ModelError
-
-
-class Pin(Connector):
-    v = Potential(unit="V")
-    i = Flow(unit="A")
-
-
-class Resistor(Component):
-    def __init__(self, R, name=None):
-        super().__init__(name)
-        self.R = Parameter(R, "Ohm", "resistance")
-        self.p = Pin()
-        self.n = Pin()
-
-    def equations(self):
-        return [self.p.v - self.n.v == self.R * self.p.i, self.p.i + self.n.i == 0]
+from tests.models import Resistor
 
 
 class Divider(Assembly):
