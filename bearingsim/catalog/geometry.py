@@ -84,8 +84,12 @@ class BearingGeometry:
     contact_angle : float
         Nominal contact angle [rad], 0 for a deep-groove bearing, at most 45 deg.
     diametral_clearance : float
-        Diametral clearance Pd [m], non-negative: the total radial play of one ring against
-        the other (ISO 5753's radial internal clearance), twice the clearance per side.
+        Diametral clearance Pd [m]: the total radial play of one ring against the other (ISO
+        5753's radial internal clearance), twice the clearance per side. Negative: an internal
+        preload (the operating clearance of a bearing mounted with more interference than
+        clearance, :func:`~bearingsim.physics.fits.operating_clearance`), down to
+        ``-0.2 A``; the quasi-static ball rows and the ISO/TS 16281 form model it, the
+        ball-level (dynamic) models refuse it by name.
     dynamic_load_rating, static_load_rating : float or None
         Catalogue basic dynamic and static radial load ratings C, C0 [N].
     reference_speed, limiting_speed : float or None
@@ -136,7 +140,8 @@ class BearingGeometry:
         check_range(self.fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
         check_range(self.contact_angle, "contact_angle", "rad", 0.0, _MAX_CONTACT_ANGLE,
                     where=where)
-        check_range(self.diametral_clearance, "diametral_clearance", "m", 0.0, where=where)
+        check_range(self.diametral_clearance, "diametral_clearance", "m",
+                    -0.2 * (self.fi + self.fo - 1.0) * self.ball_diameter, where=where)
         for name in ("dynamic_load_rating", "static_load_rating", "reference_speed",
                      "limiting_speed"):
             if getattr(self, name) is not None:
@@ -249,10 +254,13 @@ class BearingGeometry:
         """Free (unloaded) contact angle [rad].
 
         For a deep-groove bearing, from the radial clearance: cos a0 = 1 - Pd / (2 A)
-        (Harris & Kotzalas). For an angular contact bearing, the nominal contact angle.
+        (Harris & Kotzalas), 0 without clearance or with a preload (Pd <= 0). For an angular
+        contact bearing, the nominal contact angle.
         """
         if self.bearing_type == "angular_contact":
             return self.contact_angle
+        if self.diametral_clearance <= 0.0:  # no clearance or an internal preload
+            return 0.0
         return math.acos(1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance))
 
     @property

@@ -107,6 +107,9 @@ class RowParameters:
     K_i, K_o : Hertz load-deflection constants of the inner and outer contact [N/m^1.5]
     psi0 : ball position angle (azimuth of ball 0) [rad]
     smooth : regularization length of the contact law [m]
+    interference : how much farther apart the groove centres are than ``A`` at zero
+        displacement [m]: ``-Pd / 2`` for a negative diametral clearance (an internal preload
+        of a mounted deep-groove bearing), else 0
     """
 
     Dw: float
@@ -118,6 +121,7 @@ class RowParameters:
     K_o: float
     psi0: float = 0.0
     smooth: float = 1e-9
+    interference: float = 0.0
 
 
 def row_parameters(bearing: str | BearingGeometry, contact_angle: float | None = None,
@@ -153,7 +157,8 @@ def row_parameters(bearing: str | BearingGeometry, contact_angle: float | None =
     check_range(smooth, "smooth", "m", 0.0, low_inclusive=False, where="row_parameters")
     k_i, k_o, _ = bearing_load_deflection_constants(g, ball, ring, alpha0, method)
     return RowParameters(g.ball_diameter, g.pitch_diameter, g.fi, g.fo, float(alpha0),
-                         float(k_i), float(k_o), float(ball_position_angle), float(smooth))
+                         float(k_i), float(k_o), float(ball_position_angle), float(smooth),
+                         max(-g.diametral_clearance, 0.0) / 2.0)
 
 
 def _groove_centres(p: Any, psi: Any, direction: int, reference: str):
@@ -161,7 +166,8 @@ def _groove_centres(p: Any, psi: Any, direction: int, reference: str):
     ci, co = (p.fi - 0.5) * p.Dw, (p.fo - 0.5) * p.Dw
     ca, sa = op.cos(p.alpha0), op.sin(p.alpha0)
     cp, sp = op.cos(psi), op.sin(psi)
-    r_i, r_o = 0.5 * p.dm + ci * ca, 0.5 * p.dm - co * ca
+    r_i = 0.5 * p.dm + ci * ca + 0.5 * p.interference
+    r_o = 0.5 * p.dm - co * ca - 0.5 * p.interference
     z_i, z_o = (direction * ci * sa, -direction * co * sa) if reference == "touching" else (0, 0)
     return [r_i * cp, r_i * sp, z_i], [r_o * cp, r_o * sp, z_o]
 
@@ -452,6 +458,8 @@ class BallRow(Component):
         self.K_o = Parameter(rp.K_o, "N/m^1.5", "Hertz constant, outer contact", **pos)
         self.psi0 = Parameter(rp.psi0, "rad", "ball position angle (azimuth of ball 0)")
         self.smooth = Parameter(rp.smooth, "m", "contact regularization length", **pos)
+        self.interference = Parameter(rp.interference, "m", "groove-centre interference of a "
+                                      "preloaded deep-groove row (-Pd/2)", low=0.0)
         self.inner_speed = Parameter(0.0, "rad/s", "inner ring speed")
         self.outer_speed = Parameter(0.0, "rad/s", "outer ring speed")
         self.ball_density = Parameter(ball_density, "kg/m3", "ball density", **pos)

@@ -202,25 +202,13 @@ def mounted_geometries(inner: BearingGeometry, outer: BearingGeometry, structure
     (BearingGeometry, BearingGeometry)
         Copies with ``diametral_clearance`` the operating clearance.
 
-    Raises
-    ------
-    ParameterError
-        When a layer's operating clearance is negative (an internal preload, which the
-        quasi-static and dynamic levels do not model), naming the layer and the preload.
+    A negative operating clearance is an internal preload: the quasi-static ball rows carry it
+    (every ball loaded without an external load), the ball-level models refuse it by name.
     """
     check_choice(structure, "structure", STRUCTURES, "mounted_geometries")
     sleeve_bore = inner.outside_diameter if structure == "I" else outer.bore - 2.0 * wall
     clearances = (operating_clearance(inner, "k6", "H7", band=band),
                   operating_clearance(outer, "k6", "H7", shaft_bore=max(sleeve_bore, 0.0),
                                       band=band))
-    mounted = []
-    for layer, g, c in zip(("inner", "outer"), (inner, outer), clearances, strict=True):
-        if c.operating < 0.0:
-            raise ParameterError(
-                f"mounted_geometries: the fits leave the {layer} layer ({g.designation}) an "
-                f"internal preload of {-c.operating * 1e6:.1f} um (clearance {c.initial * 1e6:.1f} "
-                f"um less {c.inner_reduction * 1e6:.1f} um on the shaft seat); the quasi-static "
-                f"and dynamic levels model clearance >= 0 only: give fits=False or "
-                f"band='smallest'")
-        mounted.append(dataclasses.replace(g, diametral_clearance=c.operating))
-    return mounted[0], mounted[1]
+    return tuple(dataclasses.replace(g, diametral_clearance=c.operating)
+                 for g, c in zip((inner, outer), clearances, strict=True))

@@ -210,6 +210,10 @@ def bearing_design(
         raise ParameterError(f"{where}: the dynamic model is for deep-groove bearings (contact "
                              f"angle 0), got {g.contact_angle:g} rad")
     pd = g.diametral_clearance if clearance is None else clearance
+    if pd < 0.0:
+        raise ParameterError(f"{where}: diametral clearance {pd * 1e6:.2f} um < 0 (an internal "
+                             f"preload, e.g. from the mounting fits): the ball-level models need "
+                             f"a clearance >= 0 [m]; the quasi-static ball rows model the preload")
     check_range(pd, "clearance", "m", 0.0, 0.2 * g.groove_centre_distance, where=where)
     dw, dm = g.ball_diameter, g.pitch_diameter
     pocket_clearance = 0.03 * dw if pocket_clearance is None else pocket_clearance

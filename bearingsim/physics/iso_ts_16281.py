@@ -125,7 +125,8 @@ def deflections(geometry: BearingGeometry, displacement: Sequence[Any],
     """
     x, y, z, tx, ty = displacement
     a = geometry.groove_centre_distance
-    radial0 = a * np.cos(geometry.free_contact_angle)
+    # A cos(alpha0) = A - Pd/2 for a clearance; the same form holds for a preload (Pd < 0)
+    radial0 = a - 0.5 * geometry.diametral_clearance
     lever = inner_groove_centre_radius(geometry)
     delta, alpha = [], []
     for psi in _azimuths(geometry, ball_position_angle):

@@ -97,7 +97,7 @@ def _valid(**changes):
     (dict(fo=0.49), ["fo"]),
     (dict(ball_count=2), ["ball_count", "3"]),
     (dict(ball_count=8.0), ["integer"]),
-    (dict(diametral_clearance=-1e-6), ["diametral_clearance", "m"]),
+    (dict(diametral_clearance=-1e-4), ["diametral_clearance", "m"]),  # preload beyond -0.2 A
     (dict(contact_angle=math.radians(50)), ["contact_angle", "rad"]),
     (dict(ball_diameter=0.015), ["do not fit"]),
     (dict(ball_count=14), ["pitch circle"]),

@@ -117,3 +117,29 @@ def test_bad_input_is_named(call, match):
 
 def test_no_nan_for_an_infinite_rigid_housing():
     assert math.isfinite(raceway_factor_outer(0.042, 0.038, math.inf))
+
+
+def test_a_negative_clearance_preloads_every_ball_by_half_of_it():
+    """A mounted bearing with more interference than clearance (Pd < 0): at zero displacement
+    the groove centres are A - Pd/2 apart, so every ball is compressed by -Pd/2 and carries
+    Q = K (-Pd/2)^1.5 (K: the inner and outer Hertz constants in series), in the ball-row
+    model and in the ISO/TS 16281 form alike; the net ring load is zero by symmetry."""
+    import dataclasses
+
+    import numpy as np
+
+    from bearingsim.components.ball_row import row_loads, row_parameters
+    from bearingsim.physics import iso_ts_16281
+    from bearingsim.physics.hertz import combined_load_deflection_constant
+
+    g = dataclasses.replace(get_bearing("61905"), diametral_clearance=-6e-6)
+    p = row_parameters(g)
+    assert p.alpha0 == 0.0 and p.interference == pytest.approx(3e-6)
+    c = row_loads(p, [0.0] * 5, [0.0] * 5, g.ball_count, 1, reference="centred")
+    k = combined_load_deflection_constant(p.K_i, p.K_o)
+    assert np.asarray(c.Q_i, dtype=float) == pytest.approx(k * (3e-6) ** 1.5, rel=1e-6)
+    assert np.abs(np.asarray(c.inner_load[:2], dtype=float)).max() < 1e-9
+    delta, _ = iso_ts_16281.deflections(g, [0.0] * 5)
+    assert np.asarray(delta, dtype=float) == pytest.approx(3e-6, rel=1e-9)
+    with pytest.raises(ParameterError, match="diametral_clearance"):
+        dataclasses.replace(get_bearing("61905"), diametral_clearance=-1e-4)  # beyond -0.2 A
