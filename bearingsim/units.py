@@ -18,6 +18,8 @@ __all__ = [
     "m2_s_to_cst",
     "celsius_to_kelvin",
     "N_mm_to_N_m",
+    "QUANTITY_UNITS",
+    "parse_quantity",
 ]
 
 RPM = 2.0 * math.pi / 60.0
@@ -67,3 +69,31 @@ def celsius_to_kelvin(t_c):
 def N_mm_to_N_m(m_nmm):  # noqa: N802 - unit names
     """Torque in N mm to N m."""
     return m_nmm * 1e-3
+
+
+QUANTITY_UNITS: dict[str, tuple[str, float]] = {
+    "rad/s": ("rad/s", 1.0), "rpm": ("rad/s", RPM), "r/min": ("rad/s", RPM),
+    "m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "µm": ("m", 1e-6),
+    "N": ("N", 1.0), "kN": ("N", 1e3),
+    "N.m": ("N.m", 1.0), "N m": ("N.m", 1.0), "Nm": ("N.m", 1.0), "N.mm": ("N.m", 1e-3),
+    "N mm": ("N.m", 1e-3), "Nmm": ("N.m", 1e-3),
+    "rad": ("rad", 1.0), "deg": ("rad", math.pi / 180.0),
+    "s": ("s", 1.0), "ms": ("s", 1e-3),
+    "V": ("V", 1.0), "A": ("A", 1.0), "W": ("W", 1.0), "kW": ("W", 1e3),
+}
+"""Engineering units a scene value may carry (``"10000 rpm"``): unit -> (SI unit, factor)."""
+
+
+def parse_quantity(text: str) -> tuple[float, str] | None:
+    """``"10000 rpm"`` -> ``(1047.19..., "rad/s")``: a number and a unit of
+    :data:`QUANTITY_UNITS`, converted to SI; None when ``text`` is not of that form (it is then
+    an expression, e.g. ``"rpm(10000) * min(t, 1)"``)."""
+    parts = text.strip().split(maxsplit=1)
+    if len(parts) != 2 or parts[1].strip() not in QUANTITY_UNITS:
+        return None
+    try:
+        value = float(parts[0])
+    except ValueError:
+        return None
+    si, factor = QUANTITY_UNITS[parts[1].strip()]
+    return value * factor, si

@@ -481,3 +481,21 @@ def test_result_csv_reads_with_pandas_and_feeds_a_table_input(tmp_path):
                          + '\n[inputs.shaft_speed]\nfile = "double_layer_bearing.csv"\n'
                          'column = "w_shaft"\n', str(tmp_path / "replay.toml"))
     assert replay.inputs["shaft_speed"].values[-1] == pytest.approx(run.series["w_shaft"][-1])
+
+
+def test_scene_inputs_may_carry_engineering_units():
+    """Issue 16: scene inputs were SI only. '10000 rpm', '2 kN' are converted once at the
+    boundary; a unit of the wrong kind is named."""
+    from bearingsim.units import parse_quantity, rpm_to_rad_s
+
+    assert parse_quantity("10000 rpm") == pytest.approx((rpm_to_rad_s(10000.0), "rad/s"))
+    assert parse_quantity("25 um") == pytest.approx((25e-6, "m"))
+    assert parse_quantity("rpm(10000) * t") is None
+    text = ('outputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+            '[simulation]\nt_end = 0.1\n[inputs]\nshaft_speed = "{speed}"\nFr = "{load}"\n')
+    scene = parse_scene(text.format(speed="10000 rpm", load="2 kN"), None)
+    assert scene.inputs["shaft_speed"] == pytest.approx(rpm_to_rad_s(10000.0))
+    assert scene.inputs["Fr"] == 2000.0
+    prepare(scene)
+    with pytest.raises(SceneError, match="input shaft_speed is in rad/s"):
+        prepare(parse_scene(text.format(speed="2 kN", load="2 kN"), None))

@@ -198,6 +198,10 @@ def _check_names(scene: Scene, system: System) -> None:
             add(f"inputs.{n}", f"the model has no input {n!r}",
                 ", ".join(system.input_names) or "none")
     units = {sig.name: sig.unit for sig in system.inputs}
+    for n, si in scene.input_units.items():
+        if n in units and units[n] != si:
+            add(f"inputs.{n}", f"input {n} is in {units[n]}, but the value's unit is one of "
+                f"{si}", f"a number with a unit of {units[n]}, or a number in {units[n]}")
     missing = [n for n in system.input_names
                if n not in scene.inputs and not scene.spec.is_optional_input(n)]
     if missing:

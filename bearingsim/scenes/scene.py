@@ -28,6 +28,7 @@ from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
 from bearingsim.simulation.integrators import METHODS
+from bearingsim.units import parse_quantity
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -150,6 +151,9 @@ class Scene:
         defaults.
     simulation, output : Simulation, Output
     title : str
+    input_units : dict
+        SI unit of each input given as a number with a unit (``"10000 rpm"`` -> ``rad/s``),
+        checked against the model's input when assembled.
     tolerance : float
         Largest relative error [-] of the requested outputs that ``fidelity = "auto"`` may
         accept from a lower level (its measured error against the reference level,
@@ -172,6 +176,7 @@ class Scene:
     output: Output = field(default_factory=Output)
     title: str = ""
     tolerance: float = DEFAULT_TOLERANCE
+    input_units: dict[str, str] = field(default_factory=dict)
     path: str | None = None
     text: str | None = field(default=None, repr=False)
 
@@ -525,6 +530,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         outputs = []
     # inputs
     inputs: dict[str, Any] = {}
+    input_units: dict[str, str] = {}
     base = Path(path).resolve().parent if path else Path.cwd()
     raw_inputs = d.get("inputs", {})
     if not isinstance(raw_inputs, dict):
@@ -536,6 +542,9 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             tab = _table_input(c, key, v, base)
             if tab is not None:
                 inputs[k] = tab
+        elif isinstance(v, str) and parse_quantity(v) is not None:
+            inputs[k] = parse_quantity(v)[0]  # a number with a unit: SI from here on
+            input_units[k] = parse_quantity(v)[1]
         elif isinstance(v, str):
             try:
                 compile_expression(v, key)
@@ -619,7 +628,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         tolerance = DEFAULT_TOLERANCE
     c.raise_if_any()
     return Scene(
-        assembly=name, args=args, fidelity=fidelity, inputs=inputs,
+        assembly=name, args=args, fidelity=fidelity, inputs=inputs, input_units=input_units,
         parameters=values["parameters"], initial=values["initial"], outputs=list(outputs),
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
         tolerance=float(tolerance), path=path, text=text,
