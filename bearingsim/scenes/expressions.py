@@ -127,8 +127,9 @@ def _parse(text: str, name: str) -> ast.Expression:
         hint = ""
         low = text.lower()
         if any(u in low for u in ("rpm", "r/min", "rad/s", "hz", " n", "nm", "mm")):
-            hint = (" (values are SI: rad/s, N, N m, m, s; write a speed in r/min as "
-                    "rpm(1000), not '1000 rpm')")
+            hint = (" (inside an expression values are SI: rad/s, N, N m, m, s, and a speed in "
+                    "r/min is rpm(1000); a scene value may be a number with a unit alone, "
+                    "e.g. '1000 rpm', '2 kN')")
         why = getattr(exc, "msg", str(exc))
         raise _fail(name, text, f"not a valid expression ({why}){hint}") from None
     if sum(1 for _ in ast.walk(tree)) > _MAX_NODES:

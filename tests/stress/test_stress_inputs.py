@@ -77,9 +77,12 @@ def test_bad_assembly_arguments_name_them(kwargs, match):
 
 
 def test_speed_with_units_in_a_scene_gets_a_hint():
-    with pytest.raises(SceneError, match=r"inputs.shaft_speed.*rpm\(1000\)"):
-        parse_scene('[assembly]\nname = "double_layer_bearing"\n[inputs]\n'
-                    'shaft_speed = "1000 rpm"\n[simulation]\nt_end = 1\n')
+    """A number with a known unit is a value ('1000 rpm'); a unit inside an expression or an
+    unknown unit gets the hint."""
+    for text in ("1000 rpm * t", "1000 RPM"):
+        with pytest.raises(SceneError, match=r"inputs.shaft_speed.*rpm\(1000\)"):
+            parse_scene('[assembly]\nname = "double_layer_bearing"\n[inputs]\n'
+                        f'shaft_speed = "{text}"\n[simulation]\nt_end = 1\n')
 
 
 def test_speed_given_as_text_to_the_assembly_names_the_argument():
