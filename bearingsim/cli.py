@@ -76,6 +76,7 @@ def _demo(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from bearingsim.scenes import run_scene
+    from bearingsim.units import engineering
 
     run = run_scene(args.scene, out=args.out, overwrite=args.overwrite)
     s = run.summary
@@ -90,8 +91,8 @@ def _run(args: argparse.Namespace) -> int:
             text = item if isinstance(item, str) else f"{item['name']}: {item['note']}"
             print(f"  skipped ({kind}): {text}")
     for name, o in s["outputs"].items():
-        final = "inf/nan" if o["final"] is None else f"{o['final']:.6g}"
-        print(f"  {name} = {final} [{o['unit']}] at t_end")
+        final = "inf/nan" if o["final"] is None else engineering(o["final"], o["unit"])
+        print(f"  {name} = {final} at t_end")
     for f in run.files:
         print(f"  wrote {f}")
     return 0

@@ -20,6 +20,7 @@ __all__ = [
     "N_mm_to_N_m",
     "QUANTITY_UNITS",
     "parse_quantity",
+    "engineering",
 ]
 
 RPM = 2.0 * math.pi / 60.0
@@ -97,3 +98,33 @@ def parse_quantity(text: str) -> tuple[float, str] | None:
         return None
     si, factor = QUANTITY_UNITS[parts[1].strip()]
     return value * factor, si
+
+
+def engineering(value: float, unit: str) -> str:
+    """A value in SI shown in the unit an engineer reads it in: rad/s with r/min, m in mm or um,
+    rad in deg, N in kN above 1 kN, N m in N mm below 1 N m, dimensionless as ``-``.
+
+    Examples
+    --------
+    >>> engineering(1047.2, "rad/s")
+    '1047.2 rad/s (10000 r/min)'
+    >>> engineering(12.5e-6, "m")
+    '12.5 um'
+    """
+    if not math.isfinite(value):
+        return f"{value} [{'-' if unit in ('', '1') else unit}]"
+    if unit in ("", "1"):
+        return f"{value:.6g} [-]"
+    if unit == "rad/s":
+        return f"{value:.6g} rad/s ({rad_s_to_rpm(value):.5g} r/min)"
+    if unit == "m" and abs(value) < 1e-3:
+        return f"{value * 1e6:.4g} um"
+    if unit == "m" and abs(value) < 1.0:
+        return f"{value * 1e3:.5g} mm"
+    if unit == "rad":
+        return f"{to_deg(value):.5g} deg"
+    if unit == "N" and abs(value) >= 1e3:
+        return f"{value * 1e-3:.5g} kN"
+    if unit == "N.m" and abs(value) < 1.0:
+        return f"{value * 1e3:.5g} N mm"
+    return f"{value:.6g} {unit}"

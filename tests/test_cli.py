@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -197,3 +198,16 @@ def test_export_fmu_from_a_file_and_the_current_folder_with_factory_arguments(tm
     with pytest.raises(SystemExit, match="unexpected keyword argument 'colour'"):
         main(["export-fmu", "./my_bearings.py:bearing", str(tmp_path / "x.fmu"),
               "--arg", "colour=red"])
+
+
+def test_summaries_show_engineering_units():
+    """Issue 16: everything printed in SI (rad/s, m, rad) and dimensionless as [1]."""
+    from bearingsim.units import engineering
+
+    assert engineering(1047.1975512, "rad/s") == "1047.2 rad/s (10000 r/min)"
+    assert engineering(12.5e-6, "m") == "12.5 um"
+    assert engineering(0.0125, "m") == "12.5 mm"
+    assert engineering(math.radians(15.0), "rad") == "15 deg"
+    assert engineering(2500.0, "N") == "2.5 kN" and engineering(250.0, "N") == "250 N"
+    assert engineering(-0.0318, "N.m") == "-31.8 N mm"
+    assert engineering(0.2, "1") == "0.2 [-]"
