@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import inspect
+import math
 import sys
 
 __all__ = ["main"]
@@ -35,33 +36,64 @@ def _components() -> dict[str, list[str]]:
     return out
 
 
-def _list(_: argparse.Namespace) -> int:
+LIST_SECTIONS = ("assemblies", "components", "bearings", "lubricants", "scenes")
+
+
+def _bearing_row(g) -> str:
+    """One catalogue bearing: dimensions, ball set, angle, ratings, speeds, preload classes."""
+    c, c0 = g.dynamic_load_rating, g.static_load_rating
+    rating = "C/C0 -" if c is None else f"C/C0 {c * 1e-3:5.2f}/{(c0 or 0.0) * 1e-3:5.2f} kN"
+    speeds = ("" if g.limiting_speed is None else
+              f"  n_lim {g.limiting_speed * 30 / math.pi:6.0f} r/min")
+    preload = ("" if g.preload is None else
+               f"  preload L/M/H {g.preload.light:g}/{g.preload.medium:g}/{g.preload.heavy:g} N")
+    return (f"  {g.designation:8s} d={g.bore * 1e3:5.1f} D={g.outside_diameter * 1e3:5.1f} "
+            f"B={g.width * 1e3:4.1f} mm  Z={g.ball_count:2d} Dw={g.ball_diameter * 1e3:6.3f} mm"
+            f"  dm={g.pitch_diameter * 1e3:6.2f} mm  a={math.degrees(g.contact_angle):4.1f} deg"
+            f"  {rating}{speeds}{preload}")
+
+
+def _list(args: argparse.Namespace) -> int:
     from bearingsim.catalog import get_bearing, list_bearings
     from bearingsim.physics.lubricant import known_lubricants
     from bearingsim.scenes.library import builtin_scenes
     from bearingsim.scenes.registry import REGISTRY
 
-    print("assemblies (scene [assembly] name):")
-    for spec in REGISTRY.values():
-        print(f"  {spec.name}: {spec.description}")
-        if spec.fidelity_arg is not None:
-            print(f"    fidelity: auto, {', '.join(spec.fidelities)}")
-        print(f"    arguments: {', '.join(spec.args)}")
-        print(f"    default outputs: {', '.join(spec.default_outputs)}")
-        post = spec.post(spec.with_defaults({}))
-        if post:
-            print(f"    post-processed outputs: {', '.join(post)}")
-    print("components:")
-    for module, names in _components().items():
-        print(f"  {module}: {', '.join(names)}")
-    print("bearings:")
-    for d in list_bearings():
-        g = get_bearing(d)
-        print(f"  {d:8s} d={g.bore * 1e3:5.1f} D={g.outside_diameter * 1e3:5.1f} "
-              f"B={g.width * 1e3:4.1f} mm  Z={g.ball_count:2d} Dw={g.ball_diameter * 1e3:6.3f} mm"
-              f"  dm={g.pitch_diameter * 1e3:6.2f} mm")
-    print("lubricants: " + ", ".join(known_lubricants()))
-    print("built-in scenes (bearingsim run NAME): " + ", ".join(builtin_scenes()))
+    shown = LIST_SECTIONS if args.what == "all" else (args.what,)
+    pattern = (args.filter or "").lower()
+
+    def keep(name: str) -> bool:
+        return pattern in name.lower()
+
+    if "assemblies" in shown:
+        print("assemblies (scene [assembly] name):")
+        for spec in REGISTRY.values():
+            if not keep(spec.name):
+                continue
+            print(f"  {spec.name}: {spec.description}")
+            if spec.fidelity_arg is not None:
+                print(f"    fidelity: auto, {', '.join(spec.fidelities)}")
+            print(f"    arguments: {', '.join(spec.args)}")
+            print(f"    default outputs: {', '.join(spec.default_outputs)}")
+            post = spec.post(spec.with_defaults({}))
+            if post:
+                print(f"    post-processed outputs: {', '.join(post)}")
+    if "components" in shown:
+        print("components:")
+        for module, names in _components().items():
+            names = [n for n in names if keep(n)]
+            if names:
+                print(f"  {module}: {', '.join(names)}")
+    if "bearings" in shown:
+        print("bearings:")
+        for d in list_bearings():
+            if keep(d):
+                print(_bearing_row(get_bearing(d)))
+    if "lubricants" in shown:
+        print("lubricants: " + ", ".join(n for n in known_lubricants() if keep(n)))
+    if "scenes" in shown:
+        print("built-in scenes (bearingsim run NAME): "
+              + ", ".join(n for n in builtin_scenes() if keep(n)))
     return 0
 
 
@@ -178,7 +210,11 @@ def _parser() -> argparse.ArgumentParser:
     p_sw.add_argument("--workers", type=int, default=2, help="LocalCluster workers")
     p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
     p_sw.add_argument("--no-progress", action="store_true", help="no progress bar")
-    sub.add_parser("list", help="assemblies, components, catalogue bearings and lubricants")
+    p_list = sub.add_parser("list", help="assemblies, components, catalogue bearings, "
+                            "lubricants and built-in scenes")
+    p_list.add_argument("what", nargs="?", default="all", choices=("all", *LIST_SECTIONS),
+                        help="one section (default: all)")
+    p_list.add_argument("--filter", help="only names containing this text (any letter case)")
     p_demo = sub.add_parser("demo", help="run the built-in demo scenes (PMSM spin-up of a "
                             "double-layer bearing; its speed ratio against friction torque)")
     p_demo.add_argument("--out", default="demo_output")

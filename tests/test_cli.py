@@ -211,3 +211,17 @@ def test_summaries_show_engineering_units():
     assert engineering(2500.0, "N") == "2.5 kN" and engineering(250.0, "N") == "250 N"
     assert engineering(-0.0318, "N.m") == "-31.8 N mm"
     assert engineering(0.2, "1") == "0.2 [-]"
+
+
+def test_list_bearings_with_ratings_speeds_and_a_filter(capsys):
+    """Issue 16: bearingsim list showed no C, C0, angle, speeds or preload classes and had no
+    search."""
+    assert main(["list", "bearings", "--filter", "619"]) == 0
+    out = capsys.readouterr().out
+    rows = [line for line in out.splitlines() if line.startswith("  ")]
+    assert len(rows) == 4 and all("619" in r for r in rows)
+    assert "C/C0  7.02/ 4.30 kN" in out and "n_lim  22000 r/min" in out and "a= 0.0 deg" in out
+    assert main(["list", "bearings", "--filter", "7020c"]) == 0
+    assert "preload L/M/H 540/1270/2550 N" in capsys.readouterr().out
+    assert main(["list", "scenes"]) == 0
+    assert "double_layer_rs" in capsys.readouterr().out
