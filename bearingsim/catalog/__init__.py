@@ -30,7 +30,11 @@ from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
 from bearingsim.errors import CatalogError
 from bearingsim.units import deg, mm, rpm_to_rad_s
 
-__all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings", "resolve_bearing"]
+__all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings", "load_datasheet",
+           "register_bearing", "resolve_bearing", "unregister_bearing"]
+
+_USER: dict[str, BearingGeometry] = {}
+"""Bearings registered by the user (:func:`register_bearing`, :func:`load_datasheet`)."""
 
 
 def _optional(text: str, scale: float) -> float | None:
@@ -75,8 +79,49 @@ def _catalogue() -> dict[str, BearingGeometry]:
 
 
 def list_bearings() -> list[str]:
-    """Designations of all catalogued bearings, in table order."""
-    return list(_catalogue())
+    """Designations of all catalogued bearings, in table order, then the registered ones."""
+    return list(_catalogue()) + [d for d in _USER if d not in _catalogue()]
+
+
+def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> BearingGeometry:
+    """Make a bearing known by its designation to every assembly, scene and ``bearingsim
+    list``; returns it.
+
+    Raises
+    ------
+    CatalogError
+        For a designation already known (built in, or registered without ``replace``).
+    """
+    if not isinstance(geometry, BearingGeometry):
+        raise CatalogError(f"register_bearing: expected a BearingGeometry, got "
+                           f"{type(geometry).__name__}")
+    key = geometry.designation.strip().upper()
+    if key in _catalogue():
+        raise CatalogError(f"register_bearing: {key} is a catalogue bearing; give yours "
+                           f"another designation")
+    if key in _USER and not replace:
+        raise CatalogError(f"register_bearing: {key} is already registered; give replace=True")
+    _USER[key] = geometry
+    return geometry
+
+
+def unregister_bearing(designation: str) -> None:
+    """Forget a registered bearing (CatalogError for one that is not registered)."""
+    key = str(designation).strip().upper()
+    if key not in _USER:
+        raise CatalogError(f"unregister_bearing: {designation!r} is not registered")
+    del _USER[key]
+
+
+def load_datasheet(path, *, replace: bool = False) -> list[str]:
+    """Read a datasheet file (:func:`~bearingsim.catalog.datasheet.read_datasheet`, CSV or TOML
+    in catalogue units) and register its bearings; returns their designations."""
+    from bearingsim.catalog.datasheet import read_datasheet
+
+    bearings = read_datasheet(path)
+    for g in bearings:
+        register_bearing(g, replace=replace)
+    return [g.designation.strip().upper() for g in bearings]
 
 
 def get_bearing(designation: str) -> BearingGeometry:
@@ -96,7 +141,7 @@ def get_bearing(designation: str) -> BearingGeometry:
     CatalogError
         If the designation is unknown; the message lists the known designations.
     """
-    table = _catalogue()
+    table = {**_USER, **_catalogue()}
     key = str(designation).strip().upper()
     if key not in table:
         raise CatalogError(

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
-from bearingsim.errors import ParameterError
+from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
@@ -47,8 +47,8 @@ __all__ = [
     "line_of",
 ]
 
-TOP_KEYS = ("title", "description", "outputs", "tolerance", "assembly", "inputs", "parameters",
-            "initial", "simulation", "output")
+TOP_KEYS = ("title", "description", "outputs", "tolerance", "bearings", "assembly", "inputs",
+            "parameters", "initial", "simulation", "output")
 DEFAULT_TOLERANCE = 0.05
 """Largest relative error of the requested outputs a scene accepts from ``fidelity = "auto"``
 when it gives no ``tolerance`` [-]."""
@@ -331,7 +331,6 @@ def _number(c: _Collector, key: str, v: Any, unit: str, low=None, high=None, str
 
 def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
     from bearingsim.catalog import list_bearings
-    from bearingsim.errors import BearingsimError
     from bearingsim.physics.lubricant import as_lubricant, known_lubricants
 
     if v is None:
@@ -486,6 +485,25 @@ def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
                   f"[{sim.t_start:g}, {sim.t_end:g}] s)", "an expression finite for all t")
 
 
+def _load_bearings(c: _Collector, files: Any, path: str | None) -> None:
+    """Register the bearings of the scene's datasheet file(s) (key ``bearings``, relative to
+    the scene file) before the assembly's bearing names are checked."""
+    if files is None:
+        return
+    from bearingsim.catalog import load_datasheet
+
+    base = Path(path).resolve().parent if path else Path.cwd()
+    for item in files if isinstance(files, list) else [files]:
+        if not isinstance(item, str):
+            c.add("bearings", f"{item!r} is not a file name", "a datasheet file or a list of them")
+            continue
+        file = Path(item) if Path(item).is_absolute() else base / item
+        try:
+            load_datasheet(file, replace=True)
+        except BearingsimError as exc:
+            c.add("bearings", str(exc), "a CSV or TOML datasheet in catalogue units")
+
+
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
                     text: str | None = None) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
@@ -499,6 +517,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k in d:
         if k not in TOP_KEYS:
             _unknown(c, "", k, TOP_KEYS)
+    _load_bearings(c, d.get("bearings"), path)
     # assembly
     asm = d.get("assembly")
     name, fidelity, args = None, "auto", {}

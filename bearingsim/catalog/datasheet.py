@@ -1,0 +1,118 @@
+"""User bearings from a datasheet file, in catalogue units.
+
+A datasheet is a CSV file with the columns of the built-in ``bearings.csv`` or a TOML file with
+one ``[[bearing]]`` table per bearing and the same keys; only ``designation, d_mm, D_mm, B_mm, Z,
+Dw_mm, dm_mm`` are required::
+
+    [[bearing]]
+    designation = "MY6005"
+    d_mm = 25
+    D_mm = 47
+    B_mm = 12
+    Z = 10
+    Dw_mm = 6.35
+    dm_mm = 36
+    C_kN = 11.2
+    C0_kN = 5.85
+    lim_speed_rpm = 19000
+
+Missing keys take the catalogue's rules: ``fi``/``fo`` 0.52/0.53 (deep groove) or 0.525/0.515
+(angular contact, ``alpha_deg`` > 0), ``alpha_deg`` 0, ``Pd_um`` 0 (give the clearance),
+ratings, speeds and preload classes absent; the defaulted fields are listed in ``estimated``.
+"""
+
+from __future__ import annotations
+
+import csv
+import sys
+from pathlib import Path
+from typing import Any
+
+from bearingsim.catalog.geometry import BearingGeometry
+from bearingsim.errors import BearingsimError, CatalogError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+__all__ = ["REQUIRED_KEYS", "read_datasheet"]
+
+REQUIRED_KEYS = ("designation", "d_mm", "D_mm", "B_mm", "Z", "Dw_mm", "dm_mm")
+"""Keys every datasheet bearing gives (catalogue units: mm)."""
+_OPTIONAL_KEYS = ("fi", "fo", "alpha_deg", "Pd_um", "C_kN", "C0_kN", "ref_speed_rpm",
+                  "lim_speed_rpm", "preload_light_N", "preload_medium_N", "preload_heavy_N",
+                  "estimated", "source")
+
+
+def _complete(entry: dict[str, Any], where: str) -> dict[str, str]:
+    """The entry as a catalogue row (text cells), the catalogue's defaults filled in."""
+    unknown = sorted(set(entry) - set(REQUIRED_KEYS) - set(_OPTIONAL_KEYS))
+    if unknown:
+        raise CatalogError(f"{where}: unknown key(s) {', '.join(unknown)}; keys: "
+                           f"{', '.join(REQUIRED_KEYS + _OPTIONAL_KEYS)}")
+    missing = [k for k in REQUIRED_KEYS if str(entry.get(k, "")).strip() == ""]
+    if missing:
+        raise CatalogError(f"{where}: missing {', '.join(missing)} (mm, balls)")
+    row = {k: str(v) for k, v in entry.items()}
+    angular = float(row.get("alpha_deg") or 0.0) > 0.0
+    defaults = {"fi": "0.525" if angular else "0.52", "fo": "0.515" if angular else "0.53",
+                "alpha_deg": "0", "Pd_um": "0"}
+    estimated = [k for k in defaults if row.get(k, "").strip() == ""]
+    for key, value in defaults.items():
+        if row.get(key, "").strip() == "":
+            row[key] = value
+    for key in _OPTIONAL_KEYS:
+        row.setdefault(key, "")
+    row["estimated"] = row["estimated"] or ";".join(estimated)
+    return row
+
+
+def read_datasheet(path: str | Path) -> list[BearingGeometry]:
+    """The bearings of a datasheet file (CSV or TOML), validated.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.csv`` or ``.toml`` file.
+
+    Returns
+    -------
+    list of BearingGeometry
+        In file order, SI units.
+
+    Raises
+    ------
+    CatalogError
+        For a missing or unreadable file, a missing or unknown key, or a bearing the geometry
+        checks refuse, naming the file, the bearing and the key.
+    """
+    from bearingsim.catalog import _row_to_geometry
+
+    path = Path(path)
+    if not path.is_file():
+        raise CatalogError(f"bearing datasheet {str(path)!r} not found")
+    try:
+        if path.suffix.lower() == ".toml":
+            entries = tomllib.loads(path.read_text(encoding="utf-8")).get("bearing", [])
+        else:
+            lines = [line for line in path.read_text(encoding="utf-8").splitlines()
+                     if line.strip() and not line.startswith("#")]
+            entries = list(csv.DictReader(lines))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise CatalogError(f"bearing datasheet {path.name}: cannot read it: {exc}") from None
+    if not isinstance(entries, list) or not entries:
+        raise CatalogError(f"bearing datasheet {path.name}: no bearings (a CSV with a header "
+                           f"row, or [[bearing]] tables in TOML)")
+    out = []
+    for k, entry in enumerate(entries, start=1):
+        where = f"bearing datasheet {path.name}, bearing {k} ({entry.get('designation', '?')})"
+        row = _complete(dict(entry), where)
+        row["source"] = row["source"] or f"datasheet {path.name}"
+        try:
+            out.append(_row_to_geometry(row))
+        except ValueError as exc:
+            raise CatalogError(f"{where}: not a number: {exc}") from None
+        except BearingsimError as exc:
+            raise CatalogError(f"{where}: {exc}") from None
+    return out
