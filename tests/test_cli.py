@@ -225,3 +225,20 @@ def test_list_bearings_with_ratings_speeds_and_a_filter(capsys):
     assert "preload L/M/H 540/1270/2550 N" in capsys.readouterr().out
     assert main(["list", "scenes"]) == 0
     assert "double_layer_rs" in capsys.readouterr().out
+
+
+def test_the_core_install_pulls_no_test_tool():
+    """Issue 16: pip install bearingsim installed pytest, hypothesis, ruff, libcosimpy and
+    pythonfmu; they are extras now ([test], [fmu-cosim]), and make demo installs the core only."""
+    import tomllib
+
+    root = Path(__file__).resolve().parent.parent
+    project = tomllib.loads((root / "pyproject.toml").read_text())["project"]
+    core = " ".join(project["dependencies"])
+    for tool in ("pytest", "hypothesis", "ruff", "libcosimpy", "pythonfmu", "xdist"):
+        assert tool not in core
+    assert "libcosimpy>=0.0.6" in project["optional-dependencies"]["fmu-cosim"]
+    assert "bearingsim[fmu-cosim]" in project["optional-dependencies"]["test"]
+    assert isinstance(project["license"], str)  # SPDX string: no setuptools deprecation warning
+    makefile = (root / "Makefile").read_text()
+    assert "demo: $(BASE)" in makefile and 'pip install --quiet -e .\n' in makefile
