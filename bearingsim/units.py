@@ -21,6 +21,7 @@ __all__ = [
     "QUANTITY_UNITS",
     "parse_quantity",
     "engineering",
+    "display_unit",
 ]
 
 RPM = 2.0 * math.pi / 60.0
@@ -128,3 +129,26 @@ def engineering(value: float, unit: str) -> str:
     if unit == "N.m" and abs(value) < 1.0:
         return f"{value * 1e3:.5g} N mm"
     return f"{value:.6g} {unit}"
+
+
+def display_unit(unit: str, values) -> tuple[float, str]:
+    """Factor and unit to plot SI ``values`` of ``unit`` in: r/min for rad/s, um or mm for
+    small lengths, deg for rad, N mm for small torques, ``-`` for dimensionless; else SI."""
+    import numpy as np
+
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    peak = float(np.max(np.abs(finite))) if finite.size else 0.0
+    if unit in ("", "1"):
+        return 1.0, "-"
+    if unit == "rad/s":
+        return 1.0 / RPM, "r/min"
+    if unit == "rad":
+        return 180.0 / math.pi, "deg"
+    if unit == "m" and peak < 1e-3:
+        return 1e6, "um"
+    if unit == "m" and peak < 1.0:
+        return 1e3, "mm"
+    if unit == "N.m" and peak < 1.0:
+        return 1e3, "N mm"
+    return 1.0, unit

@@ -1,6 +1,7 @@
 """Value-axis scale of the result plots."""
 
 import matplotlib
+import pytest
 
 matplotlib.use("Agg")
 
@@ -54,3 +55,27 @@ def test_result_plot_keeps_the_backend_and_draws_into_a_given_axes(tmp_path):
     assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 2
     assert len(repr(res)) < 200 and "11 points" in repr(res)
     assert len(repr(system)) < 200 and "states" in repr(system)
+
+
+def test_scene_plots_use_engineering_units(tmp_path, monkeypatch):
+    """Issue 16: the scene plots showed raw SI (rad/s) and [1]. Speeds are now in r/min,
+    torques below 1 N m in N mm, dimensionless quantities [-] (the CSV stays SI)."""
+    import matplotlib.figure
+
+    from bearingsim.scenes import load_scene, run_scene
+    from bearingsim.units import display_unit
+
+    assert display_unit("rad/s", [100.0]) == pytest.approx((30 / 3.141592653589793, "r/min"))
+    assert display_unit("m", [2e-5]) == (1e6, "um") and display_unit("1", [0.3]) == (1.0, "-")
+    labels = []
+    real_savefig = matplotlib.figure.Figure.savefig
+
+    def capture(fig, *args, **kwargs):
+        labels.extend(ax.get_ylabel() for ax in fig.axes)
+        return real_savefig(fig, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", capture)
+    run_scene(load_scene("double_layer_friction"), out=tmp_path)
+    assert any(label.endswith("[-]") and label.startswith("Rs") for label in labels)
+    assert any(label.endswith("[N mm]") for label in labels)
+    assert not any("[1]" in label or "[rad/s]" in label for label in labels)

@@ -27,6 +27,7 @@ from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.simulation import Result, simulate
+from bearingsim.units import display_unit
 
 __all__ = [
     "Prepared",
@@ -355,13 +356,15 @@ def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.nda
         fig, axes = plt.subplots(len(chunk), 1, sharex=True, figsize=(7, 1.9 * len(chunk) + 1))
         axes = np.atleast_1d(axes)
         for ax, group in zip(axes, chunk, strict=True):
+            # engineering units for display (r/min, um, deg, N mm, -); SI in the CSV
+            factor, unit = display_unit(units.get(group[0], ""),
+                                        np.concatenate([series[n] for n in group]))
             for n in group:
-                y = series[n]
+                y = series[n] * factor
                 ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=n)
-            set_value_scale(ax, [series[n] for n in group])
-            unit = units.get(group[0], "")
+            set_value_scale(ax, [series[n] * factor for n in group])
             label = group[0] if len(group) == 1 else ", ".join(group)
-            ax.set_ylabel(f"{label}\n[{unit}]" if unit else label, fontsize=8)
+            ax.set_ylabel(f"{label}\n[{unit}]", fontsize=8)
             if len(group) > 1:
                 ax.legend(fontsize=7)
             ax.grid(True, alpha=0.3)
