@@ -3,11 +3,14 @@ so that assemblies, scenes and bearingsim list accept the designation."""
 
 from __future__ import annotations
 
+import textwrap
+
 import pytest
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import deep_groove_ball_bearing
 from bearingsim.catalog import (
+    datasheet,
     get_bearing,
     list_bearings,
     load_datasheet,
@@ -17,20 +20,8 @@ from bearingsim.catalog import (
 from bearingsim.catalog.datasheet import read_datasheet
 from bearingsim.errors import CatalogError
 
-TOML = """
-[[bearing]]
-designation = "MY6005"
-d_mm = 25
-D_mm = 47
-B_mm = 12
-Z = 10
-Dw_mm = 6.35
-dm_mm = 36
-Pd_um = 12
-C_kN = 11.2
-C0_kN = 5.85
-lim_speed_rpm = 19000
-"""
+TOML = textwrap.dedent(datasheet.__doc__.split("::\n", 1)[1].split("\n\n", 1)[0])
+"""The example of the module docstring (so the documented example is the one tested)."""
 
 CSV = """designation,d_mm,D_mm,B_mm,Z,Dw_mm,dm_mm,alpha_deg
 MY7005,25,47,12,14,5.556,36,15

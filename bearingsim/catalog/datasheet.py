@@ -12,6 +12,7 @@ Dw_mm, dm_mm`` are required::
     Z = 10
     Dw_mm = 6.35
     dm_mm = 36
+    Pd_um = 12
     C_kN = 11.2
     C0_kN = 5.85
     lim_speed_rpm = 19000
