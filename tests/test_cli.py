@@ -235,10 +235,11 @@ def test_the_core_install_pulls_no_test_tool():
     root = Path(__file__).resolve().parent.parent
     project = tomllib.loads((root / "pyproject.toml").read_text())["project"]
     core = " ".join(project["dependencies"])
-    for tool in ("pytest", "hypothesis", "ruff", "libcosimpy", "pythonfmu", "xdist"):
+    for tool in ("pytest", "hypothesis", "ruff", "libcosimpy", "pythonfmu", "xdist", "nbclient",
+                 "ipykernel", "pandas"):
         assert tool not in core
     assert "libcosimpy>=0.0.6" in project["optional-dependencies"]["fmu-cosim"]
-    assert "bearingsim[fmu-cosim]" in project["optional-dependencies"]["test"]
+    assert "bearingsim[fmu-cosim,notebook]" in project["optional-dependencies"]["test"]
     assert isinstance(project["license"], str)  # SPDX string: no setuptools deprecation warning
     makefile = (root / "Makefile").read_text()
     assert "demo: $(BASE)" in makefile and 'pip install --quiet -e .\n' in makefile

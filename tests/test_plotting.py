@@ -79,3 +79,28 @@ def test_scene_plots_use_engineering_units(tmp_path, monkeypatch):
     assert any(label.endswith("[-]") and label.startswith("Rs") for label in labels)
     assert any(label.endswith("[N mm]") for label in labels)
     assert not any("[1]" in label or "[rad/s]" in label for label in labels)
+
+
+def test_result_as_a_table_and_in_a_notebook():
+    """Issue 16: no to_pandas/to_xarray; the repr dumped kilobytes."""
+    pd = pytest.importorskip("pandas")
+
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.errors import ParameterError
+    from bearingsim.simulation import simulate
+
+    res = simulate(assemble(double_layer_bearing()), 0.2, inputs={"shaft_speed": 100.0},
+                   n_points=11)
+    frame = res.to_pandas()
+    assert isinstance(frame, pd.DataFrame) and frame.index.name == "time [s]"
+    assert frame["Rs [-]"].iloc[-1] == res.final("Rs") and frame.shape == (11, len(res.names))
+    html = res._repr_html_()
+    assert "<table>" in html and "Rs" in html and len(html) < 4000
+    try:
+        import xarray  # noqa: F401
+    except ImportError:
+        with pytest.raises(ParameterError, match="xarray"):
+            res.to_xarray()
+    else:
+        assert res.to_xarray()["Rs"].attrs["units"] == "1"

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import html
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from bearingsim.files import atomic_path, write_series_csv
+from bearingsim.errors import ParameterError
+from bearingsim.files import atomic_path, column_name, write_series_csv
 from bearingsim.plotting import set_value_scale
 
 __all__ = ["Result"]
@@ -135,6 +137,38 @@ class Result:
             with atomic_path(path) as tmp:
                 fig.savefig(tmp, dpi=120)
         return fig
+
+    def to_pandas(self):
+        """The series as a :class:`pandas.DataFrame`: one column ``name [unit]`` per variable,
+        indexed by ``time [s]`` (pandas: ``pip install bearingsim[notebook]``)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ParameterError("Result.to_pandas needs pandas: pip install "
+                                 "'bearingsim[notebook]'") from None
+        columns = {column_name(n, self.units.get(n, "")): self[n] for n in self.names}
+        return pd.DataFrame(columns, index=pd.Index(self.t, name=column_name("time", "s")))
+
+    def to_xarray(self):
+        """The series as an :class:`xarray.Dataset` over ``time`` with each variable's unit in
+        its ``attrs`` (xarray is not a dependency: install it to use this)."""
+        try:
+            import xarray as xr
+        except ImportError:
+            raise ParameterError("Result.to_xarray needs xarray: pip install xarray") from None
+        return xr.Dataset({n: ("time", self[n], {"units": self.units.get(n, "1")})
+                           for n in self.names}, coords={"time": ("time", self.t,
+                                                                  {"units": "s"})})
+
+    def _repr_html_(self) -> str:
+        """A short table for notebooks: the run and the final value of the first variables."""
+        rows = "".join(f"<tr><td>{n}</td><td>{self[n][-1]:.6g}</td>"
+                       f"<td>{'-' if self.units.get(n, '') in ('', '1') else self.units[n]}</td>"
+                       f"</tr>" for n in self.names[:12])
+        more = (f"<tr><td colspan=3>... {len(self.names) - 12} more</td></tr>"
+                if len(self.names) > 12 else "")
+        return (f"<p>{html.escape(repr(self))}</p><table><tr><th>variable</th>"
+                f"<th>final</th><th>unit</th></tr>{rows}{more}</table>")
 
     def __repr__(self) -> str:
         shown = ", ".join(self.names[:4]) + (", ..." if len(self.names) > 4 else "")
