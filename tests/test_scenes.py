@@ -414,6 +414,10 @@ def test_sweep_on_local_cluster_reports_failed_point_and_keeps_others(tmp_path):
     assert all("SimulationError" in f["error"] for f in res.failures)
     table = list(csv.DictReader((tmp_path / "double_layer_bearing.sweep.csv").open()))
     assert [r["status"] for r in table] == ["ok", "failed", "ok", "failed"]
+    # numeric columns carry their units (pandas.read_csv reads the file without options)
+    assert {"inputs.shaft_speed [rad/s]", "initial.middle.sleeve.w [rad/s]", "Rs [-]",
+            "wall_s [s]"} <= set(table[0])
+    assert (tmp_path / "double_layer_bearing.sweep.png").is_file()  # Rs against the speed
     summary = json.loads((tmp_path / "double_layer_bearing.sweep.json").read_text())
     # each worker deserialized the model at most once
     assert all(loads == 1 for _, loads in summary["model_loads_per_worker"])

@@ -38,11 +38,12 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from bearingsim.errors import BearingsimError, ParameterError
-from bearingsim.files import atomic_path
+from bearingsim.files import atomic_path, column_name
 from bearingsim.scenes.portable import LOADS, load_cached, pack
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare, simulate_inputs
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, load_scene
+from bearingsim.units import display_unit
 
 __all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
            "sample_points", "run_sweep"]
@@ -372,7 +373,28 @@ def _client(scheduler: str | None, n_workers: int):
     return Client(cluster), cluster
 
 
-def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str) -> list[Path]:
+def _column_units(plan_prepared: dict, keys: list[str]) -> dict[str, str]:
+    """Unit of every numeric sweep column: the swept inputs, parameters and initial values and
+    the outputs (from the first model; every model of a sweep has the same outputs)."""
+    prep = next(iter(plan_prepared.values()))
+    system = prep.system
+    units = dict(system.observed_units)
+    units.update({s.name: s.unit for s in system.states + system.inputs + system.outputs})
+    units.update({n: q.unit for n, q in prep.post.items()})
+    units.update({p.name: p.unit for p in system.params})
+    out = {n: units[n] for n in prep.outputs if n in units}
+    for key in keys:
+        head, _, name = key.partition(".")
+        if head in ("inputs", "parameters", "initial") and name in units:
+            out[key] = units[name]
+    out["wall_s"] = "s"
+    return out
+
+
+def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str,
+                 units: dict[str, str]) -> list[Path]:
+    """The sweep table: one row per point, headers ``name [unit]`` for the numeric columns
+    (readable by ``pandas.read_csv`` without options), and a Parquet copy with pyarrow."""
     import csv
 
     cols: list[str] = []
@@ -382,10 +404,10 @@ def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str) -> list[Pa
                 cols.append(k)
     path = folder / f"{stem}.csv"
     with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=cols)
-        w.writeheader()
+        w = csv.writer(fh)
+        w.writerow([column_name(k, units[k]) if k in units else k for k in cols])
         for r in rows:
-            w.writerow({k: r.get(k, "") for k in cols})
+            w.writerow([r.get(k, "") for k in cols])
     files = [path]
     try:
         import pyarrow  # noqa: F401
@@ -397,6 +419,37 @@ def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str) -> list[Pa
     except ImportError:
         pass
     return files
+
+
+def _sweep_plot(rows: list[dict[str, Any]], keys: list[str], units: dict[str, str],
+                folder: Path, stem: str) -> list[Path]:
+    """``<stem>.png``: each output against the first numeric swept key (engineering units),
+    one panel per output; none when no swept key is numeric."""
+    from matplotlib.figure import Figure
+
+    ok = [r for r in rows if r["status"] == "ok"]
+    numeric = [k for k in keys if ok and all(isinstance(r.get(k), (int, float)) for r in ok)]
+    outputs = [k for k in units if k not in keys and k != "wall_s"]
+    if not numeric or not outputs:
+        return []
+    x_key = numeric[0]
+    x = np.array([r[x_key] for r in ok], dtype=float)
+    order = np.argsort(x)
+    x_factor, x_unit = display_unit(units.get(x_key, ""), x)
+    fig = Figure(figsize=(7, 1.9 * len(outputs) + 1))
+    axes = np.atleast_1d(fig.subplots(len(outputs), 1, sharex=True))
+    for ax, name in zip(axes, outputs, strict=True):
+        y = np.array([r[name] for r in ok], dtype=float)
+        factor, unit = display_unit(units[name], y)
+        ax.plot(x[order] * x_factor, y[order] * factor, "o-")
+        ax.set_ylabel(f"{name}\n[{unit}]", fontsize=8)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(f"{x_key} [{x_unit}]")
+    fig.tight_layout()
+    path = folder / f"{stem}.png"
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110)
+    return [path]
 
 
 def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
@@ -489,7 +542,9 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         folder = Path(out)
         folder.mkdir(parents=True, exist_ok=True)
         stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
-        res.files = _write_table(rows, folder, stem)
+        units = _column_units(plan.prepared, keys)
+        res.files = _write_table(rows, folder, stem, units)
+        res.files += _sweep_plot(rows, keys, units, folder, stem)
         summary = {
             "scene": scene.path, "points": len(rows), "ok": len(res.ok),
             "failed": len(failures), "failures": failures, "models_built": res.models_built,
