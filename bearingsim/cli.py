@@ -41,10 +41,12 @@ LIST_SECTIONS = ("assemblies", "components", "bearings", "lubricants", "scenes")
 
 def _bearing_row(g) -> str:
     """One catalogue bearing: dimensions, ball set, angle, ratings, speeds, preload classes."""
+    from bearingsim.units import rad_s_to_rpm
+
     c, c0 = g.dynamic_load_rating, g.static_load_rating
     rating = "C/C0 -" if c is None else f"C/C0 {c * 1e-3:5.2f}/{(c0 or 0.0) * 1e-3:5.2f} kN"
     speeds = ("" if g.limiting_speed is None else
-              f"  n_lim {g.limiting_speed * 30 / math.pi:6.0f} r/min")
+              f"  n_lim {rad_s_to_rpm(g.limiting_speed):6.0f} r/min")
     preload = ("" if g.preload is None else
                f"  preload L/M/H {g.preload.light:g}/{g.preload.medium:g}/{g.preload.heavy:g} N")
     return (f"  {g.designation:8s} d={g.bore * 1e3:5.1f} D={g.outside_diameter * 1e3:5.1f} "

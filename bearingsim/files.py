@@ -14,6 +14,8 @@ import os
 from collections.abc import Iterator
 from pathlib import Path
 
+from bearingsim.units import unit_label
+
 __all__ = ["atomic_path", "column_name", "write_series_csv"]
 
 
@@ -44,7 +46,7 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
 def column_name(name: str, unit: str) -> str:
     """The CSV header of a series: ``"name [unit]"``, ``[-]`` for a dimensionless one."""
-    return f"{name} [{'-' if unit in ('', '1') else unit}]"
+    return f"{name} [{unit_label(unit)}]"
 
 
 def write_series_csv(path: str | Path, t, columns: dict, units: dict[str, str]) -> Path:

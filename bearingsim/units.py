@@ -22,6 +22,7 @@ __all__ = [
     "parse_quantity",
     "engineering",
     "display_unit",
+    "unit_label",
 ]
 
 RPM = 2.0 * math.pi / 60.0
@@ -101,9 +102,14 @@ def parse_quantity(text: str) -> tuple[float, str] | None:
     return value * factor, si
 
 
+def unit_label(unit: str) -> str:
+    """A unit as shown to users: ``-`` for dimensionless (``"1"`` or ``""``), else itself."""
+    return "-" if unit in ("", "1") else unit
+
+
 def engineering(value: float, unit: str) -> str:
-    """A value in SI shown in the unit an engineer reads it in: rad/s with r/min, m in mm or um,
-    rad in deg, N in kN above 1 kN, N m in N mm below 1 N m, dimensionless as ``-``.
+    """A value in SI shown in the unit an engineer reads it in: the units of
+    :func:`display_unit`, with rad/s also in r/min and N in kN above 1 kN.
 
     Examples
     --------
@@ -113,22 +119,15 @@ def engineering(value: float, unit: str) -> str:
     '12.5 um'
     """
     if not math.isfinite(value):
-        return f"{value} [{'-' if unit in ('', '1') else unit}]"
-    if unit in ("", "1"):
-        return f"{value:.6g} [-]"
+        return f"{value} [{unit_label(unit)}]"
     if unit == "rad/s":
         return f"{value:.6g} rad/s ({rad_s_to_rpm(value):.5g} r/min)"
-    if unit == "m" and abs(value) < 1e-3:
-        return f"{value * 1e6:.4g} um"
-    if unit == "m" and abs(value) < 1.0:
-        return f"{value * 1e3:.5g} mm"
-    if unit == "rad":
-        return f"{to_deg(value):.5g} deg"
     if unit == "N" and abs(value) >= 1e3:
         return f"{value * 1e-3:.5g} kN"
-    if unit == "N.m" and abs(value) < 1.0:
-        return f"{value * 1e3:.5g} N mm"
-    return f"{value:.6g} {unit}"
+    factor, shown = display_unit(unit, [value])
+    if shown == "-":
+        return f"{value:.6g} [-]"
+    return f"{value:.6g} {shown}" if factor == 1.0 else f"{value * factor:.5g} {shown}"
 
 
 def display_unit(unit: str, values) -> tuple[float, str]:
@@ -139,7 +138,7 @@ def display_unit(unit: str, values) -> tuple[float, str]:
     finite = np.asarray(values, dtype=float)
     finite = finite[np.isfinite(finite)]
     peak = float(np.max(np.abs(finite))) if finite.size else 0.0
-    if unit in ("", "1"):
+    if unit_label(unit) == "-":
         return 1.0, "-"
     if unit == "rad/s":
         return 1.0 / RPM, "r/min"

@@ -142,6 +142,13 @@ class System:
         vals = np.asarray(self.functions["observe"](t, x, u, p), dtype=float).ravel()
         return dict(zip(self.observed_names, vals, strict=True))
 
+    @property
+    def variable_units(self) -> dict[str, str]:
+        """Unit of every observed variable, state, input and output, by dotted name."""
+        units = dict(self.observed_units)
+        units.update({s.name: s.unit for s in self.states + self.inputs + self.outputs})
+        return units
+
     def __repr__(self) -> str:
         return (f"<System {self.name}: {self.n_states} states, {len(self.inputs)} inputs, "
                 f"{len(self.outputs)} outputs, {len(self.params)} parameters; "

@@ -561,9 +561,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             tab = _table_input(c, key, v, base)
             if tab is not None:
                 inputs[k] = tab
-        elif isinstance(v, str) and parse_quantity(v) is not None:
-            inputs[k] = parse_quantity(v)[0]  # a number with a unit: SI from here on
-            input_units[k] = parse_quantity(v)[1]
+        elif isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
+            inputs[k], input_units[k] = quantity  # a number with a unit: SI from here on
         elif isinstance(v, str):
             try:
                 compile_expression(v, key)
@@ -682,8 +681,8 @@ def load_scene(path: str | Path) -> Scene:
         scene names.
     """
     p = Path(path)
-    if not p.exists() and builtin_scene_path(str(path)) is not None:
-        p = builtin_scene_path(str(path))
+    if not p.exists():
+        p = builtin_scene_path(str(path)) or p
     try:
         text = p.read_text(encoding="utf-8")
     except FileNotFoundError:

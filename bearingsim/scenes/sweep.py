@@ -378,8 +378,7 @@ def _column_units(plan_prepared: dict, keys: list[str]) -> dict[str, str]:
     the outputs (from the first model; every model of a sweep has the same outputs)."""
     prep = next(iter(plan_prepared.values()))
     system = prep.system
-    units = dict(system.observed_units)
-    units.update({s.name: s.unit for s in system.states + system.inputs + system.outputs})
+    units = system.variable_units
     units.update({n: q.unit for n, q in prep.post.items()})
     units.update({p.name: p.unit for p in system.params})
     out = {n: units[n] for n in prep.outputs if n in units}

@@ -11,6 +11,7 @@ import numpy as np
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path, column_name, write_series_csv
 from bearingsim.plotting import set_value_scale
+from bearingsim.units import unit_label
 
 __all__ = ["Result"]
 
@@ -119,8 +120,7 @@ class Result:
             fig = Figure(figsize=(7, 1.8 * len(names) + 1))
             axes = np.atleast_1d(fig.subplots(len(names), 1, sharex=True))
         for axis, n in zip(axes, names, strict=True):
-            unit = self.units.get(n, "")
-            unit = "-" if unit in ("", "1") else unit  # dimensionless shown as [-]
+            unit = unit_label(self.units.get(n, ""))
             axis.plot(self.t, self[n], label=f"{n} [{unit}]")
             if ax is None:
                 set_value_scale(axis, [self[n]])
@@ -163,7 +163,7 @@ class Result:
     def _repr_html_(self) -> str:
         """A short table for notebooks: the run and the final value of the first variables."""
         rows = "".join(f"<tr><td>{n}</td><td>{self[n][-1]:.6g}</td>"
-                       f"<td>{'-' if self.units.get(n, '') in ('', '1') else self.units[n]}</td>"
+                       f"<td>{unit_label(self.units.get(n, ''))}</td>"
                        f"</tr>" for n in self.names[:12])
         more = (f"<tr><td colspan=3>... {len(self.names) - 12} more</td></tr>"
                 if len(self.names) > 12 else "")

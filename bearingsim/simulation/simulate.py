@@ -199,7 +199,7 @@ def simulate(
                 f"{system.name}: the variables could not be evaluated at the output times: "
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
-    units = _units(system)
+    units = system.variable_units
     u_end = np.asarray(u_of_t(ts[-1]), dtype=float).ravel()
     return Result(ts, list(system.observed_names), values, units, stats,
                   inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
@@ -301,9 +301,3 @@ def _check_finite(system: System, ts: np.ndarray, values: np.ndarray) -> None:
         f"{', '.join(names[:8])}{', ...' if len(names) > 8 else ''}; "
         + ("the nonlinear blocks (algebraic loops) found no solution there"
            if system.rootfinder else "the model evaluates to NaN or inf there"))
-
-
-def _units(system: System) -> dict[str, str]:
-    units = dict(system.observed_units)
-    units.update({s.name: s.unit for s in system.states + system.inputs + system.outputs})
-    return units
