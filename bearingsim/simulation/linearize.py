@@ -9,6 +9,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import ParameterError
+from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.result import Result
 from bearingsim.validation import check_mapping, check_range, check_vector, entry_point
 
@@ -73,8 +74,13 @@ def linearize(
     t: float | None = None,
     inputs: dict[str, float] | None = None,
     parameters: dict[str, float] | None = None,
+    compiled: bool | str = "auto",
 ) -> LinearModel:
     """Linearize a system around an operating point.
+
+    ``A`` and ``B`` are the exact Jacobians of the system's kernel
+    (:func:`~bearingsim.simulation.kernels.kernel`: generated C when a compiler exists, else
+    CasADi's VM, the same numbers either way); ``C`` and ``D`` those of its outputs.
 
     With a :class:`~bearingsim.simulation.Result` from :func:`~bearingsim.simulation.simulate` the
     operating point is the run's end point: its final states, the input values at its last
@@ -95,6 +101,9 @@ def linearize(
         Constant input values by name, overriding the result's (or the default) values.
     parameters : dict, optional
         Parameter values by name, overriding the result's (or the default) values.
+    compiled : bool or "auto"
+        Backend of ``A`` and ``B``: generated C (``True``), CasADi's VM (``False``) or C when a
+        compiler exists (``"auto"``).
 
     Returns
     -------
@@ -131,11 +140,11 @@ def linearize(
             check_range(val, name, sig.unit, sig.low, sig.high, where="linearize: inputs"))
     t = 0.0 if t is None else float(check_range(t, "t", "s", where="linearize"))
     fns = system.functions
-
-    def dense(key: str) -> np.ndarray:
-        return np.asarray(fns[key](t, x, u, p).full(), dtype=float)
-
-    a, b, c, d = (dense(k) for k in ("jac_x", "jac_u", "out_jac_x", "out_jac_u"))
+    jacobian = kernel(system, "ode", compiled).function.jacobian()
+    _, d_dx, d_du, _ = jacobian(t, x, u, p, 0.0)
+    a, b = (np.asarray(m.full(), dtype=float) for m in (d_dx, d_du))
+    c, d = (np.asarray(fns[k](t, x, u, p).full(), dtype=float) for k in ("out_jac_x",
+                                                                          "out_jac_u"))
     lam, fn, zeta, shapes = _modes(a)
     return LinearModel(a, b, c, d, system.state_names, system.input_names, system.output_names,
                        x, u, lam, fn, zeta, shapes)

@@ -1,4 +1,10 @@
-"""Steady states: Newton on the state derivatives with the exact Jacobian."""
+"""Steady states: Newton on the state derivatives with the exact Jacobian.
+
+The right-hand side and its Jacobian are the system's kernel
+(:func:`~bearingsim.simulation.kernels.kernel`): generated C when a compiler exists (the
+library cached by content, parameters free, so a new parameter value compiles nothing), else
+CasADi's VM, with the same numbers either way.
+"""
 
 from __future__ import annotations
 
@@ -7,7 +13,8 @@ import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import SimulationError
-from bearingsim.simulation.closed import ClosedModel, close_inputs
+from bearingsim.simulation.inputs import input_signal
+from bearingsim.simulation.kernels import kernel
 from bearingsim.validation import check_flag, check_range, check_vector, entry_point
 
 __all__ = ["steady_state", "integrator_states"]
@@ -24,7 +31,6 @@ def integrator_states(system: System) -> list[int]:
 def steady_state(
     system: System,
     *,
-    closed: ClosedModel | None = None,
     inputs: dict | None = None,
     parameters: dict | None = None,
     p: np.ndarray | None = None,
@@ -33,6 +39,7 @@ def steady_state(
     tol: float = 1e-12,
     residual_tol: float = 1e-9,
     require_unique: bool = True,
+    compiled: bool | str = "auto",
 ) -> np.ndarray:
     """Solve ``dx/dt = 0`` for every state that some derivative depends on.
 
@@ -43,8 +50,6 @@ def steady_state(
     Parameters
     ----------
     system : System
-    closed : ClosedModel, optional
-        Model with bound inputs (built from ``inputs`` if not given).
     inputs, parameters : dict, optional
         As for :func:`simulate`.
     p : array, optional
@@ -63,6 +68,10 @@ def steady_state(
         e.g. two free bodies coupled by dampers, or a ring without any torque): the solver's
         answer then depends on the guess. ``False`` accepts any one of the steady states (as
         a start for a simulation).
+    compiled : bool or "auto"
+        Evaluate the right-hand side and its Jacobian as generated C (``True``), on CasADi's
+        VM (``False``) or C when a compiler exists (``"auto"``; see
+        :func:`~bearingsim.simulation.kernels.kernel`).
 
     Returns
     -------
@@ -82,7 +91,8 @@ def steady_state(
     check_range(residual_tol, "residual_tol", "state units/s", 0.0, None, low_inclusive=False,
                 where=where)
     check_flag(require_unique, "require_unique", where)
-    closed = closed if closed is not None else close_inputs(system, inputs)
+    signal = input_signal(system, inputs)
+    u = np.asarray(signal.u(t, signal.q), dtype=float).ravel()
     p = system.p0(parameters) if p is None else p
     x = (system.x0() if x_guess is None
          else check_vector(x_guess, system.n_states, "x_guess", "state units", where))
@@ -90,16 +100,19 @@ def steady_state(
     free = [k for k in range(system.n_states) if k not in skip]
     if not free:
         return x
+    rhs = kernel(system, "ode", compiled).function
+    jacobian = rhs.jacobian()
 
     def res(z):
         xx = x.copy()
         xx[free] = z
-        return np.asarray(closed.f(t, xx, p), dtype=float).ravel()[free]
+        return np.asarray(rhs(t, xx, u, p), dtype=float).ravel()[free]
 
     def jac(z):
         xx = x.copy()
         xx[free] = z
-        return np.asarray(closed.jac(t, xx, p).sparse().toarray())[np.ix_(free, free)]
+        d_dx = jacobian(t, xx, u, p, 0.0)[1]  # outputs: d/dt, d/dx, d/du, d/dp
+        return np.asarray(d_dx.sparse().toarray())[np.ix_(free, free)]
 
     sol = scipy.optimize.root(res, x[free], jac=jac, method="hybr", tol=tol)
     converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
