@@ -61,8 +61,9 @@ __all__ = [
 
 PALMGREN_F1: dict[str, tuple[float, float]] = {
     # bearing type: (z, y) in f1 = z (P0/C0)^y. Ball bearings: Palmgren (1959) as given in
-    # models.md (deep groove) and Harris & Kotzalas, 5th ed., Essential Concepts, table of f1;
-    # roller bearings have a constant f1 (y = 0, middle of the range given there).
+    # the double-layer study (docs/studies.md, section A; deep groove) and Harris & Kotzalas, 5th
+    # ed., Essential Concepts, table of f1; roller bearings have a constant f1 (y = 0, middle of
+    # the range given there).
     "deep_groove_ball": (0.0009, 0.55),
     "angular_contact_ball": (0.001, 0.33),
     "angular_contact_ball_pair": (0.001, 0.33),

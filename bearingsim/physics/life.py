@@ -5,7 +5,7 @@
   X0, Y0 and the static equivalent load P0.
 * Lundberg-Palmgren lives of each ball-raceway contact (Harris & Kotzalas, *Rolling Bearing
   Analysis*, 5th ed., *Essential Concepts of Bearing Technology*, chapter "Fatigue life: basic
-  theory and rating standards"), combined as models.md section C prescribes.
+  theory and rating standards"), combined as docs/studies.md, section C prescribes.
 * A basic reference rating life from the internal load distribution in the manner of
   ISO/TS 16281:2008.
 
@@ -602,8 +602,8 @@ def ball_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_cou
     ``track length^(-1/e)``, e = 10/9, this gives
     ``Qcb^3 = u Qc^3 (dm (1 -+ g) / Dw)^0.9``, and the ball life at load Q is ``(Qcb/Q)^3`` millions
     of ball revolutions. This is our derivation from the theory in Harris & Kotzalas (chapter
-    "Fatigue life: basic theory and rating standards"); the models.md section C formula needs
-    such ball lives but does not define them.
+    "Fatigue life: basic theory and rating standards"); the formula of docs/studies.md, section C
+    needs such ball lives but does not define them.
 
     Parameters are those of :func:`raceway_contact_capacity`. Returns Qcb [N].
     """
@@ -674,7 +674,8 @@ def _life_from_inverse_power(total):
 
 def combined_contact_life(life_outer, life_inner, life_ball_outer, life_ball_inner,
                           ball_revolutions):
-    """Bearing life from the per-contact lives, exactly as models.md section C states [10^6 rev].
+    """Bearing life from the per-contact lives, as docs/studies.md, section C states it
+    [10^6 rev].
 
     ``L10^(-10/9) = (1/Z) (sum_j L_1j^(-10/9) + sum_j L_2j^(-10/9))
     + sum_j (L_b1j / N_j)^(-10/9) + sum_j (L_b2j / N_j)^(-10/9)``.

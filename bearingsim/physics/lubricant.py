@@ -286,7 +286,8 @@ class Grease(Lubricant):
     with the thickener factor ``k_t`` (0: no fill effect). This linear growth is a modelling
     assumption of bearingsim (the measured trend it represents, higher friction with more grease
     until it is channelled, is described by Harris & Kotzalas, 5th ed., Essential Concepts, ch.
-    on lubrication, and by models.md section A); it is 1 at ``phi = 1/3``.
+    on lubrication, and by the double-layer study, docs/studies.md, section A); it is 1 at
+    ``phi = 1/3``.
 
     Parameters
     ----------

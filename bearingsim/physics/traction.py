@@ -216,7 +216,7 @@ def slice_traction(
 ) -> SliceTraction:
     """Traction force and spin moment of an elliptical contact, integrated slice by slice.
 
-    The ellipse is cut into ``2n+1`` slices along its major axis (models.md section C; the
+    The ellipse is cut into ``2n+1`` slices along its major axis (docs/studies.md, section C; the
     slicing method of Harris & Kotzalas, 5th ed., Advanced Concepts, ch. on ball-raceway
     friction, and Gupta, ch. 3). Each slice carries its Hertzian share of ``Q``
     (:func:`hertz_slice_weights`) and a traction coefficient at its own sliding speed ``|du|``;
