@@ -501,7 +501,7 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         (algebraic, solved by the assembler's Newton blocks) as in the study (docs/studies.md,
         section C);
         ``"dynamic_massive_balls"``: the balls' radial and axial motion with inertia too;
-        ``"quasi-static"``: the colleague's ``BallRow`` (Hertz load sharing only).
+        ``"quasi-static"``: the ``BallRow`` of the duplex pairs (Hertz load sharing only).
     lubricant : Lubricant or str
         ``Oil``, ``Grease``, ``Dry`` or a name for
         :func:`~bearingsim.physics.lubricant.get_lubricant`.

@@ -36,8 +36,8 @@ _ROTATING_SPHERE_BL = 5.32
 """Laminar boundary-layer coefficient of the rotating-sphere moment, ``C_m = 5.32 / sqrt(Re)``
 (Sawatzki 1970, as quoted in Schlichting, *Boundary-Layer Theory*, rotating sphere).
 
-Issue 3 audit: UNVERIFIED. The value was entered from memory and no source text could be retrieved
-in the issue-3 search; treat it as a representative value. The Stokes part ``16 pi / Re``
+Verification status: unverified; no source text printing the value could be retrieved, so treat
+it as a representative value. The Stokes part ``16 pi / Re``
 (``M = 8 pi eta R^3 omega``) is the exact creeping-flow result and does not depend on it."""
 
 

@@ -61,7 +61,7 @@ __all__ = [
 _MM = 1e3  # metres to millimetres for the ISO formulas
 _DW_LARGE_MM = 25.4
 
-# Issue 3 verification (tests/physics/test_published_examples.py; docs/physics.md, "Verification").
+# Verification (tests/physics/test_published_examples.py; docs/physics.md, "Verification").
 # The standards' own text was not retrievable; what was checked against published values:
 # * X/Y/e, radial contact groove ball bearings (all 9 rows) and single-row angular contact 15 deg
 #   (rows 0.178 to 5.35), 25, 30 and 40 deg: identical to the tables NSK prints with its bearing
@@ -777,7 +777,7 @@ def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, row
     ``x = 1.044 ((1 - g)/(1 + g))^1.72 (fi (2 fo - 1) / (fo (2 fi - 1)))^0.41``: the ball loads for
     which the inner and outer raceways reach 10^6 revolutions, consistent with C of ISO 281.
 
-    Issue 3: the constants 0.407, 0.389, 1.044, 1.72, 0.41, 10/3 and 0.3 agree with an independent
+    Checked: the constants 0.407, 0.389, 1.044, 1.72, 0.41, 10/3 and 0.3 agree with an independent
     public implementation of ISO/TS 16281 (GitHub ``minzhun/ISO16281``, ``BallBearing.py``,
     "Equation 19-24"); the standard's text itself was not retrievable. That implementation divides
     by ``(i cos a)^0.7`` where this function divides by ``i^0.7 cos a``. This function's form is

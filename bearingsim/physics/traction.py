@@ -38,9 +38,9 @@ about 0.08 near 0.5 m/s and a thermal fall-off to 0.04 at large slip, the shape 
 curves shown by Gupta (*Advanced Dynamics of Rolling Elements*, ch. 2). They are not a fit to a
 particular fluid: fit ``A..D`` to traction data for quantitative work.
 
-Issue 3 audit: REPRESENTATIVE VALUES, no published source. No published table of ``A..D`` for a
-named oil was found in the issue-3 search; these numbers were chosen to give the shape described
-above and must not be cited as measured data.
+Verification status: representative values, no published source. No published table of
+``A..D`` for a named oil was found; these numbers were chosen to give the shape described above
+and must not be cited as measured data.
 """
 
 
