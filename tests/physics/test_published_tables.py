@@ -152,7 +152,7 @@ def test_deep_groove_ball_sets_match_gmn(name):
     """GMN High precision ball bearings (4000 0813 EN), pp. 54-55, deep groove ball bearings,
     columns dm, Dw, Z: 6204 33.5 mm, 7.938 mm, 8; 6205 39.1 mm, 7.938 mm, 9; 6206 46.0 mm,
     9.525 mm, 9. Ball count and ball diameter agree exactly; the pitch diameters within 0.1 mm
-    (6205 carries the measured 39.04 mm of the CWRU data; 6206's formerly estimated 46 mm is
+    (6205 carries the measured 39.04 mm of the CWRU data; 6206's 46 mm is
     GMN's value)."""
     dm, dw, z = GMN_DEEP_GROOVE[name]
     g = get_bearing(name)
