@@ -8,8 +8,9 @@ A ring frame's tilts ``(tx, ty)`` define the rotation ``R = Rx(tx) Ry(ty)`` of t
 about z is not part of the frame). A body point at ``p`` in the reference configuration moves to
 ``u + R p``, ``u`` the displacement of the frame's reference point; so the body's axis is
 ``R e_z = (sin ty, -sin tx cos ty, cos tx cos ty)`` and, for small tilts, a point at
-``(0, 0, L)`` moves by ``(L ty, -L tx, 0)`` (the convention of the duplex-pair study, models.md
-section B). ``exact=False`` gives the linearised rotation ``I + [theta]x``, ``theta = (tx, ty, 0)``.
+``(0, 0, L)`` moves by ``(L ty, -L tx, 0)`` (the convention of the duplex-pair study,
+docs/studies.md, section B). ``exact=False`` gives the linearised rotation ``I + [theta]x``,
+``theta = (tx, ty, 0)``.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Motor duty cycle of a 6304 deep-groove ball bearing (models.md section C).
+"""Motor duty cycle of a 6304 deep-groove ball bearing (docs/studies.md, section C).
 
 For the four working conditions: cage slip ratio against time, ball-cage collision forces,
 contact loads, minimum film thickness and L10 lives (Lundberg-Palmgren per contact, ISO 281,
@@ -6,7 +6,7 @@ ISO/TS 16281 from the load distribution), the start-up (slip settling time, coll
 level and peak, :func:`~bearingsim.studies.deep_groove.start_up`), plus the validation case
 (500 N, 500 rad/s^2 spin-up, dry mu = 0.02). Writes ``dgbb_motor_duty.png`` and prints a
 Markdown table. A short ``--ramp`` (2 ms) gives the hard start of docs/dgbb.md under which the
-start-up trends of models.md C appear; ``--dry`` uses the study's dry friction.
+start-up trends of docs/studies.md, section C appear; ``--dry`` uses the study's dry friction.
 
 Usage::
 

@@ -1,4 +1,4 @@
-"""Speed distribution ratio of double-layer bearings (models.md section A).
+"""Speed distribution ratio of double-layer bearings (docs/studies.md, section A).
 
 For the pairings 61905/61907 (Z), 61905/61908 (Z) and 61905/61909 (I) from 0 to 10 000 r/min:
 pure rolling (exact and approximate), the Palmgren Dp^4.5 law, the torque-level simulation with

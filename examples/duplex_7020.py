@@ -1,4 +1,4 @@
-"""Natural frequencies of a 7020 duplex pair (models.md section B).
+"""Natural frequencies of a 7020 duplex pair (docs/studies.md, section B).
 
 Reproduces the three studies of the source for 7020C, 7020A5 and 7020A at the light, medium and
 heavy preload classes: frequencies against preload, against contact angle (one preload) and

@@ -195,7 +195,8 @@ CHECKS: tuple[Check, ...] = (
           "(P0/C0)^0.5", 0.0007 * 0.1**0.5, "-",
           lambda: float(friction.palmgren_f1("deep_groove_ball", 0.1, 1.0)), 0.15),
     *(Check("double_layer_bearing, torque level", f"Rs of {i}/{o} at 10 000 r/min, no load (M0 "
-            "only)", "models.md section A: the Dp^4.5 law of the study (independent closed form)",
+            "only)", "[studies, section A](studies.md#a-double-layer-bearings): the Dp^4.5 law of "
+            "the study (independent closed form)",
             speed_ratio_palmgren(i, o), "-", lambda i=i, o=o: _torque_level_rs(i, o), 0.01)
       for i, o in (("61905", "61907"), ("61905", "61908"), ("61905", "61909"))),
 )
@@ -214,9 +215,9 @@ UNVERIFIED = (
     "ISO 281: the reading of the 15 deg abscissa for pairs (the pair's C0).",
     "ISO/TS 16281: checked against the standard's equations computed by hand "
     "(tests/test_deep_groove_statics.py); no worked example of the standard itself.",
-    "Double-layer bearing: no measured speed ratio of the study is available as numbers (models.md "
-    "states the trends only); the torque level is checked against the study's closed-form laws "
-    "and the ball level against the torque level.",
+    "Double-layer bearing: no measured speed ratio of the study is available as numbers (it states "
+    "the trends only, [studies, section A](studies.md#a-double-layer-bearings)); the torque level "
+    "is checked against the study's closed-form laws and the ball level against the torque level.",
     "Ball-level dynamics (cage slip, pocket forces): no published measurement is in the project; "
     "checked by conservation, symmetry and agreement between fidelity levels.",
 )

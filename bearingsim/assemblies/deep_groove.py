@@ -1,7 +1,8 @@
-"""Single deep-groove ball bearing: quasi-static and dynamic fidelity (models.md section C).
+"""Single deep-groove ball bearing: quasi-static and dynamic fidelity (docs/studies.md, section C).
 
-Coordinates: z is the bearing axis (models.md C uses x): its axial force ``Fx`` is our ``Fz``, its
-radial ``Fy, Fz`` are our ``Fx, Fy`` and its moments ``My, Mz`` our ``Mx, My``.
+Coordinates: z is the bearing axis (the study of docs/studies.md, section C uses x): its axial
+force ``Fx`` is our ``Fz``, its radial ``Fy, Fz`` are our ``Fx, Fy`` and its moments ``My, Mz``
+our ``Mx, My``.
 
 Dynamic fidelities build, for every ball j, a :class:`~bearingsim.components.dynamic.Ball`, its
 inner and outer :class:`~bearingsim.components.dynamic.RaceContact`, a
@@ -493,12 +494,14 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     Parameters
     ----------
     designation : str or BearingGeometry
-        Catalogue designation (``"6304"`` has the models.md section C validation geometry).
+        Catalogue designation (``"6304"`` has the validation geometry of
+        docs/studies.md, section C).
     fidelity : {"quasi-static", "dynamic", "dynamic_massive_balls"}
         ``"dynamic"``: ball orbit and spin dynamics, cage dynamics, quasi-static ball positions
-        (algebraic, solved by the assembler's Newton blocks) as in models.md C;
+        (algebraic, solved by the assembler's Newton blocks) as in the study (docs/studies.md,
+        section C);
         ``"dynamic_massive_balls"``: the balls' radial and axial motion with inertia too;
-        ``"quasi-static"``: the colleague's ``BallRow`` (Hertz load sharing only).
+        ``"quasi-static"``: the ``BallRow`` of the duplex pairs (Hertz load sharing only).
     lubricant : Lubricant or str
         ``Oil``, ``Grease``, ``Dry`` or a name for
         :func:`~bearingsim.physics.lubricant.get_lubricant`.

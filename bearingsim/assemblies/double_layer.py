@@ -1,4 +1,4 @@
-"""Double-layer (nested) ball bearings, I-type and Z-type (models.md section A).
+"""Double-layer (nested) ball bearings, I-type and Z-type (docs/studies.md, section A).
 
 Two deep-groove ball bearings are nested: the inner bearing's outer ring, an intermediate sleeve
 and the outer bearing's inner ring form the *middle ring*, three bodies joined rigidly by

@@ -1,4 +1,4 @@
-"""Duplex pairs of angular contact ball bearings: DF, DB and DT (models.md section B).
+"""Duplex pairs of angular contact ball bearings: DF, DB and DT (docs/studies.md, section B).
 
 A rigid shaft runs in two quasi-static ball rows (:class:`~bearingsim.components.ball_row.
 BallRow`). Each row's inner ring sits on the shaft, its outer ring in the housing. The rows lie

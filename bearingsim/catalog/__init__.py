@@ -6,15 +6,15 @@ do not publish is estimated and listed in the ``estimated`` column, by these rul
 
 * ``fi``, ``fo``: 0.52 / 0.53 for deep-groove bearings (typical values, Harris & Kotzalas,
   *Rolling Bearing Analysis*, 5th ed.); 0.525 / 0.515 for angular contact bearings (the values
-  models.md section B gives for the NSK 7020 series).
+  docs/studies.md, section B gives for the NSK 7020 series).
 * ``Pd`` (deep-groove): the mean of the ISO 5753-1 Group N (CN) radial clearance range for the
   bore.
 * ``dm``: (d + D) / 2.
 * ``Z``, ``Dw`` (deep-groove): a standard ball size (ISO 3290) of 0.55 to 0.62 times the ring
   section (D - d) / 2, and the ball count for which the ISO 281 rating reproduces the catalogue C.
 
-The angular contact rows carry published ball sets (models.md section B for 7020, GMN's precision
-catalogue for 7014), so only their groove curvature factors are estimated.
+The angular contact rows carry published ball sets (docs/studies.md, section B for 7020, GMN's
+precision catalogue for 7014), so only their groove curvature factors are estimated.
 
 Catalogue ratings and speeds were transcribed from the named catalogues; check them against the
 current catalogue before relying on them.

@@ -209,10 +209,10 @@ class PureRollingLayer(BearingTorqueElement):
     The balls roll without slip, so the cage turns at ``w_c = (1 - g) / 2 w_i + (1 + g) / 2 w_o``
     with ``g = Dw cos(a) / dm``. Each race feels a friction force proportional to the cage speed
     relative to it, acting at its contact radius (``dm (1 -/+ g) / 2``), with one coefficient
-    ``k`` for every layer (models.md section A). The torque between the rings is then a linear
-    damper ``M = -k dm (1 - g^2) / 4 w_rel``; in a double-layer bearing it gives the pure-rolling
-    speed ratio ``Rs = (1 - g1^2) Dp1 / ((1 - g1^2) Dp1 + (1 - g2^2) Dp2)`` exactly, with
-    ``g_k = Dw_k cos(a_k) / Dp_k`` of layer k (the same ratio as
+    ``k`` for every layer (docs/studies.md, section A). The torque between the rings is then a
+    linear damper ``M = -k dm (1 - g^2) / 4 w_rel``; in a double-layer bearing it gives the
+    pure-rolling speed ratio ``Rs = (1 - g1^2) Dp1 / ((1 - g1^2) Dp1 + (1 - g2^2) Dp2)`` exactly,
+    with ``g_k = Dw_k cos(a_k) / Dp_k`` of layer k (the same ratio as
     :func:`bearingsim.physics.double_layer_theory.speed_ratio_pure_rolling`, which writes it
     with its own ``g_k`` standing for ``gamma_k^2``). With ``exact=False`` the ``g^2`` term is
     dropped

@@ -1,5 +1,5 @@
 """The middle ring of a double-layer (nested) bearing: its parts, their mass properties and
-its rotation (models.md section A).
+its rotation (docs/studies.md, section A).
 
 The inner bearing's outer ring, an intermediate sleeve and the outer bearing's inner ring form
 the middle ring. I-type: both bearings in one radial plane, the sleeve a plain tube; Z-type:
@@ -175,7 +175,7 @@ class MiddleRing(Assembly):
 def mounted_geometries(inner: BearingGeometry, outer: BearingGeometry, structure: str,
                        wall: float = 2.5e-3, band: str = "mean"
                        ) -> tuple[BearingGeometry, BearingGeometry]:
-    """The two layers with the operating clearance of the study's fits (models.md section A:
+    """The two layers with the operating clearance of the study's fits (docs/studies.md, section A:
     inner fits k6, outer fits H7).
 
     The inner bearing sits on the shaft with k6 (solid shaft) and in the middle ring with H7;

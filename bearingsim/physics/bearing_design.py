@@ -1,13 +1,15 @@
 """Derived design data of a deep-groove ball bearing for the dynamic model (SI units).
 
-Coordinates: z is the bearing axis (models.md section C writes x for the axial direction; here
-its ``x`` is ``z`` and its radial ``y, z`` are ``x, y``). The outer ring is fixed at the origin.
+Coordinates: z is the bearing axis (the study of docs/studies.md, section C writes x for the axial
+direction; here its ``x`` is ``z`` and its radial ``y, z`` are ``x, y``). The outer ring is fixed
+at the origin.
 
 Groove geometry follows Harris & Kotzalas (*Rolling Bearing Analysis*, 5th ed., *Essential
 Concepts*, ch. "Ball and roller bearings: internal geometry"): the groove bottoms are
 ``dm/2 + Dw/2 + Pd/4`` (outer) and ``dm/2 - Dw/2 - Pd/4`` (inner), so the outer groove curvature
 centre lies *inside* the pitch circle, ``rho_o = dm/2 - (fo - 0.5) Dw + Pd/4``, and the inner one
-*outside* it, ``rho_i = dm/2 + (fi - 0.5) Dw - Pd/4`` (models.md C prints these signs swapped).
+*outside* it, ``rho_i = dm/2 + (fi - 0.5) Dw - Pd/4`` (the study of docs/studies.md, section C
+prints these signs swapped).
 """
 
 from __future__ import annotations

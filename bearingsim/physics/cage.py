@@ -32,9 +32,9 @@ __all__ = [
 ]
 
 SIGMA_BALL = 0.02e-6
-"""RMS roughness of a ball [m] (models.md section C)."""
+"""RMS roughness of a ball [m] (docs/studies.md, section C)."""
 SIGMA_CAGE = 0.4e-6
-"""RMS roughness of a cage pocket or land [m] (models.md section C)."""
+"""RMS roughness of a cage pocket or land [m] (docs/studies.md, section C)."""
 
 _EPS_MAX = 0.98  # smooth saturation of the eccentricity ratio
 _EPS_WIDTH = 0.01
@@ -186,7 +186,7 @@ def pocket_gap(
 ) -> PocketGap:
     """Gap and contact normal of a ball in a pocket made of a rectangle and two half circles.
 
-    The pocket (models.md section C) is the set of points within ``Rp`` of the segment
+    The pocket (docs/studies.md, section C) is the set of points within ``Rp`` of the segment
     ``-Sp/2 <= x <= Sp/2, y = 0``: straight sides of length ``Sp`` at ``y = +-Rp`` and half circles
     of radius ``Rp`` at the ends. For a ball of radius ``Rb`` centred at ``(x, y)`` the gap is
     ``Rp - Rb - dist((x, y), segment)``; the normal points from the nearest segment point to the
@@ -274,7 +274,7 @@ def ball_pocket_force(
 ) -> PocketForce:
     """Ball-pocket force: Hertz contact with Coulomb friction or short-bearing film, blended.
 
-    models.md section C. With the gap ``h`` (:func:`pocket_gap`) and the composite roughness
+    docs/studies.md, section C. With the gap ``h`` (:func:`pocket_gap`) and the composite roughness
     ``sigma = sqrt(sigma_ball^2 + sigma_cage^2)`` (Hamrock; Harris & Kotzalas):
 
     * contact: normal force ``K max(-h, 0)^1.5`` (Hertz, ``K`` from the ball-pocket geometry) and
@@ -387,8 +387,8 @@ def cage_guidance_force(
 
     The cage is the journal (radius ``Rg``, width ``Bg``, radial clearance ``Cg``), the guiding
     land the bearing; forces from :func:`journal_film_force` with eccentricity ratio
-    ``eps = e / Cg`` (models.md section C; Gupta, ch. 5; Harris & Kotzalas, cage dynamics). The
-    drag moment is the Couette shear of an eccentric full film,
+    ``eps = e / Cg`` (docs/studies.md, section C; Gupta, ch. 5; Harris & Kotzalas, cage dynamics).
+    The drag moment is the Couette shear of an eccentric full film,
     ``M = -2 pi eta Rg^3 Bg (omega_cage - omega_ring) / (Cg sqrt(1 - eps^2))`` (Hamrock, journal
     bearing friction; Petroff at ``eps = 0``). All are proportional to the speeds.
 

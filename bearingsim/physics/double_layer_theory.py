@@ -1,5 +1,5 @@
-"""Closed-form speed distribution ratios of double-layer bearings (models.md section A) and the
-optimal-ratio design helper."""
+"""Closed-form speed distribution ratios of double-layer bearings (docs/studies.md, section A) and
+the optimal-ratio design helper."""
 
 from __future__ import annotations
 

@@ -36,8 +36,8 @@ _ROTATING_SPHERE_BL = 5.32
 """Laminar boundary-layer coefficient of the rotating-sphere moment, ``C_m = 5.32 / sqrt(Re)``
 (Sawatzki 1970, as quoted in Schlichting, *Boundary-Layer Theory*, rotating sphere).
 
-Issue 3 audit: UNVERIFIED. The value was entered from memory and no source text could be retrieved
-in the issue-3 search; treat it as a representative value. The Stokes part ``16 pi / Re``
+Verification status: unverified; no source text printing the value could be retrieved, so treat
+it as a representative value. The Stokes part ``16 pi / Re``
 (``M = 8 pi eta R^3 omega``) is the exact creeping-flow result and does not depend on it."""
 
 
@@ -79,7 +79,7 @@ def ball_drag_force(
 
     ``F_D = 1/2 C_D rho v^2 A`` with ``A = area_fraction * pi Dw^2 / 4`` the frontal area in the
     oil (Schlichting, *Boundary-Layer Theory*; the ball drag of Harris & Kotzalas, 5th ed.,
-    Advanced Concepts, ch. 5, and models.md section C) and ``C_D`` from
+    Advanced Concepts, ch. 5, and docs/studies.md, section C) and ``C_D`` from
     :func:`sphere_drag_coefficient`. The ``24/Re`` part is written out as Stokes' ``3 pi eta Dw v``
     (times the area fraction), so the force is smooth and finite at ``v = 0``.
 
@@ -125,7 +125,7 @@ def orbital_drag_force(
 ) -> Any:
     """Drag on a ball orbiting at ``omega_orbit`` on the pitch circle: ``v = omega_orbit dm / 2``.
 
-    models.md section C, ``F_D = 1/2 C_D rho (w dm/2)^2 A``; see :func:`ball_drag_force`.
+    docs/studies.md, section C, ``F_D = 1/2 C_D rho (w dm/2)^2 A``; see :func:`ball_drag_force`.
 
     Parameters
     ----------
@@ -183,10 +183,11 @@ def spin_drag_moment(
 ) -> Any:
     """Viscous moment on a ball spinning in oil, ``M_e = 1/2 rho omega^2 (Dw/2)^5 C_m``.
 
-    models.md writes ``1/2 rho w (Dw/2)^5 C_m``; the dimensionally consistent form has
-    ``omega^2`` (Schlichting, *Boundary-Layer Theory*, rotating bodies), used here with ``C_m`` from
-    :func:`rotating_sphere_moment_coefficient`. Expanded, ``M = 8 pi eta R^3 omega +
-    2.66 sqrt(rho eta) R^4 |omega|^0.5 omega``, which is smooth and zero at zero spin.
+    The study (docs/studies.md, section C) writes ``1/2 rho w (Dw/2)^5 C_m``; the dimensionally
+    consistent form has ``omega^2`` (Schlichting, *Boundary-Layer Theory*, rotating bodies), used
+    here with ``C_m`` from :func:`rotating_sphere_moment_coefficient`. Expanded,
+    ``M = 8 pi eta R^3 omega + 2.66 sqrt(rho eta) R^4 |omega|^0.5 omega``, which is smooth and
+    zero at zero spin.
 
     Parameters
     ----------

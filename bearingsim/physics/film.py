@@ -139,7 +139,7 @@ def minimum_film_thickness(U: Any, G: Any, W: Any, k: Any, Rx: Any) -> Any:  # n
     (1 - exp(-0.68 k))`` [m].
 
     Hamrock & Dowson, "Isothermal elastohydrodynamic lubrication of point contacts, Part III",
-    J. Lubr. Technol. 99 (1977) 264-276; models.md section C.
+    J. Lubr. Technol. 99 (1977) 264-276; docs/studies.md, section C.
 
     Parameters
     ----------

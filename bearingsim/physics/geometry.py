@@ -76,7 +76,7 @@ def ball_revolutions_per_revolution(ball_diameter, pitch_diameter, contact_angle
     """Ball revolutions about its own axis, relative to the cage, per relative ring revolution.
 
     ``N = dm cos(alpha) (1 - gamma^2) / (2 Dw)`` [-] (the ``N_j`` of the ball life terms in
-    models.md section C).
+    docs/studies.md, section C).
 
     Parameters are those of :func:`pitch_ratio`.
     """

@@ -5,7 +5,7 @@
   X0, Y0 and the static equivalent load P0.
 * Lundberg-Palmgren lives of each ball-raceway contact (Harris & Kotzalas, *Rolling Bearing
   Analysis*, 5th ed., *Essential Concepts of Bearing Technology*, chapter "Fatigue life: basic
-  theory and rating standards"), combined as models.md section C prescribes.
+  theory and rating standards"), combined as docs/studies.md, section C prescribes.
 * A basic reference rating life from the internal load distribution in the manner of
   ISO/TS 16281:2008.
 
@@ -61,7 +61,7 @@ __all__ = [
 _MM = 1e3  # metres to millimetres for the ISO formulas
 _DW_LARGE_MM = 25.4
 
-# Issue 3 verification (tests/physics/test_published_examples.py; docs/physics.md, "Verification").
+# Verification (tests/physics/test_published_examples.py; docs/physics.md, "Verification").
 # The standards' own text was not retrievable; what was checked against published values:
 # * X/Y/e, radial contact groove ball bearings (all 9 rows) and single-row angular contact 15 deg
 #   (rows 0.178 to 5.35), 25, 30 and 40 deg: identical to the tables NSK prints with its bearing
@@ -602,8 +602,8 @@ def ball_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_cou
     ``track length^(-1/e)``, e = 10/9, this gives
     ``Qcb^3 = u Qc^3 (dm (1 -+ g) / Dw)^0.9``, and the ball life at load Q is ``(Qcb/Q)^3`` millions
     of ball revolutions. This is our derivation from the theory in Harris & Kotzalas (chapter
-    "Fatigue life: basic theory and rating standards"); the models.md section C formula needs
-    such ball lives but does not define them.
+    "Fatigue life: basic theory and rating standards"); the formula of docs/studies.md, section C
+    needs such ball lives but does not define them.
 
     Parameters are those of :func:`raceway_contact_capacity`. Returns Qcb [N].
     """
@@ -674,7 +674,8 @@ def _life_from_inverse_power(total):
 
 def combined_contact_life(life_outer, life_inner, life_ball_outer, life_ball_inner,
                           ball_revolutions):
-    """Bearing life from the per-contact lives, exactly as models.md section C states [10^6 rev].
+    """Bearing life from the per-contact lives, as docs/studies.md, section C states it
+    [10^6 rev].
 
     ``L10^(-10/9) = (1/Z) (sum_j L_1j^(-10/9) + sum_j L_2j^(-10/9))
     + sum_j (L_b1j / N_j)^(-10/9) + sum_j (L_b2j / N_j)^(-10/9)``.
@@ -776,7 +777,7 @@ def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, row
     ``x = 1.044 ((1 - g)/(1 + g))^1.72 (fi (2 fo - 1) / (fo (2 fi - 1)))^0.41``: the ball loads for
     which the inner and outer raceways reach 10^6 revolutions, consistent with C of ISO 281.
 
-    Issue 3: the constants 0.407, 0.389, 1.044, 1.72, 0.41, 10/3 and 0.3 agree with an independent
+    Checked: the constants 0.407, 0.389, 1.044, 1.72, 0.41, 10/3 and 0.3 agree with an independent
     public implementation of ISO/TS 16281 (GitHub ``minzhun/ISO16281``, ``BallBearing.py``,
     "Equation 19-24"); the standard's text itself was not retrievable. That implementation divides
     by ``(i cos a)^0.7`` where this function divides by ``i^0.7 cos a``. This function's form is

@@ -45,11 +45,11 @@ ISO_VG_NU100: dict[int, float] = {
 """Kinematic viscosity at 100 degC [mm^2/s] of paraffinic mineral oils of viscosity index about
 95-100, by ISO VG grade (ISO 3448 fixes the 40 degC midpoint = the grade).
 
-Issue 3 audit: checked against the viscosity-index definition of ASTM D2270 (Table 1, L and H
+Verification: checked against the viscosity-index definition of ASTM D2270 (Table 1, L and H
 against nu100, as reproduced in CalebBell/thermo, ``thermo/viscosity.py``): with nu40 = grade,
 every entry is within half a unit of its last digit (0.05 mm^2/s) of a nu100 giving VI 95-100;
-nominal VI 86 (VG 10, the one-decimal rounding of 2.64-2.66), 95-103 for the others. VG 15 was
-3.3 (VI 80) and is corrected to 3.4 (VI 98). See ``tests/physics/test_published_contact_film.py``.
+nominal VI 86 (VG 10, the one-decimal rounding of 2.64-2.66), 95-103 for the others (VG 15:
+3.4, VI 98). See ``tests/physics/test_published_contact_film.py``.
 No manufacturer's data sheet was compared."""
 
 MIN_OIL_VISCOSITY_CST = 0.5
@@ -286,7 +286,8 @@ class Grease(Lubricant):
     with the thickener factor ``k_t`` (0: no fill effect). This linear growth is a modelling
     assumption of bearingsim (the measured trend it represents, higher friction with more grease
     until it is channelled, is described by Harris & Kotzalas, 5th ed., Essential Concepts, ch.
-    on lubrication, and by models.md section A); it is 1 at ``phi = 1/3``.
+    on lubrication, and by the double-layer study, docs/studies.md, section A); it is 1 at
+    ``phi = 1/3``.
 
     Parameters
     ----------

@@ -20,7 +20,7 @@ LUBRICATION_METHODS = ("grease", "oil_mist", "oil_bath", "oil_jet", "vertical_sh
 # (after Palmgren, Ball and Roller Bearing Engineering, 1959). Where the table gives a range the
 # middle is used. "vertical_shaft" and "oil_jet" share the table's "oil bath (vertical shaft) or
 # oil jet" column.
-# Issue 3: UNVERIFIED (written from memory). None of the catalogues retrieved in the search (NSK
+# Verification status: unverified against the cited table. None of the catalogues retrieved (NSK
 # E1102e, SKF 6000 (2006), NTN CAT. No. 2202, Koyo CAT. NO. 203E-1, GMN 4000 0813 EN, the FAG/INA
 # document found was a price list) prints a Palmgren f0 table or f1 formula; NTN and Koyo give
 # friction coefficients mu instead, SKF only its four-component model.

@@ -43,12 +43,12 @@ def hydrodynamic_rolling_force(U: Any, G: Any, W: Any, k: Any, E_eff: Any,  # no
     roller bearing torque: analytical, numerical and experimental results", Tribology
     Transactions 45 (2002) 345-353), as given by Harris & Kotzalas (*Rolling Bearing Analysis*,
     5th ed., *Advanced Concepts of Bearing Technology*, ch. "Friction in rolling
-    element-raceway contacts", hydrodynamic rolling force). Audit note: the coefficients were
-    entered from that reference without access to the page in this session (UNVERIFIED against
-    the printed text); the tests check the formula's own scaling laws (``F ~ (eta u)^0.66``,
-    ``F ~ Q^0.47``, dimensionless collapse) and its agreement with the ``(nu n)^(2/3)``
-    scaling of Palmgren's ``M0``. Isothermal: the inlet shear heating reduction (significant
-    above ``u eta`` of order 1 Pa m) is not applied.
+    element-raceway contacts", hydrodynamic rolling force). Verification status: unverified;
+    the coefficients have not been checked against the printed page. The tests check the
+    formula's own scaling laws (``F ~ (eta u)^0.66``, ``F ~ Q^0.47``, dimensionless collapse)
+    and its agreement with the ``(nu n)^(2/3)`` scaling of Palmgren's ``M0``. Isothermal:
+    the inlet shear heating reduction (significant above ``u eta`` of order 1 Pa m) is not
+    applied.
 
     Parameters
     ----------

@@ -38,9 +38,9 @@ about 0.08 near 0.5 m/s and a thermal fall-off to 0.04 at large slip, the shape 
 curves shown by Gupta (*Advanced Dynamics of Rolling Elements*, ch. 2). They are not a fit to a
 particular fluid: fit ``A..D`` to traction data for quantitative work.
 
-Issue 3 audit: REPRESENTATIVE VALUES, no published source. No published table of ``A..D`` for a
-named oil was found in the issue-3 search; these numbers were chosen to give the shape described
-above and must not be cited as measured data.
+Verification status: representative values, no published source. No published table of
+``A..D`` for a named oil was found; these numbers were chosen to give the shape described above
+and must not be cited as measured data.
 """
 
 
@@ -216,7 +216,7 @@ def slice_traction(
 ) -> SliceTraction:
     """Traction force and spin moment of an elliptical contact, integrated slice by slice.
 
-    The ellipse is cut into ``2n+1`` slices along its major axis (models.md section C; the
+    The ellipse is cut into ``2n+1`` slices along its major axis (docs/studies.md, section C; the
     slicing method of Harris & Kotzalas, 5th ed., Advanced Concepts, ch. on ball-raceway
     friction, and Gupta, ch. 3). Each slice carries its Hertzian share of ``Q``
     (:func:`hertz_slice_weights`) and a traction coefficient at its own sliding speed ``|du|``;

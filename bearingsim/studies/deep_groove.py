@@ -1,4 +1,5 @@
-"""Deep-groove ball bearing studies (models.md section C): validation case and motor duty cycle.
+"""Deep-groove ball bearing studies (docs/studies.md, section C): validation case and
+motor duty cycle.
 
 The runs use :func:`~bearingsim.assemblies.deep_groove.deep_groove_ball_bearing`; quantities
 needed only at save points (film thickness, fatigue life) are computed after the integration
@@ -36,10 +37,12 @@ __all__ = ["DUTY_CYCLE", "VALIDATION", "RunSummary", "outputs_for", "run_bearing
            "largest_pocket_force", "StartUp", "start_up"]
 
 DUTY_CYCLE = ((1730.0, 938.0), (3703.0, 903.0), (1785.0, 266.0), (3998.0, 206.0))
-"""The four motor working conditions of models.md C: (speed [r/min], radial load [N])."""
+"""The four motor working conditions of docs/studies.md, section C: (speed [r/min],
+radial load [N])."""
 
 VALIDATION = {"load": 500.0, "acceleration": 500.0, "mu": 0.02}
-"""models.md C validation case: radial load [N], inner-ring acceleration [rad/s^2], dry mu."""
+"""Validation case of docs/studies.md, section C: radial load [N], inner-ring acceleration
+[rad/s^2], dry mu."""
 
 
 @dataclass
@@ -63,7 +66,7 @@ class RunSummary:
     h_min : float
         Smallest minimum film thickness of the loaded contacts [m] (0 when dry).
     life_lp, life_iso281, life_ts16281 : float
-        L10 [10^6 rev]: Lundberg-Palmgren per contact (models.md formula), ISO 281 (C/P)^3,
+        L10 [10^6 rev]: Lundberg-Palmgren per contact (docs/studies.md, section C), ISO 281 (C/P)^3,
         ISO/TS 16281 from the internal load distribution.
     life_hours_iso281 : float
         ISO 281 life at the run's speed [h].
@@ -128,7 +131,8 @@ def run_bearing(speed, load: float, t_end: float, *, designation: str = "6304",
 
 
 def validation_case(t_end: float = 0.1, **kwargs) -> tuple[Result, BearingDesign]:
-    """models.md C validation: 6304 geometry, 500 N, spin-up at 500 rad/s^2, dry mu = 0.02."""
+    """Validation case of docs/studies.md, section C: 6304 geometry, 500 N, spin-up at 500 rad/s^2,
+    dry mu = 0.02."""
     acc = VALIDATION["acceleration"]
     kwargs.setdefault("lubricant", Dry(VALIDATION["mu"]))
     return run_bearing(lambda t: acc * t, VALIDATION["load"], t_end, **kwargs)
@@ -159,7 +163,8 @@ def largest_pocket_force(res: Result, n_balls: int) -> np.ndarray:
 
 @dataclass
 class StartUp:
-    """Start-up transient of a run from rest (models.md C findings on slip and collisions).
+    """Start-up transient of a run from rest (the findings on slip and collisions, docs/studies.md,
+    section C).
 
     Attributes
     ----------

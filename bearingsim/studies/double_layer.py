@@ -1,4 +1,4 @@
-"""Speed-ratio studies of double-layer bearings (models.md section A)."""
+"""Speed-ratio studies of double-layer bearings (docs/studies.md, section A)."""
 
 from __future__ import annotations
 

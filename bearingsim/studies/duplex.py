@@ -1,4 +1,4 @@
-"""Duplex pair studies (models.md section B): equilibrium, stiffness, modes and sweeps.
+"""Duplex pair studies (docs/studies.md, section B): equilibrium, stiffness, modes and sweeps.
 
 One assembled system serves every configuration: preload (the spacer width difference or the
 DT spring force), contact angle (with the Hertz constants it implies), speed and ball position
@@ -13,9 +13,9 @@ overrides only what it is given.
   spring-damper housing in series. No finite differences.
 * **Modes**: ``K phi = w^2 M phi`` with ``M = diag(m, m, m, Jt, Jt)`` (:func:`scipy.linalg.eigh`
   on the symmetric part of K), modes named after their dominant degree of freedom. Damping
-  follows models.md's loss factor ``eta = 0.005``: hysteretic damping ``C = (eta / w) K``
-  at each mode's frequency, i.e. the modal damping ratio ``zeta = eta / 2`` (Harris & Piersol,
-  *Shock and Vibration Handbook*, chapter "Material damping").
+  follows the study's loss factor (docs/studies.md, section B), ``eta = 0.005``: hysteretic damping
+  ``C = (eta / w) K`` at each mode's frequency, i.e. the modal damping ratio ``zeta = eta / 2``
+  (Harris & Piersol, *Shock and Vibration Handbook*, chapter "Material damping").
 """
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ DOFS = ("x", "y", "z", "tx", "ty")
 MODE_NAMES = ("radial x", "radial y", "axial", "tilt about x", "tilt about y")
 """Mode names, one per dominant degree of freedom (x, y, z, tx, ty)."""
 LOSS_FACTOR = 0.005
-"""Loss factor eta of models.md section B [-]."""
+"""Loss factor eta of the duplex-pair study (docs/studies.md, section B) [-]."""
 SWEEP_PARAMETERS = {
     "preload": ("N", 1.0),
     "contact_angle": ("deg", to_deg(1.0)),

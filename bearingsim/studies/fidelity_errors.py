@@ -36,8 +36,8 @@ DOUBLE_LAYER_POINTS: dict[str, Any] = {
     "speeds_rpm": [1000.0, 10000.0],
     "radial_loads_N": [0.0, 1000.0],
 }
-"""Operating points of the double-layer measurement: the three pairings of models.md section A
-(Z, Z and I type), oil and grease, 1000 and 10 000 r/min, no load and 1 kN radial load; steady
+"""Operating points of the double-layer measurement: the three pairings of docs/studies.md, section
+A (Z, Z and I type), oil and grease, 1000 and 10 000 r/min, no load and 1 kN radial load; steady
 state of each level (Palmgren friction at the torque level, the scene default)."""
 
 

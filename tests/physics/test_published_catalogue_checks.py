@@ -97,8 +97,8 @@ def test_m0_both_branches_as_hr1_timken_and_krw_print_them():
 
 
 def test_f1_deep_groove_is_the_studys_and_differs_from_the_catalogues_for_619():
-    """models.md section A (the double-layer study) uses f1 = 0.0009 (P0/C0)^0.55, which the model
-    keeps: the speed-ratio measurements it reproduces were fitted with it. HR1 p. 58 gives
+    """The double-layer study (docs/studies.md, section A) uses f1 = 0.0009 (P0/C0)^0.55, which the
+    model keeps: the speed-ratio measurements it reproduces were fitted with it. HR1 p. 58 gives
     0.0009 (P0/C0)^0.5 for 62-64 and 0.0007 (P0/C0)^0.5 for 619 (KRW p. 117: 0.00089^0.53 and
     0.00067^0.5); Timken p. 184 a constant 0.00015 for series 39. Over P0/C0 in [0.01, 1] the
     model is 2 % to 29 % above HR1's 619 value."""

@@ -126,9 +126,9 @@ def test_iso76_c0_of_gmn_7014_ball_set_matches_ntn():
     assert c0 == pytest.approx(45.0e3, rel=0.005)
 
 
-def test_7020_gmn_ball_set_differs_from_models_md():
+def test_7020_gmn_ball_set_differs_from_the_studys():
     """Why the 7020 rows carry no C, C0: GMN (4000 0813 EN, pp. 42-43) builds S 6020 C/E TA with
-    22 balls of 15.081 mm on 125 mm and rates them 78.0/74.0 kN; our 7020 geometry (models.md
+    22 balls of 15.081 mm on 125 mm and rates them 78.0/74.0 kN; our 7020 geometry (docs/studies.md,
     section B: 20 x 14.288 mm on 125.25 mm) has an ISO 281 C of 63.4 kN at 15 deg, 19 % lower. The
     catalogue ratings belong to a different ball set and would be inconsistent with the geometry
     the simulation uses."""
@@ -152,7 +152,7 @@ def test_deep_groove_ball_sets_match_gmn(name):
     """GMN High precision ball bearings (4000 0813 EN), pp. 54-55, deep groove ball bearings,
     columns dm, Dw, Z: 6204 33.5 mm, 7.938 mm, 8; 6205 39.1 mm, 7.938 mm, 9; 6206 46.0 mm,
     9.525 mm, 9. Ball count and ball diameter agree exactly; the pitch diameters within 0.1 mm
-    (6205 carries the measured 39.04 mm of the CWRU data; 6206's formerly estimated 46 mm is
+    (6205 carries the measured 39.04 mm of the CWRU data; 6206's 46 mm is
     GMN's value)."""
     dm, dw, z = GMN_DEEP_GROOVE[name]
     g = get_bearing(name)

@@ -1,5 +1,5 @@
 """Dynamic ball-bearing components: balls, race contacts with slice traction, cage, pockets,
-land guidance, drag, ring bodies and the viscous drag between the rings (models.md section C;
+land guidance, drag, ring bodies and the viscous drag between the rings (docs/studies.md, section C;
 z is the bearing axis)."""
 
 from bearingsim.components.dynamic.ball import Ball

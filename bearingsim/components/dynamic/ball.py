@@ -36,17 +36,18 @@ class Ball(Component):
     * spin (Euler's equations of a sphere written in the frame turning at ``w_orbit``):
       ``J (der(wr) - w_orbit wt) = Mr``, ``J (der(wt) + w_orbit wr) = Mt``, ``J der(wz) = Mz``;
     * position, ``massive=True``: ``m (der(vr) - r w_orbit^2) = Fr``, ``m der(vz) = Fz``;
-      ``massive=False`` (quasi-static, as in models.md section C): no radial and axial
-      inertia, the force balances ``Fr + m r w_orbit^2 = 0`` and ``Fz = 0`` hold at every
+      ``massive=False`` (quasi-static, as in the study, docs/studies.md, section C): no radial and
+      axial inertia, the force balances ``Fr + m r w_orbit^2 = 0`` and ``Fz = 0`` hold at every
       instant (the centrifugal force included). The contact forces depend on the ball's
       velocity through their damping, so the balances are solved (by Newton with a line
       search, nonlinear blocks of the assembler) for ``vr = der(r)``, ``vz = der(z)``: the
       positions follow the balance through the contacts' damping. Setting ``vr = vz = 0``
       instead (balance in the positions alone) drops the contact damping from the ring's
       motion; the ring's axial mode then grows until the equilibrium is lost (measured: the
-      ring drifted 26 um axially within 20 ms of the models.md C validation start-up). A weak
-      spring :data:`POSITION_REGULARIZATION` towards ``(r, z) = (pitch_radius, 0)`` and a weak
-      damper :data:`VELOCITY_REGULARIZATION` keep balls that touch neither race determinate.
+      ring drifted 26 um axially within 20 ms of the validation start-up of docs/studies.md,
+      section C). A weak spring :data:`POSITION_REGULARIZATION` towards ``(r, z) = (pitch_radius,
+      0)`` and a weak damper :data:`VELOCITY_REGULARIZATION` keep balls that touch neither race
+      determinate.
 
     Gravity is neglected.
 

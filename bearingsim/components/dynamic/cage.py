@@ -82,7 +82,7 @@ class PocketContact(Component):
     The pocket ``j`` sits at ``phi_p = phi_cage + 2 pi j / Z`` on the pitch circle of the cage,
     its axis along ``e_r(phi_p)``; the stadium (straight length ``Sp`` along the bearing axis,
     end radius ``Rp``) lies in the plane ``(e_z, e_t(phi_p))``. Forces from
-    :func:`~bearingsim.physics.cage.ball_pocket_force` (models.md section C; Gupta ch. 5):
+    :func:`~bearingsim.physics.cage.ball_pocket_force` (docs/studies.md, section C; Gupta ch. 5):
     Hertz + Coulomb when the gap is below the composite roughness, the Ocvirk film otherwise,
     blended smoothly. Its reaction acts on the cage at the contact point.
 
@@ -185,10 +185,10 @@ class LandGuidance(Component):
     """Outer-ring land guidance of the cage: short journal-bearing film plus a land contact.
 
     Film forces and drag moment from :func:`~bearingsim.physics.cage.cage_guidance_force`
-    (models.md section C; Gupta ch. 5), all proportional to the speeds. Where the rail reaches
-    the land (eccentricity beyond ``Cg``) a Hertz-type penalty ``K <e - Cg>^1.5`` pushes the cage
-    back, with regularized Coulomb friction ``mu`` on the land; this carries the cage when the
-    lubricant is dry (no film).
+    (docs/studies.md, section C; Gupta ch. 5), all proportional to the speeds. Where the rail
+    reaches the land (eccentricity beyond ``Cg``) a Hertz-type penalty ``K <e - Cg>^1.5`` pushes
+    the cage back, with regularized Coulomb friction ``mu`` on the land; this carries the cage
+    when the lubricant is dry (no film).
 
     Parameters
     ----------

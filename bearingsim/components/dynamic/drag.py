@@ -11,7 +11,7 @@ __all__ = ["BallDrag"]
 
 
 class BallDrag(Component):
-    """Orbital drag force and spin drag moment on a ball (models.md section C, Schlichting).
+    """Orbital drag force and spin drag moment on a ball (docs/studies.md, section C; Schlichting).
 
     The bearing cavity holds an oil-air mixture of oil volume fraction ``X`` at rest; its
     density and viscosity are ``X rho_oil`` and ``X eta_oil`` (the effective-mixture assumption of
