@@ -19,6 +19,7 @@ from bench import (
     backends,
     ball_level_assembly,
     dgbb,
+    dgbb_long,
     double_layer_steady,
     duplex,
     pruning,
@@ -107,6 +108,7 @@ def main(argv: list[str] | None = None) -> int:
         ("ball-level assembly", ball_level_assembly.section),
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
+        ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
     ]
     for k, (label, bench_fn) in enumerate(steps, start=1):
         print(f"{k}/{len(steps)} {label}", flush=True)

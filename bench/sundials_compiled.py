@@ -1,4 +1,4 @@
-"""Benchmark: CVODES and IDAS on compiled kernels against the CasADi VM (issue 14).
+"""Benchmark: CVODES and IDAS on compiled kernels against the CasADi VM.
 
 Models (``CASES``):
 
@@ -421,14 +421,20 @@ def section(quick: bool = False) -> Section:
         "`casadi.external`), same integrator, same steps. *wall / sim s*: wall seconds per "
         "simulated second; *limit*: the compiled per-call costs times the calls the run took "
         "(kernels only, and with the dense LU of the Newton matrix), the physical limit of this "
-        "machine; *wall / limit*: the distance to it. Goals of issue 14: at most 1 s per "
+        "machine; *wall / limit*: the distance to it. Goals: at most 1 s per "
         "simulated second for the 6304 massive-ball level, 10 s for the nested dynamic bearing. "
         "Set-up: a 1 ms run repeated, first call (kernel from the disk cache, integrator built) "
         "and later calls (both cached).\n\n"
         "Command: `python -m bench.sundials_compiled calls runs setup --cases "
         + ",".join(cases) + "`\n")
-    return Section("SUNDIALS on compiled kernels", intro + "\n" + report(
-        ("calls", "runs", "setup"), cases))
+    text = intro + "\n" + report(("calls", "runs", "setup"), cases)
+    if not quick:
+        text += ("\n#### Optimisation level of the kernel libraries\n\n"
+                 "The default is -O1 (`bearingsim.simulation.compile.DEFAULT_FLAGS`): generate + "
+                 "compile time (empty cache) and the start-up run on that library, -O1 against "
+                 "-O2. Command: `python -m bench.sundials_compiled compile --cases massive "
+                 "--levels=-O1,-O2`\n\n" + report(("compile",), ("massive",), ("-O1", "-O2")))
+    return Section("SUNDIALS on compiled kernels", text)
 
 
 def main() -> None:

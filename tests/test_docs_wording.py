@@ -23,7 +23,7 @@ PACKAGE = ROOT / "bearingsim"
 
 FORBIDDEN = {
     "the internal spec models.md": re.compile(r"models\.md", re.I),
-    "a tracker item (issue <N>)": re.compile(r"\bissue\s+[0-9A-Z]\b", re.I),
+    "a tracker item (issue <N>)": re.compile(r"\bissue\s+(?:[0-9]+|[A-Z])\b", re.I),
 }
 
 FENCE = re.compile(r"^\s*(```|~~~)")

@@ -1,0 +1,181 @@
+"""Benchmark: deep-groove work-precision over 50 ms of each of the four duty conditions.
+
+The question the study asks of its model is the cage speed under each duty condition, from rest
+through the speed ramp into steady running; 50 ms covers the ramp (5 ms) and the settling of
+the cage. For each condition:
+
+* the study's method: Newton-Raphson for the quasi-static ball positions inside every stage of
+  fixed-step classical RK4 (the ``dynamic`` model, :func:`bench.dgbb._rk4`), at fractions of
+  its stable step ``2.785 / |lambda|_max``;
+* this project's SUNDIALS integrators on compiled kernels: IDAS on the same quasi-static model
+  (its semi-explicit DAE form: the ball equations are algebraic, no Newton iteration inside the
+  right-hand side; the ``newton`` blocks of the ODE form have no C) and CVODES on the
+  ``dynamic_massive_balls`` model (ball inertia instead of quasi-static balls: a pure ODE);
+* the error: relative error of the final cage speed against each model's own CVODES run at
+  rtol 1e-9;
+* the ratio: the study's wall time over ours at the study's errors (log-log interpolation of
+  our curve); the physical limit of each CVODES run: compiled per-call costs of the
+  right-hand side, its Jacobian and a dense LU of the Newton matrix, times the calls the run
+  made.
+
+Kernels are compiled before timing (a library is built once per machine and model; its time is
+reported beside the table); the integrator is built by a first, untimed run.
+
+``python -m bench.dgbb_long`` prints the section (``--quick``: condition 1 over 10 ms).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from bearingsim.simulation import simulate
+from bearingsim.simulation.inputs import input_signal
+from bearingsim.simulation.kernels import kernel
+from bearingsim.studies.deep_groove import DUTY_CYCLE
+from bench import dgbb
+from bench.common import Section, fmt, interp_loglog, markdown_table
+from bench.sundials_compiled import per_call_us
+
+__all__ = ["run", "section"]
+
+T_END = 0.05
+RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
+FRACTIONS = (0.9, 0.45)
+
+
+def _cage_error(value: float, ref: dict) -> float:
+    return abs(value - ref["w_cage"]) / abs(ref["w_cage"])
+
+
+def _per_call(system, res, form: str) -> dict[str, float]:
+    """Compiled per-call costs [us] at the end of ``res``: right-hand side (or DAE residual),
+    its Jacobian and a dense LU factorisation and solve of the Newton matrix."""
+    import casadi as ca
+
+    kern = kernel(system, form, True)
+    x = np.array([res.final(n) for n in system.state_names])
+    signal = input_signal(system, None)
+    t, p = res.t[-1], system.p0()
+    u = np.asarray(signal.u(t, signal.q), dtype=float).ravel()
+    args = [t, x, u, p]
+    if form == "dae":
+        funcs = system.symbolic_functions or system.functions
+        z = np.asarray(funcs["dae_z"](t, x, u, p), dtype=float).ravel()
+        args = [t, x, z, u, p]
+    value = kern.function(*args)
+    value = list(value) if isinstance(value, (list, tuple)) else [value]
+    n = system.n_states + (args[2].size if form == "dae" else 0)
+    a, b = ca.MX.sym("A", n * n), ca.MX.sym("b", n)
+    lu = ca.Function("lu", [a, b], [ca.solve(ca.reshape(a, n, n), b, "lapacklu")])
+    mat = np.eye(n) + 0.01 * np.random.default_rng(0).standard_normal((n, n))
+    return {"rhs": per_call_us(kern.function, args, n=2000),
+            "jac": per_call_us(kern.function.jacobian(), [*args, *value], n=500),
+            "lu": per_call_us(lu, [mat.ravel(order="F"), np.ones(n)], n=500)}
+
+
+def _limit(stats: dict, pc: dict[str, float]) -> float:
+    """The physical limit of a run [s]: compiled per-call costs times the calls it made."""
+    return (stats["nfevals"] * pc["rhs"] + stats["njevals"] * pc["jac"]
+            + stats["nlinsetups"] * pc["lu"]) * 1e-6
+
+
+def _sundials(system, method: str, ref, t_end: float, label: str, pc: dict[str, float]):
+    """Rows and the (error, wall) curve of CVODES or IDAS on compiled kernels over ``RTOLS``."""
+    rows, curve = [], []
+    for rtol in RTOLS:
+        kw = dict(method=method, rtol=rtol, atol=rtol * 0.1, n_points=3, progress=False,
+                  compiled=True)
+        simulate(system, t_end, **kw)  # builds the integrator (once per system and setting)
+        t0 = time.perf_counter()
+        res = simulate(system, t_end, **kw)
+        wall = time.perf_counter() - t0
+        err = _cage_error(res.final("w_cage"), ref)
+        limit = _limit(res.stats, pc)
+        curve.append((err, wall))
+        rows.append([label, f"rtol {rtol:g}", fmt(wall), fmt(err, 2), fmt(res.stats["nsteps"]),
+                     fmt(limit), fmt(wall / limit)])
+    return rows, curve
+
+
+def _study(system, ref, t_end: float, dt_stable: float, fractions):
+    rows, curve = [], []
+    for frac in fractions:
+        t0 = time.perf_counter()
+        w_cage, _, dt = dgbb._rk4(system, t_end, frac * dt_stable)
+        wall = time.perf_counter() - t0
+        err = _cage_error(w_cage, ref)
+        curve.append((err, wall))
+        rows.append(["study: RK4 + Newton (qs)", f"dt {dt:.3g} s", fmt(wall), fmt(err, 2),
+                     fmt(round(t_end / dt)), "", ""])
+    return rows, curve
+
+
+def _ratios(study: list, ours: dict[str, list]) -> list[list[str]]:
+    out = []
+    for label, curve in ours.items():
+        for err, wall in study:
+            a = interp_loglog(err, [e for e, _ in curve], [w for _, w in curve])
+            out.append([label, fmt(err, 2), fmt(wall / a) if np.isfinite(a) else
+                        "outside our error range"])
+    return out
+
+
+def run(quick: bool = False) -> tuple[str, dict]:
+    """Run the benchmark; return the Markdown body and the ratios by condition."""
+    t_end = 0.01 if quick else T_END
+    conditions = (1,) if quick else (1, 2, 3, 4)
+    lines = [f"Model: 6304, one slice per contact, speed ramp over {dgbb.RAMP * 1e3:g} ms, "
+             f"t = 0 .. {t_end:g} s. Error: relative error of the final cage speed against "
+             "CVODES at rtol 1e-9 on the same model. *limit*: compiled per-call costs "
+             "(right-hand side, Jacobian, dense LU) times the calls of the run; *wall / limit* "
+             "the distance to it. Ratio: the study's wall time / ours at the study's error.",
+             "", f"Command: `python -m bench.dgbb_long{' --quick' if quick else ''}`", ""]
+    numbers: dict = {}
+    for k in conditions:
+        qs = dgbb._system(k, "dynamic")
+        massive = dgbb._system(k, "dynamic_massive_balls")
+        t0 = time.perf_counter()
+        kernel(qs, "dae", True)
+        kernel(massive, "ode", True)
+        compile_s = time.perf_counter() - t0
+        ref_qs = dgbb._reference(qs, t_end)
+        ref_m = dgbb._reference(massive, t_end)
+        _, dt_qs = dgbb.stable_step(qs, ref_qs["res"])
+        study_rows, study = _study(qs, ref_qs, t_end, dt_qs, FRACTIONS)
+        rows_qs, curve_qs = _sundials(qs, "idas", ref_qs, t_end, "IDAS, C (qs)",
+                                      _per_call(qs, ref_qs["res"], "dae"))
+        rows_m, curve_m = _sundials(massive, "cvodes", ref_m, t_end, "CVODES, C (massive balls)",
+                                    _per_call(massive, ref_m["res"], "ode"))
+        ratios = _ratios(study, {"IDAS, C (qs)": curve_qs,
+                                 "CVODES, C (massive balls)": curve_m})
+        numbers[k] = ratios
+        n_rpm, load = DUTY_CYCLE[k - 1]
+        lines += [f"### Condition {k}: {n_rpm:g} r/min, {load:g} N", "",
+                  f"Kernels generated and compiled (or loaded from the cache) in "
+                  f"{compile_s:.1f} s; RK4 stable step of the qs model {dt_qs:.3g} s.", "",
+                  markdown_table(["method", "setting", "wall [s]", "cage-speed error",
+                                  "steps", "limit [s]", "wall / limit"],
+                                 study_rows + rows_qs + rows_m), "",
+                  "The study's wall time / ours at matched cage-speed error (goal >= 50):", "",
+                  markdown_table(["ours", "error", "ratio"], ratios), ""]
+    return "\n".join(lines), numbers
+
+
+def section(quick: bool = False) -> Section:
+    """The run_all section."""
+    body, numbers = run(quick)
+    return Section("Deep-groove work-precision over 50 ms, four duty conditions", body,
+                   {"ratios": numbers})
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    print(run(parser.parse_args().quick)[0])
+
+
+if __name__ == "__main__":
+    main()
