@@ -104,3 +104,42 @@ def test_result_as_a_table_and_in_a_notebook():
             res.to_xarray()
     else:
         assert res.to_xarray()["Rs"].attrs["units"] == "1"
+
+
+@pytest.fixture(scope="module")
+def df_pair():
+    from bearingsim.studies.duplex import DuplexModel
+
+    return DuplexModel("7020C", "DF")
+
+
+def test_reprs_show_units(df_pair):
+    """Issue 16 item 4: the reprs of Result, System, Modes and Equilibrium printed bare
+    numbers and names; they now carry units (engineering units for values)."""
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.simulation import simulate
+
+    system = assemble(double_layer_bearing())
+    assert "shaft_speed [rad/s]" in repr(system) and "Fr [N]" in repr(system)
+    res = simulate(system, 0.05, inputs={"shaft_speed": 1000.0}, n_points=3)
+    text = repr(res)
+    assert "0 .. 0.05 s" in text and len(text) < 300
+    assert any(f"{n} [" in text for n in res.names[:4])
+    assert "[1]" not in text and "Rs [-]" in repr(
+        type(res)(res.t, ["Rs", "w_shaft"], res.values[:2], {"Rs": "1", "w_shaft": "rad/s"}))
+    html = res._repr_html_()
+    # the shaft speed's final value in r/min: 1000 rad/s = 9549.3 r/min
+    assert "9549.3 r/min" in html and "<th>unit (SI)</th>" in html
+    model = df_pair
+    eq = model.equilibrium({"Fz": 1000.0})
+    text = repr(eq)
+    assert text.startswith("<Equilibrium: shaft x ") and " um" in text and " deg" in text
+    assert " kN" in text and "spacer force" in text
+    # the DF pair carries the 1 kN: the row axial loads differ by 1 kN
+    loads = eq.row_axial_loads
+    assert abs(loads[0] - loads[1]) == pytest.approx(1000.0, rel=1e-3)
+    modes = model.modes({"Fz": 1000.0})
+    text = repr(modes)
+    assert f"axial {modes.frequency('axial'):.5g} Hz" in text
+    assert "radial x" in text and "damping ratio 0.0025 [-]" in text
