@@ -1,12 +1,18 @@
-"""Plot helpers shared by :meth:`bearingsim.simulation.Result.plot` and the scene runner."""
+"""Plot helpers shared by :meth:`bearingsim.simulation.Result.plot` and the scene runner, and
+the figure specs (:class:`FigureSpec`) an assembly declares for the plots that answer its
+scenes' question (ball load against azimuth, modes by name, speed ratio against speed)."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["WIDE_RANGE", "is_wide_positive", "set_value_scale"]
+from bearingsim.units import display_unit, unit_label
+
+__all__ = ["WIDE_RANGE", "Curve", "FigureSpec", "Panel", "axis_label", "is_wide_positive",
+           "render", "set_value_scale"]
 
 WIDE_RANGE = 1e3
 """Ratio of the largest to the smallest value above which a positive series is drawn on a
@@ -47,3 +53,93 @@ def set_value_scale(ax, values: Sequence[np.ndarray]) -> None:
     """
     if is_wide_positive(values):
         ax.set_yscale("log")
+
+
+# --------------------------------------------------------------------------- figure specs
+MARKERS = ("o", "s", "^", "v", "D", "x", "+", "*")
+"""Markers of the curves of one panel, in turn (with :data:`LINESTYLES`): curves that coincide,
+e.g. the radial x and y modes of an axisymmetric pair, stay both visible."""
+LINESTYLES = ("-", "--", ":", "-.")
+
+
+@dataclass
+class Curve:
+    """One curve of a :class:`Panel`: ``x`` and ``y`` in the panel's SI units."""
+
+    x: np.ndarray
+    y: np.ndarray
+    label: str = ""
+    style: dict = field(default_factory=dict)
+    """Keyword arguments of :meth:`matplotlib.axes.Axes.plot` (default: a line style and
+    marker of :data:`LINESTYLES`, :data:`MARKERS` by the curve's position)."""
+
+
+@dataclass
+class Panel:
+    """One axes: curves over a common x quantity, values in SI (shown in engineering units,
+    :func:`bearingsim.units.display_unit`)."""
+
+    curves: list[Curve]
+    x_name: str
+    x_unit: str
+    y_name: str
+    y_unit: str
+    scale: str = "auto"
+    """Value axis: "auto" (:func:`set_value_scale`) or "linear"."""
+
+
+@dataclass
+class FigureSpec:
+    """A figure an assembly declares for its scenes (see
+    :attr:`bearingsim.assemblies.spec.AssemblySpec.plots`), written as ``<scene>.<name>.png``."""
+
+    name: str
+    title: str
+    panels: list[Panel]
+
+
+def axis_label(name: str, unit: str) -> str:
+    """``"name [unit]"`` with the unit as shown to users (``-`` for dimensionless)."""
+    return f"{name} [{unit_label(unit)}]"
+
+
+def render(spec: FigureSpec, title: str = ""):
+    """The :class:`matplotlib.figure.Figure` of a :class:`FigureSpec` (made without pyplot),
+    every axis in engineering units (r/min, um, deg, kN, N m, ``-``).
+
+    Parameters
+    ----------
+    spec : FigureSpec
+    title : str
+        Figure title (default: the spec's).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    n = len(spec.panels)
+    fig = Figure(figsize=(7, 2.6 * n + 0.8))
+    axes = np.atleast_1d(fig.subplots(n, 1, squeeze=False)[:, 0])
+    for ax, panel in zip(axes, spec.panels, strict=True):
+        fx, ux = display_unit(panel.x_unit, np.concatenate([c.x for c in panel.curves]))
+        fy, uy = display_unit(panel.y_unit, np.concatenate([c.y for c in panel.curves]))
+        for k, c in enumerate(panel.curves):
+            # hollow markers shrinking from curve to curve: coinciding curves stay visible
+            style = c.style or {"linestyle": LINESTYLES[k % len(LINESTYLES)],
+                                "marker": MARKERS[k % len(MARKERS)],
+                                "markersize": max(9.0 - 1.5 * k, 3.0), "fillstyle": "none"}
+            y = np.asarray(c.y, dtype=float) * fy
+            ax.plot(np.asarray(c.x, dtype=float) * fx, np.where(np.isfinite(y), y, np.nan),
+                    label=c.label, **style)
+        if panel.scale == "auto":
+            set_value_scale(ax, [c.y * fy for c in panel.curves])
+        ax.set_xlabel(axis_label(panel.x_name, ux), fontsize=8)
+        ax.set_ylabel(axis_label(panel.y_name, uy), fontsize=8)
+        if any(c.label for c in panel.curves):
+            ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.3)
+    fig.suptitle(title or spec.title, fontsize=10)
+    fig.tight_layout()
+    return fig

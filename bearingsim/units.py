@@ -122,8 +122,6 @@ def engineering(value: float, unit: str) -> str:
         return f"{value} [{unit_label(unit)}]"
     if unit == "rad/s":
         return f"{value:.6g} rad/s ({rad_s_to_rpm(value):.5g} r/min)"
-    if unit == "N" and abs(value) >= 1e3:
-        return f"{value * 1e-3:.5g} kN"
     factor, shown = display_unit(unit, [value])
     if shown == "-":
         return f"{value:.6g} [-]"
@@ -132,7 +130,8 @@ def engineering(value: float, unit: str) -> str:
 
 def display_unit(unit: str, values) -> tuple[float, str]:
     """Factor and unit to plot SI ``values`` of ``unit`` in: r/min for rad/s, um or mm for
-    small lengths, deg for rad, N mm for small torques, ``-`` for dimensionless; else SI."""
+    small lengths, deg for rad, N mm for small torques and N m for others, kN for forces from
+    1 kN, ``-`` for dimensionless; else SI."""
     import numpy as np
 
     finite = np.asarray(values, dtype=float)
@@ -150,4 +149,8 @@ def display_unit(unit: str, values) -> tuple[float, str]:
         return 1e3, "mm"
     if unit == "N.m" and peak < 1.0:
         return 1e3, "N mm"
+    if unit == "N.m":
+        return 1.0, "N m"
+    if unit == "N" and peak >= 1e3:
+        return 1e-3, "kN"
     return 1.0, unit

@@ -78,7 +78,8 @@ def test_run_writes_files_into_the_scene_folder(scene_file, tmp_path, monkeypatc
     out = capsys.readouterr().out
     assert "skipped (pruned)" in out and "Rs = " in out
     files = sorted(p.name for p in (tmp_path / "out").iterdir())
-    assert files == ["fast.csv", "fast.png", "fast.summary.json"]
+    # the time traces, and Rs against the ramped shaft speed (the assembly's own plot)
+    assert files == ["fast.csv", "fast.png", "fast.rs_speed.png", "fast.summary.json"]
     summary = json.loads((tmp_path / "out" / "fast.summary.json").read_text())
     assert summary["fidelity"]["chosen"] == "torque"  # kinematic Rs: outside 5 %
 
@@ -125,6 +126,10 @@ def test_demo_runs_the_built_in_demo_scenes(tmp_path, capsys):
     for name in DEMO_SCENES:
         for suffix in (".csv", ".png", ".summary.json"):
             assert (tmp_path / f"{name}{suffix}").is_file()
+    # the plots that answer each demo scene's question (issue 16 item 4)
+    for name in ("motor_drive_spinup.rs_speed", "double_layer_friction.rs_speed",
+                 "deep_groove_radial.ball_loads", "duplex_pair_axial.modes"):
+        assert (tmp_path / f"{name}.png").is_file()
     summary = json.loads((tmp_path / "double_layer_friction.summary.json").read_text())
     rs = summary["outputs"]["Rs"]["final"]
     assert 0.0 < rs < 0.5  # between a standing and a rolling middle ring (pure rolling: 0.43)

@@ -349,3 +349,23 @@ def test_middle_ring_drag_is_a_couette_damper_to_the_housing():
         taylor_number(v["w_middle"], 0.0225, 0.5e-3, float(oil.kinematic_viscosity())))
     with pytest.raises(ParameterError, match="needs gap"):
         double_layer_bearing("61905", "61907", middle_ring_drag={"radius": 0.02, "length": 0.01})
+
+
+def test_speed_ratio_is_exact_at_creep_speeds_and_zero_at_rest():
+    """Issue 16 item 4: Rs = w_middle w_shaft / (w_shaft^2 + 1e-6) was the 0/0 at rest
+    regularized at 1e-3 rad/s, so below ~0.01 rad/s (the first save points of a spin-up from
+    rest) it showed a ratio near 0 instead of w_middle / w_shaft: 0.004 instead of the
+    pure-rolling 0.43 at 1e-4 rad/s. It is now regularized at 1e-6 rad/s (exact to 1e-4 from
+    1e-4 rad/s) and 0 at rest (a still middle ring: the limit of a spin-up from rest)."""
+    from bearingsim.physics.double_layer_theory import speed_ratio_pure_rolling
+
+    system = assemble(double_layer_bearing(fidelity="kinematic"))
+    creep = simulate(system, 20.0, inputs={"shaft_speed": 1e-4}, n_points=5)
+    rs = speed_ratio_pure_rolling("61905", "61907")
+    assert creep.final("w_middle") / creep.final("w_shaft") == pytest.approx(rs, rel=1e-6)
+    assert creep.final("Rs") == pytest.approx(rs, rel=1e-4)
+    assert creep["Rs"][0] == 0.0  # at t = 0 the middle ring is still: Rs = 0, finite
+    ramp = simulate(system, 0.01, inputs={"shaft_speed": lambda t: 0.1 * t}, n_points=11)
+    w_s, w_m = ramp["w_shaft"][1:], ramp["w_middle"][1:]
+    assert np.all(w_s < 2e-3)
+    assert ramp["Rs"][1:] == pytest.approx(w_m / w_s, rel=1e-3)

@@ -104,3 +104,191 @@ def test_result_as_a_table_and_in_a_notebook():
             res.to_xarray()
     else:
         assert res.to_xarray()["Rs"].attrs["units"] == "1"
+
+
+@pytest.fixture(scope="module")
+def df_pair():
+    from bearingsim.studies.duplex import DuplexModel
+
+    return DuplexModel("7020C", "DF")
+
+
+def test_reprs_show_units(df_pair):
+    """Issue 16 item 4: the reprs of Result, System, Modes and Equilibrium printed bare
+    numbers and names; they now carry units (engineering units for values)."""
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.simulation import simulate
+
+    system = assemble(double_layer_bearing())
+    assert "shaft_speed [rad/s]" in repr(system) and "Fr [N]" in repr(system)
+    res = simulate(system, 0.05, inputs={"shaft_speed": 1000.0}, n_points=3)
+    text = repr(res)
+    assert "0 .. 0.05 s" in text and len(text) < 300
+    assert any(f"{n} [" in text for n in res.names[:4])
+    assert "[1]" not in text and "Rs [-]" in repr(
+        type(res)(res.t, ["Rs", "w_shaft"], res.values[:2], {"Rs": "1", "w_shaft": "rad/s"}))
+    html = res._repr_html_()
+    # the shaft speed's final value in r/min: 1000 rad/s = 9549.3 r/min
+    assert "9549.3 r/min" in html and "<th>unit (SI)</th>" in html
+    model = df_pair
+    eq = model.equilibrium({"Fz": 1000.0})
+    text = repr(eq)
+    assert text.startswith("<Equilibrium: shaft x ") and " um" in text and " deg" in text
+    assert " kN" in text and "spacer force" in text
+    # the DF pair carries the 1 kN: the row axial loads differ by 1 kN
+    loads = eq.row_axial_loads
+    assert abs(loads[0] - loads[1]) == pytest.approx(1000.0, rel=1e-3)
+    modes = model.modes({"Fz": 1000.0})
+    text = repr(modes)
+    assert f"axial {modes.frequency('axial'):.5g} Hz" in text
+    assert "radial x" in text and "damping ratio 0.0025 [-]" in text
+
+
+# every built-in scene, short; deep_groove_duty1 takes about a minute to assemble (dynamic
+# level with massive balls), so it is left to tests/test_dgbb_dynamic.py
+SCENE_END = {"deep_groove_radial": 1.0, "double_layer_friction": 0.3, "double_layer_rs": 0.3,
+             "duplex_pair_axial": 0.01, "duplex_pair_pure_axial": 0.001,
+             "motor_drive_spinup": 0.3}
+"""Scene -> end time [s] of the test run (the pure axial pair before its load step: the
+stiff step takes 20 s)."""
+SCENE_PLOTS = {
+    "deep_groove_radial": {"ball_loads": ("azimuth from the load direction [deg]",
+                                          "ball load at the inner race [N]")},
+    "double_layer_friction": {"rs_speed": ("shaft speed [r/min]",
+                                           "speed ratio Rs = n_middle / n_shaft [-]")},
+    "double_layer_rs": {"rs_speed": ("shaft speed [r/min]",
+                                     "speed ratio Rs = n_middle / n_shaft [-]")},
+    "duplex_pair_axial": {"modes": ("time [s]", "natural frequency [Hz]")},
+    "duplex_pair_pure_axial": {},  # one ball per row: no radial or tilt modes
+    "motor_drive_spinup": {"rs_speed": ("shaft speed [r/min]",
+                                        "speed ratio Rs = n_middle / n_shaft [-]")},
+}
+"""Scene -> its assembly plots -> (x label, y label)."""
+ENGINEERING = {"r/min", "um", "mm", "deg", "kN", "N", "N m", "N mm", "-", "s", "Hz", "W", "h",
+               "A"}
+
+
+def _scene_figures(name, t_end):
+    from bearingsim.scenes import load_scene, run_scene
+    from bearingsim.scenes.runner import scene_figures
+
+    scene = load_scene(name)
+    scene.simulation.t_end = t_end
+    run = run_scene(scene, write=False)
+    units = {**run.result.units, **{n: q.unit for n, q in run.prepared.post.items()}}
+    return run, dict(scene_figures(run.prepared, run.result, run.series, name, units))
+
+
+def test_every_built_in_scene_is_covered():
+    from bearingsim.scenes.library import builtin_scenes
+
+    assert set(builtin_scenes()) == set(SCENE_PLOTS) | {"deep_groove_duty1"}
+
+
+@pytest.mark.parametrize("name", sorted(SCENE_END))
+def test_built_in_scene_plots_carry_engineering_units(name):
+    """Issue 16 item 4: every figure of a built-in scene (the assembly's plots that answer its
+    question, and the time traces) labels its axes with engineering units."""
+    import re
+
+    _, figures = _scene_figures(name, SCENE_END[name])
+    expected = {f"{name}.{plot}.png": labels for plot, labels in SCENE_PLOTS[name].items()}
+    assert set(expected) | {f"{name}.png"} == set(figures)
+    for file, (xlabel, ylabel) in expected.items():
+        ax = figures[file].axes[0]
+        assert (ax.get_xlabel(), ax.get_ylabel()) == (xlabel, ylabel)
+        assert len(ax.lines) >= 2 and ax.get_legend() is not None
+    for fig in figures.values():
+        for ax in fig.axes:
+            for label in (ax.get_xlabel(), ax.get_ylabel()):
+                if label:
+                    unit = re.fullmatch(r"(?s).*\[([^\]]*)\]", label)
+                    assert unit and unit.group(1) in ENGINEERING, label
+
+
+def test_ball_loads_against_azimuth_match_the_model_and_stribeck():
+    """The deep-groove scene's ball loads against azimuth: the plotted points are the model's
+    ball loads at the end of the ramp (938 N), at their azimuths from the load direction; the
+    most loaded ball sits at 0 deg with Q_max Z / Fr between Stribeck's 4.37 (zero clearance)
+    and 6 (the 6304's normal clearance narrows the loaded zone), and the loads balance Fr (the
+    contact angles under this radial load are below 1 deg: cos(alpha) > 0.9998)."""
+    run, figures = _scene_figures("deep_groove_radial", 1.0)
+    model, stribeck = figures["deep_groove_radial.ball_loads.png"].axes[0].lines[:2]
+    psi_deg, q = model.get_xdata(), model.get_ydata()
+    z, fr = 7, 938.0
+    final = np.array([run.result[f"row.Q_i[{j}]"][-1] for j in range(z)])
+    assert np.sort(q) == pytest.approx(np.sort(final), rel=1e-12)
+    assert psi_deg[np.argmax(q)] == pytest.approx(0.0, abs=1e-9)
+    assert sorted(np.round(np.abs(psi_deg), 6)) == pytest.approx(
+        sorted(np.round(np.abs(np.angle(np.exp(2j * np.pi * np.arange(z) / z), deg=True)), 6)))
+    assert 4.37 < q.max() * z / fr < 6.0
+    assert max(stribeck.get_ydata()) == pytest.approx(4.37 * fr / z)
+    assert abs(run.result["row.alpha_i[0]"][-1]) < np.radians(1.0)
+    assert np.sum(q * np.cos(np.radians(psi_deg))) == pytest.approx(fr, rel=1e-3)
+
+
+def test_duplex_modes_are_plotted_by_name_and_match_the_study(df_pair):
+    """The DF pair scene's modes figure: one curve per mode name, each with its own marker and
+    line style, so the radial x and y modes, which coincide under the preload alone, are both
+    visible; before the load steps they are the study's modes at no load."""
+    from bearingsim.studies.duplex import MODE_NAMES
+
+    _, figures = _scene_figures("duplex_pair_axial", 0.0015)  # before the axial step
+    ax = figures["duplex_pair_axial.modes.png"].axes[0]
+    assert [line.get_label() for line in ax.lines] == list(MODE_NAMES)
+    assert len({(line.get_marker(), line.get_linestyle(), line.get_markersize())
+                for line in ax.lines}) == len(MODE_NAMES)
+    study = df_pair.modes(preload="light").by_name()
+    for line in ax.lines:
+        assert line.get_ydata() == pytest.approx(study[line.get_label()], rel=1e-6)
+    x, y = (ax.lines[MODE_NAMES.index(n)].get_ydata() for n in ("radial x", "radial y"))
+    assert x == pytest.approx(y, rel=1e-9)
+
+
+def test_forces_from_1_kn_plot_in_kn_and_torques_in_n_m():
+    """The plots' units match engineering(): kN from 1 kN (was N), "N m" (was "N.m")."""
+    from bearingsim.units import display_unit, engineering
+
+    assert display_unit("N", [200.0, 2500.0]) == (1e-3, "kN")
+    assert display_unit("N", [200.0, 900.0]) == (1.0, "N")
+    assert display_unit("N.m", [0.5, 5.0]) == (1.0, "N m")
+    assert engineering(2500.0, "N") == "2.5 kN" and engineering(5.0, "N.m") == "5 N m"
+
+
+def test_a_registered_assembly_declares_its_own_plots():
+    """AssemblySpec.plots: a registered assembly's figures are drawn beside the time traces;
+    the variables they read are kept by the pruning but stay out of the CSV series."""
+    import dataclasses
+
+    from bearingsim.assemblies.double_layer import SCENE_SPEC
+    from bearingsim.assemblies.spec import AssemblyPlot
+    from bearingsim.plotting import Curve, FigureSpec, Panel
+    from bearingsim.scenes import register, run_scene
+    from bearingsim.scenes.registry import unregister
+    from bearingsim.scenes.runner import scene_figures
+    from bearingsim.scenes.scene import parse_scene
+
+    def middle(prep, result, series):
+        return FigureSpec("middle", "middle ring", [Panel(
+            [Curve(result.t, series["w_middle"], "w_middle")], "time", "s", "speed",
+            "rad/s")])
+
+    spec = dataclasses.replace(SCENE_SPEC, name="my_double_layer", plots=lambda args, fid: [
+        AssemblyPlot("middle", ("w_middle",), middle)])
+    register(spec)
+    try:
+        scene = parse_scene('outputs = ["Rs"]\n[assembly]\nname = "my_double_layer"\n'
+                            'fidelity = "kinematic"\n[inputs]\nshaft_speed = 100.0\n'
+                            '[simulation]\nt_end = 0.1\nn_points = 5\n')
+        run = run_scene(scene, write=False)
+    finally:
+        unregister("my_double_layer")
+    assert run.prepared.plot_outputs == ["w_middle"] and list(run.series) == ["Rs"]
+    figures = dict(scene_figures(run.prepared, run.result, run.series, "x",
+                                 run.result.units))
+    assert set(figures) == {"x.middle.png", "x.png"}  # built-in plots go by the built-in name
+    ax = figures["x.middle.png"].axes[0]
+    assert ax.get_ylabel() == "speed [r/min]"
+    assert ax.lines[0].get_ydata()[-1] == pytest.approx(run.result.final("w_middle") * 30
+                                                         / np.pi)

@@ -253,6 +253,7 @@ def test_run_scene_writes_csv_summary_and_plots(tmp_path):
     run = run_scene(scene, out=tmp_path)
     names = sorted(p.name for p in tmp_path.iterdir())
     assert names == ["double_layer_bearing.csv", "double_layer_bearing.png",
+                     "double_layer_bearing.rs_speed.png",  # Rs against the ramped speed
                      "double_layer_bearing.summary.json"]
     rows = list(csv.reader((tmp_path / "double_layer_bearing.csv").open()))
     assert rows[0] == ["time [s]", "Rs [-]", "M_shaft [N.m]", "P_loss_total [W]",

@@ -11,6 +11,7 @@ import numpy as np
 from bearingsim.assembler.dae import Param
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
+from bearingsim.units import unit_label
 from bearingsim.validation import check_mapping, check_range
 
 __all__ = ["Signal", "System", "as_system"]
@@ -150,8 +151,11 @@ class System:
         return units
 
     def __repr__(self) -> str:
-        return (f"<System {self.name}: {self.n_states} states, {len(self.inputs)} inputs, "
-                f"{len(self.outputs)} outputs, {len(self.params)} parameters; "
+        shown = ", ".join(f"{sig.name} [{unit_label(sig.unit)}]" for sig in self.inputs[:4])
+        shown += ", ..." if len(self.inputs) > 4 else ""
+        return (f"<System {self.name}: {self.n_states} states, {len(self.inputs)} inputs"
+                + (f" ({shown})" if shown else "")
+                + f", {len(self.outputs)} outputs, {len(self.params)} parameters; "
                 f".describe() for the details>")
 
     def describe(self) -> str:

@@ -64,7 +64,9 @@ __all__ = [
     "double_layer_bearing",
     "double_layer_from_scene",
     "FIDELITIES",
+    "RS_REGULARIZATION",
     "SCENE_SPEC",
+    "speed_ratio",
 ]
 
 FIDELITIES = ("kinematic_approx", "kinematic", "torque", "quasi-static", "dynamic")
@@ -102,6 +104,22 @@ def layer_option_names(friction_model: str) -> tuple[str, ...]:
 
 
 _POSITIVE_OPTIONS = {"k": "N.s/m", "omega_reg": "rad/s"}
+
+RS_REGULARIZATION = 1e-6
+"""Shaft speed [rad/s] below which the speed ratio Rs is regularized (:func:`speed_ratio`)."""
+
+
+def speed_ratio(w_middle, w_shaft):
+    """Speed distribution ratio ``Rs = w_middle / w_shaft`` [1], defined at rest.
+
+    ``Rs = w_middle w_shaft / (w_shaft^2 + w_reg^2)`` with ``w_reg`` =
+    :data:`RS_REGULARIZATION`: exact to a relative 1e-4 from a shaft speed of
+    ``100 w_reg`` (1e-4 rad/s, 0.001 r/min) and 0 at rest. A middle ring at rest with the shaft
+    gives 0, the limit of a spin-up from rest (the middle ring lags the shaft); a middle ring
+    still turning when the shaft stops gives a large ratio there (``w_middle / w_shaft`` grows
+    without bound) that falls back to 0 at rest.
+    """
+    return w_middle * w_shaft / (w_shaft**2 + RS_REGULARIZATION**2)
 """Numeric layer options (> 0), checked here so that the message names them."""
 
 
@@ -269,7 +287,8 @@ class DoubleLayerBearing(Assembly):
 
     Variables
     ---------
-    w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft; M_shaft [N m] friction torque on
+    w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft (0 at rest, :func:`speed_ratio`);
+    M_shaft [N m] friction torque on
     the shaft; inputs Fr, Fa [N] (radial and axial load carried by both layers in series)
     """
 
@@ -336,7 +355,7 @@ class DoubleLayerBearing(Assembly):
         eqs = [
             self.w_shaft == der(self.shaft.phi),
             self.w_middle == self.middle.w,
-            self.Rs == self.w_middle * self.w_shaft / (self.w_shaft**2 + 1e-6),
+            self.Rs == speed_ratio(self.w_middle, self.w_shaft),
             self.M_shaft == self.inner_layer.M,
         ]
         if self._lubricated:
@@ -428,7 +447,8 @@ class DynamicDoubleLayerBearing(Assembly):
 
     Variables
     ---------
-    w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft; M_middle [N m] net torque on the
+    w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft (0 at rest, :func:`speed_ratio`);
+    M_middle [N m] net torque on the
     middle ring (its total polar inertia times its acceleration); the displacements
     ``inner_layer.ring.x, y, z`` (shaft) and ``middle_body.x, y, z`` (middle ring) [m]
     """
@@ -555,7 +575,7 @@ class DynamicDoubleLayerBearing(Assembly):
         eqs = [
             self.w_shaft == der(self.shaft.phi),
             self.w_middle == self.middle.w,
-            self.Rs == self.w_middle * self.w_shaft / (self.w_shaft**2 + 1e-6),
+            self.Rs == speed_ratio(self.w_middle, self.w_shaft),
             self.M_middle == self.middle.J * der(self.middle.sleeve.w),
         ]
         if hasattr(self, "shaft_speed"):

@@ -7,7 +7,9 @@ built from the module's own constants and the defaults of the factory's signatur
 the arguments a scene may give (with their allowed values), the fidelity levels from lowest to
 highest, a table *name pattern -> lowest fidelity that provides it* (used by
 ``fidelity = "auto"``), quantities computed after the integration (post-processing) and a
-symmetry hook.
+symmetry hook, and the plots that answer the assembly's question (:class:`AssemblyPlot`: ball
+load against azimuth, modes by name, speed ratio against shaft speed), drawn beside the time
+traces.
 
 The table is conservative: a name that no pattern matches needs the assembly's highest automatic
 fidelity.
@@ -31,6 +33,7 @@ from bearingsim.validation import check_choice
 __all__ = [
     "ARG_KINDS",
     "ArgSpec",
+    "AssemblyPlot",
     "AssemblySpec",
     "PostQuantity",
     "FIDELITY_ERRORS_FILE",
@@ -119,8 +122,29 @@ class PostQuantity:
     fidelity: str
 
 
+@dataclass(frozen=True)
+class AssemblyPlot:
+    """A figure an assembly draws for its scenes beside the time traces.
+
+    ``needs`` are model variables the figure reads (kept by the pruning, not written to the
+    CSV); ``make(prep, result, series)`` gets the prepared scene
+    (:class:`bearingsim.scenes.runner.Prepared`), the :class:`~bearingsim.simulation.Result`
+    and a dict name -> array of the requested outputs and ``needs``, and returns a
+    :class:`bearingsim.plotting.FigureSpec` (values in SI; the figure shows them in engineering
+    units) or None when the run does not allow it (e.g. no load).
+    """
+
+    name: str
+    needs: tuple[str, ...]
+    make: Callable[[Any, Any, dict[str, np.ndarray]], Any]
+
+
 def _no_post(args: dict[str, Any]) -> dict[str, PostQuantity]:
     return {}
+
+
+def _no_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
+    return []
 
 
 def _no_symmetry(args: dict[str, Any], inputs: dict[str, Any]) -> list[str]:
@@ -179,6 +203,9 @@ class AssemblySpec:
     """fnmatch patterns of the inputs a scene may leave out (they keep their start value, e.g.
     a load of 0); every other input of the assembled model must be given, so that a forgotten
     shaft speed is an error, not a run at 0."""
+    plots: Callable[[dict[str, Any], str], list[AssemblyPlot]] = _no_plots
+    """``plots(args, fidelity)`` -> the figures that answer the assembly's question at that
+    level (:class:`AssemblyPlot`; their ``needs`` must be variables of that level's model)."""
 
     def is_optional_input(self, name: str) -> bool:
         """Whether a scene may leave the input ``name`` out."""

@@ -19,11 +19,12 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assembler import System, assemble
-from bearingsim.assemblies.spec import AssemblySpec, PostQuantity
+from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.files import atomic_path, write_series_csv
-from bearingsim.plotting import set_value_scale
+from bearingsim.plotting import render, set_value_scale
 from bearingsim.scenes.expressions import compile_expression
+from bearingsim.scenes.plots import BUILTIN_PLOTS
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.simulation import Result, simulate
@@ -35,6 +36,7 @@ __all__ = [
     "choose_fidelity",
     "prepare",
     "run_scene",
+    "scene_figures",
     "simulate_inputs",
     "validate_scene",
 ]
@@ -59,6 +61,10 @@ class Prepared:
     fidelity_attempts: list[str] = field(default_factory=list)
     fidelity_rejected: list[str] = field(default_factory=list)
     """Lower levels ``auto`` rejected because their measured error exceeds the tolerance."""
+    plots: list[AssemblyPlot] = field(default_factory=list)
+    """The assembly's figures at the chosen level (when the scene writes plots)."""
+    plot_outputs: list[str] = field(default_factory=list)
+    """Variables kept by pruning only for those figures (not in the CSV)."""
 
     @property
     def outputs(self) -> list[str]:
@@ -163,8 +169,11 @@ def prepare(scene: Scene) -> Prepared:
         except ParameterError as exc:
             raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
                              path=scene.path) from None
+        plots = assembly_plots(spec, args, fidelity) if scene.output.plots else []
+        plot_outputs = list(dict.fromkeys(n for p in plots for n in p.needs
+                                          if n not in model_outputs))
         try:
-            system = assemble(component, outputs=model_outputs)
+            system = assemble(component, outputs=model_outputs + plot_outputs)
             break
         except ModelError as exc:
             if "unknown output variable" not in str(exc):
@@ -185,7 +194,16 @@ def prepare(scene: Scene) -> Prepared:
     _check_names(scene, system)
     symmetry = spec.symmetry(args, scene.inputs)
     return Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
-                    symmetry, assemble_s, attempts, rejected)
+                    symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
+
+
+def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
+                   ) -> list[AssemblyPlot]:
+    """The figures of an assembly at a level: those its spec declares
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) and, for a built-in assembly,
+    those of :data:`bearingsim.scenes.plots.BUILTIN_PLOTS`."""
+    builtin = BUILTIN_PLOTS.get(spec.name)
+    return spec.plots(args, fidelity) + (builtin(args, fidelity) if builtin else [])
 
 
 def _check_names(scene: Scene, system: System) -> None:
@@ -341,20 +359,19 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
     })
 
 
-def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.ndarray],
-                units: dict[str, str], groups: list[list[str]], title: str) -> list[Path]:
-    """PNG figures: one panel per group (default: per output), at most 6 panels a figure."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
+                 units: dict[str, str], groups: list[list[str]], title: str
+                 ) -> list[tuple[str, Any]]:
+    """(file name, :class:`matplotlib.figure.Figure`) of the time traces: one panel per group
+    (default: per output), at most 6 panels a figure (made without pyplot)."""
+    from matplotlib.figure import Figure
 
     groups = groups or [[n] for n in series]
-    files = []
+    figures = []
     for k in range(0, len(groups), 6):
         chunk = groups[k:k + 6]
-        fig, axes = plt.subplots(len(chunk), 1, sharex=True, figsize=(7, 1.9 * len(chunk) + 1))
-        axes = np.atleast_1d(axes)
+        fig = Figure(figsize=(7, 1.9 * len(chunk) + 1))
+        axes = np.atleast_1d(fig.subplots(len(chunk), 1, sharex=True, squeeze=False)[:, 0])
         for ax, group in zip(axes, chunk, strict=True):
             # engineering units for display (r/min, um, deg, N mm, -); SI in the CSV
             factor, unit = display_unit(units.get(group[0], ""),
@@ -371,10 +388,58 @@ def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.nda
         axes[-1].set_xlabel("time [s]")
         fig.suptitle(title, fontsize=10)
         fig.tight_layout()
-        path = folder / (f"{stem}.png" if k == 0 else f"{stem}_{k // 6 + 1}.png")
+        figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // 6 + 1}.png", fig))
+    return figures
+
+
+def assembly_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray],
+                     stem: str) -> list[tuple[str, Any]]:
+    """(file name ``<stem>.<plot>.png``, Figure) of the assembly's own plots
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) for this run."""
+    data = {**{n: np.asarray(result[n]) for n in prep.model_outputs + prep.plot_outputs},
+            **series}
+    figures = []
+    for plot in prep.plots:
+        spec = plot.make(prep, result, data)
+        if spec is not None:
+            figures.append((f"{stem}.{plot.name}.png", render(spec, f"{prep.scene.title}\n"
+                                                                    f"{spec.title}")))
+    return figures
+
+
+def scene_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray], stem: str,
+                  units: dict[str, str]) -> list[tuple[str, Any]]:
+    """Every figure of a run: the assembly's plots first, then the time traces.
+
+    Raises
+    ------
+    SceneError
+        When ``output.plot_groups`` names a series that is not an output.
+    """
+    groups = [g for g in prep.scene.output.plot_groups]
+    missing = sorted({n for g in groups for n in g} - set(series))
+    if missing:
+        raise SceneError(f"plot group names {', '.join(missing)}, which are not "
+                         "outputs", "output.plot_groups",
+                         line_of(prep.scene.text, "output.plot_groups"),
+                         ", ".join(series), prep.scene.path)
+    return (assembly_figures(prep, result, series, stem)
+            + time_figures(stem, result.t, series, units, groups, prep.scene.title))
+
+
+def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.ndarray],
+                units: dict[str, str], groups: list[list[str]], title: str) -> list[Path]:
+    """PNG figures of the time traces (:func:`time_figures`)."""
+    return save_figures(folder, time_figures(stem, t, series, units, groups, title))
+
+
+def save_figures(folder: Path, figures: list[tuple[str, Any]]) -> list[Path]:
+    """Write (file name, Figure) pairs as PNG files into ``folder`` (atomically)."""
+    files = []
+    for name, fig in figures:
+        path = folder / name
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=110)
-        plt.close(fig)
         files.append(path)
     return files
 
@@ -413,7 +478,9 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     if write and not overwrite and folder.is_dir():
         earlier = sorted(p.name for p in folder.glob(f"{glob.escape(stem)}*")
                          if p.name in (f"{stem}.csv", f"{stem}.summary.json")
-                         or re.fullmatch(re.escape(stem) + r"(_\d+)?\.png", p.name))
+                         # time traces stem(_k).png, assembly plots stem.<plot>.png
+                         or re.fullmatch(re.escape(stem) + r"(_\d+|\.(?!sweep\.)\w+)?\.png",
+                                         p.name))
         if earlier:
             raise SceneError(f"{folder} holds the files of an earlier run ({', '.join(earlier)}); "
                              f"give --overwrite (run_scene(..., overwrite=True)) to replace "
@@ -432,15 +499,7 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
         if prep.scene.output.csv:
             files.append(write_series_csv(folder / f"{stem}.csv", result.t, series, units))
         if prep.scene.output.plots:
-            groups = [g for g in prep.scene.output.plot_groups]
-            missing = sorted({n for g in groups for n in g} - set(series))
-            if missing:
-                raise SceneError(f"plot group names {', '.join(missing)}, which are not "
-                                 "outputs", "output.plot_groups",
-                                 line_of(prep.scene.text, "output.plot_groups"),
-                                 ", ".join(series), prep.scene.path)
-            files += write_plots(folder, stem, result.t, series, units, groups,
-                                 prep.scene.title)
+            files += save_figures(folder, scene_figures(prep, result, series, stem, units))
         summary_path = folder / f"{stem}.summary.json"
         files.append(summary_path)
         data = summary(prep, result, series, files)

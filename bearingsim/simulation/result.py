@@ -11,7 +11,7 @@ import numpy as np
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path, column_name, write_series_csv
 from bearingsim.plotting import set_value_scale
-from bearingsim.units import unit_label
+from bearingsim.units import engineering, unit_label
 
 __all__ = ["Result"]
 
@@ -161,17 +161,20 @@ class Result:
                                                                   {"units": "s"})})
 
     def _repr_html_(self) -> str:
-        """A short table for notebooks: the run and the final value of the first variables."""
-        rows = "".join(f"<tr><td>{n}</td><td>{self[n][-1]:.6g}</td>"
-                       f"<td>{unit_label(self.units.get(n, ''))}</td>"
-                       f"</tr>" for n in self.names[:12])
+        """A short table for notebooks: the run and the final value of the first variables,
+        in engineering units (:func:`bearingsim.units.engineering`: r/min, um, deg, kN, N m)."""
+        rows = "".join(f"<tr><td>{html.escape(n)}</td>"
+                       f"<td>{html.escape(engineering(float(self[n][-1]), self.units.get(n, '')))}"
+                       f"</td><td>{html.escape(unit_label(self.units.get(n, '')))}</td></tr>"
+                       for n in self.names[:12])
         more = (f"<tr><td colspan=3>... {len(self.names) - 12} more</td></tr>"
                 if len(self.names) > 12 else "")
         return (f"<p>{html.escape(repr(self))}</p><table><tr><th>variable</th>"
-                f"<th>final</th><th>unit</th></tr>{rows}{more}</table>")
+                f"<th>final</th><th>unit (SI)</th></tr>{rows}{more}</table>")
 
     def __repr__(self) -> str:
-        shown = ", ".join(self.names[:4]) + (", ..." if len(self.names) > 4 else "")
+        shown = ", ".join(f"{n} [{unit_label(self.units.get(n, ''))}]" for n in self.names[:4])
+        shown += ", ..." if len(self.names) > 4 else ""
         span = f"{self.t[0]:g} .. {self.t[-1]:g} s" if self.t.size else "no points"
         method = self.stats.get("method", "")
         return (f"<Result {span}, {self.t.size} points, {len(self.names)} variables ({shown})"

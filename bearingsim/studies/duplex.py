@@ -42,7 +42,7 @@ from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
-from bearingsim.units import to_deg
+from bearingsim.units import engineering, to_deg
 from bearingsim.validation import check_mapping
 
 __all__ = [
@@ -123,6 +123,14 @@ class Equilibrium:
         """Axial load carried by each row, ``sum_j Q_ij sin(alpha_ij)`` [N]."""
         return np.sum(self.Q_i * np.sin(self.alpha_i), axis=1)
 
+    def __repr__(self) -> str:
+        shaft = ", ".join(f"{d} {engineering(float(v), 'rad' if d.startswith('t') else 'm')}"
+                          for d, v in zip(DOFS, self.displacement, strict=True))
+        rows = ", ".join(engineering(float(f), "N") for f in self.row_axial_loads)
+        return (f"<Equilibrium: shaft {shaft}; row axial loads {rows}; largest ball load "
+                f"{engineering(float(np.max(self.Q_i)), 'N')}; spacer force "
+                f"{engineering(float(self.spacer_force), 'N')}>")
+
 
 @dataclass
 class Modes:
@@ -161,6 +169,14 @@ class Modes:
     def by_name(self) -> dict[str, float]:
         """Frequencies [Hz] keyed by mode name, in :data:`MODE_NAMES` order."""
         return {n: self.frequency(n) for n in MODE_NAMES}
+
+    def __repr__(self) -> str:
+        modes = ", ".join(f"{n} {f:.5g} Hz" for n, f in zip(self.names, self.frequencies,
+                                                            strict=True))
+        zeta = np.unique(np.round(self.damping_ratios, 12))
+        damping = (f"{zeta[0]:.3g} [-]" if zeta.size == 1
+                   else ", ".join(f"{z:.3g}" for z in self.damping_ratios) + " [-]")
+        return f"<Modes: {modes}; damping ratio {damping}>"
 
     def damping_matrix(self) -> np.ndarray:
         """Viscous damping matrix of the modal damping ratios, ``M Phi diag(2 zeta w) Phi^T M``."""

@@ -10,9 +10,12 @@ __all__ = ["FOLDER", "DEMO_SCENES", "builtin_scenes", "builtin_scene_path"]
 FOLDER = Path(__file__).resolve().parent
 """Folder of the built-in scene files."""
 
-DEMO_SCENES = ("motor_drive_spinup", "double_layer_friction")
+DEMO_SCENES = ("motor_drive_spinup", "double_layer_friction", "deep_groove_radial",
+               "duplex_pair_axial")
 """The scenes ``bearingsim demo`` (and ``make demo``) runs: a PMSM spin-up of a double-layer
-bearing and the steady speed ratio of a double-layer bearing against its friction torque."""
+bearing and the steady speed ratio of a double-layer bearing against its friction torque (each
+with Rs against shaft speed), the load distribution of a deep-groove ball bearing (ball load
+against azimuth) and a duplex pair under load steps (its modes by name)."""
 
 
 def builtin_scenes() -> list[str]:
