@@ -18,6 +18,7 @@ from bench import (
     assembly_work_precision,
     backends,
     ball_level_assembly,
+    cosim,
     dgbb,
     dgbb_long,
     double_layer_steady,
@@ -109,6 +110,7 @@ def main(argv: list[str] | None = None) -> int:
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
+        ("co-simulation masters", lambda: cosim.section(args.quick)),
     ]
     for k, (label, bench_fn) in enumerate(steps, start=1):
         print(f"{k}/{len(steps)} {label}", flush=True)

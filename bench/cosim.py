@@ -1,0 +1,273 @@
+"""Benchmark: motor + bearing co-simulation in multiples of real time, three masters.
+
+The motor FMU (DC motor on its shaft, speed reference 0 -> 100 rad/s in 0.1 s built in) and the
+61905/61907 double-layer bearing FMU at the torque level (imposed shaft speed, 500 N radial),
+coupled speed -> bearing and friction torque -> motor (:mod:`bearingsim.fmu.cosim_models`),
+one SSP file, fixed communication step, Jacobi coupling (both FMUs step on the values exchanged
+at the start of the step), run by:
+
+* **C host**: a small C master generated here and compiled with gcc; it ``dlopen``s both FMU
+  binaries and calls ``fmi2DoStep`` directly: the cost of the FMUs themselves, the limit any
+  master can reach on this machine;
+* **libcosim** (``libcosimpy``, the Open Simulation Platform's compiled master):
+  ``simulate_until`` on the SSP file, no Python per step;
+* **fmpy** (``fmpy.simulate_ssp``): Python drives every step through ctypes.
+
+Reported: wall time, real-time factor (simulated / wall seconds), the share of each FMU's
+``doStep`` in the C host, and the final motor speed and bearing torque of each master (they
+must agree: same coupling, same steps).
+
+``python -m bench.cosim`` prints the section (``--quick``: 0.3 s simulated).
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import casadi as ca
+
+from bench.common import Section, fmt, markdown_table
+
+__all__ = ["run", "section"]
+
+T_END = 2.0
+STEP = 1e-3
+FR = 500.0
+
+
+def _ramp(t):
+    return 100.0 * ca.fmin(t / 0.1, 1.0)
+
+
+_HOST = r"""
+#include <dlfcn.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include "fmi2Functions.h"
+
+typedef struct {
+    fmi2InstantiateTYPE *instantiate;
+    fmi2SetupExperimentTYPE *setup;
+    fmi2EnterInitializationModeTYPE *enter;
+    fmi2ExitInitializationModeTYPE *exit_init;
+    fmi2SetRealTYPE *set_real;
+    fmi2GetRealTYPE *get_real;
+    fmi2DoStepTYPE *do_step;
+    fmi2TerminateTYPE *terminate;
+    fmi2FreeInstanceTYPE *free_instance;
+    fmi2Component c;
+    double step_s;
+} Fmu;
+
+static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                   fmi2String category, fmi2String message, ...) {
+    (void)env; (void)category;
+    if (status > fmi2Warning) fprintf(stderr, "%s: %s\n", name, message);
+}
+
+static const fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
+
+static void *sym(void *lib, const char *name) {
+    void *f = dlsym(lib, name);
+    if (!f) { fprintf(stderr, "missing %s\n", name); exit(2); }
+    return f;
+}
+
+static void load(Fmu *f, const char *so, const char *name, const char *guid, const char *res) {
+    void *lib = dlopen(so, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) { fprintf(stderr, "%s\n", dlerror()); exit(2); }
+    f->instantiate = (fmi2InstantiateTYPE *)sym(lib, "fmi2Instantiate");
+    f->setup = (fmi2SetupExperimentTYPE *)sym(lib, "fmi2SetupExperiment");
+    f->enter = (fmi2EnterInitializationModeTYPE *)sym(lib, "fmi2EnterInitializationMode");
+    f->exit_init = (fmi2ExitInitializationModeTYPE *)sym(lib, "fmi2ExitInitializationMode");
+    f->set_real = (fmi2SetRealTYPE *)sym(lib, "fmi2SetReal");
+    f->get_real = (fmi2GetRealTYPE *)sym(lib, "fmi2GetReal");
+    f->do_step = (fmi2DoStepTYPE *)sym(lib, "fmi2DoStep");
+    f->terminate = (fmi2TerminateTYPE *)sym(lib, "fmi2Terminate");
+    f->free_instance = (fmi2FreeInstanceTYPE *)sym(lib, "fmi2FreeInstance");
+    f->c = f->instantiate(name, fmi2CoSimulation, guid, res, &callbacks, fmi2False, fmi2False);
+    if (!f->c) { fprintf(stderr, "cannot instantiate %s\n", name); exit(2); }
+    f->step_s = 0.0;
+}
+
+static double now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void step(Fmu *f, double t, double h) {
+    double t0 = now();
+    if (f->do_step(f->c, t, h, fmi2True) > fmi2Warning) { fprintf(stderr, "doStep\n"); exit(3); }
+    f->step_s += now() - t0;
+}
+
+int main(int argc, char **argv) {
+    Fmu motor, bearing;
+    const fmi2ValueReference w_shaft = W_SHAFT, m_bearing = M_BEARING;
+    const fmi2ValueReference shaft_speed = SHAFT_SPEED, m_shaft = M_SHAFT;
+    double t = 0.0, h = STEP_S, w, m, t0, wall;
+    long k, n = (long)(T_END_S / STEP_S + 0.5);
+    (void)argc; (void)argv;
+    load(&motor, MOTOR_SO, "motor", MOTOR_GUID, MOTOR_RES);
+    load(&bearing, BEARING_SO, "bearing", BEARING_GUID, BEARING_RES);
+    t0 = now();
+    motor.setup(motor.c, fmi2False, 0.0, 0.0, fmi2True, T_END_S);
+    bearing.setup(bearing.c, fmi2False, 0.0, 0.0, fmi2True, T_END_S);
+    motor.enter(motor.c); bearing.enter(bearing.c);
+    motor.exit_init(motor.c); bearing.exit_init(bearing.c);
+    for (k = 0; k < n; ++k) {
+        motor.get_real(motor.c, &w_shaft, 1, &w);
+        bearing.get_real(bearing.c, &m_shaft, 1, &m);
+        bearing.set_real(bearing.c, &shaft_speed, 1, &w);
+        motor.set_real(motor.c, &m_bearing, 1, &m);
+        step(&motor, t, h);
+        step(&bearing, t, h);
+        t = (k + 1) * h;
+    }
+    wall = now() - t0;
+    motor.get_real(motor.c, &w_shaft, 1, &w);
+    bearing.get_real(bearing.c, &m_shaft, 1, &m);
+    printf("%.9g %.9g %.9g %.17g %.17g\n", wall, motor.step_s, bearing.step_s, w, m);
+    motor.terminate(motor.c); bearing.terminate(bearing.c);
+    motor.free_instance(motor.c); bearing.free_instance(bearing.c);
+    return 0;
+}
+"""
+
+
+def _unpacked(fmu: Path, into: Path) -> dict[str, str]:
+    """Unzip ``fmu``; its binary, GUID, resources URI and value references by name."""
+    from fmpy import extract, platform, read_model_description, sharedLibraryExtension
+
+    md = read_model_description(str(fmu))
+    where = Path(extract(str(fmu), unzipdir=str(into / fmu.stem)))
+    so = where / "binaries" / platform / (md.coSimulation.modelIdentifier
+                                          + sharedLibraryExtension)
+    refs = {v.name: v.valueReference for v in md.modelVariables}
+    return {"so": str(so), "guid": md.guid, "res": (where / "resources").as_uri(), "refs": refs}
+
+
+def _c_host(paths: dict[str, Path], work: Path, t_end: float) -> dict[str, float]:
+    import fmpy
+
+    motor, bearing = _unpacked(paths["motor"], work), _unpacked(paths["bearing"], work)
+    defines = {
+        "W_SHAFT": motor["refs"]["w_shaft"], "M_BEARING": motor["refs"]["M_bearing"],
+        "SHAFT_SPEED": bearing["refs"]["shaft_speed"], "M_SHAFT": bearing["refs"]["M_shaft"],
+        "STEP_S": repr(STEP), "T_END_S": repr(t_end),
+        "MOTOR_SO": f'"{motor["so"]}"', "MOTOR_GUID": f'"{motor["guid"]}"',
+        "MOTOR_RES": f'"{motor["res"]}"', "BEARING_SO": f'"{bearing["so"]}"',
+        "BEARING_GUID": f'"{bearing["guid"]}"', "BEARING_RES": f'"{bearing["res"]}"',
+    }
+    source = work / "host.c"
+    source.write_text(_HOST, encoding="utf-8")
+    exe = work / "host"
+    headers = Path(fmpy.__file__).parent / "c-code"
+    subprocess.run(["gcc", "-O2", "-I", str(headers), *(f"-D{k}={v}" for k, v in defines.items()),
+                    str(source), "-o", str(exe), "-ldl"], check=True)
+    best = None
+    for _ in range(3):
+        out = subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout
+        wall, motor_s, bearing_s, w, m = (float(v) for v in out.split())
+        if best is None or wall < best["wall"]:
+            best = {"wall": wall, "motor": motor_s, "bearing": bearing_s, "w": w, "M": m}
+    return best
+
+
+def _libcosim(ssp: Path, t_end: float) -> dict[str, float]:
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+    best = None
+    for _ in range(3):
+        execution = CosimExecution.from_ssp_file(str(ssp), step_size=int(round(STEP * 1e9)))
+        observer = CosimObserver.create_last_value()
+        execution.add_observer(observer)
+        ref = {}
+        for element, var in (("motor", "w_shaft"), ("bearing", "M_shaft")):
+            index = execution.slave_index_from_instance_name(element)
+            vrs = {v.name.decode(): v.reference for v in execution.slave_variables(index)}
+            ref[var] = (index, vrs[var])
+        t0 = time.perf_counter()
+        execution.simulate_until(int(round(t_end * 1e9)))
+        wall = time.perf_counter() - t0
+        values = {k: observer.last_real_values(i, [vr])[0] for k, (i, vr) in ref.items()}
+        if best is None or wall < best["wall"]:
+            best = {"wall": wall, "w": values["w_shaft"], "M": values["M_shaft"]}
+    return best
+
+
+def _fmpy(ssp: Path, t_end: float) -> dict[str, float]:
+    from fmpy.ssp.simulation import simulate_ssp
+
+    t0 = time.perf_counter()
+    res = simulate_ssp(str(ssp), stop_time=t_end, step_size=STEP)
+    wall = time.perf_counter() - t0
+    return {"wall": wall, "w": float(res["motor.w_shaft"][-1]),
+            "M": float(res["bearing.M_shaft"][-1])}
+
+
+def run(quick: bool = False) -> tuple[str, dict]:
+    """Export the pair, run the three masters; return the Markdown body and the numbers."""
+    from bearingsim.fmu.cosim_models import export_motor_bearing
+
+    t_end = 0.3 if quick else T_END
+    with tempfile.TemporaryDirectory() as tmp:
+        work = Path(tmp)
+        t0 = time.perf_counter()
+        paths = export_motor_bearing(work, motor="dc", speed_ref=_ramp, Fr=FR)
+        export_s = time.perf_counter() - t0
+        results = {"C host": _c_host(paths, work, t_end)}
+        try:
+            results["libcosim"] = _libcosim(paths["ssp"], t_end)
+        except OSError as exc:  # libcosimc.so cannot be loaded on this machine
+            results["libcosim"] = {"note": str(exc)}
+        results["fmpy"] = _fmpy(paths["ssp"], t_end)
+    host = results["C host"]
+    rows = []
+    for name, r in results.items():
+        if "wall" not in r:
+            rows.append([name, "", "", "", "", r["note"]])
+            continue
+        rows.append([name, fmt(r["wall"]), fmt(t_end / r["wall"]), fmt(r["wall"] / host["wall"]),
+                     f"{r['w']:.9g}", f"{r['M']:.9g}"])
+    n = round(t_end / STEP)
+    body = "\n".join([
+        f"DC motor + 61905/61907 torque-level bearing (500 N radial), FMI 2.0 co-simulation, "
+        f"{t_end:g} s at a {STEP * 1e3:g} ms communication step ({n} steps), Jacobi coupling. "
+        f"Both FMUs exported in {export_s:.1f} s. *RTF*: simulated seconds per wall second "
+        "(goal >= 100 at the torque level); *x C host*: wall time over the C host's, whose "
+        "doStep calls are the limit of any master here: motor "
+        f"{host['motor'] / n * 1e6:.3g} us and bearing {host['bearing'] / n * 1e6:.3g} us per "
+        f"doStep ({(host['motor'] + host['bearing']) / host['wall'] * 100:.0f} % of its wall "
+        "time).", "",
+        "Command: `python -m bench.cosim`", "",
+        markdown_table(["master", "wall [s]", "RTF", "x C host", "final w_shaft [rad/s]",
+                        "final M_shaft [N m]"], rows), ""])
+    return body, results
+
+
+def section(quick: bool = False) -> Section:
+    """The run_all section."""
+    body, results = run(quick)
+    return Section("Motor + bearing co-simulation: real-time factors of three masters", body,
+                   results)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    print(run(parser.parse_args().quick)[0])
+
+
+if __name__ == "__main__":
+    main()
