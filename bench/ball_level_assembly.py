@@ -5,13 +5,18 @@ pocket has its own equations. Each model is built once and assembled once; the t
 wall time of building the component tree, of the whole assembly and of its three most
 expensive passes (``system.timings``), the number of states and the size of the right-hand side
 and its Jacobian (CasADi instructions of the SX functions; MX functions with Newton blocks are
-given as "MX").
+given as "MX"), and the time to generate and compile the kernel the SUNDIALS integrators run
+(right-hand side and exact Jacobian; the quasi-static level's semi-explicit DAE residual for
+IDAS: its ``newton`` blocks have no C) with an empty library cache at the default flags, beside
+the targets for assembly plus compilation (6304 massive balls 5 s, quasi-static balls 15 s, the
+nested bearing 20 s).
 
 Registered in ``bench/run_all.py``; ``python -m bench.ball_level_assembly`` prints the section.
 """
 
 from __future__ import annotations
 
+import tempfile
 import time
 from collections.abc import Callable
 
@@ -19,6 +24,8 @@ from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.physics.lubricant import Oil
+from bearingsim.simulation.compile import DEFAULT_FLAGS
+from bearingsim.simulation.kernels import kernel
 from bench.common import Section, fmt, markdown_table
 
 __all__ = ["run", "section"]
@@ -26,18 +33,20 @@ __all__ = ["run", "section"]
 PASS_COLUMNS = ("flatten", "tearing and block solving", "code generation")
 
 
-def _models() -> list[tuple[str, Callable[[], object]]]:
+def _models() -> list[tuple[str, Callable[[], object], str, float]]:
+    """(label, build, kernel form, target for assembly + compilation [s])."""
     oil = Oil.from_iso_vg(32, method="oil_mist")
     axial = {"Fx": 0.0, "Fy": 0.0, "Fz": 100.0, "Mx": 0.0, "My": 0.0}
     return [
         ("6304, massive balls (`dynamic_massive_balls`)",
          lambda: deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0,
-                                          loads={"Fx": 500.0})),
+                                          loads={"Fx": 500.0}), "ode", 5.0),
         ("6304, quasi-static balls (`dynamic`)",
-         lambda: deep_groove_ball_bearing("6304", "dynamic", speed=100.0, loads={"Fx": 500.0})),
+         lambda: deep_groove_ball_bearing("6304", "dynamic", speed=100.0, loads={"Fx": 500.0}),
+         "dae", 15.0),
         ("61905/61907 double layer, `dynamic`",
          lambda: double_layer_bearing("61905", "61907", fidelity="dynamic", lubrication=oil,
-                                      loads=axial)),
+                                      loads=axial), "ode", 20.0),
     ]
 
 
@@ -56,12 +65,16 @@ def run() -> dict:
         instruction counts of ``ode`` and ``jac_x``.
     """
     results = {}
-    for label, build in _models():
+    for label, build, form, target in _models():
         t0 = time.perf_counter()
         model = build()
         t1 = time.perf_counter()
         system = assemble(model)
         t2 = time.perf_counter()
+        with tempfile.TemporaryDirectory() as empty_cache:
+            kern = kernel(system, form, True, cache_dir=empty_cache)
+            compile_s = time.perf_counter() - t2
+            library_mb = kern.library.stat().st_size / 1e6
         passes = dict(system.timings)
         results[label] = {
             "states": system.n_states,
@@ -70,6 +83,10 @@ def run() -> dict:
             "passes": {name: passes.get(name, 0.0) for name in PASS_COLUMNS},
             "ode_size": _size(system, "ode"),
             "jac_size": _size(system, "jac_x"),
+            "form": form,
+            "compile_s": compile_s,
+            "library_mb": library_mb,
+            "target_s": target,
         }
     return results
 
@@ -79,14 +96,18 @@ def section() -> Section:
     data = run()
     rows = [
         [label, r["states"], fmt(r["build_s"]), fmt(r["assemble_s"]),
-         *[fmt(r["passes"][name]) for name in PASS_COLUMNS], r["ode_size"], r["jac_size"]]
+         *[fmt(r["passes"][name]) for name in PASS_COLUMNS], r["ode_size"], r["jac_size"],
+         f"{r['form']}: {fmt(r['compile_s'])}", fmt(r["library_mb"]),
+         fmt(r["build_s"] + r["assemble_s"] + r["compile_s"]), fmt(r["target_s"])]
         for label, r in data.items()
     ]
     headers = ["model", "states", "build [s]", "assemble [s]",
-               *[f"{name} [s]" for name in PASS_COLUMNS], "ode instr.", "jac_x instr."]
+               *[f"{name} [s]" for name in PASS_COLUMNS], "ode instr.", "jac_x instr.",
+               "kernel compile [s]", "library [MB]", "total [s]", "target [s]"]
     body = "\n".join([
         "Each model is built and assembled once (wall time, `time.perf_counter`); the pass times "
-        "are `system.timings`. Code generation differentiates the common-subexpression-"
+        f"are `system.timings`; kernels compiled with `{' '.join(DEFAULT_FLAGS)}` into an "
+        "empty cache. Code generation differentiates the common-subexpression-"
         "eliminated right-hand side and outputs, so the Jacobians share their subexpressions "
         "from the start (before that change the 6304 massive-ball model took 45 s to assemble, "
         "most of it eliminating common subexpressions of its Jacobians).",
