@@ -104,7 +104,7 @@ def _demo(args: argparse.Namespace) -> int:
 
     for name in DEMO_SCENES:
         _run(argparse.Namespace(scene=builtin_scene_path(name), out=args.out,
-                                overwrite=args.overwrite))
+                                overwrite=args.overwrite, no_progress=args.no_progress))
     return 0
 
 
@@ -112,7 +112,8 @@ def _run(args: argparse.Namespace) -> int:
     from bearingsim.scenes import run_scene
     from bearingsim.units import engineering
 
-    run = run_scene(args.scene, out=args.out, overwrite=args.overwrite)
+    run = run_scene(args.scene, out=args.out, overwrite=args.overwrite,
+                    progress=False if args.no_progress else None)
     s = run.summary
     print(f"{s['title']}: {s['assembly']} at fidelity {s['fidelity']['chosen']} "
           f"({s['fidelity']['reason']})")
@@ -193,6 +194,8 @@ def _parser() -> argparse.ArgumentParser:
     p_run.add_argument("--out", help="output folder (default: the scene's output.folder)")
     p_run.add_argument("--overwrite", action="store_true",
                        help="replace the files of an earlier run of this scene in the folder")
+    p_run.add_argument("--no-progress", action="store_true",
+                       help="no progress bar (shown on a terminal for runs longer than 2 s)")
     p_val = sub.add_parser("validate", help="check a scene file without running it")
     p_val.add_argument("scene", help="scene TOML file")
     p_val.add_argument("--no-assemble", action="store_true",
@@ -222,6 +225,7 @@ def _parser() -> argparse.ArgumentParser:
     p_demo.add_argument("--out", default="demo_output")
     p_demo.add_argument("--overwrite", action="store_true",
                         help="replace the files of an earlier demo run in the folder")
+    p_demo.add_argument("--no-progress", action="store_true", help="no progress bar")
     p_exp = sub.add_parser("export-fmu", help="export an assembly as an FMU", add_help=False)
     p_exp.add_argument("rest", nargs=argparse.REMAINDER)
     return parser

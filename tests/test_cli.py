@@ -84,6 +84,25 @@ def test_run_writes_files_into_the_scene_folder(scene_file, tmp_path, monkeypatc
     assert summary["fidelity"]["chosen"] == "torque"  # kinematic Rs: outside 5 %
 
 
+def test_run_passes_the_progress_choice_to_the_solver(scene_file, tmp_path, monkeypatch,
+                                                      capsys):
+    """Issue 16: ``run`` showed nothing for long runs; now the solver's bar on a terminal,
+    none with --no-progress or when standard error is not a terminal."""
+    import bearingsim.scenes as scenes
+
+    seen, real = [], scenes.run_scene
+
+    def spy(*args, **kwargs):
+        seen.append(kwargs["progress"])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(scenes, "run_scene", spy)
+    assert main(["run", str(scene_file), "--out", str(tmp_path / "a"), "--no-progress"]) == 0
+    assert main(["run", str(scene_file), "--out", str(tmp_path / "b")]) == 0
+    assert seen == [False, None]
+    assert capsys.readouterr().err == ""  # not a terminal: no bar
+
+
 def test_run_reports_a_failed_simulation_with_exit_1(tmp_path, capsys):
     path = tmp_path / "diverge.toml"
     path.write_text(FAST + '[initial]\n"middle.sleeve.w" = 1e308\n')

@@ -21,15 +21,16 @@ from bearingsim.simulation import simulate
 system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", n_slices=0))
 print("running", flush=True)
 res = simulate(system, 200.0, inputs={"shaft_speed": 1500.0, "load.Fx": 2000.0},
-               method="cvodes", compiled=False, n_points=2001)
+               method="cvodes", compiled=False, n_points=2001, progress=sys.argv[2] == "bar")
 res.to_csv(sys.argv[1] + "/result.csv")
 print("finished", flush=True)
 """
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="SIGINT to a child process")
-def test_ctrl_c_stops_a_cvodes_run_and_writes_nothing(tmp_path):
-    proc = subprocess.Popen([sys.executable, "-c", SCRIPT, str(tmp_path)],
+@pytest.mark.parametrize("bar", ["bar", "no bar"])  # with a bar: in one of the chunks
+def test_ctrl_c_stops_a_cvodes_run_and_writes_nothing(tmp_path, bar):
+    proc = subprocess.Popen([sys.executable, "-c", SCRIPT, str(tmp_path), bar],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     assert proc.stdout.readline().strip() == "running"
     time.sleep(1.5)  # inside the integration (the whole run takes minutes)

@@ -284,8 +284,10 @@ def _json_safe(v: Any) -> Any:
 
 
 def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
-                   inputs: dict[str, Any] | None = None, **overrides) -> Result:
-    """Simulate a prepared scene (optionally with other parameters, inputs or settings)."""
+                   inputs: dict[str, Any] | None = None, progress: bool | None = False,
+                   **overrides) -> Result:
+    """Simulate a prepared scene (optionally with other parameters, inputs or settings;
+    ``progress`` as :func:`~bearingsim.simulation.simulate` takes it)."""
     s = prep.scene.simulation
     opts = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
             "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial}
@@ -294,7 +296,7 @@ def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
     params = {**prep.scene.parameters, **(parameters or {})}
     ins = simulate_inputs({**prep.scene.inputs, **(inputs or {})})
     return simulate(prep.system, t_end, inputs=ins, parameters=params,
-                    x0=prep.scene.initial or None, progress=False, **opts)
+                    x0=prep.scene.initial or None, progress=progress, **opts)
 
 
 def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
@@ -445,7 +447,7 @@ def save_figures(folder: Path, figures: list[tuple[str, Any]]) -> list[Path]:
 
 
 def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
-              overwrite: bool = False) -> SceneRun:
+              overwrite: bool = False, progress: bool | None = None) -> SceneRun:
     """Run a scene and (by default) write CSV, JSON summary and plots to its output folder.
 
     Parameters
@@ -459,6 +461,9 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     overwrite : bool
         Replace the files of an earlier run of the same scene in the folder; without it they
         are an error (checked before the run).
+    progress : bool or None
+        The solver's progress bar on standard error: always, never, or (None) when standard
+        error is a terminal and the run takes longer than about 2 s.
 
     Returns
     -------
@@ -487,7 +492,7 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
                              f"them, or another output folder", "output.folder",
                              line_of(scene.text, "output.folder"), path=scene.path)
     prep = prepare(scene)
-    result = run_simulation(prep)
+    result = run_simulation(prep, progress=progress)
     series = output_series(prep, result)
     for n, y in series.items():
         if np.any(np.isnan(y)):

@@ -33,6 +33,7 @@ from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.fastcall import BufferedFunction
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
+from bearingsim.simulation.progress import progress_bar
 from bearingsim.simulation.sundials import sundials_run
 
 __all__ = [
@@ -73,7 +74,8 @@ class IntegrationProblem:
     max_step: float
     """Largest step [s] (``inf``: no limit)."""
     progress: bool | None
-    """Progress bar: on, off, or only for runs longer than about 2 s (None)."""
+    """Progress bar: on, off, or (None) on a terminal for runs longer than about 2 s
+    (:mod:`~bearingsim.simulation.progress`)."""
     signal: InputSignal
     """The inputs as ``u(t, q)`` with the run's numbers lifted out (SUNDIALS builds on it)."""
     compiled: bool | str = "auto"
@@ -107,15 +109,6 @@ class Integrator(ABC):
         """Integrate ``problem`` and return the trajectory at its output times."""
 
 
-def _progress_bar(t0: float, t1: float, progress: bool | None):
-    if progress is False:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=t1 - t0, unit="s(sim)", delay=0 if progress else 2.0, leave=False,
-                bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s [{elapsed}<{remaining}]")
-
-
 class ScipyIntegrator(Integrator):
     """scipy's ``solve_ivp``; the implicit methods get the exact sparse Jacobian.
 
@@ -138,7 +131,7 @@ class ScipyIntegrator(Integrator):
         pb, system = problem, problem.system
         f, jac = BufferedFunction(pb.closed.f), BufferedFunction(pb.closed.jac)
         n_f = [0]
-        bar = _progress_bar(pb.t0, pb.t1, pb.progress)
+        bar = progress_bar(pb.t0, pb.t1, pb.progress)
         last = [pb.t0, pb.x0]
 
         def fun(t, x):
@@ -223,7 +216,8 @@ class SundialsIntegrator(Integrator):
             u0 = np.asarray(pb.signal.u(pb.t0, pb.signal.q), dtype=float).ravel()
             z0 = np.asarray(funcs["dae_z"](pb.t0, pb.x0, u0, pb.p), dtype=float).ravel()
         run = sundials_run(self.name, system, kern, pb.signal, pb.p, pb.x0, pb.t0, pb.t1,
-                           pb.t_eval, pb.rtol, pb.atol, pb.max_step, pb.linear_solver, z0)
+                           pb.t_eval, pb.rtol, pb.atol, pb.max_step, pb.linear_solver, z0,
+                           progress=pb.progress)
         return Trajectory(run.t, run.x, run.values, {**run.stats, "kernel_time": kernel_time})
 
 

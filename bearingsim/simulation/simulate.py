@@ -121,8 +121,12 @@ def simulate(
         Largest step [s], > 0 (``inf``: no limit); CVODES and IDAS get it as
         ``max_step_size``.
     progress : bool, optional
-        Show a progress bar (scipy methods); default: only for runs that take longer than
-        about 2 s.
+        Show a progress bar of the simulated time on standard error (``True``), never
+        (``False``), or by default only when standard error is a terminal and the run takes
+        longer than about 2 s (:mod:`~bearingsim.simulation.progress`). CVODES and IDAS then
+        integrate in :data:`~bearingsim.simulation.sundials.PROGRESS_CHUNKS` calls instead of
+        one: a few percent more work (each call restarts BDF), results that agree with one
+        call's to the accuracy of the run.
     compiled : bool or "auto"
         Backend ``"casadi"``: evaluate the right-hand side (or DAE residual) and its exact
         Jacobian as generated C (``True``: compiling now if needed; raises
