@@ -374,3 +374,22 @@ def test_the_shipped_time_domain_scene_settles_at_the_quasi_static_equilibrium(d
     assert final["shaft.z"]["final"] == pytest.approx(eq.displacement[2], rel=2e-3)
     assert final["shaft.x"]["final"] == pytest.approx(eq.displacement[0], rel=2e-3)
     assert final["shaft.ty"]["final"] == pytest.approx(eq.displacement[4], rel=2e-3)
+
+
+def test_a_scene_gives_the_preload_by_class_by_rule_or_by_force():
+    from bearingsim.scenes import SceneError, parse_scene
+    from bearingsim.scenes.registry import build_component
+
+    def pair(extra):
+        scene = parse_scene('[simulation]\nt_end = 0.01\n[assembly]\nname = "duplex_pair"\n'
+                            'bearing = "7014C"\n' + extra, None)
+        spec = scene.spec
+        return build_component(spec, spec.with_defaults(scene.args), spec.fidelities[0])
+
+    assert pair('preload = "medium"\n').preload_force == pytest.approx(970.0)
+    assert pair("preload_force = 800.0\n").preload_force == 800.0
+    assert pair("").preload_force == pytest.approx(0.0085 * 48500.0)  # light by default
+    with pytest.raises(ParameterError, match="either preload .* or preload_force"):
+        pair('preload = "heavy"\npreload_force = 800.0\n')
+    with pytest.raises(SceneError, match="preload_force"):
+        pair("preload_force = -5.0\n")

@@ -508,7 +508,14 @@ _RADIAL_INPUTS = ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")
 def _duplex_from_scene(args: dict[str, Any], fidelity: str) -> DuplexPair:
     """Build the pair from the scene arguments of :data:`SCENE_SPEC` (defaults filled in;
     ``fidelity`` is unused: the pair has one level)."""
-    keywords = {k: v for k, v in args.items() if v is not None and k != "bearing"}
+    keywords = {k: v for k, v in args.items()
+                if v is not None and k not in ("bearing", "preload_force")}
+    if args.get("preload_force") is not None:
+        if args.get("preload") is not None:
+            raise ParameterError(
+                f"duplex_pair: give either preload ({args['preload']!r}, a class) or "
+                f"preload_force ({args['preload_force']!r} N), not both")
+        keywords["preload"] = float(args["preload_force"])
     return duplex_pair(args["bearing"], **keywords)
 
 
@@ -542,6 +549,8 @@ SCENE_SPEC = AssemblySpec(
         "preload": ArgSpec("choice", factory_default(duplex_pair, "preload"),
                            "preload class: catalogued, else a fraction of C (default: light)",
                            choices=PRELOAD_CLASSES),
+        "preload_force": ArgSpec("float", None, "axial preload [N] instead of a class",
+                                 low=0.0),
         "speed": ArgSpec("float", factory_default(duplex_pair, "speed"), "shaft speed [rad/s]",
                          low=-1e9),
         "speed_effects": ArgSpec("bool", factory_default(DuplexPair, "speed_effects"),
