@@ -3,18 +3,23 @@ from the exact Jacobian, DF/DB/DT arrangements, natural frequencies and invalid 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 
 import numpy as np
 import pytest
 
+from bearingsim.assembler import assemble
 from bearingsim.assemblies.duplex import (
+    PRELOAD_FRACTIONS,
     DuplexPair,
     ShaftSpec,
     duplex_pair,
     offset_preload,
+    preload_force,
     preload_offset,
+    preload_stiffness,
 )
 from bearingsim.catalog import get_bearing
 from bearingsim.components.ball_row import row_parameters
@@ -294,3 +299,97 @@ def test_a_speed_brings_its_effects_and_the_shaft_follows_the_bore():
         model.parameters(speed=800.0)
     assert DuplexModel("7020C", "DF", pair_options={"speed_effects": True}).parameters(
         speed=800.0)["shaft.speed"] == 800.0
+
+
+# ------------------------------------------------- issue 16 item 5: preload rule and damping
+def test_a_bearing_without_preload_classes_takes_a_class_as_a_fraction_of_c():
+    """7014C has no catalogued classes: light/medium/heavy are PRELOAD_FRACTIONS of its C at
+    15 deg; classes of catalogued bearings and forces are unchanged."""
+    g = get_bearing("7014C")
+    assert g.preload is None and g.dynamic_load_rating == 48500.0
+    forces = [duplex_pair("7014C", "DF", preload=c).preload_force
+              for c in ("light", "medium", "heavy")]
+    assert forces[0] < forces[1] < forces[2]
+    assert forces == pytest.approx([0.0085 * 48500.0, 0.020 * 48500.0, 0.040 * 48500.0])
+    assert duplex_pair("7014C", "DB", preload=800.0).preload_force == 800.0
+    assert duplex_pair("7020C", "DF", preload="medium").preload_force == 1270.0
+    # 7014AC (25 deg) takes the 25 deg fractions
+    assert preload_force(get_bearing("7014AC"), "medium") == pytest.approx(0.033 * 46000.0)
+
+
+def test_the_preload_fractions_are_those_the_catalogued_classes_imply():
+    """PRELOAD_FRACTIONS: the 7020 series' classes over the ISO 281 C of their ball set."""
+    from bearingsim.physics.life import dynamic_load_rating
+
+    for designation in ("7020C", "7020A5", "7020A"):
+        g = get_bearing(designation)
+        c = dynamic_load_rating(g.ball_diameter, g.pitch_diameter, g.ball_count,
+                                g.contact_angle)
+        implied = [getattr(g.preload, level) / c for level in ("light", "medium", "heavy")]
+        table = PRELOAD_FRACTIONS[round(math.degrees(g.contact_angle))]
+        assert table == pytest.approx(implied, rel=0.03)
+
+
+def test_a_class_without_classes_or_c_names_the_bearing_and_the_choices():
+    bare = dataclasses.replace(get_bearing("7014C"), designation="7014X",
+                               dynamic_load_rating=None)
+    with pytest.raises(ParameterError, match=r"7014X.*no dynamic load rating C.*preload in N"):
+        duplex_pair(bare, "DF", preload="medium")
+    assert duplex_pair(bare, "DF", preload=500.0).preload_force == 500.0
+    with pytest.raises(ParameterError, match=r"preload class must be 'light', 'medium' or"):
+        duplex_pair("7014C", "DF", preload="extreme")
+
+
+def test_preload_stiffness_is_the_diagonal_of_the_exact_stiffness(df):
+    pair = df.pair
+    delta0 = 0.5 * abs(pair.spacer_width_difference)
+    estimate = preload_stiffness(pair.geometry, pair.directions, pair.shaft_spec.positions,
+                                 (delta0, delta0))
+    exact = np.diag(df.stiffness(df.equilibrium()))
+    assert estimate == pytest.approx(exact, rel=1e-3)
+
+
+def test_damping_ratio_is_checked_and_sets_the_shaft_dampers(df):
+    for bad in (-0.1, 1.5):
+        with pytest.raises(ParameterError, match="damping_ratio"):
+            duplex_pair("7020C", "DF", damping_ratio=bad)
+    assert "shaft.c_z" not in df.system.parameter_names  # no damper, no parameters
+    pair = duplex_pair("7020C", "DF", damping_ratio=0.1)
+    system = assemble(pair)
+    c = dict(zip(system.parameter_names, system.p0(), strict=True))
+    k = np.diag(df.stiffness(df.equilibrium()))
+    assert c["shaft.c_z"] == pytest.approx(2 * 0.1 * math.sqrt(k[2] * df.mass[2, 2]), rel=1e-3)
+    assert c["shaft.c_ty"] == pytest.approx(2 * 0.1 * math.sqrt(k[4] * df.mass[4, 4]), rel=1e-3)
+
+
+def test_the_shipped_time_domain_scene_settles_at_the_quasi_static_equilibrium(df, tmp_path):
+    """duplex_pair_axial: with its damping ratio the values at t_end are the equilibrium under
+    both load steps (undamped, the shaft rang for ever and t_end caught one point of it)."""
+    from bearingsim.scenes import load_scene, run_scene
+
+    scene = load_scene("duplex_pair_axial")
+    assert scene.args["damping_ratio"] == 0.1
+    final = run_scene(scene, tmp_path).summary["outputs"]
+    eq = df.equilibrium(loads={"Fz": 2000.0, "Fx": 1000.0})
+    assert final["shaft.z"]["final"] == pytest.approx(eq.displacement[2], rel=2e-3)
+    assert final["shaft.x"]["final"] == pytest.approx(eq.displacement[0], rel=2e-3)
+    assert final["shaft.ty"]["final"] == pytest.approx(eq.displacement[4], rel=2e-3)
+
+
+def test_a_scene_gives_the_preload_by_class_by_rule_or_by_force():
+    from bearingsim.scenes import SceneError, parse_scene
+    from bearingsim.scenes.registry import build_component
+
+    def pair(extra):
+        scene = parse_scene('[simulation]\nt_end = 0.01\n[assembly]\nname = "duplex_pair"\n'
+                            'bearing = "7014C"\n' + extra, None)
+        spec = scene.spec
+        return build_component(spec, spec.with_defaults(scene.args), spec.fidelities[0])
+
+    assert pair('preload = "medium"\n').preload_force == pytest.approx(970.0)
+    assert pair("preload_force = 800.0\n").preload_force == 800.0
+    assert pair("").preload_force == pytest.approx(0.0085 * 48500.0)  # light by default
+    with pytest.raises(ParameterError, match="either preload .* or preload_force"):
+        pair('preload = "heavy"\npreload_force = 800.0\n')
+    with pytest.raises(SceneError, match="preload_force"):
+        pair("preload_force = -5.0\n")

@@ -40,10 +40,11 @@ from bearingsim.components.rings import (
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, connect
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
-from bearingsim.validation import check_range
+from bearingsim.validation import check_choice, check_range
 
 __all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
-           "SCENE_SPEC", "preload_offset", "preload_force", "offset_preload"]
+           "PRELOAD_FRACTIONS", "SCENE_SPEC", "preload_offset", "preload_force", "offset_preload",
+           "preload_stiffness"]
 
 ARRANGEMENTS = {"DF": (1, -1), "DB": (-1, 1), "DT": (1, 1)}
 """Axial loading direction ``s`` of (row 0, row 1) for each arrangement."""
@@ -146,19 +147,59 @@ def _shaft_spec(shaft: ShaftSpec | dict | None, geometry: BearingGeometry) -> Sh
     return shaft
 
 
+PRELOAD_FRACTIONS = {15.0: (0.0085, 0.020, 0.040), 25.0: (0.014, 0.033, 0.065),
+                     30.0: (0.015, 0.048, 0.075)}
+"""Preload rule for bearings without catalogued classes: free contact angle [deg] -> axial
+preload of the light, medium and heavy class as a fraction of the basic dynamic load rating C
+[-]; linear in the contact angle between the entries, the end entries outside them.
+
+No published rule was found (catalogues tabulate preload classes per bearing, not as a
+fraction of C), so the fractions are the ones the catalogue's own classes imply: the NSK
+precision 7020 series of models.md section B (7020C 15 deg: 540/1270/2550 N, 7020A5 25 deg:
+830/1960/3920 N, 7020A 30 deg: 840/2750/4310 N) divided by the ISO 281 C of their ball set
+(63.5, 59.9 and 57.5 kN), rounded to two digits; ``tests/test_duplex.py`` recomputes them. For
+a 15 deg bearing that is about 1 %, 2 % and 4 % of C."""
+
+
+def _class_fraction(level: str, contact_angle: float) -> float:
+    """Fraction of C of a preload class at a contact angle [rad] (:data:`PRELOAD_FRACTIONS`)."""
+    angles = sorted(PRELOAD_FRACTIONS)
+    column = PRELOAD_CLASSES.index(level)
+    alpha = min(max(math.degrees(contact_angle), angles[0]), angles[-1])
+    for lo, hi in zip(angles, angles[1:], strict=False):
+        if alpha <= hi:
+            w = (alpha - lo) / (hi - lo)
+            return (1.0 - w) * PRELOAD_FRACTIONS[lo][column] + w * PRELOAD_FRACTIONS[hi][column]
+    return PRELOAD_FRACTIONS[angles[-1]][column]  # pragma: no cover - alpha is clamped
+
+
 def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
-    """Axial preload [N] of a catalogue class name ("light", "medium", "heavy") or a number.
+    """Axial preload [N] of a class name ("light", "medium", "heavy") or a number.
+
+    A class is the bearing's catalogued preload of that class; for an angular contact bearing
+    without catalogued classes but with a basic dynamic load rating C, it is the fraction
+    :data:`PRELOAD_FRACTIONS` of C at the bearing's contact angle (e.g. 7014C, C = 48.5 kN:
+    light 412 N, medium 970 N, heavy 1940 N).
 
     Raises
     ------
     ParameterError
-        For an unknown class, a bearing without catalogued classes, or a preload <= 0.
+        For an unknown class, a class of a bearing with neither catalogued classes nor (angular
+        contact with) C, or a preload <= 0.
     """
     if isinstance(preload, str):
-        if geometry.preload is None:
-            raise ParameterError(f"duplex_pair: bearing {geometry.designation} has no catalogued "
-                                 "preload classes; give the preload in N")
-        return geometry.preload[preload]
+        check_choice(preload, "preload class", PRELOAD_CLASSES, "duplex_pair")
+        if geometry.preload is not None:
+            return geometry.preload[preload]
+        if geometry.dynamic_load_rating is None or geometry.bearing_type != "angular_contact":
+            missing = ("no dynamic load rating C" if geometry.bearing_type == "angular_contact"
+                       else "a contact angle of 0 (the rule of C is for angular contact bearings)")
+            raise ParameterError(
+                f"duplex_pair: bearing {geometry.designation} has no catalogued preload classes "
+                f"and {missing}, so preload {preload!r} is undefined; give the preload in N "
+                "(a number > 0), or an angular contact bearing with preload classes or C "
+                "(e.g. C_kN in its datasheet)")
+        return _class_fraction(preload, geometry.contact_angle) * geometry.dynamic_load_rating
     check_range(preload, "preload", "N", 0.0, low_inclusive=False, where="duplex_pair")
     return float(preload)
 
@@ -239,6 +280,56 @@ def offset_preload(bearing: str | BearingGeometry, offset: float, arrangement: s
     return -float(loads.inner_load[2])
 
 
+def preload_stiffness(bearing: str | BearingGeometry, directions: tuple[int, int],
+                      positions: tuple[float, float], approach: tuple[float, float],
+                      contact_angle: float | None = None) -> list[float]:
+    """Diagonal of the 5x5 stiffness of a shaft on two ball rows at rest, about its centre of
+    mass [N/m, N/m, N/m, N m/rad, N m/rad].
+
+    Each row's ``5 x 5`` stiffness is the central difference of its ring loads
+    (:func:`~bearingsim.components.ball_row.row_loads`, classic rows: no speed effects) at the
+    inner ring's axial ``approach`` along the row's loading direction; the rows are moved to
+    the centre of mass with the levers of their ``positions`` (rigid housing).
+
+    Parameters
+    ----------
+    bearing : str or BearingGeometry
+    directions : (int, int)
+        Loading direction of each row.
+    positions : (float, float)
+        Axial position of each row from the centre of mass [m].
+    approach : (float, float)
+        Axial approach of each row's inner ring along its loading direction [m], > 0.
+    contact_angle : float, optional
+        Free contact angle [rad] (default: the bearing's).
+
+    Returns
+    -------
+    list of 5 float
+    """
+    g = resolve_bearing(bearing)
+    rp = row_parameters(g, contact_angle)
+    total = [[0.0] * 5 for _ in range(5)]
+    for s, z_k, delta in zip(directions, positions, approach, strict=True):
+        lever = [[1.0, 0.0, 0.0, 0.0, z_k], [0.0, 1.0, 0.0, -z_k, 0.0], [0.0, 0.0, 1.0, 0.0, 0.0],
+                 [0.0, 0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0, 1.0]]
+        steps = (1e-3 * delta,) * 3 + (2e-3 * delta / g.pitch_diameter,) * 2
+        row = [[0.0] * 5 for _ in range(5)]
+        for j, h in enumerate(steps):
+            loads = []
+            for sign in (1.0, -1.0):
+                u = [0.0, 0.0, s * delta, 0.0, 0.0]
+                u[j] += sign * h
+                loads.append(row_loads(rp, u, [0.0] * 5, g.ball_count, s).inner_load)
+            for i in range(5):
+                row[i][j] = -(float(loads[0][i]) - float(loads[1][i])) / (2.0 * h)
+        for a in range(5):
+            for b in range(5):
+                total[a][b] += sum(lever[i][a] * row[i][j] * lever[j][b]
+                                   for i in range(5) for j in range(5))
+    return [total[k][k] for k in range(5)]
+
+
 class DuplexPair(Assembly):
     """Duplex pair: shaft, two ball rows, inner and outer rings, spacers and housing.
 
@@ -248,8 +339,9 @@ class DuplexPair(Assembly):
         Bearing of both rows.
     arrangement : {"DF", "DB", "DT"}
     preload : {"light", "medium", "heavy"} or float, optional
-        Catalogue preload class or axial preload [N], > 0 (default: "light", or for a DF/DB
-        pair with ``spacer_offset`` the preload that offset gives).
+        Preload class or axial preload [N], > 0 (default: "light", or for a DF/DB pair with
+        ``spacer_offset`` the preload that offset gives). A class is the catalogued one, or for
+        a bearing without catalogued classes a fraction of its C (:func:`preload_force`).
     speed : float
         Shaft (inner ring) speed [rad/s].
     shaft : ShaftSpec or dict, optional
@@ -277,6 +369,15 @@ class DuplexPair(Assembly):
     axisymmetric : bool
         Solve one representative ball per row (valid for pure axial loads only: the shaft then
         has no radial or tilt load path; see ``BallRow(representative=True)``).
+    damping_ratio : float, optional
+        Viscous damping of the shaft against the housing as a damping ratio zeta [-] in
+        [0, 1]: per degree of freedom ``c_i = 2 zeta sqrt(k_ii m_ii)`` (``Shaft(damping=...)``)
+        with ``k_ii`` the pair's stiffness at its preload (:func:`preload_stiffness`: rigid
+        housing, no speed effects) and ``m_ii`` the shaft's mass or transverse inertia, so
+        each uncoupled mode of the unloaded pair decays with about this ratio. The quasi-static
+        rows have no damping of their own, so without it (default None: no damper) a load
+        step rings for ever; the damper exerts no load at rest, so equilibria do not change.
+        models.md's loss factor ``eta = 0.005`` is ``zeta = 0.0025``.
 
     Attributes
     ----------
@@ -301,9 +402,12 @@ class DuplexPair(Assembly):
                  ball_position_angle: float = 0.0, contact_angle: float | None = None,
                  spacer_offset: float | None = None, speed_effects: bool | None = None,
                  housing_stiffness=None, housing_damping=None, exact: bool = True,
-                 smooth: float = 1e-9, axisymmetric: bool = False, name="pair"):
+                 smooth: float = 1e-9, axisymmetric: bool = False,
+                 damping_ratio: float | None = None, name="pair"):
         super().__init__(name)
         g = resolve_bearing(bearing)
+        if damping_ratio is not None:
+            check_range(damping_ratio, "damping_ratio", "-", 0.0, 1.0, where="duplex_pair")
         if arrangement not in ARRANGEMENTS:
             raise ParameterError(f"duplex_pair: arrangement must be one of "
                                  f"{', '.join(ARRANGEMENTS)}, got {arrangement!r}")
@@ -343,8 +447,16 @@ class DuplexPair(Assembly):
         else:
             delta0 = 0.5 * abs(offset)
         self.spacer_width_difference = offset
+        self.damping_ratio = None if damping_ratio is None else float(damping_ratio)
+        damping = None
+        if damping_ratio is not None:
+            k = preload_stiffness(g, self.directions, spec.positions, (delta0, delta0),
+                                  contact_angle)
+            mass = (spec.m,) * 3 + (spec.jt,) * 2
+            damping = [2.0 * self.damping_ratio * math.sqrt(max(k_i, 0.0) * m_i)
+                       for k_i, m_i in zip(k, mass, strict=True)]
         self.shaft = Shaft(spec.m, spec.jt, spec.jp, spec.positions, speed, exact,
-                           q0=(0.0, 0.0, s0 * delta0, 0.0, 0.0))
+                           q0=(0.0, 0.0, s0 * delta0, 0.0, 0.0), damping=damping)
         self.housing = Housing(2, housing_stiffness, housing_damping)
         self.inner_ring = [InnerRing(exact=exact) for _ in range(2)]
         self.outer_ring = [OuterRing(exact=exact) for _ in range(2)]
@@ -396,7 +508,14 @@ _RADIAL_INPUTS = ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")
 def _duplex_from_scene(args: dict[str, Any], fidelity: str) -> DuplexPair:
     """Build the pair from the scene arguments of :data:`SCENE_SPEC` (defaults filled in;
     ``fidelity`` is unused: the pair has one level)."""
-    keywords = {k: v for k, v in args.items() if v is not None and k != "bearing"}
+    keywords = {k: v for k, v in args.items()
+                if v is not None and k not in ("bearing", "preload_force")}
+    if args.get("preload_force") is not None:
+        if args.get("preload") is not None:
+            raise ParameterError(
+                f"duplex_pair: give either preload ({args['preload']!r}, a class) or "
+                f"preload_force ({args['preload_force']!r} N), not both")
+        keywords["preload"] = float(args["preload_force"])
     return duplex_pair(args["bearing"], **keywords)
 
 
@@ -428,11 +547,17 @@ SCENE_SPEC = AssemblySpec(
         "arrangement": ArgSpec("choice", factory_default(duplex_pair, "arrangement"),
                                "arrangement", choices=tuple(ARRANGEMENTS)),
         "preload": ArgSpec("choice", factory_default(duplex_pair, "preload"),
-                           "catalogue preload class (default: light)", choices=PRELOAD_CLASSES),
+                           "preload class: catalogued, else a fraction of C (default: light)",
+                           choices=PRELOAD_CLASSES),
+        "preload_force": ArgSpec("float", None, "axial preload [N] instead of a class",
+                                 low=0.0),
         "speed": ArgSpec("float", factory_default(duplex_pair, "speed"), "shaft speed [rad/s]",
                          low=-1e9),
         "speed_effects": ArgSpec("bool", factory_default(DuplexPair, "speed_effects"),
                                  "centrifugal and gyroscopic ball loads"),
+        "damping_ratio": ArgSpec("float", factory_default(DuplexPair, "damping_ratio"),
+                                 "damping ratio of the shaft against the housing [-], 0 to 1 "
+                                 "(default: none, a load step rings for ever)"),
     },
     fidelities=("quasi-static",),
     auto_fidelities=("quasi-static",),

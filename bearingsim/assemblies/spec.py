@@ -3,7 +3,9 @@
 Each assembly module declares a ``SCENE_SPEC`` (an :class:`AssemblySpec`) beside its factory,
 built from the module's own constants and the defaults of the factory's signature;
 :data:`bearingsim.assemblies.SCENE_SPECS` lists them and :mod:`bearingsim.scenes` reads that list
-(users add their own with :func:`bearingsim.scenes.register`). A spec holds a build function,
+(users add their own with :func:`bearingsim.scenes.register`, other distributions through the
+``bearingsim.assemblies`` entry-point group, :mod:`bearingsim.assemblies.plugins`). A spec holds
+a build function,
 the arguments a scene may give (with their allowed values), the fidelity levels from lowest to
 highest, a table *name pattern -> lowest fidelity that provides it* (used by
 ``fidelity = "auto"``), quantities computed after the integration (post-processing) and a

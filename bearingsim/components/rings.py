@@ -202,6 +202,12 @@ class Shaft(Component):
         Exact rigid-body kinematics of the frames (default) or the small-angle form.
     q0 : sequence of 5 float
         Initial displacement (x, y, z, tx, ty) [m, rad] (also the guess of equilibria).
+    damping : sequence of 5 float, optional
+        Viscous damping of the centre of mass against the ground (the housing) in (x, y, z,
+        tx, ty) [N s/m, N s/m, N s/m, N m s/rad, N m s/rad], >= 0: a damper in parallel with
+        the bearings, adding ``-c_i q_i'`` to the loads. It exerts no load at rest, so
+        equilibria and stiffness do not change. ``None`` (default): no damping and no
+        parameters ``c_x`` ... ``c_ty``.
 
     Variables
     ---------
@@ -217,11 +223,14 @@ class Shaft(Component):
     def __init__(self, mass: float = 10.0, transverse_inertia: float = 0.05,
                  polar_inertia: float = 0.02, positions: Sequence[float] = (0.05, -0.05),
                  speed: float = 0.0, exact: bool = True, q0: Sequence[float] = (0.0,) * 5,
-                 name=None):
+                 damping: Sequence[float] | None = None, name=None):
         super().__init__(name)
         if len(positions) < 1 or len(q0) != 5:
             raise ParameterError(f"{type(self).__name__}: positions [m] needs at least one entry "
                                  f"and q0 five (x, y, z, tx, ty) [m, rad]")
+        if damping is not None and len(damping) != 5:
+            raise ParameterError(f"{type(self).__name__}: damping needs 5 values (x, y, z, tx, "
+                                 f"ty) [N s/m, N m s/rad], got {len(damping)}")
         self.mass = Parameter(mass, "kg", "shaft mass", low=0.0, low_inclusive=False)
         self.transverse_inertia = Parameter(transverse_inertia, "kg.m2",
                                             "transverse moment of inertia", low=0.0,
@@ -241,11 +250,19 @@ class Shaft(Component):
             self.add(key, Variable(0.0, unit, f"rate {key}"))
         for key, unit in zip(FRAME_FLOWS, ("N",) * 3 + ("N.m",) * 2, strict=True):
             self.add(key, Input(0.0, unit, f"external load {key} at the centre of mass"))
+        units = ("N.s/m",) * 3 + ("N.m.s/rad",) * 2
+        self._c = [] if damping is None else [
+            self.add(f"c_{p}", Parameter(c, u, f"viscous damping of {p} against the ground",
+                                         low=0.0))
+            for p, c, u in zip(FRAME_POTENTIALS, damping, units, strict=True)]
 
     def equations(self):
         r = rotation(self.tx, self.ty, self._exact)
         eqs = []
         total = [getattr(self, k) for k in FRAME_FLOWS]
+        if self._c:
+            rates = (self.vx, self.vy, self.vz, self.wx, self.wy)
+            total = [t - c * v for t, c, v in zip(total, self._c, rates, strict=True)]
         for frame, z_k in zip(self.frame, self.positions, strict=True):
             pos = body_point([self.x, self.y, self.z], r, [0.0, 0.0, z_k])
             eqs += [frame.x == pos[0], frame.y == pos[1], frame.z == pos[2] - z_k,

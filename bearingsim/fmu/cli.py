@@ -1,8 +1,10 @@
 """Command line: ``bearingsim export-fmu pkg.module:factory model.fmu [options]``.
 
-The factory is ``pkg.module:callable`` (importable, the current folder included) or
-``path/to/file.py:callable``; ``--arg NAME=VALUE`` passes keyword arguments to it (values read
-as TOML values: numbers, true/false, quoted or bare text, lists).
+The factory is ``pkg.module:callable`` (importable, the current folder included),
+``path/to/file.py:callable`` or the name of an assembly that scenes know (``bearingsim list``:
+built-in or a plug-in's); ``--arg NAME=VALUE`` passes keyword arguments to it (values read as
+TOML values: numbers, true/false, quoted or bare text, lists). For an assembly name the
+arguments are its scene arguments, plus ``fidelity`` (default: its highest automatic level).
 """
 
 from __future__ import annotations
@@ -56,7 +58,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="Export an assembly as an FMU (FMI 2.0 or 3.0, Linux x86_64).",
     )
     parser.add_argument("factory", help="pkg.module:callable or path/to/file.py:callable "
-                                        "returning an assembly or a System")
+                                        "returning an assembly or a System, or an assembly "
+                                        "name (bearingsim list)")
     parser.add_argument("output", help="path of the .fmu to write")
     parser.add_argument("--outputs", type=_csv, default=None,
                         help="comma-separated dotted names of the outputs")
@@ -75,11 +78,44 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _from_registry(name: str, kwargs: dict[str, Any]):
+    """The assembly a scene would build from ``name`` and the arguments ``kwargs`` (None when no
+    assembly has that name)."""
+    from bearingsim.assemblies.registry import REGISTRY
+    from bearingsim.errors import BearingsimError
+
+    try:
+        if name not in REGISTRY:
+            return None
+        spec = REGISTRY[name]
+        kwargs = dict(kwargs)
+        fidelity = kwargs.pop("fidelity", spec.auto_fidelities[-1])
+        unknown = sorted(set(kwargs) - set(spec.args))
+        if unknown:
+            raise SystemExit(f"export-fmu: {name} has no argument {', '.join(unknown)}; "
+                             f"arguments: {', '.join(spec.args)}, fidelity")
+        if fidelity not in spec.fidelities:
+            raise SystemExit(f"export-fmu: {fidelity!r} is not a fidelity of {name}; "
+                             f"fidelities: {', '.join(spec.fidelities)}")
+        texts = sorted(k for k, v in kwargs.items()
+                       if spec.args[k].kind == "signal" and isinstance(v, str))
+        if texts:
+            raise SystemExit(f"export-fmu: {name}: give {', '.join(texts)} as a number (an "
+                             "expression of t is for scenes; the FMU's inputs vary in time)")
+        return spec.build(spec.with_defaults(kwargs), fidelity)
+    except BearingsimError as exc:
+        raise SystemExit(f"export-fmu: {name}: {exc}") from None
+
+
 def _load(spec: str, kwargs: dict[str, Any]):
+    if ":" not in spec:
+        model = _from_registry(spec, kwargs)
+        if model is not None:
+            return model
     module, sep, attr = spec.rpartition(":")
     if not sep or not module or not attr:
-        raise SystemExit(f"export-fmu: expected pkg.module:callable or file.py:callable, got "
-                         f"{spec!r}")
+        raise SystemExit(f"export-fmu: expected pkg.module:callable, file.py:callable or an "
+                         f"assembly name (bearingsim list), got {spec!r}")
     if module.endswith(".py"):
         path = Path(module)
         if not path.is_file():

@@ -1,29 +1,33 @@
-"""The assemblies a scene can name: the built-in specs and the ones users register.
+"""The assemblies a scene can name: the built-in specs, the plug-ins' and the ones users
+register.
 
 The built-in specs are declared by the assembly modules beside their factories
 (:data:`bearingsim.assemblies.SCENE_SPECS`; the spec types are in
-:mod:`bearingsim.assemblies.spec`). :func:`register` adds a user's own.
+:mod:`bearingsim.assemblies.spec`). Installed distributions add theirs through the
+``bearingsim.assemblies`` entry-point group (:mod:`bearingsim.assemblies.plugins`), loaded once,
+on the first use of :data:`REGISTRY` (:mod:`bearingsim.assemblies.registry`). :func:`register`
+adds a user's own.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from bearingsim.assemblies import SCENE_SPECS
+from bearingsim.assemblies.registry import REGISTRY, AssemblyRegistry
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.expressions import compile_expression
 
 __all__ = [
     "REGISTRY",
+    "AssemblyRegistry",
     "build_component",
     "get_spec",
     "register",
     "unregister",
 ]
 
-REGISTRY: dict[str, AssemblySpec] = {spec.name: spec for spec in SCENE_SPECS}
-"""Assembly name -> spec."""
+
 
 
 def register(spec: AssemblySpec) -> AssemblySpec:
@@ -50,9 +54,12 @@ def unregister(name: str) -> AssemblySpec:
 
 
 def get_spec(name: str) -> AssemblySpec:
-    """The spec of an assembly by name (raises ``KeyError`` with the known names)."""
+    """The spec of an assembly by name (raises ``KeyError`` with the known names, and the
+    reason when a plug-in of that name could not be loaded)."""
     if name not in REGISTRY:
-        raise KeyError(f"unknown assembly {name!r}; known: {', '.join(REGISTRY)}")
+        failed = [str(f) for f in REGISTRY.plugin_failures if f.name == name]
+        raise KeyError(f"unknown assembly {name!r}; known: {', '.join(REGISTRY)}"
+                       + "".join(f"; {text}" for text in failed))
     return REGISTRY[name]
 
 
