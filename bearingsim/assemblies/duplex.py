@@ -155,7 +155,7 @@ preload of the light, medium and heavy class as a fraction of the basic dynamic 
 
 No published rule was found (catalogues tabulate preload classes per bearing, not as a
 fraction of C), so the fractions are the ones the catalogue's own classes imply: the NSK
-precision 7020 series of models.md section B (7020C 15 deg: 540/1270/2550 N, 7020A5 25 deg:
+precision 7020 series of docs/studies.md, section B (7020C 15 deg: 540/1270/2550 N, 7020A5 25 deg:
 830/1960/3920 N, 7020A 30 deg: 840/2750/4310 N) divided by the ISO 281 C of their ball set
 (63.5, 59.9 and 57.5 kN), rounded to two digits; ``tests/test_duplex.py`` recomputes them. For
 a 15 deg bearing that is about 1 %, 2 % and 4 % of C."""
@@ -377,7 +377,8 @@ class DuplexPair(Assembly):
         each uncoupled mode of the unloaded pair decays with about this ratio. The quasi-static
         rows have no damping of their own, so without it (default None: no damper) a load
         step rings for ever; the damper exerts no load at rest, so equilibria do not change.
-        models.md's loss factor ``eta = 0.005`` is ``zeta = 0.0025``.
+        the duplex study's loss factor (docs/studies.md, section B) ``eta = 0.005`` is
+        ``zeta = 0.0025``.
 
     Attributes
     ----------
