@@ -21,6 +21,7 @@ from bench import (
     dgbb,
     double_layer_steady,
     duplex,
+    fmu_stepper,
     pruning,
     sundials_compiled,
     work_precision,
@@ -106,6 +107,7 @@ def main(argv: list[str] | None = None) -> int:
             "modes)", dgbb.run(True))),
         ("ball-level assembly", ball_level_assembly.section),
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
+        ("FMU stepper", lambda: fmu_stepper.section(args.quick)),
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
     ]
     for k, (label, bench_fn) in enumerate(steps, start=1):

@@ -81,6 +81,17 @@ typedef struct {
     double jac_h;               /* step size of the LU factorisation of W [s] (0: none) */
 } BsmState;
 
+/* LU factors in compressed rows (bsm_lu_compress): entries l_start[i] .. l_start[i+1]-1 of
+ * col/val are row i of L below the diagonal, u_start[i] .. u_start[i+1]-1 row i of U right of
+ * it. */
+typedef struct {
+    int l_start[BSM_DIM(NX) + 1];
+    int u_start[BSM_DIM(NX) + 1];
+    int col[BSM_DIM(NX * NX)];
+    double val[BSM_DIM(NX * NX)];
+    double inv_diag[BSM_DIM(NX)];
+} BsmLu;
+
 typedef struct {
     BsmState s;
     /* cached evaluations at (s.time, s.x, s.u, s.p) */
@@ -110,6 +121,7 @@ typedef struct {
     double w_p[BSM_DIM(NP)];
     double w_h;                    /* step size of the factorisation in lu [s] (0: none) */
     double lu[BSM_DIM(NX * NX)];   /* LU factors of I/(h gamma) - J in the order bsm_lu_order */
+    BsmLu lu_c;                    /* the same, compressed for the solves */
     int piv[BSM_DIM(NX)];
     int nzcol[BSM_DIM(NX)];
     double k[4][BSM_DIM(NX)];
@@ -162,7 +174,8 @@ BsmStatus bsm_deserialize(BsmInstance *m, unsigned int magic, const void *buffer
 
 /* bsm_solver.c */
 int bsm_lu_factor(double *a, int n, int *piv, int *nzcol);
-void bsm_lu_solve(const double *lu, int n, const int *piv, double *b);
+void bsm_lu_compress(const double *a, int n, BsmLu *c);
+void bsm_lu_solve(const BsmLu *c, int n, const int *piv, double *b);
 BsmStatus bsm_do_step(BsmInstance *m, double h);
 
 #endif
