@@ -48,7 +48,7 @@
 #define BSM_JAC_MAX_AGE 100  /* accepted steps after which the W-method evaluates J again */
 #endif
 #ifndef BSM_H_KEEP
-#define BSM_H_KEEP 1.5       /* keep the factorised step while the proposal is <= this times it */
+#define BSM_H_KEEP 2.0       /* keep the factorised step while the proposal is <= this times it */
 #endif
 #ifndef BSM_INPUT_JUMP
 #define BSM_INPUT_JUMP 1e-2  /* relative input change at a doStep start that renews J */
