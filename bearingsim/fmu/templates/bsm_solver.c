@@ -375,6 +375,8 @@ BsmStatus bsm_do_step(BsmInstance *m, double h) {
         if (++n > ROS_MAX_STEPS) return step_failed(m, "too many internal steps", t, hs);
         if (need_jac) ok = new_jacobian(m, t, m->s.x);
         need_jac = !ros_reuse;
+        /* equal steps of a communication step differ from the factorised one by rounding only;
+         * W of a nearby h is I/(hs gamma) - (J + delta I), still a W-method */
         if (ok && !(ros_reuse && fabs(hs - m->w_h) <= 1e-6 * hs))
             ok = factorise(m, hs);
         err = ok ? ros_step(m, t, m->s.x, hs) : -1.0;
