@@ -194,3 +194,15 @@ def test_time_ramp_input_through_the_stepper(fmu_dir, tmp_path):
                           model_name=f"ramped_{s}")
         out, _ = run_cs(path, tmp_path / s, 0.01, 0.5, ["rotor.phi"], 1e-9)
         assert rel_err(out[:, 0], ref["rotor.phi"][1:]) < 1e-6, s
+
+
+def test_fill_reducing_order_eliminates_the_hub_last():
+    """An arrow pattern (state 0 coupled to all others): eliminating 0 first would fill the
+    whole matrix; the minimum-degree order keeps it for last."""
+    from bearingsim.fmu.model_c import fill_reducing_order
+
+    n = 6
+    rows = [0] * n + list(range(n)) + list(range(1, n))
+    cols = list(range(n)) + list(range(n)) + [0] * (n - 1)
+    order = fill_reducing_order(n, rows, cols)
+    assert sorted(order) == list(range(n)) and order[-1] == 0
