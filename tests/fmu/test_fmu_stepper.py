@@ -196,13 +196,14 @@ def test_time_ramp_input_through_the_stepper(fmu_dir, tmp_path):
         assert rel_err(out[:, 0], ref["rotor.phi"][1:]) < 1e-6, s
 
 
-def test_fill_reducing_order_eliminates_the_hub_last():
+def test_fill_reducing_order_keeps_the_hub_for_last():
     """An arrow pattern (state 0 coupled to all others): eliminating 0 first would fill the
-    whole matrix; the minimum-degree order keeps it for last."""
+    whole matrix; the minimum-degree order keeps it until one other state is left (then the
+    two tie)."""
     from bearingsim.fmu.model_c import fill_reducing_order
 
     n = 6
     rows = [0] * n + list(range(n)) + list(range(1, n))
     cols = list(range(n)) + list(range(n)) + [0] * (n - 1)
     order = fill_reducing_order(n, rows, cols)
-    assert sorted(order) == list(range(n)) and order[-1] == 0
+    assert sorted(order) == list(range(n)) and order.index(0) >= n - 2
