@@ -75,6 +75,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "motor=pmsm or inner=\"61905\" (repeatable; TOML values)")
     parser.add_argument("--fmi-version", default="2.0", choices=["2.0", "3.0"],
                         help="FMI version (default 2.0)")
+    parser.add_argument("--stepper", default="ros34pw2", choices=["ros34pw2", "rodas3"],
+                        help="co-simulation stepper (default ros34pw2, a Rosenbrock-W method "
+                        "that reuses the Jacobian; rodas3 evaluates it at every step)")
     return parser
 
 
@@ -170,7 +173,7 @@ def cli_export(argv: Sequence[str] | None = None) -> int:
         path = export_fmu(
             model, args.output, inputs=dict(args.input), outputs=args.outputs,
             parameters=dict(args.param), fmi_version=args.fmi_version, kinds=args.kinds,
-            model_name=args.name,
+            model_name=args.name, stepper=args.stepper,
         )
     except BearingsimError as exc:
         print(f"export-fmu: {exc}", file=sys.stderr)

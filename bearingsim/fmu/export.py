@@ -21,7 +21,7 @@ from bearingsim.fmu.build import (
 )
 from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
-from bearingsim.fmu.model_c import write_model_c
+from bearingsim.fmu.model_c import STEPPERS, fill_reducing_order, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
 from bearingsim.language import Component
 
@@ -120,6 +120,7 @@ def export_fmu(
     fmi_version: str = "2.0",
     kinds: Sequence[str] = ("ME", "CS"),
     model_name: str | None = None,
+    stepper: str = STEPPERS[0],
 ) -> Path:
     """Export an assembly or an assembled system as a Functional Mock-up Unit.
 
@@ -143,12 +144,18 @@ def export_fmu(
         Parameter name -> start value, validated against the declared range. All parameters
         stay tunable in the FMU.
     fmi_version : {"2.0", "3.0"}
-        FMI version. Both share the C runtime (model functions, checks, Rodas3 stepper); only
-        the API layer (``fmi2_api.c`` or ``fmi3_api.c``) and the model description differ.
+        FMI version. Both share the C runtime (model functions, checks, co-simulation
+        stepper); only the API layer (``fmi2_api.c`` or ``fmi3_api.c``) and the model
+        description differ.
     kinds : sequence of {"ME", "CS"}
         Model Exchange and/or Co-Simulation interfaces.
     model_name : str, optional
         ``modelName``; its C-identifier form names the library. Default: the system's name.
+    stepper : {"ros34pw2", "rodas3"}
+        Co-simulation stepper (``bsm_solver.c``): the Rosenbrock-W method ROS34PW2, which reuses
+        the Jacobian and its LU factorisation over many steps, or Rodas3, which evaluates the
+        Jacobian and factorises at every internal step. Both are order 3 with an embedded
+        order-2 error estimate.
 
     Returns
     -------
@@ -158,7 +165,8 @@ def export_fmu(
     Raises
     ------
     ParameterError
-        For an unknown FMI version, kind, output, input or parameter, or a value out of range.
+        For an unknown FMI version, kind, stepper, output, input or parameter, or a value out
+        of range.
     FmuBuildError
         If the C compiler is missing or fails.
     """
@@ -171,6 +179,9 @@ def export_fmu(
     if not kinds or any(k not in KINDS for k in kinds):
         raise ParameterError(f"export_fmu: kinds must be a non-empty subset of {KINDS}, got "
                              f"{kinds!r}")
+    if stepper not in STEPPERS:
+        raise ParameterError(f"export_fmu: stepper must be one of {', '.join(STEPPERS)}, got "
+                             f"{stepper!r}")
     if platform.system() != "Linux" or platform.machine() not in ("x86_64", "AMD64"):
         raise ParameterError("export_fmu: only Linux x86_64 binaries can be built")
     system = _system(model, outputs)
@@ -188,7 +199,10 @@ def export_fmu(
         src = Path(tmp) / "sources"
         src.mkdir()
         work = generate_c(functions, src)
-        write_model_c(src, iface, system, guid, work, kinds)
+        jac = functions["jac_x"].sparsity_out(0)
+        rows, cols = jac.get_triplet()
+        write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
+                      lu_order=fill_reducing_order(system.n_states, rows, cols))
         copy_templates(src, fmi_version)
         binary = Path(tmp) / f"{ident}.so"
         c_files = sorted(src.glob("*.c"))

@@ -11,7 +11,10 @@ from pathlib import Path
 from bearingsim.fmu.codegen import FUNCTION_NAMES, PREFIX
 from bearingsim.fmu.interface import FmuInterface
 
-__all__ = ["write_model_c"]
+__all__ = ["STEPPERS", "fill_reducing_order", "write_model_c"]
+
+STEPPERS = ("ros34pw2", "rodas3")
+"""Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default."""
 
 _LOW, _LOW_INCL, _HIGH, _HIGH_INCL = 1, 2, 4, 8
 
@@ -42,9 +45,46 @@ def _bounds(decl) -> tuple[float, float, int]:
     return (low if low is not None else -math.inf, high if high is not None else math.inf, flags)
 
 
+def fill_reducing_order(n: int, rows, cols) -> list[int]:
+    """Greedy minimum-degree order of a sparsity pattern, for the stepper's LU factorisation.
+
+    The pattern is symmetrised; each step eliminates a node of smallest degree (ties: lowest
+    index) and joins its neighbours into a clique (the fill-in of eliminating it).
+
+    Parameters
+    ----------
+    n : int
+        Size of the square matrix.
+    rows, cols : sequence of int
+        Row and column of each structural nonzero.
+
+    Returns
+    -------
+    list of int
+        ``order[k]`` is the state eliminated k-th.
+    """
+    adj: list[set[int]] = [set() for _ in range(n)]
+    for r, c in zip(rows, cols, strict=True):
+        if r != c:
+            adj[r].add(c)
+            adj[c].add(r)
+    alive = set(range(n))
+    order = []
+    while alive:
+        v = min(alive, key=lambda k: (len(adj[k]), k))
+        order.append(v)
+        alive.remove(v)
+        for a in adj[v]:
+            adj[a].discard(v)
+            adj[a] |= adj[v] - {a}
+        adj[v] = set()
+    return order
+
+
 def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
                   work: dict[str, int], kinds: tuple[str, ...],
-                  casadi_header: str = "bsm_casadi.h") -> list[str]:
+                  casadi_header: str = "bsm_casadi.h", stepper: str = STEPPERS[0],
+                  lu_order: list[int] | None = None) -> list[str]:
     """Write ``model_config.h`` and ``model_data.c``.
 
     Parameters
@@ -63,6 +103,11 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         ``"ME"`` and/or ``"CS"``.
     casadi_header : str
         Header of the generated CasADi code.
+    stepper : {"ros34pw2", "rodas3"}
+        Co-simulation stepper compiled in (``BSM_STEPPER_RODAS3``).
+    lu_order : list of int, optional
+        Elimination order of the states in the stepper's LU factorisation (see
+        :func:`fill_reducing_order`); default: the state order.
 
     Returns
     -------
@@ -78,6 +123,7 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
 #define MODEL_GUID "{guid}"
 #define MODEL_HAS_ME {int("ME" in kinds)}
 #define MODEL_HAS_CS {int("CS" in kinds)}
+#define BSM_STEPPER_RODAS3 {int(stepper == "rodas3")}
 
 #define NX {nx}
 #define NU {nu}
@@ -126,6 +172,8 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         + _array("char *const", "bsm_y_names", "NY", [_c_string(n) for n in y_names])
         + _array("char *const", "bsm_p_names", "NP", [_c_string(v.name) for v in params])
         + _array("char *const", "bsm_p_units", "NP", [_c_string(v.unit) for v in params])
+        + _array("int", "bsm_lu_order", "NX",
+                 [str(k) for k in (lu_order if lu_order is not None else range(nx))])
         + f"\nconst BsmFunction bsm_functions[FN_COUNT] = {{\n{table}\n}};\n"
     )
     (directory / "model_config.h").write_text(config)

@@ -80,11 +80,14 @@ def test_inputs_have_causality_input(driven_fmu):
 def test_cli_export(tmp_path):
     path = tmp_path / "cli.fmu"
     status = cli_export(["tests.models:TwoInertiaDrive", str(path), "--outputs", "j2.w,sd.tau",
-                         "--kinds", "CS", "--param", "sd.c=250", "--name", "Drive CLI"])
+                         "--kinds", "CS", "--param", "sd.c=250", "--name", "Drive CLI",
+                         "--stepper", "rodas3"])
     assert status == 0 and validate_fmu(str(path)) == []
     md = read_model_description(str(path))
     assert md.modelExchange is None and md.coSimulation.modelIdentifier == "Drive_CLI"
     assert float({v.name: v for v in md.modelVariables}["sd.c"].start) == 250.0
+    with zipfile.ZipFile(path) as z:
+        assert "#define BSM_STEPPER_RODAS3 1" in z.read("sources/model_config.h").decode()
 
 
 def test_cli_reports_errors(tmp_path, capsys):

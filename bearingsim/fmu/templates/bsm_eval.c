@@ -33,6 +33,7 @@ void bsm_reset(BsmInstance *m) {
     memcpy(m->s.u, bsm_u_start, sizeof(m->s.u));
     memcpy(m->s.p, bsm_p_start, sizeof(m->s.p));
     m->s.rtol = 1e-6;
+    m->w_valid = 0;
     bsm_invalidate(m);
 }
 
@@ -181,6 +182,7 @@ BsmCall bsm_set_real(BsmInstance *m, unsigned int r, double v, int states_settab
             return BSM_CALL_FAILED;
         }
         m->s.x[r - VR_X] = v;
+        m->s.jac_set = 0;
     } else if (r >= VR_U && r < VR_Y) {
         if (bsm_check_input(m, (int)(r - VR_U), v) != BSM_OK) return BSM_CALL_FAILED;
         m->s.u[r - VR_U] = v;
@@ -192,6 +194,7 @@ BsmCall bsm_set_real(BsmInstance *m, unsigned int r, double v, int states_settab
         }
         if (bsm_check_parameter(m, (int)(r - VR_P), v) != BSM_OK) return BSM_CALL_FAILED;
         m->s.p[r - VR_P] = v;
+        m->s.jac_set = 0;
     } else {
         bsm_log(m, BSM_ERROR, "logStatusError",
                 "%s: value reference %u is not a state start value, input or parameter",

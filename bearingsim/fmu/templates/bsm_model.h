@@ -47,6 +47,9 @@ extern const char *const bsm_u_names[BSM_DIM(NU)];
 extern const char *const bsm_y_names[BSM_DIM(NY)];
 extern const char *const bsm_p_names[BSM_DIM(NP)];
 extern const char *const bsm_p_units[BSM_DIM(NP)];
+/* Fill-reducing order of the states for the LU factorisation of the stepper (a permutation of
+ * 0 .. NX-1, computed at export from the sparsity of d der(x)/dx). */
+extern const int bsm_lu_order[BSM_DIM(NX)];
 
 /* Same numbering as fmi2Status / fmi3Status. */
 typedef enum { BSM_OK = 0, BSM_WARNING = 1, BSM_DISCARD = 2, BSM_ERROR = 3 } BsmStatus;
@@ -66,8 +69,28 @@ typedef struct {
     double p[BSM_DIM(NP)];
     double h_next;          /* proposed internal step of the stepper (0: none yet) */
     double rtol;
-    long n_steps, n_rejected, n_jac;
+    long n_steps, n_rejected; /* accepted and rejected internal steps */
+    long n_jac, n_lu;         /* Jacobian evaluations and LU factorisations of the stepper */
+    /* Where the stepper's Jacobian belongs (so a restored state continues bit for bit: the
+     * instance re-evaluates J there when its cached one belongs elsewhere). */
+    int jac_set;                /* 0: no Jacobian yet, or parameters/states set since */
+    long jac_age;               /* accepted internal steps since its evaluation */
+    double jac_t;               /* time [s], states and inputs of its evaluation */
+    double jac_x[BSM_DIM(NX)];
+    double jac_u[BSM_DIM(NU)];
+    double jac_h;               /* step size of the LU factorisation of W [s] (0: none) */
 } BsmState;
+
+/* LU factors in compressed rows (bsm_lu_compress): entries l_start[i] .. l_start[i+1]-1 of
+ * col/val are row i of L below the diagonal, u_start[i] .. u_start[i+1]-1 row i of U right of
+ * it. */
+typedef struct {
+    int l_start[BSM_DIM(NX) + 1];
+    int u_start[BSM_DIM(NX) + 1];
+    int col[BSM_DIM(NX * NX)];
+    double val[BSM_DIM(NX * NX)];
+    double inv_diag[BSM_DIM(NX)];
+} BsmLu;
 
 typedef struct {
     BsmState s;
@@ -88,8 +111,19 @@ typedef struct {
     double yx[BSM_DIM(NY * NX)];
     double yu[BSM_DIM(NY * NU)];
     /* stepper work */
-    double lu[BSM_DIM(NX * NX)];
+    double w_jx[BSM_DIM(NX * NX)]; /* the stepper's Jacobians (kept across doSteps) */
+    double w_jt[BSM_DIM(NX)];
+    double w_ju[BSM_DIM(NX * NU)];
+    int w_valid;                   /* w_j* were evaluated at w_t, w_x, w_u, w_p */
+    double w_t;
+    double w_x[BSM_DIM(NX)];
+    double w_u[BSM_DIM(NU)];
+    double w_p[BSM_DIM(NP)];
+    double w_h;                    /* step size of the factorisation in lu [s] (0: none) */
+    double lu[BSM_DIM(NX * NX)];   /* LU factors of I/(h gamma) - J in the order bsm_lu_order */
+    BsmLu lu_c;                    /* the same, compressed for the solves */
     int piv[BSM_DIM(NX)];
+    int nzcol[BSM_DIM(NX)];
     double k[4][BSM_DIM(NX)];
     double f[BSM_DIM(NX)];
     double xs[BSM_DIM(NX)];
@@ -139,8 +173,9 @@ BsmStatus bsm_deserialize(BsmInstance *m, unsigned int magic, const void *buffer
                           BsmState *s, const char *function);
 
 /* bsm_solver.c */
-int bsm_lu_factor(double *a, int n, int *piv);
-void bsm_lu_solve(const double *lu, int n, const int *piv, double *b);
+int bsm_lu_factor(double *a, int n, int *piv, int *nzcol);
+void bsm_lu_compress(const double *a, int n, BsmLu *c);
+void bsm_lu_solve(const BsmLu *c, int n, const int *piv, double *b);
 BsmStatus bsm_do_step(BsmInstance *m, double h);
 
 #endif

@@ -1,20 +1,61 @@
 /* bearingsim FMU runtime: the co-simulation stepper.
  *
- * Rodas3 (Sandu et al. 1997): a 4-stage, order-3, L-stable and stiffly accurate Rosenbrock
- * method with an embedded order-2 solution for step-size control. It uses the exact Jacobian
- * d der(x)/dx of the generated code and one dense LU factorisation per step; inputs follow
+ * Two linearly implicit one-step methods with an embedded order-2 solution for step-size
+ * control, selected at export (BSM_STEPPER_RODAS3 in model_config.h):
+ *
+ * - ROS34PW2 (default; Rang and Angermann, BIT 45 (2005) 761-787): a 4-stage, order-3,
+ *   stiffly accurate Rosenbrock-W method, L-stable for the exact Jacobian. It keeps its order
+ *   with any matrix in place of the Jacobian (W-method), so the Jacobian and the LU
+ *   factorisation of W = I/(h gamma) - J are reused over many steps and communication steps:
+ *   J is evaluated again only after a rejected step taken with an old J, after
+ *   BSM_JAC_MAX_AGE accepted steps, or when a doStep starts from a changed instance (inputs
+ *   moved by more than BSM_INPUT_JUMP relative to those of J, parameters or states set). W is
+ *   factorised again only when J is new or the step size changes: the controller keeps the
+ *   factorised step size while its proposal is within [1, BSM_H_KEEP] times it, and the steps
+ *   inside a communication step are of equal length, so one factorisation serves all of them
+ *   and the following doSteps. Where J was evaluated is part of the FMU state, so a restored
+ *   state continues bit for bit. Coefficients: the A, Gamma, b and
+ *   b_hat of PETSc's TSROSWRA34PW2 (src/ts/impls/rosw/rosw.c, the same as the paper's
+ *   Table), transformed to the form below (Hairer and Wanner, Solving ODEs II, IV.7
+ *   (7.25)): a = A Gamma^-1, c = diag(1/gamma) - Gamma^-1, m = b Gamma^-1.
+ * - Rodas3 (Sandu et al. 1997): a 4-stage, order-3, L-stable and stiffly accurate Rosenbrock
+ *   method (the stepper of earlier versions). Its order needs the exact Jacobian, so J is
+ *   evaluated and W factorised at every step.
+ *
+ * Both use the exact Jacobian d der(x)/dx of the generated code when they evaluate one. The
+ * stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
+ * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
  * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
- * set), so the partial time derivative of the right-hand side includes jac_u * du.
+ * set), so df/dt includes jac_u * du. The LU factorisation is a dense one with partial
+ * pivoting that skips structural zeros, on W permuted by the fill-reducing order bsm_lu_order
+ * (a minimum-degree order of the Jacobian's sparsity, computed at export); the solves use the
+ * factors' nonzeros only (bsm_lu_compress). For the 75-state massive-ball 6304 bearing the
+ * factors keep about 600 nonzeros of 5625.
  */
 #include <math.h>
 #include <string.h>
 
 #include "bsm_model.h"
 
-#define ROS_STAGES 4
-#define ROS_ORDER 3.0 /* order of the local error estimate */
-#define ROS_MAX_STEPS 100000L
+#ifndef BSM_STEPPER_RODAS3
+#define BSM_STEPPER_RODAS3 0
+#endif
 
+#define ROS_STAGES 4
+#define ROS_ORDER 3.0 /* exponent of the step-size controller: local error ~ h^3 */
+#define ROS_MAX_STEPS 100000L
+#ifndef BSM_JAC_MAX_AGE
+#define BSM_JAC_MAX_AGE 100  /* accepted steps after which the W-method evaluates J again */
+#endif
+#ifndef BSM_H_KEEP
+#define BSM_H_KEEP 2.0       /* keep the factorised step while the proposal is <= this times it */
+#endif
+#ifndef BSM_INPUT_JUMP
+#define BSM_INPUT_JUMP 1e-2  /* relative input change at a doStep start that renews J */
+#endif
+
+#if BSM_STEPPER_RODAS3
+/* Rodas3 in the transformed form (a, c lower triangular, row by row). */
 static const double ros_gamma_diag = 0.5;
 static const double ros_a[6] = {0.0, 2.0, 0.0, 2.0, 0.0, 1.0};
 static const double ros_c[6] = {4.0, 1.0, -1.0, 1.0, -1.0, -8.0 / 3.0};
@@ -23,13 +64,37 @@ static const double ros_m[ROS_STAGES] = {2.0, 0.0, 1.0, 1.0};
 static const double ros_e[ROS_STAGES] = {0.0, 0.0, 0.0, 1.0};
 static const double ros_alpha[ROS_STAGES] = {0.0, 0.0, 1.0, 1.0};
 static const double ros_gamma[ROS_STAGES] = {0.5, 1.5, 0.0, 0.0};
+static const int ros_reuse = 0;
+#else
+/* ROS34PW2 in the transformed form; ros_e = m - m_hat; ros_alpha, ros_gamma: row sums of A
+ * and Gamma. */
+static const double ros_gamma_diag = 4.3586652150845900e-01;
+static const double ros_a[6] = {2.0000000000000004e+00, 1.4192173174557652e+00,
+                                -2.5923221167296978e-01, 4.1847604823191613e+00,
+                                -2.8519201735549599e-01, 2.2942803602790423e+00};
+static const double ros_c[6] = {-4.5885607205580836e+00, -4.1847604823191613e+00,
+                                2.8519201735549599e-01, -6.3681792001283597e+00,
+                                -6.7956209444668367e+00, 2.8700986043310555e+00};
+static const int ros_new_f[ROS_STAGES] = {1, 1, 1, 1};
+static const double ros_m[ROS_STAGES] = {4.1847604823191613e+00, -2.8519201735549599e-01,
+                                         2.2942803602790423e+00, 1.0};
+static const double ros_e[ROS_STAGES] = {2.7774994764796903e-01, -1.4032398951759988e+00,
+                                         1.7726301276675507e+00, 0.5};
+static const double ros_alpha[ROS_STAGES] = {0.0, 8.7173304301691801e-01,
+                                             7.3157995778885238e-01, 1.0};
+static const double ros_gamma[ROS_STAGES] = {4.3586652150845900e-01, -4.3586652150845900e-01,
+                                             -4.1333337623388650e-01, 0.0};
+static const int ros_reuse = 1;
+#endif
 
-/* LU factorisation with partial pivoting, in place, row major. Returns 0 or 1 + the column
- * at which the matrix is singular. */
-int bsm_lu_factor(double *a, int n, int *piv) {
-    int i, j, k, p;
+/* LU factorisation with partial pivoting, in place, row major, skipping the structural zeros
+ * of each pivot row and column. nzcol: work of n ints. Returns 0 or 1 + the column at which
+ * the matrix is singular. */
+int bsm_lu_factor(double *a, int n, int *piv, int *nzcol) {
+    int i, j, k, p, q, nnz;
     for (k = 0; k < n; ++k) {
-        double big = 0.0;
+        double big = 0.0, inv;
+        double *ak;
         p = k;
         for (i = k; i < n; ++i)
             if (fabs(a[i * n + k]) > big) {
@@ -44,28 +109,67 @@ int bsm_lu_factor(double *a, int n, int *piv) {
                 a[k * n + j] = a[p * n + j];
                 a[p * n + j] = tmp;
             }
+        ak = a + k * n;
+        nnz = 0;
+        for (j = k + 1; j < n; ++j)
+            if (ak[j] != 0.0) nzcol[nnz++] = j;
+        inv = 1.0 / ak[k];
         for (i = k + 1; i < n; ++i) {
-            double l = a[i * n + k] / a[k * n + k];
-            a[i * n + k] = l;
-            if (l != 0.0)
-                for (j = k + 1; j < n; ++j) a[i * n + j] -= l * a[k * n + j];
+            double *ai = a + i * n;
+            double l = ai[k];
+            if (l == 0.0) continue;
+            l *= inv;
+            ai[k] = l;
+            for (q = 0; q < nnz; ++q) ai[nzcol[q]] -= l * ak[nzcol[q]];
         }
     }
     return 0;
 }
 
-void bsm_lu_solve(const double *lu, int n, const int *piv, double *b) {
-    int i, j;
+/* Copy the nonzeros of the LU factors a (from bsm_lu_factor) row by row into c: the strictly
+ * lower part (unit diagonal implied), then the strictly upper part, and the inverse diagonal, so
+ * that a solve costs the factors' nonzeros, not n^2. */
+void bsm_lu_compress(const double *a, int n, BsmLu *c) {
+    int i, j, k = 0;
+    for (i = 0; i < n; ++i) {
+        c->l_start[i] = k;
+        for (j = 0; j < i; ++j)
+            if (a[i * n + j] != 0.0) {
+                c->col[k] = j;
+                c->val[k++] = a[i * n + j];
+            }
+    }
+    c->l_start[n] = k;
+    for (i = 0; i < n; ++i) {
+        c->u_start[i] = k;
+        for (j = i + 1; j < n; ++j)
+            if (a[i * n + j] != 0.0) {
+                c->col[k] = j;
+                c->val[k++] = a[i * n + j];
+            }
+        c->inv_diag[i] = 1.0 / a[i * n + i];
+    }
+    c->u_start[n] = k;
+}
+
+/* Solve A x = b in place with the row interchanges piv of bsm_lu_factor and the compressed
+ * factors. */
+void bsm_lu_solve(const BsmLu *c, int n, const int *piv, double *b) {
+    int i, k;
     for (i = 0; i < n; ++i) {
         double tmp = b[piv[i]];
         b[piv[i]] = b[i];
         b[i] = tmp;
     }
-    for (i = 1; i < n; ++i)
-        for (j = 0; j < i; ++j) b[i] -= lu[i * n + j] * b[j];
+    for (i = 1; i < n; ++i) {
+        double s = b[i];
+        for (k = c->l_start[i]; k < c->l_start[i + 1]; ++k) s -= c->val[k] * b[c->col[k]];
+        b[i] = s;
+    }
     for (i = n - 1; i >= 0; --i) {
-        for (j = i + 1; j < n; ++j) b[i] -= lu[i * n + j] * b[j];
-        b[i] /= lu[i * n + i];
+        double s = b[i];
+        for (k = c->u_start[i]; k < c->u_start[i + 1]; ++k) s -= c->val[k] * b[c->col[k]];
+        b[i] = s * c->inv_diag[i];
     }
 }
 
@@ -89,26 +193,103 @@ static int rhs(BsmInstance *m, double t, const double *y, double *f) {
     return all_finite(f, NX);
 }
 
-/* One Rodas3 step of size h from (t, x). Result in m->x_new; returns the weighted RMS error
- * estimate, or -1 if a stage was not finite or the iteration matrix is singular. */
-static double rodas3_step(BsmInstance *m, double t, const double *x, double h) {
+/* df/dt = jac_t + jac_u * du [unit of x / s^2] from the stepper's Jacobians. */
+static void time_derivative(BsmInstance *m) {
+    int i, j;
+    for (i = 0; i < NX; ++i) {
+        m->dfdt[i] = m->w_jt[i];
+        for (j = 0; j < NU; ++j) m->dfdt[i] += m->w_ju[i * NU + j] * m->saved.du[j];
+    }
+}
+
+/* Evaluate the stepper's Jacobians at (t, x, u) into the instance's cache. Returns 1 if
+ * finite. */
+static int eval_jacobian(BsmInstance *m, double t, const double *x, const double *u) {
+    m->w_valid = 0;
+    m->w_h = 0.0;
+    m->s.n_jac++;
+    if (bsm_eval_dense(m, FN_JAC_X, t, x, u, m->w_jx) != 0) return 0;
+    if (bsm_eval_dense(m, FN_JAC_T, t, x, u, m->w_jt) != 0) return 0;
+    if (NU > 0 && bsm_eval_dense(m, FN_JAC_U, t, x, u, m->w_ju) != 0) return 0;
+    if (!all_finite(m->w_jx, NX * NX) || !all_finite(m->w_jt, NX) ||
+        !all_finite(m->w_ju, NX * NU))
+        return 0;
+    m->w_t = t;
+    memcpy(m->w_x, x, sizeof(m->w_x));
+    memcpy(m->w_u, u, sizeof(m->w_u));
+    memcpy(m->w_p, m->s.p, sizeof(m->w_p));
+    m->w_valid = 1;
+    return 1;
+}
+
+/* A new Jacobian at (t, x) and the inputs at t, recorded in the state. Returns 1 if
+ * finite. */
+static int new_jacobian(BsmInstance *m, double t, const double *x) {
+    inputs_at(m, t);
+    m->s.jac_set = 0;
+    m->s.jac_h = 0.0;
+    if (!eval_jacobian(m, t, x, m->ut)) return 0;
+    m->s.jac_set = 1;
+    m->s.jac_age = 0;
+    m->s.jac_t = t;
+    memcpy(m->s.jac_x, x, sizeof(m->s.jac_x));
+    memcpy(m->s.jac_u, m->ut, sizeof(m->s.jac_u));
+    time_derivative(m);
+    return 1;
+}
+
+/* Factorise W = I/(h gamma) - J in the order bsm_lu_order. Returns 1 if not singular. */
+static int factorise(BsmInstance *m, double h) {
+    int i, j;
+    const int *o = bsm_lu_order;
+    m->w_h = 0.0;
+    m->s.jac_h = 0.0;
+    m->s.n_lu++;
+    for (i = 0; i < NX; ++i) {
+        const double *row = m->w_jx + o[i] * NX;
+        double *lu = m->lu + i * NX;
+        for (j = 0; j < NX; ++j) lu[j] = -row[o[j]];
+        lu[i] += 1.0 / (h * ros_gamma_diag);
+    }
+    if (bsm_lu_factor(m->lu, NX, m->piv, m->nzcol) != 0) return 0;
+    bsm_lu_compress(m->lu, NX, &m->lu_c);
+    m->w_h = h;
+    m->s.jac_h = h;
+    return 1;
+}
+
+/* Make the instance's Jacobian and factorisation those the state names (after a restored FMU
+ * state, or a parameter set since), evaluating and factorising again only if the cached ones
+ * belong elsewhere. Returns 1 if they are usable. */
+static int restore_jacobian(BsmInstance *m) {
+    double h = m->s.jac_h;
+    if (!(m->w_valid && m->w_t == m->s.jac_t &&
+          memcmp(m->w_x, m->s.jac_x, sizeof(m->w_x)) == 0 &&
+          memcmp(m->w_u, m->s.jac_u, sizeof(m->w_u)) == 0 &&
+          memcmp(m->w_p, m->s.p, sizeof(m->w_p)) == 0)) {
+        if (!eval_jacobian(m, m->s.jac_t, m->s.jac_x, m->s.jac_u)) return 0;
+    }
+    if (h > 0.0 && m->w_h != h) return factorise(m, h);
+    m->s.jac_h = m->w_h;
+    return 1;
+}
+
+/* Solve W k = b in place (b in the model's state order). */
+static void solve(BsmInstance *m, double *b) {
+    int i;
+    const int *o = bsm_lu_order;
+    for (i = 0; i < NX; ++i) m->xs[i] = b[o[i]];
+    bsm_lu_solve(&m->lu_c, NX, m->piv, m->xs);
+    for (i = 0; i < NX; ++i) b[o[i]] = m->xs[i];
+}
+
+/* One step of size h from (t, x) with the current factorisation (built for a step size near
+ * h). Result in m->x_new; returns the weighted RMS error estimate, or -1 if a stage was not
+ * finite. */
+static double ros_step(BsmInstance *m, double t, const double *x, double h) {
     int i, j, s;
     double err = 0.0;
-    const double *xx = x;
-    inputs_at(m, t);
     if (!rhs(m, t, x, m->f)) return -1.0;
-    bsm_eval_dense(m, FN_JAC_X, t, x, m->ut, m->jx);
-    bsm_eval_dense(m, FN_JAC_T, t, x, m->ut, m->jt);
-    if (NU > 0) bsm_eval_dense(m, FN_JAC_U, t, x, m->ut, m->ju);
-    m->s.n_jac++;
-    for (i = 0; i < NX; ++i) {
-        m->dfdt[i] = m->jt[i];
-        for (j = 0; j < NU; ++j) m->dfdt[i] += m->ju[i * NU + j] * m->saved.du[j];
-    }
-    for (i = 0; i < NX * NX; ++i) m->lu[i] = -m->jx[i];
-    for (i = 0; i < NX; ++i) m->lu[i * NX + i] += 1.0 / (h * ros_gamma_diag);
-    if (!all_finite(m->lu, NX * NX) || !all_finite(m->dfdt, NX)) return -1.0;
-    if (bsm_lu_factor(m->lu, NX, m->piv) != 0) return -1.0;
     for (s = 0; s < ROS_STAGES; ++s) {
         double *ks = m->k[s];
         if (s > 0 && ros_new_f[s]) {
@@ -116,14 +297,13 @@ static double rodas3_step(BsmInstance *m, double t, const double *x, double h) {
                 m->xs[i] = x[i];
                 for (j = 0; j < s; ++j) m->xs[i] += ros_a[s * (s - 1) / 2 + j] * m->k[j][i];
             }
-            xx = m->xs;
-            if (!rhs(m, t + ros_alpha[s] * h, xx, m->f)) return -1.0;
+            if (!rhs(m, t + ros_alpha[s] * h, m->xs, m->f)) return -1.0;
         }
         for (i = 0; i < NX; ++i) {
             ks[i] = m->f[i] + h * ros_gamma[s] * m->dfdt[i];
             for (j = 0; j < s; ++j) ks[i] += ros_c[s * (s - 1) / 2 + j] / h * m->k[j][i];
         }
-        bsm_lu_solve(m->lu, NX, m->piv, ks);
+        solve(m, ks);
     }
     for (i = 0; i < NX; ++i) {
         double e = 0.0, sc;
@@ -149,13 +329,37 @@ static BsmStatus step_failed(BsmInstance *m, const char *reason, double t, doubl
     return BSM_DISCARD;
 }
 
+/* Whether the W-method can go on with the Jacobian the state names: there is one, no state
+ * or parameter was set since, and the inputs are within BSM_INPUT_JUMP of those of J. Makes
+ * the instance's cached J and LU those of the state. */
+static int jacobian_current(BsmInstance *m) {
+    int i;
+    if (!m->s.jac_set) return 0;
+    for (i = 0; i < NU; ++i)
+        if (fabs(m->s.u[i] - m->s.jac_u[i]) > BSM_INPUT_JUMP * fabs(m->s.jac_u[i])) return 0;
+    return restore_jacobian(m);
+}
+
+/* Length of the next internal step [s]. Rodas3 takes the proposed step h_prop and shortens
+ * the last one. The W-method keeps the step size h_lu of its factorisation while the proposal
+ * is in [h_lu, BSM_H_KEEP h_lu] and divides what is left of the communication step into equal
+ * steps no longer than that, so that one factorisation serves all of them and, for the same
+ * communication step, the next doStep. */
+static double next_step(double h_prop, double remaining, double h_lu) {
+    double h;
+    if (!ros_reuse)
+        return (h_prop >= remaining || remaining - h_prop < 1e-3 * h_prop) ? remaining : h_prop;
+    h = (h_lu > 0.0 && h_prop >= h_lu && h_prop <= BSM_H_KEEP * h_lu) ? h_lu : h_prop;
+    return remaining / fmax(1.0, ceil(remaining / h - 1e-6));
+}
+
 /* Integrate from s.time over one communication step h. If the right-hand side is not finite at
  * the start, BSM_ERROR is returned; if the stepper fails later (step size too small, too many
  * steps), the instance is restored to the start of the step and BSM_DISCARD is returned. */
 BsmStatus bsm_do_step(BsmInstance *m, double h) {
     double t, t_end, h_prop, err;
     long n = 0;
-    int rejected = 0;
+    int rejected = 0, need_jac;
     BsmStatus st;
     m->saved = m->s;
     t = m->s.time;
@@ -163,12 +367,19 @@ BsmStatus bsm_do_step(BsmInstance *m, double h) {
     st = bsm_derivatives(m, t, m->s.x, m->s.u, m->dx);
     if (st != BSM_OK) return st;
     h_prop = (m->s.h_next > 0.0) ? m->s.h_next : h;
+    need_jac = !ros_reuse || !jacobian_current(m);
+    if (!need_jac) time_derivative(m); /* du of this doStep */
     while (NX > 0 && t_end - t > 1e-13 * fmax(1.0, fabs(t_end))) {
-        double remaining = t_end - t;
-        double hs = (h_prop >= remaining || remaining - h_prop < 1e-3 * h_prop) ? remaining
-                                                                              : h_prop;
+        double hs = next_step(h_prop, t_end - t, m->w_h);
+        int ok = 1;
         if (++n > ROS_MAX_STEPS) return step_failed(m, "too many internal steps", t, hs);
-        err = rodas3_step(m, t, m->s.x, hs);
+        if (need_jac) ok = new_jacobian(m, t, m->s.x);
+        need_jac = !ros_reuse;
+        /* equal steps of a communication step differ from the factorised one by rounding only;
+         * W of a nearby h is I/(hs gamma) - (J + delta I), still a W-method */
+        if (ok && !(ros_reuse && fabs(hs - m->w_h) <= 1e-6 * hs))
+            ok = factorise(m, hs);
+        err = ok ? ros_step(m, t, m->s.x, hs) : -1.0;
         if (err >= 0.0 && err <= 1.0) {
             double fac = (err > 0.0) ? 0.9 * pow(err, -1.0 / ROS_ORDER) : 5.0;
             fac = fmin(rejected ? 1.0 : 5.0, fmax(0.2, fac));
@@ -177,11 +388,13 @@ BsmStatus bsm_do_step(BsmInstance *m, double h) {
             m->s.n_steps++;
             h_prop = (hs < h_prop) ? fmax(h_prop, hs * fac) : hs * fac;
             rejected = 0;
+            if (++m->s.jac_age >= BSM_JAC_MAX_AGE) need_jac = 1;
         } else {
             double fac = (err > 0.0) ? fmax(0.1, 0.9 * pow(err, -1.0 / ROS_ORDER)) : 0.25;
             m->s.n_rejected++;
             h_prop = hs * fmin(fac, 0.5);
             rejected = 1;
+            if (m->s.jac_age > 0 || !m->s.jac_set) need_jac = 1; /* an old J may be the cause */
             if (h_prop < 1e-14 * fmax(1.0, fabs(t)))
                 return step_failed(m,
                                    err < 0.0 ? "the equations are not finite or singular"

@@ -163,7 +163,8 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component) {
 fmi2Status fmi2Terminate(fmi2Component component) {
     INSTANCE("fmi2Terminate", RUN_MODES | MODE_ERROR)
     bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
-            "(%ld rejected)", c->m.s.time, c->m.s.n_steps, c->m.s.n_rejected);
+            "(%ld rejected), %ld Jacobians, %ld LU factorisations", c->m.s.time, c->m.s.n_steps,
+            c->m.s.n_rejected, c->m.s.n_jac, c->m.s.n_lu);
     c->m.s.mode = MODE_TERMINATED;
     return fmi2OK;
 }

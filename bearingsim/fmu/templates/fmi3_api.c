@@ -215,7 +215,8 @@ fmi3Status fmi3EnterEventMode(fmi3Instance instance) {
 fmi3Status fmi3Terminate(fmi3Instance instance) {
     INSTANCE("fmi3Terminate", RUN_MODES | MODE_ERROR)
     bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
-            "(%ld rejected)", c->m.s.time, c->m.s.n_steps, c->m.s.n_rejected);
+            "(%ld rejected), %ld Jacobians, %ld LU factorisations", c->m.s.time, c->m.s.n_steps,
+            c->m.s.n_rejected, c->m.s.n_jac, c->m.s.n_lu);
     c->m.s.mode = MODE_TERMINATED;
     return fmi3OK;
 }
