@@ -4,7 +4,7 @@ Each assembly is exported twice as an FMI 2.0 co-simulation FMU and run side by 
 process with fmpy's ``FMU2Slave`` at a 1 ms communication step:
 
 * **native**: :func:`bearingsim.fmu.export_fmu` (CasADi C code + the C runtime with its adaptive
-  Rodas3 stepper, tolerance 1e-6);
+  ROS34PW2 stepper, tolerance 1e-6);
 * **pythonfmu**: a ``pythonfmu.Fmi2Slave`` (:class:`BearingsimPythonSlave`) built with
   ``pythonfmu build``; its ``do_step`` calls the system's compiled CasADi functions
   (:func:`bearingsim.simulation.compile.compile_system`, zero-copy ``Function.buffer`` calls) with a
@@ -384,7 +384,7 @@ def run(quick: bool, log=print) -> str:
         f"Each model as an FMI 2.0 co-simulation FMU, stepped from Python (fmpy `FMU2Slave`) "
         f"over {rows[0]['t_end']:g} s at a {COMM_STEP * 1e3:g} ms communication step; the time "
         "is that of the `fmi2DoStep` calls only (fmpy's ctypes call included, a few µs). "
-        "*native*: `export_fmu` (generated C, adaptive Rodas3, tolerance 1e-6). *pythonfmu*: a "
+        "*native*: `export_fmu` (generated C, adaptive ROS34PW2, tolerance 1e-6). *pythonfmu*: a "
         "`pythonfmu.Fmi2Slave` built with `pythonfmu build` whose `do_step` calls the compiled "
         "CasADi functions of the same system with backward Euler (one step per ms, Newton with "
         "the exact Jacobian). Real-time factor: simulated time / wall time. Error: largest "

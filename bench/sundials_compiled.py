@@ -482,7 +482,7 @@ def report(sections: tuple[str, ...], cases: tuple[str, ...],
 def section(quick: bool = False) -> Section:
     """The run_all section: calls, runs and set-up of the torque level, the 6304 massive-ball
     level and the nested dynamic bearing (the torque level only with ``quick``)."""
-    cases = ("torque",) if quick else ("torque", "massive", "nested")
+    cases = ("torque",) if quick else ("torque", "massive", "qs", "nested")
     intro = (
         "`simulate(..., method=\"cvodes\")` on CasADi's VM (`compiled=False`) and on generated "
         "C (`compiled=True`: right-hand side and exact Jacobian as a library loaded with "

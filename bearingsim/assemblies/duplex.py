@@ -377,7 +377,7 @@ class DuplexPair(Assembly):
         each uncoupled mode of the unloaded pair decays with about this ratio. The quasi-static
         rows have no damping of their own, so without it (default None: no damper) a load
         step rings for ever; the damper exerts no load at rest, so equilibria do not change.
-        the duplex study's loss factor (docs/studies.md, section B) ``eta = 0.005`` is
+        The duplex study's loss factor (docs/studies.md, section B) ``eta = 0.005`` is
         ``zeta = 0.0025``.
 
     Attributes
