@@ -288,8 +288,9 @@ class DoubleLayerBearing(Assembly):
     Variables
     ---------
     w_shaft, w_middle [rad/s]; Rs [1] = w_middle / w_shaft (0 at rest, :func:`speed_ratio`);
-    M_shaft [N m] friction torque on
-    the shaft; inputs Fr, Fa [N] (radial and axial load carried by both layers in series)
+    M_shaft [N m] friction torque the bearing exerts on the shaft (opposes its rotation:
+    negative while it turns forward; the one sign convention of scenes, CSVs, plots and FMUs);
+    inputs Fr, Fa [N] (radial and axial load carried by both layers in series)
     """
 
     def __init__(self, inner="61905", outer="61907", structure: str | None = None,
