@@ -393,3 +393,22 @@ def test_a_scene_gives_the_preload_by_class_by_rule_or_by_force():
         pair('preload = "heavy"\npreload_force = 800.0\n')
     with pytest.raises(SceneError, match="preload_force"):
         pair("preload_force = -5.0\n")
+
+
+def test_a_configuration_solves_its_spacer_offset_once(monkeypatch):
+    """Every equilibrium recomputed the spacer offset of its preload (a Python root search over
+    the balls, ~0.1 s, most of a duplex equilibrium's time); now it is solved once per
+    configuration, with the same numbers."""
+    import bearingsim.studies.duplex as study
+
+    model = study.DuplexModel("7020C", "DF")
+    first = model.equilibrium({"Fz": 1000.0}, preload="medium")
+    calls = []
+    real = study.preload_offset
+    monkeypatch.setattr(study, "preload_offset", lambda *a: calls.append(a) or real(*a))
+    study._spacer_offset.cache_clear()
+    again = [model.equilibrium({"Fz": f}, preload="medium") for f in (1000.0, 2000.0, 500.0)]
+    assert len(calls) == 1
+    np.testing.assert_array_equal(again[0].state, first.state)
+    assert model.parameters(preload="heavy") != model.parameters(preload="medium")
+    assert len(calls) == 2

@@ -20,6 +20,7 @@ overrides only what it is given.
 
 from __future__ import annotations
 
+import functools
 import inspect
 import warnings
 from dataclasses import dataclass, field
@@ -253,6 +254,15 @@ def modal_analysis(stiffness: np.ndarray, mass: np.ndarray,
                  np.asarray(stiffness, dtype=float), np.asarray(mass, dtype=float))
 
 
+@functools.lru_cache(maxsize=256)
+def _spacer_offset(geometry: BearingGeometry, force: float, arrangement: str,
+                   contact_angle: float) -> float:
+    """:func:`~bearingsim.assemblies.duplex.preload_offset` of one configuration, solved once
+    per process [m]: its axial approach is a root search over the balls in Python (~0.1 s),
+    and every equilibrium, mode set and sweep point of a configuration asks for it again."""
+    return preload_offset(geometry, force, arrangement, contact_angle)
+
+
 @dataclass
 class DuplexModel:
     """An assembled duplex pair and the parameter values of its configurations.
@@ -405,8 +415,8 @@ class DuplexModel:
             out["inner_spacer.width_difference"] = pair.spacer_offset
         else:
             force = preload_force(g, pair.preload if preload is None else preload)
-            out["inner_spacer.width_difference"] = preload_offset(g, force, self.arrangement,
-                                                                  rp.alpha0)
+            out["inner_spacer.width_difference"] = _spacer_offset(g, float(force),
+                                                                  self.arrangement, rp.alpha0)
         return out
 
     def _smooth(self) -> float:
