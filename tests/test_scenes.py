@@ -504,3 +504,23 @@ def test_scene_inputs_may_carry_engineering_units():
     prepare(scene)
     with pytest.raises(SceneError, match="input shaft_speed is in rad/s"):
         prepare(parse_scene(text.format(speed="2 kN", load="2 kN"), None))
+
+
+def test_a_sweep_without_dask_names_the_extra(monkeypatch):
+    """dask.distributed is the [dask] extra, not a core dependency (the demo does not need it):
+    a sweep without it stops with an error naming the extra, not an ImportError traceback."""
+    import builtins
+
+    from bearingsim.scenes.sweep import SweepError, run_sweep
+
+    real_import = builtins.__import__
+
+    def no_distributed(name, *args, **kwargs):
+        if name == "distributed" or name.startswith("distributed."):
+            raise ImportError("No module named 'distributed'")
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_distributed)
+    with pytest.raises(SweepError, match=r"bearingsim\[dask\]"):
+        run_sweep("double_layer_rs", [{"inputs.shaft_speed": 100.0},
+                                      {"inputs.shaft_speed": 200.0}], progress=False)

@@ -363,8 +363,19 @@ def run_point(packed: dict[str, Any], job: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _distributed():
+    """The ``distributed`` package, or a named error saying how to install it."""
+    try:
+        import distributed
+    except ImportError:
+        raise SweepError("sweeps run on dask.distributed, which is not installed: "
+                         "pip install 'bearingsim[dask]'") from None
+    return distributed
+
+
 def _client(scheduler: str | None, n_workers: int):
-    from distributed import Client, LocalCluster
+    distributed = _distributed()
+    Client, LocalCluster = distributed.Client, distributed.LocalCluster  # noqa: N806
 
     if scheduler:
         return Client(scheduler), None
@@ -477,7 +488,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     SweepError
         For an invalid key or point (before anything runs).
     """
-    from distributed import as_completed
+    as_completed = _distributed().as_completed
     from tqdm import tqdm
 
     if not isinstance(scene, Scene):
