@@ -8,11 +8,29 @@ from __future__ import annotations
 
 import os
 
+import pytest
 from hypothesis import settings
 
 settings.register_profile("ci", derandomize=True, deadline=None)
 if os.environ.get("CI"):
     settings.load_profile("ci")
+
+
+
+@pytest.fixture()
+def kernel_cache(tmp_path, monkeypatch):
+    """A fresh kernel library cache (``BEARINGSIM_CACHE``), and no kernels or integrators left
+    in memory from other tests."""
+    from bearingsim.simulation.kernels import clear_kernel_cache
+    from bearingsim.simulation.sundials import clear_integrator_cache
+
+    monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
+    clear_kernel_cache()
+    clear_integrator_cache()
+    yield tmp_path
+    clear_kernel_cache()
+    clear_integrator_cache()
+
 
 STRESS_TOTAL = {"cases": 0, "seconds": 0.0}
 """Generated stress cases of all workers and their time [s] (controller side)."""

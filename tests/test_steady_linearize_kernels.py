@@ -12,18 +12,6 @@ from bearingsim.simulation import linearize, steady_state
 from bearingsim.simulation.compile import CompileError, compilations
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
 from bearingsim.simulation.steady import integrator_states
-from bearingsim.simulation.sundials import clear_integrator_cache
-
-
-@pytest.fixture()
-def cache(tmp_path, monkeypatch):
-    """A fresh library cache and no kernels left from other tests."""
-    monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
-    clear_kernel_cache()
-    clear_integrator_cache()
-    yield tmp_path
-    clear_kernel_cache()
-    clear_integrator_cache()
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +30,7 @@ def _u(system):
     return u
 
 
-def test_steady_state_is_the_same_on_compiled_c_and_the_vm(cache, torque_level):
+def test_steady_state_is_the_same_on_compiled_c_and_the_vm(kernel_cache, torque_level):
     vm = steady_state(torque_level, inputs=INPUTS, compiled=False)
     c = steady_state(torque_level, inputs=INPUTS, compiled=True)
     assert kernel(torque_level, "ode", True).backend == "compiled C"
@@ -55,7 +43,7 @@ def test_steady_state_is_the_same_on_compiled_c_and_the_vm(cache, torque_level):
     assert free and np.max(np.abs(np.asarray(rhs)[free])) < 1e-9
 
 
-def test_linearize_is_the_same_on_compiled_c_and_the_vm(cache, torque_level):
+def test_linearize_is_the_same_on_compiled_c_and_the_vm(kernel_cache, torque_level):
     x = steady_state(torque_level, inputs=INPUTS, compiled=False)
     vm = linearize(torque_level, x, inputs=INPUTS, compiled=False)
     c = linearize(torque_level, x, inputs=INPUTS, compiled=True)
@@ -68,7 +56,7 @@ def test_linearize_is_the_same_on_compiled_c_and_the_vm(cache, torque_level):
                                rtol=1e-12, atol=0.0)
 
 
-def test_a_parameter_change_compiles_nothing(cache, torque_level):
+def test_a_parameter_change_compiles_nothing(kernel_cache, torque_level):
     steady_state(torque_level, inputs=INPUTS, compiled=True)
     n = compilations()
     name = torque_level.parameter_names[0]
@@ -78,7 +66,7 @@ def test_a_parameter_change_compiles_nothing(cache, torque_level):
     assert compilations() == n
 
 
-def test_without_a_compiler_auto_answers_on_the_vm_and_true_raises(cache, monkeypatch,
+def test_without_a_compiler_auto_answers_on_the_vm_and_true_raises(kernel_cache, monkeypatch,
                                                                    torque_level, tmp_path):
     reference = steady_state(torque_level, inputs=INPUTS, compiled=False)
     empty = tmp_path / "empty"

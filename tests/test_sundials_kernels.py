@@ -20,17 +20,6 @@ from bearingsim.simulation.sundials import (
 from tests.models import Pendulum, SpringMassChain
 
 
-@pytest.fixture()
-def cache(tmp_path, monkeypatch):
-    """A fresh library cache, and no kernels or integrators left from other tests."""
-    monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
-    clear_kernel_cache()
-    clear_integrator_cache()
-    yield tmp_path
-    clear_kernel_cache()
-    clear_integrator_cache()
-
-
 @pytest.fixture(scope="module")
 def torque_level():
     return assemble(double_layer_bearing("61905", "61907", fidelity="torque"))
@@ -43,7 +32,7 @@ def _same_run(a, b):
 
 
 @pytest.mark.parametrize("method", ["cvodes", "idas"])
-def test_compiled_and_vm_kernels_take_the_same_steps_to_the_same_numbers(cache, method):
+def test_compiled_and_vm_kernels_take_the_same_steps_to_the_same_numbers(kernel_cache, method):
     system = assemble(Pendulum())  # fast_newton block: MX ODE form, SX DAE form for IDAS
     vm = simulate(system, 2.0, method=method, rtol=1e-8, atol=1e-10, compiled=False)
     c = simulate(system, 2.0, method=method, rtol=1e-8, atol=1e-10, compiled=True)
@@ -54,7 +43,7 @@ def test_compiled_and_vm_kernels_take_the_same_steps_to_the_same_numbers(cache, 
     np.testing.assert_allclose(c["x"] ** 2 + c["y"] ** 2, 1.0, atol=1e-7)
 
 
-def test_compiled_kernel_with_inputs_matches_vm(cache, torque_level):
+def test_compiled_kernel_with_inputs_matches_vm(kernel_cache, torque_level):
     inputs = {"shaft_speed": ([0.0, 0.5, 1.0], [0.0, 300.0, 500.0]), "Fa": 50.0}
     vm = simulate(torque_level, 1.5, inputs=inputs, method="cvodes", compiled=False)
     c = simulate(torque_level, 1.5, inputs=inputs, method="cvodes", compiled=True)
@@ -62,7 +51,7 @@ def test_compiled_kernel_with_inputs_matches_vm(cache, torque_level):
     assert c.inputs["shaft_speed"] == 500.0  # table held after its last row
 
 
-def test_parameter_and_input_changes_reuse_library_and_integrator(cache, torque_level):
+def test_parameter_and_input_changes_reuse_library_and_integrator(kernel_cache, torque_level):
     first = simulate(torque_level, 1.0, inputs={"shaft_speed": 300.0}, method="cvodes",
                      compiled=True)
     assert not first.stats["integrator_cached"]
@@ -82,7 +71,7 @@ def test_parameter_and_input_changes_reuse_library_and_integrator(cache, torque_
     _same_run(fresh, again)
 
 
-def test_without_a_compiler_auto_falls_back_to_the_vm_and_true_raises(cache, monkeypatch,
+def test_without_a_compiler_auto_falls_back_to_the_vm_and_true_raises(kernel_cache, monkeypatch,
                                                                       tmp_path):
     empty = tmp_path / "empty_bin"
     empty.mkdir()
@@ -96,14 +85,14 @@ def test_without_a_compiler_auto_falls_back_to_the_vm_and_true_raises(cache, mon
         simulate(system, 1.0, method="cvodes", compiled=True)
 
 
-def test_auto_keeps_tiny_models_on_the_vm_and_says_why(cache):
+def test_auto_keeps_tiny_models_on_the_vm_and_says_why(kernel_cache):
     system = assemble(SpringMassChain())
     k = kernel(system, "ode", "auto")
     assert k.backend == VM and k.reason.startswith("tiny model")
     assert k.library is None
 
 
-def test_newton_blocks_cannot_be_compiled_in_the_ode_form(cache):
+def test_newton_blocks_cannot_be_compiled_in_the_ode_form(kernel_cache):
     system = assemble(Pendulum(), rootfinder="newton")
     assert kernel(system, "ode", "auto").backend == VM
     with pytest.raises(CompileError, match="IDAS on the DAE form compiles"):
@@ -132,7 +121,7 @@ def test_linear_solver_by_size_and_checked_choices(torque_level):
         simulate(torque_level, 0.1, method="cvodes", compiled="yes")
 
 
-def test_auto_runs_on_the_vm_while_c_compiles_in_the_background(cache, monkeypatch):
+def test_auto_runs_on_the_vm_while_c_compiles_in_the_background(kernel_cache, monkeypatch):
     from bearingsim.simulation import kernels
 
     monkeypatch.setattr(kernels, "AUTO_MIN_INSTRUCTIONS", 0)  # compile even a tiny model
@@ -146,7 +135,7 @@ def test_auto_runs_on_the_vm_while_c_compiles_in_the_background(cache, monkeypat
     _same_run(first, later)
 
 
-def test_a_failing_compiler_leaves_auto_on_the_vm_and_raises_for_true(cache, monkeypatch):
+def test_a_failing_compiler_leaves_auto_on_the_vm_and_raises_for_true(kernel_cache, monkeypatch):
     from bearingsim.simulation import kernels
 
     monkeypatch.setattr(kernels, "AUTO_MIN_INSTRUCTIONS", 0)
@@ -162,4 +151,4 @@ def test_a_failing_compiler_leaves_auto_on_the_vm_and_raises_for_true(cache, mon
     assert res.stats["backend_reason"].startswith("compiling failed")
     with pytest.raises(CompileError, match="failed"):
         simulate(system, 0.5, method="cvodes", compiled=True)
-    assert not list(cache.glob(".build_*"))  # no half-built leftovers
+    assert not list(kernel_cache.glob(".build_*"))  # no half-built leftovers
