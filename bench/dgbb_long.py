@@ -38,7 +38,7 @@ from bearingsim.simulation.kernels import kernel
 from bearingsim.studies.deep_groove import DUTY_CYCLE
 from bench import dgbb
 from bench.common import Section, fmt, interp_loglog, markdown_table
-from bench.sundials_compiled import per_call_us
+from bench.sundials_compiled import dense_lu_us, per_call_us, physical_limit_s
 
 __all__ = ["run", "section"]
 
@@ -57,8 +57,6 @@ def _cage_error(value: float, ref: dict) -> float:
 def _per_call(system, res, form: str) -> dict[str, float]:
     """Compiled per-call costs [us] at the end of ``res``: right-hand side (or DAE residual),
     its Jacobian and a dense LU factorisation and solve of the Newton matrix."""
-    import casadi as ca
-
     kern = kernel(system, form, True)
     x = np.array([res.final(n) for n in system.state_names])
     signal = input_signal(system, None)
@@ -72,18 +70,9 @@ def _per_call(system, res, form: str) -> dict[str, float]:
     value = kern.function(*args)
     value = list(value) if isinstance(value, (list, tuple)) else [value]
     n = system.n_states + (args[2].size if form == "dae" else 0)
-    a, b = ca.MX.sym("A", n * n), ca.MX.sym("b", n)
-    lu = ca.Function("lu", [a, b], [ca.solve(ca.reshape(a, n, n), b, "lapacklu")])
-    mat = np.eye(n) + 0.01 * np.random.default_rng(0).standard_normal((n, n))
     return {"rhs": per_call_us(kern.function, args, n=2000),
             "jac": per_call_us(kern.function.jacobian(), [*args, *value], n=500),
-            "lu": per_call_us(lu, [mat.ravel(order="F"), np.ones(n)], n=500)}
-
-
-def _limit(stats: dict, pc: dict[str, float]) -> float:
-    """The physical limit of a run [s]: compiled per-call costs times the calls it made."""
-    return (stats["nfevals"] * pc["rhs"] + stats["njevals"] * pc["jac"]
-            + stats["nlinsetups"] * pc["lu"]) * 1e-6
+            "lu": dense_lu_us(n)}
 
 
 def _sundials(system, method: str, ref, t_end: float, label: str, pc: dict[str, float]):
@@ -101,7 +90,7 @@ def _sundials(system, method: str, ref, t_end: float, label: str, pc: dict[str, 
         res = simulate(system, t_end, **kw)
         wall = time.perf_counter() - t0
         err = _cage_error(res.final("w_cage"), ref)
-        limit = _limit(res.stats, pc)
+        limit = physical_limit_s(res.stats, pc["rhs"], pc["jac"], pc["lu"])
         curve.append((err, wall))
         rows.append([label, f"rtol {rtol:g}", fmt(wall), fmt(err, 2), fmt(res.stats["nsteps"]),
                      fmt(limit), fmt(wall / limit)])
