@@ -79,7 +79,8 @@ class Cage(Component):
 class PocketContact(Component):
     """Ball in a stadium-shaped pocket: Hertz contact with Coulomb friction or short-bearing film.
 
-    The pocket ``j`` sits at ``phi_p = phi_cage + 2 pi j / Z`` on the pitch circle of the cage,
+    The pocket ``j`` sits at ``phi_p = phi_cage + phase`` (``phase = 2 pi j / Z``, a parameter so
+    that every pocket is the same function of its own parameters) on the pitch circle of the cage,
     its axis along ``e_r(phi_p)``; the stadium (straight length ``Sp`` along the bearing axis,
     end radius ``Rp``) lies in the plane ``(e_z, e_t(phi_p))``. Forces from
     :func:`~bearingsim.physics.cage.ball_pocket_force` (docs/studies.md, section C; Gupta ch. 5):
@@ -123,7 +124,9 @@ class PocketContact(Component):
                  pocket_radius: float, straight: float, web: float, k_hertz: float,
                  mu: float, eta: float, damping: float = 0.0, name=None):
         super().__init__(name)
-        self.offset = 2.0 * math.pi * index / count
+        self.phase = Parameter(2.0 * math.pi * index / count, "rad",
+                               "angular position of the pocket on the cage", low=0.0,
+                               high=2.0 * math.pi)
         self.Rb, self.Rp, self.Sp, self.web = ball_radius, pocket_radius, straight, web
         self.pitch = Parameter(pitch_radius, "m", "pocket centre radius", low=0.0,
                                low_inclusive=False)
@@ -146,7 +149,7 @@ class PocketContact(Component):
         c = (cg.x, cg.y, 0.0)
         v_c = (der(cg.x), der(cg.y), 0.0)
         w_c = der(cg.phi)
-        p_r, p_t, _ = azimuth_frame(cg.phi + self.offset)
+        p_r, p_t, _ = azimuth_frame(cg.phi + self.phase)
         d = sub(p_b, add(c, scale(self.pitch, p_r)))
         x, y = dot(d, e_z), dot(d, p_t)
 
