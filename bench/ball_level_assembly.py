@@ -9,7 +9,9 @@ given as "MX"), and the time to generate and compile the kernel the SUNDIALS int
 (right-hand side and exact Jacobian; the quasi-static level's semi-explicit DAE residual for
 IDAS: its ``newton`` blocks have no C) with an empty library cache at the default flags, beside
 the targets for assembly plus compilation (6304 massive balls 5 s, quasi-static balls 15 s, the
-nested bearing 20 s).
+nested bearing 20 s). The kernel is compiled twice, side by side: with one function per ball
+mapped over each row (what simulations use; ``bearingsim.assembler.mapped``) and with the Z
+balls inlined (``kernel(..., mapped=False)``, what every run used before).
 
 Registered in ``bench/run_all.py``; ``python -m bench.ball_level_assembly`` prints the section.
 """
@@ -55,14 +57,24 @@ def _size(system, key: str) -> str:
     return str(fn.n_instructions()) if fn.is_a("SXFunction") else "MX"
 
 
+def _compile(system, form: str, mapped: bool) -> tuple[float, float, str]:
+    """(seconds to build and compile the kernel into an empty cache, library size [MB],
+    what it maps)."""
+    with tempfile.TemporaryDirectory() as empty_cache:
+        t0 = time.perf_counter()
+        kern = kernel(system, form, True, cache_dir=empty_cache, mapped=mapped)
+        return time.perf_counter() - t0, kern.library.stat().st_size / 1e6, kern.mapped
+
+
 def run() -> dict:
-    """Build and assemble each model once.
+    """Build and assemble each model once; compile its kernel mapped and inlined.
 
     Returns
     -------
     dict
-        Per model label: ``states``, ``build_s``, ``assemble_s``, the pass times [s] and the
-        instruction counts of ``ode`` and ``jac_x``.
+        Per model label: ``states``, ``build_s``, ``assemble_s``, the pass times [s], the
+        instruction counts of ``ode``, ``jac_x`` and the per-ball function, and per kernel
+        (``mapped``, ``inlined``) the compile time [s] and library size [MB].
     """
     results = {}
     for label, build, form, target in _models():
@@ -71,10 +83,9 @@ def run() -> dict:
         t1 = time.perf_counter()
         system = assemble(model)
         t2 = time.perf_counter()
-        with tempfile.TemporaryDirectory() as empty_cache:
-            kern = kernel(system, form, True, cache_dir=empty_cache)
-            compile_s = time.perf_counter() - t2
-            library_mb = kern.library.stat().st_size / 1e6
+        mapped_s, mapped_mb, balls = _compile(system, form, True)
+        ball_fn = system.mapped.get(form).ball_function
+        inlined_s, inlined_mb, _ = _compile(system, form, False)
         passes = dict(system.timings)
         results[label] = {
             "states": system.n_states,
@@ -83,9 +94,13 @@ def run() -> dict:
             "passes": {name: passes.get(name, 0.0) for name in PASS_COLUMNS},
             "ode_size": _size(system, "ode"),
             "jac_size": _size(system, "jac_x"),
+            "ball_size": ball_fn.n_instructions(),
+            "balls": balls,
             "form": form,
-            "compile_s": compile_s,
-            "library_mb": library_mb,
+            "compile_s": mapped_s,
+            "library_mb": mapped_mb,
+            "inlined_compile_s": inlined_s,
+            "inlined_library_mb": inlined_mb,
             "target_s": target,
         }
     return results
@@ -97,20 +112,29 @@ def section() -> Section:
     rows = [
         [label, r["states"], fmt(r["build_s"]), fmt(r["assemble_s"]),
          *[fmt(r["passes"][name]) for name in PASS_COLUMNS], r["ode_size"], r["jac_size"],
-         f"{r['form']}: {fmt(r['compile_s'])}", fmt(r["library_mb"]),
+         r["ball_size"], f"{r['form']}: {fmt(r['compile_s'])}", fmt(r["library_mb"]),
+         fmt(r["inlined_compile_s"]), fmt(r["inlined_library_mb"]),
+         fmt(r["inlined_compile_s"] / r["compile_s"]),
          fmt(r["build_s"] + r["assemble_s"] + r["compile_s"]), fmt(r["target_s"])]
         for label, r in data.items()
     ]
     headers = ["model", "states", "build [s]", "assemble [s]",
                *[f"{name} [s]" for name in PASS_COLUMNS], "ode instr.", "jac_x instr.",
-               "kernel compile [s]", "library [MB]", "total [s]", "target [s]"]
+               "per-ball function instr.", "kernel, mapped balls [s]", "library [MB]",
+               "kernel, balls inlined [s]", "library [MB]", "inlined / mapped",
+               "total (mapped) [s]", "target [s]"]
     body = "\n".join([
         "Each model is built and assembled once (wall time, `time.perf_counter`); the pass times "
         f"are `system.timings`; kernels compiled with `{' '.join(DEFAULT_FLAGS)}` into an "
         "empty cache. Code generation differentiates the common-subexpression-"
         "eliminated right-hand side and outputs, so the Jacobians share their subexpressions "
         "from the start (before that change the 6304 massive-ball model took 45 s to assemble, "
-        "most of it eliminating common subexpressions of its Jacobians).",
+        "most of it eliminating common subexpressions of its Jacobians). The kernel is built "
+        "and compiled twice in the same run: with one function per ball mapped over each row "
+        "(what simulations use; building the mapped functions is part of its time) and with "
+        "the balls inlined; *total* is build + assemble + the mapped kernel. "
+        + "; ".join(f"{label.split(',')[0]}: {r['balls']}" for label, r in data.items())
+        + ".",
         "",
         markdown_table(headers, rows),
     ])

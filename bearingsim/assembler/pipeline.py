@@ -31,6 +31,7 @@ from bearingsim.assembler.passes import (
     index_reduction,
     matching,
     pruning,
+    repeated,
     structural_check,
     tearing,
 )
@@ -69,7 +70,7 @@ STAGES: tuple[Stage, ...] = (
     Stage("pre", (flatten, alias_elimination), check_balance=False),
     Stage("main", (structural_check, index_reduction, matching, pruning, blt),
           check_balance=True),
-    Stage("post", (tearing, codegen), check_balance=False),
+    Stage("post", (tearing, repeated, codegen), check_balance=False),
 )
 """The built-in pipeline, in execution order."""
 

@@ -14,6 +14,7 @@ from typing import Any
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.passes.blt import Block
+from bearingsim.assembler.passes.repeated import Repeats
 from bearingsim.assembler.passes.tearing import Causal
 from bearingsim.assembler.system import System
 from bearingsim.errors import PassOrderError
@@ -47,6 +48,8 @@ class AssemblyState:
     """The matched (equation, unknown) pairs as blocks in block lower triangular order."""
     causal: Causal | None = _set_by("tearing and block solving", default=None)
     """Every unknown as an expression of the base symbols, and the nonlinear blocks."""
+    repeats: Repeats | None = _set_by("repeated structure", default=None)
+    """The ball sets (identical members) and the shared unknowns solved around them."""
     system: System | None = _set_by("code generation", default=None)
     """The compiled result that ``assemble`` returns."""
     report: dict[str, str | int] = _set_by("any pass", default_factory=dict)

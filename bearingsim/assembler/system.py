@@ -9,6 +9,7 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import Param
+from bearingsim.assembler.mapped import MappedForms
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
 from bearingsim.units import unit_label
@@ -65,6 +66,9 @@ class System:
     skipped: list[str] = field(default_factory=list)
     rootfinder: str | None = None
     """CasADi plugin of the nonlinear blocks (``None``: the model has none)."""
+    mapped: MappedForms | None = None
+    """The kernels with one function per ball mapped over each row (``None``: the model has
+    no ball sets); the SUNDIALS kernels use them."""
 
     # ---------------------------------------------------------------- names
     @property

@@ -25,6 +25,12 @@ Two forms:
   nonlinear blocks (``dae_ode``, ``dae_alg``; pure SX, so it compiles whatever the
   rootfinder), with common subexpressions eliminated over both outputs.
 
+Models with ball sets (:attr:`System.mapped`) get the kernel with one function per ball
+mapped over each row (:mod:`bearingsim.assembler.mapped`): the same right-hand side, its
+Jacobian by the chain rule through the per-ball Jacobians (equal to the inlined one to
+round-off), in a library whose size grows with one ball, not with Z. ``mapped=False`` takes
+the inlined functions.
+
 Kernels are cached per system (in memory, for the system's lifetime) and form; libraries on
 disk by content hash (:func:`_identity`). With ``compiled="auto"`` a library that is not on
 disk yet is compiled in a background thread while the run goes on the VM; later runs pick it
@@ -34,6 +40,7 @@ ran on the VM is not perturbed by the switch.
 
 from __future__ import annotations
 
+import hashlib
 import threading
 import time
 import weakref
@@ -43,6 +50,8 @@ from typing import Any
 
 import casadi as ca
 
+from bearingsim.assembler import mapped as mapped_module
+from bearingsim.assembler.mapped import NotMappable
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.compile import (
@@ -62,6 +71,12 @@ SOURCES = {"ode": ("ode", "observe"), "dae": ("dae_ode", "dae_alg", "dae_observe
 
 RECIPE = ("bearingsim kernel v1: F = the sources' outputs (cse, p not differentiable), "
           "jac_F = F.jacobian(), observe (cse)")
+RECIPE_MAPPED = ("bearingsim kernel v1, mapped balls: F, jac_F, observe of "
+                 "bearingsim.assembler.mapped.mapped_kernel (members' function mapped, "
+                 "chain-rule Jacobian) for the model of these inlined sources; derivation "
+                 + hashlib.sha256(Path(mapped_module.__file__).read_bytes()).hexdigest())
+"""The recipe of mapped kernels; it names the source of the module that derives them, so a
+change there never reuses a library built by the old derivation."""
 """How a kernel library is derived from its sources (part of its cache key: change it when the
 derivation changes)."""
 
@@ -91,6 +106,8 @@ class Kernel:
     backend : {"compiled C", "CasADi VM"}
     reason : str
         Why the backend was chosen (for ``Result.stats``).
+    mapped : str
+        The mapped ball sets (e.g. ``"bearing: 7 balls"``), or why the functions are inlined.
     library : pathlib.Path or None
         The shared library of a compiled kernel.
     build_time : float
@@ -104,10 +121,12 @@ class Kernel:
     reason: str
     library: Path | None
     build_time: float
+    mapped: str = ""
 
     def describe(self) -> dict[str, Any]:
         """The kernel's entries of ``Result.stats``."""
-        out: dict[str, Any] = {"backend": self.backend, "backend_reason": self.reason}
+        out: dict[str, Any] = {"backend": self.backend, "backend_reason": self.reason,
+                               "balls": self.mapped}
         if self.library is not None:
             out["library"] = str(self.library)
         return out
@@ -136,7 +155,8 @@ def _system_cache(system: System) -> dict[tuple, Any]:
 
 
 def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
-           flags: tuple[str, ...] = DEFAULT_FLAGS, cache_dir: str | Path | None = None) -> Kernel:
+           flags: tuple[str, ...] = DEFAULT_FLAGS, cache_dir: str | Path | None = None,
+           mapped: bool = True) -> Kernel:
     """The right-hand side (``form="ode"``) or DAE residual (``"dae"``) of ``system`` with its
     exact Jacobian, built once per system, form and backend choice.
 
@@ -157,6 +177,9 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         Compiler flags.
     cache_dir : path, optional
         Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+    mapped : bool
+        Use the mapped-ball functions of a model with ball sets (:attr:`System.mapped`);
+        ``False``: the inlined ones.
 
     Returns
     -------
@@ -167,7 +190,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     if form not in ("ode", "dae"):
         raise ParameterError(f"form must be 'ode' or 'dae', got {form!r}")
     cache = _system_cache(system)
-    key = (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()))
+    key = (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()), bool(mapped))
     found = cache.get(key)
     if found is not None:
         return found
@@ -175,56 +198,75 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     sources = _sources(system, form)
     use_c, reason = _choose(system, form, compiled, sources)
     if not use_c:
-        fn, jac, observe = _generated(system, form)
-        result = _vm_kernel(form, fn, jac, observe, reason, start)
+        balls = _ball_sets(system, form, mapped)
+        fn, jac, observe = _generated(system, form, mapped)
+        result = _vm_kernel(form, fn, jac, observe, reason, start, balls)
         cache[key] = result
         return result
     prefix = f"bsm_{form}"
     generated = source = None
     lib = cache.get(("library", *key))
     if lib is None:
-        identity = _identity(form, sources)
+        identity = _identity(form, sources, mapped and system.mapped is not None)
         if identity is None:  # named by its C source
-            generated = _generated(system, form)
+            generated = _generated(system, form, mapped)
             identity = source = generate_source(generated, prefix)
         lib = cache[("library", *key)] = library_path(identity, flags=flags,
                                                       cache_dir=cache_dir, prefix=prefix)
+    record = lib.with_name(lib.name + ".balls")
+    balls = (record.read_text() if lib.exists() and record.exists()
+             else _ball_sets(system, form, mapped))
     if not lib.exists():
         with _LOCK:
             pending = _PENDING.get(lib)
         if pending is None:
-            generated = generated or _generated(system, form)
+            generated = generated or _generated(system, form, mapped)
+            record.parent.mkdir(parents=True, exist_ok=True)
+            record.write_text(balls)  # what the library maps, read when it is reused
             pending = _submit(lib, source or generate_source(generated, prefix), flags)
         if compiled is True:
             pending.wait()  # raises the CompileError of a failed build
         elif not pending.done():
             interim = cache.get(("interim", *key))
             if interim is None:
-                fn, jac, observe = generated or _generated(system, form)
+                fn, jac, observe = generated or _generated(system, form, mapped)
                 interim = cache[("interim", *key)] = _vm_kernel(
                     form, fn, jac, observe, "C compiling in the background; the VM runs until "
-                    "it is ready (same numbers)", start)
+                    "it is ready (same numbers)", start, balls)
             return interim
         else:
             try:
                 pending.wait()
             except CompileError as exc:
-                fn, jac, observe = generated or _generated(system, form)
+                fn, jac, observe = generated or _generated(system, form, mapped)
                 result = cache[key] = _vm_kernel(form, fn, jac, observe,
-                                                 f"compiling failed: {exc}", start)
+                                                 f"compiling failed: {exc}", start, balls)
                 return result
     diff = [name != "p" for name in sources[0].name_in()]
     result = Kernel(ca.external(form, str(lib), {"is_diff_in": diff}),
                     ca.external(sources[-1].name(), str(lib)), form, COMPILED, reason, lib,
-                    time.perf_counter() - start)
+                    time.perf_counter() - start, balls)
     cache[key] = result
     return result
 
 
 def _vm_kernel(form: str, fn: ca.Function, jac: ca.Function, observe: ca.Function,
-               reason: str, start: float) -> Kernel:
+               reason: str, start: float, balls: str) -> Kernel:
     return Kernel(_with_jacobian(fn, jac), observe, form, VM, reason, None,
-                  time.perf_counter() - start)
+                  time.perf_counter() - start, balls)
+
+
+def _ball_sets(system: System, form: str, mapped: bool) -> str:
+    """``"mapped: <sets>"`` when the kernel maps its balls, else why it inlines them."""
+    if not mapped:
+        return "inlined: mapped=False"
+    if system.mapped is None:
+        return "inlined: no ball sets"
+    try:
+        system.mapped.get(form)
+    except NotMappable as exc:
+        return f"inlined: {exc}"
+    return f"mapped: {system.mapped.summary}"
 
 
 _PENDING: dict[Path, Build] = {}
@@ -275,15 +317,16 @@ def _choose(system: System, form: str, compiled: bool | str,
     return True, "C compiler found"
 
 
-def _identity(form: str, sources: list[ca.Function]) -> str | None:
+def _identity(form: str, sources: list[ca.Function], mapped: bool) -> str | None:
     """What determines a kernel library, without generating it: the recipe and the source
     functions serialized with fresh input symbols (the assembler's symbol names carry global
-    counters, so the same model assembled after other models serializes differently). None for
-    MX sources (their rootfinders hold SX functions with those names): the library is then
-    named by its generated C source."""
+    counters, so the same model assembled after other models serializes differently). A
+    mapped kernel computes the same functions as the inlined sources it is named by (its own
+    recipe keeps the two libraries apart). None for MX sources (their rootfinders hold SX
+    functions with those names): the library is then named by its generated C source."""
     if not all(f.is_a("SXFunction") for f in sources):
         return None
-    parts = [RECIPE, form]
+    parts = [RECIPE_MAPPED if mapped else RECIPE, form]
     for f in sources:
         fresh = [ca.SX.sym(f.name_in(i), f.sparsity_in(i)) for i in range(f.n_in())]
         parts.append(ca.Function(f.name(), fresh, f.call(fresh), f.name_in(),
@@ -311,10 +354,17 @@ def _symbolic(system: System, form: str) -> tuple[ca.Function, ca.Function]:
             _rebuilt(obs.name(), [obs], names_in, obs.name_out(), {}))
 
 
-def _generated(system: System, form: str) -> list[ca.Function]:
+def _generated(system: System, form: str, mapped: bool) -> list[ca.Function]:
     """The kernel, its Jacobian (``jac_<form>``, which ``casadi.external`` takes as the
     kernel's Jacobian) and the observe function: what a library holds, and what the VM
-    evaluates."""
+    evaluates. The mapped-ball functions when ``mapped`` and the model has them."""
+    if mapped and system.mapped is not None:
+        try:
+            found = system.mapped.get(form)
+        except NotMappable:
+            pass
+        else:
+            return [found.function, found.jacobian, found.observe]
     fn, observe = _symbolic(system, form)
     return [fn, fn.jacobian(), observe]
 

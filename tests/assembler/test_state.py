@@ -8,7 +8,14 @@ from dataclasses import fields
 import pytest
 
 from bearingsim.assembler import PASS_NAMES, STAGES, AssemblyState
-from bearingsim.assembler.passes import alias_elimination, blt, codegen, pruning, tearing
+from bearingsim.assembler.passes import (
+    alias_elimination,
+    blt,
+    codegen,
+    pruning,
+    repeated,
+    tearing,
+)
 from bearingsim.errors import PassOrderError
 from tests.assembler.hand_dae import dae, state_of, state_var
 
@@ -16,20 +23,23 @@ from tests.assembler.hand_dae import dae, state_of, state_var
 def test_every_field_names_a_pass_that_exists():
     set_by = {f.name: f.metadata["set_by"] for f in fields(AssemblyState)}
     assert set(set_by.values()) <= {"assemble", "any pass", *PASS_NAMES}
-    assert {set_by[n] for n in ("dae", "matching", "blocks", "causal", "system")} == {
-        "flatten", "matching", "BLT sorting", "tearing and block solving", "code generation"}
+    assert {set_by[n] for n in ("dae", "matching", "blocks", "causal", "repeats", "system")} == {
+        "flatten", "matching", "BLT sorting", "tearing and block solving", "repeated structure",
+        "code generation"}
 
 
 def test_every_pass_module_has_a_name_and_a_run():
     passes = [p for stage in STAGES for p in stage.passes]
     assert all(isinstance(p.NAME, str) and callable(p.run) for p in passes)
-    assert len(set(PASS_NAMES)) == len(PASS_NAMES) == 9
+    assert len(set(PASS_NAMES)) == len(PASS_NAMES) == 10
 
 
 @pytest.mark.parametrize(("module", "message"), [
     (alias_elimination, "'alias elimination' runs before what it needs: dae (set by pass "
                         "'flatten')"),
     (pruning, "'pruning' runs before what it needs: matching (set by pass 'matching')"),
+    (repeated, "'repeated structure' runs before what it needs: blocks (set by pass "
+               "'BLT sorting')"),
     (blt, "'BLT sorting' runs before what it needs: matching (set by pass 'matching')"),
     (tearing, "'tearing and block solving' runs before what it needs: blocks (set by pass "
               "'BLT sorting')"),

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.mapped import MappedForms
 from bearingsim.assembler.passes.tearing import Causal
 from bearingsim.assembler.system import Signal, System
 from bearingsim.errors import StructuralError
@@ -205,6 +206,7 @@ def run(state: AssemblyState) -> None:
               for v in dae.inputs]
     outputs = [Signal(n, units.get(n, "1"), descs.get(n, "")) for n in out_names]
     init_fn, free = initial_problem(dae, funcs)
+    repeats = state.repeats
     state.system = System(
         name=state.root.display_name,
         states=states,
@@ -219,4 +221,6 @@ def run(state: AssemblyState) -> None:
         free_initial_states=free,
         skipped=list(dae.skipped),
         rootfinder=state.rootfinder if causal.nonlinear else None,
+        mapped=MappedForms(dae, causal, repeats) if repeats is not None and repeats.sets
+        else None,
     )

@@ -1,0 +1,497 @@
+"""Mapped-ball functions: the right-hand side (or DAE residual), its exact Jacobian and the
+observe function of a model with ball sets, written with one CasADi function per ball that
+``Function.map`` evaluates for every ball of the row.
+
+Per ball set ``s`` with members ``k = 0..Z-1`` the inputs split into the member's own
+differentiable entries ``l_k`` (its states and tearing variables), its parameters ``q_k``, and
+the shared entries ``S = (S_d, S_n)`` (time, ring and cage states, inputs; shared parameters).
+Then
+
+* ``(o_k, e_k) = f_s(l_k, q_k, S_d, S_n)``: the member's rows of the outputs and the member
+  variables that the shared equations read (contact forces, pocket forces), mapped over k;
+* ``o_shared = h(S_d, S_n, L_s, Q_s, E_s)``: the shared rows, with ``L_s, Q_s, E_s`` all
+  members' entries (the ring's force is a sum over the ``e_k``).
+
+The Jacobian follows by the chain rule from the per-ball Jacobians of ``f_s`` (mapped) and
+the Jacobian of ``h``:
+
+* ``d o_k / d l_k = F_l``, ``d o_k / d S_d = F_S`` (rows of ``o_k``);
+* ``d o_shared / d l_k = H_L,k + H_E,k E_l,k``;
+* ``d o_shared / d S_d = H_S + sum_k H_E,k E_S,k``;
+
+so code size and Jacobian work grow with one ball, not with Z. The members must be the same
+function: each member's function is serialized with fresh symbols and compared with the first
+one's; :class:`NotMappable` (with the reason) otherwise.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import casadi as ca
+
+from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.passes.repeated import Repeats
+from bearingsim.assembler.passes.tearing import Causal
+
+__all__ = ["NotMappable", "MappedKernel", "MappedForms", "mapped_kernel"]
+
+CSE = {"cse": True}
+
+
+class NotMappable(Exception):
+    """The model's ball sets cannot be mapped (the message says why)."""
+
+
+@dataclass(frozen=True)
+class MappedKernel:
+    """A kernel function, its Jacobian (``jac_<name>``, the signature of
+    ``function.jacobian()``) and the observe function, all with mapped balls."""
+
+    function: ca.Function
+    jacobian: ca.Function
+    observe: ca.Function
+    ball_function: ca.Function
+    """The per-ball function of the first ball set (its size is what grows with one ball)."""
+
+
+@dataclass
+class _Entry:
+    """One scalar of an output: its owner ((set, member) or None), the key that orders it
+    within its member, the full expression and the shared expression (members' variables as
+    symbols)."""
+
+    owner: tuple[int, int] | None
+    key: tuple
+    full: ca.SX
+    cut: ca.SX | None
+
+
+def _value(v: Var, causal: Causal) -> ca.SX:
+    return v.sym if v.is_state or v.is_input else causal.expr[v]
+
+
+def _cut_value(v: Var, rep: Repeats) -> ca.SX:
+    return v.sym if v.is_state or v.is_input else rep.shared_expr[v]
+
+
+def _fresh_identity(f: ca.Function) -> str:
+    """``f`` serialized with fresh input symbols (names with member indices removed)."""
+    fresh = [ca.SX.sym(f"i{i}", f.sparsity_in(i)) for i in range(f.n_in())]
+    return ca.Function("f", fresh, f.call(fresh)).serialize()
+
+
+def _vcat(items: list) -> ca.SX:
+    return ca.vertcat(*items) if items else ca.SX(0, 1)
+
+
+class _Layout:
+    """Where each scalar of the kernel's inputs lives: member entries and shared entries."""
+
+    def __init__(self, inputs: list[tuple[str, list[ca.SX], bool]],
+                 owner_key: Callable[[str], tuple[tuple[int, int], tuple] | None],
+                 sizes: list[int]):
+        self.inputs = inputs
+        n_sets = len(sizes)
+        self.ld = [[[] for _ in range(z)] for z in sizes]  # (input, pos, sym, key)
+        self.ln = [[[] for _ in range(z)] for z in sizes]
+        self.sd: list[tuple[int, int, ca.SX]] = []
+        self.sn: list[tuple[int, int, ca.SX]] = []
+        for a, (_, syms, diff) in enumerate(inputs):
+            for i, sym in enumerate(syms):
+                found = owner_key(sym.name())
+                if found is None:
+                    (self.sd if diff else self.sn).append((a, i, sym))
+                else:
+                    (s, k), key = found
+                    (self.ld if diff else self.ln)[s][k].append((a, i, sym, key))
+        for table in (self.ld, self.ln):
+            for s in range(n_sets):
+                for members in table[s]:
+                    members.sort(key=lambda e: e[3])
+                keys = [[e[3] for e in m] for m in table[s]]
+                if any(k != keys[0] for k in keys):
+                    raise NotMappable("the members' states or parameters differ")
+
+
+def _member_function(name: str, lay: _Layout, s: int, k: int, outs: list[ca.SX]) -> ca.Function:
+    args = [_vcat([e[2] for e in lay.ld[s][k]]), _vcat([e[2] for e in lay.ln[s][k]]),
+            _vcat([e[2] for e in lay.sd]), _vcat([e[2] for e in lay.sn])]
+    try:
+        return ca.Function(name, args, outs, ["l", "q", "S_d", "S_n"],
+                           [f"o{i}" for i in range(len(outs))])
+    except RuntimeError as exc:
+        raise NotMappable(f"a member's equations read another member's variables "
+                          f"({str(exc).splitlines()[-1][:200]})") from None
+
+
+def _same_members(fns: list[ca.Function]) -> None:
+    first = _fresh_identity(fns[0])
+    for k, f in enumerate(fns[1:], start=1):
+        if _fresh_identity(f) != first:
+            raise NotMappable(f"member {k} of a ball set is not the same function as member 0")
+
+
+class _Builder:
+    """The mapped form of one kernel: entries of its outputs, the members' functions, the
+    shared function and their MX composition."""
+
+    def __init__(self, dae: DAE, causal: Causal, rep: Repeats,
+                 inputs: list[tuple[str, list[ca.SX], bool]]):
+        self.rep = rep
+        self.sets = rep.sets
+        by_name: dict[str, tuple[tuple[int, int], tuple]] = {}
+        self.member_var: dict[str, tuple[int, int, str]] = {}
+        for s, bs in enumerate(rep.sets):
+            for k in range(bs.count):
+                for j, v in enumerate(bs.variables[k]):
+                    by_name[v.sym.name()] = ((s, k), ("v", bs.patterns[j]))
+                    self.member_var[v.sym.name()] = (s, k, bs.patterns[j])
+                for j, q in enumerate(bs.parameters[k]):
+                    by_name[q.sym.name()] = ((s, k), ("p", bs.param_patterns[j]))
+        self.input_syms = {sym.name() for _, syms, _ in inputs for sym in syms}
+        self.lay = _Layout(inputs, by_name.get, [bs.count for bs in rep.sets])
+        self.dae, self.causal = dae, causal
+        self.var_by_name = {v.sym.name(): v for v in dae.vars}
+
+    # ------------------------------------------------------------ pieces
+    def _exports(self, entries: list[_Entry]) -> list[list[str]]:
+        """Per set, the patterns of member variables (not inputs) the shared rows read."""
+        used: list[set[str]] = [set() for _ in self.sets]
+        cuts = [e.cut for e in entries if e.owner is None]
+        for sym in ca.symvar(_vcat(cuts)) if cuts else []:
+            name = sym.name()
+            if name in self.member_var and name not in self.input_syms:
+                s, _, pattern = self.member_var[name]
+                used[s].add(pattern)
+        return [sorted(u) for u in used]
+
+    def _export_vars(self, s: int, k: int, patterns: list[str]) -> list[Var]:
+        bs = self.sets[s]
+        index = {p: j for j, p in enumerate(bs.patterns)}
+        return [bs.variables[k][index[p]] for p in patterns]
+
+    def parts(self, entries: list[_Entry], tag: str):
+        """Member functions (one per set, checked equal over members), the shared function,
+        and the row layout: per set the ordered member rows, then the shared rows."""
+        lay = self.lay
+        exports = self._exports(entries)
+        rows = [[[] for _ in range(bs.count)] for bs in self.sets]
+        shared_rows = []
+        for r, e in enumerate(entries):
+            if e.owner is None:
+                shared_rows.append(r)
+            else:
+                rows[e.owner[0]][e.owner[1]].append(r)
+        members = []
+        for s, bs in enumerate(self.sets):
+            for k in range(bs.count):
+                rows[s][k].sort(key=lambda r: entries[r].key)
+            keys = [[entries[r].key for r in m] for m in rows[s]]
+            if any(kk != keys[0] for kk in keys):
+                raise NotMappable("the members' rows differ")
+            fns = []
+            for k in range(bs.count):
+                outs = [_vcat([entries[r].full for r in rows[s][k]]),
+                        _vcat([_value(v, self.causal)
+                               for v in self._export_vars(s, k, exports[s])])]
+                fns.append(_member_function(f"{tag}_ball{s}", lay, s, k, outs))
+            _same_members(fns)
+            f0 = fns[0]
+            members.append(ca.Function(f0.name(), f0.sx_in(), f0.call(f0.sx_in()),
+                                       f0.name_in(), f0.name_out(), CSE))
+        h_in = [_vcat([e[2] for e in lay.sd]), _vcat([e[2] for e in lay.sn])]
+        h_names = ["S_d", "S_n"]
+        for s, bs in enumerate(self.sets):
+            h_in += [_vcat([e[2] for k in range(bs.count) for e in lay.ld[s][k]]),
+                     _vcat([e[2] for k in range(bs.count) for e in lay.ln[s][k]]),
+                     _vcat([v.sym for k in range(bs.count)
+                            for v in self._export_vars(s, k, exports[s])])]
+            h_names += [f"L{s}", f"Q{s}", f"E{s}"]
+        try:
+            shared = ca.Function(f"{tag}_shared", h_in,
+                                 [_vcat([entries[r].cut for r in shared_rows])], h_names,
+                                 ["o"], CSE)
+        except RuntimeError as exc:
+            raise NotMappable(f"the shared equations read member variables that are not "
+                              f"exported ({str(exc).splitlines()[-1][:200]})") from None
+        return members, shared, rows, shared_rows
+
+    # ------------------------------------------------------------ MX composition
+    def gather(self, mx_in: list[ca.MX]):
+        """MX of the member matrices (per set: L, Q) and the shared vectors from the kernel's
+        MX inputs."""
+        lay = self.lay
+        flat = ca.vertcat(*mx_in)
+        start = [0]
+        for m in mx_in:
+            start.append(start[-1] + m.numel())
+
+        def pick(items):
+            return flat[[start[a] + i for a, i, *_ in items]] if items else ca.MX(0, 1)
+
+        sd, sn = pick(lay.sd), pick(lay.sn)
+        L, Q = [], []
+        for s, bs in enumerate(self.sets):
+            L.append(ca.reshape(pick([e for k in range(bs.count) for e in lay.ld[s][k]]),
+                                len(lay.ld[s][0]), bs.count))
+            Q.append(ca.reshape(pick([e for k in range(bs.count) for e in lay.ln[s][k]]),
+                                len(lay.ln[s][0]), bs.count))
+        return sd, sn, L, Q
+
+
+def _scatter(n_rows: int, rows: list, shared_rows: list[int], member_out: list[ca.MX],
+             shared_out: ca.MX) -> ca.MX:
+    """The output vector from the member outputs (one matrix per set) and the shared rows."""
+    order = [r for per_set in rows for member in per_set for r in member] + shared_rows
+    stacked = ca.vertcat(*[ca.vec(m) for m in member_out], shared_out)
+    position = [0] * n_rows
+    for p, r in enumerate(order):
+        position[r] = p
+    return stacked[position]
+
+
+def _union(sp: ca.Sparsity, z: int) -> ca.Sparsity:
+    """The union of the sparsity patterns of the ``z`` column blocks of ``sp``."""
+    ones = ca.DM.ones(sp)
+    n = sp.size2() // z
+    return sum((ones[:, k * n:(k + 1) * n] for k in range(z)), ca.DM(sp.size1(), n)).sparsity()
+
+
+def _compose(b: _Builder, entries: list[_Entry], tag: str, mx_in: list[ca.MX],
+             with_jacobian: bool):
+    members, shared, rows, shared_rows = b.parts(entries, tag)
+    sd, sn, L, Q = b.gather(mx_in)
+    outs_member, E = [], []
+    for s, f in enumerate(members):
+        o, e = f.map(b.sets[s].count)(L[s], Q[s], sd, sn)
+        outs_member.append(o)
+        E.append(e)
+    h_args = [sd, sn]
+    for s in range(len(b.sets)):
+        h_args += [ca.vec(L[s]), ca.vec(Q[s]), ca.vec(E[s])]
+    o_shared = shared(*h_args)
+    value = _scatter(len(entries), rows, shared_rows, outs_member, o_shared)
+    if not with_jacobian:
+        return value, members[0], None, rows, shared_rows
+    # Jacobian by the chain rule (module docstring): the members' Jacobians (with their
+    # exports, so that the members are evaluated once), the shared function's Jacobian, the
+    # products H_E,k E_l,k and the sum over k of H_E,k E_S,k as mapped functions; rows in the
+    # order of _scatter, columns (each set's members' l entries, then S_d), permuted later.
+    jac_members, jac_fns = [], []
+    for s, f in enumerate(members):
+        sym = f.sx_in()
+        o, e = f.call(sym)
+        jf = ca.Function(f"{tag}_ball{s}_jac", sym,
+                         [ca.jacobian(o, sym[0]), ca.jacobian(o, sym[2]),
+                          ca.jacobian(e, sym[0]), ca.jacobian(e, sym[2]), e], CSE)
+        jac_fns.append(jf)
+        jac_members.append(jf.map(b.sets[s].count)(L[s], Q[s], sd, sn))
+    h_args = [sd, sn]
+    for s in range(len(b.sets)):
+        h_args += [ca.vec(L[s]), ca.vec(Q[s]), ca.vec(jac_members[s][4])]
+    sym_h = shared.sx_in()
+    out_h = shared.call(sym_h)[0]
+    jh_outs = [ca.jacobian(out_h, sym_h[0])]
+    for s in range(len(b.sets)):
+        jh_outs += [ca.jacobian(out_h, sym_h[2 + 3 * s]), ca.jacobian(out_h, sym_h[4 + 3 * s])]
+    jh = ca.Function(f"{tag}_shared_jac", sym_h, jh_outs, CSE)
+    H = jh(*h_args)
+    pieces, sizes = [], []
+    shared_S = H[0]
+    for s, (Fl, FS, El, ES, _) in enumerate(jac_members):
+        z = b.sets[s].count
+        n_e = members[s].nnz_out(1)
+        H_L, H_E = H[1 + 2 * s], H[2 + 2 * s]
+        if n_e:
+            jf = jac_fns[s]
+            he, el, es = (ca.SX.sym("he", _union(jh.sparsity_out(2 + 2 * s), z)),
+                          ca.SX.sym("el", jf.sparsity_out(2)), ca.SX.sym("es", jf.sparsity_out(3)))
+            chain = ca.Function(f"{tag}_ball{s}_chain", [he, el, es],
+                                [ca.mtimes(he, el), ca.mtimes(he, es)])
+            hel, hes = chain.map(f"{tag}_ball{s}_chain_map", "serial", z, [], [1])(H_E, El, ES)
+            H_L = H_L + hel
+            shared_S = shared_S + hes
+        pieces += [Fl, FS, H_L]
+        sizes.append((z, members[s].nnz_in(0), members[s].nnz_in(2)))
+    pieces.append(shared_S)
+    return value, members[0], _BlockJacobian(pieces, sizes), rows, shared_rows
+
+
+class _BlockJacobian:
+    """The Jacobian in block order (rows: each member's rows, then the shared rows; columns:
+    each member's ``l`` entries, then ``S_d``) from its pieces: per set the mapped ``F_l`` and
+    ``F_S`` (members side by side) and the shared rows' member columns, then the shared rows'
+    ``S_d`` columns. The pieces are never concatenated as matrices (sparse concatenation
+    transposes): :meth:`select` gathers a block's nonzeros straight from them, at positions
+    found by assembling the same layout from index matrices."""
+
+    def __init__(self, pieces: list[ca.MX], sizes: list[tuple[int, int, int]]):
+        self.nonzeros = ca.vertcat(*[p.nz[:] for p in pieces])
+        offset, index = 0, []
+        for p in pieces:
+            nnz = p.sparsity().nnz()
+            index.append(ca.DM(p.sparsity(), ca.DM(range(offset + 1, offset + nnz + 1))))
+            offset += nnz
+        top_l, top_s, bottom = [], [], []
+        for s, (z, n_l, n_s) in enumerate(sizes):
+            Fl, FS, HL = index[3 * s:3 * s + 3]
+            top_l += [Fl[:, k * n_l:(k + 1) * n_l] for k in range(z)]
+            top_s += [FS[:, k * n_s:(k + 1) * n_s] for k in range(z)]
+            bottom.append(HL)
+        bottom.append(index[-1])
+        self.index = ca.vertcat(ca.horzcat(ca.diagcat(*top_l), ca.vertcat(*top_s)),
+                                ca.horzcat(*bottom))
+
+    def select(self, rows: list[int], cols: list[int]) -> ca.MX:
+        """The sub-matrix of the given block rows and columns, as one gather of nonzeros."""
+        block = self.index[rows, cols]
+        where = [int(v) - 1 for v in block.nonzeros()]
+        return ca.MX(block.sparsity(), self.nonzeros[where])
+
+
+def _column_order(b: _Builder) -> list[tuple[int, int]]:
+    """(input, position) of each column of the block Jacobian."""
+    cols = [(a, i) for s, bs in enumerate(b.sets) for k in range(bs.count)
+            for a, i, *_ in b.lay.ld[s][k]]
+    cols += [(a, i) for a, i, _ in b.lay.sd]
+    return cols
+
+
+def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKernel:
+    """The kernel of ``form`` (``"ode"``: ``ode(t, x, u, p)``; ``"dae"``:
+    ``dae(t, x, z, u, p) -> (ode, alg)``) with mapped balls, its Jacobian and observe function.
+
+    Raises
+    ------
+    NotMappable
+        When the ball sets cannot be mapped (the message says why).
+    """
+    if not rep.sets:
+        raise NotMappable(rep.reason)
+    owner = rep.owner
+    t = dae.time
+    states = dae.states
+    x = [v.sym for v in states]
+    u = [v.sym for v in dae.inputs]
+    p = [q.sym for q in dae.params]
+    tears = [v for blk in causal.nonlinear for v in blk.tears]
+    if form == "ode":
+        if causal.nonlinear:
+            raise NotMappable("the ODE form of a model with nonlinear blocks holds rootfinders")
+        inputs = [("t", [t], True), ("x", x, True), ("u", u, True), ("p", p, False)]
+        out_names = ["ode"]
+    else:
+        inputs = [("t", [t], True), ("x", x, True), ("z", [v.sym for v in tears], True),
+                  ("u", u, True), ("p", p, False)]
+        out_names = ["ode", "alg"]
+    b = _Builder(dae, causal, rep, inputs)
+    bs_pattern = {id(v): (bs.patterns[j]) for bs in rep.sets for k in range(bs.count)
+                  for j, v in enumerate(bs.variables[k])}
+    entries: list[_Entry] = []
+    for v in states:
+        o = owner.get(id(v))
+        entries.append(_Entry(o, ("ode", bs_pattern.get(id(v), "")),
+                              _value(v.derivative, causal),
+                              None if o else _cut_value(v.derivative, rep)))
+    n_ode = len(entries)
+    if form == "dae":
+        shared_blocks = {id(blk.tears[0]): blk for blk in rep.shared_nonlinear}
+        for blk in causal.nonlinear:
+            o = owner.get(id(blk.tears[0]))
+            cut = None if o else shared_blocks[id(blk.tears[0])].residuals
+            for i in range(blk.residuals.numel()):
+                entries.append(_Entry(o, ("alg", bs_pattern.get(id(blk.tears[0]), ""), i),
+                                      blk.residuals[i], None if o else cut[i]))
+    mx_in = [ca.MX.sym(name, len(syms)) for name, syms, _ in inputs]
+    value, ball_fn, J_block, rows, shared_rows = _compose(b, entries, form, mx_in, True)
+    row_order = [r for per_set in rows for member in per_set for r in member] + shared_rows
+    col_order = _column_order(b)
+    row_pos = [0] * len(entries)
+    for q, r in enumerate(row_order):
+        row_pos[r] = q
+    col_pos = {c: q for q, c in enumerate(col_order)}
+    names_in = [name for name, _, _ in inputs]
+    outs = [value[:n_ode]] if form == "ode" else [value[:n_ode], value[n_ode:]]
+    fn = ca.Function(form, mx_in, outs, names_in, out_names,
+                     {"is_diff_in": [d for _, _, d in inputs]})
+    # Jacobian with the signature of fn.jacobian(): inputs (*inputs, out_*), outputs
+    # jac_<out>_<in> for every pair (non-differentiable inputs: structurally zero).
+    out_syms = [ca.MX.sym(f"out_{n}", ca.Sparsity(o.numel(), 1))
+                for n, o in zip(out_names, outs, strict=True)]
+    jac_outs, jac_names = [], []
+    spans = [(0, n_ode)] + ([(n_ode, len(entries))] if form == "dae" else [])
+    for name_o, (r0, r1) in zip(out_names, spans, strict=True):
+        rsel = [row_pos[r] for r in range(r0, r1)]
+        for a, (name_a, syms, diff) in enumerate(inputs):
+            jac_names.append(f"jac_{name_o}_{name_a}")
+            if not diff or not syms:
+                jac_outs.append(ca.MX(ca.Sparsity(r1 - r0, len(syms))))
+                continue
+            csel = [col_pos[(a, i)] for i in range(len(syms))]
+            jac_outs.append(J_block.select(rsel, csel))
+    jac = ca.Function(f"jac_{form}", mx_in + out_syms, jac_outs,
+                      names_in + [f"out_{n}" for n in out_names], jac_names)
+    observe = _observe(b, dae, causal, rep, inputs, mx_in, form)
+    return MappedKernel(fn, jac, observe, ball_fn)
+
+
+def _observe(b: _Builder, dae: DAE, causal: Causal, rep: Repeats, inputs, mx_in, form: str):
+    """Every observed variable (the order of ``System.observed_names``) with mapped balls."""
+    owner = rep.owner
+    pattern = {id(v): bs.patterns[j] for bs in rep.sets for k in range(bs.count)
+               for j, v in enumerate(bs.variables[k])}
+    entries = [_Entry(owner.get(id(v)), ("var", pattern.get(id(v), "")), _value(v, causal),
+                      None if owner.get(id(v)) else _cut_value(v, rep)) for v in dae.vars]
+    value = _compose(b, entries, f"{form}_observe", mx_in, False)[0]
+    parts = [value]
+    if dae.aliases:
+        index = {id(v): k for k, v in enumerate(dae.vars)}
+        reps = [index[id(a.representative)] if a.representative is not None else 0
+                for a in dae.aliases.values()]
+        scales = [a.scale if a.representative is not None else 0.0
+                  for a in dae.aliases.values()]
+        offsets = [a.offset for a in dae.aliases.values()]
+        parts.append(ca.DM(offsets) + ca.DM(scales) * value[reps])
+    name = "observe" if form == "ode" else "dae_observe"
+    return ca.Function(name, mx_in, [ca.vertcat(*parts)], [n for n, _, _ in inputs],
+                       ["observe"])
+
+
+class MappedForms:
+    """The mapped kernels of one assembled model, built on first request per form.
+
+    Parameters
+    ----------
+    dae, causal, repeats
+        What the assembler's passes produced (kept for the lazy build).
+    """
+
+    def __init__(self, dae: DAE, causal: Causal, repeats: Repeats):
+        self._dae, self._causal, self._repeats = dae, causal, repeats
+        self._built: dict[str, MappedKernel | NotMappable] = {}
+
+    @property
+    def summary(self) -> str:
+        """The ball sets, e.g. ``"inner_layer: 13 balls, outer_layer: 14 balls"``."""
+        return ", ".join(f"{s.name or 'bearing'}: {s.count} balls" for s in self._repeats.sets)
+
+    def get(self, form: str) -> MappedKernel:
+        """The mapped kernel of ``form`` (``"ode"`` or ``"dae"``).
+
+        Raises
+        ------
+        NotMappable
+            When this form cannot be mapped (the message says why).
+        """
+        found = self._built.get(form)
+        if found is None:
+            try:
+                found = mapped_kernel(self._dae, self._causal, self._repeats, form)
+            except NotMappable as exc:
+                found = exc
+            self._built[form] = found
+        if isinstance(found, NotMappable):
+            raise found
+        return found
