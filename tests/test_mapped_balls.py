@@ -105,6 +105,21 @@ def test_compiled_mapped_kernel_equals_vm_and_reports_its_balls(massive, kernel_
     assert kernel(again, "ode", compiled=True).mapped == c.mapped
 
 
+def test_a_packed_system_keeps_its_mapped_kernel(massive):
+    """Sweeps ship systems to other processes (scenes.portable): the mapped kernel goes along,
+    built once on the sending side."""
+    from bearingsim.scenes.portable import pack, unpack
+
+    restored = unpack(pack(massive))
+    assert restored.mapped.summary == "bearing: 7 balls"
+    with pytest.raises(NotMappable, match="no nonlinear blocks"):
+        restored.mapped.get("dae")
+    args = _point(massive, "ode")
+    np.testing.assert_array_equal(
+        _dense(kernel(restored, "ode", compiled=False).function(*args)),
+        _dense(kernel(massive, "ode", compiled=False).function(*args)))
+
+
 def test_code_grows_with_one_ball_not_with_z(massive):
     """6304 (Z = 7) against 6206 (Z = 9), same model structure: the per-ball function is the
     same size and the mapped library's source grows by a few per cent (the gathers of the

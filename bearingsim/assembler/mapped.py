@@ -383,6 +383,8 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
         inputs = [("t", [t], True), ("x", x, True), ("u", u, True), ("p", p, False)]
         out_names = ["ode"]
     else:
+        if not causal.nonlinear:
+            raise NotMappable("the model has no nonlinear blocks, so no DAE form")
         inputs = [("t", [t], True), ("x", x, True), ("z", [v.sym for v in tears], True),
                   ("u", u, True), ("p", p, False)]
         out_names = ["ode", "alg"]
@@ -465,17 +467,18 @@ class MappedForms:
     Parameters
     ----------
     dae, causal, repeats
-        What the assembler's passes produced (kept for the lazy build).
+        What the assembler's passes produced (kept for the lazy build); ``None`` for forms
+        restored by :meth:`from_data`.
     """
 
-    def __init__(self, dae: DAE, causal: Causal, repeats: Repeats):
+    FORMS = ("ode", "dae")
+
+    def __init__(self, dae: DAE | None, causal: Causal | None, repeats: Repeats | None):
         self._dae, self._causal, self._repeats = dae, causal, repeats
         self._built: dict[str, MappedKernel | NotMappable] = {}
-
-    @property
-    def summary(self) -> str:
+        self.summary = ", ".join(f"{s.name or 'bearing'}: {s.count} balls"
+                                 for s in repeats.sets) if repeats is not None else ""
         """The ball sets, e.g. ``"inner_layer: 13 balls, outer_layer: 14 balls"``."""
-        return ", ".join(f"{s.name or 'bearing'}: {s.count} balls" for s in self._repeats.sets)
 
     def get(self, form: str) -> MappedKernel:
         """The mapped kernel of ``form`` (``"ode"`` or ``"dae"``).
@@ -488,6 +491,8 @@ class MappedForms:
         found = self._built.get(form)
         if found is None:
             try:
+                if self._repeats is None:
+                    raise NotMappable(f"the {form} form was not built before packing")
                 found = mapped_kernel(self._dae, self._causal, self._repeats, form)
             except NotMappable as exc:
                 found = exc
@@ -495,3 +500,26 @@ class MappedForms:
         if isinstance(found, NotMappable):
             raise found
         return found
+
+    def to_data(self) -> dict:
+        """Plain data (every form built, functions serialized) for another process."""
+        forms = {}
+        for form in self.FORMS:
+            try:
+                k = self.get(form)
+            except NotMappable as exc:
+                forms[form] = str(exc)
+            else:
+                forms[form] = [f.serialize() for f in (k.function, k.jacobian, k.observe,
+                                                       k.ball_function)]
+        return {"summary": self.summary, "forms": forms}
+
+    @classmethod
+    def from_data(cls, data: dict) -> MappedForms:
+        """The forms of :meth:`to_data`."""
+        out = cls(None, None, None)
+        out.summary = data["summary"]
+        for form, value in data["forms"].items():
+            out._built[form] = (NotMappable(value) if isinstance(value, str) else MappedKernel(
+                *[ca.Function.deserialize(v) for v in value]))
+        return out

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -15,7 +16,44 @@ from bearingsim.language.component import Component
 from bearingsim.units import unit_label
 from bearingsim.validation import check_mapping, check_range
 
-__all__ = ["Signal", "System", "as_system"]
+__all__ = ["Signal", "FunctionTable", "System", "as_system"]
+
+
+class FunctionTable(Mapping):
+    """A system's CasADi functions by name; the expensive ones (the inlined Jacobians) are
+    built on first access, so that runs which never read them (the SUNDIALS kernels map one
+    function per ball and differentiate that) do not pay for them.
+
+    Parameters
+    ----------
+    ready : dict
+        Functions built already, by name.
+    pending : dict
+        Name -> a callable without arguments that builds the function.
+    """
+
+    def __init__(self, ready: dict[str, ca.Function],
+                 pending: dict[str, Callable[[], ca.Function]] | None = None):
+        self._ready = dict(ready)
+        self._pending = dict(pending or {})
+
+    def __getitem__(self, key: str) -> ca.Function:
+        if key not in self._ready:
+            build = self._pending.pop(key, None)
+            if build is None:
+                raise KeyError(key)
+            self._ready[key] = build()
+        return self._ready[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter([*self._ready, *self._pending])
+
+    def __len__(self) -> int:
+        return len(self._ready) + len(self._pending)
+
+    def built(self, key: str) -> bool:
+        """Whether ``key`` has been built (every key is available either way)."""
+        return key in self._ready
 
 
 @dataclass(frozen=True)
@@ -53,11 +91,11 @@ class System:
     inputs: list[Signal]
     outputs: list[Signal]
     params: list[Param]
-    functions: dict[str, ca.Function]
+    functions: Mapping[str, ca.Function]
     observed_names: list[str]
     observed_units: dict[str, str] = field(default_factory=dict)
     observed_descriptions: dict[str, str] = field(default_factory=dict)
-    symbolic_functions: dict[str, ca.Function] | None = None
+    symbolic_functions: Mapping[str, ca.Function] | None = None
     """The symbolic originals when ``functions`` are compiled (CasADi's integrators need them)."""
     init_residual: ca.Function | None = None
     free_initial_states: list[int] = field(default_factory=list)

@@ -2,7 +2,8 @@
 
 CasADi functions do not pickle without a context, and parameter declarations point into the
 instance tree. :func:`pack` turns a system into plain data: every CasADi function through
-``Function.serialize()``, parameters as (name, value, unit, description), everything else as is.
+``Function.serialize()`` (the Jacobians built on first access are built here, and the mapped-ball
+kernels of both forms), parameters as (name, value, unit, description), everything else as is.
 :func:`unpack` rebuilds a system that ``simulate`` accepts; parameter values given to it must
 have been validated on the sending side (the declarations with their ranges stay there).
 """
@@ -11,11 +12,13 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+from collections.abc import Mapping
 from typing import Any
 
 import casadi as ca
 
 from bearingsim.assembler.dae import Param
+from bearingsim.assembler.mapped import MappedForms
 from bearingsim.assembler.system import System
 
 __all__ = ["pack", "unpack", "load_cached"]
@@ -28,9 +31,11 @@ LOADS: dict[str, int] = {}
 def _ser(value: Any) -> Any:
     if isinstance(value, ca.Function):
         return {"__casadi__": value.serialize()}
-    if isinstance(value, dict) and value and all(isinstance(v, ca.Function)
-                                                 for v in value.values()):
+    if isinstance(value, Mapping) and value and all(isinstance(v, ca.Function)
+                                                    for v in value.values()):
         return {"__casadi_dict__": {k: v.serialize() for k, v in value.items()}}
+    if isinstance(value, MappedForms):
+        return {"__mapped__": value.to_data()}
     return value
 
 
@@ -39,6 +44,8 @@ def _de(value: Any) -> Any:
         return ca.Function.deserialize(value["__casadi__"])
     if isinstance(value, dict) and "__casadi_dict__" in value:
         return {k: ca.Function.deserialize(v) for k, v in value["__casadi_dict__"].items()}
+    if isinstance(value, dict) and "__mapped__" in value:
+        return MappedForms.from_data(value["__mapped__"])
     return value
 
 

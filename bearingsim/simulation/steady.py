@@ -22,7 +22,7 @@ __all__ = ["steady_state", "integrator_states"]
 
 def integrator_states(system: System) -> list[int]:
     """States no derivative depends on (angles of free rotors): they have no steady value."""
-    sp = system.functions["jac_x"].sparsity_out(0)
+    sp = system.functions["ode"].jac_sparsity(0, 1)  # d ode / d x, without building it
     cols = set(sp.get_col())
     return [k for k in range(system.n_states) if k not in cols]
 
