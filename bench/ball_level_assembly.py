@@ -133,7 +133,7 @@ def section() -> Section:
         "and compiled twice in the same run: with one function per ball mapped over each row "
         "(what simulations use; building the mapped functions is part of its time) and with "
         "the balls inlined; *total* is build + assemble + the mapped kernel. "
-        + "; ".join(f"{label.split(',')[0]}: {r['balls']}" for label, r in data.items())
+        + "; ".join(f"{label}: {r['balls']}" for label, r in data.items())
         + ".",
         "",
         markdown_table(headers, rows),
