@@ -12,6 +12,8 @@ Every function takes ``(t, x, u, p)`` and returns one (possibly sparse) matrix:
 ========== ===================================================
 
 The order of :data:`FUNCTION_NAMES` is the order of the function table of the C template.
+Models with ball sets get ``ode`` and its Jacobians with one function per ball mapped over
+each row (:mod:`bearingsim.assembler.mapped`): C that grows with one ball, not with Z.
 """
 
 from __future__ import annotations
@@ -19,6 +21,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import casadi as ca
+
+from bearingsim.assembler.mapped import MappedKernel, NotMappable
 
 __all__ = ["FUNCTION_NAMES", "PREFIX", "fmu_functions", "generate_c"]
 
@@ -46,13 +50,19 @@ def fmu_functions(system, output_names: list[str]) -> dict[str, ca.Function]:
         Keyed by :data:`FUNCTION_NAMES`, each named ``PREFIX + key``.
     """
     fns = system.functions
-    sym = ca.SX if fns["ode"].is_a("SXFunction") else ca.MX
+    mapped = _mapped_ode(system)
+    sym = ca.SX if fns["ode"].is_a("SXFunction") and mapped is None else ca.MX
     t = sym.sym("t")
     x = sym.sym("x", system.n_states)
     u = sym.sym("u", len(system.inputs))
     p = sym.sym("p", len(system.params))
     args = (t, x, u, p)
-    xdot = fns["ode"](*args)
+    if mapped is not None:  # one function per ball, its Jacobian by the chain rule
+        xdot = mapped.function(*args)
+        jac_t, jac_x, jac_u, _ = mapped.jacobian(*args, ca.MX(ca.Sparsity(system.n_states, 1)))
+    else:
+        xdot = fns["ode"](*args)
+        jac_t, jac_x, jac_u = ca.jacobian(xdot, t), fns["jac_x"](*args), fns["jac_u"](*args)
     if list(output_names) == system.output_names:
         y = fns["output"](*args)
         y_x, y_u = fns["out_jac_x"](*args), fns["out_jac_u"](*args)
@@ -63,9 +73,9 @@ def fmu_functions(system, output_names: list[str]) -> dict[str, ca.Function]:
         y_x, y_u = ca.jacobian(y, x), ca.jacobian(y, u)
     exprs = {
         "ode": xdot,
-        "jac_x": fns["jac_x"](*args),
-        "jac_u": fns["jac_u"](*args),
-        "jac_t": ca.jacobian(xdot, t),
+        "jac_x": jac_x,
+        "jac_u": jac_u,
+        "jac_t": jac_t,
         "output": y,
         "out_jac_x": y_x,
         "out_jac_u": y_u,
@@ -74,6 +84,17 @@ def fmu_functions(system, output_names: list[str]) -> dict[str, ca.Function]:
         key: ca.Function(PREFIX + key, list(args), [exprs[key]], ["t", "x", "u", "p"], [key])
         for key in FUNCTION_NAMES
     }
+
+
+def _mapped_ode(system) -> MappedKernel | None:
+    """The system's right-hand side with one function per ball (None: no ball sets, or a
+    form that cannot be mapped, e.g. Newton blocks inside the right-hand side)."""
+    if system.mapped is None:
+        return None
+    try:
+        return system.mapped.get("ode")
+    except NotMappable:
+        return None
 
 
 def generate_c(functions: dict[str, ca.Function], directory: Path,
