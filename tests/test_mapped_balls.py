@@ -88,18 +88,18 @@ def test_nested_dynamic_mapped_equal_inlined():
                                            lubrication=OIL,
                                            loads={"Fx": 0.0, "Fy": 0.0, "Fz": 100.0,
                                                   "Mx": 0.0, "My": 0.0}))
-    assert system.mapped.summary == "inner_layer: 13 balls, outer_layer: 14 balls"
+    assert system.mapped.summary == "inner_layer: 13 members, outer_layer: 14 members"
     _assert_same_kernels(system, "ode")
 
 
 def test_compiled_mapped_kernel_equals_vm_and_reports_its_balls(massive, kernel_cache):
     vm = kernel(massive, "ode", compiled=False)
     c = kernel(massive, "ode", compiled=True)
-    assert c.describe()["balls"] == "mapped: bearing: 7 balls"
+    assert c.describe()["mapped"] == "mapped: root: 7 members"
     args = _point(massive, "ode", seed=3)
     np.testing.assert_array_equal(_dense(c.function(*args)), _dense(vm.function(*args)))
     res = simulate(massive, 2e-4, method="cvodes", compiled=True)
-    assert res.stats["balls"] == "mapped: bearing: 7 balls"
+    assert res.stats["mapped"] == "mapped: root: 7 members"
     # a second system of the same model reads what the cached library maps without rebuilding
     again = _massive()
     assert kernel(again, "ode", compiled=True).mapped == c.mapped
@@ -111,7 +111,7 @@ def test_a_packed_system_keeps_its_mapped_kernel(massive):
     from bearingsim.scenes.portable import pack, unpack
 
     restored = unpack(pack(massive))
-    assert restored.mapped.summary == "bearing: 7 balls"
+    assert restored.mapped.summary == "root: 7 members"
     with pytest.raises(NotMappable, match="no nonlinear blocks"):
         restored.mapped.get("dae")
     args = _point(massive, "ode")
@@ -144,7 +144,7 @@ def test_a_ball_with_its_own_constant_is_not_mapped_and_stays_exact():
                                      loads={"Fx": 500.0})
     model.pocket[3].phase = ca.SX(2.0 * np.pi * 3 / 7)  # a binding: the symbol becomes 0.897...
     system = assemble(model)
-    with pytest.raises(NotMappable, match="of a ball set is not the same function as member 0"):
+    with pytest.raises(NotMappable, match="of a repeated set is not the same function as member 0"):
         system.mapped.get("ode")
     fallback = kernel(system, "ode", compiled=False)
     assert fallback.mapped.startswith("inlined: member ")

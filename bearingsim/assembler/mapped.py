@@ -130,7 +130,8 @@ def _same_members(fns: list[ca.Function]) -> None:
     first = _fresh_identity(fns[0])
     for k, f in enumerate(fns[1:], start=1):
         if _fresh_identity(f) != first:
-            raise NotMappable(f"member {k} of a ball set is not the same function as member 0")
+            raise NotMappable(f"member {k} of a repeated set is not the same function as member "
+                              f"0")
 
 
 class _Builder:
@@ -476,9 +477,10 @@ class MappedForms:
     def __init__(self, dae: DAE | None, causal: Causal | None, repeats: Repeats | None):
         self._dae, self._causal, self._repeats = dae, causal, repeats
         self._built: dict[str, MappedKernel | NotMappable] = {}
-        self.summary = ", ".join(f"{s.name or 'bearing'}: {s.count} balls"
+        self.summary = ", ".join(f"{s.name or 'root'}: {s.count} members"
                                  for s in repeats.sets) if repeats is not None else ""
-        """The ball sets, e.g. ``"inner_layer: 13 balls, outer_layer: 14 balls"``."""
+        """The sets, e.g. ``"inner_layer: 13 members, outer_layer: 14 members"`` (a member of a
+        row of balls is one ball with its contacts, pocket and drag)."""
 
     def get(self, form: str) -> MappedKernel:
         """The mapped kernel of ``form`` (``"ode"`` or ``"dae"``).

@@ -107,7 +107,7 @@ class Kernel:
     reason : str
         Why the backend was chosen (for ``Result.stats``).
     mapped : str
-        The mapped ball sets (e.g. ``"bearing: 7 balls"``), or why the functions are inlined.
+        The mapped sets (e.g. ``"mapped: root: 7 members"``), or why the functions are inlined.
     library : pathlib.Path or None
         The shared library of a compiled kernel.
     build_time : float
@@ -126,7 +126,7 @@ class Kernel:
     def describe(self) -> dict[str, Any]:
         """The kernel's entries of ``Result.stats``."""
         out: dict[str, Any] = {"backend": self.backend, "backend_reason": self.reason,
-                               "balls": self.mapped}
+                               "mapped": self.mapped}
         if self.library is not None:
             out["library"] = str(self.library)
         return out

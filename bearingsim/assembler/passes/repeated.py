@@ -3,9 +3,11 @@ write one function per ball and map it over the row instead of inlining Z copies
 
 A *ball set* is every array of components with the same parent and length in the flat names
 (``ball[k]``, ``inner[k]``, ``outer[k]``, ``drag[k]``, ``pocket[k]`` of one row): member ``k``
-is everything with index ``k``. A variable belongs to member ``k`` when its name, with the
-index replaced by ``*``, occurs for every member of its set; everything else (rings, cage,
-drive, and the port variables that alias elimination kept under one ball's name) is shared.
+is everything with index ``k``. Any array qualifies: the two bearings of a duplex pair form a
+set of two members too (mirrored, so not the same function: they stay inlined). A variable
+belongs to member ``k`` when its name, with the index replaced by ``*``, occurs for every
+member of its set; everything else (rings, cage, drive, and the port variables that alias
+elimination kept under one ball's name) is shared.
 
 The mapping is valid when every BLT block is either shared or belongs to one member. The
 shared unknowns are then solved once more with the members' variables kept as symbols
