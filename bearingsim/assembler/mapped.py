@@ -92,7 +92,6 @@ class _Layout:
     def __init__(self, inputs: list[tuple[str, list[ca.SX], bool]],
                  owner_key: Callable[[str], tuple[tuple[int, int], tuple] | None],
                  sizes: list[int]):
-        self.inputs = inputs
         n_sets = len(sizes)
         self.ld = [[[] for _ in range(z)] for z in sizes]  # (input, pos, sym, key)
         self.ln = [[[] for _ in range(z)] for z in sizes]
@@ -138,23 +137,24 @@ class _Builder:
     """The mapped form of one kernel: entries of its outputs, the members' functions, the
     shared function and their MX composition."""
 
-    def __init__(self, dae: DAE, causal: Causal, rep: Repeats,
+    def __init__(self, causal: Causal, rep: Repeats,
                  inputs: list[tuple[str, list[ca.SX], bool]]):
-        self.rep = rep
         self.sets = rep.sets
-        by_name: dict[str, tuple[tuple[int, int], tuple]] = {}
-        self.member_var: dict[str, tuple[int, int, str]] = {}
+        self.causal = causal
+        self.by_name: dict[str, tuple[tuple[int, int], tuple[str, str]]] = {}
+        """Symbol name of a member's variable or parameter -> ((set, member), ("v" or "p",
+        pattern))."""
+        self.pattern: dict[int, str] = {}
+        """``id(var)`` -> its pattern, for the members' variables."""
         for s, bs in enumerate(rep.sets):
             for k in range(bs.count):
                 for j, v in enumerate(bs.variables[k]):
-                    by_name[v.sym.name()] = ((s, k), ("v", bs.patterns[j]))
-                    self.member_var[v.sym.name()] = (s, k, bs.patterns[j])
+                    self.by_name[v.sym.name()] = ((s, k), ("v", bs.patterns[j]))
+                    self.pattern[id(v)] = bs.patterns[j]
                 for j, q in enumerate(bs.parameters[k]):
-                    by_name[q.sym.name()] = ((s, k), ("p", bs.param_patterns[j]))
+                    self.by_name[q.sym.name()] = ((s, k), ("p", bs.param_patterns[j]))
         self.input_syms = {sym.name() for _, syms, _ in inputs for sym in syms}
-        self.lay = _Layout(inputs, by_name.get, [bs.count for bs in rep.sets])
-        self.dae, self.causal = dae, causal
-        self.var_by_name = {v.sym.name(): v for v in dae.vars}
+        self.lay = _Layout(inputs, self.by_name.get, [bs.count for bs in rep.sets])
 
     # ------------------------------------------------------------ pieces
     def _exports(self, entries: list[_Entry]) -> list[list[str]]:
@@ -163,8 +163,8 @@ class _Builder:
         cuts = [e.cut for e in entries if e.owner is None]
         for sym in ca.symvar(_vcat(cuts)) if cuts else []:
             name = sym.name()
-            if name in self.member_var and name not in self.input_syms:
-                s, _, pattern = self.member_var[name]
+            if name in self.by_name and name not in self.input_syms:
+                (s, _), (_, pattern) = self.by_name[name]  # parameters are inputs
                 used[s].add(pattern)
         return [sorted(u) for u in used]
 
@@ -173,9 +173,10 @@ class _Builder:
         index = {p: j for j, p in enumerate(bs.patterns)}
         return [bs.variables[k][index[p]] for p in patterns]
 
-    def parts(self, entries: list[_Entry], tag: str):
-        """Member functions (one per set, checked equal over members), the shared function,
-        and the row layout: per set the ordered member rows, then the shared rows."""
+    def parts(self, entries: list[_Entry], tag: str, check: bool = True):
+        """Member functions (one per set; with ``check``, compared over the members), the
+        shared function, and the row order: per set each member's rows, then the shared
+        rows."""
         lay = self.lay
         exports = self._exports(entries)
         rows = [[[] for _ in range(bs.count)] for bs in self.sets]
@@ -198,7 +199,8 @@ class _Builder:
                         _vcat([_value(v, self.causal)
                                for v in self._export_vars(s, k, exports[s])])]
                 fns.append(_member_function(f"{tag}_ball{s}", lay, s, k, outs))
-            _same_members(fns)
+            if check:
+                _same_members(fns)
             f0 = fns[0]
             members.append(ca.Function(f0.name(), f0.sx_in(), f0.call(f0.sx_in()),
                                        f0.name_in(), f0.name_out(), CSE))
@@ -217,7 +219,8 @@ class _Builder:
         except RuntimeError as exc:
             raise NotMappable(f"the shared equations read member variables that are not "
                               f"exported ({str(exc).splitlines()[-1][:200]})") from None
-        return members, shared, rows, shared_rows
+        order = [r for per_set in rows for member in per_set for r in member] + shared_rows
+        return members, shared, order
 
     # ------------------------------------------------------------ MX composition
     def gather(self, mx_in: list[ca.MX]):
@@ -242,15 +245,25 @@ class _Builder:
         return sd, sn, L, Q
 
 
-def _scatter(n_rows: int, rows: list, shared_rows: list[int], member_out: list[ca.MX],
-             shared_out: ca.MX) -> ca.MX:
-    """The output vector from the member outputs (one matrix per set) and the shared rows."""
-    order = [r for per_set in rows for member in per_set for r in member] + shared_rows
+def _scatter(order: list[int], member_out: list[ca.MX], shared_out: ca.MX) -> ca.MX:
+    """The output vector from the member outputs (one matrix per set) and the shared rows,
+    stacked in ``order`` (of :meth:`_Builder.parts`)."""
     stacked = ca.vertcat(*[ca.vec(m) for m in member_out], shared_out)
-    position = [0] * n_rows
+    return stacked[_positions(order)]
+
+
+def _positions(order: list[int]) -> list[int]:
+    """The inverse permutation: where each row stands in ``order``."""
+    position = [0] * len(order)
     for p, r in enumerate(order):
         position[r] = p
-    return stacked[position]
+    return position
+
+
+def _shared_args(sd: ca.MX, sn: ca.MX, L: list[ca.MX], Q: list[ca.MX],
+                 E: list[ca.MX]) -> list[ca.MX]:
+    """The arguments of the shared function: ``S_d, S_n`` and per set ``L, Q, E``."""
+    return [sd, sn, *[ca.vec(m) for s in range(len(L)) for m in (L[s], Q[s], E[s])]]
 
 
 def _union(sp: ca.Sparsity, z: int) -> ca.Sparsity:
@@ -261,21 +274,17 @@ def _union(sp: ca.Sparsity, z: int) -> ca.Sparsity:
 
 
 def _compose(b: _Builder, entries: list[_Entry], tag: str, mx_in: list[ca.MX],
-             with_jacobian: bool):
-    members, shared, rows, shared_rows = b.parts(entries, tag)
+             with_jacobian: bool, check: bool = True):
+    members, shared, order = b.parts(entries, tag, check)
     sd, sn, L, Q = b.gather(mx_in)
     outs_member, E = [], []
     for s, f in enumerate(members):
         o, e = f.map(b.sets[s].count)(L[s], Q[s], sd, sn)
         outs_member.append(o)
         E.append(e)
-    h_args = [sd, sn]
-    for s in range(len(b.sets)):
-        h_args += [ca.vec(L[s]), ca.vec(Q[s]), ca.vec(E[s])]
-    o_shared = shared(*h_args)
-    value = _scatter(len(entries), rows, shared_rows, outs_member, o_shared)
+    value = _scatter(order, outs_member, shared(*_shared_args(sd, sn, L, Q, E)))
     if not with_jacobian:
-        return value, members[0], None, rows, shared_rows
+        return value, members[0], None, order
     # Jacobian by the chain rule (module docstring): the members' Jacobians (with their
     # exports, so that the members are evaluated once), the shared function's Jacobian, the
     # products H_E,k E_l,k and the sum over k of H_E,k E_S,k as mapped functions; rows in the
@@ -289,9 +298,7 @@ def _compose(b: _Builder, entries: list[_Entry], tag: str, mx_in: list[ca.MX],
                           ca.jacobian(e, sym[0]), ca.jacobian(e, sym[2]), e], CSE)
         jac_fns.append(jf)
         jac_members.append(jf.map(b.sets[s].count)(L[s], Q[s], sd, sn))
-    h_args = [sd, sn]
-    for s in range(len(b.sets)):
-        h_args += [ca.vec(L[s]), ca.vec(Q[s]), ca.vec(jac_members[s][4])]
+    h_args = _shared_args(sd, sn, L, Q, [jm[4] for jm in jac_members])
     sym_h = shared.sx_in()
     out_h = shared.call(sym_h)[0]
     jh_outs = [ca.jacobian(out_h, sym_h[0])]
@@ -317,7 +324,7 @@ def _compose(b: _Builder, entries: list[_Entry], tag: str, mx_in: list[ca.MX],
         pieces += [Fl, FS, H_L]
         sizes.append((z, members[s].nnz_in(0), members[s].nnz_in(2)))
     pieces.append(shared_S)
-    return value, members[0], _BlockJacobian(pieces, sizes), rows, shared_rows
+    return value, members[0], _BlockJacobian(pieces, sizes), order
 
 
 class _BlockJacobian:
@@ -389,13 +396,16 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
         inputs = [("t", [t], True), ("x", x, True), ("z", [v.sym for v in tears], True),
                   ("u", u, True), ("p", p, False)]
         out_names = ["ode", "alg"]
-    b = _Builder(dae, causal, rep, inputs)
-    bs_pattern = {id(v): (bs.patterns[j]) for bs in rep.sets for k in range(bs.count)
-                  for j, v in enumerate(bs.variables[k])}
+    b = _Builder(causal, rep, inputs)
+    mx_in = [ca.MX.sym(name, len(syms)) for name, syms, _ in inputs]
+    # The observe function's members return every member variable, so comparing them covers
+    # the ODE rows and exports of the kernel too; the DAE form's residual rows are checked
+    # with the kernel.
+    observe = _observe(b, dae, causal, rep, inputs, mx_in, form)
     entries: list[_Entry] = []
     for v in states:
         o = owner.get(id(v))
-        entries.append(_Entry(o, ("ode", bs_pattern.get(id(v), "")),
+        entries.append(_Entry(o, ("ode", b.pattern.get(id(v), "")),
                               _value(v.derivative, causal),
                               None if o else _cut_value(v.derivative, rep)))
     n_ode = len(entries)
@@ -405,15 +415,12 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
             o = owner.get(id(blk.tears[0]))
             cut = None if o else shared_blocks[id(blk.tears[0])].residuals
             for i in range(blk.residuals.numel()):
-                entries.append(_Entry(o, ("alg", bs_pattern.get(id(blk.tears[0]), ""), i),
+                entries.append(_Entry(o, ("alg", b.pattern.get(id(blk.tears[0]), ""), i),
                                       blk.residuals[i], None if o else cut[i]))
-    mx_in = [ca.MX.sym(name, len(syms)) for name, syms, _ in inputs]
-    value, ball_fn, J_block, rows, shared_rows = _compose(b, entries, form, mx_in, True)
-    row_order = [r for per_set in rows for member in per_set for r in member] + shared_rows
+    value, ball_fn, J_block, order = _compose(b, entries, form, mx_in, True,
+                                              check=form == "dae")
+    row_pos = _positions(order)
     col_order = _column_order(b)
-    row_pos = [0] * len(entries)
-    for q, r in enumerate(row_order):
-        row_pos[r] = q
     col_pos = {c: q for q, c in enumerate(col_order)}
     names_in = [name for name, _, _ in inputs]
     outs = [value[:n_ode]] if form == "ode" else [value[:n_ode], value[n_ode:]]
@@ -436,25 +443,22 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
             jac_outs.append(J_block.select(rsel, csel))
     jac = ca.Function(f"jac_{form}", mx_in + out_syms, jac_outs,
                       names_in + [f"out_{n}" for n in out_names], jac_names)
-    observe = _observe(b, dae, causal, rep, inputs, mx_in, form)
     return MappedKernel(fn, jac, observe, ball_fn)
 
 
 def _observe(b: _Builder, dae: DAE, causal: Causal, rep: Repeats, inputs, mx_in, form: str):
     """Every observed variable (the order of ``System.observed_names``) with mapped balls."""
     owner = rep.owner
-    pattern = {id(v): bs.patterns[j] for bs in rep.sets for k in range(bs.count)
-               for j, v in enumerate(bs.variables[k])}
-    entries = [_Entry(owner.get(id(v)), ("var", pattern.get(id(v), "")), _value(v, causal),
+    entries = [_Entry(owner.get(id(v)), ("var", b.pattern.get(id(v), "")), _value(v, causal),
                       None if owner.get(id(v)) else _cut_value(v, rep)) for v in dae.vars]
     value = _compose(b, entries, f"{form}_observe", mx_in, False)[0]
     parts = [value]
     if dae.aliases:
         index = {id(v): k for k, v in enumerate(dae.vars)}
+        # a constant alias has no representative and scale 0: any index will do
         reps = [index[id(a.representative)] if a.representative is not None else 0
                 for a in dae.aliases.values()]
-        scales = [a.scale if a.representative is not None else 0.0
-                  for a in dae.aliases.values()]
+        scales = [a.scale for a in dae.aliases.values()]
         offsets = [a.offset for a in dae.aliases.values()]
         parts.append(ca.DM(offsets) + ca.DM(scales) * value[reps])
     name = "observe" if form == "ode" else "dae_observe"
