@@ -507,6 +507,13 @@ class MappedForms:
             raise found
         return found
 
+    def find(self, form: str) -> MappedKernel | None:
+        """The mapped kernel of ``form``, or None when it cannot be mapped."""
+        try:
+            return self.get(form)
+        except NotMappable:
+            return None
+
     def to_data(self) -> dict:
         """Plain data (every form built, functions serialized) for another process."""
         forms = {}

@@ -22,8 +22,6 @@ from pathlib import Path
 
 import casadi as ca
 
-from bearingsim.assembler.mapped import MappedKernel, NotMappable
-
 __all__ = ["FUNCTION_NAMES", "PREFIX", "fmu_functions", "generate_c"]
 
 FUNCTION_NAMES = ("ode", "jac_x", "jac_u", "jac_t", "output", "out_jac_x", "out_jac_u")
@@ -50,7 +48,8 @@ def fmu_functions(system, output_names: list[str]) -> dict[str, ca.Function]:
         Keyed by :data:`FUNCTION_NAMES`, each named ``PREFIX + key``.
     """
     fns = system.functions
-    mapped = _mapped_ode(system)
+    # one function per ball (None: no ball sets, or Newton blocks inside the right-hand side)
+    mapped = system.mapped.find("ode") if system.mapped is not None else None
     sym = ca.SX if fns["ode"].is_a("SXFunction") and mapped is None else ca.MX
     t = sym.sym("t")
     x = sym.sym("x", system.n_states)
@@ -84,17 +83,6 @@ def fmu_functions(system, output_names: list[str]) -> dict[str, ca.Function]:
         key: ca.Function(PREFIX + key, list(args), [exprs[key]], ["t", "x", "u", "p"], [key])
         for key in FUNCTION_NAMES
     }
-
-
-def _mapped_ode(system) -> MappedKernel | None:
-    """The system's right-hand side with one function per ball (None: no ball sets, or a
-    form that cannot be mapped, e.g. Newton blocks inside the right-hand side)."""
-    if system.mapped is None:
-        return None
-    try:
-        return system.mapped.get("ode")
-    except NotMappable:
-        return None
 
 
 def generate_c(functions: dict[str, ca.Function], directory: Path,

@@ -358,13 +358,9 @@ def _generated(system: System, form: str, mapped: bool) -> list[ca.Function]:
     """The kernel, its Jacobian (``jac_<form>``, which ``casadi.external`` takes as the
     kernel's Jacobian) and the observe function: what a library holds, and what the VM
     evaluates. The mapped-ball functions when ``mapped`` and the model has them."""
-    if mapped and system.mapped is not None:
-        try:
-            found = system.mapped.get(form)
-        except NotMappable:
-            pass
-        else:
-            return [found.function, found.jacobian, found.observe]
+    found = system.mapped.find(form) if mapped and system.mapped is not None else None
+    if found is not None:
+        return [found.function, found.jacobian, found.observe]
     fn, observe = _symbolic(system, form)
     return [fn, fn.jacobian(), observe]
 
