@@ -1,5 +1,7 @@
 """Flattening: the instance tree becomes one list of scalar variables and equations.
 
+The members of a component array get their equations from member 0's by substitution when
+they are the same but for their symbols (:mod:`~bearingsim.assembler.passes.member_equations`).
 Connection sets are expanded with Modelica semantics: potentials equal, flows of inside
 connectors plus the negated flows of outside connectors sum to zero, and the flow of a connector
 that is connected nowhere as an inside connector is zero. Parameters bound to expressions of
@@ -13,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Eq, Param, Var
+from bearingsim.assembler.passes.member_equations import MemberEquations
 from bearingsim.errors import ModelError, UnconnectedInputError
 from bearingsim.language.component import Component, flow_sign
 from bearingsim.language.connector import Connector
@@ -80,13 +83,17 @@ def _connection_sets(root: Component) -> list[list[tuple[Connector, float]]]:
     return list(sets.values())
 
 
-def flatten(root: Component) -> DAE:
+def flatten(root: Component, members: MemberEquations | None = None) -> DAE:
     """Flatten an instance tree.
 
     Parameters
     ----------
     root : Component
         The assembly (or component) to flatten; its own inputs become system inputs.
+    members : MemberEquations, optional
+        Derives array members' equations from member 0's (a fresh one by default; pass one
+        to read how many components it instantiated, or ``MemberEquations(enabled=False)``
+        to build every component by its own code).
 
     Returns
     -------
@@ -96,12 +103,17 @@ def flatten(root: Component) -> DAE:
     eqs: list[Eq] = []
     init_eqs: list[Eq] = []
     eq_owner: list[Component] = []
+    members = members if members is not None else MemberEquations()
     for comp in root.walk():
         where = comp.path
-        for item in comp.all_equations():
-            for r in to_residuals(item, where):
-                eqs.append(Eq(r, where))
-                eq_owner.append(comp)
+        residuals = members.instantiate(comp)
+        if residuals is None:
+            members.begin(comp)
+            residuals = [r for item in comp.all_equations() for r in to_residuals(item, where)]
+            members.record(comp, residuals)
+        for r in residuals:
+            eqs.append(Eq(r, where))
+            eq_owner.append(comp)
         for item in comp.initial_equations():
             for r in to_residuals(item, where):
                 init_eqs.append(Eq(r, where, initial=True))
@@ -237,5 +249,9 @@ def _substitute_bindings(eqs, init_eqs, bound_syms, bound_exprs, params) -> None
 
 def run(state: AssemblyState) -> None:
     """Flatten ``state.root`` into ``state.dae``."""
-    state.dae = flatten(state.root)
+    members = MemberEquations()
+    state.dae = flatten(state.root, members)
     state.report["flat"] = f"{len(state.dae.vars)} variables, {len(state.dae.eqs)} equations"
+    if members.instantiated:
+        state.report["flat"] += (f" ({members.instantiated} components' equations by "
+                                 "substitution from their array's member 0)")
