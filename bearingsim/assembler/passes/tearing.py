@@ -48,11 +48,16 @@ class Causal:
     largest_block: int = 0
 
 
+def _vanishes(coef: ca.SX) -> bool:
+    """Whether a coefficient is identically zero."""
+    return coef.is_constant() and float(coef) == 0.0
+
+
 def _linear_coefficient(r: ca.SX, v: Var) -> ca.SX | None:
     """``dr/dv`` if the residual ``r`` is linear in ``v`` with a coefficient that is not
     identically zero, else None."""
     coef = ca.jacobian(r, v.sym)
-    if ca.depends_on(coef, v.sym) or (coef.is_constant() and float(coef) == 0.0):
+    if ca.depends_on(coef, v.sym) or _vanishes(coef):
         return None
     return coef
 
@@ -97,26 +102,32 @@ def causalize(dae: DAE, blocks: list[Block]) -> Causal:
     """Express every unknown through base symbols, block by block."""
     out = Causal(n_blocks=len(blocks))
     solved_by_name: dict[str, Var] = {}
+
+    def resolved(expr: ca.SX) -> ca.SX:
+        """``expr`` with the unknowns of earlier blocks replaced by their solutions."""
+        prev = [solved_by_name[s.name()] for s in ca.symvar(expr) if s.name() in solved_by_name]
+        if not prev:
+            return expr
+        return ca.substitute(expr, ca.vertcat(*[v.sym for v in prev]),
+                             ca.vertcat(*[out.expr[v] for v in prev]))
+
     for block in blocks:
         out.largest_block = max(out.largest_block, len(block))
-        raw = ca.vertcat(*[e.residual for e, _ in block])
-        prev = [solved_by_name[s.name()] for s in ca.symvar(raw) if s.name() in solved_by_name]
-        if prev:
-            raw = ca.substitute(
-                raw, ca.vertcat(*[v.sym for v in prev]), ca.vertcat(*[out.expr[v] for v in prev])
-            )
-        residuals = {e: raw[k] for k, (e, _) in enumerate(block)}
         if len(block) == 1:
+            # One equation in one unknown: solved on the equation as written (small), then
+            # earlier solutions substituted into the solution; the unknown is not in them, so
+            # linearity and the coefficient are those of the resolved equation.
             e, v = block[0]
-            r = residuals[e]
-            coef = _linear_coefficient(r, v)
-            if coef is not None:
-                out.expr[v] = _solve_linear_scalar(r, v, coef)
+            coef = _linear_coefficient(e.residual, v)
+            if coef is not None and not _vanishes(resolved(coef)):
+                out.expr[v] = resolved(_solve_linear_scalar(e.residual, v, coef))
             else:
                 out.expr[v] = v.sym
-                out.nonlinear.append(NonlinearBlock([v], r, [_guess(v)], [e]))
+                out.nonlinear.append(NonlinearBlock([v], resolved(e.residual), [_guess(v)], [e]))
             solved_by_name[v.sym.name()] = v
             continue
+        raw = resolved(ca.vertcat(*[e.residual for e, _ in block]))
+        residuals = {e: raw[k] for k, (e, _) in enumerate(block)}
         solved, tears, res_eqs = _tear(block, residuals)
         local: dict[Var, ca.SX] = {}
         for e, v in solved:
