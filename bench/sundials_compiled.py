@@ -282,7 +282,7 @@ def _run_with_kernel(case: Case, kern, common: dict):
     for key in [k for k in cache if k[0] == kern.form and k[1] is True]:
         del cache[key]
     cache[(kern.form, True, kernels_module.DEFAULT_FLAGS,
-           str(kernels_module.default_cache_dir()))] = kern
+           str(kernels_module.default_cache_dir()), True)] = kern
     return case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=True)
 
 

@@ -60,7 +60,7 @@ from bearingsim.simulation.compile import (
     CompileError,
     c_compiler,
     default_cache_dir,
-    generate_source,
+    generate_units,
     library_path,
 )
 
@@ -71,14 +71,14 @@ SOURCES = {"ode": ("ode", "observe"), "dae": ("dae_ode", "dae_alg", "dae_observe
 
 RECIPE = ("bearingsim kernel v1: F = the sources' outputs (cse, p not differentiable), "
           "jac_F = F.jacobian(), observe (cse)")
+"""How a kernel library is derived from its sources (part of its cache key: change it when the
+derivation changes)."""
 RECIPE_MAPPED = ("bearingsim kernel v1, mapped balls: F, jac_F, observe of "
                  "bearingsim.assembler.mapped.mapped_kernel (members' function mapped, "
                  "chain-rule Jacobian) for the model of these inlined sources; derivation "
                  + hashlib.sha256(Path(mapped_module.__file__).read_bytes()).hexdigest())
 """The recipe of mapped kernels; it names the source of the module that derives them, so a
 change there never reuses a library built by the old derivation."""
-"""How a kernel library is derived from its sources (part of its cache key: change it when the
-derivation changes)."""
 
 COMPILED = "compiled C"
 """``Kernel.backend`` of generated C."""
@@ -204,13 +204,14 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         cache[key] = result
         return result
     prefix = f"bsm_{form}"
-    generated = source = None
+    generated = units = None
     lib = cache.get(("library", *key))
     if lib is None:
         identity = _identity(form, sources, mapped and system.mapped is not None)
         if identity is None:  # named by its C source
             generated = _generated(system, form, mapped)
-            identity = source = generate_source(generated, prefix)
+            units = generate_units(generated, prefix)
+            identity = "\n".join(units)
         lib = cache[("library", *key)] = library_path(identity, flags=flags,
                                                       cache_dir=cache_dir, prefix=prefix)
     record = lib.with_name(lib.name + ".balls")
@@ -223,7 +224,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
             generated = generated or _generated(system, form, mapped)
             record.parent.mkdir(parents=True, exist_ok=True)
             record.write_text(balls)  # what the library maps, read when it is reused
-            pending = _submit(lib, source or generate_source(generated, prefix), flags)
+            pending = _submit(lib, units or generate_units(generated, prefix), flags)
         if compiled is True:
             pending.wait()  # raises the CompileError of a failed build
         elif not pending.done():
@@ -272,11 +273,12 @@ def _ball_sets(system: System, form: str, mapped: bool) -> str:
 _PENDING: dict[Path, Build] = {}
 
 
-def _submit(lib: Path, source: str, flags: tuple[str, ...]) -> Build:
-    """Start compiling ``source`` into ``lib`` (once per library and process)."""
+def _submit(lib: Path, units: list[str], flags: tuple[str, ...]) -> Build:
+    """Start compiling the translation units ``units`` into ``lib`` (once per library and
+    process)."""
     with _LOCK:
         if lib not in _PENDING:
-            _PENDING[lib] = Build(source, lib, flags)
+            _PENDING[lib] = Build(units, lib, flags)
         return _PENDING[lib]
 
 
