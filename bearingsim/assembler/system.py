@@ -138,16 +138,16 @@ class System:
     def x0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
         """Start values of the states, with optional overrides by name."""
         x = np.array([s.start for s in self.states], dtype=float)
+        index = {s.name: k for k, s in enumerate(self.states)}
         for name, val in check_mapping(overrides, "x0", self.name, "state names").items():
-            if name not in self.state_names:
+            k = index.get(name)
+            if k is None:
                 raise ParameterError(
                     f"initial value given for {name!r}, which is not a state; states: "
-                    + ", ".join(self.state_names)
+                    + ", ".join(index)
                 )
-            x[self.state_names.index(name)] = float(
-                check_range(val, name, self.states[self.state_names.index(name)].unit,
-                            where=f"{self.name}: initial value")
-            )
+            x[k] = float(check_range(val, name, self.states[k].unit,
+                                     where=f"{self.name}: initial value"))
         return x
 
     def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
