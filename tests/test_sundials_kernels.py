@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
+import casadi as ca
 import numpy as np
 import pytest
+import scipy.sparse as sparse
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.sparse.linalg import splu
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
+from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.errors import ParameterError
 from bearingsim.simulation import simulate
 from bearingsim.simulation.compile import CompileError, compilations
@@ -16,6 +22,7 @@ from bearingsim.simulation.sundials import (
     DENSE_LIMIT,
     choose_linear_solver,
     clear_integrator_cache,
+    fill_reducing_order,
 )
 from tests.models import Pendulum, SpringMassChain
 
@@ -113,7 +120,8 @@ def test_input_signal_lifts_numbers_and_keeps_the_structure(torque_level):
 
 def test_linear_solver_by_size_and_checked_choices(torque_level):
     assert choose_linear_solver(76, 1400) == "lapacklu"
-    assert choose_linear_solver(DENSE_LIMIT + 1, 5000) in ("mumps", "lapacklu")
+    assert choose_linear_solver(DENSE_LIMIT + 1, 5000) == "csparse"  # in a fill-reducing order
+    assert choose_linear_solver(DENSE_LIMIT + 1, 5000, "dae") in ("mumps", "lapacklu")
     assert choose_linear_solver(500, 100_000) == "lapacklu"  # dense enough for LAPACK
     with pytest.raises(ParameterError, match="linear_solver"):
         simulate(torque_level, 0.1, method="cvodes", linear_solver="ma27")
@@ -152,3 +160,64 @@ def test_a_failing_compiler_leaves_auto_on_the_vm_and_raises_for_true(kernel_cac
     with pytest.raises(CompileError, match="failed"):
         simulate(system, 0.5, method="cvodes", compiled=True)
     assert not list(kernel_cache.glob(".build_*"))  # no half-built leftovers
+
+
+def _pattern(a: sparse.csc_matrix) -> ca.Sparsity:
+    coo = a.tocoo()
+    return ca.Sparsity.triplet(a.shape[0], a.shape[1], coo.row.tolist(), coo.col.tolist())
+
+
+def _lu_fill(a: sparse.csc_matrix) -> int:
+    """Non-zeros of L + U beyond those of ``a``, factorized in the given order."""
+    lu = splu(a, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    return lu.L.nnz + lu.U.nnz - a.shape[0] - a.nnz
+
+
+def _arrowhead(n_members: int, per_member: int, shared: int) -> sparse.csc_matrix:
+    """Shared unknowns first (like ring states before the balls'), each member's block coupled
+    to every shared unknown: the pattern of a bearing's Jacobian."""
+    n = shared + n_members * per_member
+    a = sparse.lil_matrix((n, n))
+    a[:shared, :shared] = 1.0
+    for k in range(n_members):
+        lo = shared + k * per_member
+        block = slice(lo, lo + per_member)
+        a[block, block] = 1.0
+        a[block, :shared] = 1.0
+        a[:shared, block] = 1.0
+    return (a + n * sparse.identity(n)).tocsc()
+
+
+def test_fill_reducing_order_factorizes_a_bearing_pattern_without_fill_in():
+    a = _arrowhead(n_members=12, per_member=9, shared=10)
+    order = fill_reducing_order(_pattern(a))
+    assert sorted(order) == list(range(a.shape[0]))
+    assert _lu_fill(a) > 50 * a.shape[0]  # as given: the shared rows fill everything in
+    assert _lu_fill(a[order][:, order].tocsc()) == 0
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(2, 15), st.integers(1, 9), st.integers(1, 12), st.integers(0, 2**32 - 1))
+def test_fill_reducing_order_finds_the_bearing_pattern_in_any_given_order(members, size,
+                                                                          shared, seed):
+    a = _arrowhead(members, size, shared)
+    shuffle = np.random.default_rng(seed).permutation(a.shape[0])
+    given_order = a[shuffle][:, shuffle].tocsc()
+    order = fill_reducing_order(_pattern(given_order))
+    assert sorted(order) == list(range(a.shape[0]))
+    assert _lu_fill(given_order[order][:, order].tocsc()) == 0
+
+
+def test_sparse_lu_integrates_in_a_fill_reducing_order_and_returns_the_systems_order(
+        kernel_cache):
+    system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0,
+                                               loads={"Fx": 500.0}))
+    runs = {solver: simulate(system, 2e-3, method="cvodes", linear_solver=solver,
+                             compiled=False, rtol=1e-9, atol=1e-12, n_points=5)
+            for solver in ("lapacklu", "csparse")}
+    assert runs["lapacklu"].stats["state_order"] == "system"
+    assert runs["csparse"].stats["state_order"] == "minimum degree"
+    dense, ordered = (np.asarray(runs[s].values) for s in ("lapacklu", "csparse"))
+    np.testing.assert_array_equal(ordered[:, 0], dense[:, 0])  # the start, in system order
+    scale = np.maximum(np.abs(dense).max(axis=1, keepdims=True), 1e-9)
+    assert np.max(np.abs(ordered - dense) / scale) < 1e-5

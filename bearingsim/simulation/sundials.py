@@ -23,6 +23,13 @@ seed matrix, in one sweep when the number of directions is at most ``max_num_dir
 (:data:`MAX_NUM_DIR`; with CasADi's default 64 the 76-state model called the Jacobian twice per
 evaluation).
 
+The states CVODES integrates are ordered for the linear solver: with the sparse LU
+(``csparse``, which factorizes in the order it is given) they are permuted into a
+minimum-degree order of the Jacobian's pattern (:func:`fill_reducing_order`), so that each
+ball's states come before the ring and cage states they couple to and the factors keep the
+Jacobian's sparsity instead of filling in; the permutation is applied around the integrator
+call, and callers see the system's order.
+
 A progress bar needs the run in pieces: with a bar shown, :func:`sundials_run` makes
 :data:`PROGRESS_CHUNKS` calls of equal length (equally spaced output points grouped, one cached
 integrator for all of them) and moves the bar between them; without one, a single call. Each
@@ -54,6 +61,8 @@ from typing import Any
 
 import casadi as ca
 import numpy as np
+import scipy.sparse as sparse
+from scipy.sparse.linalg import splu
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
@@ -63,7 +72,7 @@ from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.progress import DELAY, progress_bar
 
 __all__ = ["LINEAR_SOLVERS", "SundialsRun", "choose_linear_solver", "clear_integrator_cache",
-           "sundials_run"]
+           "fill_reducing_order", "sundials_run"]
 
 LINEAR_SOLVERS = ("lapacklu", "mumps", "csparse", "qr", "lapackqr")
 """CasADi linear solver plugins for CVODES and IDAS (``linear_solver``): dense LAPACK LU and QR,
@@ -73,9 +82,9 @@ an HSL library the casadi wheel does not ship)."""
 
 DENSE_LIMIT = 200
 """Largest Newton matrix (states + algebraic states) that :func:`choose_linear_solver` gives
-dense LAPACK LU; above it MUMPS (sparse multifrontal) is faster on the ball-level models
-(massive-ball bearings with 7..18 balls and the nested double-layer bearing:
-``bench/sundials_compiled.py``, ``linsol``)."""
+dense LAPACK LU; above it a sparse LU is faster on the ball-level models (the nested
+double-layer bearing: ``bench/sundials_compiled.py``, ``linsol``; at the 76 states of the 6304
+massive-ball model dense LU and the ordered sparse LU are even)."""
 
 PROGRESS_CHUNKS = 20
 """Integrator calls of a run with a progress bar (:func:`sundials_run`); their cost is measured
@@ -86,17 +95,47 @@ MAX_NUM_DIR = 1024
 sparsity in one call of the kernel Jacobian)."""
 
 
-def choose_linear_solver(n: int, nnz: int) -> str:
+def choose_linear_solver(n: int, nnz: int, form: str = "ode") -> str:
     """Linear solver for an ``n x n`` Newton matrix with ``nnz`` structural non-zeros.
 
-    Dense LAPACK LU up to :data:`DENSE_LIMIT` unknowns or above 30 % fill, else MUMPS when the
-    casadi build has it. CSparse and CasADi's QR are never chosen: the rows and columns of the
-    rings and cages couple every ball, and their fill-in makes them 2-3x slower than dense LU
-    from 100 unknowns on.
+    Dense LAPACK LU up to :data:`DENSE_LIMIT` unknowns or above 30 % fill; above, the sparse
+    LU (CSparse) on the states in a fill-reducing order for CVODES (``form="ode"``), MUMPS
+    (which orders by itself) for the DAE form when the casadi build has it. CasADi's QR is
+    never chosen, nor CSparse in the system's own order: the rows and columns of the rings and
+    cages couple every ball, and their fill-in makes them slower than dense LU from 100
+    unknowns on (``bench/sundials_compiled.py``, ``linsol``).
     """
-    if n <= DENSE_LIMIT or nnz > 0.3 * n * n or not ca.has_linsol("mumps"):
+    if n <= DENSE_LIMIT or nnz > 0.3 * n * n:
         return "lapacklu"
-    return "mumps"
+    if form == "ode":
+        return "csparse"
+    return "mumps" if ca.has_linsol("mumps") else "lapacklu"
+
+
+def fill_reducing_order(pattern: ca.Sparsity) -> np.ndarray:
+    """A minimum-degree order of the unknowns of a square sparse matrix: SuperLU's multiple
+    minimum degree on the pattern of ``A^T + A`` (scipy), for a sparse LU without fill-in
+    beyond what the coupling forces.
+
+    Parameters
+    ----------
+    pattern : casadi.Sparsity
+        Structural non-zeros of ``A`` (``n x n``).
+
+    Returns
+    -------
+    ndarray of int
+        ``order``: the permuted matrix is ``A[order][:, order]``.
+    """
+    n = pattern.size1()
+    rows, cols = pattern.get_triplet()
+    # ones off the diagonal, n on it: diagonally dominant, so SuperLU keeps the diagonal
+    # pivots and its column order is the minimum-degree order itself
+    a = (sparse.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+         + n * sparse.identity(n, format="csc"))
+    lu = splu(a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    return np.argsort(lu.perm_c)
 
 
 @dataclass(frozen=True)
@@ -127,6 +166,16 @@ class _Built:
     integrator: ca.Function
     oracle: ca.Function
     build_time: float
+    order: np.ndarray | None = None
+    """The integrator's state order (``x_integrator = x[order]``), or None: the system's."""
+
+    def to_integrator(self, x: np.ndarray) -> np.ndarray:
+        """States (one column per time, or a vector) in the integrator's order."""
+        return x if self.order is None else x[self.order]
+
+    def from_integrator(self, x: np.ndarray) -> np.ndarray:
+        """States from the integrator's order back to the system's."""
+        return x if self.order is None else x[np.argsort(self.order)]
 
 
 class IntegratorCache:
@@ -219,10 +268,13 @@ def _normalized_grid(t0: float, t1: float, t_out: np.ndarray) -> tuple[np.ndarra
     return tau, ("grid", tau.tobytes())
 
 
-def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int) -> ca.Function:
+def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int,
+            order: np.ndarray | None = None) -> ca.Function:
     """The DAE in normalized time: ``dx/dtau = T f(t0 + T tau, x, [z,] u(t0 + T tau, q), p)``,
-    ``0 = g(...)``; integrator parameters ``[p, q, t0, T]``."""
-    tau, x = ca.MX.sym("t"), ca.MX.sym("x", n_x)
+    ``0 = g(...)``; integrator parameters ``[p, q, t0, T]``; with ``order``, in the states
+    ``x[order]``."""
+    tau, x_int = ca.MX.sym("t"), ca.MX.sym("x", n_x)
+    x = x_int if order is None else x_int[[int(i) for i in np.argsort(order)]]
     n_q = signal.q.size
     pp = ca.MX.sym("p", n_p + n_q + 2)
     p, q, t0, span = pp[:n_p], pp[n_p:n_p + n_q], pp[n_p + n_q], pp[n_p + n_q + 1]
@@ -235,7 +287,9 @@ def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int) -> ca.Funct
     else:
         z = ca.MX(0, 1)
         ode, alg = fn(t, x, u, p), ca.MX(0, 1)
-    return ca.Function("dae", [tau, x, z, pp, ca.MX(0, 1)],
+    if order is not None:
+        ode = ode[[int(i) for i in order]]
+    return ca.Function("dae", [tau, x_int, z, pp, ca.MX(0, 1)],
                        [span * ode, alg, ca.MX(0, 1), ca.MX(0, 1)],
                        ["t", "x", "z", "p", "u"], ["ode", "alg", "quad", "zero"],
                        {"max_num_dir": MAX_NUM_DIR})
@@ -250,6 +304,14 @@ def _jacobian_size(kernel: Kernel, n_x: int) -> tuple[int, int]:
     nnz = sum(jac.sparsity_out(names.index(b)).nnz() for b in blocks) + n_x
     n = n_x + (kernel.function.size1_in(2) if kernel.form == "dae" else 0)
     return n, nnz
+
+
+def _state_order(kernel: Kernel, linear_solver: str) -> np.ndarray | None:
+    """The integrator's state order: fill-reducing for CSparse on the ODE form, else None."""
+    if linear_solver != "csparse" or kernel.form != "ode":
+        return None
+    jac = kernel.function.jacobian()
+    return fill_reducing_order(jac.sparsity_out(jac.name_out().index("jac_ode_x")))
 
 
 @dataclass(frozen=True)
@@ -321,9 +383,10 @@ def _integrator(method: str, system: System, kernel: Kernel, signal: InputSignal
     if built is not None:
         return built, True
     start = time.perf_counter()
-    oracle = _oracle(kernel, signal, system.n_states, n_p)
+    order = _state_order(kernel, opts["linear_solver"])
+    oracle = _oracle(kernel, signal, system.n_states, n_p, order)
     integ = ca.integrator(f"{method}_{kernel.form}", method, oracle, 0.0, chunk.tau, opts)
-    built = _Built(integ, oracle, time.perf_counter() - start)
+    built = _Built(integ, oracle, time.perf_counter() - start, order)
     if opts["linear_solver"] == "mumps":
         _MUMPS_USED.set()
     _INTEGRATORS.put(system, key, built)
@@ -382,7 +445,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         (integrator calls), and CVODES/IDAS counts summed over the calls: ``nsteps``,
         ``nfevals`` (right-hand side or residual), ``njevals`` (exact Jacobian),
         ``nlinsetups`` (factorizations), ``nniters``, ``netfails``, ``rhs_time``/``jac_time``
-        [s] (CasADi's timers of those calls).
+        [s] (CasADi's timers of those calls), ``state_order`` (``"system"``, or ``"minimum
+        degree"``: the order :func:`fill_reducing_order` gave the sparse LU).
     """
     if method not in ("cvodes", "idas") or (method == "cvodes" and kernel.form != "ode"):
         raise ParameterError(f"sundials_run: method {method!r} cannot integrate the "
@@ -393,7 +457,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     t_out = t_eval[t_eval > t0]
     n_x = system.n_states
     if linear_solver is None:
-        linear_solver = choose_linear_solver(*_jacobian_size(kernel, n_x))
+        linear_solver = choose_linear_solver(*_jacobian_size(kernel, n_x), kernel.form)
     base: dict[str, Any] = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000,
                             "linear_solver": linear_solver, **(options or {})}
     bar = progress_bar(t0, t1, progress)
@@ -414,7 +478,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
             cached &= hit
             setup_time += 0.0 if hit else built.build_time
             p_ext = np.concatenate([p, signal.q, [chunk.a, span]])
-            args = {"x0": x, "p": p_ext}
+            args = {"x0": built.to_integrator(x), "p": p_ext}
             if kernel.form == "dae":
                 args["z0"] = z
             called = time.perf_counter()
@@ -428,7 +492,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
                                 chunk.tau, exc)
                 raise
             _add_counts(totals, built.integrator.stats())
-            xk = np.asarray(out["xf"], dtype=float).reshape(n_x, chunk.tau.size)
+            xk = built.from_integrator(
+                np.asarray(out["xf"], dtype=float).reshape(n_x, chunk.tau.size))
             if not np.all(np.isfinite(xk)):
                 k = int(np.argmax(~np.all(np.isfinite(xk), axis=0)))
                 raise SimulationError(
@@ -461,6 +526,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     values = _observe(kernel, signal, p, ts, xs, zs)
     stats = _stats(method, kernel, linear_solver, setup_time, cached, totals)
     stats["chunks"] = calls
+    stats["state_order"] = "system" if built.order is None else "minimum degree"
     return SundialsRun(ts, xs, zs, values, stats)
 
 
@@ -546,10 +612,10 @@ def _locate(method: str, system: System, built: _Built, opts: dict, p_ext: np.nd
     x, z, tau_prev = np.asarray(x_start, dtype=float), z_start, 0.0
     for tau_next in tau:
         step = ca.integrator("locate", method, built.oracle, tau_prev, [float(tau_next)], opts)
-        args = {"x0": x, "p": p_ext, **({"z0": z} if z is not None else {})}
+        args = {"x0": built.to_integrator(x), "p": p_ext, **({"z0": z} if z is not None else {})}
         try:
             out = step(**args)
-            x_new = np.asarray(out["xf"], dtype=float).ravel()
+            x_new = built.from_integrator(np.asarray(out["xf"], dtype=float).ravel())
             z = np.asarray(out["zf"], dtype=float).ravel() if z is not None else None
         except RuntimeError:
             x_new = None
