@@ -56,7 +56,12 @@ from bearingsim.assembler.system import System
 from bearingsim.simulation import simulate, sundials
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
-from bearingsim.simulation.sundials import LINEAR_SOLVERS, clear_integrator_cache
+from bearingsim.simulation.sundials import (
+    LINEAR_SOLVERS,
+    choose_linear_solver,
+    clear_integrator_cache,
+    fill_reducing_order,
+)
 from bench.common import Section, fmt, markdown_table
 
 __all__ = ["CASES", "Case", "main", "report", "section"]
@@ -205,7 +210,8 @@ def _form(case: Case) -> str:
 
 
 def calls(case: Case) -> dict[str, float]:
-    """Per-call costs [us] of the kernel, its Jacobian and a dense LU, VM and C."""
+    """Per-call costs [us] of the kernel and its Jacobian, VM and C, and of the default linear
+    solver's factorization and solve (dense LU, or the ordered sparse LU above DENSE_LIMIT)."""
     system, _ = case.system()
     form = _form(case)
     args = _operating_point(case, form)
@@ -227,13 +233,33 @@ def calls(case: Case) -> dict[str, float]:
         out[f"jac {label}"] = per_call_us(jac, [*args, *value], n=1000)
     n = system.n_states + (args[2].size if form == "dae" else 0)
     out["lu fact+solve"] = dense_lu_us(n)
+    if form == "ode" and choose_linear_solver(n, 0, form) == "csparse":
+        # the default above DENSE_LIMIT: the ordered sparse LU of the run's own Newton matrix
+        jac_x = np.asarray(ca.densify(jac(*args, *value)[1]))
+        out["lu fact+solve"] = sparse_lu_us(np.eye(n) - 1e-3 * jac_x, kern.function)
     out["n"] = n
     return out
 
 
+def sparse_lu_us(newton: np.ndarray, fn: ca.Function) -> float:
+    """Cost of one CSparse LU factorization and solve [us] of a Newton matrix with the pattern
+    of ``I + d fn / d x``, in the minimum-degree order the integrator uses."""
+    jac = fn.jacobian()
+    pattern = jac.sparsity_out(jac.name_out().index("jac_ode_x")) + ca.Sparsity.diag(
+        newton.shape[0])
+    order = [int(i) for i in fill_reducing_order(pattern)]
+    ordered = pattern.sub(order, order, False)[0]
+    a = ca.MX.sym("A", ordered)
+    b = ca.MX.sym("b", newton.shape[0])
+    lu = ca.Function("lu", [a, b], [ca.solve(a, b, "csparse")])
+    values = ca.project(ca.DM(newton[np.ix_(order, order)]), ordered).nonzeros()
+    return per_call_us(lu, [np.asarray(values), np.ones(newton.shape[0])], n=500)
+
+
 def physical_limit_s(stats: dict, rhs_us: float, jac_us: float, lu_us: float = 0.0) -> float:
     """The physical limit of a run [s]: compiled per-call costs [us] of the kernel, its
-    Jacobian and (optionally) a dense LU of the Newton matrix times the calls the run made."""
+    Jacobian and (optionally) the LU of the Newton matrix (factorization and solve) times the
+    calls the run made."""
     return (stats["nfevals"] * rhs_us + stats["njevals"] * jac_us
             + stats["nlinsetups"] * lu_us) * 1e-6
 
@@ -500,7 +526,8 @@ def section(quick: bool = False) -> Section:
         "C (`compiled=True`: right-hand side and exact Jacobian as a library loaded with "
         "`casadi.external`), same integrator, same steps. *wall / sim s*: wall seconds per "
         "simulated second; *limit*: the compiled per-call costs times the calls the run took "
-        "(kernels only, and with the dense LU of the Newton matrix), the physical limit of this "
+        "(kernels only, and with the LU of the Newton matrix: dense, or the ordered sparse LU the "
+        "default picks above 200 states), the physical limit of this "
         "machine; *wall / limit*: the distance to it. Goals: at most 1 s per "
         "simulated second for the 6304 massive-ball level, 10 s for the nested dynamic bearing. "
         "Set-up: a 1 ms run repeated, first call (kernel from the disk cache, integrator built) "
