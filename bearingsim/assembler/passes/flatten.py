@@ -205,14 +205,16 @@ def _mark_inputs(root, inputs, eqs, eq_owner) -> None:
         return
     by_name = {v.sym.name(): (d, v) for d, v in inputs}
     bound: set[str] = set()
-    for eq, owner in zip(eqs, eq_owner, strict=True):
-        for s in ca.symvar(eq.residual):
-            hit = by_name.get(s.name())
-            if hit is None:
-                continue
-            d, _ = hit
-            if owner is None or owner is not d.owner:
-                bound.add(s.name())
+    # which equations each input occurs in: one structural Jacobian instead of a symvar per
+    # equation
+    incidence = ca.jacobian_sparsity(ca.vertcat(*[eq.residual for eq in eqs]),
+                                     ca.vertcat(*[v.sym for _, v in inputs]))
+    rows, cols = incidence.get_triplet()
+    for row, col in zip(rows, cols, strict=True):
+        d, v = inputs[col]
+        owner = eq_owner[row]
+        if owner is None or owner is not d.owner:
+            bound.add(v.sym.name())
     for name, (d, v) in by_name.items():
         if name in bound:
             continue
