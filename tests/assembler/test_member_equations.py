@@ -113,3 +113,34 @@ def test_substituted_members_get_their_derivatives():
     assert members.instantiated == 2
     assert [v.name for v in dae.vars if v.is_derivative] == [
         "der(level)", "der(cell[0].x)", "der(cell[1].x)", "der(cell[2].x)"]
+
+
+class _Scaled(Component):
+    """x' = -gain x, the gain an expression attribute of the member's own parameter."""
+
+    def __init__(self, factor: float):
+        super().__init__()
+        self.k = Parameter(2.0, unit="1/s")
+        self.x = Variable(unit="m", start=1.0)
+        self.gain = factor * self.k
+
+    def equations(self):
+        return [der(self.x) == -self.gain * self.x]
+
+
+class _ScaledRow(Assembly):
+    def __init__(self, factors):
+        super().__init__("row")
+        self.cell = [_Scaled(f) for f in factors]
+
+
+def test_expression_attributes_are_compared_with_the_members_symbols():
+    members = MemberEquations()
+    dae = flatten(_ScaledRow([3.0, 3.0, 5.0]), members)
+    assert members.instantiated == 1  # cell[1]: 3 k with its own k; cell[2]: 5 k differs
+    syms = _symbols(dae)
+    values = {n: 0.5 for n in syms}
+    f = ca.Function("r", [ca.vertcat(*syms.values())],
+                    [ca.vertcat(*[_residual_of(dae, f"cell[{k}]").residual for k in range(3)])])
+    r = np.asarray(f(np.array([values[n] for n in syms]))).ravel()
+    np.testing.assert_allclose(r, [0.5 + 3.0 * 0.5 * 0.5, 0.5 + 3.0 * 0.25, 0.5 + 5.0 * 0.25])

@@ -44,8 +44,10 @@ _STRUCTURE = {"_declarations", "_children", "_connectors", "_connections", "_ext
               "parent", "name"}
 """Component attributes that hold the instance structure (compared separately)."""
 
-_DEPTH = 1000
-"""Depth to which expression attributes are compared node by node (``casadi.is_equal``)."""
+_DEPTH = 16
+"""Depth to which expression attributes are compared node by node (``casadi.is_equal``; its
+recursion revisits shared nodes, so the depth bounds the work). Deeper expressions count as
+different: the member is then built by its own code, never wrongly substituted."""
 
 
 def _twin_of(comp: Component) -> Component | None:
