@@ -68,3 +68,31 @@ def test_a_negated_derivative_is_not_an_alias():
     alias_elimination.run(state_of(model))
     assert [e.text for e in model.eqs] == ["der(x) = -v", "v = x^2"]
     assert model.aliases == {}
+
+
+def test_a_derivative_recreated_after_its_alias_became_a_constant_is_observed_once():
+    """``der(x) = w``, ``w = 100``: der(x) is eliminated (its value is the constant), then
+    re-created as a variable to keep the derivative link of x; its name must not also stay an
+    alias (the deep-groove drive at a constant speed had ``der(drive.phi)`` twice among its
+    observed names, and its FMU export with the default outputs failed)."""
+    x, dx = state_var("x", 0.0)
+    w = var("w")
+    model = dae([x, dx, w], [eq(dx.sym - w.sym, "der(x) = w"), eq(w.sym - 100.0, "w = 100")])
+    alias_elimination.eliminate_aliases(model)
+    names = [v.name for v in model.vars] + list(model.aliases)
+    assert sorted(names) == ["der(x)", "w", "x"]
+    assert model.aliases["w"].offset == 100.0
+    (link,) = [e for e in model.eqs if ca.depends_on(e.residual, x.derivative.sym)]
+    assert float(ca.substitute(link.residual, x.derivative.sym, ca.SX(100.0))) == 0.0
+
+
+def test_the_deep_groove_drive_at_a_constant_speed_observes_each_name_once():
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
+    from bearingsim.fmu.export import _outputs
+
+    system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0))
+    assert len(system.observed_names) == len(set(system.observed_names))
+    assert system.observe(0.0, system.x0())["der(drive.phi)"] == 100.0
+    names, _, _ = _outputs(system, None)  # the FMU's default outputs
+    assert len(names) == len(set(names))

@@ -144,10 +144,7 @@ def _one_round(dae: DAE) -> bool:
             if s > 0:
                 r.derivative = v.derivative
                 continue
-            d = Var(f"der({r.name})", ca.SX.sym(f"der_{r.sym.name()}"), f"({r.unit})/s")
-            d.is_derivative = True
-            dae.vars.append(d)
-            r.derivative = d
+            d = _new_derivative(dae, r)
             lookup[d.sym.name()] = d
         if r.derivative is not v.derivative:
             extra_eqs.append(
@@ -225,12 +222,20 @@ def _in_derivative_chain(a: Var, b: Var) -> bool:
     return False
 
 
-def _deriv_placeholder(dae, v, d, r, s, const_val):
-    """Re-create der(v) as its own variable equal to what its eliminated derivative became."""
+def _new_derivative(dae: DAE, v: Var) -> Var:
+    """A new variable ``der(v)``, linked to ``v``. It replaces an alias entry of that name (an
+    eliminated derivative of ``v``): one observed name, one value."""
     nd = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), f"({v.unit})/s")
     nd.is_derivative = True
     dae.vars.append(nd)
+    dae.aliases.pop(nd.name, None)
     v.derivative = nd
+    return nd
+
+
+def _deriv_placeholder(dae, v, d, r, s, const_val):
+    """Re-create der(v) as its own variable equal to what its eliminated derivative became."""
+    nd = _new_derivative(dae, v)
     target = ca.SX(s * const_val[r]) if r in const_val else s * r.sym
     return nd.sym - target
 
