@@ -56,11 +56,11 @@ from bearingsim.assembler.system import System
 from bearingsim.simulation import simulate, sundials
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
+from bearingsim.simulation.ordering import fill_reducing_order
 from bearingsim.simulation.sundials import (
     LINEAR_SOLVERS,
     choose_linear_solver,
     clear_integrator_cache,
-    fill_reducing_order,
 )
 from bench.common import Section, fmt, markdown_table
 
@@ -544,7 +544,7 @@ def section(quick: bool = False) -> Section:
         text += ("\n#### Linear solvers\n\n"
                  "Every SUNDIALS linear solver on the start-up run, side by side (best of 3). "
                  "The sparse LU (`csparse`) of CVODES runs the states in a minimum-degree "
-                 "order of the Jacobian (`bearingsim.simulation.sundials.fill_reducing_order`); "
+                 "order of the Jacobian (`bearingsim.simulation.ordering.fill_reducing_order`); "
                  "IDAS keeps the system's order. The default (`choose_linear_solver`) is dense "
                  "LU up to 200 unknowns, above it the ordered sparse LU (CVODES) or MUMPS "
                  "(IDAS). Command: `python -m bench.sundials_compiled linsol --cases "

@@ -18,11 +18,11 @@ from bearingsim.simulation import simulate
 from bearingsim.simulation.compile import CompileError, compilations
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import VM, clear_kernel_cache, kernel
+from bearingsim.simulation.ordering import fill_reducing_order
 from bearingsim.simulation.sundials import (
     DENSE_LIMIT,
     choose_linear_solver,
     clear_integrator_cache,
-    fill_reducing_order,
 )
 from tests.models import Pendulum, SpringMassChain
 

@@ -21,9 +21,10 @@ from bearingsim.fmu.build import (
 )
 from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
-from bearingsim.fmu.model_c import STEPPERS, fill_reducing_order, write_model_c
+from bearingsim.fmu.model_c import STEPPERS, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
 from bearingsim.language import Component
+from bearingsim.simulation.ordering import fill_reducing_order
 
 __all__ = ["FMI_VERSIONS", "export_fmu"]
 
@@ -199,10 +200,9 @@ def export_fmu(
         src = Path(tmp) / "sources"
         src.mkdir()
         work = generate_c(functions, src)
-        jac = functions["jac_x"].sparsity_out(0)
-        rows, cols = jac.get_triplet()
+        order = fill_reducing_order(functions["jac_x"].sparsity_out(0))
         write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
-                      lu_order=fill_reducing_order(system.n_states, rows, cols))
+                      lu_order=[int(k) for k in order])
         copy_templates(src, fmi_version)
         binary = Path(tmp) / f"{ident}.so"
         c_files = sorted(src.glob("*.c"))

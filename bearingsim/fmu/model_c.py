@@ -11,7 +11,7 @@ from pathlib import Path
 from bearingsim.fmu.codegen import FUNCTION_NAMES, PREFIX
 from bearingsim.fmu.interface import FmuInterface
 
-__all__ = ["STEPPERS", "fill_reducing_order", "write_model_c"]
+__all__ = ["STEPPERS", "write_model_c"]
 
 STEPPERS = ("ros34pw2", "rodas3")
 """Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default."""
@@ -45,42 +45,6 @@ def _bounds(decl) -> tuple[float, float, int]:
     return (low if low is not None else -math.inf, high if high is not None else math.inf, flags)
 
 
-def fill_reducing_order(n: int, rows, cols) -> list[int]:
-    """Greedy minimum-degree order of a sparsity pattern, for the stepper's LU factorisation.
-
-    The pattern is symmetrised; each step eliminates a node of smallest degree (ties: lowest
-    index) and joins its neighbours into a clique (the fill-in of eliminating it).
-
-    Parameters
-    ----------
-    n : int
-        Size of the square matrix.
-    rows, cols : sequence of int
-        Row and column of each structural nonzero.
-
-    Returns
-    -------
-    list of int
-        ``order[k]`` is the state eliminated k-th.
-    """
-    adj: list[set[int]] = [set() for _ in range(n)]
-    for r, c in zip(rows, cols, strict=True):
-        if r != c:
-            adj[r].add(c)
-            adj[c].add(r)
-    alive = set(range(n))
-    order = []
-    while alive:
-        v = min(alive, key=lambda k: (len(adj[k]), k))
-        order.append(v)
-        alive.remove(v)
-        for a in adj[v]:
-            adj[a].discard(v)
-            adj[a] |= adj[v] - {a}
-        adj[v] = set()
-    return order
-
-
 def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
                   work: dict[str, int], kinds: tuple[str, ...],
                   casadi_header: str = "bsm_casadi.h", stepper: str = STEPPERS[0],
@@ -107,7 +71,7 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         Co-simulation stepper compiled in (``BSM_STEPPER_RODAS3``).
     lu_order : list of int, optional
         Elimination order of the states in the stepper's LU factorisation (see
-        :func:`fill_reducing_order`); default: the state order.
+        :func:`~bearingsim.simulation.ordering.fill_reducing_order`); default: the state order.
 
     Returns
     -------

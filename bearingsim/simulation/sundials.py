@@ -25,7 +25,8 @@ evaluation).
 
 The states CVODES integrates are ordered for the linear solver: with the sparse LU
 (``csparse``, which factorizes in the order it is given) they are permuted into a
-minimum-degree order of the Jacobian's pattern (:func:`fill_reducing_order`), so that each
+minimum-degree order of the Jacobian's pattern
+(:func:`~bearingsim.simulation.ordering.fill_reducing_order`), so that each
 ball's states come before the ring and cage states they couple to and the factors keep the
 Jacobian's sparsity instead of filling in; the permutation is applied around the integrator
 call, and callers see the system's order.
@@ -61,18 +62,17 @@ from typing import Any
 
 import casadi as ca
 import numpy as np
-import scipy.sparse as sparse
-from scipy.sparse.linalg import splu
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
+from bearingsim.simulation.ordering import fill_reducing_order
 from bearingsim.simulation.progress import DELAY, progress_bar
 
 __all__ = ["LINEAR_SOLVERS", "SundialsRun", "choose_linear_solver", "clear_integrator_cache",
-           "fill_reducing_order", "sundials_run"]
+           "sundials_run"]
 
 LINEAR_SOLVERS = ("lapacklu", "mumps", "csparse", "qr", "lapackqr")
 """CasADi linear solver plugins for CVODES and IDAS (``linear_solver``): dense LAPACK LU and QR,
@@ -110,32 +110,6 @@ def choose_linear_solver(n: int, nnz: int, form: str = "ode") -> str:
     if form == "ode":
         return "csparse"
     return "mumps" if ca.has_linsol("mumps") else "lapacklu"
-
-
-def fill_reducing_order(pattern: ca.Sparsity) -> np.ndarray:
-    """A minimum-degree order of the unknowns of a square sparse matrix: SuperLU's multiple
-    minimum degree on the pattern of ``A^T + A`` (scipy), for a sparse LU without fill-in
-    beyond what the coupling forces.
-
-    Parameters
-    ----------
-    pattern : casadi.Sparsity
-        Structural non-zeros of ``A`` (``n x n``).
-
-    Returns
-    -------
-    ndarray of int
-        ``order``: the permuted matrix is ``A[order][:, order]``.
-    """
-    n = pattern.size1()
-    rows, cols = pattern.get_triplet()
-    # ones off the diagonal, n on it: diagonally dominant, so SuperLU keeps the diagonal
-    # pivots and its column order is the minimum-degree order itself
-    a = (sparse.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
-         + n * sparse.identity(n, format="csc"))
-    lu = splu(a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-              options={"SymmetricMode": True})
-    return np.argsort(lu.perm_c)
 
 
 @dataclass(frozen=True)
@@ -446,7 +420,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         ``nfevals`` (right-hand side or residual), ``njevals`` (exact Jacobian),
         ``nlinsetups`` (factorizations), ``nniters``, ``netfails``, ``rhs_time``/``jac_time``
         [s] (CasADi's timers of those calls), ``state_order`` (``"system"``, or ``"minimum
-        degree"``: the order :func:`fill_reducing_order` gave the sparse LU).
+        degree"``: the order
+        :func:`~bearingsim.simulation.ordering.fill_reducing_order` gave the sparse LU).
     """
     if method not in ("cvodes", "idas") or (method == "cvodes" and kernel.form != "ode"):
         raise ParameterError(f"sundials_run: method {method!r} cannot integrate the "
