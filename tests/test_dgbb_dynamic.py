@@ -1,4 +1,4 @@
-"""Deep-groove bearing, dynamic level (issue 7, models.md section C): cage slip against the
+"""Deep-groove bearing, dynamic level (docs/studies.md, section C): cage slip against the
 epicyclic speed, dynamic vs quasi-static contact loads, spin without traction, energy
 conservation, duty-cycle trends and a long run."""
 
@@ -134,6 +134,7 @@ def test_design_constants_follow_harris_geometry():
     assert d.rho_inner > 0.5 * g.pitch_diameter > d.rho_outer
     assert d.rho_inner - d.rho_outer == pytest.approx(
         g.groove_centre_distance - 0.5 * g.diametral_clearance)
-    # groove bottoms of models.md C: 22.77 and 13.24 mm (within rounding of the clearance split)
+    # groove bottoms of docs/studies.md, section C: 22.77 and 13.24 mm (within rounding of the
+    # clearance split)
     assert d.rho_outer + g.fo * g.ball_diameter == pytest.approx(22.77e-3, abs=1e-5)
     assert d.rho_inner - g.fi * g.ball_diameter == pytest.approx(13.24e-3, abs=1e-5)

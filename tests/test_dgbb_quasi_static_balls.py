@@ -1,4 +1,4 @@
-"""Deep-groove bearing, ``dynamic`` level (issue 7, models.md section C): balls without radial
+"""Deep-groove bearing, ``dynamic`` level (docs/studies.md, section C): balls without radial
 and axial inertia (quasi-static, as in the study) against balls with mass.
 
 Balls in force balance turn the ball positions into a DAE that the assembler reduces: the

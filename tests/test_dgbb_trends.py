@@ -1,4 +1,4 @@
-"""Deep-groove bearing, duty-cycle trends of models.md section C ("findings to reproduce"):
+"""Deep-groove bearing, duty-cycle trends of docs/studies.md, section C ("findings to reproduce"):
 cage slip settles faster at low speed / high load; ball-cage collision forces oscillate at
 start-up, grow with load and settle sooner at high load / low speed.
 

@@ -1,4 +1,4 @@
-"""Double-layer bearings (issue 5, models.md section A): speed ratio theories emerging from the
+"""Double-layer bearings (docs/studies.md, section A): speed ratio theories emerging from the
 torque-level simulation, lubrication trends, energy balance and rigid middle-ring joins."""
 
 from __future__ import annotations
@@ -64,7 +64,7 @@ def test_kinematic_model_returns_pure_rolling_formula(exact):
 
 
 class _EqualLayers(Assembly):
-    """Two equal layer elements in series through a free ring: the PDR = 1 limit of models.md
+    """Two equal layer elements in series through a free ring: the PDR = 1 limit of docs/studies.md
     A, which no real double-layer bearing reaches (the inner bearing sits inside the outer)."""
 
     def __init__(self, layer):

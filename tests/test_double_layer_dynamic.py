@@ -1,4 +1,4 @@
-"""Double-layer bearing, dynamic level (issue 5, models.md section A): both layers with ball and
+"""Double-layer bearing, dynamic level (docs/studies.md, section A): both layers with ball and
 cage dynamics on a common middle ring. The speed ratio is found from the net torque on the
 middle ring after short runs started in pure rolling at two middle-ring speeds (the middle
 ring's own time constant is about 0.25 s, so a spin-up would cost seconds of simulated time)."""

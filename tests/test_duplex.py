@@ -1,4 +1,4 @@
-"""Duplex pairs of angular contact bearings (issue 4, models.md section B): preload, stiffness
+"""Duplex pairs of angular contact bearings (docs/studies.md, section B): preload, stiffness
 from the exact Jacobian, DF/DB/DT arrangements, natural frequencies and invalid input."""
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ def test_each_declared_error_bounds_the_measured_one_and_is_tight():
     for level, quantities in measured.items():
         for name, error in quantities.items():
             assert error <= declared[level][name] <= 1.1 * error + 1e-12
-    # the pure-rolling Rs of 61905/61909 against the torque level (models.md section A:
+    # the pure-rolling Rs of 61905/61909 against the torque level (docs/studies.md, section A:
     # the friction-torque theory is the one close to the measurements)
     assert measured["kinematic"]["Rs"] > 1.0
 

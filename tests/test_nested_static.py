@@ -101,9 +101,10 @@ def test_invalid_loads_are_rejected(radial_system):
 
 
 def test_study_fits_set_each_layers_operating_clearance():
-    """models.md section A mounts the layers with k6 shafts and H7 bores. With the CN clearance
-    (NSK Table 9.9) the inner layer keeps 1.6 um; the outer layer sits on the middle ring, a
-    thinner seat that gives way, so it keeps more (I-type 61909 on a 1.5 mm sleeve: 8.6 um);
+    """docs/studies.md, section A mounts the layers with k6 shafts and H7 bores. With the CN
+    clearance (NSK Table 9.9) the inner layer keeps 1.6 um; the outer layer sits on the middle
+    ring, a thinner seat that gives way, so it keeps more (I-type 61909 on a 1.5 mm sleeve:
+    8.6 um);
     the mounted pair is stiffer than the unmounted one (catalogue rows: the CN mean, 12.5 um)."""
     from bearingsim.catalog import get_bearing
     from bearingsim.components.middle_ring import mounted_geometries

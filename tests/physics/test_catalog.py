@@ -26,8 +26,9 @@ def test_case_insensitive():
     assert get_bearing("7020c") is get_bearing("7020C")
 
 
-def test_6304_models_md_section_c():
-    """models.md C validation case: Z 7, dm 36, ball radius 4.76, groove bottoms 22.77/13.24 mm."""
+def test_6304_study_section_c():
+    """docs/studies.md, section C validation case: Z 7, dm 36, ball radius 4.76, groove
+    bottoms 22.77/13.24 mm."""
     g = get_bearing("6304")
     assert g.ball_count == 7
     assert g.pitch_diameter == pytest.approx(36e-3)
@@ -43,7 +44,7 @@ def test_6304_models_md_section_c():
     ("7020A5", 25, (830, 1960, 3920)),
     ("7020A", 30, (840, 2750, 4310)),
 ])
-def test_7020_models_md_section_b(name, alpha, preload):
+def test_7020_study_section_b(name, alpha, preload):
     g = get_bearing(name)
     assert (g.ball_count, g.ball_diameter, g.pitch_diameter, g.fi, g.fo) == pytest.approx(
         (20, 14.288e-3, 125.25e-3, 0.525, 0.515))
@@ -70,7 +71,7 @@ def test_derived_geometry_harris_relations():
 
 
 def test_double_layer_pitch_diameter_ratios():
-    """models.md A: PDR of 61905 inside 61907/61908/61909 about 0.75, 0.66, 0.59."""
+    """docs/studies.md, section A: PDR of 61905 inside 61907/61908/61909 about 0.75, 0.66, 0.59."""
     inner = get_bearing("61905").pitch_diameter
     for outer, pdr in (("61907", 0.75), ("61908", 0.66), ("61909", 0.59)):
         assert inner / get_bearing(outer).pitch_diameter == pytest.approx(pdr, abs=0.01)

@@ -23,7 +23,7 @@ from bearingsim.physics.lubricant import Oil
 
 E_STEEL = 2.275e11  # E' of steel on steel (Hamrock & Dowson)
 
-# 6304-type inner-race contact (models.md section C validation bearing): Dw = 9.52 mm,
+# 6304-type inner-race contact (docs/studies.md, section C validation bearing): Dw = 9.52 mm,
 # dm = 36 mm, fi = 0.52. Reduced radii Rx = Dw/2 (1 - gamma), Ry = fi Dw / (2 fi - 1).
 DW, DM, FI = 9.52e-3, 36e-3, 0.52
 GAMMA = DW / DM
@@ -31,7 +31,7 @@ RX = 0.5 * DW * (1 - GAMMA)
 RY = FI * DW / (2 * FI - 1)
 
 
-def test_dimensionless_groups_and_formulas_match_models_md():
+def test_dimensionless_groups_and_formulas_match_the_study():
     eta, alpha, u, q = 0.02, 2.0e-8, 5.0, 300.0
     res = hamrock_dowson(q, u, RX, RY, E_STEEL, eta, alpha)
     U, G, W = eta * u / (E_STEEL * RX), alpha * E_STEEL, q / (E_STEEL * RX**2)

@@ -84,8 +84,8 @@ def test_lame_factor_limits(k, k0):
 
 
 def test_study_fits_leave_almost_no_clearance():
-    """models.md section A: shaft k6, housing H7. With the CN clearance of NSK Table 9.9 (61905:
-    5-20 um) and the mean k6 interference the 61905 keeps about 2 um; an H7 housing takes up
+    """docs/studies.md, section A: shaft k6, housing H7. With the CN clearance of NSK Table 9.9
+    (61905: 5-20 um) and the mean k6 interference the 61905 keeps about 2 um; an H7 housing takes up
     nothing (it never has interference)."""
     g = get_bearing("61905")
     assert initial_clearance(g) == pytest.approx((5 * UM, 20 * UM))

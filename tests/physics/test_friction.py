@@ -50,7 +50,7 @@ def test_smooth_blend_error_is_as_documented():
 
 
 def test_load_term_m1():
-    # M1 = f1 P1 dm, f1 = 0.0009 (P0/C0)^0.55 (deep groove, models.md / Palmgren).
+    # M1 = f1 P1 dm, f1 = 0.0009 (P0/C0)^0.55 (deep groove, docs/studies.md / Palmgren).
     p0, c0, p1, dm = 1500.0, 10000.0, 1500.0, 0.04
     f1 = 0.0009 * (p0 / c0) ** 0.55
     assert palmgren_f1("deep_groove_ball", p0, c0) == pytest.approx(f1)
@@ -68,8 +68,8 @@ def test_p1_per_harris():
     assert palmgren_p1(100.0, 500.0, "thrust_ball") == pytest.approx(500.0)
 
 
-def test_speed_ratio_of_nested_bearing_matches_models_md():
-    # models.md section A: equal M0 of both layers gives Rs = Dp1^4.5 / (Dp1^4.5 + Dp2^4.5):
+def test_speed_ratio_of_nested_bearing_matches_the_study():
+    # docs/studies.md, section A: equal M0 of both layers gives Rs = Dp1^4.5 / (Dp1^4.5 + Dp2^4.5):
     # 0.5 at PDR = 1 and 0.17 at PDR = 0.7.
     oil = Oil.from_iso_vg(68)
     w_in = rpm_to_rad_s(10000.0)

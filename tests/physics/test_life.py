@@ -132,8 +132,8 @@ def test_harris_capacity_is_iso_rating_without_bm():
         assert qce / ho == pytest.approx(1.3, rel=0.04)
 
 
-def test_combined_contact_life_models_md_formula():
-    """models.md C: with equal lives per ball, L^(-10/9) = L1^(-10/9) + L2^(-10/9)
+def test_combined_contact_life_study_formula():
+    """docs/studies.md, section C: with equal lives per ball, L^(-10/9) = L1^(-10/9) + L2^(-10/9)
     + Z (Lb1/N)^(-10/9) + Z (Lb2/N)^(-10/9); unloaded balls (infinite lives) drop out."""
     z, l1, l2, lb1, lb2, n = 7, 300.0, 200.0, 5e4, 4e4, 2.3
     expected = (l1 ** (-10 / 9) + l2 ** (-10 / 9) + z * (lb1 / n) ** (-10 / 9)
@@ -148,8 +148,8 @@ def test_combined_contact_life_models_md_formula():
 
 
 def test_per_contact_lives_from_loads():
-    """Per-contact lives of the 6304 (models.md C) under the models.md motor load: finite,
-    ball-life terms shorten the bearing life, and life falls with load."""
+    """Per-contact lives of the 6304 (docs/studies.md, section C) under the study's motor load:
+    finite, ball-life terms shorten the bearing life, and life falls with load."""
     g = get_bearing("6304")
     n = kin.ball_revolutions_per_revolution(g.ball_diameter, g.pitch_diameter)
     args = (g.ball_diameter, g.pitch_diameter)

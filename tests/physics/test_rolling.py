@@ -16,7 +16,7 @@ from bearingsim.physics.lubricant import Oil
 from bearingsim.physics.rolling import hydrodynamic_rolling_force, rolling_resistance
 
 E_STEEL = 2.275e11  # E' of steel on steel (Hamrock & Dowson)
-# 6304-type inner-race contact (models.md section C): Dw 9.52 mm, dm 36 mm, fi 0.52
+# 6304-type inner-race contact (docs/studies.md, section C): Dw 9.52 mm, dm 36 mm, fi 0.52
 DW, DM, FI = 9.52e-3, 36e-3, 0.52
 RX = 0.5 * DW * (1 - DW / DM)
 RY = FI * DW / (2 * FI - 1)
