@@ -225,23 +225,26 @@ class _Builder:
     # ------------------------------------------------------------ MX composition
     def gather(self, mx_in: list[ca.MX]):
         """MX of the member matrices (per set: L, Q) and the shared vectors from the kernel's
-        MX inputs."""
+        MX inputs: each one gather of non-zeros, from the one input its entries come from, or
+        else from the inputs it uses stacked (the generated C copies no more than that)."""
         lay = self.lay
-        flat = ca.vertcat(*mx_in)
-        start = [0]
-        for m in mx_in:
-            start.append(start[-1] + m.numel())
 
-        def pick(items):
-            return flat[[start[a] + i for a, i, *_ in items]] if items else ca.MX(0, 1)
+        def pick(items, shape=None):
+            if not items:
+                return ca.MX(*(shape or (0, 1)))
+            used = sorted({a for a, *_ in items})
+            start = {a: sum(mx_in[b].numel() for b in used[:j]) for j, a in enumerate(used)}
+            source = mx_in[used[0]] if len(used) == 1 else ca.vertcat(*[mx_in[a] for a in used])
+            index = ca.DM([start[a] + i for a, i, *_ in items])
+            return source[ca.reshape(index, *shape) if shape else index]
 
         sd, sn = pick(lay.sd), pick(lay.sn)
         L, Q = [], []
         for s, bs in enumerate(self.sets):
-            L.append(ca.reshape(pick([e for k in range(bs.count) for e in lay.ld[s][k]]),
-                                len(lay.ld[s][0]), bs.count))
-            Q.append(ca.reshape(pick([e for k in range(bs.count) for e in lay.ln[s][k]]),
-                                len(lay.ln[s][0]), bs.count))
+            L.append(pick([e for k in range(bs.count) for e in lay.ld[s][k]],
+                          (len(lay.ld[s][0]), bs.count)))
+            Q.append(pick([e for k in range(bs.count) for e in lay.ln[s][k]],
+                          (len(lay.ln[s][0]), bs.count)))
         return sd, sn, L, Q
 
 
