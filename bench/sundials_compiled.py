@@ -232,11 +232,13 @@ def calls(case: Case) -> dict[str, float]:
         out[f"rhs {label}"] = per_call_us(fn, args)
         out[f"jac {label}"] = per_call_us(jac, [*args, *value], n=1000)
     n = system.n_states + (args[2].size if form == "dae" else 0)
-    out["lu fact+solve"] = dense_lu_us(n)
-    if form == "ode" and choose_linear_solver(n, 0, form) == "csparse":
+    nnz = jac.sparsity_out(1).nnz() + n  # jac_ode_x and the identity (ode form)
+    if form == "ode" and choose_linear_solver(n, nnz, form) == "csparse":
         # the default above DENSE_LIMIT: the ordered sparse LU of the run's own Newton matrix
         jac_x = np.asarray(ca.densify(jac(*args, *value)[1]))
         out["lu fact+solve"] = sparse_lu_us(np.eye(n) - 1e-3 * jac_x, kern.function)
+    else:
+        out["lu fact+solve"] = dense_lu_us(n)
     out["n"] = n
     return out
 
@@ -307,8 +309,7 @@ def _run_with_kernel(case: Case, kern, common: dict):
     cache = kernels_module._system_cache(system)
     for key in [k for k in cache if k[0] == kern.form and k[1] is True]:
         del cache[key]
-    cache[(kern.form, True, kernels_module.DEFAULT_FLAGS,
-           str(kernels_module.default_cache_dir()), True)] = kern
+    cache[kernels_module.cache_key(kern.form, True)] = kern
     return case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=True)
 
 

@@ -68,10 +68,6 @@ class _Entry:
     cut: ca.SX | None
 
 
-def _value(v: Var, causal: Causal) -> ca.SX:
-    return v.sym if v.is_state or v.is_input else causal.expr[v]
-
-
 def _cut_value(v: Var, rep: Repeats) -> ca.SX:
     return v.sym if v.is_state or v.is_input else rep.shared_expr[v]
 
@@ -196,7 +192,7 @@ class _Builder:
             fns = []
             for k in range(bs.count):
                 outs = [_vcat([entries[r].full for r in rows[s][k]]),
-                        _vcat([_value(v, self.causal)
+                        _vcat([self.causal.value(v)
                                for v in self._export_vars(s, k, exports[s])])]
                 fns.append(_member_function(f"{tag}_ball{s}", lay, s, k, outs))
             if check:
@@ -409,7 +405,7 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
     for v in states:
         o = owner.get(id(v))
         entries.append(_Entry(o, ("ode", b.pattern.get(id(v), "")),
-                              _value(v.derivative, causal),
+                              causal.value(v.derivative),
                               None if o else _cut_value(v.derivative, rep)))
     n_ode = len(entries)
     if form == "dae":
@@ -452,7 +448,7 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
 def _observe(b: _Builder, dae: DAE, causal: Causal, rep: Repeats, inputs, mx_in, form: str):
     """Every observed variable (the order of ``System.observed_names``) with mapped balls."""
     owner = rep.owner
-    entries = [_Entry(owner.get(id(v)), ("var", b.pattern.get(id(v), "")), _value(v, causal),
+    entries = [_Entry(owner.get(id(v)), ("var", b.pattern.get(id(v), "")), causal.value(v),
                       None if owner.get(id(v)) else _cut_value(v, rep)) for v in dae.vars]
     value = _compose(b, entries, f"{form}_observe", mx_in, False)[0]
     parts = [value]

@@ -53,16 +53,15 @@ def _large_dependencies(functions: Sequence[ca.Function], min_instructions: int
                         ) -> list[ca.Function]:
     """The SX functions called by ``functions`` that are large enough for a unit of their
     own, each once; none whose name is not unique (the units are linked by name)."""
-    found: dict[str, list[ca.Function]] = {}
+    found: dict[str, dict[int, ca.Function]] = {}
     for fn in functions:
-        for dep in fn.find_functions(-1):
-            found.setdefault(dep.name(), [])
-            if not any(dep is f or dep.serialize() == f.serialize() for f in found[dep.name()]):
-                found[dep.name()].append(dep)
+        for dep in fn.find_functions(-1):  # hash: the underlying function, as codegen sees it
+            found.setdefault(dep.name(), {})[hash(dep)] = dep
     top = {fn.name() for fn in functions}
-    return [fs[0] for name, fs in found.items()
-            if len(fs) == 1 and name not in top and fs[0].is_a("SXFunction")
-            and fs[0].n_instructions() >= min_instructions]
+    return [dep for name, same_name in found.items() if len(same_name) == 1
+            for dep in same_name.values()
+            if name not in top and dep.is_a("SXFunction")
+            and dep.n_instructions() >= min_instructions]
 
 
 def _forwarded(source: str, fn: ca.Function, export: str) -> str | None:

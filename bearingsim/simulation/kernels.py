@@ -64,7 +64,8 @@ from bearingsim.simulation.compile import (
     library_path,
 )
 
-__all__ = ["COMPILED", "VM", "Kernel", "kernel", "clear_kernel_cache", "wait_for_compilations"]
+__all__ = ["COMPILED", "VM", "Kernel", "cache_key", "kernel", "clear_kernel_cache",
+           "wait_for_compilations"]
 
 SOURCES = {"ode": ("ode", "observe"), "dae": ("dae_ode", "dae_alg", "dae_observe")}
 """The system functions each kernel form is made of (the last one observes)."""
@@ -190,7 +191,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     if form not in ("ode", "dae"):
         raise ParameterError(f"form must be 'ode' or 'dae', got {form!r}")
     cache = _system_cache(system)
-    key = (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()), bool(mapped))
+    key = cache_key(form, compiled, flags, cache_dir, mapped)
     found = cache.get(key)
     if found is not None:
         return found
@@ -249,6 +250,12 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
                     time.perf_counter() - start, balls)
     cache[key] = result
     return result
+
+
+def cache_key(form: str, compiled: bool | str, flags: tuple[str, ...] = DEFAULT_FLAGS,
+              cache_dir: str | Path | None = None, mapped: bool = True) -> tuple:
+    """The key of a :func:`kernel` request in a system's kernel cache (same arguments)."""
+    return (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()), bool(mapped))
 
 
 def _vm_kernel(form: str, fn: ca.Function, jac: ca.Function, observe: ca.Function,

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import casadi as ca
 
-from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.dae import DAE
 from bearingsim.assembler.mapped import MappedForms
 from bearingsim.assembler.passes.tearing import Causal
 from bearingsim.assembler.system import FunctionTable, Signal, System
@@ -36,12 +36,6 @@ CSE = {"cse": True}
 for the duplex pair's right-hand side."""
 
 
-def _value_expr(v: Var, causal: Causal) -> ca.SX:
-    if v.is_state or v.is_input:
-        return v.sym
-    return causal.expr[v]
-
-
 def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_tol: float,
                     rootfinder: str = "fast_newton"):
     """Return (function table, observed names, output names); the Jacobians are built on
@@ -56,14 +50,14 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     u = ca.vertcat(*[v.sym for v in inputs]) if inputs else ca.SX(0, 1)
     p = ca.vertcat(*[q.sym for q in dae.params]) if dae.params else ca.SX(0, 1)
 
-    derivs = [_value_expr(v.derivative, causal) for v in states]
+    derivs = [causal.value(v.derivative) for v in states]
     xdot = ca.vertcat(*derivs) if states else ca.SX(0, 1)
 
     observed_names: list[str] = []
     observed: list[ca.SX] = []
     for v in dae.vars:
         observed_names.append(v.name)
-        observed.append(_value_expr(v, causal))
+        observed.append(causal.value(v))
     index = {v.name: v for v in dae.vars}
     if dae.aliases:
         scales, reps, offsets = [], [], []
@@ -71,7 +65,7 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
             observed_names.append(a.name)
             rep = a.representative
             scales.append(a.scale if rep is not None else 0.0)
-            reps.append(_value_expr(rep, causal) if rep is not None else ca.SX(0))
+            reps.append(causal.value(rep) if rep is not None else ca.SX(0))
             offsets.append(a.offset)
         observed.append(ca.DM(offsets) + ca.DM(scales) * ca.vertcat(*reps))
     obs = ca.vertcat(*observed) if observed else ca.SX(0, 1)
@@ -88,11 +82,8 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
         # the start: ~10x cheaper than eliminating common subexpressions of a Jacobian
         # afterwards (6304 ball level: 1.6 s vs 12 s for jac_x, instruction count within 2 %).
         # Built on first access (8 of the 10 s of code generation of the nested bearing).
-        jacobians = {"jac_x": ("ode", x, "jac_x"), "jac_u": ("ode", u, "jac_u"),
-                     "out_jac_x": ("output", x, "J"), "out_jac_u": ("output", u, "J")}
-        pending = {key: partial(_jacobian_function, key, exprs[of], wrt, args, names, out)
-                   for key, (of, wrt, out) in jacobians.items()}
-        return FunctionTable(funcs, pending), observed_names, output_names
+        return (FunctionTable(funcs, _jacobians(exprs, x, u, args, names)), observed_names,
+                output_names)
 
     # MX composition with rootfinders
     base_sx = ca.vertcat(t, x, u, p)
@@ -122,11 +113,17 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
         mexprs[k] = f_sx(full_mx)
         funcs[k] = ca.Function(k, margs, [mexprs[k]], names, [k])
     funcs.update(_semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs))
-    jacobians = {"jac_x": ("ode", mx, "jac_x"), "jac_u": ("ode", mu, "jac_u"),
-                 "out_jac_x": ("output", mx, "J"), "out_jac_u": ("output", mu, "J")}
-    pending = {key: partial(_jacobian_function, key, mexprs[of], wrt, margs, names, out)
-               for key, (of, wrt, out) in jacobians.items()}
-    return FunctionTable(funcs, pending), observed_names, output_names
+    return (FunctionTable(funcs, _jacobians(mexprs, mx, mu, margs, names)), observed_names,
+            output_names)
+
+
+def _jacobians(exprs: dict, x, u, args: list, names: list[str]) -> dict:
+    """Builders of ``jac_x``, ``jac_u``, ``out_jac_x`` and ``out_jac_u`` (the Jacobians of
+    ``exprs["ode"]`` and ``exprs["output"]``, SX or MX), for a :class:`FunctionTable`."""
+    table = {"jac_x": ("ode", x, "jac_x"), "jac_u": ("ode", u, "jac_u"),
+             "out_jac_x": ("output", x, "J"), "out_jac_u": ("output", u, "J")}
+    return {key: partial(_jacobian_function, key, exprs[of], wrt, args, names, out)
+            for key, (of, wrt, out) in table.items()}
 
 
 def _jacobian_function(name: str, expr, wrt, args: list, names: list[str],

@@ -47,6 +47,11 @@ class Causal:
     n_linear_loops: int = 0
     largest_block: int = 0
 
+    def value(self, v: Var) -> ca.SX:
+        """``v`` through the base symbols: its own symbol for a state or input, else its
+        solution."""
+        return v.sym if v.is_state or v.is_input else self.expr[v]
+
 
 def _vanishes(coef: ca.SX) -> bool:
     """Whether a coefficient is identically zero."""
