@@ -276,17 +276,20 @@ def dense_lu_us(n: int) -> float:
 
 
 # ------------------------------------------------------------------------------ compile
-def compile_levels(case: Case, levels=("-O0", "-O1", "-O2")) -> list[list]:
+def compile_levels(case: Case, levels=("-O0", "-O1", "-O1/-Og", "-O2")) -> list[list]:
     """Compile time of the kernel library per optimisation level (empty cache), and the
-    start-up run's wall time with it."""
+    start-up run's wall time with it. A level ``"A/B"`` compiles the main translation unit
+    with ``A`` and the split units (per-ball Jacobians) with ``B``; ``"A"`` all with ``A``."""
     system, common = case.system()
     rows = []
     for flags in levels:
+        main, _, split = flags.partition("/")
         with tempfile.TemporaryDirectory() as tmp:
             clear_kernel_cache()
             clear_integrator_cache()
             t0 = time.perf_counter()
-            kern = kernel(system, _form(case), True, flags=(flags,), cache_dir=tmp)
+            kern = kernel(system, _form(case), True, flags=(main,), cache_dir=tmp,
+                          split_flags=(split or main,))
             t_build = time.perf_counter() - t0
             walls = []
             for _ in range(3):
@@ -537,11 +540,15 @@ def section(quick: bool = False) -> Section:
         + ",".join(cases) + "`\n")
     text = intro + "\n" + report(("calls", "runs", "setup"), cases)
     if not quick:
+        levels = ("-O1", "-O1/-Og", "-Og", "-O2")
         text += ("\n#### Optimisation level of the kernel libraries\n\n"
-                 "The default is -O1 (`bearingsim.simulation.compile.DEFAULT_FLAGS`): generate + "
-                 "compile time (empty cache) and the start-up run on that library, -O1 against "
-                 "-O2. Command: `python -m bench.sundials_compiled compile --cases massive "
-                 "--levels=-O1,-O2`\n\n" + report(("compile",), ("massive",), ("-O1", "-O2")))
+                 "The default is -O1 for the main translation unit "
+                 "(`bearingsim.simulation.compile.DEFAULT_FLAGS`) and -Og for the units split off "
+                 "it, the per-ball Jacobians (`DEFAULT_SPLIT_FLAGS`; *A/B*: main unit at A, "
+                 "split units at B): generate + compile time (empty cache) and the start-up run "
+                 "on that library. Command: `python -m bench.sundials_compiled compile --cases "
+                 "massive,nested --levels=" + ",".join(levels) + "`\n\n"
+                 + report(("compile",), ("massive", "nested"), levels))
         text += ("\n#### Linear solvers\n\n"
                  "Every SUNDIALS linear solver on the start-up run, side by side (best of 3). "
                  "The sparse LU (`csparse`) of CVODES runs the states in a minimum-degree "

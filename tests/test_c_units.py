@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from bearingsim.simulation.c_units import generate_units
-from bearingsim.simulation.compile import CompileError, c_compiler, compile_source
+from bearingsim.simulation.compile import CompileError, c_compiler, compile_source, library_path
 
 pytestmark = pytest.mark.skipif(c_compiler() is None, reason="needs a C compiler")
 
@@ -71,3 +71,21 @@ def test_a_failing_unit_raises_with_the_compiler_message(tmp_path):
         compile_source(units, tmp_path / "broken.so")
     assert "error" in str(err.value)
     assert not (tmp_path / "broken.so").exists()
+
+
+def test_split_units_get_their_own_flags(tmp_path):
+    functions, member, _ = _functions()
+    units = generate_units(functions, "unit_test", min_instructions=member.n_instructions() + 1)
+    units[0] += "\n#ifdef SPLIT_ONLY\n#error the main unit got the split units' flags\n#endif\n"
+    units[1] += "\n#ifndef SPLIT_ONLY\n#error a split unit lacks its flags\n#endif\n"
+    with pytest.raises(CompileError, match="lacks its flags"):
+        compile_source(units, tmp_path / "same_flags.so", flags=("-O1", "-DMAIN"))
+    lib = compile_source(units, tmp_path / "split_flags.so", flags=("-O1",),
+                         split_flags=("-Og", "-DSPLIT_ONLY"))
+    assert lib.exists()
+
+
+def test_split_flags_are_part_of_the_library_key(tmp_path):
+    same = library_path("source", flags=("-O1",), cache_dir=tmp_path)
+    assert library_path("source", flags=("-O1",), split_flags=("-O1",), cache_dir=tmp_path) == same
+    assert library_path("source", flags=("-O1",), split_flags=("-Og",), cache_dir=tmp_path) != same

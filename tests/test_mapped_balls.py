@@ -14,7 +14,7 @@ from bearingsim.assembler.mapped import NotMappable
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
 from bearingsim.physics.lubricant import Oil
 from bearingsim.simulation import simulate
-from bearingsim.simulation.compile import generate_source
+from bearingsim.simulation.compile import compilations, generate_source
 from bearingsim.simulation.kernels import kernel
 
 OIL = Oil.from_iso_vg(32, method="oil_mist")
@@ -100,9 +100,27 @@ def test_compiled_mapped_kernel_equals_vm_and_reports_its_balls(massive, kernel_
     np.testing.assert_array_equal(_dense(c.function(*args)), _dense(vm.function(*args)))
     res = simulate(massive, 2e-4, method="cvodes", compiled=True)
     assert res.stats["mapped"] == "mapped: root: 7 members"
-    # a second system of the same model reads what the cached library maps without rebuilding
+    # a second system of the same model (other symbol names: the assembler's counters moved on)
+    # finds the same library, named by its C source, and reads what it maps without rebuilding
     again = _massive()
-    assert kernel(again, "ode", compiled=True).mapped == c.mapped
+    before = compilations()
+    found = kernel(again, "ode", compiled=True)
+    assert found.library == c.library
+    assert found.mapped == c.mapped
+    assert compilations() == before
+
+
+def test_a_mapped_run_never_builds_the_inlined_functions():
+    """The inlined right-hand side, observe and output functions (one elimination of common
+    subexpressions over every ball) and their Jacobians are built on first access; a CVODES
+    run on the mapped kernel reads none of them."""
+    system = _massive()
+    assert "ode" in system.functions and "jac_x" in system.functions  # asking builds nothing
+    simulate(system, 2e-4, method="cvodes", compiled=False)
+    assert not any(system.functions.built(name) for name in system.functions)
+    inlined = kernel(system, "ode", compiled=False, mapped=False)  # the inlined kernel does
+    assert inlined.mapped == "inlined: mapped=False"
+    assert system.functions.built("ode") and system.functions.built("observe")
 
 
 def test_a_packed_system_keeps_its_mapped_kernel(massive):

@@ -20,9 +20,10 @@ __all__ = ["Signal", "FunctionTable", "System", "as_system"]
 
 
 class FunctionTable(Mapping):
-    """A system's CasADi functions by name; the expensive ones (the inlined Jacobians) are
-    built on first access, so that runs which never read them (the SUNDIALS kernels map one
-    function per ball and differentiate that) do not pay for them.
+    """A system's CasADi functions by name; the expensive ones (the inlined right-hand side,
+    observed and output functions and their Jacobians) are built on first access, so that runs
+    which never read them (the SUNDIALS kernels map one function per ball and differentiate
+    that) do not pay for them.
 
     Parameters
     ----------
@@ -50,6 +51,9 @@ class FunctionTable(Mapping):
 
     def __len__(self) -> int:
         return len(self._ready) + len(self._pending)
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._ready or key in self._pending  # without building it
 
     def built(self, key: str) -> bool:
         """Whether ``key`` has been built (every key is available either way)."""

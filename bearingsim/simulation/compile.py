@@ -37,11 +37,16 @@ from bearingsim.simulation.c_units import generate_source, generate_units
 
 __all__ = ["Build", "CompileError", "build_library", "c_compiler", "compilations", "compile_source",
            "compile_system", "default_cache_dir", "generate_source", "generate_units",
-           "library_path", "DEFAULT_FLAGS"]
+           "library_path", "DEFAULT_FLAGS", "DEFAULT_SPLIT_FLAGS"]
 
 DEFAULT_FLAGS: tuple[str, ...] = ("-O1",)
 """Compiler flags of the SUNDIALS kernels: -O1 compiles 2-3x faster than -O2 and runs as fast on
 the ball-level models (``bench/sundials_compiled.py``)."""
+
+DEFAULT_SPLIT_FLAGS: tuple[str, ...] = ("-Og",)
+"""Compiler flags of a kernel's split translation units (the per-ball Jacobians,
+:mod:`~bearingsim.simulation.c_units`): -Og compiles them 15-20 % faster than -O1 and the runs
+take as long (``bench/sundials_compiled.py``, section "compile")."""
 
 _COMPILATIONS = [0]
 _LOCK = threading.Lock()
@@ -68,10 +73,11 @@ def compilations() -> int:
 
 
 def library_path(identity: str, *, flags: Sequence[str] = DEFAULT_FLAGS,
-                 cache_dir: str | Path | None = None, prefix: str = "bsm") -> Path:
+                 cache_dir: str | Path | None = None, prefix: str = "bsm",
+                 split_flags: Sequence[str] | None = None) -> Path:
     """Where the library determined by ``identity`` (its C source, or a string that
     determines the source) is kept: ``<cache>/<prefix>_<hash>.so``, the hash also over the
-    casadi version, the compiler and ``flags``.
+    casadi version, the compiler, ``flags`` and ``split_flags`` (None: ``flags``).
 
     Raises
     ------
@@ -81,7 +87,8 @@ def library_path(identity: str, *, flags: Sequence[str] = DEFAULT_FLAGS,
     cc = c_compiler()
     if cc is None:
         raise CompileError("no C compiler (gcc or cc) on PATH")
-    key = "\n".join([identity, ca.__version__, cc, *flags])
+    split = flags if split_flags is None else split_flags
+    key = "\n".join([identity, ca.__version__, cc, *flags, "split:", *split])
     digest = hashlib.sha256(key.encode()).hexdigest()[:16]
     out_dir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
     return out_dir / f"{prefix}_{digest}.so"
@@ -100,14 +107,17 @@ class Build:
     Parameters
     ----------
     sources : str or sequence of str
-        The C source, or its translation units.
+        The C source, or its translation units (the first is the main unit).
     lib : pathlib.Path
         The library to build.
     flags : sequence of str
-        Compiler flags.
+        Compiler flags of the main unit.
+    split_flags : sequence of str, optional
+        Compiler flags of the other units (default ``flags``).
     """
 
-    def __init__(self, sources: str | Sequence[str], lib: Path, flags: Sequence[str]):
+    def __init__(self, sources: str | Sequence[str], lib: Path, flags: Sequence[str],
+                 split_flags: Sequence[str] | None = None):
         cc = c_compiler()
         if cc is None:
             raise CompileError("no C compiler (gcc or cc) on PATH")
@@ -123,11 +133,13 @@ class Build:
             source_path.write_text(unit)
             obj = self._dir / f"{lib.stem}_{k}.o"
             objects.append(str(obj))
-            command = [cc, "-c", "-fPIC", *flags, str(source_path), "-o", str(obj)]
+            unit_flags = flags if k == 0 or split_flags is None else split_flags
+            command = [cc, "-c", "-fPIC", *unit_flags, str(source_path), "-o", str(obj)]
             log = shlex.quote(str(self._dir / f"cc_{k}.log"))
             compile_lines.append(f"{shlex.join(command)} 2> {log} & p{k}=$!")
         link = [cc, "-shared", *objects, "-o", str(tmp_lib), "-lm"]
-        self.command = (f"{cc} -c -fPIC {' '.join(flags)} on {len(units)} unit(s) in "
+        split = "" if split_flags is None else f" (split units: {' '.join(split_flags)})"
+        self.command = (f"{cc} -c -fPIC {' '.join(flags)}{split} on {len(units)} unit(s) in "
                         f"{self._dir}, then {shlex.join(link)}")
         q = shlex.quote
         script = "\n".join([
@@ -162,16 +174,17 @@ class Build:
 
 
 def compile_source(source: str | Sequence[str], lib: Path, *,
-                   flags: Sequence[str] = DEFAULT_FLAGS) -> Path:
+                   flags: Sequence[str] = DEFAULT_FLAGS,
+                   split_flags: Sequence[str] | None = None) -> Path:
     """Compile ``source`` (or its translation units) into the shared library ``lib`` and wait
-    for it (:class:`Build`).
+    for it (:class:`Build`; ``split_flags`` for the units after the first, default ``flags``).
 
     Raises
     ------
     CompileError
         If no C compiler is found or compilation fails.
     """
-    return Build(source, lib, flags).wait()
+    return Build(source, lib, flags, split_flags).wait()
 
 
 def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Function]], *,

@@ -32,15 +32,14 @@ round-off), in a library whose size grows with one ball, not with Z. ``mapped=Fa
 the inlined functions.
 
 Kernels are cached per system (in memory, for the system's lifetime) and form; libraries on
-disk by content hash (:func:`_identity`). With ``compiled="auto"`` a library that is not on
-disk yet is compiled in a background thread while the run goes on the VM; later runs pick it
-up when it is ready. Since both backends give the same numbers, a sweep whose first points
-ran on the VM is not perturbed by the switch.
+disk by content hash (:func:`_identity`; mapped kernels by their C source). With
+``compiled="auto"`` a library that is not on disk yet is compiled in a background thread while
+the run goes on the VM; later runs pick it up when it is ready. Since both backends give the
+same numbers, a sweep whose first points ran on the VM is not perturbed by the switch.
 """
 
 from __future__ import annotations
 
-import hashlib
 import threading
 import time
 import weakref
@@ -50,12 +49,12 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.assembler import mapped as mapped_module
-from bearingsim.assembler.mapped import NotMappable
+from bearingsim.assembler.mapped import MappedKernel, NotMappable
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.compile import (
     DEFAULT_FLAGS,
+    DEFAULT_SPLIT_FLAGS,
     Build,
     CompileError,
     c_compiler,
@@ -74,12 +73,6 @@ RECIPE = ("bearingsim kernel v1: F = the sources' outputs (cse, p not differenti
           "jac_F = F.jacobian(), observe (cse)")
 """How a kernel library is derived from its sources (part of its cache key: change it when the
 derivation changes)."""
-RECIPE_MAPPED = ("bearingsim kernel v1, mapped balls: F, jac_F, observe of "
-                 "bearingsim.assembler.mapped.mapped_kernel (members' function mapped, "
-                 "chain-rule Jacobian) for the model of these inlined sources; derivation "
-                 + hashlib.sha256(Path(mapped_module.__file__).read_bytes()).hexdigest())
-"""The recipe of mapped kernels; it names the source of the module that derives them, so a
-change there never reuses a library built by the old derivation."""
 
 COMPILED = "compiled C"
 """``Kernel.backend`` of generated C."""
@@ -157,7 +150,8 @@ def _system_cache(system: System) -> dict[tuple, Any]:
 
 def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
            flags: tuple[str, ...] = DEFAULT_FLAGS, cache_dir: str | Path | None = None,
-           mapped: bool = True) -> Kernel:
+           mapped: bool = True,
+           split_flags: tuple[str, ...] | None = DEFAULT_SPLIT_FLAGS) -> Kernel:
     """The right-hand side (``form="ode"``) or DAE residual (``"dae"``) of ``system`` with its
     exact Jacobian, built once per system, form and backend choice.
 
@@ -175,12 +169,15 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         library not yet on disk is compiled in the background and the VM kernel returned
         until it is ready (the reason is recorded in either case).
     flags : tuple of str
-        Compiler flags.
+        Compiler flags (of the main translation unit).
     cache_dir : path, optional
         Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
     mapped : bool
         Use the mapped-ball functions of a model with ball sets (:attr:`System.mapped`);
         ``False``: the inlined ones.
+    split_flags : tuple of str or None
+        Compiler flags of the translation units split off the main one (the per-ball
+        Jacobians, :mod:`~bearingsim.simulation.c_units`); None: ``flags``.
 
     Returns
     -------
@@ -191,16 +188,18 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     if form not in ("ode", "dae"):
         raise ParameterError(f"form must be 'ode' or 'dae', got {form!r}")
     cache = _system_cache(system)
-    key = cache_key(form, compiled, flags, cache_dir, mapped)
+    key = cache_key(form, compiled, flags, cache_dir, mapped, split_flags)
     found = cache.get(key)
     if found is not None:
         return found
     start = time.perf_counter()
-    sources = _sources(system, form)
+    found = system.mapped.find(form) if mapped and system.mapped is not None else None
+    # a mapped kernel never reads the system's inlined functions (built on first access)
+    sources = None if found is not None else _sources(system, form)
     use_c, reason = _choose(system, form, compiled, sources)
     if not use_c:
         balls = _ball_sets(system, form, mapped)
-        fn, jac, observe = _generated(system, form, mapped)
+        fn, jac, observe = _generated(system, form, found)
         result = _vm_kernel(form, fn, jac, observe, reason, start, balls)
         cache[key] = result
         return result
@@ -208,13 +207,14 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     generated = units = None
     lib = cache.get(("library", *key))
     if lib is None:
-        identity = _identity(form, sources, mapped and system.mapped is not None)
+        identity = None if sources is None else _identity(form, sources)
         if identity is None:  # named by its C source
-            generated = _generated(system, form, mapped)
+            generated = _generated(system, form, found)
             units = generate_units(generated, prefix)
             identity = "\n".join(units)
         lib = cache[("library", *key)] = library_path(identity, flags=flags,
-                                                      cache_dir=cache_dir, prefix=prefix)
+                                                      cache_dir=cache_dir, prefix=prefix,
+                                                      split_flags=split_flags)
     record = lib.with_name(lib.name + ".balls")
     balls = (record.read_text() if lib.exists() and record.exists()
              else _ball_sets(system, form, mapped))
@@ -222,16 +222,17 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         with _LOCK:
             pending = _PENDING.get(lib)
         if pending is None:
-            generated = generated or _generated(system, form, mapped)
+            generated = generated or _generated(system, form, found)
             record.parent.mkdir(parents=True, exist_ok=True)
             record.write_text(balls)  # what the library maps, read when it is reused
-            pending = _submit(lib, units or generate_units(generated, prefix), flags)
+            pending = _submit(lib, units or generate_units(generated, prefix), flags,
+                              split_flags)
         if compiled is True:
             pending.wait()  # raises the CompileError of a failed build
         elif not pending.done():
             interim = cache.get(("interim", *key))
             if interim is None:
-                fn, jac, observe = generated or _generated(system, form, mapped)
+                fn, jac, observe = generated or _generated(system, form, found)
                 interim = cache[("interim", *key)] = _vm_kernel(
                     form, fn, jac, observe, "C compiling in the background; the VM runs until "
                     "it is ready (same numbers)", start, balls)
@@ -240,22 +241,26 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
             try:
                 pending.wait()
             except CompileError as exc:
-                fn, jac, observe = generated or _generated(system, form, mapped)
+                fn, jac, observe = generated or _generated(system, form, found)
                 result = cache[key] = _vm_kernel(form, fn, jac, observe,
                                                  f"compiling failed: {exc}", start, balls)
                 return result
-    diff = [name != "p" for name in sources[0].name_in()]
+    fn, observe = (found.function, found.observe) if found is not None else (sources[0],
+                                                                              sources[-1])
+    diff = [name != "p" for name in fn.name_in()]
     result = Kernel(ca.external(form, str(lib), {"is_diff_in": diff}),
-                    ca.external(sources[-1].name(), str(lib)), form, COMPILED, reason, lib,
+                    ca.external(observe.name(), str(lib)), form, COMPILED, reason, lib,
                     time.perf_counter() - start, balls)
     cache[key] = result
     return result
 
 
 def cache_key(form: str, compiled: bool | str, flags: tuple[str, ...] = DEFAULT_FLAGS,
-              cache_dir: str | Path | None = None, mapped: bool = True) -> tuple:
+              cache_dir: str | Path | None = None, mapped: bool = True,
+              split_flags: tuple[str, ...] | None = DEFAULT_SPLIT_FLAGS) -> tuple:
     """The key of a :func:`kernel` request in a system's kernel cache (same arguments)."""
-    return (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()), bool(mapped))
+    return (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()), bool(mapped),
+            None if split_flags is None else tuple(split_flags))
 
 
 def _vm_kernel(form: str, fn: ca.Function, jac: ca.Function, observe: ca.Function,
@@ -280,12 +285,13 @@ def _ball_sets(system: System, form: str, mapped: bool) -> str:
 _PENDING: dict[Path, Build] = {}
 
 
-def _submit(lib: Path, units: list[str], flags: tuple[str, ...]) -> Build:
+def _submit(lib: Path, units: list[str], flags: tuple[str, ...],
+            split_flags: tuple[str, ...] | None) -> Build:
     """Start compiling the translation units ``units`` into ``lib`` (once per library and
     process)."""
     with _LOCK:
         if lib not in _PENDING:
-            _PENDING[lib] = Build(units, lib, flags)
+            _PENDING[lib] = Build(units, lib, flags, split_flags)
         return _PENDING[lib]
 
 
@@ -302,8 +308,9 @@ def wait_for_compilations() -> None:
 
 
 def _choose(system: System, form: str, compiled: bool | str,
-            sources: list[ca.Function]) -> tuple[bool, str]:
-    """(generate C?, why) for a kernel request."""
+            sources: list[ca.Function] | None) -> tuple[bool, str]:
+    """(generate C?, why) for a kernel request (``sources`` None: a mapped kernel, whose ball
+    sets make it large enough)."""
     if compiled is False:
         return False, "compiled=False"
     blocker = None
@@ -318,24 +325,23 @@ def _choose(system: System, form: str, compiled: bool | str,
         return False, blocker
     if compiled is True:
         return True, "compiled=True"
-    rhs = sources[:-1]
-    if all(f.is_a("SXFunction") for f in rhs):
+    rhs = [] if sources is None else sources[:-1]
+    if rhs and all(f.is_a("SXFunction") for f in rhs):
         size = sum(f.n_instructions() for f in rhs)
         if size < AUTO_MIN_INSTRUCTIONS:
             return False, f"tiny model ({size} instructions): the VM costs less than compiling"
     return True, "C compiler found"
 
 
-def _identity(form: str, sources: list[ca.Function], mapped: bool) -> str | None:
-    """What determines a kernel library, without generating it: the recipe and the source
-    functions serialized with fresh input symbols (the assembler's symbol names carry global
-    counters, so the same model assembled after other models serializes differently). A
-    mapped kernel computes the same functions as the inlined sources it is named by (its own
-    recipe keeps the two libraries apart). None for MX sources (their rootfinders hold SX
-    functions with those names): the library is then named by its generated C source."""
+def _identity(form: str, sources: list[ca.Function]) -> str | None:
+    """What determines an inlined kernel library, without generating it: the recipe and the
+    source functions serialized with fresh input symbols (the assembler's symbol names carry
+    global counters, so the same model assembled after other models serializes differently).
+    None for MX sources (their rootfinders hold SX functions with those names): the library is
+    then named by its generated C source, as mapped kernels always are."""
     if not all(f.is_a("SXFunction") for f in sources):
         return None
-    parts = [RECIPE_MAPPED if mapped else RECIPE, form]
+    parts = [RECIPE, form]
     for f in sources:
         fresh = [ca.SX.sym(f.name_in(i), f.sparsity_in(i)) for i in range(f.n_in())]
         parts.append(ca.Function(f.name(), fresh, f.call(fresh), f.name_in(),
@@ -363,11 +369,11 @@ def _symbolic(system: System, form: str) -> tuple[ca.Function, ca.Function]:
             _rebuilt(obs.name(), [obs], names_in, obs.name_out(), {}))
 
 
-def _generated(system: System, form: str, mapped: bool) -> list[ca.Function]:
+def _generated(system: System, form: str, found: MappedKernel | None
+               ) -> list[ca.Function]:
     """The kernel, its Jacobian (``jac_<form>``, which ``casadi.external`` takes as the
     kernel's Jacobian) and the observe function: what a library holds, and what the VM
-    evaluates. The mapped-ball functions when ``mapped`` and the model has them."""
-    found = system.mapped.find(form) if mapped and system.mapped is not None else None
+    evaluates. The mapped-ball functions ``found``, else the inlined ones."""
     if found is not None:
         return [found.function, found.jacobian, found.observe]
     fn, observe = _symbolic(system, form)

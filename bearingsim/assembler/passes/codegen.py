@@ -9,7 +9,8 @@ not code-generatable); all other models are pure SX.
 
 from __future__ import annotations
 
-from functools import partial
+from collections.abc import Callable
+from functools import cache, partial
 from typing import TYPE_CHECKING
 
 import casadi as ca
@@ -23,7 +24,7 @@ from bearingsim.errors import StructuralError
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["NAME", "ROOTFINDERS", "run", "build_functions", "initial_problem"]
+__all__ = ["GRAPH_KEYS", "NAME", "ROOTFINDERS", "run", "build_functions", "initial_problem"]
 
 NAME = "code generation"
 """The pass name in timings, logs and ``extra_passes``."""
@@ -38,8 +39,8 @@ for the duplex pair's right-hand side."""
 
 def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_tol: float,
                     rootfinder: str = "fast_newton"):
-    """Return (function table, observed names, output names); the Jacobians are built on
-    first access.
+    """Return (function table, observed names, output names); the right-hand side, observed and
+    output functions and their Jacobians are built on first access.
 
     ``rootfinder`` is one of :data:`ROOTFINDERS` (the plugin of the nonlinear blocks).
     """
@@ -76,14 +77,22 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     args = [t, x, u, p]
     names = ["t", "x", "u", "p"]
     if not causal.nonlinear:
-        exprs = _shared_graph([t, x, u, p], xdot, obs, out_pos)
-        funcs = {k: ca.Function(k, args, [e], names, [k]) for k, e in exprs.items()}
+        # The right-hand side, observed and output functions share one common subexpression
+        # elimination over the whole model; built on first access, like the Jacobians:
+        # the SUNDIALS kernels of models with ball sets never read them (they map one
+        # function per ball), and the elimination is a quarter of the 6304 ball level's
+        # assembly.
+        @cache
+        def exprs() -> dict:
+            return _shared_graph([t, x, u, p], xdot, obs, out_pos)
+
+        pending = {k: partial(_graph_function, exprs, k, args, names) for k in GRAPH_KEYS}
         # Differentiating the shared graph gives Jacobians that share its subexpressions from
         # the start: ~10x cheaper than eliminating common subexpressions of a Jacobian
         # afterwards (6304 ball level: 1.6 s vs 12 s for jac_x, instruction count within 2 %).
         # Built on first access (8 of the 10 s of code generation of the nested bearing).
-        return (FunctionTable(funcs, _jacobians(exprs, x, u, args, names)), observed_names,
-                output_names)
+        pending.update(_jacobians(exprs, x, u, args, names))
+        return FunctionTable({}, pending), observed_names, output_names
 
     # MX composition with rootfinders
     base_sx = ca.vertcat(t, x, u, p)
@@ -106,30 +115,41 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
     full_sx = ca.vertcat(base_sx, *z_sx)
     full_mx = ca.vertcat(base_mx, *z_mx)
     margs = [mt, mx, mu, mp]
-    funcs = {}
-    mexprs = {}
-    for k, e in _shared_graph([full_sx], xdot, obs, out_pos).items():
-        f_sx = ca.Function(f"{k}_sx", [full_sx], [e])
-        mexprs[k] = f_sx(full_mx)
-        funcs[k] = ca.Function(k, margs, [mexprs[k]], names, [k])
-    funcs.update(_semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs))
-    return (FunctionTable(funcs, _jacobians(mexprs, mx, mu, margs, names)), observed_names,
-            output_names)
+
+    @cache
+    def mexprs() -> dict:
+        return {k: ca.Function(f"{k}_sx", [full_sx], [e])(full_mx)
+                for k, e in _shared_graph([full_sx], xdot, obs, out_pos).items()}
+
+    pending = {k: partial(_graph_function, mexprs, k, margs, names) for k in GRAPH_KEYS}
+    pending.update(_jacobians(mexprs, mx, mu, margs, names))
+    funcs = _semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs)
+    return FunctionTable(funcs, pending), observed_names, output_names
 
 
-def _jacobians(exprs: dict, x, u, args: list, names: list[str]) -> dict:
+GRAPH_KEYS = ("ode", "observe", "output")
+"""The functions of the shared graph (:func:`_shared_graph`)."""
+
+
+def _graph_function(exprs: Callable[[], dict], key: str, args: list,
+                    names: list[str]) -> ca.Function:
+    """The function ``key`` of the shared graph ``exprs()`` (SX or MX)."""
+    return ca.Function(key, args, [exprs()[key]], names, [key])
+
+
+def _jacobians(exprs: Callable[[], dict], x, u, args: list, names: list[str]) -> dict:
     """Builders of ``jac_x``, ``jac_u``, ``out_jac_x`` and ``out_jac_u`` (the Jacobians of
-    ``exprs["ode"]`` and ``exprs["output"]``, SX or MX), for a :class:`FunctionTable`."""
+    ``exprs()["ode"]`` and ``exprs()["output"]``, SX or MX), for a :class:`FunctionTable`."""
     table = {"jac_x": ("ode", x, "jac_x"), "jac_u": ("ode", u, "jac_u"),
              "out_jac_x": ("output", x, "J"), "out_jac_u": ("output", u, "J")}
-    return {key: partial(_jacobian_function, key, exprs[of], wrt, args, names, out)
+    return {key: partial(_jacobian_function, key, exprs, of, wrt, args, names, out)
             for key, (of, wrt, out) in table.items()}
 
 
-def _jacobian_function(name: str, expr, wrt, args: list, names: list[str],
-                       out_name: str) -> ca.Function:
-    """``d expr / d wrt`` as a function of ``args`` (SX or MX)."""
-    return ca.Function(name, args, [ca.jacobian(expr, wrt)], names, [out_name])
+def _jacobian_function(name: str, exprs: Callable[[], dict], of: str, wrt, args: list,
+                       names: list[str], out_name: str) -> ca.Function:
+    """``d exprs()[of] / d wrt`` as a function of ``args`` (SX or MX)."""
+    return ca.Function(name, args, [ca.jacobian(exprs()[of], wrt)], names, [out_name])
 
 
 def _shared_graph(args: list[ca.SX], xdot: ca.SX, obs: ca.SX, out_pos: list[int]) -> dict:
