@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.passes.ball_sets import function_identity
 from bearingsim.assembler.passes.repeated import Repeats
 from bearingsim.assembler.passes.tearing import Causal
 
@@ -70,12 +71,6 @@ class _Entry:
 
 def _cut_value(v: Var, rep: Repeats) -> ca.SX:
     return v.sym if v.is_state or v.is_input else rep.shared_expr[v]
-
-
-def _fresh_identity(f: ca.Function) -> str:
-    """``f`` serialized with fresh input symbols (names with member indices removed)."""
-    fresh = [ca.SX.sym(f"i{i}", f.sparsity_in(i)) for i in range(f.n_in())]
-    return ca.Function("f", fresh, f.call(fresh)).serialize()
 
 
 def _vcat(items: list) -> ca.SX:
@@ -122,9 +117,9 @@ def _member_function(name: str, lay: _Layout, s: int, k: int, outs: list[ca.SX])
 
 
 def _same_members(fns: list[ca.Function]) -> None:
-    first = _fresh_identity(fns[0])
+    first = function_identity(fns[0])
     for k, f in enumerate(fns[1:], start=1):
-        if _fresh_identity(f) != first:
+        if function_identity(f) != first:
             raise NotMappable(f"member {k} of a repeated set is not the same function as member "
                               f"0")
 

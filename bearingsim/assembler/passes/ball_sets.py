@@ -21,9 +21,11 @@ from collections import defaultdict
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import casadi as ca
+
 from bearingsim.assembler.dae import DAE, Param, Var
 
-__all__ = ["MIN_MEMBERS", "BallSet", "find_ball_sets", "owners"]
+__all__ = ["MIN_MEMBERS", "BallSet", "find_ball_sets", "function_identity", "owners"]
 
 _INDEXED = re.compile(r"^(?P<head>(?:der\()?)(?P<path>[^\[]*)\[(?P<k>\d+)\](?P<rest>.*)$")
 """A flat name with an array index: ``ball[3].w`` or ``der(inner[3].delta)``."""
@@ -102,3 +104,11 @@ def owners(sets: list[BallSet]) -> dict[int, tuple[int, int]]:
             for item in (*bs.variables[k], *bs.parameters[k]):
                 out[id(item)] = (s, k)
     return out
+
+
+def function_identity(f: ca.Function) -> str:
+    """``f`` serialized with fresh input symbols: equal for two members' functions exactly when
+    they compute the same (same operations in the same order, same constants), whatever their
+    symbols are called."""
+    fresh = [ca.SX.sym(f"i{i}", f.sparsity_in(i)) for i in range(f.n_in())]
+    return ca.Function("f", fresh, f.call(fresh)).serialize()

@@ -8,6 +8,7 @@ import networkx as nx
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.graph import incidence_map
+from bearingsim.assembler.passes.ball_sets import find_ball_sets, owners
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
@@ -22,7 +23,9 @@ Block = list[tuple[Eq, Var]]
 
 
 def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[Block]:
-    """Block lower triangular order: strongly connected components in topological order."""
+    """Block lower triangular order: strongly connected components in topological order; among
+    the valid orders, members' blocks of ball sets first and shared blocks that read members'
+    unknowns last, each by the position of the block's first equation in ``dae.eqs``."""
     var_eq = {v: e for e, v in matching.items()}
     unknowns = list(var_eq)
     inc = incidence_map(dae, list(matching), unknowns)
@@ -36,8 +39,23 @@ def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[Block]:
     cond = nx.condensation(g)
     eq_by_id = {id(e): e for e in matching}
     position = {id(e): k for k, e in enumerate(dae.eqs)}
+    # Among the valid orders: the blocks of ball sets' members as early as they can come, then
+    # the shared blocks that read no member's unknowns, then those that do, each group in the
+    # model's equation order. Ball 0's blocks are then solved before a shared block reads
+    # another ball's unknowns, and tearing copies each ball from ball 0 at once.
+    in_sets = set(owners(find_ball_sets(dae)))
+
+    def rank(eqs: list[Eq]) -> int:
+        if any(id(matching[e]) in in_sets for e in eqs):
+            return 0
+        return 2 if any(id(v) in in_sets for e in eqs for v in inc[e]) else 1
+
+    key = {}
+    for node in cond:
+        eqs = [eq_by_id[i] for i in cond.nodes[node]["members"]]
+        key[node] = (rank(eqs), min(position[id(e)] for e in eqs))
     blocks = []
-    for node in nx.topological_sort(cond):
+    for node in nx.lexicographical_topological_sort(cond, key=key.__getitem__):
         members = sorted(cond.nodes[node]["members"], key=position.__getitem__)
         blocks.append([(eq_by_id[i], matching[eq_by_id[i]]) for i in members])
     return blocks

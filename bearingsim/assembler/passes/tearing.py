@@ -6,16 +6,26 @@ tearing (the variable in most remaining equations is torn first) leaves a small 
 variables; the other unknowns follow explicitly from equations linear in them. A linear residual
 system is solved symbolically; a nonlinear one becomes a :class:`NonlinearBlock` that code
 generation turns into a CasADi ``fast_newton`` rootfinder.
+
+**Ball sets** (:mod:`~bearingsim.assembler.passes.ball_sets`) are solved once per set: when
+member ``k``'s equations are member 0's with member ``k``'s variables and parameters in place
+of member 0's (compared as functions with fresh symbols, :class:`_Mirrors`), member ``k``'s
+solutions are member 0's solutions with those symbols substituted, in one substitution per
+member, instead of solving its blocks again. These are the expressions solving member ``k``'s
+own blocks would give (the same operations on the same structure); a member that differs is
+solved block by block.
 """
 
 from __future__ import annotations
 
+from collections import defaultdict
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Eq, Var
+from bearingsim.assembler.passes.ball_sets import BallSet, find_ball_sets, function_identity
 from bearingsim.assembler.passes.blt import Block
 
 if TYPE_CHECKING:
@@ -46,6 +56,8 @@ class Causal:
     n_blocks: int = 0
     n_linear_loops: int = 0
     largest_block: int = 0
+    copied_members: int = 0
+    """Members of ball sets whose solutions were copied from member 0's."""
 
     def value(self, v: Var) -> ca.SX:
         """``v`` through the base symbols: its own symbol for a state or input, else its
@@ -103,14 +115,136 @@ def _tear(block: Block, residuals: dict[Eq, ca.SX]):
     return solved, tears, remaining_eqs
 
 
-def causalize(dae: DAE, blocks: list[Block]) -> Causal:
-    """Express every unknown through base symbols, block by block."""
+class _Mirrors:
+    """The members of ball sets whose blocks are member 0's with their own symbols.
+
+    ``counterpart[id(block)]`` is member 0's block for each block of such a member (``k >= 1``),
+    ``blocks_of[(s, k)]`` the member's blocks in BLT order, ``sigma[(s, k)]`` the symbols of
+    member 0 and of member ``k`` (variables and parameters, pattern by pattern) that turn member
+    0's solutions into member ``k``'s."""
+
+    def __init__(self, dae: DAE, blocks: list[Block], sets: list[BallSet]):
+        self.position = {id(e): i for i, e in enumerate(dae.eqs)}
+        self.where: dict[int, tuple[int, int, str]] = {}
+        """``id(var)`` -> (set, member, pattern)."""
+        for s, bs in enumerate(sets):
+            for k in range(bs.count):
+                for j, v in enumerate(bs.variables[k]):
+                    self.where[id(v)] = (s, k, bs.patterns[j])
+        per_member: dict[tuple[int, int], dict[frozenset, Block]] = defaultdict(dict)
+        for block in blocks:
+            found = {self.where.get(id(v), (None, None, None)) for _, v in block}
+            members = {(s, k) for s, k, _ in found}
+            if len(members) == 1 and None not in next(iter(members)):
+                per_member[next(iter(members))][frozenset(p for *_, p in found)] = block
+        self.counterpart: dict[int, Block] = {}
+        self.blocks_of: dict[tuple[int, int], list[Block]] = {}
+        self.sigma: dict[tuple[int, int], tuple[ca.SX, ca.SX]] = {}
+        for s, bs in enumerate(sets):
+            base = per_member.get((s, 0), {})
+            keys = sorted(base, key=sorted)
+            reference = None
+            for k in range(1, bs.count):
+                mine = per_member.get((s, k), {})
+                if not base or set(mine) != set(base):
+                    continue
+                reference = reference or self._identity(bs, 0, [base[q] for q in keys])
+                if self._identity(bs, k, [mine[q] for q in keys]) != reference:
+                    continue
+                for q in keys:
+                    self.counterpart[id(mine[q])] = base[q]
+                ids = {id(m) for m in mine.values()}
+                self.blocks_of[(s, k)] = [b for b in blocks if id(b) in ids]
+                self.sigma[(s, k)] = (self._symbols(bs, 0), self._symbols(bs, k))
+
+    @staticmethod
+    def _symbols(bs: BallSet, k: int) -> ca.SX:
+        return ca.vertcat(*[v.sym for v in bs.variables[k]],
+                          *[q.sym for q in bs.parameters[k]])
+
+    def _identity(self, bs: BallSet, k: int, blocks: list[Block]) -> tuple | None:
+        """Member ``k``'s equations (each block's in the order of the model's equations, which
+        does not depend on the matching) as a function of its symbols (pattern order) and the
+        shared symbols they read (by name), with fresh symbols; None if it cannot be built."""
+        rows = [e.residual for block in blocks
+                for e in sorted((e for e, _ in block), key=lambda e: self.position[id(e)])]
+        residuals = ca.vertcat(*rows)
+        own = self._symbols(bs, k)
+        own_names = {own[i].name() for i in range(own.numel())}
+        shared = sorted((sym for sym in ca.symvar(residuals) if sym.name() not in own_names),
+                        key=lambda sym: sym.name())
+        try:
+            fn = ca.Function("member", [own, ca.vertcat(*shared)], [residuals])
+        except RuntimeError:
+            return None
+        return tuple(sym.name() for sym in shared), function_identity(fn)
+
+
+def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) -> Causal:
+    """Express every unknown through base symbols, block by block; the members of ``sets``
+    (ball sets) that repeat member 0 by copying member 0's solutions."""
     out = Causal(n_blocks=len(blocks))
     solved_by_name: dict[str, Var] = {}
+    mirrors = _Mirrors(dae, blocks, sets) if sets else None
+    out.copied_members = len(mirrors.sigma) if mirrors is not None else 0
+    pending: dict[str, tuple[int, int]] = {}
+    """Unknowns of repeating members reached in BLT order, copied by :func:`flush` when read."""
+    done: set[int] = set()
+    """``id(block)`` of the copied blocks."""
+    flushed: set[tuple[int, int]] = set()
+    """Members copied already: once only, so that the copies share subexpressions the way
+    solving gives (a second copy would duplicate what the first one copied); their later
+    blocks are solved."""
+    linear_loops: set[int] = set()
+    """``id(block)`` of the blocks solved as linear loops."""
+    nonlinear_of: dict[int, NonlinearBlock] = {}
+    """``id(var)`` of a tearing variable -> its nonlinear block."""
+
+    def ready(block: Block) -> bool:
+        """Whether a repeating member's block can be copied: member 0's is solved."""
+        return all(v in out.expr for _, v in mirrors.counterpart[id(block)])
+
+    def flush(member: tuple[int, int]) -> None:
+        """Copy every block of ``member`` whose member 0 block is solved (reached in BLT order
+        or not: the copies are expressions of base symbols): member 0's solutions and
+        nonlinear residuals with the member's symbols, in one substitution."""
+        if member in flushed:
+            return
+        flushed.add(member)
+        todo = [b for b in mirrors.blocks_of[member] if ready(b)]
+        where = mirrors.where
+        pattern_var = {where[id(v)][2]: v for block in todo for _, v in block}
+        pairs, residual_blocks = [], []
+        for block in todo:
+            base = mirrors.counterpart[id(block)]
+            pairs += [(pattern_var[where[id(v0)][2]], v0) for _, v0 in base]
+            nl = next((nonlinear_of[id(v0)] for _, v0 in base if id(v0) in nonlinear_of), None)
+            if nl is not None:
+                residual_blocks.append((block, nl))
+            out.n_linear_loops += id(base) in linear_loops
+            done.add(id(block))
+        values = [out.expr[v0] for _, v0 in pairs] + [nl.residuals for _, nl in residual_blocks]
+        old, new = mirrors.sigma[member]
+        copied = ca.substitute([ca.vertcat(*values)], [old], [new])[0]
+        for i, (v, _) in enumerate(pairs):
+            out.expr[v] = copied[i]
+            solved_by_name[v.sym.name()] = v
+            pending.pop(v.sym.name(), None)
+        offset = len(pairs)
+        for block, nl in residual_blocks:
+            n = nl.residuals.numel()
+            tears = [pattern_var[where[id(t)][2]] for t in nl.tears]
+            out.nonlinear.append(NonlinearBlock(tears, copied[offset:offset + n],
+                                                [_guess(t) for t in tears],
+                                                [e for e, _ in block]))
+            offset += n
 
     def resolved(expr: ca.SX) -> ca.SX:
         """``expr`` with the unknowns of earlier blocks replaced by their solutions."""
-        prev = [solved_by_name[s.name()] for s in ca.symvar(expr) if s.name() in solved_by_name]
+        names = [s.name() for s in ca.symvar(expr)]
+        for member in {pending[n] for n in names if n in pending}:
+            flush(member)
+        prev = [solved_by_name[n] for n in names if n in solved_by_name]
         if not prev:
             return expr
         return ca.substitute(expr, ca.vertcat(*[v.sym for v in prev]),
@@ -118,6 +252,15 @@ def causalize(dae: DAE, blocks: list[Block]) -> Causal:
 
     for block in blocks:
         out.largest_block = max(out.largest_block, len(block))
+        if id(block) in done:
+            continue
+        copy = mirrors is not None and id(block) in mirrors.counterpart
+        member = mirrors.where[id(block[0][1])][:2] if copy else None
+        if copy and member not in flushed and ready(block):
+            for _, v in block:
+                pending[v.sym.name()] = member
+                solved_by_name[v.sym.name()] = v
+            continue
         if len(block) == 1:
             # One equation in one unknown: solved on the equation as written (small), then
             # earlier solutions substituted into the solution; the unknown is not in them, so
@@ -129,6 +272,7 @@ def causalize(dae: DAE, blocks: list[Block]) -> Causal:
             else:
                 out.expr[v] = v.sym
                 out.nonlinear.append(NonlinearBlock([v], resolved(e.residual), [_guess(v)], [e]))
+                nonlinear_of[id(v)] = out.nonlinear[-1]  # member 0's, for its copies
             solved_by_name[v.sym.name()] = v
             continue
         raw = resolved(ca.vertcat(*[e.residual for e, _ in block]))
@@ -153,6 +297,7 @@ def causalize(dae: DAE, blocks: list[Block]) -> Causal:
         jac = ca.jacobian(g, z)
         if not ca.depends_on(jac, z):
             out.n_linear_loops += 1
+            linear_loops.add(id(block))
             g0 = ca.substitute(g, z, ca.DM.zeros(len(tears)))
             zsol = ca.solve(jac, -g0)
             tear_expr = {t: zsol[k] for k, t in enumerate(tears)}
@@ -160,6 +305,7 @@ def causalize(dae: DAE, blocks: list[Block]) -> Causal:
             out.nonlinear.append(
                 NonlinearBlock(tears, g, [_guess(t) for t in tears], [e for e, _ in block])
             )
+            nonlinear_of.update((id(t), out.nonlinear[-1]) for t in tears)
             tear_expr = {t: t.sym for t in tears}
         for t, ex in tear_expr.items():
             out.expr[t] = ex
@@ -173,7 +319,11 @@ def causalize(dae: DAE, blocks: list[Block]) -> Causal:
             for k, v in enumerate(local):
                 out.expr[v] = vals[k]
                 solved_by_name[v.sym.name()] = v
+    for member in mirrors.blocks_of if mirrors is not None else ():
+        flush(member)
     return out
+
+
 
 
 def _guess(v: Var) -> float:
@@ -183,8 +333,10 @@ def _guess(v: Var) -> float:
 def run(state: AssemblyState) -> None:
     """Set ``state.causal`` by solving ``state.blocks`` in order; report the loops."""
     state.require(NAME, "dae", "blocks")
-    c = state.causal = causalize(state.dae, state.blocks)
+    c = state.causal = causalize(state.dae, state.blocks, find_ball_sets(state.dae))
     state.report["blocks"] = (
         f"{c.n_blocks} (largest {c.largest_block}; {c.n_linear_loops} linear loop(s) solved "
-        f"symbolically; {len(c.nonlinear)} nonlinear loop(s) by Newton)"
+        f"symbolically; {len(c.nonlinear)} nonlinear loop(s) by Newton"
+        + (f"; {c.copied_members} member(s) of ball sets copied from member 0"
+           if c.copied_members else "") + ")"
     )
