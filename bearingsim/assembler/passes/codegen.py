@@ -239,6 +239,6 @@ def run(state: AssemblyState) -> None:
         free_initial_states=free,
         skipped=list(dae.skipped),
         rootfinder=state.rootfinder if causal.nonlinear else None,
-        mapped=MappedForms(dae, causal, repeats) if repeats is not None and repeats.sets
-        else None,
+        mapped=MappedForms(dae, causal, repeats, state.rootfinder, state.newton_tol)
+        if repeats is not None and repeats.sets else None,
     )
