@@ -177,3 +177,19 @@ def test_the_balls_of_a_bearing_are_copied_bit_for_bit(fidelity):
              extra_passes={tearing.NAME: check})
     assert seen["copied"] == 6
     assert seen["nonlinear"] == ((0, 0) if fidelity == "dynamic_massive_balls" else (7, 7))
+
+
+def test_a_member_block_reached_before_member_0_is_solved_and_not_copied_again():
+    """Ball 1's loop comes before ball 0's in the block order: it is solved when reached, and
+    copying ball 1's later blocks from ball 0 leaves it alone (one Newton block per ball)."""
+    import numpy as np
+
+    from bearingsim.assembler.passes.ball_sets import find_ball_sets
+
+    model, blocks = _row([0.0, 0.0])
+    blocks = [blocks[3], *blocks[:3], *blocks[4:]]  # ball 1's loop first
+    copied = tearing.causalize(model, blocks, find_ball_sets(model))
+    solved = tearing.causalize(model, blocks)
+    assert copied.copied_members == 1 and len(copied.nonlinear) == 2
+    for got, want in zip(_values(copied, model), _values(solved, model), strict=True):
+        np.testing.assert_array_equal(got, want)

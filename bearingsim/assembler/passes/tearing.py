@@ -143,13 +143,11 @@ class _Mirrors:
         for s, bs in enumerate(sets):
             base = per_member.get((s, 0), {})
             keys = sorted(base, key=sorted)
-            reference = None
-            for k in range(1, bs.count):
+            reference = self._identity(bs, 0, [base[q] for q in keys]) if base else None
+            for k in range(1, bs.count if reference is not None else 0):
                 mine = per_member.get((s, k), {})
-                if not base or set(mine) != set(base):
-                    continue
-                reference = reference or self._identity(bs, 0, [base[q] for q in keys])
-                if self._identity(bs, k, [mine[q] for q in keys]) != reference:
+                if set(mine) != set(base) or \
+                        self._identity(bs, k, [mine[q] for q in keys]) != reference:
                     continue
                 for q in keys:
                     self.counterpart[id(mine[q])] = base[q]
@@ -211,7 +209,8 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
         if member in flushed:
             return
         flushed.add(member)
-        todo = [b for b in mirrors.blocks_of[member] if ready(b)]
+        todo = [b for b in mirrors.blocks_of[member]  # not those solved before (not ready then)
+                if ready(b) and not any(v in out.expr for _, v in b)]
         where = mirrors.where
         pattern_var = {where[id(v)][2]: v for block in todo for _, v in block}
         pairs, residual_blocks = [], []
