@@ -21,7 +21,8 @@ the Jacobian of ``h``:
 
 so code size and Jacobian work grow with one ball, not with Z. The members must be the same
 function: each member's function is serialized with fresh symbols and compared with the first
-one's; :class:`NotMappable` (with the reason) otherwise.
+one's (except the members whose every solution tearing copied from member 0's: they are by
+construction); :class:`NotMappable` (with the reason) otherwise.
 """
 
 from __future__ import annotations
@@ -117,9 +118,14 @@ def _member_function(name: str, lay: _Layout, s: int, k: int, outs: list[ca.SX])
                           f"({str(exc).splitlines()[-1][:200]})") from None
 
 
-def _same_members(fns: list[ca.Function]) -> None:
-    first = function_identity(fns[0])
+def _same_members(fns: list[ca.Function], copied: set[int]) -> None:
+    """Raise unless every member's function is member 0's; members in ``copied`` (whose every
+    solution tearing copied from member 0's, with their own symbols) are so by construction."""
+    first = None
     for k, f in enumerate(fns[1:], start=1):
+        if k in copied:
+            continue
+        first = first or function_identity(fns[0])
         if function_identity(f) != first:
             raise NotMappable(f"member {k} of a repeated set is not the same function as member "
                               f"0")
@@ -192,7 +198,8 @@ class _Builder:
                                for v in self._export_vars(s, k, exports[s])])]
                 fns.append(_member_function(f"{tag}_ball{s}", lay, s, k, outs))
             if check:
-                _same_members(fns)
+                _same_members(fns, {k for name, count, k in self.causal.copied
+                                    if (name, count) == (bs.name, bs.count)})
             f0 = fns[0]
             members.append(ca.Function(f0.name(), f0.sx_in(), f0.call(f0.sx_in()),
                                        f0.name_in(), f0.name_out(), CSE))

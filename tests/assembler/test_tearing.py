@@ -123,6 +123,7 @@ def test_repeating_members_are_copied_from_member_0_and_give_the_same_solutions(
     copied = tearing.causalize(model, blocks, sets)
     solved = tearing.causalize(model, blocks)
     assert len(copied.nonlinear) == len(solved.nonlinear) == 4
+    assert copied.copied == {("", 4, 1), ("", 4, 3)}
     assert (copied.n_blocks, copied.largest_block) == (solved.n_blocks, solved.largest_block)
     for got, want in zip(_values(copied, model), _values(solved, model), strict=True):
         np.testing.assert_array_equal(got, want)
@@ -144,6 +145,7 @@ def test_a_member_read_before_member_0_is_complete_is_copied_once_then_solved():
     copied = tearing.causalize(model, blocks, find_ball_sets(model))
     solved = tearing.causalize(model, blocks)
     assert copied.copied_members == 3 and len(copied.nonlinear) == 4
+    assert copied.copied == set()  # their d blocks were solved, not copied
     for got, want in zip(_values(copied, model), _values(solved, model), strict=True):
         np.testing.assert_array_equal(got, want)
 
@@ -166,6 +168,7 @@ def test_the_balls_of_a_bearing_are_copied_bit_for_bit(fidelity):
     def compare(state):
         sets = find_ball_sets(state.dae)
         seen["copied"] = len(tearing._Mirrors(state.dae, state.blocks, sets).sigma)
+        seen["whole"] = sorted(k for *_, k in state.causal.copied)
         solved = tearing.causalize(state.dae, state.blocks)
         for got, want in zip(_values(state.causal, state.dae), _values(solved, state.dae),
                              strict=True):
@@ -176,6 +179,7 @@ def test_the_balls_of_a_bearing_are_copied_bit_for_bit(fidelity):
     assemble(deep_groove_ball_bearing("6304", fidelity, speed=100.0, loads={"Fx": 500.0}),
              extra_passes={tearing.NAME: check})
     assert seen["copied"] == 6
+    assert seen["whole"] == [1, 2, 3, 4, 5, 6]  # every block of each, so mapping skips them
     assert seen["nonlinear"] == ((0, 0) if fidelity == "dynamic_massive_balls" else (7, 7))
 
 
@@ -191,5 +195,6 @@ def test_a_member_block_reached_before_member_0_is_solved_and_not_copied_again()
     copied = tearing.causalize(model, blocks, find_ball_sets(model))
     solved = tearing.causalize(model, blocks)
     assert copied.copied_members == 1 and len(copied.nonlinear) == 2
+    assert copied.copied == set()
     for got, want in zip(_values(copied, model), _values(solved, model), strict=True):
         np.testing.assert_array_equal(got, want)

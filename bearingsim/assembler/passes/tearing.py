@@ -58,6 +58,9 @@ class Causal:
     largest_block: int = 0
     copied_members: int = 0
     """Members of ball sets whose solutions were copied from member 0's."""
+    copied: set[tuple[str, int, int]] = field(default_factory=set)
+    """(set name, set size, member) of the members all of whose blocks were copied: their
+    solutions are member 0's with their own symbols, by construction."""
 
     def value(self, v: Var) -> ca.SX:
         """``v`` through the base symbols: its own symbol for a state or input, else its
@@ -124,6 +127,7 @@ class _Mirrors:
     0's solutions into member ``k``'s."""
 
     def __init__(self, dae: DAE, blocks: list[Block], sets: list[BallSet]):
+        self.sets = sets
         self.position = {id(e): i for i, e in enumerate(dae.eqs)}
         self.where: dict[int, tuple[int, int, str]] = {}
         """``id(var)`` -> (set, member, pattern)."""
@@ -211,6 +215,9 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
         flushed.add(member)
         todo = [b for b in mirrors.blocks_of[member]  # not those solved before (not ready then)
                 if ready(b) and not any(v in out.expr for _, v in b)]
+        if len(todo) == len(mirrors.blocks_of[member]):
+            bs = mirrors.sets[member[0]]
+            out.copied.add((bs.name, bs.count, member[1]))
         where = mirrors.where
         pattern_var = {where[id(v)][2]: v for block in todo for _, v in block}
         pairs, residual_blocks = [], []
