@@ -193,13 +193,13 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     if found is not None:
         return found
     start = time.perf_counter()
-    found = system.mapped.find(form) if mapped and system.mapped is not None else None
+    per_ball = system.mapped.find(form) if mapped and system.mapped is not None else None
     # a mapped kernel never reads the system's inlined functions (built on first access)
-    sources = None if found is not None else _sources(system, form)
+    sources = None if per_ball is not None else _sources(system, form)
     use_c, reason = _choose(system, form, compiled, sources)
     if not use_c:
         balls = _ball_sets(system, form, mapped)
-        fn, jac, observe = _generated(system, form, found)
+        fn, jac, observe = _generated(system, form, per_ball)
         result = _vm_kernel(form, fn, jac, observe, reason, start, balls)
         cache[key] = result
         return result
@@ -209,7 +209,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     if lib is None:
         identity = None if sources is None else _identity(form, sources)
         if identity is None:  # named by its C source
-            generated = _generated(system, form, found)
+            generated = _generated(system, form, per_ball)
             units = generate_units(generated, prefix)
             identity = "\n".join(units)
         lib = cache[("library", *key)] = library_path(identity, flags=flags,
@@ -222,7 +222,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         with _LOCK:
             pending = _PENDING.get(lib)
         if pending is None:
-            generated = generated or _generated(system, form, found)
+            generated = generated or _generated(system, form, per_ball)
             record.parent.mkdir(parents=True, exist_ok=True)
             record.write_text(balls)  # what the library maps, read when it is reused
             pending = _submit(lib, units or generate_units(generated, prefix), flags,
@@ -232,7 +232,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         elif not pending.done():
             interim = cache.get(("interim", *key))
             if interim is None:
-                fn, jac, observe = generated or _generated(system, form, found)
+                fn, jac, observe = generated or _generated(system, form, per_ball)
                 interim = cache[("interim", *key)] = _vm_kernel(
                     form, fn, jac, observe, "C compiling in the background; the VM runs until "
                     "it is ready (same numbers)", start, balls)
@@ -241,12 +241,12 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
             try:
                 pending.wait()
             except CompileError as exc:
-                fn, jac, observe = generated or _generated(system, form, found)
+                fn, jac, observe = generated or _generated(system, form, per_ball)
                 result = cache[key] = _vm_kernel(form, fn, jac, observe,
                                                  f"compiling failed: {exc}", start, balls)
                 return result
-    fn, observe = (found.function, found.observe) if found is not None else (sources[0],
-                                                                              sources[-1])
+    fn, observe = ((per_ball.function, per_ball.observe) if per_ball is not None
+                   else (sources[0], sources[-1]))
     diff = [name != "p" for name in fn.name_in()]
     result = Kernel(ca.external(form, str(lib), {"is_diff_in": diff}),
                     ca.external(observe.name(), str(lib)), form, COMPILED, reason, lib,
@@ -369,13 +369,13 @@ def _symbolic(system: System, form: str) -> tuple[ca.Function, ca.Function]:
             _rebuilt(obs.name(), [obs], names_in, obs.name_out(), {}))
 
 
-def _generated(system: System, form: str, found: MappedKernel | None
+def _generated(system: System, form: str, per_ball: MappedKernel | None
                ) -> list[ca.Function]:
     """The kernel, its Jacobian (``jac_<form>``, which ``casadi.external`` takes as the
     kernel's Jacobian) and the observe function: what a library holds, and what the VM
-    evaluates. The mapped-ball functions ``found``, else the inlined ones."""
-    if found is not None:
-        return [found.function, found.jacobian, found.observe]
+    evaluates. The mapped-ball functions ``per_ball``, else the inlined ones."""
+    if per_ball is not None:
+        return [per_ball.function, per_ball.jacobian, per_ball.observe]
     fn, observe = _symbolic(system, form)
     return [fn, fn.jacobian(), observe]
 
