@@ -36,7 +36,7 @@ import numpy as np
 from bearingsim.assembler.dae import DAE, Var
 from bearingsim.assembler.passes.ball_sets import function_identity
 from bearingsim.assembler.passes.repeated import Repeats
-from bearingsim.assembler.passes.tearing import Causal
+from bearingsim.assembler.passes.tearing import Causal, rootfinder_options
 
 __all__ = ["NotMappable", "MappedKernel", "MappedForms", "mapped_kernel"]
 
@@ -504,10 +504,8 @@ def through_newton(dae_kernel: MappedKernel, guess: list[float], rootfinder: str
                                                  blocks_w[9])])
     g = ca.Function("alg_balls", [z_s, w], [F(tw, xw, z_s, uw, pw)[1]],
                     {"custom_jacobian": jac_g, "never_inline": True})
-    opts = ({"abstol": newton_tol, "max_iter": 50} if rootfinder == "fast_newton"
-            else {"abstol": newton_tol, "max_iter": 100, "line_search": True,
-                  "show_eval_warnings": False})
-    solve = ca.rootfinder("newton_balls", rootfinder, g, opts)
+    solve = ca.rootfinder("newton_balls", rootfinder, g,
+                          rootfinder_options(rootfinder, newton_tol))
     z = solve(ca.DM(guess), ca.vertcat(t, x, u, p))
     args, names = [t, x, u, p], ["t", "x", "u", "p"]
     fn = ca.Function("ode", args, [F(t, x, z, u, p)[0]], names, ["ode"],

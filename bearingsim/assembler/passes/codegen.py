@@ -17,7 +17,7 @@ import casadi as ca
 
 from bearingsim.assembler.dae import DAE
 from bearingsim.assembler.mapped import MappedForms
-from bearingsim.assembler.passes.tearing import Causal
+from bearingsim.assembler.passes.tearing import Causal, rootfinder_options
 from bearingsim.assembler.system import FunctionTable, Signal, System
 from bearingsim.errors import StructuralError
 
@@ -105,10 +105,8 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
         zb = ca.vertcat(*[v.sym for v in blk.tears])
         prev_sx = ca.vertcat(base_sx, *z_sx)
         g = ca.Function(f"g{k}", [zb, prev_sx], [blk.residuals])
-        opts = ({"abstol": newton_tol, "max_iter": 50} if rootfinder == "fast_newton"
-                else {"abstol": newton_tol, "max_iter": 100, "line_search": True,
-                      "show_eval_warnings": False})
-        solver = ca.rootfinder(f"newton{k}", rootfinder, g, opts)
+        solver = ca.rootfinder(f"newton{k}", rootfinder, g,
+                               rootfinder_options(rootfinder, newton_tol))
         zk = solver(ca.DM(blk.guess), ca.vertcat(base_mx, *z_mx))
         z_sx.append(zb)
         z_mx.append(zk)

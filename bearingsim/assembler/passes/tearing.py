@@ -31,7 +31,7 @@ from bearingsim.assembler.passes.blt import Block
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["NAME", "run", "NonlinearBlock", "Causal", "causalize"]
+__all__ = ["NAME", "run", "NonlinearBlock", "Causal", "causalize", "rootfinder_options"]
 
 NAME = "tearing and block solving"
 """The pass name in timings, logs and ``extra_passes``."""
@@ -330,6 +330,13 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
     return out
 
 
+def rootfinder_options(rootfinder: str, newton_tol: float) -> dict:
+    """CasADi options of a nonlinear block's rootfinder: ``fast_newton`` (plain Newton steps,
+    C generation) or ``newton`` (with a line search), to ``newton_tol`` on the residual."""
+    if rootfinder == "fast_newton":
+        return {"abstol": newton_tol, "max_iter": 50}
+    return {"abstol": newton_tol, "max_iter": 100, "line_search": True,
+            "show_eval_warnings": False}
 
 
 def _guess(v: Var) -> float:
