@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from bearingsim.assembler import assemble
-from bearingsim.assemblies import double_layer_bearing, motor_drive
+from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing, motor_drive
 from bearingsim.simulation import simulate
 from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.compile import compile_system
@@ -30,6 +30,8 @@ def _models(quick: bool):
     yield f"torsion chain N={n}", TorsionChain(n), 1.0
     yield "PMSM + double-layer bearing", motor_drive(double_layer_bearing(drive="flange"),
                                                       motor="pmsm", speed_ref=300.0), 1.0
+    yield "6304 massive balls", deep_groove_ball_bearing(
+        "6304", "dynamic_massive_balls", speed=100.0, loads={"Fx": 500.0}, n_slices=0), 2e-4
 
 
 def _call_costs(name: str, system) -> dict[str, float]:
@@ -73,10 +75,15 @@ def run(quick: bool, img_dir: Path, out_md: Path, log=print) -> Section:
             t0 = time.perf_counter()
             compiled = compile_system(system, cache_dir=cache)
             t_compile = time.perf_counter() - t0
+            t_inlined = "-"
+            if compiled.report["compiled_balls"] == "mapped":
+                t0 = time.perf_counter()
+                compile_system(system, cache_dir=cache, mapped=False)
+                t_inlined = fmt(time.perf_counter() - t0)
             costs = {}
             for name, sysx in (("VM", system), ("C", compiled)):
                 costs.update(_call_costs(name, sysx))
-            call_rows.append([label, system.n_states, fmt(t_compile)] + [
+            call_rows.append([label, system.n_states, fmt(t_compile), t_inlined] + [
                 fmt(costs[k] * 1e6) for k in ("plain VM", "buffered VM", "buffered C",
                                                "jac VM", "jac C")])
             for method in ("BDF", "LSODA", "cvodes"):
@@ -90,9 +97,13 @@ def run(quick: bool, img_dir: Path, out_md: Path, log=print) -> Section:
         "`Function(t, x, p)` as CasADi's Python interface converts arguments; *buffered*: "
         "`bearingsim.simulation.fastcall.BufferedFunction` (zero-copy `Function.buffer`), which "
         "`simulate` uses for scipy's integrators; *VM*: CasADi's SX virtual machine; *C*: the "
-        "compiled backend (`compile_system`, gcc -O2).",
+        "compiled backend (`compile_system`, gcc -O2). *compile*: `compile_system` on an empty "
+        "cache (a model with ball sets maps them: one function per ball); *compile inlined*: "
+        "`compile_system(..., mapped=False)`, every ball inlined (including building the "
+        "inlined functions).",
         "",
-        markdown_table(["model", "states", "compile [s]", "plain VM", "buffered VM",
+        markdown_table(["model", "states", "compile [s]", "compile inlined [s]", "plain VM",
+                        "buffered VM",
                         "buffered C", "Jacobian VM", "Jacobian C"], call_rows),
         "",
         "Simulation wall time (best of 3, rtol 1e-8) on the VM and on compiled C, and the largest "

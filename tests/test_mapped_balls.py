@@ -260,3 +260,54 @@ def test_fmu_functions_of_the_quasi_static_level_solve_the_balls_through_the_map
     jx = _dense(system.functions["jac_x"](*args))
     np.testing.assert_allclose(_dense(functions["jac_x"](*args)), jx, rtol=1e-9,
                                atol=1e-9 * np.max(np.abs(jx)))
+
+
+def _assert_same_functions(got: dict, want, args: list, rtol: float) -> None:
+    """Each function of ``got`` against the same-named one of ``want`` at ``args``: to
+    ``rtol`` of its largest entry."""
+    for name, fn in got.items():
+        a, b = _dense(fn(*args)), _dense(want[name](*args))
+        assert a.shape == b.shape, name
+        scale = max(np.max(np.abs(b), initial=0.0), 1e-300)
+        assert np.max(np.abs(a - b), initial=0.0) <= rtol * scale, name
+
+
+def test_compile_system_maps_the_balls_and_builds_no_inlined_function(tmp_path):
+    """compile_system (the scipy path) generates the mapped functions: the right-hand side,
+    its Jacobians, observed and output variables equal the inlined ones to round-off, the
+    inlined functions are not built, and the outputs' Jacobians stay available (symbolic)."""
+    from bearingsim.simulation.compile import compile_system
+
+    system = _massive()
+    compiled = compile_system(system, cache_dir=tmp_path)
+    assert compiled.report["compiled_balls"] == "mapped"
+    assert not any(system.functions.built(name) for name in system.functions)
+    assert all(compiled.functions.built(k) for k in ("ode", "jac_x", "jac_u", "observe",
+                                                      "output"))
+    args = _point(system, "ode", seed=7)
+    ready = {k: compiled.functions[k] for k in ("ode", "jac_x", "jac_u", "observe", "output")}
+    _assert_same_functions(ready, system.functions, args, rtol=1e-12)
+    # built on first access, from the symbolic originals
+    _assert_same_functions({k: compiled.functions[k] for k in ("out_jac_x", "out_jac_u")},
+                           system.functions, args, rtol=0.0)
+    a = simulate(system, 2e-4, method="BDF", rtol=1e-8, atol=1e-10)
+    b = simulate(compiled, 2e-4, method="BDF", rtol=1e-8, atol=1e-10)
+    for name in ("cage.w", "ball[1].dr", "inner[2].F_roll"):
+        np.testing.assert_allclose(b[name], a[name], rtol=1e-6,
+                                   atol=1e-6 * np.max(np.abs(a[name])))
+
+
+def test_mapped_ode_functions_of_the_quasi_static_level_equal_the_inlined(quasi_static):
+    """Through the one rootfinder of the mapped ODE form: to the Newton floor, as the kernel
+    (test_quasi_static_balls_ode_form_mapped_equal_inlined)."""
+    from bearingsim.assembler.passes.codegen import mapped_ode_functions
+
+    functions = mapped_ode_functions(quasi_static)
+    assert set(functions) == {"ode", "jac_x", "jac_u", "observe", "output"}
+    args = _point(quasi_static, "ode")
+    _assert_same_functions({k: functions[k] for k in ("ode", "jac_x", "jac_u")},
+                           quasi_static.functions, args, rtol=1e-9)
+    for key in ("observe", "output"):
+        np.testing.assert_allclose(_dense(functions[key](*args)),
+                                   _dense(quasi_static.functions[key](*args)),
+                                   rtol=1e-6, atol=1e-6)

@@ -58,6 +58,14 @@ class MappedKernel:
     ball_function: ca.Function
     """The per-ball function of the first ball set (its size is what grows with one ball)."""
 
+    def ode_with_jacobians(self, t: ca.MX, x: ca.MX, u: ca.MX, p: ca.MX
+                           ) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
+        """The ``ode`` form's right-hand side and its Jacobians by ``t``, ``x`` and ``u`` at
+        symbolic arguments: ``(xdot, d xdot/dt, d xdot/dx, d xdot/du)``."""
+        xdot = self.function(t, x, u, p)
+        jac_t, jac_x, jac_u, _ = self.jacobian(t, x, u, p, ca.MX(ca.Sparsity(xdot.size1(), 1)))
+        return xdot, jac_t, jac_x, jac_u
+
 
 @dataclass
 class _Entry:

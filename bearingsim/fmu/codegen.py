@@ -57,8 +57,7 @@ def fmu_functions(system, output_names: list[str]) -> dict[str, ca.Function]:
     p = sym.sym("p", len(system.params))
     args = (t, x, u, p)
     if mapped is not None:  # one function per ball, its Jacobian by the chain rule
-        xdot = mapped.function(*args)
-        jac_t, jac_x, jac_u, _ = mapped.jacobian(*args, ca.MX(ca.Sparsity(system.n_states, 1)))
+        xdot, jac_t, jac_x, jac_u = mapped.ode_with_jacobians(*args)
     else:
         xdot = fns["ode"](*args)
         jac_t, jac_x, jac_u = ca.jacobian(xdot, t), fns["jac_x"](*args), fns["jac_u"](*args)

@@ -27,11 +27,13 @@ import subprocess
 import tempfile
 import threading
 from collections.abc import Callable, Sequence
+from functools import partial
 from pathlib import Path
 
 import casadi as ca
 
-from bearingsim.assembler.system import System
+from bearingsim.assembler.passes.codegen import mapped_ode_functions
+from bearingsim.assembler.system import FunctionTable, System
 from bearingsim.errors import BearingsimError
 from bearingsim.simulation.c_units import generate_source, generate_units
 
@@ -231,8 +233,16 @@ def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Fu
 
 
 def compile_system(system: System, cache_dir: str | Path | None = None,
-                   flags: tuple[str, ...] = ("-O2",)) -> System:
+                   flags: tuple[str, ...] = ("-O2",), mapped: bool = True) -> System:
     """Return a copy of ``system`` whose functions run as compiled C.
+
+    A system with ball sets gets the functions a run evaluates (right-hand side, its
+    Jacobians, observed and output variables) with one function per ball mapped over each row
+    (:func:`~bearingsim.assembler.passes.codegen.mapped_ode_functions`): C that grows with one
+    ball, not with Z, and the inlined functions are not built. Its other functions stay
+    symbolic, built on first access: the outputs' Jacobians (once per linearization) and the
+    DAE form (IDAS compiles the mapped DAE kernel itself,
+    :mod:`~bearingsim.simulation.kernels`; ``dae_z`` runs once per integration).
 
     Parameters
     ----------
@@ -242,6 +252,8 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
         Where libraries are kept (default :func:`default_cache_dir`).
     flags : tuple of str
         Extra compiler flags.
+    mapped : bool
+        Map the balls of a system with ball sets; ``False``: generate the inlined functions.
 
     Returns
     -------
@@ -261,14 +273,20 @@ def compile_system(system: System, cache_dir: str | Path | None = None,
             f"{system.rootfinder!r} rootfinder, which generates no C code; assemble with "
             "rootfinder='fast_newton'"
         )
-    names = sorted(system.functions)
+    per_ball = mapped_ode_functions(system) if mapped else None
+    chosen = per_ball if per_ball is not None else system.functions
+    names = sorted(chosen)
     try:
-        lib = build_library([system.functions[k] for k in names], flags=flags,
-                            cache_dir=cache_dir, prefix="bsm_model")
+        lib = build_library([chosen[k] for k in names], flags=flags, cache_dir=cache_dir,
+                            prefix="bsm_model")
     except CompileError as exc:
         raise CompileError(f"compile_system: {exc}") from None
-    functions = {key: ca.external(system.functions[key].name(), str(lib)) for key in names}
+    compiled = {key: ca.external(chosen[key].name(), str(lib)) for key in names}
+    symbolic = {key: partial(system.functions.__getitem__, key)
+                for key in system.functions if key not in compiled}
     return dataclasses.replace(
-        system, functions=functions, symbolic_functions=system.functions,
-        report={**system.report, "compiled": str(lib)},
+        system, functions=FunctionTable(compiled, symbolic),
+        symbolic_functions=system.functions,
+        report={**system.report, "compiled": str(lib),
+                "compiled_balls": "mapped" if per_ball is not None else "inlined"},
     )

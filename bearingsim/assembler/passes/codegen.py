@@ -24,7 +24,8 @@ from bearingsim.errors import StructuralError
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["GRAPH_KEYS", "NAME", "ROOTFINDERS", "run", "build_functions", "initial_problem"]
+__all__ = ["GRAPH_KEYS", "JACOBIANS", "NAME", "ROOTFINDERS", "run", "build_functions",
+           "initial_problem", "mapped_ode_functions"]
 
 NAME = "code generation"
 """The pass name in timings, logs and ``extra_passes``."""
@@ -135,13 +136,46 @@ def _graph_function(exprs: Callable[[], dict], key: str, args: list,
     return ca.Function(key, args, [exprs()[key]], names, [key])
 
 
+JACOBIANS = {"jac_x": ("ode", "x", "jac_x"), "jac_u": ("ode", "u", "jac_u"),
+             "out_jac_x": ("output", "x", "J"), "out_jac_u": ("output", "u", "J")}
+"""The Jacobian functions of every system: key -> (function differentiated, by which input,
+output name)."""
+
+
 def _jacobians(exprs: Callable[[], dict], x, u, args: list, names: list[str]) -> dict:
     """Builders of ``jac_x``, ``jac_u``, ``out_jac_x`` and ``out_jac_u`` (the Jacobians of
     ``exprs()["ode"]`` and ``exprs()["output"]``, SX or MX), for a :class:`FunctionTable`."""
-    table = {"jac_x": ("ode", x, "jac_x"), "jac_u": ("ode", u, "jac_u"),
-             "out_jac_x": ("output", x, "J"), "out_jac_u": ("output", u, "J")}
-    return {key: partial(_jacobian_function, key, exprs, of, wrt, args, names, out)
-            for key, (of, wrt, out) in table.items()}
+    wrts = {"x": x, "u": u}
+    return {key: partial(_jacobian_function, key, exprs, of, wrts[wrt], args, names, out)
+            for key, (of, wrt, out) in JACOBIANS.items()}
+
+
+def mapped_ode_functions(system: System) -> dict[str, ca.Function] | None:
+    """The functions of ``system`` that a run evaluates (:data:`GRAPH_KEYS`, ``jac_x`` and
+    ``jac_u``; same names and signatures) with one function per ball mapped over each row, or
+    None when the system's ODE form does not map (no ball sets).
+
+    The right-hand side, its Jacobians and the observed variables are the mapped kernel's
+    (:attr:`System.mapped`), the outputs a selection of the observed variables. Not included:
+    the outputs' Jacobians (``out_jac_x``, ``out_jac_u``; evaluated once per linearization),
+    whose derivation through the mapped observe function generates ~30x the C of the others
+    (5.6 MB on the 6304 massive-ball level, every variable an output).
+    """
+    per_ball = system.mapped.find("ode") if system.mapped is not None else None
+    if per_ball is None:
+        return None
+    names = ["t", "x", "u", "p"]
+    args = [ca.MX.sym("t"), ca.MX.sym("x", system.n_states),
+            ca.MX.sym("u", len(system.inputs)), ca.MX.sym("p", len(system.params))]
+    xdot, _, jac_x, jac_u = per_ball.ode_with_jacobians(*args)
+    observed = per_ball.observe(*args)
+    position = {n: k for k, n in enumerate(system.observed_names)}
+    output = (observed[[position[n] for n in system.output_names]] if system.output_names
+              else ca.MX(0, 1))
+    exprs = {"ode": xdot, "observe": observed, "output": output, "jac_x": jac_x,
+             "jac_u": jac_u}
+    out_names = {**{k: k for k in GRAPH_KEYS}, **{k: v[2] for k, v in JACOBIANS.items()}}
+    return {k: ca.Function(k, args, [e], names, [out_names[k]]) for k, e in exprs.items()}
 
 
 def _jacobian_function(name: str, exprs: Callable[[], dict], of: str, wrt, args: list,
