@@ -10,7 +10,8 @@ the cage. For each condition:
 * this project's SUNDIALS integrators on compiled kernels: IDAS on the same quasi-static model
   (its semi-explicit DAE form: the ball equations are algebraic, no Newton iteration inside the
   right-hand side; the ``newton`` blocks of the ODE form have no C) and CVODES on the
-  ``dynamic_massive_balls`` model (ball inertia instead of quasi-static balls: a pure ODE);
+  ``dynamic_massive_balls`` model (ball inertia instead of quasi-static balls: a pure ODE),
+  and on that model the BDF loop in C (``method="compiled_bdf"``) on the same kernels;
 * the error: relative error of the final cage speed against each model's own CVODES run at
   rtol 1e-9;
 * the ratio: the study's wall time over ours at the study's errors (log-log interpolation of
@@ -144,10 +145,14 @@ def run(quick: bool = False) -> tuple[str, dict]:
         study_rows, study = _study(qs, ref_qs, t_end, dt_qs, FRACTIONS)
         rows_qs, curve_qs = _sundials(qs, "idas", ref_qs, t_end, "IDAS, C (qs)",
                                       _per_call(qs, ref_qs["res"], "dae"))
+        pc_m = _per_call(massive, ref_m["res"], "ode")
         rows_m, curve_m = _sundials(massive, "cvodes", ref_m, t_end, "CVODES, C (massive balls)",
-                                    _per_call(massive, ref_m["res"], "ode"))
+                                    pc_m)
+        rows_b, curve_b = _sundials(massive, "compiled_bdf", ref_m, t_end,
+                                    "compiled_bdf (massive balls)", pc_m)
         ratios = _ratios(study, {"IDAS, C (qs)": curve_qs,
-                                 "CVODES, C (massive balls)": curve_m})
+                                 "CVODES, C (massive balls)": curve_m,
+                                 "compiled_bdf (massive balls)": curve_b})
         numbers[k] = ratios
         n_rpm, load = DUTY_CYCLE[k - 1]
         lines += [f"### Condition {k}: {n_rpm:g} r/min, {load:g} N", "",
@@ -155,7 +160,7 @@ def run(quick: bool = False) -> tuple[str, dict]:
                   f"{compile_s:.1f} s; RK4 stable step of the qs model {dt_qs:.3g} s.", "",
                   markdown_table(["method", "setting", "wall [s]", "cage-speed error",
                                   "steps", "limit [s]", "wall / limit"],
-                                 study_rows + rows_qs + rows_m), "",
+                                 study_rows + rows_qs + rows_m + rows_b), "",
                   "The study's wall time / ours at matched cage-speed error (goal >= 50):", "",
                   markdown_table(["ours", "error", "ratio"], ratios), ""]
     return "\n".join(lines), numbers

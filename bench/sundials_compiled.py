@@ -23,7 +23,8 @@ Sections (``python -m bench.sundials_compiled SECTION [--cases a,b]``):
   per call), and of a dense LU factorization and solve of the Newton matrix;
 * ``compile``: generate-and-compile time of the kernel library at -O0, -O1, -O2 (empty cache)
   and the run time of the ``runs`` start-up with each;
-* ``runs``: start-up and steady running, VM and C: wall seconds per simulated second, steps,
+* ``runs``: start-up and steady running, VM and C (and on ODE-form cases the BDF loop in C,
+  ``method="compiled_bdf"``, on the C kernels): wall seconds per simulated second, steps,
   right-hand-side and Jacobian evaluations per simulated second, the physical limit (compiled
   per-call costs times the calls the run took) and the distance to it; VM = C check;
 * ``linsol``: every SUNDIALS linear solver on the start-up run (compiled kernels);
@@ -89,13 +90,15 @@ class Case:
             self.cache["assemble_s"] = time.perf_counter() - t0
         return self.cache["system"]
 
-    def run(self, t0: float, t1: float, x0: dict | None = None, **kw) -> Any:
-        """One ``simulate`` call of this case from ``t0`` to ``t1``."""
+    def run(self, t0: float, t1: float, x0: dict | None = None, method: str | None = None,
+            **kw) -> Any:
+        """One ``simulate`` call of this case from ``t0`` to ``t1`` (its own method unless
+        ``method`` is given)."""
         system, common = self.system()
         args = {**common, **kw}
         if x0 is not None:
             args["x0"] = x0
-        return simulate(system, t1, t_start=t0, method=self.method, rtol=self.rtol,
+        return simulate(system, t1, t_start=t0, method=method or self.method, rtol=self.rtol,
                         atol=self.atol, n_points=3, progress=False, **args)
 
 
@@ -317,22 +320,31 @@ def _run_with_kernel(case: Case, kern, common: dict):
 
 
 # ------------------------------------------------------------------------------ runs
+COMPILED_BDF = "C, compiled_bdf"
+"""Row label of the BDF loop in C (``method="compiled_bdf"``) on the C kernels."""
+
+
 def runs(case: Case, per_call: dict[str, float], repeats: int = 3) -> dict[str, Any]:
-    """Start-up and steady running on VM and C: walls, counts, limit."""
+    """Start-up and steady running on VM and C (and, for ODE-form cases, the compiled BDF
+    on C): walls, counts, limit."""
     system, common = case.system()
     out: dict[str, Any] = {}
     finals = {}
-    for label, comp in (("VM", False), ("C", True)):
+    backends = [("VM", False, case.method), ("C", True, case.method)]
+    if _form(case) == "ode":
+        backends.append((COMPILED_BDF, True, "compiled_bdf"))
+    for label, comp, method in backends:
         try:
             kernel(system, _form(case), comp)
         except Exception:  # noqa: BLE001 - no C for this case
             continue
         best = {}
         for _ in range(repeats):
-            res0 = case.run(0.0, case.t_start_up, x0=common.get("x0"), compiled=comp)
+            res0 = case.run(0.0, case.t_start_up, x0=common.get("x0"), method=method,
+                            compiled=comp)
             x_mid = {n: res0.final(n) for n in system.state_names}
             res1 = case.run(case.t_start_up, case.t_start_up + case.t_steady, x0=x_mid,
-                            compiled=comp)
+                            method=method, compiled=comp)
             for phase, res, span in (("start-up", res0, case.t_start_up),
                                      ("steady", res1, case.t_steady)):
                 if phase not in best or res.stats["wall_time"] < best[phase][0].stats[
@@ -365,7 +377,8 @@ def run_rows(case: Case, data: dict) -> list[list]:
                      fmt(st["nsteps"] / span), fmt(st["nfevals"] / span),
                      fmt(st["njevals"] / span), fmt(limit / span), fmt(wall / limit),
                      fmt(limit_la / span), fmt(wall / limit_la),
-                     fmt(st["rhs_time"] / wall, 2), fmt(st["jac_time"] / wall, 2)])
+                     *[fmt(st[key] / wall, 2) if key in st else "-"
+                       for key in ("rhs_time", "jac_time")]])
     return rows
 
 
@@ -528,7 +541,10 @@ def section(quick: bool = False) -> Section:
     intro = (
         "`simulate(..., method=\"cvodes\")` on CasADi's VM (`compiled=False`) and on generated "
         "C (`compiled=True`: right-hand side and exact Jacobian as a library loaded with "
-        "`casadi.external`), same integrator, same steps. *wall / sim s*: wall seconds per "
+        "`casadi.external`), same integrator, same steps; *C, compiled_bdf*: "
+        "`method=\"compiled_bdf\"`, a BDF whose step loop is C calling the same C kernels "
+        "(`bearingsim.simulation.compiled_bdf`; its own steps, no time split by kernel). "
+        "*wall / sim s*: wall seconds per "
         "simulated second; *limit*: the compiled per-call costs times the calls the run took "
         "(kernels only, and with the LU of the Newton matrix: dense, or the ordered sparse LU the "
         "default picks above 200 states), the physical limit of this "

@@ -27,18 +27,20 @@ import numpy as np
 import scipy.integrate
 
 from bearingsim.assembler.system import System
-from bearingsim.errors import SimulationError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.closed import ClosedModel
+from bearingsim.simulation.compiled_bdf import compiled_bdf_run
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.fastcall import BufferedFunction
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.progress import progress_bar
-from bearingsim.simulation.sundials import sundials_run
+from bearingsim.simulation.sundials import observe_at, sundials_run
 
 __all__ = [
     "BACKENDS",
     "METHODS",
+    "CompiledIntegrator",
     "IntegrationProblem",
     "Integrator",
     "ScipyIntegrator",
@@ -221,6 +223,36 @@ class SundialsIntegrator(Integrator):
         return Trajectory(run.t, run.x, run.values, {**run.stats, "kernel_time": kernel_time})
 
 
+class CompiledIntegrator(Integrator):
+    """The BDF step loop in C on the compiled ODE kernel
+    (:mod:`~bearingsim.simulation.compiled_bdf`): no interpreter between the steps.
+
+    ``compiled=False`` is refused (the method is compiled C); ``"auto"`` compiles the kernel
+    now if it is not cached, as ``True`` does.
+    """
+
+    backend = "compiled"
+    name = "compiled_bdf"
+
+    def run(self, problem: IntegrationProblem) -> Trajectory:
+        """Integrate with the compiled BDF (see :class:`Integrator`)."""
+        pb, system = problem, problem.system
+        if pb.compiled is False:
+            raise ParameterError(
+                "simulate: method 'compiled_bdf' runs compiled C only; compiled=False asks for "
+                "CasADi's VM (use method='cvodes' for that)")
+        start = time.perf_counter()
+        kern = kernel(system, "ode", True)
+        kernel_time = time.perf_counter() - start
+        run = compiled_bdf_run(system, kern, pb.signal, pb.p, pb.x0, pb.t0, pb.t1, pb.t_eval,
+                               pb.rtol, pb.atol, pb.max_step, pb.progress)
+        values = observe_at(kern, pb.signal, pb.p, run.t, run.x, None)
+        stats = {"method": self.name, "form": "ode", **kern.describe(),
+                 "linear_solver": "dense LU (LAPACK)", **run.stats,
+                 "kernel_time": kernel_time}
+        return Trajectory(run.t, run.x, values, stats)
+
+
 METHODS: dict[str, Integrator] = {
     m.name: m for m in (
         ScipyIntegrator("BDF", implicit=True),
@@ -231,11 +263,12 @@ METHODS: dict[str, Integrator] = {
         ScipyIntegrator("RK23", implicit=False),
         SundialsIntegrator("cvodes"),
         SundialsIntegrator("idas"),
+        CompiledIntegrator(),
     )
 }
 """Every integration method by the name :func:`~bearingsim.simulation.simulate` takes."""
 
-BACKENDS: dict[str, str] = {"scipy": "BDF", "casadi": "cvodes"}
+BACKENDS: dict[str, str] = {"scipy": "BDF", "casadi": "cvodes", "compiled": "compiled_bdf"}
 """Integrator families and their default methods."""
 
 

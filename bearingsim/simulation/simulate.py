@@ -106,9 +106,12 @@ def simulate(
     method : str, optional
         Backend ``"scipy"``: ``"BDF"`` (the default), ``"Radau"``, ``"LSODA"`` (these with the
         exact sparse Jacobian), ``"RK45"``, ``"DOP853"``, ``"RK23"``; backend ``"casadi"``:
-        ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case).
-    backend : {"scipy", "casadi"}, optional
-        Integrator family; by default the one ``method`` belongs to. A method of the other
+        ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case); backend
+        ``"compiled"``: ``"compiled_bdf"``, a variable-order BDF whose step loop is C calling
+        the compiled kernels directly (:mod:`~bearingsim.simulation.compiled_bdf`; dense LU,
+        for models up to a few hundred states; needs a C compiler).
+    backend : {"scipy", "casadi", "compiled"}, optional
+        Integrator family; by default the one ``method`` belongs to. A method of another
         family raises :class:`~bearingsim.errors.ParameterError`.
     rtol, atol : float
         Relative tolerance in (0, 1] and absolute tolerance > 0.
@@ -128,6 +131,8 @@ def simulate(
         one: a few percent more work (each call restarts BDF), results that agree with one
         call's to the accuracy of the run.
     compiled : bool or "auto"
+        Backend ``"compiled"``: ``True`` or ``"auto"`` (the kernel is compiled now if it is not
+        cached; ``False`` raises :class:`~bearingsim.errors.ParameterError`).
         Backend ``"casadi"``: evaluate the right-hand side (or DAE residual) and its exact
         Jacobian as generated C (``True``: compiling now if needed; raises
         :class:`~bearingsim.simulation.compile.CompileError` when impossible), on CasADi's VM

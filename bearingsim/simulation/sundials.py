@@ -72,7 +72,7 @@ from bearingsim.simulation.ordering import fill_reducing_order
 from bearingsim.simulation.progress import DELAY, progress_bar
 
 __all__ = ["LINEAR_SOLVERS", "SundialsRun", "choose_linear_solver", "clear_integrator_cache",
-           "sundials_run"]
+           "observe_at", "sundials_run"]
 
 LINEAR_SOLVERS = ("lapacklu", "mumps", "csparse", "qr", "lapackqr")
 """CasADi linear solver plugins for CVODES and IDAS (``linear_solver``): dense LAPACK LU and QR,
@@ -498,7 +498,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         xs = np.hstack([np.asarray(x0, dtype=float)[:, None], xs])
         if zs is not None:
             zs = np.hstack([np.asarray(z0, dtype=float)[:, None], zs])
-    values = _observe(kernel, signal, p, ts, xs, zs)
+    values = observe_at(kernel, signal, p, ts, xs, zs)
     stats = _stats(method, kernel, linear_solver, setup_time, cached, totals)
     stats["chunks"] = calls
     stats["state_order"] = "system" if built.order is None else "minimum degree"
@@ -530,8 +530,8 @@ def _interrupts() -> Iterator[threading.Event]:
         signal.signal(signal.SIGINT, previous)
 
 
-def _observe(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,
-             xs: np.ndarray, zs: np.ndarray | None) -> np.ndarray:
+def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,
+               xs: np.ndarray, zs: np.ndarray | None) -> np.ndarray:
     """Every observed variable at the output times (the kernel's backend, one mapped call)."""
     n = ts.size
     us = np.asarray(signal.u.map(n)(ts[None, :], np.repeat(signal.q[:, None], n, axis=1)),

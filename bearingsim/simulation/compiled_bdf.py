@@ -1,0 +1,231 @@
+"""A BDF integrator in C that calls the compiled kernels directly: ``method="compiled_bdf"``.
+
+CVODES and IDAS evaluate the compiled kernels through CasADi, whose integrator interface costs
+as much per step as the kernels themselves on the ball-level models (``docs/benchmarks.md``,
+section "SUNDIALS on compiled kernels"). This integrator is the step loop in C
+(``c/bdf.c``): scipy's variable-order BDF (numerical differentiation formulas, orders 1-5) with
+CVODES' reuse of the Newton matrix's LU while the step size changes little, calling the kernel
+library's ``ode`` and ``jac_ode`` through function pointers and LAPACK's dense LU (scipy's
+``cython_lapack``, the same OpenBLAS). The inputs ``u(t, q)`` are generated C in the
+integrator's library (compiled once per input structure and cached like the kernels).
+
+Dense LU only: it suits models up to a few hundred states (the deep-groove ball levels); the
+nested bearing runs faster on CVODES with its sparse LU. It needs a C compiler; without one it
+raises :class:`~bearingsim.simulation.compile.CompileError` (``method="cvodes"`` falls back to
+CasADi's VM).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import threading
+import time
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import scipy.linalg.cython_lapack as cython_lapack
+
+from bearingsim.assembler.system import System
+from bearingsim.errors import SimulationError
+from bearingsim.simulation.compile import (
+    CompileError,
+    compile_source,
+    generate_source,
+    library_path,
+)
+from bearingsim.simulation.diagnostics import diverged
+from bearingsim.simulation.inputs import InputSignal
+from bearingsim.simulation.kernels import COMPILED, Kernel
+from bearingsim.simulation.progress import progress_bar
+
+__all__ = ["DRIVER_SOURCE", "CompiledRun", "compiled_bdf_run"]
+
+DRIVER_SOURCE = Path(__file__).with_name("c") / "bdf.c"
+"""The integrator's C source."""
+
+FLAGS = ("-O2",)
+"""Compiler flags of the integrator library (a small file: -O2 costs nothing to speak of)."""
+
+STATUS = {
+    1: "the step size fell below 10 ulp of t (a discontinuity or a blow-up here)",
+    2: "the Newton matrix I - c J is singular",
+    3: "the model returned non-finite values",
+    4: "a model function reported an error",
+}
+"""Failure codes of ``bsm_bdf_advance`` (``c/bdf.c``)."""
+
+STAT_NAMES = ("nsteps", "nfevals", "njevals", "nlinsetups", "netfails", "nncfails")
+"""The integrator's counts, in the order of ``bsm_bdf_stats``."""
+
+OUTPUTS_PER_CALL = 64
+"""Output times per call of the C loop: between calls the progress bar moves and Ctrl-C is
+seen."""
+
+_LOCK = threading.Lock()
+
+
+@dataclass
+class CompiledRun:
+    """States at the output times and the run's statistics."""
+
+    t: np.ndarray
+    x: np.ndarray
+    stats: dict
+
+
+def _lapack(name: str) -> int:
+    """Address of LAPACK routine ``name`` as scipy exports it to C."""
+    capsule = cython_lapack.__pyx_capi__[name]
+    get_name = ctypes.pythonapi.PyCapsule_GetName
+    get_name.restype, get_name.argtypes = ctypes.c_char_p, [ctypes.py_object]
+    get_pointer = ctypes.pythonapi.PyCapsule_GetPointer
+    get_pointer.restype = ctypes.c_void_p
+    get_pointer.argtypes = [ctypes.py_object, ctypes.c_char_p]
+    return get_pointer(capsule, get_name(capsule))
+
+
+def _signal_function(signal: InputSignal) -> ca.Function:
+    """``u(t, q)`` under the name the integrator calls."""
+    sym = signal.u.sx_in()
+    return ca.Function("bsm_signal", sym, signal.u.call(sym))
+
+
+@cache
+def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
+    """The integrator library with the input signal's C (compiled once per signal
+    structure, cached on disk by its source)."""
+    units = [DRIVER_SOURCE.read_text(), signal_source]
+    lib = library_path("\n".join(units), flags=FLAGS, cache_dir=cache_dir, prefix="bsm_bdf")
+    if not lib.exists():
+        compile_source(units, lib, flags=FLAGS)
+    dll = ctypes.CDLL(str(lib))
+    p, i, ll, d = ctypes.c_void_p, ctypes.c_int, ctypes.c_longlong, ctypes.c_double
+    dp = ctypes.POINTER(ctypes.c_double)
+    dll.bsm_bdf_new.restype = p
+    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, p, p, ll, p, p, dp, dp, ll, ll, ll, ll,
+                                d, d, d, d, d, dp]
+    dll.bsm_bdf_start.argtypes = [p]
+    dll.bsm_bdf_advance.argtypes = [p, i, dp, dp, ctypes.POINTER(i)]
+    dll.bsm_bdf_free.argtypes = [p]
+    dll.bsm_bdf_time.restype = d
+    dll.bsm_bdf_time.argtypes = [p]
+    dll.bsm_bdf_state.argtypes = [p, dp]
+    dll.bsm_bdf_stats.argtypes = [p, ctypes.POINTER(ll)]
+    return dll
+
+
+def _address(dll: ctypes.CDLL, name: str) -> int:
+    return ctypes.cast(getattr(dll, name), ctypes.c_void_p).value
+
+
+def _pointer(a: np.ndarray):
+    return a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+
+
+def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.ndarray,
+                     x0: np.ndarray, t0: float, t1: float, t_out: np.ndarray, rtol: float,
+                     atol: float, max_step: float = np.inf, progress: bool | None = False,
+                     cache_dir: str | Path | None = None) -> CompiledRun:
+    """Integrate ``x' = ode(t, x, u(t), p)`` from ``t0`` to ``t1`` in C.
+
+    Parameters
+    ----------
+    system : System
+        The system (names for messages).
+    kern : Kernel
+        Its compiled ``ode`` kernel (:func:`~bearingsim.simulation.kernels.kernel`).
+    signal : InputSignal
+        The inputs.
+    p : numpy.ndarray
+        Parameters.
+    x0 : numpy.ndarray
+        Start state at ``t0``.
+    t0, t1 : float
+        Start and end time [s].
+    t_out : numpy.ndarray
+        Output times [s], increasing, in ``[t0, t1]``.
+    rtol, atol : float
+        Tolerances of the local error (weighted RMS norm, as scipy's BDF).
+    max_step : float
+        Largest step [s].
+    progress : bool or None
+        Progress bar (:mod:`~bearingsim.simulation.progress`).
+    cache_dir : path, optional
+        Library cache (default: the kernels').
+
+    Returns
+    -------
+    CompiledRun
+
+    Raises
+    ------
+    CompileError
+        If the kernel is not compiled C of the ODE form (no C compiler, or a DAE kernel).
+    SimulationError
+        If the integration fails (the time reached, why, and the states that grew most).
+    """
+    if kern.backend != COMPILED or kern.form != "ode":
+        raise CompileError(
+            f"method 'compiled_bdf' needs the compiled ODE kernel of {system.name!r}; got the "
+            f"{kern.form} kernel on the {kern.backend} ({kern.reason}); use method='cvodes'")
+    n = system.n_states
+    function = kern.function
+    jacobian = function.jacobian()
+    sig = _signal_function(signal)
+    signal_source = generate_source([sig], "bsm_signal") if sig.size1_out(0) else ""
+    with _LOCK:
+        dll = _driver(signal_source, None if cache_dir is None else str(cache_dir))
+    kernel_dll = ctypes.CDLL(str(kern.library))
+    sparsity = jacobian.sparsity_out(1)
+    colind = np.asarray(sparsity.colind(), dtype=np.int64)
+    row = np.asarray(sparsity.row(), dtype=np.int64)
+    fns = (function, jacobian, sig)
+    sizes = [max(int(getattr(f, name)()) for f in fns)
+             for name in ("sz_arg", "sz_res", "sz_iw", "sz_w")]
+    p = np.ascontiguousarray(p, dtype=float)
+    q = np.ascontiguousarray(signal.q, dtype=float)
+    x0 = np.ascontiguousarray(x0, dtype=float)
+    signal_fn = _address(dll, "bsm_signal") if signal_source else None
+    solver = dll.bsm_bdf_new(
+        n, sig.size1_out(0), p.size, q.size, _address(kernel_dll, function.name()),
+        _address(kernel_dll, jacobian.name()), signal_fn, colind.ctypes.data,
+        row.ctypes.data, int(sparsity.nnz()), _lapack("dgetrf"), _lapack("dgetrs"),
+        _pointer(p), _pointer(q), *sizes, float(rtol), float(atol),
+        float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0), float(t1),
+        _pointer(x0))
+    if not solver:
+        raise MemoryError("compiled_bdf: out of memory allocating the integrator")
+    bar = progress_bar(t0, t1, progress)
+    xs = np.empty((t_out.size, n))
+    stats = np.zeros(len(STAT_NAMES), dtype=np.int64)
+    start = time.perf_counter()
+    try:
+        status = dll.bsm_bdf_start(solver)
+        done = 0
+        while status == 0 and done < t_out.size:
+            chunk = np.ascontiguousarray(t_out[done:done + OUTPUTS_PER_CALL])
+            written = ctypes.c_int(0)
+            status = dll.bsm_bdf_advance(solver, chunk.size, _pointer(chunk),
+                                         _pointer(xs[done:]), ctypes.byref(written))
+            if bar is not None and written.value:
+                bar.update(float(chunk[written.value - 1]) - (t0 if done == 0
+                                                              else float(t_out[done - 1])))
+            done += written.value
+        dll.bsm_bdf_stats(solver, stats.ctypes.data_as(ctypes.POINTER(ctypes.c_longlong)))
+        if status != 0:
+            reached = dll.bsm_bdf_time(solver)
+            state = np.empty(n)
+            dll.bsm_bdf_state(solver, _pointer(state))
+            raise SimulationError(
+                f"compiled_bdf failed at t = {reached:.6g} s: {STATUS.get(status, status)}; "
+                f"{diverged(system, state, x0)}")
+    finally:
+        dll.bsm_bdf_free(solver)
+        if bar is not None:
+            bar.close()
+    run_stats = {name: int(v) for name, v in zip(STAT_NAMES, stats, strict=True)}
+    run_stats["run_time"] = time.perf_counter() - start
+    return CompiledRun(t_out, xs.T.copy(), run_stats)
