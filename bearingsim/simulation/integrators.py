@@ -5,7 +5,7 @@ state, time span, output times, tolerances) and returns a :class:`Trajectory`. C
 subclasses:
 
 1. set ``name`` (the ``method`` a user passes to :func:`~bearingsim.simulation.simulate`) and
-   ``backend`` (``"scipy"`` or ``"casadi"``);
+   ``backend`` (``"scipy"``, ``"casadi"`` or ``"compiled"``);
 2. implement :meth:`Integrator.run`: the states at every output time in ``problem.t_eval``
    (``t_eval[0]`` may equal ``t0``), and, where the integrator computes them itself, the observed
    variables at those times (else ``None``; :func:`~bearingsim.simulation.simulate` evaluates

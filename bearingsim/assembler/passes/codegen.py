@@ -157,9 +157,9 @@ def mapped_ode_functions(system: System) -> dict[str, ca.Function] | None:
 
     The right-hand side, its Jacobians and the observed variables are the mapped kernel's
     (:attr:`System.mapped`), the outputs a selection of the observed variables. Not included:
-    the outputs' Jacobians (``out_jac_x``, ``out_jac_u``; evaluated once per linearization),
-    whose derivation through the mapped observe function generates ~30x the C of the others
-    (5.6 MB on the 6304 massive-ball level, every variable an output).
+    the outputs' Jacobians (``out_jac_x``, ``out_jac_u``; evaluated once per linearization):
+    differentiated through the mapped observe function, with every variable an output (the
+    default), they generate several times the C of all the others together.
     """
     per_ball = system.mapped.find("ode") if system.mapped is not None else None
     if per_ball is None:
