@@ -1,6 +1,7 @@
-"""SUNDIALS runs in a user's process: Ctrl-C (SIGINT) during a run raises KeyboardInterrupt
-promptly (CasADi reports it as a failed evaluation, which used to start the interval-by-interval
-failure diagnosis of a 200 s run, i.e. a hang) and leaves no partial output file; a run on MUMPS
+"""SUNDIALS and compiled BDF runs in a user's process: Ctrl-C (SIGINT) during a run raises
+KeyboardInterrupt promptly (CasADi reports it as a failed evaluation, which used to start the
+interval-by-interval failure diagnosis of a 200 s run, i.e. a hang; the C loop of compiled_bdf
+returns to Python every few thousand steps) and leaves no partial output file; a run on MUMPS
 leaves standard output clean."""
 
 from __future__ import annotations
@@ -44,6 +45,48 @@ def test_ctrl_c_stops_a_cvodes_run_and_writes_nothing(tmp_path, bar):
     assert time.perf_counter() - sent < 30.0
     assert proc.returncode != 0
     assert "KeyboardInterrupt: CVODES run interrupted" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+BDF_SCRIPT = """
+import sys
+from bearingsim.assembler import assemble
+from bearingsim.assemblies import deep_groove_ball_bearing
+from bearingsim.simulation import simulate
+from bearingsim.simulation.kernels import kernel
+
+system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", n_slices=0))
+kernel(system, "ode", True)  # compiled before the signal
+print("running", flush=True)
+res = simulate(system, 200.0, inputs={"shaft_speed": 1500.0, "load.Fx": 2000.0},
+               method="compiled_bdf", n_points=3, progress=False)
+res.to_csv(sys.argv[1] + "/result.csv")
+print("finished", flush=True)
+"""
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="SIGINT to a child process")
+def test_ctrl_c_stops_a_compiled_bdf_run_with_few_outputs(tmp_path):
+    """The C loop returns to Python every STEPS_PER_CALL steps, however far apart the output
+    times are (here three over 200 s): Ctrl-C is seen within one call."""
+    from bearingsim.simulation.compile import c_compiler
+
+    if c_compiler() is None:
+        pytest.skip("needs a C compiler")
+    proc = subprocess.Popen([sys.executable, "-c", BDF_SCRIPT, str(tmp_path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "running"
+    time.sleep(1.5)
+    sent = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    try:
+        _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("the run did not stop within 60 s of Ctrl-C")
+    assert time.perf_counter() - sent < 10.0
+    assert proc.returncode != 0
+    assert "KeyboardInterrupt" in err
     assert list(tmp_path.iterdir()) == []
 
 

@@ -452,17 +452,19 @@ static void interpolate(const bsm_bdf *b, double t, double *out) {
 }
 
 /* Integrate until every output time t_out[0..n_out-1] (increasing, not before the start of
- * the last step, at most t_bound) is reached; x_out[k*n + i] = state i at t_out[k]. Returns a
- * status code; *n_done: the outputs written. */
-int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, int *n_done) {
-  int n = b->n, k = 0, status;
+ * the last step, at most t_bound) is reached, or for at most max_steps steps; x_out[k*n + i] =
+ * state i at t_out[k]. Returns a status code; *n_done: the outputs written (fewer than n_out
+ * when the steps ran out: call again with the rest). */
+int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, int max_steps,
+                    int *n_done) {
+  int n = b->n, k = 0, steps = 0, status;
   *n_done = 0;
   for (;;) {
     while (k < n_out && t_out[k] <= b->t) {
       interpolate(b, t_out[k], x_out + (size_t)k * n);
       *n_done = ++k;
     }
-    if (k == n_out) return BSM_OK;
+    if (k == n_out || steps++ == max_steps) return BSM_OK;
     if ((status = step(b))) return status;
   }
 }
