@@ -470,8 +470,6 @@ int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, i
 }
 
 double bsm_bdf_time(const bsm_bdf *b) { return b->t; }
-double bsm_bdf_step_size(const bsm_bdf *b) { return b->h_abs; }
-int bsm_bdf_order(const bsm_bdf *b) { return b->order; }
 void bsm_bdf_state(const bsm_bdf *b, double *x) { memcpy(x, b->D, sizeof(double) * b->n); }
 void bsm_bdf_stats(const bsm_bdf *b, long long *out) {
   memcpy(out, b->stats, sizeof(long long) * ST_N);
