@@ -87,6 +87,10 @@ def _lapack(name: str) -> int:
     return get_pointer(capsule, get_name(capsule))
 
 
+_LAPACK = {name: _lapack(name) for name in ("dgetrf", "dgetrs")}
+"""The dense LU and its solve."""
+
+
 def _signal_function(signal: InputSignal) -> ca.Function:
     """``u(t, q)`` under the name the integrator calls."""
     sym = signal.u.sx_in()
@@ -123,6 +127,53 @@ def _address(dll: ctypes.CDLL, name: str) -> int:
 
 def _pointer(a: np.ndarray):
     return a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+
+
+@dataclass(frozen=True)
+class _Prepared:
+    """What a run needs of a kernel library and an input structure, found once: the
+    integrator library, the functions' addresses, the Jacobian's pattern and work sizes."""
+
+    dll: ctypes.CDLL
+    kernel_dll: ctypes.CDLL
+    ode: int
+    jac: int
+    signal: int | None
+    n_u: int
+    colind: np.ndarray
+    row: np.ndarray
+    sizes: tuple[int, int, int, int]
+
+
+_PREPARED: dict[tuple, _Prepared] = {}
+"""By (kernel library, input structure, cache folder)."""
+
+
+def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) -> _Prepared:
+    """The set-up of runs on ``kern`` with inputs of ``signal``'s structure, once per process
+    (repeated short runs and sweeps pay only the integration)."""
+    key = (str(kern.library), signal.key, None if cache_dir is None else str(cache_dir))
+    with _LOCK:
+        found = _PREPARED.get(key)
+        if found is not None:
+            return found
+        function = kern.function
+        jacobian = function.jacobian()
+        sig = _signal_function(signal)
+        n_u = sig.size1_out(0)
+        dll = _driver(generate_source([sig], "bsm_signal") if n_u else "", key[2])
+        kernel_dll = ctypes.CDLL(str(kern.library))
+        sparsity = jacobian.sparsity_out(1)
+        fns = (function, jacobian, sig)
+        found = _PREPARED[key] = _Prepared(
+            dll, kernel_dll, _address(kernel_dll, function.name()),
+            _address(kernel_dll, jacobian.name()),
+            _address(dll, "bsm_signal") if n_u else None, n_u,
+            np.asarray(sparsity.colind(), dtype=np.int64),
+            np.asarray(sparsity.row(), dtype=np.int64),
+            tuple(max(int(getattr(f, name)()) for f in fns)
+                  for name in ("sz_arg", "sz_res", "sz_iw", "sz_w")))
+        return found
 
 
 def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.ndarray,
@@ -172,28 +223,15 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
             f"method 'compiled_bdf' needs the compiled ODE kernel of {system.name!r}; got the "
             f"{kern.form} kernel on the {kern.backend} ({kern.reason}); use method='cvodes'")
     n = system.n_states
-    function = kern.function
-    jacobian = function.jacobian()
-    sig = _signal_function(signal)
-    signal_source = generate_source([sig], "bsm_signal") if sig.size1_out(0) else ""
-    with _LOCK:
-        dll = _driver(signal_source, None if cache_dir is None else str(cache_dir))
-    kernel_dll = ctypes.CDLL(str(kern.library))
-    sparsity = jacobian.sparsity_out(1)
-    colind = np.asarray(sparsity.colind(), dtype=np.int64)
-    row = np.asarray(sparsity.row(), dtype=np.int64)
-    fns = (function, jacobian, sig)
-    sizes = [max(int(getattr(f, name)()) for f in fns)
-             for name in ("sz_arg", "sz_res", "sz_iw", "sz_w")]
+    prep = _prepare(kern, signal, cache_dir)
+    dll = prep.dll
     p = np.ascontiguousarray(p, dtype=float)
     q = np.ascontiguousarray(signal.q, dtype=float)
     x0 = np.ascontiguousarray(x0, dtype=float)
-    signal_fn = _address(dll, "bsm_signal") if signal_source else None
     solver = dll.bsm_bdf_new(
-        n, sig.size1_out(0), p.size, q.size, _address(kernel_dll, function.name()),
-        _address(kernel_dll, jacobian.name()), signal_fn, colind.ctypes.data,
-        row.ctypes.data, int(sparsity.nnz()), _lapack("dgetrf"), _lapack("dgetrs"),
-        _pointer(p), _pointer(q), *sizes, float(rtol), float(atol),
+        n, prep.n_u, p.size, q.size, prep.ode, prep.jac, prep.signal, prep.colind.ctypes.data,
+        prep.row.ctypes.data, prep.row.size, _LAPACK["dgetrf"], _LAPACK["dgetrs"],
+        _pointer(p), _pointer(q), *prep.sizes, float(rtol), float(atol),
         float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0), float(t1),
         _pointer(x0))
     if not solver:
@@ -218,11 +256,11 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
                 reached = now
         dll.bsm_bdf_stats(solver, stats.ctypes.data_as(ctypes.POINTER(ctypes.c_longlong)))
         if status != 0:
-            reached = dll.bsm_bdf_time(solver)
+            failed_at = dll.bsm_bdf_time(solver)
             state = np.empty(n)
             dll.bsm_bdf_state(solver, _pointer(state))
             raise SimulationError(
-                f"compiled_bdf failed at t = {reached:.6g} s: {STATUS.get(status, status)}; "
+                f"compiled_bdf failed at t = {failed_at:.6g} s: {STATUS.get(status, status)}; "
                 f"{diverged(system, state, x0)}")
     finally:
         dll.bsm_bdf_free(solver)
