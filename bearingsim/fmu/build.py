@@ -12,11 +12,15 @@ from pathlib import Path
 from bearingsim.errors import BearingsimError
 from bearingsim.files import atomic_path
 
-__all__ = ["BINARY_PLATFORMS", "FmuBuildError", "RUNTIME_FILES", "TEMPLATE_FILES",
+__all__ = ["BINARY_PLATFORMS", "FmuBuildError", "LU_FILES", "RUNTIME_FILES", "TEMPLATE_FILES",
            "compile_shared_library", "copy_templates", "fmi_header_dir", "write_archive"]
 
 RUNTIME_FILES = ("bsm_model.h", "bsm_eval.c", "bsm_solver.c")
 """The FMI-independent runtime of the C template, shared by every exported FMU."""
+
+LU_FILES = ("bsm_lu.h", "bsm_lu.c")
+"""The runtime's sparse LU, shared with the compiled BDF integrator
+(``bearingsim/simulation/c``)."""
 
 API_FILES = {"2.0": "fmi2_api.c", "3.0": "fmi3_api.c"}
 """The FMI API layer of the template, per FMI version."""
@@ -46,21 +50,24 @@ def fmi_header_dir() -> Path:
 
 
 def copy_templates(directory: Path, fmi_version: str = "2.0") -> list[str]:
-    """Copy the generic C template (runtime and the API layer of ``fmi_version``) and the FMI
-    headers into ``directory``.
+    """Copy the generic C template (runtime, its LU and the API layer of ``fmi_version``) and
+    the FMI headers into ``directory``.
 
     Returns
     -------
     list of str
         The copied file names.
     """
-    pkg = resources.files("bearingsim.fmu") / "templates"
+    templates = resources.files("bearingsim.fmu") / "templates"
+    shared = resources.files("bearingsim.simulation") / "c"
     files = (*RUNTIME_FILES, API_FILES[fmi_version])
     for name in files:
-        (directory / name).write_text((pkg / name).read_text())
+        (directory / name).write_text((templates / name).read_text())
+    for name in LU_FILES:
+        (directory / name).write_text((shared / name).read_text())
     for name in FMI_HEADERS[fmi_version]:
         shutil.copyfile(fmi_header_dir() / name, directory / name)
-    return [*files, *FMI_HEADERS[fmi_version]]
+    return [*files, *LU_FILES, *FMI_HEADERS[fmi_version]]
 
 
 def compile_shared_library(sources: list[Path], output: Path, include: Path,

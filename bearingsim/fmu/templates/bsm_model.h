@@ -9,6 +9,7 @@
 
 #include <stddef.h>
 
+#include "bsm_lu.h"
 #include "model_config.h"
 
 #define BSM_DIM(n) ((n) > 0 ? (n) : 1)
@@ -81,17 +82,6 @@ typedef struct {
     double jac_h;               /* step size of the LU factorisation of W [s] (0: none) */
 } BsmState;
 
-/* LU factors in compressed rows (bsm_lu_compress): entries l_start[i] .. l_start[i+1]-1 of
- * col/val are row i of L below the diagonal, u_start[i] .. u_start[i+1]-1 row i of U right of
- * it. */
-typedef struct {
-    int l_start[BSM_DIM(NX) + 1];
-    int u_start[BSM_DIM(NX) + 1];
-    int col[BSM_DIM(NX * NX)];
-    double val[BSM_DIM(NX * NX)];
-    double inv_diag[BSM_DIM(NX)];
-} BsmLu;
-
 typedef struct {
     BsmState s;
     /* cached evaluations at (s.time, s.x, s.u, s.p) */
@@ -121,7 +111,12 @@ typedef struct {
     double w_p[BSM_DIM(NP)];
     double w_h;                    /* step size of the factorisation in lu [s] (0: none) */
     double lu[BSM_DIM(NX * NX)];   /* LU factors of I/(h gamma) - J in the order bsm_lu_order */
-    BsmLu lu_c;                    /* the same, compressed for the solves */
+    /* the same, compressed for the solves (BsmLu, bsm_lu.h) */
+    int lu_l_start[BSM_DIM(NX) + 1];
+    int lu_u_start[BSM_DIM(NX) + 1];
+    int lu_col[BSM_DIM(NX * NX)];
+    double lu_val[BSM_DIM(NX * NX)];
+    double lu_inv_diag[BSM_DIM(NX)];
     int piv[BSM_DIM(NX)];
     int nzcol[BSM_DIM(NX)];
     double k[4][BSM_DIM(NX)];
@@ -173,9 +168,6 @@ BsmStatus bsm_deserialize(BsmInstance *m, unsigned int magic, const void *buffer
                           BsmState *s, const char *function);
 
 /* bsm_solver.c */
-int bsm_lu_factor(double *a, int n, int *piv, int *nzcol);
-void bsm_lu_compress(const double *a, int n, BsmLu *c);
-void bsm_lu_solve(const BsmLu *c, int n, const int *piv, double *b);
 BsmStatus bsm_do_step(BsmInstance *m, double h);
 
 #endif

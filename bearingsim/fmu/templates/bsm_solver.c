@@ -26,8 +26,9 @@
  * stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
  * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
  * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
- * set), so df/dt includes jac_u * du. The LU factorisation is a dense one with partial
- * pivoting that skips structural zeros, on W permuted by the fill-reducing order bsm_lu_order
+ * set), so df/dt includes jac_u * du. The LU factorisation (bsm_lu.c, shared with the
+ * compiled BDF integrator) is a dense one with partial pivoting that skips structural zeros,
+ * on W permuted by the fill-reducing order bsm_lu_order
  * (a minimum-degree order of the Jacobian's sparsity, computed at export); the solves use the
  * factors' nonzeros only (bsm_lu_compress). For the 75-state massive-ball 6304 bearing the
  * factors keep about 600 nonzeros of 5625.
@@ -86,92 +87,6 @@ static const double ros_gamma[ROS_STAGES] = {4.3586652150845900e-01, -4.35866521
                                              -4.1333337623388650e-01, 0.0};
 static const int ros_reuse = 1;
 #endif
-
-/* LU factorisation with partial pivoting, in place, row major, skipping the structural zeros
- * of each pivot row and column. nzcol: work of n ints. Returns 0 or 1 + the column at which
- * the matrix is singular. */
-int bsm_lu_factor(double *a, int n, int *piv, int *nzcol) {
-    int i, j, k, p, q, nnz;
-    for (k = 0; k < n; ++k) {
-        double big = 0.0, inv;
-        double *ak;
-        p = k;
-        for (i = k; i < n; ++i)
-            if (fabs(a[i * n + k]) > big) {
-                big = fabs(a[i * n + k]);
-                p = i;
-            }
-        piv[k] = p;
-        if (big == 0.0 || !isfinite(big)) return k + 1;
-        if (p != k)
-            for (j = 0; j < n; ++j) {
-                double tmp = a[k * n + j];
-                a[k * n + j] = a[p * n + j];
-                a[p * n + j] = tmp;
-            }
-        ak = a + k * n;
-        nnz = 0;
-        for (j = k + 1; j < n; ++j)
-            if (ak[j] != 0.0) nzcol[nnz++] = j;
-        inv = 1.0 / ak[k];
-        for (i = k + 1; i < n; ++i) {
-            double *ai = a + i * n;
-            double l = ai[k];
-            if (l == 0.0) continue;
-            l *= inv;
-            ai[k] = l;
-            for (q = 0; q < nnz; ++q) ai[nzcol[q]] -= l * ak[nzcol[q]];
-        }
-    }
-    return 0;
-}
-
-/* Copy the nonzeros of the LU factors a (from bsm_lu_factor) row by row into c: the strictly
- * lower part (unit diagonal implied), then the strictly upper part, and the inverse diagonal, so
- * that a solve costs the factors' nonzeros, not n^2. */
-void bsm_lu_compress(const double *a, int n, BsmLu *c) {
-    int i, j, k = 0;
-    for (i = 0; i < n; ++i) {
-        c->l_start[i] = k;
-        for (j = 0; j < i; ++j)
-            if (a[i * n + j] != 0.0) {
-                c->col[k] = j;
-                c->val[k++] = a[i * n + j];
-            }
-    }
-    c->l_start[n] = k;
-    for (i = 0; i < n; ++i) {
-        c->u_start[i] = k;
-        for (j = i + 1; j < n; ++j)
-            if (a[i * n + j] != 0.0) {
-                c->col[k] = j;
-                c->val[k++] = a[i * n + j];
-            }
-        c->inv_diag[i] = 1.0 / a[i * n + i];
-    }
-    c->u_start[n] = k;
-}
-
-/* Solve A x = b in place with the row interchanges piv of bsm_lu_factor and the compressed
- * factors. */
-void bsm_lu_solve(const BsmLu *c, int n, const int *piv, double *b) {
-    int i, k;
-    for (i = 0; i < n; ++i) {
-        double tmp = b[piv[i]];
-        b[piv[i]] = b[i];
-        b[i] = tmp;
-    }
-    for (i = 1; i < n; ++i) {
-        double s = b[i];
-        for (k = c->l_start[i]; k < c->l_start[i + 1]; ++k) s -= c->val[k] * b[c->col[k]];
-        b[i] = s;
-    }
-    for (i = n - 1; i >= 0; --i) {
-        double s = b[i];
-        for (k = c->u_start[i]; k < c->u_start[i + 1]; ++k) s -= c->val[k] * b[c->col[k]];
-        b[i] = s * c->inv_diag[i];
-    }
-}
 
 static void inputs_at(BsmInstance *m, double t) {
     int i;
@@ -238,6 +153,12 @@ static int new_jacobian(BsmInstance *m, double t, const double *x) {
     return 1;
 }
 
+/* The compressed LU factors of the instance. */
+static BsmLu lu_factors(BsmInstance *m) {
+    BsmLu c = {m->lu_l_start, m->lu_u_start, m->lu_col, m->lu_val, m->lu_inv_diag};
+    return c;
+}
+
 /* Factorise W = I/(h gamma) - J in the order bsm_lu_order. Returns 1 if not singular. */
 static int factorise(BsmInstance *m, double h) {
     int i, j;
@@ -252,7 +173,8 @@ static int factorise(BsmInstance *m, double h) {
         lu[i] += 1.0 / (h * ros_gamma_diag);
     }
     if (bsm_lu_factor(m->lu, NX, m->piv, m->nzcol) != 0) return 0;
-    bsm_lu_compress(m->lu, NX, &m->lu_c);
+    BsmLu c = lu_factors(m);
+    bsm_lu_compress(m->lu, NX, &c);
     m->w_h = h;
     m->s.jac_h = h;
     return 1;
@@ -279,7 +201,8 @@ static void solve(BsmInstance *m, double *b) {
     int i;
     const int *o = bsm_lu_order;
     for (i = 0; i < NX; ++i) m->xs[i] = b[o[i]];
-    bsm_lu_solve(&m->lu_c, NX, m->piv, m->xs);
+    BsmLu c = lu_factors(m);
+    bsm_lu_solve(&c, NX, m->piv, m->xs);
     for (i = 0; i < NX; ++i) b[o[i]] = m->xs[i];
 }
 
