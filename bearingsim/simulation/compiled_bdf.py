@@ -5,13 +5,14 @@ as much per step as the kernels themselves on the ball-level models (``docs/benc
 section "SUNDIALS on compiled kernels"). This integrator is the step loop in C
 (``c/bdf.c``): scipy's variable-order BDF (numerical differentiation formulas, orders 1-5) with
 CVODES' reuse of the Newton matrix's LU while the step size changes little, calling the kernel
-library's ``ode`` and ``jac_ode`` through function pointers and LAPACK's dense LU (scipy's
-``cython_lapack``, the same OpenBLAS). The inputs ``u(t, q)`` are generated C in the
-integrator's library (compiled once per input structure and cached like the kernels).
+library's ``ode`` and ``jac_ode`` through function pointers. The Newton matrix is factorised
+by ``c/bsm_lu.c`` (shared with the FMU's stepper) with the states in a fill-reducing order
+(:func:`~bearingsim.simulation.ordering.fill_reducing_order`): partial pivoting that skips
+structural zeros, solves on the factors' nonzeros. The inputs ``u(t, q)`` are generated C in
+the integrator's library (compiled once per input structure and cached like the kernels).
 
-Dense LU only: it suits models up to a few hundred states (the deep-groove ball levels); the
-nested bearing runs faster on CVODES with its sparse LU. It needs a C compiler; without one it
-raises :class:`~bearingsim.simulation.compile.CompileError` (``method="cvodes"`` falls back to
+It needs a C compiler; without one it raises
+:class:`~bearingsim.simulation.compile.CompileError` (``method="cvodes"`` falls back to
 CasADi's VM).
 """
 
@@ -26,7 +27,6 @@ from pathlib import Path
 
 import casadi as ca
 import numpy as np
-import scipy.linalg.cython_lapack as cython_lapack
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
@@ -39,14 +39,18 @@ from bearingsim.simulation.compile import (
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import COMPILED, Kernel
+from bearingsim.simulation.ordering import fill_reducing_order
 from bearingsim.simulation.progress import progress_bar
 
 __all__ = ["DRIVER_SOURCE", "CompiledRun", "compiled_bdf_run"]
 
-DRIVER_SOURCE = Path(__file__).with_name("c") / "bdf.c"
-"""The integrator's C source."""
+C_DIR = Path(__file__).with_name("c")
+"""The integrator's C sources: ``bdf.c`` and the LU ``bsm_lu.c`` with its header."""
 
-FLAGS = ("-O2",)
+DRIVER_SOURCE = C_DIR / "bdf.c"
+"""The integrator's step loop."""
+
+FLAGS = ("-O2", f"-I{C_DIR}")
 """Compiler flags of the integrator library (a small file: -O2 costs nothing to speak of)."""
 
 STATUS = {
@@ -76,21 +80,6 @@ class CompiledRun:
     stats: dict
 
 
-def _lapack(name: str) -> int:
-    """Address of LAPACK routine ``name`` as scipy exports it to C."""
-    capsule = cython_lapack.__pyx_capi__[name]
-    get_name = ctypes.pythonapi.PyCapsule_GetName
-    get_name.restype, get_name.argtypes = ctypes.c_char_p, [ctypes.py_object]
-    get_pointer = ctypes.pythonapi.PyCapsule_GetPointer
-    get_pointer.restype = ctypes.c_void_p
-    get_pointer.argtypes = [ctypes.py_object, ctypes.c_char_p]
-    return get_pointer(capsule, get_name(capsule))
-
-
-_LAPACK = {name: _lapack(name) for name in ("dgetrf", "dgetrs")}
-"""The dense LU and its solve."""
-
-
 def _signal_function(signal: InputSignal) -> ca.Function:
     """``u(t, q)`` under the name the integrator calls."""
     sym = signal.u.sx_in()
@@ -101,15 +90,17 @@ def _signal_function(signal: InputSignal) -> ca.Function:
 def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
     """The integrator library with the input signal's C (compiled once per signal
     structure, cached on disk by its source)."""
-    units = [DRIVER_SOURCE.read_text(), signal_source]
-    lib = library_path("\n".join(units), flags=FLAGS, cache_dir=cache_dir, prefix="bsm_bdf")
+    units = [DRIVER_SOURCE.read_text(), (C_DIR / "bsm_lu.c").read_text(), signal_source]
+    header = (C_DIR / "bsm_lu.h").read_text()
+    lib = library_path("\n".join([*units, header]), flags=FLAGS, cache_dir=cache_dir,
+                       prefix="bsm_bdf")
     if not lib.exists():
         compile_source(units, lib, flags=FLAGS)
     dll = ctypes.CDLL(str(lib))
     p, i, ll, d = ctypes.c_void_p, ctypes.c_int, ctypes.c_longlong, ctypes.c_double
     dp = ctypes.POINTER(ctypes.c_double)
     dll.bsm_bdf_new.restype = p
-    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, p, p, ll, p, p, dp, dp, ll, ll, ll, ll,
+    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, p, p, ll, p, dp, dp, ll, ll, ll, ll,
                                 d, d, d, d, d, dp]
     dll.bsm_bdf_start.argtypes = [p]
     dll.bsm_bdf_advance.argtypes = [p, i, dp, dp, i, ctypes.POINTER(i)]
@@ -132,7 +123,8 @@ def _pointer(a: np.ndarray):
 @dataclass(frozen=True)
 class _Prepared:
     """What a run needs of a kernel library and an input structure, found once: the
-    integrator library, the functions' addresses, the Jacobian's pattern and work sizes."""
+    integrator library, the functions' addresses, the Jacobian's pattern, the LU order of the
+    states and the work sizes."""
 
     dll: ctypes.CDLL
     kernel_dll: ctypes.CDLL
@@ -142,6 +134,7 @@ class _Prepared:
     n_u: int
     colind: np.ndarray
     row: np.ndarray
+    order: np.ndarray
     sizes: tuple[int, int, int, int]
 
 
@@ -171,6 +164,7 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
             _address(dll, "bsm_signal") if n_u else None, n_u,
             np.asarray(sparsity.colind(), dtype=np.int64),
             np.asarray(sparsity.row(), dtype=np.int64),
+            np.asarray(fill_reducing_order(sparsity), dtype=np.int32),
             tuple(max(int(getattr(f, name)()) for f in fns)
                   for name in ("sz_arg", "sz_res", "sz_iw", "sz_w")))
         return found
@@ -230,7 +224,7 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
     x0 = np.ascontiguousarray(x0, dtype=float)
     solver = dll.bsm_bdf_new(
         n, prep.n_u, p.size, q.size, prep.ode, prep.jac, prep.signal, prep.colind.ctypes.data,
-        prep.row.ctypes.data, prep.row.size, _LAPACK["dgetrf"], _LAPACK["dgetrs"],
+        prep.row.ctypes.data, prep.row.size, prep.order.ctypes.data,
         _pointer(p), _pointer(q), *prep.sizes, float(rtol), float(atol),
         float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0), float(t1),
         _pointer(x0))

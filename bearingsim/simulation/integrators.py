@@ -248,7 +248,7 @@ class CompiledIntegrator(Integrator):
                                pb.rtol, pb.atol, pb.max_step, pb.progress)
         values = observe_at(kern, pb.signal, pb.p, run.t, run.x, None)
         stats = {"method": self.name, "form": "ode", **kern.describe(),
-                 "linear_solver": "dense LU (LAPACK)", **run.stats,
+                 "linear_solver": "sparse-skipping LU, fill-reducing order", **run.stats,
                  "kernel_time": kernel_time}
         return Trajectory(run.t, run.x, values, stats)
 

@@ -108,8 +108,9 @@ def simulate(
         exact sparse Jacobian), ``"RK45"``, ``"DOP853"``, ``"RK23"``; backend ``"casadi"``:
         ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case); backend
         ``"compiled"``: ``"compiled_bdf"``, a variable-order BDF whose step loop is C calling
-        the compiled kernels directly (:mod:`~bearingsim.simulation.compiled_bdf`; dense LU,
-        for models up to a few hundred states; needs a C compiler).
+        the compiled kernels directly (:mod:`~bearingsim.simulation.compiled_bdf`; an LU that
+        skips the Jacobian's structural zeros, in a fill-reducing order of the states; needs a
+        C compiler).
     backend : {"scipy", "casadi", "compiled"}, optional
         Integrator family; by default the one ``method`` belongs to. A method of another
         family raises :class:`~bearingsim.errors.ParameterError`.

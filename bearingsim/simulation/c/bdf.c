@@ -19,18 +19,20 @@
  *
  * The model functions are CasADi-generated C, called through pointers: ode(t, x, u, p) ->
  * xdot, jac(t, x, u, p, out) -> (d/dt, d/dx, d/du, d/dp) of which d/dx (compressed columns) is
- * used, and the input signal signal(t, q) -> u. The dense LU is LAPACK's (dgetrf/dgetrs,
- * passed in as pointers).
+ * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's, on the
+ * unknowns in a fill-reducing order (bearingsim.simulation.ordering, passed in): partial
+ * pivoting that skips structural zeros and solves on the factors' nonzeros, a few hundred
+ * operations for a ball-level model whose dense LU (LAPACK) costs more than its right-hand
+ * side.
  */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "bsm_lu.h"
+
 typedef long long bsm_int;
 typedef int (*bsm_fn)(const double **arg, double **res, bsm_int *iw, double *w, int mem);
-typedef void (*getrf_fn)(int *m, int *n, double *a, int *lda, int *ipiv, int *info);
-typedef void (*getrs_fn)(char *trans, int *n, int *nrhs, double *a, int *lda, int *ipiv,
-                         double *b, int *ldb, int *info);
 
 #define MAX_ORDER 5
 #define NEWTON_MAXITER 4
@@ -52,16 +54,17 @@ typedef struct {
   int n, n_u, n_p, n_q;
   bsm_fn ode, jac, signal;
   const bsm_int *jac_colind, *jac_row;
-  getrf_fn getrf;
-  getrs_fn getrs;
+  bsm_int jac_nnz;
+  int *lu_order, *lu_position; /* unknown lu_order[i] is row i of the LU; and inverse */
   double *p, *q, *u;
   double rtol, atol, max_step, t_bound;
   const double **arg;
   double **res;
   bsm_int *iw;
   double *w;
-  double *jac_nz, *J, *LU, *D;
-  int *ipiv;
+  double *jac_nz, *LU, *D, *permuted;
+  int *piv, *nzcol;
+  BsmLu factors;
   double *y_predict, *psi, *d, *y, *f, *dy, *scale, *tmp;
   double t, h_abs, c_lu, crate, safety, h_last;
   int order, n_equal_steps, lu_valid, jac_current, jac_age, order_last, adapt_pending;
@@ -105,9 +108,8 @@ static int eval_f(bsm_bdf *b, double t, const double *x, double *out) {
   return BSM_OK;
 }
 
-/* J (dense, column-major) = d ode / d x at (t, x) */
+/* jac_nz = d ode / d x at (t, x), the nonzeros of the compressed columns */
 static int eval_jac(bsm_bdf *b, double t, const double *x) {
-  int n = b->n;
   if (eval_u(b, t)) return BSM_MODEL_FAILED;
   b->arg[0] = &t;
   b->arg[1] = x;
@@ -120,32 +122,36 @@ static int eval_jac(bsm_bdf *b, double t, const double *x) {
   b->res[3] = 0;
   b->stats[ST_JEVALS]++;
   if (b->jac(b->arg, b->res, b->iw, b->w, 0)) return BSM_MODEL_FAILED;
-  memset(b->J, 0, sizeof(double) * (size_t)n * n);
-  for (int col = 0; col < n; ++col)
-    for (bsm_int k = b->jac_colind[col]; k < b->jac_colind[col + 1]; ++k)
-      b->J[(size_t)col * n + b->jac_row[k]] = b->jac_nz[k];
   b->jac_current = 1;
   b->jac_age = 0;
-  return all_finite(b->J, n * n) ? BSM_OK : BSM_NOT_FINITE;
+  return all_finite(b->jac_nz, (int)b->jac_nnz) ? BSM_OK : BSM_NOT_FINITE;
 }
 
-/* LU = lu(I - c J) */
+/* The LU factors of I - c J with the unknowns in the LU order (row major). */
 static int factorize(bsm_bdf *b, double c) {
-  int n = b->n, info = 0;
-  for (size_t k = 0; k < (size_t)n * n; ++k) b->LU[k] = -c * b->J[k];
-  for (int i = 0; i < n; ++i) b->LU[(size_t)i * n + i] += 1.0;
-  b->getrf(&n, &n, b->LU, &n, b->ipiv, &info);
+  int n = b->n;
+  memset(b->LU, 0, sizeof(double) * (size_t)n * n);
+  for (int i = 0; i < n; ++i) b->LU[(size_t)i * n + i] = 1.0;
+  for (int col = 0; col < n; ++col) {
+    size_t j = (size_t)b->lu_position[col];
+    for (bsm_int k = b->jac_colind[col]; k < b->jac_colind[col + 1]; ++k)
+      b->LU[(size_t)b->lu_position[b->jac_row[k]] * n + j] -= c * b->jac_nz[k];
+  }
+  int singular = bsm_lu_factor(b->LU, n, b->piv, b->nzcol);
+  if (!singular) bsm_lu_compress(b->LU, n, &b->factors);
   b->stats[ST_LUS]++;
   b->c_lu = c;
   b->crate = 1.0;
-  b->lu_valid = info == 0;
-  return info == 0 ? BSM_OK : BSM_SINGULAR;
+  b->lu_valid = !singular;
+  return singular ? BSM_SINGULAR : BSM_OK;
 }
 
+/* rhs = (I - c J)^-1 rhs */
 static void solve(bsm_bdf *b, double *rhs) {
-  int n = b->n, one = 1, info = 0;
-  char trans = 'N';
-  b->getrs(&trans, &n, &one, b->LU, &n, b->ipiv, rhs, &n, &info);
+  int n = b->n;
+  for (int i = 0; i < n; ++i) b->permuted[i] = rhs[b->lu_order[i]];
+  bsm_lu_solve(&b->factors, n, b->piv, b->permuted);
+  for (int i = 0; i < n; ++i) rhs[b->lu_order[i]] = b->permuted[i];
 }
 
 /* D[0..order] = (R U)^T D[0..order]: the differences for the step size h * factor. */
@@ -183,17 +189,21 @@ void bsm_bdf_free(bsm_bdf *b) {
   if (!b) return;
   free(b->p); free(b->q); free(b->u);
   free(b->arg); free(b->res); free(b->iw); free(b->w);
-  free(b->jac_nz); free(b->J); free(b->LU); free(b->D); free(b->ipiv);
+  free(b->jac_nz); free(b->LU); free(b->D); free(b->permuted);
+  free(b->lu_order); free(b->lu_position); free(b->piv); free(b->nzcol);
+  free(b->factors.l_start); free(b->factors.u_start); free(b->factors.col);
+  free(b->factors.val); free(b->factors.inv_diag);
   free(b->y_predict); free(b->psi); free(b->d); free(b->y); free(b->f); free(b->dy);
   free(b->scale); free(b->tmp);
   free(b);
 }
 
 /* A solver at (t0, x0) integrating towards t_bound; NULL if out of memory. sz_*: the largest
- * work sizes of the three functions. */
+ * work sizes of the three functions; order: the unknowns in the order of the LU (a
+ * permutation of 0 .. n-1). */
 bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, bsm_fn signal,
                      const bsm_int *jac_colind, const bsm_int *jac_row, bsm_int nnz,
-                     getrf_fn getrf, getrs_fn getrs, const double *p, const double *q,
+                     const int *order, const double *p, const double *q,
                      bsm_int sz_arg, bsm_int sz_res, bsm_int sz_iw, bsm_int sz_w,
                      double rtol, double atol, double max_step, double t0, double t_bound,
                      const double *x0) {
@@ -202,7 +212,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->n = n; b->n_u = n_u; b->n_p = n_p; b->n_q = n_q;
   b->ode = ode; b->jac = jac; b->signal = signal;
   b->jac_colind = jac_colind; b->jac_row = jac_row;
-  b->getrf = getrf; b->getrs = getrs;
+  b->jac_nnz = nnz;
   b->rtol = rtol; b->atol = atol; b->max_step = max_step; b->t_bound = t_bound;
   size_t nn = (size_t)n * n;
   b->p = malloc(sizeof(double) * (n_p + 1));
@@ -213,14 +223,23 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->iw = calloc(sz_iw + 1, sizeof(bsm_int));
   b->w = calloc(sz_w + 1, sizeof(double));
   b->jac_nz = calloc(nnz + 1, sizeof(double));
-  b->J = calloc(nn, sizeof(double));
   b->LU = calloc(nn, sizeof(double));
   b->D = calloc((size_t)(MAX_ORDER + 3) * n, sizeof(double));
-  b->ipiv = calloc(n, sizeof(int));
+  b->lu_order = calloc(n, sizeof(int));
+  b->lu_position = calloc(n, sizeof(int));
+  b->piv = calloc(n, sizeof(int));
+  b->nzcol = calloc(n, sizeof(int));
+  b->factors.l_start = calloc(n + 1, sizeof(int));
+  b->factors.u_start = calloc(n + 1, sizeof(int));
+  b->factors.col = calloc(nn, sizeof(int));
+  b->factors.val = calloc(nn, sizeof(double));
+  b->factors.inv_diag = calloc(n, sizeof(double));
   double **vectors[] = {&b->y_predict, &b->psi, &b->d, &b->y, &b->f, &b->dy, &b->scale,
-                        &b->tmp};
-  int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz && b->J &&
-           b->LU && b->D && b->ipiv;
+                        &b->tmp, &b->permuted};
+  int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
+           b->LU && b->D && b->lu_order && b->lu_position && b->piv && b->nzcol &&
+           b->factors.l_start && b->factors.u_start && b->factors.col && b->factors.val &&
+           b->factors.inv_diag;
   for (size_t k = 0; k < sizeof(vectors) / sizeof(vectors[0]); ++k) {
     *vectors[k] = calloc(n, sizeof(double));
     ok = ok && *vectors[k];
@@ -231,6 +250,10 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   }
   memcpy(b->p, p, sizeof(double) * n_p);
   memcpy(b->q, q, sizeof(double) * n_q);
+  for (int i = 0; i < n; ++i) {
+    b->lu_order[i] = order[i];
+    b->lu_position[order[i]] = i;
+  }
   /* NDF coefficients (scipy.integrate.BDF) */
   const double kappa[MAX_ORDER + 2] = {0.0, -0.1850, -1.0 / 9.0, -0.0823, -0.0415, 0.0, 0.0};
   b->gamma[0] = 0.0;
