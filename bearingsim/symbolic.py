@@ -32,6 +32,7 @@ __all__ = [
     "fmin",
     "sign",
     "power",
+    "sqrt_power",
     "if_else",
     "smooth_max0",
     "smooth_abs",
@@ -87,6 +88,29 @@ def fmin(a, b):
 def power(a, b):
     """Element-wise ``a ** b``."""
     return ca.power(a, b) if is_symbolic(a, b) else np.power(a, b)
+
+
+def sqrt_power(x, k: int):
+    """``x ** (k + 1/2)`` as ``x**k * sqrt(x)``: a square root and ``k`` products, several
+    times cheaper than ``pow`` in generated C (Hertz loads ``delta ** 1.5``). Equal to
+    ``power(x, k + 0.5)`` within a few ulp for ``x >= 0``, NaN for ``x < 0`` as it is.
+
+    Parameters
+    ----------
+    x : float, array or CasADi symbol
+        Base (any unit ``U``).
+    k : int
+        Whole part of the exponent, ``k >= 0``.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        ``x ** (k + 1/2)`` [``U ** (k + 1/2)``].
+    """
+    result = sqrt(x)
+    for _ in range(k):
+        result = x * result
+    return result
 
 
 def if_else(cond, a, b):

@@ -15,7 +15,16 @@ from typing import Any
 import numpy as np
 
 from bearingsim.physics.traction import regularized_coulomb
-from bearingsim.symbolic import fmax, fmin, if_else, smooth_abs, smooth_max0, sqrt, tanh
+from bearingsim.symbolic import (
+    fmax,
+    fmin,
+    if_else,
+    smooth_abs,
+    smooth_max0,
+    sqrt,
+    sqrt_power,
+    tanh,
+)
 from bearingsim.validation import check_finite, check_range, check_regularization
 
 __all__ = [
@@ -142,8 +151,9 @@ def journal_film_force(
     one = 1.0 - eps * eps
     scale = eta * R * L**3 / c**2
     radial = -scale * (eps * eps * smooth_abs(w, 1e-9) / one**2
-                       + np.pi * (1.0 + 2.0 * eps * eps) * eps_dot / (2.0 * one**2.5))
-    tangential = scale * (np.pi * eps * w / (4.0 * one**1.5) + 2.0 * eps * eps_dot / one**2)
+                       + np.pi * (1.0 + 2.0 * eps * eps) * eps_dot / (2.0 * sqrt_power(one, 2)))
+    tangential = scale * (np.pi * eps * w / (4.0 * sqrt_power(one, 1))
+                          + 2.0 * eps * eps_dot / one**2)
     return FilmForce(
         fx=radial * erx - tangential * ery,
         fy=radial * ery + tangential * erx,

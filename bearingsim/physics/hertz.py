@@ -528,7 +528,7 @@ def contact_load(k_const, delta, smooth=None):
     """
     check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_load")
     check_range(delta, "delta", "m", where="contact_load")
-    return k_const * op.power(_compression(delta, smooth), 1.5)
+    return k_const * op.sqrt_power(_compression(delta, smooth), 1)
 
 
 def contact_stiffness(k_const, delta, smooth=None):

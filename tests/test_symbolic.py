@@ -1,0 +1,35 @@
+"""Tests of the float/array/CasADi helpers (bearingsim.symbolic)."""
+
+import casadi as ca
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from bearingsim import symbolic as op
+
+
+@given(st.floats(0.0, 1e12), st.integers(0, 3))
+def test_sqrt_power_is_the_half_integer_power(x, k):
+    """``x**k * sqrt(x)`` equals ``x ** (k + 1/2)`` to a few ulp, numeric and symbolic alike,
+    with the derivative ``(k + 1/2) x^(k - 1/2)``."""
+    expected = x ** (k + 0.5)
+    assert op.sqrt_power(x, k) == pytest.approx(expected, rel=4e-16 * (k + 2), abs=0.0)
+    s = ca.SX.sym("x")
+    f = ca.Function("f", [s], [op.sqrt_power(s, k), ca.jacobian(op.sqrt_power(s, k), s)])
+    value, slope = (float(v) for v in f(x))
+    assert value == op.sqrt_power(x, k)
+    if x > 0.0:
+        assert slope == pytest.approx((k + 0.5) * x ** (k - 0.5), rel=1e-14)
+
+
+def test_sqrt_power_negative_base_is_nan_like_pow():
+    with np.errstate(invalid="ignore"):
+        assert np.isnan(op.sqrt_power(np.float64(-1.0), 1))
+        assert np.isnan(np.power(-1.0, 1.5))
+    assert np.isnan(float(ca.Function("f", [s := ca.SX.sym("x")], [op.sqrt_power(s, 2)])(-1.0)))
+
+
+def test_sqrt_power_on_arrays():
+    x = np.array([0.0, 0.25, 4.0, 1e-18])
+    np.testing.assert_allclose(op.sqrt_power(x, 2), x**2.5, rtol=1e-15, atol=0.0)
