@@ -110,15 +110,17 @@ typedef struct {
     double w_u[BSM_DIM(NU)];
     double w_p[BSM_DIM(NP)];
     double w_h;                    /* step size of the factorisation in lu [s] (0: none) */
-    double lu[BSM_DIM(NX * NX)];   /* LU factors of I/(h gamma) - J in the order bsm_lu_order */
-    /* the same, compressed for the solves (BsmLu, bsm_lu.h) */
+    double lu[BSM_DIM(NX * NX)];   /* I/(h gamma) - J in the order bsm_lu_order (factorised) */
+    /* its factors, compressed for the solves (BsmLu, bsm_lu.h) */
+    int lu_piv[BSM_DIM(NX)];
     int lu_l_start[BSM_DIM(NX) + 1];
+    int lu_l_index[BSM_DIM(NX * NX / 2)];
+    double lu_l_val[BSM_DIM(NX * NX / 2)];
     int lu_u_start[BSM_DIM(NX) + 1];
-    int lu_col[BSM_DIM(NX * NX)];
-    double lu_val[BSM_DIM(NX * NX)];
+    int lu_u_index[BSM_DIM(NX * NX / 2)];
+    double lu_u_val[BSM_DIM(NX * NX / 2)];
     double lu_inv_diag[BSM_DIM(NX)];
-    int piv[BSM_DIM(NX)];
-    int nzcol[BSM_DIM(NX)];
+    int lu_work[BSM_DIM(2 * NX)];
     double k[4][BSM_DIM(NX)];
     double f[BSM_DIM(NX)];
     double xs[BSM_DIM(NX)];

@@ -63,7 +63,7 @@ typedef struct {
   bsm_int *iw;
   double *w;
   double *jac_nz, *LU, *D, *permuted;
-  int *piv, *nzcol;
+  int *lu_work;
   BsmLu factors;
   double *y_predict, *psi, *d, *y, *f, *dy, *scale, *tmp;
   double t, h_abs, c_lu, crate, safety, h_last;
@@ -137,8 +137,7 @@ static int factorize(bsm_bdf *b, double c) {
     for (bsm_int k = b->jac_colind[col]; k < b->jac_colind[col + 1]; ++k)
       b->LU[(size_t)b->lu_position[b->jac_row[k]] * n + j] -= c * b->jac_nz[k];
   }
-  int singular = bsm_lu_factor(b->LU, n, b->piv, b->nzcol);
-  if (!singular) bsm_lu_compress(b->LU, n, &b->factors);
+  int singular = bsm_lu_factor(b->LU, n, &b->factors, b->lu_work);
   b->stats[ST_LUS]++;
   b->c_lu = c;
   b->crate = 1.0;
@@ -150,7 +149,7 @@ static int factorize(bsm_bdf *b, double c) {
 static void solve(bsm_bdf *b, double *rhs) {
   int n = b->n;
   for (int i = 0; i < n; ++i) b->permuted[i] = rhs[b->lu_order[i]];
-  bsm_lu_solve(&b->factors, n, b->piv, b->permuted);
+  bsm_lu_solve(&b->factors, n, b->permuted);
   for (int i = 0; i < n; ++i) rhs[b->lu_order[i]] = b->permuted[i];
 }
 
@@ -190,9 +189,10 @@ void bsm_bdf_free(bsm_bdf *b) {
   free(b->p); free(b->q); free(b->u);
   free(b->arg); free(b->res); free(b->iw); free(b->w);
   free(b->jac_nz); free(b->LU); free(b->D); free(b->permuted);
-  free(b->lu_order); free(b->lu_position); free(b->piv); free(b->nzcol);
-  free(b->factors.l_start); free(b->factors.u_start); free(b->factors.col);
-  free(b->factors.val); free(b->factors.inv_diag);
+  free(b->lu_order); free(b->lu_position); free(b->lu_work);
+  BsmLu *c = &b->factors;
+  free(c->piv); free(c->l_start); free(c->l_index); free(c->l_val);
+  free(c->u_start); free(c->u_index); free(c->u_val); free(c->inv_diag);
   free(b->y_predict); free(b->psi); free(b->d); free(b->y); free(b->f); free(b->dy);
   free(b->scale); free(b->tmp);
   free(b);
@@ -227,19 +227,23 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->D = calloc((size_t)(MAX_ORDER + 3) * n, sizeof(double));
   b->lu_order = calloc(n, sizeof(int));
   b->lu_position = calloc(n, sizeof(int));
-  b->piv = calloc(n, sizeof(int));
-  b->nzcol = calloc(n, sizeof(int));
-  b->factors.l_start = calloc(n + 1, sizeof(int));
-  b->factors.u_start = calloc(n + 1, sizeof(int));
-  b->factors.col = calloc(nn, sizeof(int));
-  b->factors.val = calloc(nn, sizeof(double));
-  b->factors.inv_diag = calloc(n, sizeof(double));
+  b->lu_work = calloc(2 * (size_t)n, sizeof(int));
+  BsmLu *c = &b->factors;
+  size_t half = nn / 2 + 1; /* strictly lower or upper triangle */
+  c->piv = calloc(n, sizeof(int));
+  c->l_start = calloc(n + 1, sizeof(int));
+  c->l_index = calloc(half, sizeof(int));
+  c->l_val = calloc(half, sizeof(double));
+  c->u_start = calloc(n + 1, sizeof(int));
+  c->u_index = calloc(half, sizeof(int));
+  c->u_val = calloc(half, sizeof(double));
+  c->inv_diag = calloc(n, sizeof(double));
   double **vectors[] = {&b->y_predict, &b->psi, &b->d, &b->y, &b->f, &b->dy, &b->scale,
                         &b->tmp, &b->permuted};
   int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
-           b->LU && b->D && b->lu_order && b->lu_position && b->piv && b->nzcol &&
-           b->factors.l_start && b->factors.u_start && b->factors.col && b->factors.val &&
-           b->factors.inv_diag;
+           b->LU && b->D && b->lu_order && b->lu_position && b->lu_work && c->piv &&
+           c->l_start && c->l_index && c->l_val && c->u_start && c->u_index && c->u_val &&
+           c->inv_diag;
   for (size_t k = 0; k < sizeof(vectors) / sizeof(vectors[0]); ++k) {
     *vectors[k] = calloc(n, sizeof(double));
     ok = ok && *vectors[k];

@@ -7,19 +7,24 @@
 #ifndef BSM_LU_H
 #define BSM_LU_H
 
-/* LU factors in compressed rows (bsm_lu_compress): entries l_start[i] .. l_start[i+1]-1 of
- * col/val are row i of L below the diagonal, u_start[i] .. u_start[i+1]-1 row i of U right of
- * it. Sizes: l_start and u_start n + 1, col and val n * n, inv_diag n. */
+/* LU factors (bsm_lu_factor), compressed: step k interchanged rows k and piv[k], then
+ * entries l_start[k] .. l_start[k+1]-1 of l_index/l_val are column k of L below the diagonal
+ * (unit diagonal implied; row numbers as of step k), u_start[k] .. u_start[k+1]-1 of
+ * u_index/u_val row k of U right of the diagonal, inv_diag[k] the inverse of its diagonal.
+ * Sizes: piv and inv_diag n, l_start and u_start n + 1, l_index, l_val, u_index and u_val
+ * n (n - 1) / 2 at most. */
 typedef struct {
+    int *piv;
     int *l_start;
+    int *l_index;
+    double *l_val;
     int *u_start;
-    int *col;
-    double *val;
+    int *u_index;
+    double *u_val;
     double *inv_diag;
 } BsmLu;
 
-int bsm_lu_factor(double *a, int n, int *piv, int *nzcol);
-void bsm_lu_compress(const double *a, int n, const BsmLu *c);
-void bsm_lu_solve(const BsmLu *c, int n, const int *piv, double *b);
+int bsm_lu_factor(double *a, int n, const BsmLu *c, int *work);
+void bsm_lu_solve(const BsmLu *c, int n, double *b);
 
 #endif
