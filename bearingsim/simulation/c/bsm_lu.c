@@ -70,9 +70,19 @@ void bsm_lu_solve(const BsmLu *c, int n, double *b) {
         b[k] = bk;
         for (int q = c->l_start[k]; q < c->l_start[k + 1]; ++q) b[c->l_index[q]] -= c->l_val[q] * bk;
     }
+    /* four partial sums: a single one would wait on each product's addition */
     for (int i = n - 1; i >= 0; --i) {
-        double s = b[i];
-        for (int q = c->u_start[i]; q < c->u_start[i + 1]; ++q) s -= c->u_val[q] * b[c->u_index[q]];
-        b[i] = s * c->inv_diag[i];
+        const int *index = c->u_index;
+        const double *val = c->u_val;
+        double s0 = b[i], s1 = 0.0, s2 = 0.0, s3 = 0.0;
+        int q = c->u_start[i], end = c->u_start[i + 1];
+        for (; q + 4 <= end; q += 4) {
+            s0 -= val[q] * b[index[q]];
+            s1 -= val[q + 1] * b[index[q + 1]];
+            s2 -= val[q + 2] * b[index[q + 2]];
+            s3 -= val[q + 3] * b[index[q + 3]];
+        }
+        for (; q < end; ++q) s0 -= val[q] * b[index[q]];
+        b[i] = ((s0 + s1) + (s2 + s3)) * c->inv_diag[i];
     }
 }
