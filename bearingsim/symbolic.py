@@ -93,12 +93,14 @@ def power(a, b):
 def sqrt_power(x, k: int):
     """``x ** (k + 1/2)`` as ``x**k * sqrt(x)``: a square root and ``k`` products, several
     times cheaper than ``pow`` in generated C (Hertz loads ``delta ** 1.5``). Equal to
-    ``power(x, k + 0.5)`` within a few ulp for ``x >= 0``, NaN for ``x < 0`` as it is.
+    ``power(x, k + 0.5)`` within a few ulp for ``x > 0``; 0 for ``x <= 0``, with the
+    derivative 0 there as ``pow``'s (the product form's would be ``0 * inf``: an unloaded
+    contact's compression is exactly 0).
 
     Parameters
     ----------
     x : float, array or CasADi symbol
-        Base (any unit ``U``).
+        Base (any unit ``U``), non-negative in use (compressions, ``1 - eps^2``).
     k : int
         Whole part of the exponent, ``k >= 0``.
 
@@ -107,10 +109,11 @@ def sqrt_power(x, k: int):
     float, array or CasADi symbol
         ``x ** (k + 1/2)`` [``U ** (k + 1/2)``].
     """
-    result = sqrt(x)
+    symbolic = is_symbolic(x)
+    result = ca.sqrt(x) if symbolic else np.sqrt(np.maximum(x, 0.0))
     for _ in range(k):
         result = x * result
-    return result
+    return ca.if_else(x > 0, result, 0.0) if symbolic else np.where(x > 0, result, 0.0)[()]
 
 
 def if_else(cond, a, b):

@@ -23,11 +23,18 @@ def test_sqrt_power_is_the_half_integer_power(x, k):
         assert slope == pytest.approx((k + 0.5) * x ** (k - 0.5), rel=1e-14)
 
 
-def test_sqrt_power_negative_base_is_nan_like_pow():
-    with np.errstate(invalid="ignore"):
-        assert np.isnan(op.sqrt_power(np.float64(-1.0), 1))
-        assert np.isnan(np.power(-1.0, 1.5))
-    assert np.isnan(float(ca.Function("f", [s := ca.SX.sym("x")], [op.sqrt_power(s, 2)])(-1.0)))
+def test_sqrt_power_at_zero_has_pows_derivative():
+    """An unloaded Hertz contact has compression exactly 0: value and derivative 0, as
+    ``pow``'s (the product form alone gives ``0 * inf = NaN``, which stopped the quasi-static
+    balls' Newton iteration: bench/dgbb_long condition 2)."""
+    s = ca.SX.sym("x")
+    for k in (1, 2):
+        f = ca.Function("f", [s], [op.sqrt_power(s, k), ca.jacobian(op.sqrt_power(s, k), s)])
+        for x in (0.0, -1e-3):
+            value, slope = (float(v) for v in f(x))
+            assert (value, slope) == (0.0, 0.0)
+        assert op.sqrt_power(0.0, k) == 0.0
+        assert op.sqrt_power(-2.0, k) == 0.0
 
 
 def test_sqrt_power_on_arrays():
