@@ -87,8 +87,8 @@ def _rk4(system, t_end: float, dt: float):
     return obs["w_cage"], max(obs[f"inner[{j}].Q"] for j in range(7)), dt
 
 
-def _reference(system, t_end: float) -> dict[str, float]:
-    res = simulate(system, t_end, method="cvodes", rtol=1e-9, atol=1e-9, n_points=11,
+def _reference(system, t_end: float, method: str = "cvodes") -> dict[str, float]:
+    res = simulate(system, t_end, method=method, rtol=1e-9, atol=1e-9, n_points=11,
                    progress=False)
     return {"w_cage": res.final("w_cage"),
             "q": max(res.final(f"inner[{j}].Q") for j in range(7)), "res": res}
