@@ -265,14 +265,20 @@ def _ecco(paths: dict[str, Path], t_end: float, speed_error) -> dict[str, float]
                     "w": observer.last_real_values(w_at[0], [w_at[1]])[0],
                     "M": observer.last_real_values(m_at[0], [m_at[1]])[0]}
     _, run, observer, w_at, _ = execution()
+    times, speeds = _speeds_per_step(run, observer, w_at, t_end)
+    best["steps"] = len(times)
+    best["speed_error"] = speed_error(times, speeds)
+    return best
+
+
+def _speeds_per_step(run, observer, w_at: tuple[int, int], t_end: float) -> tuple[list, list]:
+    """Run one communication step at a time to ``t_end``: the times [s] and motor speeds."""
     times, speeds = [], []
     while not times or times[-1] < t_end:
         run.step(1)
         times.append(run.status().current_time * 1e-9)
         speeds.append(observer.last_real_values(w_at[0], [w_at[1]])[0])
-    best["steps"] = len(times)
-    best["speed_error"] = speed_error(times, speeds)
-    return best
+    return times, speeds
 
 
 def _speed_error_against_fine_steps(paths: dict[str, Path], t_end: float):
@@ -300,17 +306,6 @@ def _speed_error_against_fine_steps(paths: dict[str, Path], t_end: float):
     return error
 
 
-def _fixed_step_speeds(paths: dict[str, Path], t_end: float) -> tuple[list, list]:
-    """Motor speed at each communication time of the fixed-step masters (libcosim, STEP)."""
-    run, observer, (m, w), _ = _local_execution(paths)
-    times, speeds = [], []
-    for _ in range(int(round(t_end / STEP))):
-        run.step(1)
-        times.append(run.status().current_time * 1e-9)
-        speeds.append(observer.last_real_values(m, [w])[0])
-    return times, speeds
-
-
 def _fmpy(ssp: Path, t_end: float) -> dict[str, float]:
     from fmpy.ssp.simulation import simulate_ssp
 
@@ -335,7 +330,9 @@ def run(quick: bool = False) -> tuple[str, dict]:
         try:
             results["libcosim"] = _libcosim(paths["ssp"], t_end)
             speed_error = _speed_error_against_fine_steps(paths, t_end)
-            results["libcosim"]["speed_error"] = speed_error(*_fixed_step_speeds(paths, t_end))
+            run, observer, w_at, _ = _local_execution(paths)
+            results["libcosim"]["speed_error"] = speed_error(
+                *_speeds_per_step(run, observer, w_at, t_end))
             results["libcosim, ECCO"] = _ecco(paths, t_end, speed_error)
         except OSError as exc:  # libcosimc.so cannot be loaded on this machine
             results["libcosim"] = {"note": str(exc)}
