@@ -21,9 +21,8 @@
  * xdot, jac(t, x, u, p, out) -> (d/dt, d/dx, d/du, d/dp) of which d/dx (compressed columns) is
  * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's, on the
  * unknowns in a fill-reducing order (bearingsim.simulation.ordering, passed in): partial
- * pivoting that skips structural zeros and solves on the factors' nonzeros, a few hundred
- * operations for a ball-level model whose dense LU (LAPACK) costs more than its right-hand
- * side.
+ * pivoting that eliminates the structural nonzeros only and solves on the factors' nonzeros
+ * (on the ball-level models a dense LU, LAPACK's, cost more than the right-hand side).
  */
 #include <math.h>
 #include <stdlib.h>

@@ -2,8 +2,8 @@
  * structural zeros, and solves on the factors' nonzeros only. Shared by the compiled BDF
  * integrator (bdf.c) and the FMU's co-simulation stepper (fmu/templates/bsm_solver.c), which
  * both factorise I - c J of a model Jacobian in a fill-reducing order of its unknowns
- * (bearingsim.simulation.ordering), where the factors keep few nonzeros: about 600 of 5625
- * for the 75-state massive-ball 6304 bearing. */
+ * (bearingsim.simulation.ordering: each ball's states before the ring and cage states every
+ * ball couples to), where the factors keep the Jacobian's sparsity. */
 #ifndef BSM_LU_H
 #define BSM_LU_H
 
