@@ -146,10 +146,7 @@ static int factorize(bsm_bdf *b, double c) {
 
 /* rhs = (I - c J)^-1 rhs */
 static void solve(bsm_bdf *b, double *rhs) {
-  int n = b->n;
-  for (int i = 0; i < n; ++i) b->permuted[i] = rhs[b->lu_order[i]];
-  bsm_lu_solve(&b->factors, n, b->permuted);
-  for (int i = 0; i < n; ++i) rhs[b->lu_order[i]] = b->permuted[i];
+  bsm_lu_solve(&b->factors, b->n, b->lu_order, b->permuted, rhs);
 }
 
 /* D[0..order] = (R U)^T D[0..order]: the differences for the step size h * factor. */

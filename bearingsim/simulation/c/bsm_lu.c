@@ -61,8 +61,11 @@ int bsm_lu_factor(double *a, int n, const BsmLu *c, int *work) {
     return 0;
 }
 
-/* Solve A x = b in place with the factors of bsm_lu_factor. */
-void bsm_lu_solve(const BsmLu *c, int n, double *b) {
+/* Solve A x = b in place with the factors of bsm_lu_factor, A's unknowns in the order
+ * order (b and x in the original order; work: n doubles). */
+void bsm_lu_solve(const BsmLu *c, int n, const int *order, double *work, double *x) {
+    double *b = work;
+    for (int i = 0; i < n; ++i) b[i] = x[order[i]];
     for (int k = 0; k < n; ++k) {
         int p = c->piv[k];
         double bk = b[p];
@@ -85,4 +88,5 @@ void bsm_lu_solve(const BsmLu *c, int n, double *b) {
         for (; q < end; ++q) s0 -= val[q] * b[index[q]];
         b[i] = ((s0 + s1) + (s2 + s3)) * c->inv_diag[i];
     }
+    for (int i = 0; i < n; ++i) x[order[i]] = b[i];
 }

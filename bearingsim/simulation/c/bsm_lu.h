@@ -25,6 +25,6 @@ typedef struct {
 } BsmLu;
 
 int bsm_lu_factor(double *a, int n, const BsmLu *c, int *work);
-void bsm_lu_solve(const BsmLu *c, int n, double *b);
+void bsm_lu_solve(const BsmLu *c, int n, const int *order, double *work, double *x);
 
 #endif
