@@ -3,6 +3,11 @@
 Usage::
 
     python -m bench.run_all --out docs/benchmarks.md [--quick] [--max-assemble-s 150]
+    python -m bench.run_all --only "FMU stepper,sweep scaling"   # re-run some sections
+
+``--only`` re-runs the named sections (labels as printed by a full run) and splices them into
+the existing report in place; the report's header then names the partial runs and their dates,
+so every figure still comes from a command in the report.
 """
 
 from __future__ import annotations
@@ -83,6 +88,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, default=Path("docs/benchmarks.md"),
                         help="Markdown report to write (plots go to <its folder>/img)")
     parser.add_argument("--quick", action="store_true", help="small sizes, under a minute")
+    parser.add_argument("--only", default="",
+                        help="comma-separated section labels to re-run into the existing report")
     parser.add_argument("--max-assemble-s", type=float, default=150.0,
                         help="skip chain sizes whose extrapolated assemble time exceeds this")
     args = parser.parse_args(argv)
@@ -114,6 +121,13 @@ def main(argv: list[str] | None = None) -> int:
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
     ]
+    labels = [label for label, _ in steps]
+    only = [x.strip() for x in args.only.split(",") if x.strip()]
+    unknown = [x for x in only if x not in labels]
+    if unknown:
+        parser.error(f"unknown section(s) {unknown}; known: {labels}")
+    if only:
+        return _rerun_sections(out, steps, only, command.strip(), start, args.quick)
     for k, (label, bench_fn) in enumerate(steps, start=1):
         print(f"{k}/{len(steps)} {label}", flush=True)
         sections.append(bench_fn())
@@ -121,6 +135,52 @@ def main(argv: list[str] | None = None) -> int:
     out.write_text(render(sections, command.strip(), machine_info(), total, args.quick),
                    encoding="utf-8")
     print(f"wrote {out} ({total:.0f} s)")
+    return 0
+
+
+def _rerun_sections(out: Path, steps: list, only: list[str], command: str, start: float,
+                    quick: bool) -> int:
+    """Re-run the sections named in ``only`` and splice them into the report ``out``.
+
+    Parameters
+    ----------
+    out : Path
+        An existing report written by a full run.
+    steps : list of (str, callable)
+        Every section's label and benchmark, in report order.
+    only : list of str
+        Labels to re-run.
+    command : str
+        This command line, recorded in the report's header.
+    start : float
+        ``time.perf_counter()`` at the start of the run [s].
+    quick : bool
+        Whether this is a ``--quick`` run.
+
+    Returns
+    -------
+    int
+        Exit status.
+    """
+    text = out.read_text(encoding="utf-8")
+    head, *bodies = re.split(r"(?m)^(?=## \d+\. )", text)
+    by_number = {int(re.match(r"## (\d+)\.", b).group(1)): b for b in bodies}
+    for label in only:
+        k = [lab for lab, _ in steps].index(label) + 1
+        print(f"{k}/{len(steps)} {label}", flush=True)
+        section = dict(steps)[label]()
+        title = re.sub(r"^\d+\.\s*", "", section.title)
+        by_number[k] = f"## {k}. {title}\n\n{section.body}\n\n"
+    total = time.perf_counter() - start
+    stamp = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    note = (f"Sections {', '.join(only)} re-run by `{command}`"
+            f"{' (quick mode)' if quick else ''} on {stamp} ({total:.0f} s); the others are "
+            "from the full run above.\n\n")
+    head = head.rstrip("\n") + "\n\n" + note if "## Machine" not in head else (
+        head.replace("## Machine", note + "## Machine", 1))
+    body = "".join(by_number[k] for k in sorted(by_number))
+    out.write_text(head + body.rstrip("\n") + "\n", encoding="utf-8")
+    print(f"updated {out} ({total:.0f} s)")
     return 0
 
 
