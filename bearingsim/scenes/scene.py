@@ -11,7 +11,6 @@ values.
 
 from __future__ import annotations
 
-import csv
 import difflib
 import math
 import re
@@ -27,6 +26,7 @@ from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
+from bearingsim.scenes.tables import SceneFileError, load_bearings_files, read_table_file
 from bearingsim.simulation.integrators import METHODS
 from bearingsim.units import parse_quantity
 
@@ -409,40 +409,11 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path) -> TableInput | N
         _unknown(c, key, sorted(bad)[0], TABLE_KEYS)
         return None
     if "file" in v:
-        path = Path(v["file"])
-        path = path if path.is_absolute() else base / path
-        col = v.get("column")
-        tcol = v.get("time_column", "time")
-        if not path.is_file():
-            c.add(f"{key}.file", f"table file {str(path)!r} not found",
-                  "a CSV file with a header row, relative to the scene file")
-            return None
         try:
-            with path.open(newline="") as fh:
-                rows = list(csv.reader(fh))
-        except OSError as exc:
-            c.add(f"{key}.file", f"cannot read {str(path)!r}: {exc}")
+            times, vals, source = read_table_file(key, v, base)
+        except SceneFileError as exc:
+            c.add(exc.key, exc.reason, exc.allowed)
             return None
-        # "name [unit]" headers (bearingsim's own CSVs) match the name alone
-        header = [re.sub(r"\s*\[[^\]]*\]$", "", h.strip()) for h in rows[0]] if rows else []
-        if tcol not in header or col not in header:
-            missing = "time_column" if tcol not in header else "column"
-            c.add(f"{key}.{missing}", f"column {(tcol if missing == 'time_column' else col)!r} "
-                  f"not in {path.name}", ", ".join(header))
-            return None
-        it, iv = header.index(tcol), header.index(col)
-        times, vals = [], []
-        for k, row in enumerate(rows[1:], start=2):
-            try:
-                times.append(float(row[it]))
-                vals.append(float(row[iv]))
-            except (ValueError, IndexError):
-                if k == 2:  # a unit row
-                    continue
-                c.add(f"{key}.file", f"{path.name} line {k}: not a number in {tcol!r} or "
-                      f"{col!r}", "numbers in SI units")
-                return None
-        source = f"{path.name}:{col}"
     else:
         if "times" not in v or "values" not in v:
             c.add(key, "a table input needs 'file' and 'column', or 'times' and 'values'",
@@ -485,25 +456,6 @@ def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
                   f"[{sim.t_start:g}, {sim.t_end:g}] s)", "an expression finite for all t")
 
 
-def _load_bearings(c: _Collector, files: Any, path: str | None) -> None:
-    """Register the bearings of the scene's datasheet file(s) (key ``bearings``, relative to
-    the scene file) before the assembly's bearing names are checked."""
-    if files is None:
-        return
-    from bearingsim.catalog import load_datasheet
-
-    base = Path(path).resolve().parent if path else Path.cwd()
-    for item in files if isinstance(files, list) else [files]:
-        if not isinstance(item, str):
-            c.add("bearings", f"{item!r} is not a file name", "a datasheet file or a list of them")
-            continue
-        file = Path(item) if Path(item).is_absolute() else base / item
-        try:
-            load_datasheet(file, replace=True)
-        except BearingsimError as exc:
-            c.add("bearings", str(exc), "a CSV or TOML datasheet in catalogue units")
-
-
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
                     text: str | None = None) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
@@ -517,7 +469,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k in d:
         if k not in TOP_KEYS:
             _unknown(c, "", k, TOP_KEYS)
-    _load_bearings(c, d.get("bearings"), path)
+    for problem in load_bearings_files(d.get("bearings"), path):
+        c.add(problem.key, problem.reason, problem.allowed)
     # assembly
     asm = d.get("assembly")
     name, fidelity, args = None, "auto", {}
