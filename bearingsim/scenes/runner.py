@@ -27,6 +27,7 @@ from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.plots import BUILTIN_PLOTS
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
+from bearingsim.scenes.tables import scene_output_folder
 from bearingsim.simulation import Result, simulate
 from bearingsim.units import display_unit
 
@@ -89,7 +90,7 @@ def _check(scene: Scene) -> Scene:
     """Re-validate a scene built in Python (dataclass) through the TOML validator."""
     if scene.text is not None:
         return scene
-    return scene_from_dict(scene.to_dict(), path=scene.path)
+    return scene_from_dict(scene.to_dict(), path=scene.path, allow_paths=scene.allow_paths)
 
 
 def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]
@@ -258,13 +259,15 @@ def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def validate_scene(scene: Scene | str | Path, assemble_model: bool = True) -> Prepared | Scene:
+def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,
+                   allow_paths: list[str | Path] | tuple = ()) -> Prepared | Scene:
     """Check a scene without running it: the file, and (by default) its names against the
-    assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`)."""
+    assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`);
+    ``allow_paths`` as :func:`~bearingsim.scenes.scene.load_scene` takes it."""
     from bearingsim.scenes.scene import load_scene
 
     if not isinstance(scene, Scene):
-        scene = load_scene(scene)
+        scene = load_scene(scene, allow_paths)
     scene = _check(scene)
     return prepare(scene) if assemble_model else scene
 
@@ -447,7 +450,8 @@ def save_figures(folder: Path, figures: list[tuple[str, Any]]) -> list[Path]:
 
 
 def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
-              overwrite: bool = False, progress: bool | None = None) -> SceneRun:
+              overwrite: bool = False, progress: bool | None = None,
+              allow_paths: list[str | Path] | tuple = ()) -> SceneRun:
     """Run a scene and (by default) write CSV, JSON summary and plots to its output folder.
 
     Parameters
@@ -464,6 +468,9 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     progress : bool or None
         The solver's progress bar on standard error: always, never, or (None) when standard
         error is a terminal and the run takes longer than about 2 s.
+    allow_paths : sequence of path
+        Folders outside the scene file's folder its files may be in
+        (:func:`~bearingsim.scenes.scene.load_scene`).
 
     Returns
     -------
@@ -477,8 +484,8 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     from bearingsim.scenes.scene import load_scene
 
     if not isinstance(scene, Scene):
-        scene = load_scene(scene)
-    folder = Path(out if out is not None else scene.output.folder)
+        scene = load_scene(scene, allow_paths)
+    folder = Path(out) if out is not None else scene_output_folder(scene)
     stem = Path(scene.path).stem if scene.path else scene.assembly
     if write and not overwrite and folder.is_dir():
         earlier = sorted(p.name for p in folder.glob(f"{glob.escape(stem)}*")

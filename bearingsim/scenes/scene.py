@@ -15,6 +15,7 @@ import difflib
 import math
 import re
 import sys
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -23,10 +24,17 @@ import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.files import PathOutsideError, confined_path
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
-from bearingsim.scenes.tables import SceneFileError, load_bearings_files, read_table_file
+from bearingsim.scenes.tables import (
+    SceneFileError,
+    load_bearings_files,
+    output_base,
+    read_table_file,
+    scene_folder,
+)
 from bearingsim.simulation.integrators import METHODS
 from bearingsim.units import parse_quantity
 
@@ -163,6 +171,8 @@ class Scene:
         The scene file (for error messages and relative table paths).
     text : str, optional
         The scene file text (for line numbers in error messages).
+    allow_paths : tuple of str
+        Folders outside the scene's folder that its files may be in (``--allow-path``).
     """
 
     assembly: str
@@ -179,6 +189,7 @@ class Scene:
     input_units: dict[str, str] = field(default_factory=dict)
     path: str | None = None
     text: str | None = field(default=None, repr=False)
+    allow_paths: tuple[str, ...] = ()
 
     @property
     def spec(self) -> AssemblySpec:
@@ -209,7 +220,8 @@ class Scene:
         """A validated copy with some fields changed."""
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         d.update(changes)
-        return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None)
+        return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None,
+                               allow_paths=self.allow_paths)
 
 
 # --------------------------------------------------------------------------- line numbers
@@ -403,17 +415,20 @@ def _flatten(d: dict[str, Any], prefix: str = "", keep_tables: bool = False) -> 
     return out
 
 
-def _table_input(c: _Collector, key: str, v: dict, base: Path) -> TableInput | None:
+def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[str, ...],
+                 units: dict[str, str]) -> TableInput | None:
     bad = set(v) - set(TABLE_KEYS)
     if bad:
         _unknown(c, key, sorted(bad)[0], TABLE_KEYS)
         return None
     if "file" in v:
         try:
-            times, vals, source = read_table_file(key, v, base)
+            times, vals, source, unit = read_table_file(key, v, base, allowed)
         except SceneFileError as exc:
             c.add(exc.key, exc.reason, exc.allowed)
             return None
+        if unit is not None:
+            units[key.removeprefix("inputs.")] = unit
     else:
         if "times" not in v or "values" not in v:
             c.add(key, "a table input needs 'file' and 'column', or 'times' and 'values'",
@@ -457,8 +472,11 @@ def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
 
 
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
-                    text: str | None = None) -> Scene:
+                    text: str | None = None, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
+
+    Files it names (tables, ``bearings``, ``output.folder``) must be inside the folder of
+    ``path`` (the current folder without one) or of ``allow_paths``.
 
     Raises
     ------
@@ -469,7 +487,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k in d:
         if k not in TOP_KEYS:
             _unknown(c, "", k, TOP_KEYS)
-    for problem in load_bearings_files(d.get("bearings"), path):
+    allowed = tuple(str(a) for a in allow_paths)
+    for problem in load_bearings_files(d.get("bearings"), scene_folder(path), allowed):
         c.add(problem.key, problem.reason, problem.allowed)
     # assembly
     asm = d.get("assembly")
@@ -503,7 +522,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     # inputs
     inputs: dict[str, Any] = {}
     input_units: dict[str, str] = {}
-    base = Path(path).resolve().parent if path else Path.cwd()
+    base = scene_folder(path)
     raw_inputs = d.get("inputs", {})
     if not isinstance(raw_inputs, dict):
         c.add("inputs", "must be a table", "name = number, expression or table")
@@ -511,7 +530,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k, v in _flatten(raw_inputs, keep_tables=True).items():
         key = f"inputs.{k}"
         if isinstance(v, dict):
-            tab = _table_input(c, key, v, base)
+            tab = _table_input(c, key, v, base, allowed, input_units)
             if tab is not None:
                 inputs[k] = tab
         elif isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
@@ -573,7 +592,11 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             if not isinstance(v, str) or not v:
                 c.add(key, "must be a folder name", "a non-empty text")
             else:
-                out.folder = v
+                try:
+                    confined_path(v, output_base(path), allowed, "output folder")
+                    out.folder = v
+                except PathOutsideError as exc:
+                    c.add(key, str(exc))
         elif k in ("csv", "plots"):
             if not isinstance(v, bool):
                 c.add(key, f"must be true or false, got {v!r}", "true, false")
@@ -602,22 +625,24 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         assembly=name, args=args, fidelity=fidelity, inputs=inputs, input_units=input_units,
         parameters=values["parameters"], initial=values["initial"], outputs=list(outputs),
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
-        tolerance=float(tolerance), path=path, text=text,
+        tolerance=float(tolerance), path=path, text=text, allow_paths=allowed,
     )
 
 
-def parse_scene(text: str, path: str | None = None) -> Scene:
-    """Parse and validate scene TOML text (without assembling the model)."""
+def parse_scene(text: str, path: str | None = None,
+                allow_paths: Sequence[str | Path] = ()) -> Scene:
+    """Parse and validate scene TOML text (without assembling the model); ``allow_paths`` as
+    :func:`scene_from_dict` takes it."""
     try:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         raise SceneError(f"not valid TOML: {exc}", "", int(m.group(1)) if m else None,
                          "TOML syntax (https://toml.io)", path) from None
-    return scene_from_dict(d, path=path, text=text)
+    return scene_from_dict(d, path=path, text=text, allow_paths=allow_paths)
 
 
-def load_scene(path: str | Path) -> Scene:
+def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Read, parse and validate a scene file (without assembling the model).
 
     Parameters
@@ -626,6 +651,9 @@ def load_scene(path: str | Path) -> Scene:
         A scene TOML file, or the name of a built-in scene
         (:func:`~bearingsim.scenes.library.builtin_scenes`, e.g. ``"double_layer_rs"``) when no
         such file exists.
+    allow_paths : sequence of path
+        Folders outside the scene file's folder that its tables, datasheets and output folder
+        may be in (none by default: everything inside the scene file's folder).
 
     Raises
     ------
@@ -643,4 +671,4 @@ def load_scene(path: str | Path) -> Scene:
                          f"{', '.join(builtin_scenes())}", path=str(p)) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneError(f"cannot read scene file: {exc}", path=str(p)) from None
-    return parse_scene(text, str(p))
+    return parse_scene(text, str(p), allow_paths)
