@@ -1,7 +1,7 @@
 """Command line: ``bearingsim run | validate | sweep | list | demo | export-fmu``.
 
-Exit status: 0 success; 1 a simulation (or a sweep point) failed; 2 an invalid scene or
-command line.
+Exit status: 0 success; 1 a simulation (or a sweep point) or a plot failed; 2 an invalid scene,
+command line or a file that cannot be read or written.
 """
 
 from __future__ import annotations
@@ -149,7 +149,10 @@ def _run(args: argparse.Namespace) -> int:
         _say(f"  {name} = {final} at t_end")
     for f in run.files:
         _say(f"  wrote {f}")
-    return 0
+    for failure in s.get("plot_failures", []):
+        _say(f"bearingsim run: plot failed: {failure['plot']}: {failure['error']} (the "
+             f"simulation succeeded; its CSV and summary are written)", err=True)
+    return 1 if s.get("plot_failures") else 0
 
 
 def _validate(args: argparse.Namespace) -> int:

@@ -200,6 +200,9 @@ def test_a_unit_row_still_works_and_a_typo_in_the_first_row_is_an_error(tmp_path
     speed = _table(tmp_path, "time,w\n0,1O0\n1,600\n")
     message = _problems(_scene(tmp_path, speed))
     assert "tab.csv: line 2, column 'w': not a number" in message
+    speed = _table(tmp_path, "time,w\n0.O,100\n1,600\n2,700\n")  # was dropped: 2 rows left
+    message = _problems(_scene(tmp_path, speed))
+    assert "tab.csv: line 2, column 'time': not a number" in message
     speed = _table(tmp_path, "time,w\nzero,hundred\n1,600\n")
     assert "line 2, column 1: neither a number nor a unit" in _problems(_scene(tmp_path, speed))
 
@@ -225,7 +228,7 @@ def test_a_table_too_large_for_memory_is_refused_before_the_run(tmp_path, monkey
     monkeypatch.setattr(tables, "available_memory", lambda: 10_000_000)
     rows = "\n".join(f"{k},{k}" for k in range(10_000))
     message = _problems(_scene(tmp_path, _table(tmp_path, "time,w\n" + rows + "\n")))
-    assert "10000 rows would need about 0.02 GB" in message
+    assert "10000 rows would need about 0.04 GB" in message
 
 
 def test_column_units_known_and_refused():
