@@ -203,6 +203,7 @@ def test_a_failing_plot_is_a_plot_failure_not_a_simulation_failure(tmp_path, mon
     assert [r["name"] for r in summary["files"]] == ["fast.csv"]
     assert summary["plot_failures"][0]["plot"] == "all figures"
     assert _consistent(out)
+    assert sorted(p.name for p in out.iterdir()) == ["fast.csv", "fast.summary.json"]
 
 
 # ----------------------------------------------------------------------------- file errors

@@ -7,9 +7,10 @@
   :class:`OutputFolderBusy` naming the holder (process id, host, start time, command);
 * every file written atomically (:func:`bearingsim.files.atomic_path`); temporary ``.part``
   files of dead processes removed when the lock is taken;
-* the previous summary removed before the first file is replaced (:meth:`retire`), and the new
-  one written last (:meth:`write_summary`), listing every file of the run with its size and
-  SHA-256: a run killed half-way leaves no summary that describes other data;
+* the previous summary and the files it names removed before the first file is replaced
+  (:meth:`retire`), and the new summary written last (:meth:`write_summary`), listing every
+  file of the run with its size and SHA-256: a run killed half-way leaves no summary that
+  describes other data;
 * figures written one by one, a failing one recorded in :attr:`plot_failures` (a plot failure,
   not a simulation failure).
 """
@@ -172,12 +173,23 @@ class OutputFolder:
 
     # ------------------------------------------------------------------ writing
     def retire(self, summary_name: str) -> None:
-        """Remove the summary of an earlier run before anything of it is replaced."""
+        """Remove an earlier run's summary and the files it names, before anything of that
+        run is replaced: a run that then fails half-way leaves none of them behind."""
+        path = self.folder / summary_name
         try:
-            (self.folder / summary_name).unlink(missing_ok=True)
-        except OSError as exc:
-            raise FileAccessError(f"cannot remove {self.folder / summary_name}: "
-                                  f"{os_reason(exc)}") from None
+            named = json.loads(path.read_text(encoding="utf-8")).get("files", [])
+        except (OSError, ValueError, AttributeError):
+            named = []
+        names = {Path(f["name"] if isinstance(f, dict) else str(f)).name for f in named
+                 if isinstance(f, (dict, str))}
+        try:
+            path.unlink(missing_ok=True)
+            for name in sorted(names - {LOCK_NAME, summary_name, "", ".", ".."}):
+                (self.folder / name).unlink(missing_ok=True)
+        except (OSError, KeyError, TypeError) as exc:
+            reason = os_reason(exc) if isinstance(exc, OSError) else "unreadable file list"
+            raise FileAccessError(f"cannot remove the earlier run's files in {self.folder}: "
+                                  f"{reason}") from None
 
     def add(self, path: Path) -> Path:
         """Record a file written (atomically) by another writer."""
