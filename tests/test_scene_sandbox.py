@@ -137,6 +137,21 @@ def test_a_fifo_is_refused_without_blocking(tmp_path):
     assert "not a regular file" in message
 
 
+def test_a_fifo_as_the_scene_file_is_refused_without_blocking(tmp_path, capsys):
+    os.mkfifo(tmp_path / "scene.toml")
+    assert main(["validate", "--no-assemble", str(tmp_path / "scene.toml")]) == 2
+    assert "is not a regular file" in capsys.readouterr().err
+
+
+def test_an_inline_table_too_large_for_memory_is_refused(tmp_path, monkeypatch):
+    import bearingsim.scenes.tables as tables
+
+    monkeypatch.setattr(tables, "available_memory", lambda: 1_000_000)
+    times = ", ".join(str(k) for k in range(1000))
+    message = _problems(_scene(tmp_path, f"{{ times = [{times}], values = [{times}] }}"))
+    assert "inputs.shaft_speed: the inline table inputs.shaft_speed: 1000 rows" in message
+
+
 def test_confined_path_resolves_inside_the_base(tmp_path):
     (tmp_path / "a").mkdir()
     assert confined_path("a/b.csv", tmp_path) == (tmp_path / "a" / "b.csv").resolve()

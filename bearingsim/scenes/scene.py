@@ -24,12 +24,19 @@ import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import BearingsimError, ParameterError
-from bearingsim.files import PathOutsideError, confined_path
+from bearingsim.files import (
+    FileAccessError,
+    PathOutsideError,
+    confined_path,
+    open_regular,
+    os_reason,
+)
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
 from bearingsim.scenes.tables import (
     SceneFileError,
+    check_table_memory,
     load_bearings_files,
     output_base,
     read_table_file,
@@ -61,6 +68,9 @@ DEFAULT_TOLERANCE = 0.05
 """Largest relative error of the requested outputs a scene accepts from ``fidelity = "auto"``
 when it gives no ``tolerance`` [-]."""
 TABLE_KEYS = ("file", "column", "time_column", "times", "values")
+MAX_SCENE_BYTES = 50_000_000
+"""Largest scene file read [bytes] (a scene with inline tables of 10^6 rows is about 30 MB;
+larger tables belong in CSV files)."""
 
 
 class SceneError(ParameterError):
@@ -438,6 +448,11 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[st
         if not all(_is_number(x) for x in list(times) + list(vals)):
             c.add(key, "times and values must be numbers", "lists of numbers in SI units")
             return None
+        try:
+            check_table_memory(len(times), f"the inline table {key}")
+        except FileAccessError as exc:
+            c.add(key, str(exc))
+            return None
     t, y = np.asarray(times, dtype=float), np.asarray(vals, dtype=float)
     if t.size < 2 or t.size != y.size or np.any(np.diff(t) <= 0):
         c.add(key, "a table needs at least two rows, equally many times and values, times "
@@ -664,11 +679,16 @@ def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scen
     p = Path(path)
     if not p.exists():
         p = builtin_scene_path(str(path)) or p
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
+    if not p.exists():
         raise SceneError(f"scene file {str(p)!r} not found; built-in scenes: "
-                         f"{', '.join(builtin_scenes())}", path=str(p)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(f"cannot read scene file: {exc}", path=str(p)) from None
+                         f"{', '.join(builtin_scenes())}", path=str(p))
+    try:
+        with open_regular(p, "scene file", MAX_SCENE_BYTES) as fh:
+            text = fh.read()
+    except FileAccessError as exc:
+        raise SceneError(str(exc), path=str(p)) from None
+    except UnicodeDecodeError:
+        raise SceneError("the scene file is not UTF-8 text", path=str(p)) from None
+    except OSError as exc:
+        raise SceneError(f"cannot read the scene file: {os_reason(exc)}", path=str(p)) from None
     return parse_scene(text, str(p), allow_paths)
