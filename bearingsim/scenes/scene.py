@@ -450,7 +450,7 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[st
             return None
         try:
             check_table_memory(len(times), f"the inline table {key}")
-        except FileAccessError as exc:
+        except ParameterError as exc:
             c.add(key, str(exc))
             return None
     t, y = np.asarray(times, dtype=float), np.asarray(vals, dtype=float)

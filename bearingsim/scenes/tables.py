@@ -138,13 +138,13 @@ def check_table_memory(rows: int, what: str) -> None:
 
     Raises
     ------
-    SceneFileError is not raised here: :class:`~bearingsim.files.FileAccessError`, naming the
-    rows, the memory needed and the memory available.
+    ParameterError
+        Naming ``what``, the rows, the memory needed and the memory available.
     """
     free = available_memory()
     need = rows * BYTES_PER_ROW
     if free is not None and need > free // 2:
-        raise FileAccessError(f"{what}: {rows} rows would need about {need / 1e9:.2g} GB to "
+        raise ParameterError(f"{what}: {rows} rows would need about {need / 1e9:.2g} GB to "
                               f"simulate, more than half the {free / 1e9:.2g} GB of memory "
                               f"available; thin the table (a row every time step the run "
                               f"can resolve is enough)")
@@ -231,7 +231,7 @@ def read_table_file(key: str, v: dict[str, Any], base: Path, allowed: Sequence[P
         raise fail("file", f"cannot read it: {os_reason(exc)}") from None
     try:
         check_table_memory(len(times), f"table file {name}")
-    except FileAccessError as exc:
+    except ParameterError as exc:
         raise SceneFileError(f"{key}.file", str(exc)) from None
     factors = []
     for index, what in ((it, "time_column"), (iv, "column")):
