@@ -274,3 +274,61 @@ def test_the_linear_time_table_matches_numpy_interp(values, steps, probes):
     assert np.array_equal(got[:n], np.asarray(values))
     scale = max(1.0, float(np.max(np.abs(values))))
     assert np.allclose(got, want, rtol=0, atol=1e-12 * scale)
+
+
+# ----------------------------------------------------------------------------- properties
+_UNITS = {"time": ["s", "ms"], "value": ["rpm", "rad/s", "kN", "N", "mm", "N mm", "deg", "-"]}
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-1e9, 1e9, allow_nan=False), min_size=2, max_size=30),
+       st.sampled_from(_UNITS["time"]), st.sampled_from(_UNITS["value"]),
+       st.booleans())
+def test_a_written_table_reads_back_in_si(tmp_path_factory, values, t_unit, v_unit, unit_row):
+    """Property: any table written with units in the header (or a unit row) reads back as
+    value x factor (repr round-trips a float exactly), in order, with the unit recorded."""
+    from bearingsim.scenes.tables import read_table_file
+    from bearingsim.units import QUANTITY_UNITS
+
+    folder = tmp_path_factory.mktemp("t")
+    times = [0.5 * k for k in range(len(values))]
+    head = ("time,w\n" + f"{t_unit},{v_unit}\n") if unit_row else f"time [{t_unit}],w [{v_unit}]\n"
+    body = "".join(f"{t!r},{v!r}\n" for t, v in zip(times, values, strict=True))
+    (folder / "t.csv").write_text(head + body)
+    got_t, got_v, source, unit = read_table_file("inputs.w", {"file": "t.csv", "column": "w"},
+                                                 folder)
+    t_factor = QUANTITY_UNITS[t_unit][1]
+    si, v_factor = QUANTITY_UNITS.get(v_unit, (None, 1.0))
+    assert got_t == [t * t_factor for t in times]
+    assert got_v == [v * v_factor for v in values]
+    assert unit == si and source == "t.csv:w"
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.text(max_size=60))
+def test_printable_leaves_no_control_character(text):
+    import unicodedata
+
+    clean = printable(text)
+    assert all(c in "\n\t" or unicodedata.category(c) != "Cc" for c in clean)
+    assert "\x1b" not in clean and "\u202e" not in clean
+    if all(c.isprintable() or c in "\n\t" for c in text):  # plain text is left as it is
+        assert clean == text
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.sampled_from(["a", "b", "..", ".", "link", "c.csv"]), min_size=1,
+                max_size=6))
+def test_confined_path_never_leaves_the_base(tmp_path_factory, parts):
+    """Property: whatever a relative name of these parts (with ``..`` and a link out) is,
+    the result is inside the base, or the name is refused."""
+    root = tmp_path_factory.mktemp("c")
+    base = root / "base"
+    (base / "a" / "b").mkdir(parents=True)
+    (root / "out").mkdir()
+    (base / "a" / "link").symlink_to(root / "out")
+    try:
+        path = confined_path("/".join(parts), base)
+    except PathOutsideError:
+        return
+    assert path == base.resolve() or base.resolve() in path.parents
