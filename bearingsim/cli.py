@@ -1,7 +1,7 @@
 """Command line: ``bearingsim run | validate | sweep | list | demo | export-fmu``.
 
-Exit status: 0 success; 1 a simulation (or a sweep point) failed; 2 an invalid scene or
-command line.
+Exit status: 0 success; 1 a simulation (or a sweep point) or a plot failed; 2 an invalid scene,
+command line or a file that cannot be read or written.
 """
 
 from __future__ import annotations
@@ -9,9 +9,10 @@ from __future__ import annotations
 import argparse
 import inspect
 import math
+import re
 import sys
 
-__all__ = ["main"]
+__all__ = ["main", "printable"]
 
 
 def _components() -> dict[str, list[str]]:
@@ -34,6 +35,23 @@ def _components() -> dict[str, list[str]]:
         if names:
             out[info.name.removeprefix(pkg.__name__ + ".")] = sorted(names)
     return out
+
+
+_TERMINAL_CODES = re.compile(r"\x1b(\[[0-?]*[ -/]*[@-~]|\][^\x07\x1b]*(\x07|\x1b\\)?|.)?"
+                             r"|\x9b[0-?]*[ -/]*[@-~]")
+"""ANSI/VT sequences: CSI (colours, cursor moves), OSC (window title) and two-byte escapes."""
+_CONTROLS = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f\u200b-\u200f\u202a-\u202e\u2066-\u2069]")
+
+
+def printable(text: object) -> str:
+    """``text`` without terminal escape sequences and control characters (newlines and tabs
+    kept): user text (a scene title, a file name, an error quoting them) cannot move the
+    cursor, recolour or retitle the terminal."""
+    return _CONTROLS.sub("", _TERMINAL_CODES.sub("", str(text)))
+
+
+def _say(text: object, err: bool = False) -> None:
+    print(printable(text), file=sys.stderr if err else sys.stdout)
 
 
 LIST_SECTIONS = ("assemblies", "components", "bearings", "lubricants", "scenes")
@@ -104,7 +122,8 @@ def _demo(args: argparse.Namespace) -> int:
 
     for name in DEMO_SCENES:
         _run(argparse.Namespace(scene=builtin_scene_path(name), out=args.out,
-                                overwrite=args.overwrite, no_progress=args.no_progress))
+                                overwrite=args.overwrite, no_progress=args.no_progress,
+                                allow_path=[]))
     return 0
 
 
@@ -113,40 +132,44 @@ def _run(args: argparse.Namespace) -> int:
     from bearingsim.units import engineering
 
     run = run_scene(args.scene, out=args.out, overwrite=args.overwrite,
-                    progress=False if args.no_progress else None)
+                    progress=False if args.no_progress else None, allow_paths=args.allow_path)
     s = run.summary
-    print(f"{s['title']}: {s['assembly']} at fidelity {s['fidelity']['chosen']} "
+    _say(f"{s['title']}: {s['assembly']} at fidelity {s['fidelity']['chosen']} "
           f"({s['fidelity']['reason']})")
     for text in s["fidelity"].get("rejected", []):
-        print(f"  rejected {text}")
-    print(f"  {s['system']['states']} states; assemble {s['timings_s']['assemble']:.2f} s, "
+        _say(f"  rejected {text}")
+    _say(f"  {s['system']['states']} states; assemble {s['timings_s']['assemble']:.2f} s, "
           f"simulate {s['timings_s']['simulate']:.2f} s")
     for kind, items in s["skipped"].items():
         for item in items:
             text = item if isinstance(item, str) else f"{item['name']}: {item['note']}"
-            print(f"  skipped ({kind}): {text}")
+            _say(f"  skipped ({kind}): {text}")
     for name, o in s["outputs"].items():
         final = "inf/nan" if o["final"] is None else engineering(o["final"], o["unit"])
-        print(f"  {name} = {final} at t_end")
+        _say(f"  {name} = {final} at t_end")
     for f in run.files:
-        print(f"  wrote {f}")
-    return 0
+        _say(f"  wrote {f}")
+    for failure in s.get("plot_failures", []):
+        _say(f"bearingsim run: plot failed: {failure['plot']}: {failure['error']} (the "
+             f"simulation succeeded; its CSV and summary are written)", err=True)
+    return 1 if s.get("plot_failures") else 0
 
 
 def _validate(args: argparse.Namespace) -> int:
     from bearingsim.scenes import validate_scene
 
-    prep = validate_scene(args.scene, assemble_model=not args.no_assemble)
+    prep = validate_scene(args.scene, assemble_model=not args.no_assemble,
+                          allow_paths=args.allow_path)
     if args.no_assemble:
-        print(f"{args.scene}: valid ({prep.assembly}; names not checked against the model)")
+        _say(f"{args.scene}: valid ({prep.assembly}; names not checked against the model)")
         return 0
-    print(f"{args.scene}: valid; {prep.spec.name} at fidelity {prep.fidelity or '-'} "
+    _say(f"{args.scene}: valid; {prep.spec.name} at fidelity {prep.fidelity or '-'} "
           f"({prep.fidelity_reason}); {prep.system.n_states} states; outputs "
           + ", ".join(prep.outputs))
     for item in prep.system.skipped:
-        print(f"  pruned: {item}")
+        _say(f"  pruned: {item}")
     for name in prep.post:
-        print(f"  post-processed after the integration: {name}")
+        _say(f"  post-processed after the integration: {name}")
     return 0
 
 
@@ -167,19 +190,19 @@ def _sweep(args: argparse.Namespace) -> int:
     if args.sample:
         samples = sample_points(parse_sample(args.sample), args.samples, args.seed)
         points = [{**p, **s} for p in points for s in samples]
-    out = args.out
-    if out is None:
-        from bearingsim.scenes import load_scene
+    from bearingsim.scenes import load_scene
+    from bearingsim.scenes.tables import scene_output_folder
 
-        out = load_scene(args.scene).output.folder
-    res = run_sweep(args.scene, points, scheduler=args.scheduler, n_workers=args.workers,
+    scene = load_scene(args.scene, args.allow_path)
+    out = args.out if args.out is not None else scene_output_folder(scene)
+    res = run_sweep(scene, points, scheduler=args.scheduler, n_workers=args.workers,
                     out=out, progress=not args.no_progress)
-    print(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed; "
+    _say(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed; "
           f"{res.models_built} model(s) built and shipped; {res.wall_s:.1f} s")
     if res.failures:
-        print(describe_failures(res), file=sys.stderr)
+        _say(describe_failures(res), err=True)
     for f in res.files:
-        print(f"  wrote {f}")
+        _say(f"  wrote {f}")
     return 1 if res.failures else 0
 
 
@@ -197,10 +220,14 @@ def _parser() -> argparse.ArgumentParser:
     p_run.add_argument("--no-progress", action="store_true",
                        help="no progress bar (shown on a terminal for runs longer than 2 s)")
     p_val = sub.add_parser("validate", help="check a scene file without running it")
+    p_sw = sub.add_parser("sweep", help="run a scene over a grid or sample (dask.distributed)")
+    for p in (p_run, p_val, p_sw):
+        p.add_argument("--allow-path", action="append", default=[], metavar="DIR",
+                       help="let the scene read and write in DIR too (by default only inside "
+                            "the scene file's folder); repeat for several")
     p_val.add_argument("scene", help="scene TOML file")
     p_val.add_argument("--no-assemble", action="store_true",
                        help="only check the file, not its names against the model")
-    p_sw = sub.add_parser("sweep", help="run a scene over a grid or sample (dask.distributed)")
     p_sw.add_argument("scene", help="scene TOML file")
     p_sw.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
                       help="grid values of a key (inputs.X, parameters.X, initial.X, "
@@ -246,10 +273,16 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return handlers[args.command](args)
     except SimulationError as exc:
-        print(f"bearingsim {args.command}: simulation failed: {exc}", file=sys.stderr)
+        _say(f"bearingsim {args.command}: simulation failed: {exc}", err=True)
         return 1
     except BearingsimError as exc:
-        print(f"bearingsim {args.command}: {exc}", file=sys.stderr)
+        _say(f"bearingsim {args.command}: {exc}", err=True)
+        return 2
+    except OSError as exc:  # a file the command reads or writes (folder missing, disk full)
+        from bearingsim.files import os_reason
+
+        where = f"{exc.filename}: " if exc.filename else ""
+        _say(f"bearingsim {args.command}: {where}{os_reason(exc)}", err=True)
         return 2
 
 

@@ -25,12 +25,14 @@ ratings, speeds and preload classes absent; the defaulted fields are listed in `
 from __future__ import annotations
 
 import csv
+import re
 import sys
 from pathlib import Path
 from typing import Any
 
 from bearingsim.catalog.geometry import BearingGeometry
 from bearingsim.errors import BearingsimError, CatalogError
+from bearingsim.files import FileAccessError, open_regular
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -44,18 +46,35 @@ REQUIRED_KEYS = ("designation", "d_mm", "D_mm", "B_mm", "Z", "Dw_mm", "dm_mm")
 _OPTIONAL_KEYS = ("fi", "fo", "alpha_deg", "Pd_um", "C_kN", "C0_kN", "ref_speed_rpm",
                   "lim_speed_rpm", "preload_light_N", "preload_medium_N", "preload_heavy_N",
                   "estimated", "source")
+_NUMBER_KEYS = ("fi", "fo", "alpha_deg", "Pd_um", "C_kN", "C0_kN", "ref_speed_rpm",
+                "lim_speed_rpm", "preload_light_N", "preload_medium_N", "preload_heavy_N")
+_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]{0,39}")
+"""A key a message may quote (anything else may be a file's content)."""
+_DESIGNATION = re.compile(r"[A-Za-z0-9][A-Za-z0-9 ._/\-]{0,29}")
+_MAX_BYTES = 10_000_000
+"""Largest datasheet file read [bytes] (the built-in catalogue has about 10 kB)."""
 
 
 def _complete(entry: dict[str, Any], where: str) -> dict[str, str]:
     """The entry as a catalogue row (text cells), the catalogue's defaults filled in."""
-    unknown = sorted(set(entry) - set(REQUIRED_KEYS) - set(_OPTIONAL_KEYS))
+    unknown = sorted(set(entry) - set(REQUIRED_KEYS) - set(_OPTIONAL_KEYS), key=str)
     if unknown:
-        raise CatalogError(f"{where}: unknown key(s) {', '.join(unknown)}; keys: "
-                           f"{', '.join(REQUIRED_KEYS + _OPTIONAL_KEYS)}")
+        named = [k for k in unknown if isinstance(k, str) and _KEY.fullmatch(k)]
+        other = len(unknown) - len(named)
+        raise CatalogError(f"{where}: unknown key(s) "
+                           + ", ".join(named + ([f"{other} other text(s)"] if other else []))
+                           + f"; keys: {', '.join(REQUIRED_KEYS + _OPTIONAL_KEYS)}")
     missing = [k for k in REQUIRED_KEYS if str(entry.get(k, "")).strip() == ""]
     if missing:
         raise CatalogError(f"{where}: missing {', '.join(missing)} (mm, balls)")
     row = {k: str(v) for k, v in entry.items()}
+    for key in REQUIRED_KEYS[1:] + _NUMBER_KEYS:
+        try:
+            if row.get(key, "").strip():
+                float(row[key])
+        except ValueError:
+            raise CatalogError(f"{where}: {key} is not a number; expected a number in the "
+                               f"unit its name gives") from None
     angular = float(row.get("alpha_deg") or 0.0) > 0.0
     defaults = {"fi": "0.525" if angular else "0.52", "fo": "0.515" if angular else "0.53",
                 "alpha_deg": "0", "Pd_um": "0"}
@@ -94,26 +113,39 @@ def read_datasheet(path: str | Path) -> list[BearingGeometry]:
     if not path.is_file():
         raise CatalogError(f"bearing datasheet {str(path)!r} not found")
     try:
+        with open_regular(path, "bearing datasheet", _MAX_BYTES) as fh:
+            text = fh.read()
         if path.suffix.lower() == ".toml":
-            entries = tomllib.loads(path.read_text(encoding="utf-8")).get("bearing", [])
+            entries = tomllib.loads(text).get("bearing", [])
         else:
-            lines = [line for line in path.read_text(encoding="utf-8").splitlines()
+            lines = [line for line in text.splitlines()
                      if line.strip() and not line.startswith("#")]
             entries = list(csv.DictReader(lines))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise CatalogError(f"bearing datasheet {path.name}: cannot read it: {exc}") from None
+    except FileAccessError as exc:
+        raise CatalogError(str(exc)) from None
+    except UnicodeDecodeError:
+        raise CatalogError(f"bearing datasheet {path.name}: not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:  # names the line and column, not the text
+        raise CatalogError(f"bearing datasheet {path.name}: not valid TOML: {exc}") from None
+    except (OSError, csv.Error) as exc:
+        raise CatalogError(f"bearing datasheet {path.name}: cannot read it: "
+                           f"{type(exc).__name__}") from None
     if not isinstance(entries, list) or not entries:
         raise CatalogError(f"bearing datasheet {path.name}: no bearings (a CSV with a header "
                            f"row, or [[bearing]] tables in TOML)")
     out = []
     for k, entry in enumerate(entries, start=1):
-        where = f"bearing datasheet {path.name}, bearing {k} ({entry.get('designation', '?')})"
+        name = str(entry.get("designation", "") if isinstance(entry, dict) else "")
+        where = (f"bearing datasheet {path.name}, bearing {k}"
+                 + (f" ({name})" if _DESIGNATION.fullmatch(name) else ""))
+        if not isinstance(entry, dict):
+            raise CatalogError(f"{where}: not a table of keys")
         row = _complete(dict(entry), where)
         row["source"] = row["source"] or f"datasheet {path.name}"
         try:
             out.append(_row_to_geometry(row))
-        except ValueError as exc:
-            raise CatalogError(f"{where}: not a number: {exc}") from None
         except BearingsimError as exc:
             raise CatalogError(f"{where}: {exc}") from None
+        except ValueError:
+            raise CatalogError(f"{where}: Z is not a whole number") from None
     return out

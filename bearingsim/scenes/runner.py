@@ -7,6 +7,7 @@ writes CSV, a JSON summary (with everything that was skipped) and PNG plots.
 
 from __future__ import annotations
 
+import contextlib
 import glob
 import json
 import math
@@ -24,9 +25,11 @@ from bearingsim.errors import ModelError, ParameterError
 from bearingsim.files import atomic_path, write_series_csv
 from bearingsim.plotting import render, set_value_scale
 from bearingsim.scenes.expressions import compile_expression
+from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.plots import BUILTIN_PLOTS
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
+from bearingsim.scenes.tables import scene_output_folder
 from bearingsim.simulation import Result, simulate
 from bearingsim.units import display_unit
 
@@ -89,7 +92,7 @@ def _check(scene: Scene) -> Scene:
     """Re-validate a scene built in Python (dataclass) through the TOML validator."""
     if scene.text is not None:
         return scene
-    return scene_from_dict(scene.to_dict(), path=scene.path)
+    return scene_from_dict(scene.to_dict(), path=scene.path, allow_paths=scene.allow_paths)
 
 
 def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]
@@ -258,13 +261,15 @@ def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def validate_scene(scene: Scene | str | Path, assemble_model: bool = True) -> Prepared | Scene:
+def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,
+                   allow_paths: list[str | Path] | tuple = ()) -> Prepared | Scene:
     """Check a scene without running it: the file, and (by default) its names against the
-    assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`)."""
+    assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`);
+    ``allow_paths`` as :func:`~bearingsim.scenes.scene.load_scene` takes it."""
     from bearingsim.scenes.scene import load_scene
 
     if not isinstance(scene, Scene):
-        scene = load_scene(scene)
+        scene = load_scene(scene, allow_paths)
     scene = _check(scene)
     return prepare(scene) if assemble_model else scene
 
@@ -447,7 +452,8 @@ def save_figures(folder: Path, figures: list[tuple[str, Any]]) -> list[Path]:
 
 
 def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
-              overwrite: bool = False, progress: bool | None = None) -> SceneRun:
+              overwrite: bool = False, progress: bool | None = None,
+              allow_paths: list[str | Path] | tuple = ()) -> SceneRun:
     """Run a scene and (by default) write CSV, JSON summary and plots to its output folder.
 
     Parameters
@@ -464,6 +470,9 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     progress : bool or None
         The solver's progress bar on standard error: always, never, or (None) when standard
         error is a terminal and the run takes longer than about 2 s.
+    allow_paths : sequence of path
+        Folders outside the scene file's folder its files may be in
+        (:func:`~bearingsim.scenes.scene.load_scene`).
 
     Returns
     -------
@@ -477,9 +486,18 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     from bearingsim.scenes.scene import load_scene
 
     if not isinstance(scene, Scene):
-        scene = load_scene(scene)
-    folder = Path(out if out is not None else scene.output.folder)
+        scene = load_scene(scene, allow_paths)
+    folder = Path(out) if out is not None else scene_output_folder(scene)
     stem = Path(scene.path).stem if scene.path else scene.assembly
+    # one writer per folder for the whole run (a second one is told who holds it)
+    with OutputFolder(folder, command_line()) if write else contextlib.nullcontext() as lock:
+        return _run_and_write(scene, folder, stem, lock, overwrite, progress)
+
+
+def _run_and_write(scene: Scene, folder: Path, stem: str, lock: OutputFolder | None,
+                   overwrite: bool, progress: bool | None) -> SceneRun:
+    """:func:`run_scene` with the folder locked (``lock``; None: write nothing)."""
+    write = lock is not None
     if write and not overwrite and folder.is_dir():
         earlier = sorted(p.name for p in folder.glob(f"{glob.escape(stem)}*")
                          if p.name in (f"{stem}.csv", f"{stem}.summary.json")
@@ -500,16 +518,15 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     files: list[Path] = []
     units = {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
     if write:
-        folder.mkdir(parents=True, exist_ok=True)
+        # the earlier summary goes first, the new one comes last (naming its files)
+        lock.retire(f"{stem}.summary.json")
         if prep.scene.output.csv:
-            files.append(write_series_csv(folder / f"{stem}.csv", result.t, series, units))
+            lock.add(write_series_csv(folder / f"{stem}.csv", result.t, series, units))
         if prep.scene.output.plots:
-            files += save_figures(folder, scene_figures(prep, result, series, stem, units))
-        summary_path = folder / f"{stem}.summary.json"
-        files.append(summary_path)
-        data = summary(prep, result, series, files)
-        with atomic_path(summary_path) as tmp:
-            tmp.write_text(json.dumps(data, indent=2))
+            lock.save_figures(lambda: scene_figures(prep, result, series, stem, units))
+        summary_path = lock.write_summary(f"{stem}.summary.json", summary(prep, result, series))
+        data = json.loads(summary_path.read_text())
+        files = lock.files
     else:
         data = summary(prep, result, series, files)
     return SceneRun(prep, result, series, data, files)

@@ -11,11 +11,11 @@ values.
 
 from __future__ import annotations
 
-import csv
 import difflib
 import math
 import re
 import sys
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
@@ -24,9 +24,24 @@ import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.files import (
+    FileAccessError,
+    PathOutsideError,
+    confined_path,
+    open_regular,
+    os_reason,
+)
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
+from bearingsim.scenes.tables import (
+    SceneFileError,
+    check_table_memory,
+    load_bearings_files,
+    output_base,
+    read_table_file,
+    scene_folder,
+)
 from bearingsim.simulation.integrators import METHODS
 from bearingsim.units import parse_quantity
 
@@ -53,6 +68,9 @@ DEFAULT_TOLERANCE = 0.05
 """Largest relative error of the requested outputs a scene accepts from ``fidelity = "auto"``
 when it gives no ``tolerance`` [-]."""
 TABLE_KEYS = ("file", "column", "time_column", "times", "values")
+MAX_SCENE_BYTES = 50_000_000
+"""Largest scene file read [bytes] (a scene with inline tables of 10^6 rows is about 30 MB;
+larger tables belong in CSV files)."""
 
 
 class SceneError(ParameterError):
@@ -163,6 +181,8 @@ class Scene:
         The scene file (for error messages and relative table paths).
     text : str, optional
         The scene file text (for line numbers in error messages).
+    allow_paths : tuple of str
+        Folders outside the scene's folder that its files may be in (``--allow-path``).
     """
 
     assembly: str
@@ -179,6 +199,7 @@ class Scene:
     input_units: dict[str, str] = field(default_factory=dict)
     path: str | None = None
     text: str | None = field(default=None, repr=False)
+    allow_paths: tuple[str, ...] = ()
 
     @property
     def spec(self) -> AssemblySpec:
@@ -209,7 +230,8 @@ class Scene:
         """A validated copy with some fields changed."""
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         d.update(changes)
-        return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None)
+        return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None,
+                               allow_paths=self.allow_paths)
 
 
 # --------------------------------------------------------------------------- line numbers
@@ -403,46 +425,20 @@ def _flatten(d: dict[str, Any], prefix: str = "", keep_tables: bool = False) -> 
     return out
 
 
-def _table_input(c: _Collector, key: str, v: dict, base: Path) -> TableInput | None:
+def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[str, ...],
+                 units: dict[str, str]) -> TableInput | None:
     bad = set(v) - set(TABLE_KEYS)
     if bad:
         _unknown(c, key, sorted(bad)[0], TABLE_KEYS)
         return None
     if "file" in v:
-        path = Path(v["file"])
-        path = path if path.is_absolute() else base / path
-        col = v.get("column")
-        tcol = v.get("time_column", "time")
-        if not path.is_file():
-            c.add(f"{key}.file", f"table file {str(path)!r} not found",
-                  "a CSV file with a header row, relative to the scene file")
-            return None
         try:
-            with path.open(newline="") as fh:
-                rows = list(csv.reader(fh))
-        except OSError as exc:
-            c.add(f"{key}.file", f"cannot read {str(path)!r}: {exc}")
+            times, vals, source, unit = read_table_file(key, v, base, allowed)
+        except SceneFileError as exc:
+            c.add(exc.key, exc.reason, exc.allowed)
             return None
-        # "name [unit]" headers (bearingsim's own CSVs) match the name alone
-        header = [re.sub(r"\s*\[[^\]]*\]$", "", h.strip()) for h in rows[0]] if rows else []
-        if tcol not in header or col not in header:
-            missing = "time_column" if tcol not in header else "column"
-            c.add(f"{key}.{missing}", f"column {(tcol if missing == 'time_column' else col)!r} "
-                  f"not in {path.name}", ", ".join(header))
-            return None
-        it, iv = header.index(tcol), header.index(col)
-        times, vals = [], []
-        for k, row in enumerate(rows[1:], start=2):
-            try:
-                times.append(float(row[it]))
-                vals.append(float(row[iv]))
-            except (ValueError, IndexError):
-                if k == 2:  # a unit row
-                    continue
-                c.add(f"{key}.file", f"{path.name} line {k}: not a number in {tcol!r} or "
-                      f"{col!r}", "numbers in SI units")
-                return None
-        source = f"{path.name}:{col}"
+        if unit is not None:
+            units[key.removeprefix("inputs.")] = unit
     else:
         if "times" not in v or "values" not in v:
             c.add(key, "a table input needs 'file' and 'column', or 'times' and 'values'",
@@ -451,6 +447,11 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path) -> TableInput | N
         times, vals, source = v["times"], v["values"], "inline"
         if not all(_is_number(x) for x in list(times) + list(vals)):
             c.add(key, "times and values must be numbers", "lists of numbers in SI units")
+            return None
+        try:
+            check_table_memory(len(times), f"the inline table {key}")
+        except ParameterError as exc:
+            c.add(key, str(exc))
             return None
     t, y = np.asarray(times, dtype=float), np.asarray(vals, dtype=float)
     if t.size < 2 or t.size != y.size or np.any(np.diff(t) <= 0):
@@ -485,28 +486,12 @@ def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
                   f"[{sim.t_start:g}, {sim.t_end:g}] s)", "an expression finite for all t")
 
 
-def _load_bearings(c: _Collector, files: Any, path: str | None) -> None:
-    """Register the bearings of the scene's datasheet file(s) (key ``bearings``, relative to
-    the scene file) before the assembly's bearing names are checked."""
-    if files is None:
-        return
-    from bearingsim.catalog import load_datasheet
-
-    base = Path(path).resolve().parent if path else Path.cwd()
-    for item in files if isinstance(files, list) else [files]:
-        if not isinstance(item, str):
-            c.add("bearings", f"{item!r} is not a file name", "a datasheet file or a list of them")
-            continue
-        file = Path(item) if Path(item).is_absolute() else base / item
-        try:
-            load_datasheet(file, replace=True)
-        except BearingsimError as exc:
-            c.add("bearings", str(exc), "a CSV or TOML datasheet in catalogue units")
-
-
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
-                    text: str | None = None) -> Scene:
+                    text: str | None = None, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
+
+    Files it names (tables, ``bearings``, ``output.folder``) must be inside the folder of
+    ``path`` (the current folder without one) or of ``allow_paths``.
 
     Raises
     ------
@@ -517,7 +502,9 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k in d:
         if k not in TOP_KEYS:
             _unknown(c, "", k, TOP_KEYS)
-    _load_bearings(c, d.get("bearings"), path)
+    allowed = tuple(str(a) for a in allow_paths)
+    for problem in load_bearings_files(d.get("bearings"), scene_folder(path), allowed):
+        c.add(problem.key, problem.reason, problem.allowed)
     # assembly
     asm = d.get("assembly")
     name, fidelity, args = None, "auto", {}
@@ -550,7 +537,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     # inputs
     inputs: dict[str, Any] = {}
     input_units: dict[str, str] = {}
-    base = Path(path).resolve().parent if path else Path.cwd()
+    base = scene_folder(path)
     raw_inputs = d.get("inputs", {})
     if not isinstance(raw_inputs, dict):
         c.add("inputs", "must be a table", "name = number, expression or table")
@@ -558,7 +545,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k, v in _flatten(raw_inputs, keep_tables=True).items():
         key = f"inputs.{k}"
         if isinstance(v, dict):
-            tab = _table_input(c, key, v, base)
+            tab = _table_input(c, key, v, base, allowed, input_units)
             if tab is not None:
                 inputs[k] = tab
         elif isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
@@ -620,7 +607,11 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             if not isinstance(v, str) or not v:
                 c.add(key, "must be a folder name", "a non-empty text")
             else:
-                out.folder = v
+                try:
+                    confined_path(v, output_base(path), allowed, "output folder")
+                    out.folder = v
+                except PathOutsideError as exc:
+                    c.add(key, str(exc))
         elif k in ("csv", "plots"):
             if not isinstance(v, bool):
                 c.add(key, f"must be true or false, got {v!r}", "true, false")
@@ -649,22 +640,24 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         assembly=name, args=args, fidelity=fidelity, inputs=inputs, input_units=input_units,
         parameters=values["parameters"], initial=values["initial"], outputs=list(outputs),
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
-        tolerance=float(tolerance), path=path, text=text,
+        tolerance=float(tolerance), path=path, text=text, allow_paths=allowed,
     )
 
 
-def parse_scene(text: str, path: str | None = None) -> Scene:
-    """Parse and validate scene TOML text (without assembling the model)."""
+def parse_scene(text: str, path: str | None = None,
+                allow_paths: Sequence[str | Path] = ()) -> Scene:
+    """Parse and validate scene TOML text (without assembling the model); ``allow_paths`` as
+    :func:`scene_from_dict` takes it."""
     try:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         raise SceneError(f"not valid TOML: {exc}", "", int(m.group(1)) if m else None,
                          "TOML syntax (https://toml.io)", path) from None
-    return scene_from_dict(d, path=path, text=text)
+    return scene_from_dict(d, path=path, text=text, allow_paths=allow_paths)
 
 
-def load_scene(path: str | Path) -> Scene:
+def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Read, parse and validate a scene file (without assembling the model).
 
     Parameters
@@ -673,6 +666,9 @@ def load_scene(path: str | Path) -> Scene:
         A scene TOML file, or the name of a built-in scene
         (:func:`~bearingsim.scenes.library.builtin_scenes`, e.g. ``"double_layer_rs"``) when no
         such file exists.
+    allow_paths : sequence of path
+        Folders outside the scene file's folder that its tables, datasheets and output folder
+        may be in (none by default: everything inside the scene file's folder).
 
     Raises
     ------
@@ -683,11 +679,16 @@ def load_scene(path: str | Path) -> Scene:
     p = Path(path)
     if not p.exists():
         p = builtin_scene_path(str(path)) or p
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
+    if not p.exists():
         raise SceneError(f"scene file {str(p)!r} not found; built-in scenes: "
-                         f"{', '.join(builtin_scenes())}", path=str(p)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(f"cannot read scene file: {exc}", path=str(p)) from None
-    return parse_scene(text, str(p))
+                         f"{', '.join(builtin_scenes())}", path=str(p))
+    try:
+        with open_regular(p, "scene file", MAX_SCENE_BYTES) as fh:
+            text = fh.read()
+    except FileAccessError as exc:
+        raise SceneError(str(exc), path=str(p)) from None
+    except UnicodeDecodeError:
+        raise SceneError("the scene file is not UTF-8 text", path=str(p)) from None
+    except OSError as exc:
+        raise SceneError(f"cannot read the scene file: {os_reason(exc)}", path=str(p)) from None
+    return parse_scene(text, str(p), allow_paths)

@@ -38,6 +38,21 @@ def _table_column(values: Any, name: str, what: str, unit: str) -> np.ndarray:
     return column
 
 
+def table_expression(t: ca.SX, times: ca.SX, values: ca.SX) -> ca.SX:
+    """Linear interpolation in a table of ``n`` rows, the end values held outside it, built in
+    O(n) (``casadi.pw_lin`` with symbolic breakpoints takes O(n^2): 277 s for 10^5 rows).
+
+    Each segment contributes its line where ``t`` is in it and an exact zero elsewhere, so the
+    value at a row is that row's value (no summation error).
+    """
+    n = times.numel()
+    held = ca.fmin(ca.fmax(t, times[0]), times[n - 1])
+    t0, t1, v0, v1 = times[:n - 1], times[1:], values[:n - 1], values[1:]
+    inside = (held >= t0) * (held < t1)
+    lines = v0 + (v1 - v0) / (t1 - t0) * (held - t0)
+    return ca.dot(inside, lines) + (held >= times[n - 1]) * values[n - 1]
+
+
 @dataclass(frozen=True)
 class InputSignal:
     """The inputs of a run as ``u(t, q)``: every number the user gave (constants, table rows)
@@ -148,10 +163,7 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
             exprs[k] = q[first]
         elif last > first:
             n = (last - first) // 2
-            times, vals = q[first:first + n], q[first + n:last]
-            # hold the end values outside the table (pw_lin alone would extrapolate linearly)
-            held = ca.fmin(ca.fmax(t, times[0]), times[n - 1])
-            exprs[k] = ca.pw_lin(held, times, vals)
+            exprs[k] = table_expression(t, q[first:first + n], q[first + n:last])
     u = ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
     return InputSignal(ca.Function("u", [t, q], [u], ["t", "q"], ["u"]),
                        np.array(lifted, dtype=float), "|".join(keys))
