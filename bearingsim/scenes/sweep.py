@@ -532,7 +532,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     for job in plan.jobs:
         r = results[job["index"]]
         prep = plan.prepared[job["structure"]]
-        row: dict[str, Any] = {"point": job["index"], **job["point"], "status": r["status"]}
+        row: dict[str, Any] = {"point": job["index"], **_si_values(job["point"]),
+                               "status": r["status"]}
         finals = {k: np.array([v]) for k, v in r["final"].items()}
         for name in prep.outputs:
             if r["status"] != "ok":
@@ -570,6 +571,18 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
             tmp.write_text(json.dumps(summary, indent=2, default=str))
         res.files.append(path)
     return res
+
+
+def _si_values(point: dict[str, Any]) -> dict[str, Any]:
+    """The swept values as the table stores them: SI numbers for inputs that are constant
+    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given."""
+    from bearingsim.scenes.expressions import constant_value
+
+    out = {}
+    for key, value in point.items():
+        si = constant_value(value, key) if key.startswith("inputs.") else None
+        out[key] = value if si is None else si
+    return out
 
 
 def describe_failures(res: SweepResult) -> str:
