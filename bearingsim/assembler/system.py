@@ -75,6 +75,10 @@ class Signal:
     """Smallest valid value (inputs), None: unbounded."""
     high: float | None = None
     """Largest valid value (inputs), None: unbounded."""
+    required: bool = False
+    """An input every run must give (a shaft speed: never held at its start value)."""
+    warn_above: float | None = None
+    """Input magnitude above which a run warns (a bearing's limiting speed)."""
 
 
 @dataclass
