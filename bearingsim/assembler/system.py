@@ -115,6 +115,8 @@ class System:
     mapped: MappedForms | None = None
     """The kernels with one function per ball mapped over each row (``None``: the model has
     no ball sets); the SUNDIALS kernels use them."""
+    requested_outputs: list[str] | None = None
+    """The outputs ``assemble`` was asked for (None: all variables kept)."""
 
     # ---------------------------------------------------------------- names
     @property
