@@ -49,10 +49,12 @@ def test_result_plot_keeps_the_backend_and_draws_into_a_given_axes(tmp_path):
     fig = res.plot(["Rs", "w_middle"], path=tmp_path / "rs.png")
     assert matplotlib.get_backend() == backend
     assert (tmp_path / "rs.png").is_file() and len(fig.axes) == 2
-    assert fig.axes[0].get_ylabel() == "Rs\n[-]"  # dimensionless: [-], not [1]
+    # dimensionless: [-], not [1]; labels from the descriptions (issue 27)
+    assert fig.axes[0].get_ylabel() == "speed distribution ratio n_z / n_i [-]"
     host = Figure()
     ax = host.add_subplot()
-    assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 2
+    assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 1
+    assert len(host.axes) == 2 and len(host.axes[1].lines) == 1  # r/min on a twin axis
     assert len(repr(res)) < 200 and "11 points" in repr(res)
     assert len(repr(system)) < 200 and "states" in repr(system)
 
@@ -93,8 +95,9 @@ def test_result_as_a_table_and_in_a_notebook():
     res = simulate(assemble(double_layer_bearing()), 0.2, inputs={"shaft_speed": 100.0},
                    n_points=11)
     frame = res.to_pandas()
-    assert isinstance(frame, pd.DataFrame) and frame.index.name == "time [s]"
-    assert frame["Rs [-]"].iloc[-1] == res.final("Rs") and frame.shape == (11, len(res.names))
+    assert isinstance(frame, pd.DataFrame) and frame.index.name == "time"
+    assert frame["Rs"].iloc[-1] == res.final("Rs") and frame.attrs["units"]["Rs"] == "1"
+    assert res.to_pandas(internal=True).shape == (11, len(res.names))
     html = res._repr_html_()
     assert "<table>" in html and "Rs" in html and len(html) < 4000
     try:
@@ -129,8 +132,9 @@ def test_reprs_show_units(df_pair):
     assert "[1]" not in text and "Rs [-]" in repr(
         type(res)(res.t, ["Rs", "w_shaft"], res.values[:2], {"Rs": "1", "w_shaft": "rad/s"}))
     html = res._repr_html_()
-    # the shaft speed's final value in r/min: 1000 rad/s = 9549.3 r/min
-    assert "9549.3 r/min" in html and "<th>unit (SI)</th>" in html
+    # the shaft speed's final value in r/min, in the unit its unit column names (issue 27:
+    # the value was in N mm beside a unit column N.m): 1000 rad/s = 9549.3 r/min
+    assert "<td>9549.3</td><td>r/min</td>" in html and "<th>unit</th>" in html
     model = df_pair
     eq = model.equilibrium({"Fz": 1000.0})
     text = repr(eq)

@@ -213,17 +213,22 @@ def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> 
                 f"input {sig.name} [{sig.unit}]: {problem.reason} between t = "
                 f"{problem.t_lo:.9g} s and {problem.t_hi:.9g} s (checked by interval "
                 f"arithmetic over [{times[0]:g}, {times[-1]:g}] s, between the output points "
-                f"too){_bare_number_hint(sig.unit)}")
+                f"too){_bare_number_hint(sig)}")
     _check_sampled(system, u_fn, times)
 
 
-def _bare_number_hint(unit: str) -> str:
-    """For an input whose SI unit is not the customary one (rad/s, m, N m): how to give
-    another unit (docs/units.md)."""
-    if unit not in CUSTOMARY_DIFFERS:
-        return ""
-    return (f"; a bare number is in {unit}, a number with a unit converts "
-            f"(e.g. '10000 rpm', '25 µm', '30 N mm')")
+def _bare_number_hint(sig) -> str:
+    """The limit behind an input's bounds and, for an input whose SI unit is not the
+    customary one (rad/s, m, N m), how to give another unit (docs/units.md)."""
+    limit = getattr(sig, "warn_above", None)
+    text = ""
+    if limit is not None and sig.high is not None:
+        text = (f"; the bound is {sig.high / limit:g} x the limiting speed "
+                f"{engineering(limit, sig.unit, both=True)}")
+    if sig.unit in CUSTOMARY_DIFFERS:
+        text += (f"; a bare number is in {sig.unit}, a number with a unit converts "
+                 f"(e.g. '10000 rpm', '25 µm', '30 N mm')")
+    return text
 
 
 def _check_sampled(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
@@ -246,7 +251,7 @@ def _check_sampled(system: System, u_fn: ca.Function, times: np.ndarray) -> None
             hi = "inf" if sig.high is None else f"{sig.high:g}"
             raise ParameterError(
                 f"input {sig.name} = {row[k]:g} [{sig.unit}] at t = {times[k]:g} s is outside its "
-                f"valid range [{lo}, {hi}] [{sig.unit}]{_bare_number_hint(sig.unit)}"
+                f"valid range [{lo}, {hi}] [{sig.unit}]{_bare_number_hint(sig)}"
             )
         limit = getattr(sig, "warn_above", None)
         if limit is not None and np.max(np.abs(row)) > limit:
