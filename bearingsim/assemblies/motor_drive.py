@@ -65,9 +65,10 @@ def _limit_reference(motor: Component, speed_ref, bearing: Component) -> None:
     geometries = getattr(bearing, "geometries", None)
     limit = shaft_speed_limit(*geometries) if geometries is not None else None
     if speed_ref is None:
-        motor.w_ref.required = True
+        w_ref = motor.declarations["w_ref"]
+        w_ref.required = True
         for key, value in speed_input_bounds(limit).items():
-            setattr(motor.w_ref, key, value)
+            setattr(w_ref, key, value)
     elif isinstance(speed_ref, (int, float)) and geometries is not None:
         check_speed_limit(speed_ref, limit, "motor_drive", LIMIT_TEXT.format(
             *(g.designation for g in geometries)))
