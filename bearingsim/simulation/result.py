@@ -11,7 +11,7 @@ import numpy as np
 
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path, write_series_csv
-from bearingsim.units import describe, display_label, to_display
+from bearingsim.units import describe, display_label, engineering, to_display
 
 __all__ = ["Result"]
 
@@ -144,6 +144,19 @@ class Result:
         with atomic_path(path) as tmp:
             np.savez_compressed(tmp, t=self.t, names=np.array(self.names), values=self.values)
         return path
+
+    def input_echo(self) -> dict[str, dict[str, object]]:
+        """Every input at the last output time in SI and as a person reads it, so that a bare
+        number given in SI is never silent (docs/units.md): name -> ``{"value": 1047.2,
+        "unit": "rad/s", "shown": "10000 r/min (1047.2 rad/s)"}``.
+
+        Returns
+        -------
+        dict
+        """
+        return {n: {"value": v, "unit": self.units.get(n, "1"),
+                    "shown": engineering(v, self.units.get(n, "1"), both=True)}
+                for n, v in self.inputs.items()}
 
     def label(self, name: str) -> str:
         """The axis label of a variable: its description (else its name) and its display
