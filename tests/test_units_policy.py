@@ -215,3 +215,14 @@ def test_fmi_units_come_from_the_same_library():
     assert deg_c.exponents == {"K": 1} and deg_c.offset == pytest.approx(273.15)
     assert parse_unit("rev").factor == pytest.approx(2 * math.pi)
     assert parse_unit("no_such_unit").exponents is None
+
+
+def test_parameters_take_units_too(torque_system):
+    names = torque_system.parameter_names
+    p = torque_system.p0({"inner_layer.nu": "32 mm^2/s", "inner_layer.dm": "33.5 mm",
+                          "housing.phi0": registry().Quantity(90, "deg")})
+    assert p[names.index("inner_layer.nu")] == pytest.approx(32e-6, rel=1e-12)
+    assert p[names.index("inner_layer.dm")] == pytest.approx(0.0335, rel=1e-12)
+    assert p[names.index("housing.phi0")] == pytest.approx(math.pi / 2, rel=1e-12)
+    with pytest.raises(UnitError, match="parameter inner_layer.nu"):
+        torque_system.p0({"inner_layer.nu": "32 rpm"})

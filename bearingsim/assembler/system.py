@@ -13,7 +13,7 @@ from bearingsim.assembler.dae import Param
 from bearingsim.assembler.mapped import MappedForms
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
-from bearingsim.units import unit_label
+from bearingsim.units import to_si, unit_label
 from bearingsim.validation import check_mapping, check_range
 
 __all__ = ["Signal", "FunctionTable", "System", "as_system"]
@@ -161,7 +161,8 @@ class System:
         return x
 
     def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
-        """Parameter vector: defaults, then validated overrides by dotted name."""
+        """Parameter vector: defaults, then validated overrides by dotted name (a number in
+        the parameter's SI unit, or with a unit: ``"25 µm"``, a :class:`pint.Quantity`)."""
         p = np.array([q.value for q in self.params], dtype=float)
         names = self.parameter_names
         for name, val in check_mapping(overrides, "parameters", self.name,
@@ -174,6 +175,7 @@ class System:
                 raise ParameterError(f"{self.name}: unknown parameter {name!r}{hint}")
             k = names.index(name)
             decl = self.params[k].declaration
+            val = to_si(val, self.params[k].unit, f"{self.name}: parameter {name}")
             p[k] = decl.validate(val) if decl is not None else float(val)
         return p
 
