@@ -27,6 +27,9 @@ _MODELICA_NAMES = {"rev": "revolution", "Ohm": "ohm", "um": "micrometer", "µm":
                    "cSt": "mm**2/s"}
 """Spellings of the model, catalogues and engineers that pint spells otherwise."""
 
+_EXPRESSION_NAMES = {"t", "e", "pi"}
+"""Names of the scene expressions (time, constants) that pint would read as units (tonne,
+elementary charge, the number pi): text using them is never a number with a unit."""
 _UNIT_TEXT = re.compile(r"[A-Za-zµ°²³_0-9\s*/^().\-]+")
 _SYMBOL_POWER = re.compile(r"([A-Za-zµ°]+)(-?\d+)(?![\w.])")
 _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity)"
@@ -104,10 +107,16 @@ def base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, flo
     """
     ureg = registry()
     u = pint_unit(unit)
-    zero = ureg.Quantity(0.0, u).to_base_units()
-    one = ureg.Quantity(1.0, u).to_base_units()
-    exps = tuple(sorted((str(k), float(v)) for k, v in one._units.items()))
-    return exps, float(one.magnitude - zero.magnitude), float(zero.magnitude)
+    try:
+        zero = ureg.Quantity(0.0, u).to_base_units()
+        one = ureg.Quantity(1.0, u).to_base_units()
+        exps = tuple(sorted((str(k), float(v)) for k, v in one._units.items()))
+        factor, offset = float(one.magnitude - zero.magnitude), float(zero.magnitude)
+    except (OverflowError, ArithmeticError) as exc:
+        raise UnitError(f"unit {unit!r} cannot be converted to SI ({exc})") from None
+    if not (math.isfinite(factor) and factor != 0.0 and math.isfinite(offset)):
+        raise UnitError(f"unit {unit!r} has no finite SI factor")
+    return exps, factor, offset
 
 
 def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
@@ -157,8 +166,10 @@ def split_quantity(text: str) -> tuple[float, str] | None:
     if m is None:
         return None
     number, unit = m.group(1), m.group(2).strip()
+    if _EXPRESSION_NAMES & set(re.findall(r"[A-Za-zµ°_]+", unit)):
+        return None  # "1000 rpm * t" is an expression of time, not rpm times tonnes
     try:
-        pint_unit(unit)
+        base_exponents(unit)
     except UnitError:
         return None
     try:
