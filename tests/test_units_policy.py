@@ -193,7 +193,7 @@ def test_motor_reference_input_is_bounded_by_the_bearing():
 def test_grid_values_take_units_and_the_table_stores_si():
     """--grid inputs.shaft_speed=500rpm,1000rpm and rpm(500) give the same SI input; the sweep
     table stores SI numbers under its [rad/s] header, not the text rpm(2000)."""
-    from bearingsim.scenes.sweep import _point_scene, _si_values, parse_grid
+    from bearingsim.scenes.sweep import _point_scene, _si_values, parse_grid, parse_sample
 
     scene = _scene(shaft_speed="rpm(1000)")
     grid = parse_grid(["inputs.shaft_speed=500rpm,rpm(1000),52.5"])
@@ -204,6 +204,8 @@ def test_grid_values_take_units_and_the_table_stores_si():
     assert _si_values({"inputs.shaft_speed": "rpm(2000)", "assembly.inner": "61905"}) == {
         "inputs.shaft_speed": pytest.approx(2000 * RPM), "assembly.inner": "61905"}
     assert constant_value("rpm(2000) * t") is None
+    assert parse_sample(["inputs.shaft_speed=500rpm:1000 r/min"])["inputs.shaft_speed"] == (
+        pytest.approx(500 * RPM), pytest.approx(1000 * RPM))
 
 
 def test_fmi_units_come_from_the_same_library():

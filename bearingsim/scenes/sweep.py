@@ -150,7 +150,8 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
 
 
 def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
-    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``."""
+    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``; the
+    bounds may carry units (``inputs.shaft_speed=500rpm:1000rpm``, SI values returned)."""
     ranges = {}
     for item in items:
         if "=" not in item or ":" not in item.split("=", 1)[1]:
@@ -159,14 +160,22 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
         key = key.strip()
         _check_key(key)
         try:
-            lo, hi = (float(x) for x in rng.split(":", 1))
-        except ValueError:
+            lo, hi = (_sample_bound(x) for x in rng.split(":", 1))
+        except (ValueError, ParameterError):
             raise SweepError(f"--sample {key}: low and high must be numbers, got {rng!r}"
                              ) from None
         if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
             raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
         ranges[key] = (lo, hi)
     return ranges
+
+
+def _sample_bound(text: str) -> float:
+    """A sample bound: a number (SI) or a number with a unit (``500rpm``), in SI."""
+    from bearingsim.units import parse_quantity
+
+    quantity = parse_quantity(text)
+    return quantity[0] if quantity is not None else float(text)
 
 
 def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
