@@ -46,7 +46,7 @@ def registry():
     """
     import pint
 
-    return pint.UnitRegistry(cache_folder=":auto:")
+    return pint.UnitRegistry()
 
 
 def _translate(unit: str) -> str:
