@@ -245,3 +245,21 @@ def test_unit_parsers_give_a_value_none_or_a_unit_error_on_any_text(text):
     except UnitError:
         return
     assert value == text or math.isfinite(value)  # not a quantity: left to the caller
+
+
+def test_sweep_table_stores_si_under_its_unit_header(tmp_path):
+    """Issue 27: the sweep CSV header said [rad/s] above the text rpm(2000)."""
+    import csv
+
+    from bearingsim.scenes.sweep import grid_points, run_sweep
+
+    pytest.importorskip("dask.distributed")
+    d = load_scene("double_layer_rs").to_dict()
+    d["assembly"]["fidelity"] = "kinematic"
+    d["outputs"] = ["Rs"]
+    d["simulation"].update(t_end=0.05, n_points=3)
+    points = grid_points({"inputs.shaft_speed": ["500rpm", "rpm(1000)"]})
+    run_sweep(scene_from_dict(d), points, n_workers=1, out=tmp_path, progress=False)
+    rows = list(csv.DictReader((tmp_path / "double_layer_bearing.sweep.csv").open()))
+    assert [float(r["inputs.shaft_speed [rad/s]"]) for r in rows] == pytest.approx(
+        [500 * RPM, 1000 * RPM], rel=1e-12)
