@@ -263,3 +263,16 @@ def test_sweep_table_stores_si_under_its_unit_header(tmp_path):
     rows = list(csv.DictReader((tmp_path / "double_layer_bearing.sweep.csv").open()))
     assert [float(r["inputs.shaft_speed [rad/s]"]) for r in rows] == pytest.approx(
         [500 * RPM, 1000 * RPM], rel=1e-12)
+
+
+def test_console_echoes_a_bare_number_in_both_units(tmp_path, capsys):
+    """A bare number is SI and never silent: the run prints it in r/min and rad/s."""
+    from bearingsim.cli import main
+
+    scene = tmp_path / "bare.toml"
+    scene.write_text('[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+                     'inner = "61905"\nouter = "61907"\n[inputs]\nshaft_speed = 1000\n'
+                     '[simulation]\nt_end = 0.05\nn_points = 3\n[output]\nplots = false\n',
+                     encoding="utf-8")
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    assert "input shaft_speed = 9549.3 r/min (1000 rad/s) at t_end" in capsys.readouterr().out
