@@ -135,6 +135,20 @@ def shaft_speed_limit(gi, go) -> float | None:
     return gi.limiting_speed + go.limiting_speed
 
 
+def _check_shaft_speed(speed, gi, go) -> None:
+    """A constant shaft speed [rad/s] against :func:`shaft_speed_limit` (a function of time is
+    not checked here)."""
+    if isinstance(speed, (int, float)):
+        check_speed_limit(speed, shaft_speed_limit(gi, go), "double_layer_bearing",
+                          LIMIT_TEXT.format(gi.designation, go.designation))
+
+
+def _shaft_speed_input(gi, go) -> Input:
+    """The required input ``shaft_speed`` [rad/s], bounded by :func:`shaft_speed_limit`."""
+    return Input(0.0, "rad/s", "imposed shaft speed", required=True,
+                 **speed_input_bounds(shaft_speed_limit(gi, go)))
+
+
 def speed_ratio(w_middle, w_shaft):
     """Speed distribution ratio ``Rs = w_middle / w_shaft`` [1], defined at rest.
 
@@ -366,12 +380,10 @@ class DoubleLayerBearing(Assembly):
         if drive == "speed":
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft)
-            if isinstance(speed, (int, float)):
-                check_speed_limit(speed, shaft_speed_limit(gi, go), "double_layer_bearing",
-                                  LIMIT_TEXT.format(gi.designation, go.designation))
             if speed is None:
-                self.shaft_speed = Input(0.0, "rad/s", "imposed shaft speed", required=True,
-                                         **speed_input_bounds(shaft_speed_limit(gi, go)))
+                self.shaft_speed = _shaft_speed_input(gi, go)
+            else:
+                _check_shaft_speed(speed, gi, go)
         self._gap = None
         if middle_ring_drag is not None and fidelity == "torque":
             self._gap = _middle_ring_gap(middle_ring_drag, lub_o)
@@ -553,12 +565,10 @@ class DynamicDoubleLayerBearing(Assembly):
         if drive == "speed":
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft)
-            if isinstance(speed, (int, float)):
-                check_speed_limit(speed, shaft_speed_limit(gi, go), "double_layer_bearing",
-                                  LIMIT_TEXT.format(gi.designation, go.designation))
             if speed is None:
-                self.shaft_speed = Input(0.0, "rad/s", "imposed shaft speed", required=True,
-                                         **speed_input_bounds(shaft_speed_limit(gi, go)))
+                self.shaft_speed = _shaft_speed_input(gi, go)
+            else:
+                _check_shaft_speed(speed, gi, go)
 
     def rolling_start(self, w_shaft: float, w_middle: float,
                       states: list[str]) -> dict[str, float]:
