@@ -113,10 +113,9 @@ def test_load_inputs_at_speed_solve_like_constant_loads():
 
 
 def test_a_speed_without_ball_equilibrium_is_named():
-    from bearingsim.catalog import get_bearing
-
     import dataclasses
 
+    from bearingsim.catalog import get_bearing
     from bearingsim.catalog.geometry import SPEED_LIMIT_MULTIPLE
 
     w = 30 * get_bearing("6304").limiting_speed
