@@ -147,6 +147,9 @@ def _run(args: argparse.Namespace) -> int:
     for name, o in s["outputs"].items():
         final = "inf/nan" if o["final"] is None else engineering(o["final"], o["unit"])
         _say(f"  {name} = {final} at t_end")
+    result = getattr(run, "result", None)
+    for name, echo in (result.input_echo() if result is not None else {}).items():
+        _say(f"  input {name} = {echo['shown']} at t_end")
     for f in run.files:
         _say(f"  wrote {f}")
     for failure in s.get("plot_failures", []):

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from bearingsim.units import display_unit, unit_label
+from bearingsim.units import display_label, to_display, unit_label
 
 __all__ = ["WIDE_RANGE", "Curve", "FigureSpec", "Panel", "axis_label", "is_wide_positive",
            "render", "set_value_scale"]
@@ -77,7 +77,7 @@ class Curve:
 @dataclass
 class Panel:
     """One axes: curves over a common x quantity, values in SI (shown in engineering units,
-    :func:`bearingsim.units.display_unit`)."""
+    :func:`bearingsim.units.to_display`)."""
 
     curves: list[Curve]
     x_name: str
@@ -105,7 +105,8 @@ def axis_label(name: str, unit: str) -> str:
 
 def render(spec: FigureSpec, title: str = ""):
     """The :class:`matplotlib.figure.Figure` of a :class:`FigureSpec` (made without pyplot),
-    every axis in engineering units (r/min, um, deg, kN, N m, ``-``).
+    every axis in the display unit of its quantity (r/min, µm, deg, kN, N mm, ``-``:
+    :mod:`bearingsim.units.display`).
 
     Parameters
     ----------
@@ -123,18 +124,19 @@ def render(spec: FigureSpec, title: str = ""):
     fig = Figure(figsize=(7, 2.6 * n + 0.8))
     axes = np.atleast_1d(fig.subplots(n, 1, squeeze=False)[:, 0])
     for ax, panel in zip(axes, spec.panels, strict=True):
-        fx, ux = display_unit(panel.x_unit, np.concatenate([c.x for c in panel.curves]))
-        fy, uy = display_unit(panel.y_unit, np.concatenate([c.y for c in panel.curves]))
+        ux, uy = display_label(panel.x_unit), display_label(panel.y_unit)
+        shown = []
         for k, c in enumerate(panel.curves):
             # hollow markers shrinking from curve to curve: coinciding curves stay visible
             style = c.style or {"linestyle": LINESTYLES[k % len(LINESTYLES)],
                                 "marker": MARKERS[k % len(MARKERS)],
                                 "markersize": max(9.0 - 1.5 * k, 3.0), "fillstyle": "none"}
-            y = np.asarray(c.y, dtype=float) * fy
-            ax.plot(np.asarray(c.x, dtype=float) * fx, np.where(np.isfinite(y), y, np.nan),
+            y = to_display(c.y, panel.y_unit)[0]
+            shown.append(y)
+            ax.plot(to_display(c.x, panel.x_unit)[0], np.where(np.isfinite(y), y, np.nan),
                     label=c.label, **style)
         if panel.scale == "auto":
-            set_value_scale(ax, [c.y * fy for c in panel.curves])
+            set_value_scale(ax, shown)
         ax.set_xlabel(axis_label(panel.x_name, ux), fontsize=8)
         ax.set_ylabel(axis_label(panel.y_name, uy), fontsize=8)
         if any(c.label for c in panel.curves):

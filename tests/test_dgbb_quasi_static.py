@@ -113,12 +113,21 @@ def test_load_inputs_at_speed_solve_like_constant_loads():
 
 
 def test_a_speed_without_ball_equilibrium_is_named():
+    import dataclasses
+
     from bearingsim.catalog import get_bearing
+    from bearingsim.catalog.geometry import SPEED_LIMIT_MULTIPLE
 
     w = 30 * get_bearing("6304").limiting_speed
+    # a catalogue bearing is refused above twice its limiting speed (docs/units.md) ...
+    with pytest.raises(ParameterError, match=f"more than {SPEED_LIMIT_MULTIPLE:g} x the "
+                                             f"limiting speed of 6304"):
+        deep_groove_ball_bearing("6304", "quasi-static", speed=w, loads={"Fx": 500.0})
+    # ... a geometry without a limiting speed reaches the equilibrium, which names the speed
+    free = dataclasses.replace(get_bearing("6304"), limiting_speed=None)
     with pytest.raises(ParameterError, match=r"no quasi-static ball equilibrium at the "
                                              r"inner-ring speed .* r/min"):
-        deep_groove_ball_bearing("6304", "quasi-static", speed=w, loads={"Fx": 500.0})
+        deep_groove_ball_bearing(free, "quasi-static", speed=w, loads={"Fx": 500.0})
 
 
 def test_non_finite_variables_raise_a_named_simulation_error():

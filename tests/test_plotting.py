@@ -49,10 +49,12 @@ def test_result_plot_keeps_the_backend_and_draws_into_a_given_axes(tmp_path):
     fig = res.plot(["Rs", "w_middle"], path=tmp_path / "rs.png")
     assert matplotlib.get_backend() == backend
     assert (tmp_path / "rs.png").is_file() and len(fig.axes) == 2
-    assert fig.axes[0].get_ylabel() == "Rs\n[-]"  # dimensionless: [-], not [1]
+    # dimensionless: [-], not [1]; labels from the descriptions (issue 27)
+    assert fig.axes[0].get_ylabel() == "speed distribution ratio n_z / n_i [-]"
     host = Figure()
     ax = host.add_subplot()
-    assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 2
+    assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 1
+    assert len(host.axes) == 2 and len(host.axes[1].lines) == 1  # r/min on a twin axis
     assert len(repr(res)) < 200 and "11 points" in repr(res)
     assert len(repr(system)) < 200 and "states" in repr(system)
 
@@ -66,7 +68,7 @@ def test_scene_plots_use_engineering_units(tmp_path, monkeypatch):
     from bearingsim.units import display_unit
 
     assert display_unit("rad/s", [100.0]) == pytest.approx((30 / 3.141592653589793, "r/min"))
-    assert display_unit("m", [2e-5]) == (1e6, "um") and display_unit("1", [0.3]) == (1.0, "-")
+    assert display_unit("m", [2e-5]) == (1e6, "µm") and display_unit("1", [0.3]) == (1.0, "-")
     labels = []
     real_savefig = matplotlib.figure.Figure.savefig
 
@@ -93,8 +95,9 @@ def test_result_as_a_table_and_in_a_notebook():
     res = simulate(assemble(double_layer_bearing()), 0.2, inputs={"shaft_speed": 100.0},
                    n_points=11)
     frame = res.to_pandas()
-    assert isinstance(frame, pd.DataFrame) and frame.index.name == "time [s]"
-    assert frame["Rs [-]"].iloc[-1] == res.final("Rs") and frame.shape == (11, len(res.names))
+    assert isinstance(frame, pd.DataFrame) and frame.index.name == "time"
+    assert frame["Rs"].iloc[-1] == res.final("Rs") and frame.attrs["units"]["Rs"] == "1"
+    assert res.to_pandas(internal=True).shape == (11, len(res.names))
     html = res._repr_html_()
     assert "<table>" in html and "Rs" in html and len(html) < 4000
     try:
@@ -129,12 +132,13 @@ def test_reprs_show_units(df_pair):
     assert "[1]" not in text and "Rs [-]" in repr(
         type(res)(res.t, ["Rs", "w_shaft"], res.values[:2], {"Rs": "1", "w_shaft": "rad/s"}))
     html = res._repr_html_()
-    # the shaft speed's final value in r/min: 1000 rad/s = 9549.3 r/min
-    assert "9549.3 r/min" in html and "<th>unit (SI)</th>" in html
+    # the shaft speed's final value in r/min, in the unit its unit column names (issue 27:
+    # the value was in N mm beside a unit column N.m): 1000 rad/s = 9549.3 r/min
+    assert "<td>9549.3</td><td>r/min</td>" in html and "<th>unit</th>" in html
     model = df_pair
     eq = model.equilibrium({"Fz": 1000.0})
     text = repr(eq)
-    assert text.startswith("<Equilibrium: shaft x ") and " um" in text and " deg" in text
+    assert text.startswith("<Equilibrium: shaft x ") and " µm" in text and " deg" in text
     assert " kN" in text and "spacer force" in text
     # the DF pair carries the 1 kN: the row axial loads differ by 1 kN
     loads = eq.row_axial_loads
@@ -155,9 +159,9 @@ SCENE_END = {"deep_groove_duty1": 0.002, "deep_groove_radial": 1.0,
 stiff step takes 20 s)."""
 SCENE_PLOTS = {
     "deep_groove_duty1": {"ball_loads": ("azimuth from the load direction [deg]",
-                                         "ball load at the inner race [N]")},
+                                         "ball load at the inner race [kN]")},
     "deep_groove_radial": {"ball_loads": ("azimuth from the load direction [deg]",
-                                          "ball load at the inner race [N]")},
+                                          "ball load at the inner race [kN]")},
     "double_layer_friction": {"rs_speed": ("shaft speed [r/min]",
                                            "speed ratio Rs = n_middle / n_shaft [-]")},
     "double_layer_rs": {"rs_speed": ("shaft speed [r/min]",
@@ -168,8 +172,8 @@ SCENE_PLOTS = {
                                         "speed ratio Rs = n_middle / n_shaft [-]")},
 }
 """Scene -> its assembly plots -> (x label, y label)."""
-ENGINEERING = {"r/min", "um", "mm", "deg", "kN", "N", "N m", "N mm", "-", "s", "Hz", "W", "h",
-               "A"}
+ENGINEERING = {"r/min", "µm", "deg", "kN", "N mm", "-", "s", "Hz", "W", "h", "A", "°C", "MPa"}
+"""One display unit per quantity kind (docs/units.md)."""
 
 
 def _scene_figures(name, t_end):
@@ -220,7 +224,7 @@ def test_ball_loads_against_azimuth_match_the_model_and_stribeck():
     contact angles under this radial load are below 1 deg: cos(alpha) > 0.9998)."""
     run, figures = _scene_figures("deep_groove_radial", 1.0)
     model, stribeck = figures["deep_groove_radial.ball_loads.png"].axes[0].lines[:2]
-    psi_deg, q = model.get_xdata(), model.get_ydata()
+    psi_deg, q = model.get_xdata(), model.get_ydata() * 1e3  # plotted in kN
     z, fr = 7, 938.0
     final = np.array([run.result[f"row.Q_i[{j}]"][-1] for j in range(z)])
     assert np.sort(q) == pytest.approx(np.sort(final), rel=1e-12)
@@ -228,7 +232,7 @@ def test_ball_loads_against_azimuth_match_the_model_and_stribeck():
     assert sorted(np.round(np.abs(psi_deg), 6)) == pytest.approx(
         sorted(np.round(np.abs(np.angle(np.exp(2j * np.pi * np.arange(z) / z), deg=True)), 6)))
     assert 4.37 < q.max() * z / fr < 6.0
-    assert max(stribeck.get_ydata()) == pytest.approx(4.37 * fr / z)
+    assert max(stribeck.get_ydata()) * 1e3 == pytest.approx(4.37 * fr / z)
     assert abs(run.result["row.alpha_i[0]"][-1]) < np.radians(1.0)
     assert np.sum(q * np.cos(np.radians(psi_deg))) == pytest.approx(fr, rel=1e-3)
 
@@ -251,14 +255,16 @@ def test_duplex_modes_are_plotted_by_name_and_match_the_study(df_pair):
     assert x == pytest.approx(y, rel=1e-9)
 
 
-def test_forces_from_1_kn_plot_in_kn_and_torques_in_n_m():
-    """The plots' units match engineering(): kN from 1 kN (was N), "N m" (was "N.m")."""
+def test_one_display_unit_per_quantity_kind():
+    """Issue 27 item 4: one display unit per kind whatever the magnitude (was N below 1 kN and
+    kN above, N mm below 1 N m and N m above, um or mm), so two curves of one kind never sit on
+    axes in different units; plots and engineering() agree."""
     from bearingsim.units import display_unit, engineering
 
-    assert display_unit("N", [200.0, 2500.0]) == (1e-3, "kN")
-    assert display_unit("N", [200.0, 900.0]) == (1.0, "N")
-    assert display_unit("N.m", [0.5, 5.0]) == (1.0, "N m")
-    assert engineering(2500.0, "N") == "2.5 kN" and engineering(5.0, "N.m") == "5 N m"
+    assert display_unit("N", [200.0, 2500.0]) == display_unit("N", [200.0]) == (1e-3, "kN")
+    assert display_unit("N.m", [0.5, 5.0]) == pytest.approx((1e3, "N mm"))
+    assert display_unit("m", [0.5]) == (1e6, "µm") and display_unit("um") == (1.0, "µm")
+    assert engineering(2500.0, "N") == "2.5 kN" and engineering(5.0, "N.m") == "5000 N mm"
 
 
 def test_a_registered_assembly_declares_its_own_plots():

@@ -32,6 +32,10 @@ class Var:
     default: float | None = None
     low: float | None = None
     high: float | None = None
+    required: bool = False
+    """An input a run must give (:class:`~bearingsim.language.Input` ``required``)."""
+    warn_above: float | None = None
+    """Input magnitude above which a run warns (e.g. a limiting speed)."""
     derivative: Var | None = None
     dummy: bool = False
     """Set when index reduction made this derivative an algebraic (dummy) variable."""

@@ -168,4 +168,5 @@ def assemble(
     state.require("assemble", "system")
     state.system.timings = timings
     state.system.report = state.report
+    state.system.requested_outputs = list(outputs) if outputs else None
     return state.system

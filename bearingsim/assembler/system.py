@@ -13,7 +13,7 @@ from bearingsim.assembler.dae import Param
 from bearingsim.assembler.mapped import MappedForms
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
-from bearingsim.units import unit_label
+from bearingsim.units import to_si, unit_label
 from bearingsim.validation import check_mapping, check_range
 
 __all__ = ["Signal", "FunctionTable", "System", "as_system"]
@@ -75,6 +75,10 @@ class Signal:
     """Smallest valid value (inputs), None: unbounded."""
     high: float | None = None
     """Largest valid value (inputs), None: unbounded."""
+    required: bool = False
+    """An input every run must give (a shaft speed: never held at its start value)."""
+    warn_above: float | None = None
+    """Input magnitude above which a run warns (a bearing's limiting speed)."""
 
 
 @dataclass
@@ -111,6 +115,8 @@ class System:
     mapped: MappedForms | None = None
     """The kernels with one function per ball mapped over each row (``None``: the model has
     no ball sets); the SUNDIALS kernels use them."""
+    requested_outputs: list[str] | None = None
+    """The outputs ``assemble`` was asked for (None: all variables kept)."""
 
     # ---------------------------------------------------------------- names
     @property
@@ -155,7 +161,8 @@ class System:
         return x
 
     def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
-        """Parameter vector: defaults, then validated overrides by dotted name."""
+        """Parameter vector: defaults, then validated overrides by dotted name (a number in
+        the parameter's SI unit, or with a unit: ``"25 µm"``, a :class:`pint.Quantity`)."""
         p = np.array([q.value for q in self.params], dtype=float)
         names = self.parameter_names
         for name, val in check_mapping(overrides, "parameters", self.name,
@@ -168,6 +175,7 @@ class System:
                 raise ParameterError(f"{self.name}: unknown parameter {name!r}{hint}")
             k = names.index(name)
             decl = self.params[k].declaration
+            val = to_si(val, self.params[k].unit, f"{self.name}: parameter {name}")
             p[k] = decl.validate(val) if decl is not None else float(val)
         return p
 

@@ -27,6 +27,7 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
+from bearingsim.catalog.geometry import speed_input_bounds
 from bearingsim.components.ball_row import BallRow, row_equilibrium, row_parameters
 from bearingsim.components.connectors import Flange, RingFrame
 from bearingsim.components.dynamic import (
@@ -326,7 +327,8 @@ class DeepGrooveBallBearing(Assembly):
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft, *[c.flange for c in inner])
             if speed is None:
-                self.shaft_speed = Input(0.0, "rad/s", "imposed inner-ring speed")
+                self.shaft_speed = Input(0.0, "rad/s", "imposed inner-ring speed", required=True,
+                                         **speed_input_bounds(g.limiting_speed))
         elif ring_inertia:
             self.rotor = Inertia(design.ring_polar_inertia)
             connect(self.rotor.flange_a, self.shaft, *[c.flange for c in inner])

@@ -26,6 +26,7 @@ from bearingsim.assemblies.spec import (
     factory_default,
 )
 from bearingsim.catalog import resolve_bearing
+from bearingsim.catalog.geometry import check_speed_limit, speed_input_bounds
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
     PureRollingLayer,
@@ -67,6 +68,7 @@ __all__ = [
     "RS_REGULARIZATION",
     "SCENE_SPEC",
     "speed_ratio",
+    "shaft_speed_limit",
 ]
 
 FIDELITIES = ("kinematic_approx", "kinematic", "torque", "quasi-static", "dynamic")
@@ -107,6 +109,44 @@ _POSITIVE_OPTIONS = {"k": "N.s/m", "omega_reg": "rad/s"}
 
 RS_REGULARIZATION = 1e-6
 """Shaft speed [rad/s] below which the speed ratio Rs is regularized (:func:`speed_ratio`)."""
+
+
+LIMIT_TEXT = ("the sum of the limiting speeds of {} and {} (the highest shaft speed at which "
+               "both layers can run within their limits)")
+
+
+def shaft_speed_limit(gi, go) -> float | None:
+    """The limiting shaft speed of a double-layer bearing [rad/s]: the inner layer runs at
+    ``w_shaft (1 - Rs)`` and the outer at ``w_shaft Rs``, so both are within their catalogue
+    limiting speeds ``n_i``, ``n_o`` at best (``Rs = n_o / (n_i + n_o)``) up to
+    ``w_shaft = n_i + n_o``; None when a layer has no limiting speed.
+
+    Parameters
+    ----------
+    gi, go : BearingGeometry
+        Inner and outer layer.
+
+    Returns
+    -------
+    float or None
+    """
+    if gi.limiting_speed is None or go.limiting_speed is None:
+        return None
+    return gi.limiting_speed + go.limiting_speed
+
+
+def _check_shaft_speed(speed, gi, go) -> None:
+    """A constant shaft speed [rad/s] against :func:`shaft_speed_limit` (a function of time is
+    not checked here)."""
+    if isinstance(speed, (int, float)):
+        check_speed_limit(speed, shaft_speed_limit(gi, go), "double_layer_bearing",
+                          LIMIT_TEXT.format(gi.designation, go.designation))
+
+
+def _shaft_speed_input(gi, go) -> Input:
+    """The required input ``shaft_speed`` [rad/s], bounded by :func:`shaft_speed_limit`."""
+    return Input(0.0, "rad/s", "imposed shaft speed", required=True,
+                 **speed_input_bounds(shaft_speed_limit(gi, go)))
 
 
 def speed_ratio(w_middle, w_shaft):
@@ -341,7 +381,9 @@ class DoubleLayerBearing(Assembly):
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft)
             if speed is None:
-                self.shaft_speed = Input(0.0, "rad/s", "imposed shaft speed")
+                self.shaft_speed = _shaft_speed_input(gi, go)
+            else:
+                _check_shaft_speed(speed, gi, go)
         self._gap = None
         if middle_ring_drag is not None and fidelity == "torque":
             self._gap = _middle_ring_gap(middle_ring_drag, lub_o)
@@ -524,7 +566,9 @@ class DynamicDoubleLayerBearing(Assembly):
             self.drive = SpeedSource(speed)
             connect(self.drive.flange, self.shaft)
             if speed is None:
-                self.shaft_speed = Input(0.0, "rad/s", "imposed shaft speed")
+                self.shaft_speed = _shaft_speed_input(gi, go)
+            else:
+                _check_shaft_speed(speed, gi, go)
 
     def rolling_start(self, w_shaft: float, w_middle: float,
                       states: list[str]) -> dict[str, float]:

@@ -7,8 +7,14 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.assemblies import double_layer
-from bearingsim.assemblies.double_layer import DoubleLayerBearing, double_layer_bearing
+from bearingsim.assemblies.double_layer import (
+    LIMIT_TEXT,
+    DoubleLayerBearing,
+    double_layer_bearing,
+    shaft_speed_limit,
+)
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default, nested_post
+from bearingsim.catalog.geometry import check_speed_limit, speed_input_bounds
 from bearingsim.components.motor import MOTOR_DRIVES, speed_controlled_motor
 from bearingsim.components.rotational import Inertia, TorqueSource
 from bearingsim.language import Assembly, Component, Input, Variable, connect
@@ -45,9 +51,27 @@ class MotorDrive(Assembly):
         self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "motor_drive")
         self.shaft = Inertia(shaft_inertia)
         self.bearing = bearing if bearing is not None else double_layer_bearing(drive="flange")
+        _limit_reference(self.motor, speed_ref, self.bearing)
         self.load = TorqueSource(load_torque)
         connect(self.motor.flange, self.shaft.flange_a)
         connect(self.shaft.flange_b, self.bearing.shaft, self.load.flange)
+
+
+def _limit_reference(motor: Component, speed_ref, bearing: Component) -> None:
+    """Check the motor's speed reference against the bearing's limiting shaft speed
+    (:func:`~bearingsim.assemblies.double_layer.shaft_speed_limit`; a bearing without
+    ``geometries`` (inner, outer) is not checked): a constant now, the input ``w_ref`` (then
+    required) by its bounds at every run."""
+    geometries = getattr(bearing, "geometries", None)
+    limit = shaft_speed_limit(*geometries) if geometries is not None else None
+    if speed_ref is None:
+        w_ref = motor.declarations["w_ref"]
+        w_ref.required = True
+        for key, value in speed_input_bounds(limit).items():
+            setattr(w_ref, key, value)
+    elif isinstance(speed_ref, (int, float)) and geometries is not None:
+        check_speed_limit(speed_ref, limit, "motor_drive", LIMIT_TEXT.format(
+            *(g.designation for g in geometries)))
 
 
 def motor_drive(bearing: DoubleLayerBearing | None = None, **kwargs) -> MotorDrive:
@@ -137,7 +161,7 @@ class MotorShaft(Assembly):
         self.w_shaft = Variable(unit="rad/s", description="shaft speed")
         self._has_ref = speed_ref is None
         if self._has_ref:
-            self.w_ref = Input(0.0, "rad/s", "speed reference")
+            self.w_ref = Input(0.0, "rad/s", "speed reference", required=True)
         connect(self.motor.flange, self.shaft.flange_a)
         connect(self.shaft.flange_b, self.bearing_torque.flange)
 

@@ -15,7 +15,72 @@ from dataclasses import dataclass
 from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_range
 
-__all__ = ["BearingGeometry", "PreloadClasses"]
+__all__ = ["BearingGeometry", "PreloadClasses", "SPEED_LIMIT_MULTIPLE", "check_speed_limit",
+           "speed_input_bounds"]
+
+SPEED_LIMIT_MULTIPLE = 2.0
+"""Multiple of a limiting speed above which a speed is refused (between 1x and this multiple a
+run warns): catalogues allow running above the limiting speed only with special cages,
+lubrication and precision, and not by a factor of two."""
+
+
+def check_speed_limit(speed: float, limit: float | None, where: str, what: str) -> None:
+    """Warn above a limiting speed, refuse above :data:`SPEED_LIMIT_MULTIPLE` times it.
+
+    Parameters
+    ----------
+    speed : float
+        Ring (or shaft) speed [rad/s], either sign.
+    limit : float or None
+        The limiting speed [rad/s]; None checks nothing.
+    where : str
+        The model, for messages.
+    what : str
+        What the limit is, e.g. ``"the limiting speed of 61905"``.
+
+    Raises
+    ------
+    ParameterError
+        Above ``SPEED_LIMIT_MULTIPLE * limit``.
+
+    Warns
+    -----
+    SpeedLimitWarning
+        Above ``limit``.
+    """
+    if limit is None:
+        return
+    s = abs(float(speed))
+    shown = f"{s:g} rad/s ({s * 30 / math.pi:.0f} r/min)"
+    if s > SPEED_LIMIT_MULTIPLE * limit:
+        raise ParameterError(
+            f"{where}: speed {shown} is more than {SPEED_LIMIT_MULTIPLE:g} x {what}, "
+            f"{limit * 30 / math.pi:.0f} r/min; valid range [0, "
+            f"{SPEED_LIMIT_MULTIPLE * limit * 30 / math.pi:.0f}] r/min (a bare number is rad/s: "
+            f"write e.g. '10000 rpm' for r/min, docs/units.md)")
+    if s > limit:
+        warnings.warn(f"{where}: {shown} exceeds {what}, {limit * 30 / math.pi:.0f} r/min",
+                      SpeedLimitWarning, stacklevel=4)
+
+
+def speed_input_bounds(limit: float | None) -> dict[str, float]:
+    """``low``, ``high`` and ``warn_above`` [rad/s] of a speed input
+    (:class:`~bearingsim.language.Input`) under a limiting speed: the run warns above ``limit``
+    and refuses above :data:`SPEED_LIMIT_MULTIPLE` times it; nothing without a limit.
+
+    Parameters
+    ----------
+    limit : float or None
+        Limiting speed [rad/s].
+
+    Returns
+    -------
+    dict
+    """
+    if limit is None:
+        return {}
+    return {"low": -SPEED_LIMIT_MULTIPLE * limit, "high": SPEED_LIMIT_MULTIPLE * limit,
+            "warn_above": limit}
 
 _MAX_CONTACT_ANGLE = math.radians(45.0)
 _SPECIFIC_RATING = (1.0, 100.0)
@@ -195,21 +260,23 @@ class BearingGeometry:
                 f"mistyped ratings?)")
 
     def check_speed(self, speed: float, where: str) -> None:
-        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed.
+        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed, refuse
+        it above :data:`SPEED_LIMIT_MULTIPLE` times that (:func:`check_speed_limit`).
 
         The limiting speed bounds the bearing's kinematic and thermal safe operation (cage,
         lubricant); above it the models still compute, but the catalogue no longer vouches for
         the bearing. Nothing is checked without a catalogue limiting speed.
 
+        Raises
+        ------
+        ParameterError
+
         Warns
         -----
         SpeedLimitWarning
         """
-        if self.limiting_speed is not None and abs(float(speed)) > self.limiting_speed:
-            warnings.warn(
-                f"{where}: {abs(float(speed)):g} rad/s ({abs(float(speed)) * 30 / math.pi:.0f} "
-                f"r/min) exceeds the limiting speed of {self.designation}, "
-                f"{self.limiting_speed * 30 / math.pi:.0f} r/min", SpeedLimitWarning, stacklevel=3)
+        check_speed_limit(speed, self.limiting_speed, where,
+                          f"the limiting speed of {self.designation}")
 
     @property
     def series(self) -> str | None:

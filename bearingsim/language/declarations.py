@@ -149,15 +149,25 @@ class Input(Variable):
         As for :class:`Declaration`.
     low, high : float, optional
         Valid range, checked on the input signal before a simulation.
+    required : bool, optional
+        Whether a run must give the input (``simulate``, ``steady_state`` and scenes refuse to
+        hold it at its default, e.g. a shaft speed at 0). Default: ``default is None``.
+    warn_above : float, optional
+        Magnitude [unit] above which a run warns
+        (:class:`~bearingsim.errors.SpeedLimitWarning` for a speed above a bearing's
+        limiting speed); ``low``/``high`` stay the hard bounds.
     """
 
     def __init__(self, default: float | None = None, unit: str = "1", description: str = "",
-                 *, low: float | None = None, high: float | None = None):
+                 *, low: float | None = None, high: float | None = None,
+                 required: bool | None = None, warn_above: float | None = None):
         super().__init__(start=None, unit=unit, description=description, fixed=False)
         self.default = None if default is None else float(
             check_range(default, "default", unit, low, high, where=description or "input"))
         self.low = low
         self.high = high
+        self.required = default is None if required is None else bool(required)
+        self.warn_above = warn_above
 
 
 class Parameter(Declaration):

@@ -14,8 +14,10 @@ Grammar (Python syntax, restricted):
   (0 before ``t0``, linear to 1 at ``t1``, then 1), ``rpm(n)`` (r/min -> rad/s), ``deg(a)``
   (degrees -> rad).
 
-Everything is in SI units; a value such as ``"1000 rpm"`` is rejected with a hint to write
-``rpm(1000)``.
+Everything is in SI units; a number with a unit (``"1000 rpm"``) is a scene value of its own
+(:func:`bearingsim.units.parse_quantity`), not part of an expression: inside one write
+``rpm(1000)``. Constant parts must be finite: ``1/0``, ``2**1e308`` and a non-finite number with
+a unit (``"nan N"``, ``"inf rpm"``, ``"1e999 N"``) are :class:`ExpressionError`.
 """
 
 from __future__ import annotations
@@ -30,8 +32,9 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.errors import ParameterError
+from bearingsim.units import parse_quantity, split_quantity
 
-__all__ = ["ExpressionError", "compile_expression", "FUNCTIONS", "CONSTANTS"]
+__all__ = ["ExpressionError", "compile_expression", "constant_value", "FUNCTIONS", "CONSTANTS"]
 
 
 class ExpressionError(ParameterError):
@@ -119,6 +122,16 @@ def _parse(text: str, name: str) -> ast.Expression:
         raise ExpressionError(f"{name}: an expression must be text, got {type(text).__name__}")
     if len(text) > _MAX_LENGTH:
         raise _fail(name, text[:40] + "...", f"longer than {_MAX_LENGTH} characters")
+    quantity = split_quantity(text)
+    if quantity is not None and not math.isfinite(quantity[0]):
+        raise _fail(name, text, "the number is not finite")
+    if quantity is not None:
+        si = parse_quantity(text)
+        example = (f"rpm({quantity[0]:g})" if si is not None and si[1] == "rad/s"
+                   else f"{si[0]:g}" if si is not None else "the SI value")
+        raise _fail(name, text, f"a number with a unit is a value of its own, not an expression "
+                                f"(a scene input takes it alone); inside an expression values "
+                                f"are SI: {example} for {text.strip()}")
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SyntaxWarning)
@@ -166,6 +179,40 @@ def compile_expression(text: str, name: str = "input") -> Callable[[Any], Any]:
     f(ca.SX.sym("t"))  # constant parts (tan(pi/2), 1/0) fail now, not at the first run
     f.expression = text  # type: ignore[attr-defined]
     return f
+
+
+def constant_value(value: Any, name: str = "input") -> float | None:
+    """The SI value of a scene value that does not change in time: a number, a number with a
+    unit (``"500 rpm"``) or a constant expression (``"rpm(500)"``); None for an expression of
+    ``t`` or anything else (a table).
+
+    Parameters
+    ----------
+    value : number or str
+    name : str
+        For error messages.
+
+    Returns
+    -------
+    float or None
+
+    Raises
+    ------
+    ExpressionError
+        For text that is neither a number with a unit nor a valid expression.
+    """
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    if not isinstance(value, str):
+        return None
+    quantity = parse_quantity(value)
+    if quantity is not None:
+        return quantity[0]
+    t = ca.SX.sym("t")
+    expr = ca.SX(compile_expression(value, name)(t))
+    if ca.depends_on(expr, t):
+        return None
+    return float(ca.evalf(expr))
 
 
 def _check(node: ast.AST, name: str, text: str) -> None:
@@ -249,7 +296,7 @@ def _eval(node: ast.AST, t, name: str, text: str):
         a, b = _eval(node.left, t, name, text), _eval(node.right, t, name, text)
         if isinstance(a, float) and isinstance(b, float):
             a = ca.DM(a)  # keep float arithmetic symbolic-friendly (no ZeroDivisionError)
-        return _BINOPS[type(node.op)](a, b)
+        return _finite(_BINOPS[type(node.op)](a, b), node, name, text)
     if isinstance(node, ast.UnaryOp):
         v = _eval(node.operand, t, name, text)
         return -v if isinstance(node.op, ast.USub) else v
@@ -270,8 +317,12 @@ def _eval(node: ast.AST, t, name: str, text: str):
             x = float(args[0])
             if abs(math.cos(x)) < 1e-12 * max(1.0, abs(x)):
                 raise _fail(name, text, f"tan({x:g}) is at the pole pi/2 + k pi of tan")
-        value = fn(t, *args)
-        if isinstance(value, ca.DM) and not np.all(np.isfinite(np.asarray(value))):
-            raise _fail(name, text, f"{ast.unparse(node)} is not a finite number")
-        return value
+        return _finite(fn(t, *args), node, name, text)
     raise _fail(name, text, f"{type(node).__name__} is not allowed")  # pragma: no cover
+
+
+def _finite(value, node: ast.AST, name: str, text: str):
+    """``value`` unless it is a constant that is not finite (``1/0``, ``2**1e308``)."""
+    if isinstance(value, (ca.DM, float)) and not np.all(np.isfinite(np.asarray(value, float))):
+        raise _fail(name, text, f"{ast.unparse(node)} is not a finite number")
+    return value

@@ -150,7 +150,8 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
 
 
 def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
-    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``."""
+    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``; the
+    bounds may carry units (``inputs.shaft_speed=500rpm:1000rpm``, SI values returned)."""
     ranges = {}
     for item in items:
         if "=" not in item or ":" not in item.split("=", 1)[1]:
@@ -159,14 +160,22 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
         key = key.strip()
         _check_key(key)
         try:
-            lo, hi = (float(x) for x in rng.split(":", 1))
-        except ValueError:
+            lo, hi = (_sample_bound(x) for x in rng.split(":", 1))
+        except (ValueError, ParameterError):
             raise SweepError(f"--sample {key}: low and high must be numbers, got {rng!r}"
                              ) from None
         if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
             raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
         ranges[key] = (lo, hi)
     return ranges
+
+
+def _sample_bound(text: str) -> float:
+    """A sample bound: a number (SI) or a number with a unit (``500rpm``), in SI."""
+    from bearingsim.units import parse_quantity
+
+    quantity = parse_quantity(text)
+    return quantity[0] if quantity is not None else float(text)
 
 
 def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
@@ -532,7 +541,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     for job in plan.jobs:
         r = results[job["index"]]
         prep = plan.prepared[job["structure"]]
-        row: dict[str, Any] = {"point": job["index"], **job["point"], "status": r["status"]}
+        row: dict[str, Any] = {"point": job["index"], **_si_values(job["point"]),
+                               "status": r["status"]}
         finals = {k: np.array([v]) for k, v in r["final"].items()}
         for name in prep.outputs:
             if r["status"] != "ok":
@@ -570,6 +580,18 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
             tmp.write_text(json.dumps(summary, indent=2, default=str))
         res.files.append(path)
     return res
+
+
+def _si_values(point: dict[str, Any]) -> dict[str, Any]:
+    """The swept values as the table stores them: SI numbers for inputs that are constant
+    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given."""
+    from bearingsim.scenes.expressions import constant_value
+
+    out = {}
+    for key, value in point.items():
+        si = constant_value(value, key) if key.startswith("inputs.") else None
+        out[key] = value if si is None else si
+    return out
 
 
 def describe_failures(res: SweepResult) -> str:

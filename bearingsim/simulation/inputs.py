@@ -10,6 +10,7 @@ Python runs inside the integration; other callables are evaluated numerically.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -17,15 +18,21 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.system import System
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.simulation.intervals import locate_problem
+from bearingsim.units import CUSTOMARY_DIFFERS, engineering, is_quantity, to_si
+from bearingsim.units.registry import si_factor
 from bearingsim.validation import check_mapping
 
 __all__ = ["InputSignal", "input_signal", "input_expression", "check_input_ranges"]
 
 
 def _table_column(values: Any, name: str, what: str, unit: str) -> np.ndarray:
-    """One column of a (times, values) table: finite real numbers."""
+    """One column of a (times, values) table: finite real numbers (a :class:`pint.Quantity`
+    array converted to ``unit``)."""
+    if is_quantity(values):
+        factor, offset = si_factor(str(values.units), unit)
+        values = np.asarray(values.magnitude, dtype=float) * factor + offset
     if isinstance(values, (str, bytes)):
         raise ParameterError(f"input {name}: table {what} must be numbers [{unit}], got text")
     try:
@@ -83,7 +90,14 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
          lifted: list[float]) -> tuple[ca.SX | None, str]:
     """One input: its expression in ``t``, or None when its numbers were appended to
     ``lifted`` (a constant: one number; a table: its times, then its values), and its
-    structure key."""
+    structure key. A number with a unit (text or :class:`pint.Quantity`) is converted to
+    ``unit`` first."""
+    spec = to_si(spec, unit, f"input {name}")
+    if isinstance(spec, str):
+        raise ParameterError(
+            f"input {name}: {spec!r:.60} is not a number with a unit; give a number in {unit}, "
+            f"a number with a unit (e.g. '10000 rpm', '2 kN'), a function of time or a "
+            f"(times, values) table")
     if isinstance(spec, (bool, np.bool_)):
         raise ParameterError(f"input {name} must be a number in {unit}, a function of time or "
                              f"a (times, values) table, got {spec!r}")
@@ -127,9 +141,10 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
     system : System
         The assembled system.
     inputs : dict, optional
-        Input name -> number, symbolic function of time, or ``(times, values)`` table
+        Input name -> number (in the input's SI unit), number with a unit (``"10000 rpm"``, a
+        :class:`pint.Quantity`), symbolic function of time, or ``(times, values)`` table
         (piecewise linear, the end values held outside ``[times[0], times[-1]]``). Inputs not
-        given take their start values.
+        given take their start values, except the required ones (a shaft speed).
 
     Returns
     -------
@@ -138,7 +153,8 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
     Raises
     ------
     ParameterError
-        For an unknown input name or a malformed value.
+        For an unknown input name, a required input not given, a malformed value or a unit of
+        another quantity.
     """
     inputs = check_mapping(inputs, "inputs", "simulate", "input names")
     unknown = set(inputs) - set(system.input_names)
@@ -147,6 +163,14 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
             f"unknown input(s) {', '.join(sorted(unknown))}; the system's inputs are: "
             + (", ".join(system.input_names) or "none")
         )
+    missing = [sig for sig in system.inputs
+               if getattr(sig, "required", False) and sig.name not in inputs]
+    if missing:
+        raise ParameterError(
+            "input(s) not given: " + ", ".join(f"{s.name} [{s.unit}]" for s in missing)
+            + " (the run would hold them at their start value, e.g. a speed of 0); give each "
+              "as a number in its unit, a number with a unit ('10000 rpm'), a function of time "
+              "or a (times, values) table")
     t = ca.SX.sym("t")
     lifted: list[float] = []
     exprs, keys, slices = [], [], []
@@ -201,8 +225,22 @@ def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> 
                 f"input {sig.name} [{sig.unit}]: {problem.reason} between t = "
                 f"{problem.t_lo:.9g} s and {problem.t_hi:.9g} s (checked by interval "
                 f"arithmetic over [{times[0]:g}, {times[-1]:g}] s, between the output points "
-                f"too)")
+                f"too){_bare_number_hint(sig)}")
     _check_sampled(system, u_fn, times)
+
+
+def _bare_number_hint(sig) -> str:
+    """The limit behind an input's bounds and, for an input whose SI unit is not the
+    customary one (rad/s, m, N m), how to give another unit (docs/units.md)."""
+    limit = getattr(sig, "warn_above", None)
+    text = ""
+    if limit is not None and sig.high is not None:
+        text = (f"; the bound is {sig.high / limit:g} x the limiting speed "
+                f"{engineering(limit, sig.unit, both=True)}")
+    if sig.unit in CUSTOMARY_DIFFERS:
+        text += (f"; a bare number is in {sig.unit}, a number with a unit converts "
+                 f"(e.g. '10000 rpm', '25 µm', '30 N mm')")
+    return text
 
 
 def _check_sampled(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
@@ -225,5 +263,13 @@ def _check_sampled(system: System, u_fn: ca.Function, times: np.ndarray) -> None
             hi = "inf" if sig.high is None else f"{sig.high:g}"
             raise ParameterError(
                 f"input {sig.name} = {row[k]:g} [{sig.unit}] at t = {times[k]:g} s is outside its "
-                f"valid range [{lo}, {hi}] [{sig.unit}]"
+                f"valid range [{lo}, {hi}] [{sig.unit}]{_bare_number_hint(sig)}"
             )
+        limit = getattr(sig, "warn_above", None)
+        if limit is not None and np.max(np.abs(row)) > limit:
+            k = int(np.argmax(np.abs(row)))
+            warnings.warn(
+                f"input {sig.name} reaches {engineering(abs(row[k]), sig.unit, both=True)} at "
+                f"t = {times[k]:g} s, above its limit {engineering(limit, sig.unit, both=True)} "
+                f"(the bearing's limiting speed: the catalogue no longer vouches for the "
+                f"bearing there)", SpeedLimitWarning, stacklevel=4)

@@ -1,17 +1,17 @@
-"""Simulation results: named series, CSV/NPZ export and plots."""
+"""Simulation results: named series, CSV/NPZ export, pandas and xarray views, plots."""
 
 from __future__ import annotations
 
 import html
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from bearingsim.errors import ParameterError
-from bearingsim.files import atomic_path, column_name, write_series_csv
-from bearingsim.plotting import set_value_scale
-from bearingsim.units import engineering, unit_label
+from bearingsim.files import atomic_path, write_series_csv
+from bearingsim.units import describe, display_label, engineering, to_display
 
 __all__ = ["Result"]
 
@@ -20,7 +20,10 @@ __all__ = ["Result"]
 class Result:
     """Time series of every observed variable of a run.
 
-    ``res["j1.w"]`` is the series of one variable; ``res.t`` the time points [s].
+    ``res["Rs"]`` is the series of one variable (SI), ``res[["Rs", "w_middle"]]`` a
+    :class:`Result` with those variables only, ``res.t`` the time points [s];
+    :meth:`to_pandas` and :meth:`to_xarray` give the same as a table with plain variable names
+    and the units beside them.
 
     Attributes
     ----------
@@ -29,7 +32,7 @@ class Result:
     names : list of str
         Dotted names of the observed variables.
     values : ndarray
-        Shape (len(names), len(t)).
+        Shape (len(names), len(t)), in SI units.
     units : dict
         Unit of each variable by name.
     stats : dict
@@ -41,6 +44,12 @@ class Result:
     parameters : dict
         The parameter values of the run (defaults and the run's overrides), by dotted name.
         Empty for a result not made by :func:`~bearingsim.simulation.simulate`.
+    descriptions : dict
+        What each variable is (``"middle ring speed"``), by name: the labels of plots.
+    outputs : list of str
+        The variables asked for (the outputs the system was assembled for, else the
+        assembly's own variables), shown first and alone by :meth:`to_pandas`,
+        :meth:`to_xarray` and :meth:`plot` unless ``internal=True``; empty: all.
     """
 
     t: np.ndarray
@@ -50,13 +59,17 @@ class Result:
     stats: dict[str, object] = field(default_factory=dict)
     inputs: dict[str, float] = field(default_factory=dict)
     parameters: dict[str, float] = field(default_factory=dict)
+    descriptions: dict[str, str] = field(default_factory=dict)
+    outputs: list[str] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         self._index = {n: k for k, n in enumerate(self.names)}
 
-    def __getitem__(self, name: str) -> np.ndarray:
+    def _series(self, name: str) -> np.ndarray:
         if name in ("t", "time"):
             return self.t
+        if not isinstance(name, str):
+            raise ParameterError(f"Result: a variable is named by text, got {name!r:.60}")
         try:
             return self.values[self._index[name]]
         except KeyError:
@@ -66,17 +79,61 @@ class Result:
             hint = f"; did you mean {', '.join(close)}?" if close else ""
             raise KeyError(f"no variable {name!r} in the result{hint}") from None
 
+    def __getitem__(self, key: str | Sequence[str]):
+        """``res["Rs"]``: the series (SI); ``res[["Rs", "w_middle"]]``: a :class:`Result` with
+        those variables, in that order."""
+        if isinstance(key, str):
+            return self._series(key)
+        names = self._names(key, "Result[...]")
+        return Result(self.t, names, np.array([self._series(n) for n in names]).reshape(
+            len(names), self.t.size), {n: self.units.get(n, "1") for n in names}, self.stats,
+            self.inputs, self.parameters, {n: self.descriptions.get(n, "") for n in names},
+            [n for n in names if n in self.outputs])
+
     def __contains__(self, name: str) -> bool:
         return name in self._index
 
+    def _names(self, names, where: str) -> list[str]:
+        """Checked variable names: one name (text) or a list of them, each in the result."""
+        if isinstance(names, str):
+            names = [names]
+        try:
+            names = list(names)
+        except TypeError:
+            raise ParameterError(f"{where}: expected a variable name or a list of them, got "
+                                 f"{names!r:.60}") from None
+        for n in names:
+            self._series(n)  # KeyError with close matches, ParameterError for non-text
+        return names
+
+    def columns(self, internal: bool = False) -> list[str]:
+        """The variables of the tables: the requested outputs first, then (``internal=True``)
+        every other observed variable.
+
+        Parameters
+        ----------
+        internal : bool
+            Also the variables inside the components (connector torques, derivatives...).
+
+        Returns
+        -------
+        list of str
+        """
+        first = [n for n in self.outputs if n in self._index] or list(self.names)
+        if not internal:
+            return first
+        return first + [n for n in self.names if n not in set(first)]
+
     def final(self, name: str) -> float:
         """Value at the last time point."""
+        if not isinstance(name, str):
+            raise ParameterError(f"Result.final: expected a variable name, got {name!r:.60}")
         return float(self[name][-1])
 
     def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
-        """Write ``time`` and the chosen variables (default all) as CSV, one header row
+        """Write ``time`` and the chosen variables (default all) as CSV in SI, one header row
         ``time [s], name [unit], ...`` (:func:`~bearingsim.files.write_series_csv`)."""
-        names = names or self.names
+        names = self._names(names, "Result.to_csv") if names is not None else self.names
         return write_series_csv(path, self.t, {n: self[n] for n in names}, self.units)
 
     def to_npz(self, path: str | Path) -> Path:
@@ -88,9 +145,29 @@ class Result:
             np.savez_compressed(tmp, t=self.t, names=np.array(self.names), values=self.values)
         return path
 
-    def plot(self, names: list[str] | None = None, path: str | Path | None = None, title=None,
-             ax=None):
-        """Plot variables against time; save to ``path`` if given. Returns the figure.
+    def input_echo(self) -> dict[str, dict[str, object]]:
+        """Every input at the last output time in SI and as a person reads it, so that a bare
+        number given in SI is never silent (docs/units.md): name -> ``{"value": 1047.2,
+        "unit": "rad/s", "shown": "10000 r/min (1047.2 rad/s)"}``.
+
+        Returns
+        -------
+        dict
+        """
+        return {n: {"value": v, "unit": self.units.get(n, "1"),
+                    "shown": engineering(v, self.units.get(n, "1"), both=True)}
+                for n, v in self.inputs.items()}
+
+    def label(self, name: str) -> str:
+        """The axis label of a variable: its description (else its name) and its display
+        unit, ``"middle ring speed [r/min]"``."""
+        return describe(name, self.descriptions.get(name, ""), self.units.get(name, "1"))
+
+    def plot(self, names: str | Sequence[str] | None = None, path: str | Path | None = None,
+             title=None, ax=None):
+        """Plot variables against time in engineering units (r/min, µm, N mm, kN: one per
+        quantity kind, :mod:`bearingsim.units.display`), one axis per kind, labelled with the
+        variables' descriptions; save to ``path`` if given. Returns the figure.
 
         The figure is a :class:`matplotlib.figure.Figure` made without pyplot: the session's
         backend is never changed (a notebook keeps its inline plots) and the figure is shown
@@ -98,14 +175,15 @@ class Result:
 
         Parameters
         ----------
-        names : list of str, optional
-            Variables to plot (default: the first six), one axes each.
+        names : str or list of str, optional
+            A variable or the variables to plot (default: the first six outputs).
         path : str or Path, optional
             File to save the figure to (written atomically).
         title : str, optional
             Figure title.
         ax : matplotlib.axes.Axes, optional
-            Draw every variable into this axes of the caller's figure instead.
+            Draw into this axes of the caller's figure: the first unit kind on it, each further
+            kind on a twin axis sharing its time axis.
 
         Returns
         -------
@@ -113,22 +191,35 @@ class Result:
         """
         from matplotlib.figure import Figure
 
-        names = names or self.names[: min(6, len(self.names))]
+        names = (self._names(names, "Result.plot") if names is not None
+                 else self.columns()[:6])
+        if not names:
+            raise ParameterError("Result.plot: no variables to plot")
+        groups: dict[str, list[str]] = {}
+        for n in names:
+            groups.setdefault(display_label(self.units.get(n, "1")), []).append(n)
         if ax is not None:
-            fig, axes = ax.figure, [ax] * len(names)
+            fig, axes = ax.figure, [ax]
+            for k in range(1, len(groups)):
+                twin = ax.twinx()
+                twin.spines["right"].set_position(("outward", 55 * (k - 1)))
+                axes.append(twin)
         else:
-            fig = Figure(figsize=(7, 1.8 * len(names) + 1))
-            axes = np.atleast_1d(fig.subplots(len(names), 1, sharex=True))
-        for axis, n in zip(axes, names, strict=True):
-            unit = unit_label(self.units.get(n, ""))
-            axis.plot(self.t, self[n], label=f"{n} [{unit}]")
-            if ax is None:
-                set_value_scale(axis, [self[n]])
-                axis.set_ylabel(f"{n}\n[{unit}]", fontsize=8)
-            axis.grid(True, alpha=0.3)
-        axes[-1].set_xlabel("time [s]")
-        if ax is not None:
-            ax.legend(fontsize=8)
+            fig = Figure(figsize=(7, 2.0 * len(groups) + 1))
+            axes = list(np.atleast_1d(fig.subplots(len(groups), 1, sharex=True)))
+        cycle = iter(f"C{k}" for k in range(len(names)))
+        for axis, (unit, group) in zip(axes, groups.items(), strict=True):
+            for n in group:
+                y, _ = to_display(self[n], self.units.get(n, "1"))
+                axis.plot(self.t, y, color=next(cycle), label=self.descriptions.get(n) or n)
+            text = ", ".join(self.descriptions.get(n) or n for n in group)
+            axis.set_ylabel(f"{text if len(text) <= 48 else text[:45] + '...'} [{unit}]",
+                            fontsize=8)
+            if len(group) > 1 or ax is not None:
+                axis.legend(fontsize=7, loc="best")
+            if ax is None or axis is ax:
+                axis.grid(True, alpha=0.3)
+        axes[0 if ax is not None else -1].set_xlabel("time [s]")
         if title:
             fig.suptitle(title)
         if ax is None:
@@ -138,43 +229,79 @@ class Result:
                 fig.savefig(tmp, dpi=120)
         return fig
 
-    def to_pandas(self):
-        """The series as a :class:`pandas.DataFrame`: one column ``name [unit]`` per variable,
-        indexed by ``time [s]`` (pandas: ``pip install bearingsim[notebook]``)."""
+    def to_pandas(self, internal: bool = False, names: Sequence[str] | None = None):
+        """The series as a :class:`pandas.DataFrame` in SI: one column per variable, named
+        plainly (``df["Rs"]``), indexed by ``time``; the units in ``df.attrs["units"]`` (the
+        index's as ``"time"``), the descriptions in ``df.attrs["descriptions"]`` (pandas:
+        ``pip install bearingsim[notebook]``).
+
+        Parameters
+        ----------
+        internal : bool
+            Also the variables inside the components (default: the requested outputs only,
+            :meth:`columns`).
+        names : list of str, optional
+            These variables, in this order, instead.
+
+        Returns
+        -------
+        pandas.DataFrame
+        """
         try:
             import pandas as pd
         except ImportError:
             raise ParameterError("Result.to_pandas needs pandas: pip install "
                                  "'bearingsim[notebook]'") from None
-        columns = {column_name(n, self.units.get(n, "")): self[n] for n in self.names}
-        return pd.DataFrame(columns, index=pd.Index(self.t, name=column_name("time", "s")))
+        cols = self._names(names, "Result.to_pandas") if names is not None \
+            else self.columns(internal)
+        frame = pd.DataFrame({n: self[n] for n in cols}, index=pd.Index(self.t, name="time"))
+        frame.attrs["units"] = {"time": "s", **{n: self.units.get(n, "1") for n in cols}}
+        frame.attrs["descriptions"] = {n: self.descriptions.get(n, "") for n in cols}
+        return frame
 
-    def to_xarray(self):
-        """The series as an :class:`xarray.Dataset` over ``time`` with each variable's unit in
-        its ``attrs`` (xarray is not a dependency: install it to use this)."""
+    def to_xarray(self, internal: bool = False, names: Sequence[str] | None = None):
+        """The series as an :class:`xarray.Dataset` over ``time`` in SI, each variable with
+        its ``units`` and ``long_name`` (description) in ``attrs`` (xarray: ``pip install
+        bearingsim[notebook]``); ``internal`` and ``names`` as for :meth:`to_pandas`.
+
+        Returns
+        -------
+        xarray.Dataset
+        """
         try:
             import xarray as xr
         except ImportError:
-            raise ParameterError("Result.to_xarray needs xarray: pip install xarray") from None
-        return xr.Dataset({n: ("time", self[n], {"units": self.units.get(n, "1")})
-                           for n in self.names}, coords={"time": ("time", self.t,
-                                                                  {"units": "s"})})
+            raise ParameterError("Result.to_xarray needs xarray: pip install "
+                                 "'bearingsim[notebook]'") from None
+        cols = self._names(names, "Result.to_xarray") if names is not None \
+            else self.columns(internal)
+        return xr.Dataset(
+            {n: ("time", self[n], {"units": self.units.get(n, "1"),
+                                   "long_name": self.descriptions.get(n) or n}) for n in cols},
+            coords={"time": ("time", self.t, {"units": "s", "long_name": "time"})})
 
     def _repr_html_(self) -> str:
-        """A short table for notebooks: the run and the final value of the first variables,
-        in engineering units (:func:`bearingsim.units.engineering`: r/min, um, deg, kN, N m)."""
-        rows = "".join(f"<tr><td>{html.escape(n)}</td>"
-                       f"<td>{html.escape(engineering(float(self[n][-1]), self.units.get(n, '')))}"
-                       f"</td><td>{html.escape(unit_label(self.units.get(n, '')))}</td></tr>"
-                       for n in self.names[:12])
-        more = (f"<tr><td colspan=3>... {len(self.names) - 12} more</td></tr>"
-                if len(self.names) > 12 else "")
+        """A short table for notebooks: the run and the final value of the requested outputs
+        in engineering units (:func:`bearingsim.units.to_display`), the value in the unit its
+        unit column names."""
+        shown = self.columns()
+        rows = []
+        for n in shown[:12]:
+            unit = self.units.get(n, "1")
+            value, label = to_display(float(self[n][-1]), unit)
+            rows.append(f"<tr><td>{html.escape(n)}</td>"
+                        f"<td>{html.escape(self.descriptions.get(n, ''))}</td>"
+                        f"<td>{value:.6g}</td><td>{html.escape(label)}</td></tr>")
+        more = (f"<tr><td colspan=4>... {len(shown) - 12} more</td></tr>"
+                if len(shown) > 12 else "")
         return (f"<p>{html.escape(repr(self))}</p><table><tr><th>variable</th>"
-                f"<th>final</th><th>unit (SI)</th></tr>{rows}{more}</table>")
+                f"<th>description</th><th>final</th><th>unit</th></tr>{''.join(rows)}{more}"
+                f"</table>")
 
     def __repr__(self) -> str:
-        shown = ", ".join(f"{n} [{unit_label(self.units.get(n, ''))}]" for n in self.names[:4])
-        shown += ", ..." if len(self.names) > 4 else ""
+        names = self.columns()
+        shown = ", ".join(f"{n} [{display_label(self.units.get(n, '1'))}]" for n in names[:4])
+        shown += ", ..." if len(names) > 4 else ""
         span = f"{self.t[0]:g} .. {self.t[-1]:g} s" if self.t.size else "no points"
         method = self.stats.get("method", "")
         return (f"<Result {span}, {self.t.size} points, {len(self.names)} variables ({shown})"

@@ -213,7 +213,18 @@ def simulate(
     u_end = np.asarray(u_of_t(ts[-1]), dtype=float).ravel()
     return Result(ts, list(system.observed_names), values, units, stats,
                   inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
-                  parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)))
+                  parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)),
+                  descriptions=dict(system.observed_descriptions),
+                  outputs=_shown_outputs(system))
+
+
+def _shown_outputs(system: System) -> list[str]:
+    """The variables a result shows first: the outputs the system was assembled for, else the
+    assembly's own variables (undotted names: ``Rs``, ``w_shaft``, not connector torques)."""
+    requested = getattr(system, "requested_outputs", None)
+    if requested:
+        return [n for n in requested if n in system.observed_units]
+    return [n for n in system.observed_names if "." not in n and not n.startswith("der(")]
 
 
 def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:

@@ -197,6 +197,8 @@ def _make_var(d: Declaration) -> Var:
         default=getattr(d, "default", None),
         low=getattr(d, "low", None),
         high=getattr(d, "high", None),
+        required=getattr(d, "required", False),
+        warn_above=getattr(d, "warn_above", None),
     )
 
 

@@ -1,0 +1,240 @@
+"""The one units library of bearingsim: a :mod:`pint` registry, unit strings in the model's
+(Modelica) notation translated to pint's, and numbers with units read into SI.
+
+The registry is made on first use (about a second), so importing bearingsim stays fast.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import re
+from typing import Any
+
+from bearingsim.errors import ParameterError
+
+__all__ = ["UnitError", "registry", "pint_unit", "si_factor", "base_exponents", "split_quantity",
+           "quantity_to_si", "is_quantity"]
+
+
+class UnitError(ParameterError):
+    """A unit that is unknown, or not one of the quantity the value is for."""
+
+
+_MODELICA_NAMES = {"rev": "revolution", "Ohm": "ohm", "um": "micrometer", "µm": "micrometer",
+                   "r/min": "rpm", "1/min": "rpm", "degC": "degree_Celsius",
+                   "°C": "degree_Celsius", "deg": "degree", "Nmm": "N*mm", "Nm": "N*m",
+                   "cSt": "mm**2/s"}
+"""Spellings of the model, catalogues and engineers that pint spells otherwise."""
+
+_EXPRESSION_NAMES = {"t", "e", "pi"}
+"""Names of the scene expressions (time, constants) that pint would read as units (tonne,
+elementary charge, the number pi): text using them is never a number with a unit."""
+_UNIT_TEXT = re.compile(r"[A-Za-zµ°²³_0-9\s*/^().\-]+")
+_SYMBOL_POWER = re.compile(r"([A-Za-zµ°]+)(-?\d+)(?![\w.])")
+_NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity)"
+_QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*([^\d\s+\-.(][^()]*?|\(.*\))\s*$", re.IGNORECASE)
+
+
+@functools.lru_cache(maxsize=1)
+def registry():
+    """The shared :class:`pint.UnitRegistry` (made on the first call).
+
+    Returns
+    -------
+    pint.UnitRegistry
+    """
+    import pint
+
+    return pint.UnitRegistry()
+
+
+def _translate(unit: str) -> str:
+    """A unit string of the model (``N.m/rad``, ``kg.m2``, ``(rad/s)/s``, ``r/min``) in pint's
+    syntax (``N*m/rad``, ``kg*m**2``)."""
+    text = unit.strip()
+    for name, pint_name in sorted(_MODELICA_NAMES.items(), key=lambda kv: -len(kv[0])):
+        text = re.sub(rf"(?<![\w/]){re.escape(name)}(?![\w])", pint_name, text)
+    text = _SYMBOL_POWER.sub(r"\1**\2", text)
+    text = re.sub(r"(?<=[\w)])\s*\.\s*(?=[A-Za-zµ(])", "*", text)  # N.m -> N*m
+    text = re.sub(r"(?<=[\w)])\s+(?=[A-Za-zµ(])", "*", text)  # N mm -> N*mm
+    return text or "dimensionless"
+
+
+@functools.lru_cache(maxsize=512)
+def pint_unit(unit: str):
+    """The :class:`pint.Unit` of a unit string of the model or of an engineer.
+
+    Parameters
+    ----------
+    unit : str
+        E.g. ``"rad/s"``, ``"N.m"``, ``"kg.m2"``, ``"rpm"``, ``"r/min"``, ``"µm"``, ``"kN"``,
+        ``"1"`` or ``""`` (dimensionless).
+
+    Returns
+    -------
+    pint.Unit
+
+    Raises
+    ------
+    UnitError
+        For a unit pint does not know.
+    """
+    if unit in ("", "1", "-"):
+        return registry().dimensionless
+    if not isinstance(unit, str) or not _UNIT_TEXT.fullmatch(unit) or len(unit) > 60:
+        raise UnitError(f"unknown unit {unit!r:.70} (a unit is letters, digits, * / ^ . ( ) "
+                        f"and spaces)")
+    try:
+        return registry().Unit(_translate(unit))
+    except Exception as exc:  # noqa: BLE001 - pint's parser raises many types for bad text
+        raise UnitError(f"unknown unit {unit!r} ({type(exc).__name__}: {exc})") from None
+
+
+@functools.lru_cache(maxsize=512)
+def base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, float]:
+    """Exponents of the SI base units (radian counted as a base unit), factor and offset:
+    ``SI value = factor * value + offset``.
+
+    Parameters
+    ----------
+    unit : str
+
+    Returns
+    -------
+    tuple
+        ``((("kilogram", 1.0), ...), factor, offset)``.
+    """
+    ureg = registry()
+    u = pint_unit(unit)
+    try:
+        zero = ureg.Quantity(0.0, u).to_base_units()
+        one = ureg.Quantity(1.0, u).to_base_units()
+        exps = tuple(sorted((str(k), float(v)) for k, v in one._units.items()))
+        factor, offset = float(one.magnitude - zero.magnitude), float(zero.magnitude)
+    except (OverflowError, ArithmeticError) as exc:
+        raise UnitError(f"unit {unit!r} cannot be converted to SI ({exc})") from None
+    if not (math.isfinite(factor) and factor != 0.0 and math.isfinite(offset)):
+        raise UnitError(f"unit {unit!r} has no finite SI factor")
+    return exps, factor, offset
+
+
+def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
+    """Factor and offset from ``unit`` to ``si_unit`` (``si = factor * x + offset``).
+
+    Raises
+    ------
+    UnitError
+        When the two are not units of the same quantity (radians counted).
+    """
+    e1, f1, o1 = base_exponents(unit)
+    e2, f2, o2 = base_exponents(si_unit)
+    if e1 != e2:
+        raise UnitError(f"{unit!r} is not a unit of {si_label(si_unit)} quantities "
+                        f"(it is {_dimension_text(unit)}, {si_unit!r} is "
+                        f"{_dimension_text(si_unit)})")
+    return f1 / f2, (o1 - o2) / f2
+
+
+def _dimension_text(unit: str) -> str:
+    exps = base_exponents(unit)[0]
+    if not exps:
+        return "dimensionless"
+    return " ".join(f"{k}^{v:g}" if v != 1 else k for k, v in exps)
+
+
+def si_label(unit: str) -> str:
+    """``-`` for a dimensionless unit, else the unit itself."""
+    return "-" if unit in ("", "1") else unit
+
+
+def split_quantity(text: str) -> tuple[float, str] | None:
+    """``"10000 rpm"`` -> ``(10000.0, "rpm")``; ``"500rpm"``, ``"2 kN"``, ``"25 µm"``,
+    ``"80 °C"`` alike. None when the text is not one number followed by a unit known to the
+    units library (it may then be an expression such as ``"rpm(1000) * t"``).
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    tuple or None
+        The number as written (it may be non-finite: the caller refuses it) and the unit.
+    """
+    m = _QUANTITY.match(text)
+    if m is None:
+        return None
+    number, unit = m.group(1), m.group(2).strip()
+    if _EXPRESSION_NAMES & set(re.findall(r"[A-Za-zµ°_]+", unit)):
+        return None  # "1000 rpm * t" is an expression of time, not rpm times tonnes
+    try:
+        base_exponents(unit)
+    except UnitError:
+        return None
+    try:
+        value = float(number)
+    except (ValueError, OverflowError):
+        return None
+    return value, unit
+
+
+def is_quantity(value: Any) -> bool:
+    """Whether ``value`` is a :class:`pint.Quantity` (without importing pint for others)."""
+    return type(value).__module__.startswith("pint") and hasattr(value, "magnitude")
+
+
+def quantity_to_si(value: Any, si_unit: str, name: str) -> float:
+    """A number with a unit in the SI unit of the quantity it is for.
+
+    Parameters
+    ----------
+    value : str or pint.Quantity
+        ``"10000 rpm"``, ``"2 kN"``, ``"25 µm"``, or a :class:`pint.Quantity` of any registry.
+    si_unit : str
+        The unit of the model's input or parameter (``"rad/s"``, ``"N"``, ``"m"``).
+    name : str
+        The input or parameter, for messages.
+
+    Returns
+    -------
+    float
+        The value in ``si_unit``.
+
+    Raises
+    ------
+    UnitError
+        For text that is not a number with a unit, a unit of another quantity, or a value that
+        is not finite.
+    """
+    if is_quantity(value):
+        magnitude, unit = value.magnitude, str(value.units)
+        try:
+            magnitude = float(magnitude)
+        except (TypeError, ValueError):
+            raise UnitError(f"{name}: a quantity must be one number with a unit, got "
+                            f"{value!r:.80}") from None
+    elif isinstance(value, str):
+        parsed = split_quantity(value)
+        if parsed is None:
+            raise UnitError(f"{name}: {value!r:.80} is not a number with a unit; write e.g. "
+                            f"'{_example(si_unit)}' or a number in {si_label(si_unit)}")
+        magnitude, unit = parsed
+    else:
+        raise UnitError(f"{name}: expected a number with a unit, got {type(value).__name__}")
+    if not math.isfinite(magnitude):
+        raise UnitError(f"{name}: {value!s:.80} is not a finite number; give a finite value in "
+                        f"{unit}")
+    try:
+        factor, offset = si_factor(unit, si_unit)
+    except UnitError as exc:
+        raise UnitError(f"{name}: {exc}") from None
+    si = magnitude * factor + offset
+    if not math.isfinite(si):
+        raise UnitError(f"{name}: {value!s:.80} overflows in {si_label(si_unit)}")
+    return si
+
+
+def _example(si_unit: str) -> str:
+    return {"rad/s": "10000 rpm", "N": "2 kN", "m": "25 µm", "N.m": "30 N mm"}.get(
+        si_unit, f"10 {si_label(si_unit)}")

@@ -1,0 +1,278 @@
+"""Issue 27 item 4: one unit policy, one units library (pint), at every edge: scene values, sweep
+grid values, API arguments, display (docs/units.md). A bare number is the SI value, echoed in
+engineering units; a speed above a bearing's limiting speed warns and above twice it is refused,
+in every assembly; the API refuses to run without a required input, as scenes do."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from bearingsim.assembler import assemble
+from bearingsim.assemblies import double_layer_bearing, duplex_pair
+from bearingsim.assemblies.double_layer import shaft_speed_limit
+from bearingsim.assemblies.motor_drive import motor_drive
+from bearingsim.catalog import resolve_bearing
+from bearingsim.catalog.geometry import SPEED_LIMIT_MULTIPLE
+from bearingsim.errors import ParameterError, SpeedLimitWarning
+from bearingsim.scenes import load_scene
+from bearingsim.scenes.expressions import ExpressionError, compile_expression, constant_value
+from bearingsim.scenes.scene import SceneError, scene_from_dict
+from bearingsim.simulation import simulate, steady_state
+from bearingsim.units import (
+    UnitError,
+    engineering,
+    parse_quantity,
+    registry,
+    rpm_to_rad_s,
+    to_display,
+    to_si,
+)
+
+RPM = math.pi / 30.0
+
+
+@pytest.fixture(scope="module")
+def torque_system():
+    return assemble(double_layer_bearing("61905", "61907"))
+
+
+def _scene(**inputs):
+    d = load_scene("double_layer_rs").to_dict()
+    d["inputs"] = inputs
+    d["simulation"].update(t_end=0.05, n_points=3)
+    return scene_from_dict(d)
+
+
+# ------------------------------------------------------------------ parsing: one library
+@pytest.mark.parametrize(("text", "si", "unit"), [
+    ("10000 rpm", 10000 * RPM, "rad/s"), ("500rpm", 500 * RPM, "rad/s"),
+    ("1000 r/min", 1000 * RPM, "rad/s"), ("2 kN", 2000.0, "N"), ("25 µm", 25e-6, "m"),
+    ("25 um", 25e-6, "m"), ("30 N mm", 0.03, "N.m"), ("30 N.mm", 0.03, "N.m"),
+    ("80 °C", 353.15, "K"), ("32 mm^2/s", 32e-6, "m2/s"), ("15 deg", math.radians(15), "rad"),
+])
+def test_numbers_with_units_read_to_si(text, si, unit):
+    value, got = parse_quantity(text)
+    assert value == pytest.approx(si, rel=1e-12) and got == unit
+
+
+@given(st.floats(-1e6, 1e6, allow_nan=False), st.sampled_from(["rpm", "r/min", "rad/s", "kN",
+                                                                 "N", "µm", "mm", "N mm"]))
+def test_parse_and_display_invert_each_other(x, unit):
+    """Reading ``x unit`` into SI and showing the SI value in its display unit, then reading
+    that back, gives the same SI value (pint on both sides)."""
+    si, si_unit = parse_quantity(f"{x!r} {unit}")
+    shown, label = to_display(si, si_unit)
+    back, _ = parse_quantity(f"{shown!r} {label}")
+    assert back == pytest.approx(si, rel=1e-12, abs=1e-300)
+
+
+@pytest.mark.parametrize("text", ["nan N", "inf rpm", "1e999 N", "-inf kN"])
+def test_non_finite_numbers_with_units_are_named_errors(text):
+    """Issue 30 item 3: "nan N", "inf rpm", "1e999 N" were accepted as scene inputs."""
+    assert parse_quantity(text) is None
+    with pytest.raises(ExpressionError, match="not finite"):
+        compile_expression(text, "inputs.Fr")
+    with pytest.raises(UnitError, match="not a finite number"):
+        to_si(text, "N" if text.endswith("N") else "rad/s", "Fr")
+    with pytest.raises(SceneError, match="not finite"):
+        _scene(shaft_speed="rpm(1000)", Fr=text)
+
+
+@pytest.mark.parametrize("text", ["1/0", "2**1e308", "exp(1000)", "1e308 * 10", "-1/0"])
+def test_constant_expressions_must_be_finite(text):
+    """Issue 30 item 3: 1/0 and 2**1e308 compiled to inf."""
+    with pytest.raises(ExpressionError, match="is not a finite number"):
+        compile_expression(text, "inputs.shaft_speed")
+
+
+def test_wrong_quantity_is_refused_with_both_units():
+    with pytest.raises(UnitError, match="'kN' is not a unit of rad/s"):
+        to_si("2 kN", "rad/s", "shaft_speed")
+    assert to_si(registry().Quantity(2.0, "kN"), "N", "Fr") == 2000.0
+    assert to_si(5.0, "N", "Fr") == 5.0  # a bare number is SI
+
+
+# ------------------------------------------------------------------ API = scenes
+def test_api_refuses_a_missing_shaft_speed(torque_system):
+    """Old code: simulate(system, 2.0) ran at shaft speed 0 and returned Rs 0.0 (docs: "a
+    forgotten shaft speed never runs at 0")."""
+    with pytest.raises(ParameterError, match=r"not given: shaft_speed \[rad/s\]"):
+        simulate(torque_system, 2.0)
+    with pytest.raises(ParameterError, match="not given: shaft_speed"):
+        steady_state(torque_system, inputs={"Fr": 100.0})
+    # the loads stay optional, as in scenes
+    assert simulate(torque_system, 0.05, inputs={"shaft_speed": 100.0}, n_points=3).final(
+        "Fr") == 0.0
+
+
+def test_required_inputs_match_the_scene_rules(torque_system):
+    """The system's required inputs are exactly those a scene may not leave out."""
+    from bearingsim.assemblies.registry import REGISTRY
+
+    spec = REGISTRY["double_layer_bearing"]
+    required = {s.name for s in torque_system.inputs if s.required}
+    assert required == {n for n in torque_system.input_names if not spec.is_optional_input(n)}
+    drive = assemble(motor_drive())
+    spec = REGISTRY["motor_drive"]
+    required = {s.name for s in drive.inputs if s.required}
+    assert required == {n for n in drive.input_names if not spec.is_optional_input(n)} \
+        == {"motor.w_ref"}
+
+
+def test_api_takes_numbers_with_units(torque_system):
+    """Old code: "10000 rpm" was rejected by the API but accepted by scenes."""
+    text = simulate(torque_system, 0.05, inputs={"shaft_speed": "10000 rpm", "Fr": "0.2 kN"},
+                    n_points=3)
+    quantity = simulate(torque_system, 0.05, inputs={
+        "shaft_speed": registry().Quantity(10000, "rpm"), "Fr": registry().Quantity(200, "N")},
+        n_points=3)
+    si = simulate(torque_system, 0.05, inputs={"shaft_speed": rpm_to_rad_s(10000.0),
+                                               "Fr": 200.0}, n_points=3)
+    assert text.inputs["shaft_speed"] == pytest.approx(10000 * RPM, rel=1e-15)
+    assert np.array_equal(text.values, si.values) and np.array_equal(quantity.values, si.values)
+    table = simulate(torque_system, 0.05, n_points=3, inputs={
+        "shaft_speed": ([0.0, 0.05], registry().Quantity(np.array([0.0, 1000.0]), "rpm"))})
+    assert table.final("shaft_speed") == pytest.approx(1000 * RPM, rel=1e-12)
+    with pytest.raises(ParameterError, match="not a number with a unit"):
+        simulate(torque_system, 0.05, inputs={"shaft_speed": "fast"})
+
+
+# ------------------------------------------------------------------ limiting speeds
+def test_bare_number_speed_in_a_scene_is_refused_far_above_the_limit():
+    """Old code: shaft_speed = 10000 (rad/s, 95 493 r/min; limiting speeds 22 000 and 16 000
+    r/min) ran with exit code 0 and no warning."""
+    from bearingsim.scenes import run_scene
+
+    with pytest.raises(ParameterError, match=r"above its valid maximum.*limiting speed.*"
+                                             r"a bare number is in rad/s"):
+        run_scene(_scene(shaft_speed=10000), write=False)
+
+
+def test_speed_above_the_limit_warns_and_is_echoed_in_both_units(torque_system):
+    limit = shaft_speed_limit(resolve_bearing("61905"), resolve_bearing("61907"))
+    assert limit / RPM == pytest.approx(22000 + 16000)
+    with pytest.warns(SpeedLimitWarning, match=r"47746 r/min \(5000 rad/s\).*38000 r/min"):
+        simulate(torque_system, 0.05, inputs={"shaft_speed": 5000.0}, n_points=3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SpeedLimitWarning)
+        simulate(torque_system, 0.05, inputs={"shaft_speed": "30000 rpm"}, n_points=3)
+    assert engineering(5000.0, "rad/s", both=True) == "47746 r/min (5000 rad/s)"
+
+
+@pytest.mark.parametrize(("build", "limit_rpm"), [
+    (lambda w: double_layer_bearing("61905", "61907", speed=w), 22000 + 16000),
+    (lambda w: duplex_pair("7014C", preload=500.0, speed=w), 19000),
+    (lambda w: motor_drive(speed_ref=w), 22000 + 16000),
+], ids=["double layer", "duplex pair", "motor drive"])
+def test_every_assembly_checks_its_limiting_speed(build, limit_rpm):
+    """Old code: the double-layer and motor-drive models never checked a limiting speed."""
+    limit = limit_rpm * RPM
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SpeedLimitWarning)
+        build(0.9 * limit)  # below: silent
+    with pytest.warns(SpeedLimitWarning, match=f"{limit_rpm} r/min"):
+        build(1.5 * limit)
+    with pytest.raises(ParameterError, match=f"more than {SPEED_LIMIT_MULTIPLE:g} x"):
+        build(1.01 * SPEED_LIMIT_MULTIPLE * limit)
+
+
+def test_motor_reference_input_is_bounded_by_the_bearing():
+    drive = assemble(motor_drive())
+    w_ref = next(s for s in drive.inputs if s.name == "motor.w_ref")
+    assert w_ref.warn_above == pytest.approx(38000 * RPM)
+    assert w_ref.high == pytest.approx(SPEED_LIMIT_MULTIPLE * 38000 * RPM)
+
+
+# ------------------------------------------------------------------ CLI grid values
+def test_grid_values_take_units_and_the_table_stores_si():
+    """--grid inputs.shaft_speed=500rpm,1000rpm and rpm(500) give the same SI input; the sweep
+    table stores SI numbers under its [rad/s] header, not the text rpm(2000)."""
+    from bearingsim.scenes.sweep import _point_scene, _si_values, parse_grid, parse_sample
+
+    scene = _scene(shaft_speed="rpm(1000)")
+    grid = parse_grid(["inputs.shaft_speed=500rpm,rpm(1000),52.5"])
+    values = [_point_scene(scene, {"inputs.shaft_speed": v}).inputs["shaft_speed"]
+              for v in grid["inputs.shaft_speed"]]
+    assert values[0] == pytest.approx(500 * RPM) and values[2] == 52.5
+    assert compile_expression(values[1])(0.0) == pytest.approx(1000 * RPM)
+    assert _si_values({"inputs.shaft_speed": "rpm(2000)", "assembly.inner": "61905"}) == {
+        "inputs.shaft_speed": pytest.approx(2000 * RPM), "assembly.inner": "61905"}
+    assert constant_value("rpm(2000) * t") is None
+    assert parse_sample(["inputs.shaft_speed=500rpm:1000 r/min"])["inputs.shaft_speed"] == (
+        pytest.approx(500 * RPM), pytest.approx(1000 * RPM))
+
+
+def test_fmi_units_come_from_the_same_library():
+    from bearingsim.fmu.units import parse_unit
+
+    assert parse_unit("N.m/rad").exponents == {"kg": 1, "m": 2, "s": -2, "rad": -1}
+    assert parse_unit("kg.m2").exponents == {"kg": 1, "m": 2}
+    deg_c = parse_unit("degC")
+    assert deg_c.exponents == {"K": 1} and deg_c.offset == pytest.approx(273.15)
+    assert parse_unit("rev").factor == pytest.approx(2 * math.pi)
+    assert parse_unit("no_such_unit").exponents is None
+
+
+def test_parameters_take_units_too(torque_system):
+    names = torque_system.parameter_names
+    p = torque_system.p0({"inner_layer.nu": "32 mm^2/s", "inner_layer.dm": "33.5 mm",
+                          "housing.phi0": registry().Quantity(90, "deg")})
+    assert p[names.index("inner_layer.nu")] == pytest.approx(32e-6, rel=1e-12)
+    assert p[names.index("inner_layer.dm")] == pytest.approx(0.0335, rel=1e-12)
+    assert p[names.index("housing.phi0")] == pytest.approx(math.pi / 2, rel=1e-12)
+    with pytest.raises(UnitError, match="parameter inner_layer.nu"):
+        torque_system.p0({"inner_layer.nu": "32 rpm"})
+
+
+@given(st.text(alphabet="0123456789 .eE+-*/^()rpmkNuµmsdegCK°[]{}%$#@!~`'\"\\\n\t_", max_size=20)
+       | st.text(max_size=15))
+def test_unit_parsers_give_a_value_none_or_a_unit_error_on_any_text(text):
+    """Malformed text made pint raise TokenError, SyntaxError and others."""
+    from bearingsim.fmu.units import parse_unit
+    from bearingsim.units import split_quantity
+
+    split_quantity(text)
+    parse_quantity(text)
+    assert parse_unit(text).name == text
+    try:
+        value = to_si(text, "rad/s", "x")
+    except UnitError:
+        return
+    assert value == text or math.isfinite(value)  # not a quantity: left to the caller
+
+
+def test_sweep_table_stores_si_under_its_unit_header(tmp_path):
+    """Issue 27: the sweep CSV header said [rad/s] above the text rpm(2000)."""
+    import csv
+
+    from bearingsim.scenes.sweep import grid_points, run_sweep
+
+    pytest.importorskip("dask.distributed")
+    d = load_scene("double_layer_rs").to_dict()
+    d["assembly"]["fidelity"] = "kinematic"
+    d["outputs"] = ["Rs"]
+    d["simulation"].update(t_end=0.05, n_points=3)
+    points = grid_points({"inputs.shaft_speed": ["500rpm", "rpm(1000)"]})
+    run_sweep(scene_from_dict(d), points, n_workers=1, out=tmp_path, progress=False)
+    rows = list(csv.DictReader((tmp_path / "double_layer_bearing.sweep.csv").open()))
+    assert [float(r["inputs.shaft_speed [rad/s]"]) for r in rows] == pytest.approx(
+        [500 * RPM, 1000 * RPM], rel=1e-12)
+
+
+def test_console_echoes_a_bare_number_in_both_units(tmp_path, capsys):
+    """A bare number is SI and never silent: the run prints it in r/min and rad/s."""
+    from bearingsim.cli import main
+
+    scene = tmp_path / "bare.toml"
+    scene.write_text('[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+                     'inner = "61905"\nouter = "61907"\n[inputs]\nshaft_speed = 1000\n'
+                     '[simulation]\nt_end = 0.05\nn_points = 3\n[output]\nplots = false\n',
+                     encoding="utf-8")
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    assert "input shaft_speed = 9549.3 r/min (1000 rad/s) at t_end" in capsys.readouterr().out
