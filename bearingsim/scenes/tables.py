@@ -16,7 +16,7 @@ from typing import Any
 
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.files import FileAccessError, confined_path, open_regular, os_reason
-from bearingsim.units import QUANTITY_UNITS
+from bearingsim.units import parse_quantity
 
 __all__ = ["SceneFileError", "column_label", "read_table_file", "load_bearings_files",
            "column_unit", "check_table_memory", "available_memory",
@@ -84,10 +84,12 @@ def column_unit(unit: str) -> tuple[float, str | None]:
     """The factor to SI and the SI unit of a table column's unit (``kN`` -> ``(1000.0,
     "N")``, ``ms`` -> ``(0.001, "s")``).
 
-    The one place a table's units are read: a unit of :data:`bearingsim.units.QUANTITY_UNITS`
-    (the units a scene value may carry, spelled as the models' units), a dimensionless mark
-    (``-``, ``1``: SI unit None), or a coherent SI unit as bearingsim writes it in its own CSV
-    headers (``Pa.s``, ``m^2/s``: factor 1, itself).
+    The one place a table's units are read, with the units library
+    (:func:`bearingsim.units.parse_quantity`): any unit of a quantity the models know
+    (``kN``, ``ms``, ``rpm``, ``µm``), a dimensionless mark (``-``, ``1``: SI unit None), or a
+    coherent SI unit as bearingsim writes it in its own CSV headers (``Pa.s``, ``m^2/s``:
+    factor 1, itself). Units with an offset (``degC``) are refused: a column is scaled, never
+    shifted.
 
     Raises
     ------
@@ -97,12 +99,12 @@ def column_unit(unit: str) -> tuple[float, str | None]:
     unit = unit.strip()
     if unit in ("", "-", "1"):
         return 1.0, None
-    if unit in QUANTITY_UNITS:
-        si, factor = QUANTITY_UNITS[unit]
-        return factor, si
     if _COHERENT_SI.fullmatch(unit):
         return 1.0, unit
-    raise ValueError(f"unknown unit {unit!r}")
+    one, two = parse_quantity(f"1 {unit}"), parse_quantity(f"2 {unit}")
+    if one is None or two is None or not math.isclose(two[0], 2.0 * one[0]):
+        raise ValueError(f"unknown unit {unit!r}")
+    return one
 
 
 def _split_header(cell: str) -> tuple[str, str | None]:
@@ -239,8 +241,8 @@ def read_table_file(key: str, v: dict[str, Any], base: Path, allowed: Sequence[P
             factors.append(column_unit(units[index] or ""))
         except ValueError:
             raise fail(what, f"the unit of column {names[index]!r} is not known",
-                       "units such as " + ", ".join(QUANTITY_UNITS)
-                       + ", or coherent SI (Pa.s, m^2/s)") from None
+                       "a unit of a model quantity (kN, ms, rpm, mm, µm) "
+                       "or coherent SI (Pa.s, m^2/s)") from None
     (t_factor, t_unit), (v_factor, v_unit) = factors
     if t_unit not in (None, "s"):
         raise fail("time_column", f"column {tcol!r} is in {t_unit}, not a time unit",
