@@ -21,6 +21,7 @@ units by :func:`bearingsim.plotting.render`.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -28,13 +29,16 @@ import numpy as np
 from bearingsim.assemblies.spec import AssemblyPlot
 from bearingsim.catalog import resolve_bearing
 from bearingsim.physics.double_layer_theory import speed_ratio_pure_rolling
-from bearingsim.plotting import Curve, FigureSpec, Panel
+from bearingsim.plotting import LINESTYLES, MARKERS, Curve, FigureSpec, Panel
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 from bearingsim.studies.duplex import MODE_NAMES, modal_analysis
+from bearingsim.units import display_unit
 
-__all__ = ["BUILTIN_PLOTS", "STRIBECK", "MODE_SAMPLES", "ball_loads", "deep_groove_plots",
-           "double_layer_plots", "duplex_plots", "mode_frequencies", "motor_drive_plots"]
+__all__ = ["BUILTIN_PLOTS", "STRIBECK", "MODE_SAMPLES", "analysis_figures", "axis_text",
+           "ball_loads", "characteristic_figures", "deep_groove_plots", "describe", "display",
+           "display_text", "double_layer_plots", "duplex_plots", "mode_frequencies",
+           "motor_drive_plots", "statics_figures"]
 
 STRIBECK = 4.37
 """Stribeck's ratio ``Q_max Z / Fr`` of a radially loaded ball row with zero clearance
@@ -187,3 +191,219 @@ BUILTIN_PLOTS = {
     "duplex_pair": duplex_plots,
 }
 """Assembly name -> ``plots(args, fidelity)`` of the built-in assemblies."""
+
+
+# --------------------------------------------------------------------------- display
+_EXTRA_DISPLAY = {"Pa": (1e-6, "MPa"), "N/m": (1e-6, "N/µm"), "Mrev": (1.0, "10⁶ rev"),
+                  "rad/s": (30.0 / math.pi, "r/min")}
+"""SI unit -> (factor, display unit) beyond :func:`bearingsim.units.display_unit`."""
+
+
+def display(values, unit: str) -> tuple[np.ndarray, str]:
+    """SI ``values`` of ``unit`` in the unit an engineer reads them in (r/min, µm, N mm, kN,
+    MPa, °C, h, ``-``): the one place the scene figures and console convert units.
+
+    Returns
+    -------
+    (numpy.ndarray, str)
+        The converted values and the display unit.
+    """
+    values = np.asarray(values, dtype=float)
+    if unit == "K":
+        return values - 273.15, "°C"
+    if unit in _EXTRA_DISPLAY:
+        factor, shown = _EXTRA_DISPLAY[unit]
+    else:
+        factor, shown = display_unit(unit, values)
+    return values * factor, shown.replace("um", "µm")
+
+
+def display_text(value: float, unit: str) -> str:
+    """One SI value as text in its display unit (:func:`display`), e.g. ``"10000 r/min"``."""
+    if value is None or not math.isfinite(value):
+        return f"{value}"
+    shown, label = display(np.array([value]), unit)
+    return f"{shown[0]:.5g}" + ("" if label == "-" else f" {label}")
+
+
+def describe(name: str, prep: Any = None) -> str:
+    """The description of a variable, input, state, post-processed quantity or analysis
+    column, for axis labels (the name itself when it has none)."""
+    from bearingsim.scenes.analyses import STATICS_DESCRIPTIONS
+
+    if name in STATICS_DESCRIPTIONS:
+        return STATICS_DESCRIPTIONS[name]
+    if prep is not None:
+        if name in prep.post:
+            return prep.post[name].doc.split(" (")[0].split(";")[0]
+        system = prep.system
+        for sig in (*system.inputs, *system.states, *system.outputs):
+            if sig.name == name and sig.description:
+                return sig.description
+        if system.observed_descriptions.get(name):
+            return system.observed_descriptions[name]
+        arg = prep.spec.args.get(name)
+        if arg is not None and arg.doc:  # up to its unit: "axial preload [N] instead of ..."
+            return re.split(r"\s*[\[(]", arg.doc)[0]
+    return name
+
+
+def axis_text(name: str, prep: Any, unit: str) -> str:
+    """An axis label: the description and the display unit, ``"middle ring speed [r/min]"``,
+    wrapped to about 40 characters."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(f"{describe(name, prep)} [{unit}]", 40))
+
+
+_FROM_ZERO = ("N", "kN", "N m", "N mm", "MPa", "h", "10⁶ rev", "Hz", "W", "N/µm")
+"""Display units of quantities whose axis shows 0 (loads, torques, pressures, lives,
+frequencies, powers, stiffnesses): a load on a log axis down to 1e-10 N reads as a load."""
+
+
+def _include_zero(ax, values: np.ndarray, unit: str) -> None:
+    """A value axis that shows 0 for the units of :data:`_FROM_ZERO`."""
+    if unit not in _FROM_ZERO:
+        return
+    finite = values[np.isfinite(values)]
+    if finite.size and np.min(finite) >= 0.0:
+        ax.set_ylim(bottom=0.0)
+    elif finite.size and np.max(finite) <= 0.0:
+        ax.set_ylim(top=0.0)
+
+
+def _same_as(x: np.ndarray, y: np.ndarray) -> bool:
+    """Whether a series equals the x axis (a variable plotted against itself)."""
+    return x.shape == y.shape and bool(np.allclose(x, y, rtol=1e-9, atol=0.0))
+
+
+def _curves(rows: list[dict[str, Any]], keys: list[str]) -> list[tuple[dict, list[dict]]]:
+    """Rows grouped by the values of ``keys[1:]``: one curve over ``keys[0]`` each."""
+    groups: dict[tuple, list[dict]] = {}
+    for row in rows:
+        groups.setdefault(tuple(row.get(k) for k in keys[1:]), []).append(row)
+    return [(dict(zip(keys[1:], g, strict=True)), members) for g, members in groups.items()]
+
+
+def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
+    return ", ".join(f"{k} = {v}" if isinstance(v, str) else
+                     f"{k} = {display_text(v, units.get(k, ''))}" for k, v in values.items())
+
+
+def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
+                           units: dict[str, str], names: list[str], what: str):
+    """Steady characteristics: each output against the grid's first key, one curve per value
+    of the other keys (the ``steady`` and ``modes`` figures); a series equal to the x axis
+    (the variable against itself) is left out.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+    """
+    from matplotlib.figure import Figure
+
+    if not rows or not keys:
+        return []
+    xkey = keys[0]
+    x_all = np.array([row[xkey] for row in rows], dtype=float)
+    shown = [n for n in names if n != xkey
+             and not _same_as(x_all, np.array([row.get(n, math.nan) for row in rows], float))]
+    if not shown:
+        return []
+    per_panel = [shown] if what == "modes" else [[n] for n in shown]
+    fig = Figure(figsize=(7, 2.8 * len(per_panel) + 0.9))
+    axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
+    curves = _curves(rows, keys)
+    for ax, panel in zip(axes, per_panel, strict=True):
+        all_y = []
+        y_unit = ""
+        for k, (values, members) in enumerate(curves):
+            x, x_unit = display([m[xkey] for m in members], units.get(xkey, ""))
+            style = LINESTYLES[k % len(LINESTYLES)]
+            for j, n in enumerate(panel):
+                y, y_unit = display([m.get(n, math.nan) for m in members], units.get(n, ""))
+                if len(panel) > 1:  # several series: a colour each, a line style per curve
+                    label = n if k == 0 else None
+                    color = f"C{j % 10}"
+                else:
+                    label, color = _curve_label(values, units) or None, f"C{k % 10}"
+                ax.plot(x, y, label=label, color=color, marker=MARKERS[j % len(MARKERS)],
+                        linestyle=style, markersize=4)
+                all_y.append(y)
+            if len(panel) > 1 and len(curves) > 1:
+                ax.plot([], [], color="0.3", linestyle=style,
+                        label=_curve_label(values, units))
+        _include_zero(ax, np.concatenate(all_y), "Hz" if what == "modes" else y_unit)
+        ax.set_ylabel("natural frequency [Hz]" if what == "modes"
+                      else axis_text(panel[0], prep, y_unit), fontsize=8)
+        if len(curves) > 1 or len(panel) > 1:
+            ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
+    per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""
+    question = ("natural frequencies by mode" if what == "modes"
+                else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
+    fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}",
+                 fontsize=9)
+    fig.tight_layout()
+    return [("modes" if what == "modes" else "steady", fig)]
+
+
+_PRESSURE_LIMIT = 4.2e9  # Pa: ISO 76's static limit of ball bearings
+
+
+def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]):
+    """Life, largest ball load and largest contact pressure per load case (bars; the
+    4200 MPa of ISO 76 drawn on the pressure panel)."""
+    from matplotlib.figure import Figure
+
+    if not rows:
+        return []
+    names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
+    life = "L10h" if all(math.isfinite(row["L10h"]) for row in rows) else "L10r"
+    fig = Figure(figsize=(7, 8))
+    axes = fig.subplots(3, 1, sharex=True)
+    pos = np.arange(len(rows))
+    for ax, n in zip(axes, (life, "Q_max", "p_max"), strict=True):
+        y, unit = display([row[n] for row in rows], units.get(n, ""))
+        ax.bar(pos, y, color="0.55")
+        for p, v in zip(pos, y, strict=True):
+            ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
+                        va="bottom", fontsize=7)
+        if n == life:  # lives span decades between load cases; no zero to show on a log axis
+            ax.set_yscale("log")
+            ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
+            ax.grid(True, axis="y", which="both", alpha=0.3)
+            continue
+        if n == "p_max":
+            limit, _ = display([_PRESSURE_LIMIT], "Pa")
+            ax.axhline(limit[0], color="0.2", linestyle="--", label="ISO 76 static limit")
+            ax.legend(fontsize=7)
+        _include_zero(ax, y, unit)
+        ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
+        ax.grid(True, axis="y", alpha=0.3)
+    axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
+    axes[-1].set_xlabel("load case", fontsize=8)
+    fig.suptitle(f"{prep.scene.title}\nlife, ball load and contact pressure per load case "
+                 f"({prep.scene.statics_method})", fontsize=9)
+    fig.tight_layout()
+    return [("statics", fig)]
+
+
+def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
+                     units: dict[str, str]):
+    """The figures that answer a ``steady``, ``modes`` or ``statics`` scene: steady outputs
+    against the first grid key (one curve per value of the second), natural frequency against
+    the first key per mode, or life, ball load and pressure per load case.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        Figure name (``steady``, ``modes``, ``statics``) and figure.
+    """
+    analysis = prep.scene.analysis
+    if analysis == "statics":
+        return statics_figures(prep, rows, units)
+    point = set(keys) | {"name"}
+    names = [n for n in rows[0] if n not in point and not n.startswith("_")] if rows else []
+    return characteristic_figures(prep, rows, keys, units, names, analysis)

@@ -578,6 +578,8 @@ def _point_value(c: _Collector, key: str, where: str, v: Any, spec: AssemblySpec
         if arg is None:
             _unknown(c, where.rsplit(".", 1)[0], key, [f"assembly.{a}" for a in spec.args])
             return None
+        if arg.kind == "float" and isinstance(v, str) and (q := parse_quantity(v)) is not None:
+            v = q[0]  # "4000 rpm": the argument's documented SI unit
         return _check_arg(c, where, arg, v)
     if head == "inputs" and isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
         units[rest] = quantity[1]
