@@ -129,25 +129,28 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
 
 
 def steady_values(prep: Any, inputs: dict[str, float], parameters: dict[str, float],
-                  x_guess: np.ndarray | None = None) -> dict[str, float] | None:
-    """The requested outputs at the steady state under constant ``inputs`` (None when no
-    unique steady state is found from ``x_guess``)."""
+                  x_guess: np.ndarray | None = None, t: float = 0.0
+                  ) -> dict[str, float] | None:
+    """The requested outputs at the steady state under constant ``inputs`` and the assembly's
+    own signals at time ``t`` [s] (None when no unique steady state is found from
+    ``x_guess``)."""
     from bearingsim.simulation import steady_state
 
     try:
-        x = steady_state(prep.system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+        x = steady_state(prep.system, inputs=inputs, parameters=parameters, x_guess=x_guess,
+                         t=t)
     except (SimulationError, BearingsimError):
         return None
-    return _observed_outputs(prep, x, inputs, parameters)
+    return _observed_outputs(prep, x, inputs, parameters, t)
 
 
 def _observed_outputs(prep: Any, x: np.ndarray, inputs: dict[str, float],
-                      parameters: dict[str, float]) -> dict[str, float]:
+                      parameters: dict[str, float], t: float = 0.0) -> dict[str, float]:
     system = prep.system
     u = system.u_default()
     for name, value in inputs.items():
         u[system.input_names.index(name)] = value
-    obs = {**system.observe(0.0, x, u, system.p0(parameters)), **inputs}
+    obs = {**system.observe(t, x, u, system.p0(parameters)), **inputs}
     out = {}
     for name in prep.outputs:
         if name in prep.post:

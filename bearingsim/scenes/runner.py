@@ -379,7 +379,8 @@ def settling(prep: Prepared, result: Result, series: dict[str, np.ndarray]
     if check["settled"]:
         return check
     x_end = np.array([result.final(n) for n in prep.system.state_names])
-    steady = steady_values(prep, dict(result.inputs), dict(result.parameters), x_end)
+    steady = steady_values(prep, dict(result.inputs), dict(result.parameters), x_end,
+                           float(result.t[-1]))
     check["steady"] = {n: steady[n] for n in check["unsettled"]} if steady else {}
     units = _units(prep, result)
     from bearingsim.scenes.plots import display_text
