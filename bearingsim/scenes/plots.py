@@ -7,8 +7,10 @@ import.
 * deep-groove ball bearing: ball contact load against azimuth at the end of the run (0 deg is
   the direction of the radial load), with the zero-clearance Stribeck load distribution
   ``Q_max = 4.37 Fr / Z`` for comparison;
-* double-layer bearing (alone or in the motor drive): speed ratio Rs against shaft speed (when
-  the shaft speed varies), with the pure-rolling ratio;
+* double-layer bearing (alone or in the motor drive): the steady speed ratio Rs against shaft
+  speed over the run's speed range (when the shaft speed varies; solved directly at the loads
+  of the end of the run, not the run's transient trajectory), with the run's final point and
+  the pure-rolling ratio;
 * duplex pair: natural frequencies of the shaft on its rows by mode name ("radial x", "axial",
   ...) over the run, from the exact static stiffness at the equilibrium under each time's
   loads.
@@ -37,8 +39,8 @@ from bearingsim.units import display_unit
 
 __all__ = ["BUILTIN_PLOTS", "STRIBECK", "MODE_SAMPLES", "analysis_figures", "axis_text",
            "ball_loads", "characteristic_figures", "deep_groove_plots", "describe", "display",
-           "display_text", "double_layer_plots", "duplex_plots", "mode_frequencies",
-           "motor_drive_plots", "statics_figures"]
+           "display_text", "double_layer_plots", "duplex_plots", "include_zero",
+           "mode_frequencies", "motor_drive_plots", "statics_figures", "steady_speed_ratio"]
 
 STRIBECK = 4.37
 """Stribeck's ratio ``Q_max Z / Fr`` of a radially loaded ball row with zero clearance
@@ -106,31 +108,70 @@ def deep_groove_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]
 
 
 # --------------------------------------------------------------------------- double layer
-def _rs_figure(prefix: str, bearing_args: dict[str, Any]):
+STEADY_SPEEDS = 15
+"""Shaft speeds at which the Rs figure of a transient scene solves the steady speed ratio."""
+
+
+def steady_speed_ratio(prep, result, speed_input: str, rs_name: str, speeds: np.ndarray
+                       ) -> np.ndarray:
+    """Steady speed ratio [-] at each of ``speeds`` [rad/s] of the input ``speed_input``, the
+    other inputs and the assembly's signals at their values at the end of the run, solved
+    directly (:func:`~bearingsim.simulation.steady_state`, each speed started from the
+    previous solution); NaN where no steady state is found."""
+    from bearingsim.errors import BearingsimError
+
+    system = prep.system
+    inputs = dict(result.inputs)
+    t_end = float(result.t[-1])
+    x = np.array([result.final(n) for n in system.state_names])
+    rs = np.full(speeds.size, np.nan)
+    for k, w in enumerate(speeds):
+        inputs[speed_input] = float(w)
+        try:
+            x = steady_state(system, inputs=inputs, parameters=result.parameters, x_guess=x,
+                             t=t_end)
+        except BearingsimError:
+            continue
+        u = system.u_default()
+        for name, value in inputs.items():
+            u[system.input_names.index(name)] = value
+        rs[k] = system.observe(t_end, x, u, system.p0(result.parameters))[rs_name]
+    return rs
+
+
+def _rs_figure(prefix: str, bearing_args: dict[str, Any], speed_input: str):
     def make(prep, result, series) -> FigureSpec | None:
         w, rs = series[prefix + "w_shaft"], series[prefix + "Rs"]
         if np.ptp(w) < _SPEED_SPAN:
             return None
+        top = float(np.max(np.abs(w)))
+        speeds = np.linspace(top / STEADY_SPEEDS, top, STEADY_SPEEDS)
+        steady = steady_speed_ratio(prep, result, speed_input, prefix + "Rs", speeds)
         kin = speed_ratio_pure_rolling(bearing_args["inner"], bearing_args["outer"])
-        panel = Panel([Curve(w, rs, "model", {"linestyle": "-", "marker": ".",
-                                              "markersize": 3}),
-                       Curve(np.array([np.min(w), np.max(w)]), np.array([kin, kin]),
-                             "pure rolling", {"linestyle": "--", "color": "0.5"})],
-                      "shaft speed", "rad/s", "speed ratio Rs = n_middle / n_shaft", "1")
-        return FigureSpec("rs_speed", "speed ratio against shaft speed", [panel])
+        curves = [Curve(speeds, steady, "steady (loads as at the end of the run)",
+                        {"linestyle": "-", "marker": "o", "markersize": 3}),
+                  Curve(np.array([abs(w[-1])]), np.array([rs[-1]]),
+                        f"the run at t = {result.t[-1]:g} s",
+                        {"linestyle": "none", "marker": "x", "markersize": 8,
+                         "color": "k"}),
+                  Curve(np.array([speeds[0], top]), np.array([kin, kin]), "pure rolling",
+                        {"linestyle": "--", "color": "0.5"})]
+        panel = Panel(curves, "shaft speed", "rad/s", "speed ratio Rs = n_middle / n_shaft",
+                      "1", scale="linear")
+        return FigureSpec("rs_speed", "steady speed ratio against shaft speed", [panel])
 
     return make
 
 
 def double_layer_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
     """Rs against shaft speed."""
-    return [AssemblyPlot("rs_speed", ("w_shaft", "Rs"), _rs_figure("", args))]
+    return [AssemblyPlot("rs_speed", ("w_shaft", "Rs"), _rs_figure("", args, "shaft_speed"))]
 
 
 def motor_drive_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
     """Rs of the bearing against shaft speed."""
     return [AssemblyPlot("rs_speed", ("bearing.w_shaft", "bearing.Rs"),
-                         _rs_figure("bearing.", args["bearing"]))]
+                         _rs_figure("bearing.", args["bearing"], "motor.w_ref"))]
 
 
 # --------------------------------------------------------------------------- duplex
@@ -194,9 +235,12 @@ BUILTIN_PLOTS = {
 
 
 # --------------------------------------------------------------------------- display
-_EXTRA_DISPLAY = {"Pa": (1e-6, "MPa"), "N/m": (1e-6, "N/µm"), "Mrev": (1.0, "10⁶ rev"),
-                  "rad/s": (30.0 / math.pi, "r/min")}
-"""SI unit -> (factor, display unit) beyond :func:`bearingsim.units.display_unit`."""
+_DISPLAY = {"rad/s": (30.0 / math.pi, "r/min"), "m": (1e6, "µm"), "N.m": (1e3, "N mm"),
+            "N": (1e-3, "kN"), "Pa": (1e-6, "MPa"), "N/m": (1e-6, "N/µm"),
+            "Mrev": (1.0, "10⁶ rev"), "rad": (180.0 / math.pi, "deg")}
+"""SI unit -> (factor, display unit): one display unit per quantity kind, whatever the
+magnitude (a torque in N mm beside a torque in N m misleads); other units as
+:func:`bearingsim.units.display_unit` shows them."""
 
 
 def display(values, unit: str) -> tuple[np.ndarray, str]:
@@ -211,8 +255,8 @@ def display(values, unit: str) -> tuple[np.ndarray, str]:
     values = np.asarray(values, dtype=float)
     if unit == "K":
         return values - 273.15, "°C"
-    if unit in _EXTRA_DISPLAY:
-        factor, shown = _EXTRA_DISPLAY[unit]
+    if unit in _DISPLAY:
+        factor, shown = _DISPLAY[unit]
     else:
         factor, shown = display_unit(unit, values)
     return values * factor, shown.replace("um", "µm")
@@ -253,7 +297,8 @@ def axis_text(name: str, prep: Any, unit: str) -> str:
     wrapped to about 40 characters."""
     import textwrap
 
-    return "\n".join(textwrap.wrap(f"{describe(name, prep)} [{unit}]", 40))
+    unbroken = unit.replace(" ", "\u00a0")  # "N mm" stays on one line
+    return "\n".join(textwrap.wrap(f"{describe(name, prep)} [{unbroken}]", 32))
 
 
 _FROM_ZERO = ("N", "kN", "N m", "N mm", "MPa", "h", "10⁶ rev", "Hz", "W", "N/µm")
@@ -261,15 +306,18 @@ _FROM_ZERO = ("N", "kN", "N m", "N mm", "MPa", "h", "10⁶ rev", "Hz", "W", "N/�
 frequencies, powers, stiffnesses): a load on a log axis down to 1e-10 N reads as a load."""
 
 
-def _include_zero(ax, values: np.ndarray, unit: str) -> None:
-    """A value axis that shows 0 for the units of :data:`_FROM_ZERO`."""
+def include_zero(ax, values: np.ndarray, unit: str) -> bool:
+    """A linear value axis that shows 0 for the display units of :data:`_FROM_ZERO`; returns
+    whether the unit is one of them."""
     if unit not in _FROM_ZERO:
-        return
+        return False
     finite = values[np.isfinite(values)]
+    ax.set_yscale("linear")
     if finite.size and np.min(finite) >= 0.0:
-        ax.set_ylim(bottom=0.0)
+        ax.set_ylim(bottom=0.0, top=max(float(np.max(finite)) * 1.05, 1e-300))
     elif finite.size and np.max(finite) <= 0.0:
-        ax.set_ylim(top=0.0)
+        ax.set_ylim(top=0.0, bottom=min(float(np.min(finite)) * 1.05, -1e-300))
+    return True
 
 
 def _same_as(x: np.ndarray, y: np.ndarray) -> bool:
@@ -333,7 +381,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
             if len(panel) > 1 and len(curves) > 1:
                 ax.plot([], [], color="0.3", linestyle=style,
                         label=_curve_label(values, units))
-        _include_zero(ax, np.concatenate(all_y), "Hz" if what == "modes" else y_unit)
+        include_zero(ax, np.concatenate(all_y), "Hz" if what == "modes" else y_unit)
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
                       else axis_text(panel[0], prep, y_unit), fontsize=8)
         if len(curves) > 1 or len(panel) > 1:
@@ -379,7 +427,7 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
             limit, _ = display([_PRESSURE_LIMIT], "Pa")
             ax.axhline(limit[0], color="0.2", linestyle="--", label="ISO 76 static limit")
             ax.legend(fontsize=7)
-        _include_zero(ax, y, unit)
+        include_zero(ax, y, unit)
         ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
         ax.grid(True, axis="y", alpha=0.3)
     axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)

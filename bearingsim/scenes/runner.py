@@ -39,7 +39,6 @@ from bearingsim.scenes.plots import BUILTIN_PLOTS, analysis_figures
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.simulation import Result, simulate
-from bearingsim.units import display_unit
 
 __all__ = [
     "Prepared",
@@ -467,36 +466,78 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
     })
 
 
+def _varying_inputs(prep: Prepared, result: Result
+                    ) -> tuple[dict[str, np.ndarray], dict[str, str]]:
+    """The inputs that change during the run, by name, and their units: the model's inputs
+    and the assembly's signal arguments given as expressions of t (e.g. a load torque step);
+    constant ones are left out."""
+    out, units = {}, {}
+    for name in prep.system.input_names:
+        if name in result:
+            out[name] = np.asarray(result[name], dtype=float)
+            units[name] = prep.system.inputs[prep.system.input_names.index(name)].unit
+    for name, arg in prep.spec.args.items():
+        text = prep.args.get(name)
+        if arg.kind == "signal" and isinstance(text, str):
+            values = compile_expression(text, f"assembly.{name}")(result.t)
+            out[name] = np.broadcast_to(np.asarray(values, dtype=float).ravel(), result.t.shape)
+            m = re.search(r"\[([^\]]+)\]", arg.doc)
+            units[name] = m.group(1).replace(" ", ".") if m else ""
+    keep = {n: y for n, y in out.items()
+            if y.size and np.ptp(y[np.isfinite(y)]) > 0.0}
+    return keep, {n: units[n] for n in keep}
+
+
 def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
-                 units: dict[str, str], groups: list[list[str]], title: str
+                 units: dict[str, str], groups: list[list[str]], title: str,
+                 inputs: dict[str, np.ndarray] | None = None, prep: Prepared | None = None
                  ) -> list[tuple[str, Any]]:
-    """(file name, :class:`matplotlib.figure.Figure`) of the time traces: one panel per group
-    (default: per output), at most 6 panels a figure (made without pyplot)."""
+    """(file name, :class:`matplotlib.figure.Figure`) of the time traces, made without pyplot.
+
+    The inputs that change during the run are drawn on top of every figure (one panel per
+    unit), on the same time axis as the outputs they drive; then one panel per group
+    (default: per output), at most 6 panels a figure. Axes are labelled with the variables'
+    descriptions (``prep``) and display units (r/min, µm, N mm, kN, ...,
+    :func:`bearingsim.scenes.plots.display`); loads, torques and powers on linear axes that
+    show 0.
+    """
     from matplotlib.figure import Figure
 
+    from bearingsim.scenes.plots import axis_text, describe, display, include_zero
+
+    inputs = inputs or {}
+    by_unit: dict[str, list[str]] = {}
+    for name in inputs:
+        by_unit.setdefault(units.get(name, ""), []).append(name)
+    input_groups = list(by_unit.values())
+    data = {**inputs, **series}
     groups = groups or [[n] for n in series]
+    per_figure = max(6 - len(input_groups), 2)
     figures = []
-    for k in range(0, len(groups), 6):
-        chunk = groups[k:k + 6]
+    for k in range(0, len(groups), per_figure):
+        chunk = input_groups + groups[k:k + per_figure]
         fig = Figure(figsize=(7, 1.9 * len(chunk) + 1))
         axes = np.atleast_1d(fig.subplots(len(chunk), 1, sharex=True, squeeze=False)[:, 0])
-        for ax, group in zip(axes, chunk, strict=True):
-            # engineering units for display (r/min, um, deg, N mm, -); SI in the CSV
-            factor, unit = display_unit(units.get(group[0], ""),
-                                        np.concatenate([series[n] for n in group]))
+        for row, (ax, group) in enumerate(zip(axes, chunk, strict=True)):
+            unit = units.get(group[0], "")
+            shown = []
             for n in group:
-                y = series[n] * factor
-                ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=n)
-            set_value_scale(ax, [series[n] * factor for n in group])
-            label = group[0] if len(group) == 1 else ", ".join(group)
-            ax.set_ylabel(f"{label}\n[{unit}]", fontsize=8)
+                y, label_unit = display(data[n], unit)
+                shown.append(y)
+                ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=describe(n, prep),
+                        color="0.35" if row < len(input_groups) else None)
+            if not include_zero(ax, np.concatenate(shown), label_unit):
+                set_value_scale(ax, shown)
+            text = (axis_text(group[0], prep, label_unit) if len(group) == 1
+                    else f"[{label_unit}]")
+            ax.set_ylabel(("input: " if row < len(input_groups) else "") + text, fontsize=8)
             if len(group) > 1:
                 ax.legend(fontsize=7)
             ax.grid(True, alpha=0.3)
         axes[-1].set_xlabel("time [s]")
         fig.suptitle(title, fontsize=10)
         fig.tight_layout()
-        figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // 6 + 1}.png", fig))
+        figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // per_figure + 1}.png", fig))
     return figures
 
 
@@ -531,14 +572,10 @@ def scene_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray],
                          "outputs", "output.plot_groups",
                          line_of(prep.scene.text, "output.plot_groups"),
                          ", ".join(series), prep.scene.path)
+    inputs, input_units = _varying_inputs(prep, result)
     return (assembly_figures(prep, result, series, stem)
-            + time_figures(stem, result.t, series, units, groups, prep.scene.title))
-
-
-def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.ndarray],
-                units: dict[str, str], groups: list[list[str]], title: str) -> list[Path]:
-    """PNG figures of the time traces (:func:`time_figures`)."""
-    return save_figures(folder, time_figures(stem, t, series, units, groups, title))
+            + time_figures(stem, result.t, series, {**input_units, **units}, groups,
+                           prep.scene.title, inputs, prep))
 
 
 def save_figures(folder: Path, figures: list[tuple[str, Any]]) -> list[Path]:
