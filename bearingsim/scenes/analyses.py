@@ -38,10 +38,10 @@ __all__ = [
     "STATICS_COLUMNS",
     "STATICS_DESCRIPTIONS",
     "STATICS_INPUTS",
-    "argument_parameters",
-    "name_modes",
+        "name_modes",
     "operating_points",
     "point_label",
+    "point_model",
     "point_units",
     "run_operating_point",
     "run_points",
@@ -77,7 +77,8 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
     when it ends near zero, below 1e-3 of that). The time constant [s] is that of an
     exponential approach through three equally spaced values of the window
     (``y = y_inf + a exp(-t / tau)``: ``tau = -h / ln(d2 / d1)`` for successive differences
-    ``d1``, ``d2`` of the same sign and shrinking), which also estimates the settled value
+    ``d1``, ``d2`` of the same sign and shrinking, the output monotone over the window),
+    which also estimates the settled value
     ``y_inf``; NaN when the output does not approach a value that way (constant, oscillating
     or driven by an input that still changes).
 
@@ -111,7 +112,8 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
         if h > 0.0:
             y1, y2, y3 = np.interp([start, start + h, t[-1]], t, y)
             d1, d2 = y2 - y1, y3 - y2
-            if d1 != 0.0 and 0.0 < d2 / d1 < 1.0:
+            monotone = bool(np.all(np.diff(y[inside]) * d1 >= 0.0))
+            if d1 != 0.0 and 0.0 < d2 / d1 < 1.0 and monotone:
                 r = d2 / d1
                 tau = -h / math.log(r)
                 estimate = float(y3 + d2 * r / (1.0 - r))
@@ -229,41 +231,60 @@ def _parameter_values(component) -> dict[str, float]:
             if isinstance(decl, Parameter) and decl.value is not None}
 
 
-def argument_parameters(prep: Any, args: dict[str, Any]) -> dict[str, float]:
-    """Parameter overrides that give the assembled model of ``prep`` the assembly arguments
-    ``args`` (e.g. another preload of a duplex pair: another spacer width difference).
+def _is_parametric(spec: Any, key: str, args: dict[str, Any]) -> bool:
+    holds = spec.parametric_args.get(key)
+    return holds is not None and bool(holds(args))
+
+
+def point_model(prep: Any, args: dict[str, Any]) -> tuple[Any, dict[str, float]]:
+    """The prepared model that runs an operating point with the assembly arguments ``args``,
+    and the parameter overrides it needs.
+
+    Arguments the assembly declares parametric
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.parametric_args`, e.g. a duplex pair's
+    preload) become parameter overrides of the assembled model of ``prep``; any other changed
+    argument (an arrangement, a bearing) assembles the model for those arguments, once per
+    distinct set (cached on ``prep``).
 
     Raises
     ------
     SceneError
-        When the arguments change the model's structure (other variables or equations), not
-        only parameter values.
+        When an argument declared parametric changes the model's parameters (please report),
+        or the arguments are invalid.
     """
     from bearingsim.scenes.registry import build_component
+    from bearingsim.scenes.runner import prepare
 
     spec = prep.spec
     full = spec.with_defaults(args)
     full.update({k: v for k, v in prep.args.items() if k not in spec.args})  # symmetry
-    if full == prep.args:
-        return {}
-    cache = prep.__dict__.setdefault("_base_parameter_values", {})
+    changed = [k for k in spec.args if full.get(k) != prep.args.get(k)]
+    if not changed:
+        return prep, {}
+    cache = prep.__dict__.setdefault("_point_models", {})
+    structural = [k for k in changed if not _is_parametric(spec, k, full)]
+    if structural:
+        key = repr(sorted((k, repr(full[k])) for k in structural))
+        if key not in cache:
+            scene = prep.scene
+            base = {k: v for k, v in scene.args.items()}
+            base.update({k: full[k] for k in structural})
+            cache[key] = prepare(scene.replace(args=base))
+        return point_model(cache[key], args)
     if "base" not in cache:
         cache["base"] = _parameter_values(build_component(spec, prep.args, prep.fidelity))
-    base = cache["base"]
+    base_values = cache["base"]
     try:
         new = _parameter_values(build_component(spec, full, prep.fidelity))
     except BearingsimError as exc:
         raise SceneError(str(exc), "grid", line_of(prep.scene.text, "grid"),
                          path=prep.scene.path) from None
+    if set(new) != set(base_values):
+        raise SceneError(f"the assembly argument(s) {', '.join(changed)}, declared parametric, "
+                         "change the model's structure; please report", "grid",
+                         line_of(prep.scene.text, "grid"), path=prep.scene.path)
     names = set(prep.system.parameter_names)
-    if set(new) != set(base):
-        changed = sorted(k for k in args if args.get(k) != prep.scene.args.get(k))
-        raise SceneError(f"the assembly argument(s) {', '.join(changed)} change the model's "
-                         "structure, not only parameter values; run one scene per value",
-                         "grid", line_of(prep.scene.text, "grid"),
-                         "arguments that only change parameter values (preload, speed, ...)",
-                         prep.scene.path)
-    return {n: v for n, v in new.items() if n in names and v != base[n]}
+    return prep, {n: v for n, v in new.items() if n in names and v != base_values[n]}
 
 
 # --------------------------------------------------------------------------- modes
@@ -427,7 +448,10 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
                              "quasi-static equilibrium of the others", scene.path)
         values, state = solve(prep, inputs, prep.spec.with_defaults(args), x_guess)
         return {**row, **values, "_state": state}
-    parameters.update(argument_parameters(prep, args))
+    prep, overrides = point_model(prep, args)
+    parameters.update(overrides)
+    if x_guess is not None and np.size(x_guess) != prep.system.n_states:
+        x_guess = None  # the previous point's model had other states
     if scene.analysis == "transient":
         from bearingsim.scenes.runner import output_series, run_simulation
 

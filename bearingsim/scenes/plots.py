@@ -40,7 +40,8 @@ from bearingsim.units import display_unit
 __all__ = ["BUILTIN_PLOTS", "STRIBECK", "MODE_SAMPLES", "analysis_figures", "axis_text",
            "ball_loads", "characteristic_figures", "deep_groove_plots", "describe", "display",
            "display_text", "double_layer_plots", "duplex_plots", "include_zero",
-           "mode_frequencies", "motor_drive_plots", "statics_figures", "steady_speed_ratio"]
+           "mode_frequencies", "motor_drive_plots", "render_report", "statics_figures",
+           "steady_speed_ratio"]
 
 STRIBECK = 4.37
 """Stribeck's ratio ``Q_max Z / Fr`` of a radially loaded ball row with zero clearance
@@ -455,3 +456,30 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
     point = set(keys) | {"name"}
     names = [n for n in rows[0] if n not in point and not n.startswith("_")] if rows else []
     return characteristic_figures(prep, rows, keys, units, names, analysis)
+
+
+def render_report(spec: FigureSpec, title: str = ""):
+    """:func:`bearingsim.plotting.render` of an assembly's figure in the scene display units
+    (:func:`display`: kN for every force, N mm for every torque, µm, r/min), loads and
+    torques on linear axes that show 0."""
+    from dataclasses import replace
+
+    from bearingsim.plotting import render
+
+    panels = []
+    for panel in spec.panels:
+        curves = []
+        for c in panel.curves:
+            x, x_unit = display(c.x, panel.x_unit)
+            y, y_unit = display(c.y, panel.y_unit)
+            curves.append(replace(c, x=x, y=y))
+        if not curves:
+            x_unit, y_unit = panel.x_unit, panel.y_unit
+        scale = "linear" if y_unit in _FROM_ZERO else panel.scale
+        panels.append(replace(panel, curves=curves, x_unit=x_unit, y_unit=y_unit, scale=scale))
+    fig = render(replace(spec, panels=panels), title)
+    for ax, panel in zip(fig.axes, panels, strict=False):
+        if panel.curves:
+            include_zero(ax, np.concatenate([np.asarray(c.y, float) for c in panel.curves]),
+                         panel.y_unit)
+    return fig

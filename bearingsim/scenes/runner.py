@@ -23,7 +23,7 @@ from bearingsim.assembler import System, assemble
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.files import atomic_path, column_name, write_series_csv
-from bearingsim.plotting import render, set_value_scale
+from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.analyses import (
     STATICS_INPUTS,
     NotSettledWarning,
@@ -35,7 +35,7 @@ from bearingsim.scenes.analyses import (
     steady_values,
 )
 from bearingsim.scenes.expressions import compile_expression
-from bearingsim.scenes.plots import BUILTIN_PLOTS, analysis_figures
+from bearingsim.scenes.plots import BUILTIN_PLOTS, analysis_figures, render_report
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.simulation import Result, simulate
@@ -551,8 +551,8 @@ def assembly_figures(prep: Prepared, result: Result, series: dict[str, np.ndarra
     for plot in prep.plots:
         spec = plot.make(prep, result, data)
         if spec is not None:
-            figures.append((f"{stem}.{plot.name}.png", render(spec, f"{prep.scene.title}\n"
-                                                                    f"{spec.title}")))
+            figures.append((f"{stem}.{plot.name}.png",
+                            render_report(spec, f"{prep.scene.title}\n{spec.title}")))
     return figures
 
 
