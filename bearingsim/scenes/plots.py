@@ -298,8 +298,12 @@ def axis_text(name: str, prep: Any, unit: str) -> str:
     wrapped to about 40 characters."""
     import textwrap
 
-    unbroken = unit.replace(" ", "\u00a0")  # "N mm" stays on one line
-    return "\n".join(textwrap.wrap(f"{describe(name, prep)} [{unbroken}]", 32))
+    lines = textwrap.wrap(describe(name, prep), 32) or [""]
+    if len(lines[-1]) + len(unit) + 3 <= 36:  # the unit never split: "[N mm]"
+        lines[-1] = f"{lines[-1]} [{unit}]".lstrip()
+    else:
+        lines.append(f"[{unit}]")
+    return "\n".join(lines)
 
 
 _FROM_ZERO = ("N", "kN", "N m", "N mm", "MPa", "h", "10⁶ rev", "Hz", "W", "N/µm")
