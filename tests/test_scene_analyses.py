@@ -362,3 +362,39 @@ def test_auto_rejects_the_kinematic_rs_of_a_steady_scene_without_loads():
     prep = prepare(scene)
     assert prep.fidelity == "torque"
     assert prep.fidelity_rejected[0].startswith("kinematic: Rs off by")
+
+
+# --------------------------------------------------------------------------- levels
+def test_the_double_layer_quasi_static_level_is_a_statics_scene():
+    """Issue 27: the double layer's quasi-static level was API-only. The shipped load-sharing
+    scene runs it; each case's row is nested_equilibrium of that load."""
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.studies.nested_equilibrium import nested_equilibrium
+
+    run = run_scene("double_layer_load_sharing", write=False)
+    assert run.prepared.fidelity == "quasi-static"
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="quasi-static"))
+    for row in run.rows:
+        eq = nested_equilibrium(system, row["shaft.Fx"], row.get("shaft.Fz", 0.0))
+        assert row["Q_max_inner"] == pytest.approx(eq.inner_ball_loads.max(), rel=1e-6)
+        assert row["x_middle"] == pytest.approx(eq.middle_displacement[0], rel=1e-6)
+    # the layers in series: the middle ring moves about half as far as the shaft
+    assert 0.3 < run.rows[1]["x_middle"] / run.rows[1]["x_shaft"] < 0.7
+
+
+def test_the_nested_ball_level_is_reachable_from_a_scene():
+    """The ball and cage dynamics of both layers (fidelity "dynamic") build from scene
+    arguments, with the shaft speed and the shaft loads as inputs (assembling it takes
+    minutes, so only the component is checked here)."""
+    from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
+    from bearingsim.scenes.registry import build_component
+
+    scene = parse_scene('outputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\n'
+                        'fidelity = "dynamic"\n[inputs]\nshaft_speed = "1000 rpm"\n'
+                        '"inner_layer.load.Fx" = 200.0\n[simulation]\nt_end = 0.01\n')
+    spec = scene.spec
+    component = build_component(spec, spec.with_defaults(scene.args), scene.fidelity)
+    assert isinstance(component, DynamicDoubleLayerBearing)
+    assert spec.is_optional_input("inner_layer.load.Fy")
+    assert "dynamic" in spec.fidelities and "dynamic" not in spec.auto_fidelities

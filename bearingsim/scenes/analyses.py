@@ -24,6 +24,8 @@ import itertools
 import math
 import re
 import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -35,8 +37,7 @@ __all__ = [
     "MODE_NAMES",
     "STATICS",
     "NotSettledWarning",
-    "STATICS_COLUMNS",
-    "STATICS_DESCRIPTIONS",
+    "Statics",
     "STATICS_INPUTS",
         "name_modes",
     "operating_points",
@@ -47,6 +48,7 @@ __all__ = [
     "run_points",
     "settling_check",
     "split_point",
+    "statics_of",
     "steady_values",
 ]
 
@@ -354,19 +356,31 @@ def name_modes(linear: Any, names: dict[str, str], descriptions: dict[str, str]
 
 
 # --------------------------------------------------------------------------- statics
-STATICS_COLUMNS = {"Q_max": "N", "p_max": "Pa", "x": "m", "y": "m", "z": "m",
-                   "k_radial": "N/m", "k_axial": "N/m", "L10r": "Mrev", "L10h": "h"}
-"""Columns of a statics row and their units (Mrev: 10^6 revolutions)."""
-STATICS_DESCRIPTIONS = {
-    "Q_max": "largest ball load",
-    "p_max": "largest Hertz contact pressure",
-    "x": "inner ring displacement x", "y": "inner ring displacement y",
-    "z": "inner ring displacement z (axial)",
-    "k_radial": "radial stiffness d Fx / d x", "k_axial": "axial stiffness d Fz / d z",
-    "L10r": "ISO/TS 16281 reference rating life L10r (10^6 revolutions)",
-    "L10h": "ISO/TS 16281 reference rating life L10r in hours",
+@dataclass(frozen=True)
+class Statics:
+    """The quasi-static solution of an assembly's load cases (a ``statics`` scene).
+
+    ``solve(prep, inputs, args, guess) -> (row, state)`` solves one load case (inputs by
+    name, SI); ``columns`` are the row's names -> (unit, description); ``figure`` the columns
+    drawn per load case (bars); ``levels`` the fidelity levels it applies to (empty: all).
+    """
+
+    solve: Callable[..., tuple[dict[str, float], np.ndarray]]
+    columns: dict[str, tuple[str, str]]
+    figure: tuple[str, ...]
+    levels: tuple[str, ...] = ()
+
+
+_DEEP_GROOVE_COLUMNS = {
+    "Q_max": ("N", "largest ball load"),
+    "p_max": ("Pa", "largest Hertz contact pressure"),
+    "x": ("m", "inner ring displacement x"), "y": ("m", "inner ring displacement y"),
+    "z": ("m", "inner ring displacement z (axial)"),
+    "k_radial": ("N/m", "radial stiffness d Fx / d x"),
+    "k_axial": ("N/m", "axial stiffness d Fz / d z"),
+    "L10r": ("Mrev", "ISO/TS 16281 reference rating life L10r (10^6 revolutions)"),
+    "L10h": ("h", "ISO/TS 16281 reference rating life L10r in hours"),
 }
-"""Descriptions of the :data:`STATICS_COLUMNS`."""
 
 
 def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
@@ -388,12 +402,69 @@ def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, An
     return row, res.state
 
 
-STATICS = {"deep_groove_ball_bearing": _deep_groove_statics}
-"""Assembly name -> ``statics(prep, inputs, args, guess) -> (row, state)``: the quasi-static
-solution of one load case (:data:`STATICS_COLUMNS`)."""
+_NESTED_COLUMNS = {
+    "Q_max_inner": ("N", "largest ball load of the inner layer"),
+    "Q_max_outer": ("N", "largest ball load of the outer layer"),
+    "x_shaft": ("m", "shaft displacement x"), "z_shaft": ("m", "shaft displacement z (axial)"),
+    "x_middle": ("m", "middle ring displacement x"),
+    "k_radial": ("N/m", "radial stiffness of the shaft against the housing"),
+}
+
+
+def _nested_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
+                    guess: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
+    from bearingsim.studies.nested_equilibrium import nested_equilibrium
+
+    if abs(float(inputs.get("shaft.Fy", 0.0))) > 0.0:
+        raise SceneError("the nested statics take the radial load along x (shaft.Fx) and the "
+                         "axial load (shaft.Fz); shaft.Fy must be 0", "cases",
+                         line_of(prep.scene.text, "cases"), "shaft.Fx, shaft.Fz",
+                         prep.scene.path)
+    eq = nested_equilibrium(prep.system, float(inputs.get("shaft.Fx", 0.0)),
+                            float(inputs.get("shaft.Fz", 0.0)), guess)
+    row = {"Q_max_inner": float(eq.inner_ball_loads.max()),
+           "Q_max_outer": float(eq.outer_ball_loads.max()),
+           "x_shaft": float(eq.shaft_displacement[0]),
+           "z_shaft": float(eq.shaft_displacement[2]),
+           "x_middle": float(eq.middle_displacement[0]),
+           "k_radial": float(eq.stiffness[0, 0])}
+    return row, eq.state
+
+
+STATICS = {
+    "deep_groove_ball_bearing": Statics(_deep_groove_statics, _DEEP_GROOVE_COLUMNS,
+                                        ("L10h", "Q_max", "p_max")),
+    "double_layer_bearing": Statics(_nested_statics, _NESTED_COLUMNS,
+                                    ("Q_max_inner", "Q_max_outer", "x_shaft", "x_middle"),
+                                    ("quasi-static",)),
+}
+"""Assembly name -> its :class:`Statics`: the deep-groove ball bearing's ball loads, Hertz
+pressure, stiffness and ISO/TS 16281 life
+(:func:`~bearingsim.studies.deep_groove_statics.deep_groove_statics`), the double-layer
+bearing's load sharing at its quasi-static level
+(:func:`~bearingsim.studies.nested_equilibrium.nested_equilibrium`)."""
 STATICS_INPUTS = ("shaft_speed",)
 """Inputs a statics load case may give beyond the model's: the shaft speed [rad/s] turns the
 reference life in revolutions into hours."""
+
+
+def statics_of(prep: Any) -> Statics:
+    """The :class:`Statics` of a prepared scene's assembly and level.
+
+    Raises
+    ------
+    SceneError
+        When the assembly (or its level) has no statics solution, naming those that have.
+    """
+    statics = STATICS.get(prep.spec.name)
+    if statics is None or (statics.levels and prep.fidelity not in statics.levels):
+        have = ", ".join(f"{name}" + (f" (fidelity {', '.join(st.levels)})" if st.levels
+                                      else "") for name, st in STATICS.items())
+        raise SceneError(f"no statics analysis for the assembly {prep.spec.name} at fidelity "
+                         f"{prep.fidelity!r}", "analysis",
+                         line_of(prep.scene.text, "analysis"), f"statics for {have}; steady "
+                         "for the quasi-static equilibrium of the others", prep.scene.path)
+    return statics
 
 
 # --------------------------------------------------------------------------- one point
@@ -421,7 +492,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         case, and by kind: ``transient`` the outputs' final values, ``settled`` (bool),
         ``time_constant`` [s] and ``unsettled`` (names); ``steady`` the outputs;
         ``modes`` the natural frequency [Hz] by mode name; ``statics`` the columns of
-        :data:`STATICS_COLUMNS`. ``_state`` holds the solved state (for continuation; not a
+        :class:`Statics`. ``_state`` holds the solved state (for continuation; not a
         table column).
 
     Raises
@@ -440,13 +511,8 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         row["name"] = point.pop("name")
     row.update({point_label(k): v for k, v in point.items()})
     if scene.analysis == "statics":
-        solve = STATICS.get(prep.spec.name)
-        if solve is None:
-            raise SceneError(f"no statics analysis for the assembly {prep.spec.name}",
-                             "analysis", line_of(scene.text, "analysis"),
-                             "statics for " + ", ".join(STATICS) + "; steady for the "
-                             "quasi-static equilibrium of the others", scene.path)
-        values, state = solve(prep, inputs, prep.spec.with_defaults(args), x_guess)
+        statics = statics_of(prep)
+        values, state = statics.solve(prep, inputs, prep.spec.with_defaults(args), x_guess)
         return {**row, **values, "_state": state}
     prep, overrides = point_model(prep, args)
     parameters.update(overrides)

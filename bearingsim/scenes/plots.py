@@ -34,6 +34,7 @@ from bearingsim.physics.double_layer_theory import speed_ratio_pure_rolling
 from bearingsim.plotting import LINESTYLES, MARKERS, Curve, FigureSpec, Panel
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
+from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.studies.duplex import MODE_NAMES, modal_analysis
 from bearingsim.units import display_unit
 
@@ -165,7 +166,9 @@ def _rs_figure(prefix: str, bearing_args: dict[str, Any], speed_input: str):
 
 
 def double_layer_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
-    """Rs against shaft speed."""
+    """Rs against shaft speed (none at the quasi-static level: load sharing, no speeds)."""
+    if fidelity == "quasi-static":
+        return []
     return [AssemblyPlot("rs_speed", ("w_shaft", "Rs"), _rs_figure("", args, "shaft_speed"))]
 
 
@@ -274,10 +277,12 @@ def display_text(value: float, unit: str) -> str:
 def describe(name: str, prep: Any = None) -> str:
     """The description of a variable, input, state, post-processed quantity or analysis
     column, for axis labels (the name itself when it has none)."""
-    from bearingsim.scenes.analyses import STATICS_DESCRIPTIONS
+    from bearingsim.scenes.analyses import STATICS
 
-    if name in STATICS_DESCRIPTIONS:
-        return STATICS_DESCRIPTIONS[name]
+    if prep is not None and prep.scene.analysis == "statics":
+        statics = STATICS.get(prep.spec.name)
+        if statics is not None and name in statics.columns:
+            return statics.columns[name][1]
     if prep is not None:
         if name in prep.post:
             return prep.post[name].doc.split(" (")[0].split(";")[0]
@@ -402,43 +407,48 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     return [("modes" if what == "modes" else "steady", fig)]
 
 
-_PRESSURE_LIMIT = 4.2e9  # Pa: ISO 76's static limit of ball bearings
 
 
 def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]):
-    """Life, largest ball load and largest contact pressure per load case (bars; the
-    4200 MPa of ISO 76 drawn on the pressure panel)."""
+    """The assembly's statics columns (:attr:`~bearingsim.scenes.analyses.Statics.figure`:
+    life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
+    bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
+    drawn on a pressure panel."""
     from matplotlib.figure import Figure
+
+    from bearingsim.scenes.analyses import statics_of
 
     if not rows:
         return []
     names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
-    life = "L10h" if all(math.isfinite(row["L10h"]) for row in rows) else "L10r"
-    fig = Figure(figsize=(7, 8))
-    axes = fig.subplots(3, 1, sharex=True)
+    columns = [n for n in statics_of(prep).figure
+               if all(math.isfinite(row.get(n, math.nan)) for row in rows)]
+    if "L10h" in statics_of(prep).figure and "L10h" not in columns:
+        columns.insert(0, "L10r")  # no speed given: the life in revolutions
+    fig = Figure(figsize=(7, 2.6 * len(columns) + 1.0))
+    axes = np.atleast_1d(fig.subplots(len(columns), 1, sharex=True, squeeze=False)[:, 0])
     pos = np.arange(len(rows))
-    for ax, n in zip(axes, (life, "Q_max", "p_max"), strict=True):
+    for ax, n in zip(axes, columns, strict=True):
         y, unit = display([row[n] for row in rows], units.get(n, ""))
         ax.bar(pos, y, color="0.55")
         for p, v in zip(pos, y, strict=True):
             ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
                         va="bottom", fontsize=7)
-        if n == life:  # lives span decades between load cases; no zero to show on a log axis
+        ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
+        if units.get(n) in ("h", "Mrev"):  # lives span decades between load cases
             ax.set_yscale("log")
-            ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
             ax.grid(True, axis="y", which="both", alpha=0.3)
             continue
-        if n == "p_max":
-            limit, _ = display([_PRESSURE_LIMIT], "Pa")
+        if units.get(n) == "Pa":
+            limit, _ = display([STATIC_PRESSURE_LIMIT], "Pa")
             ax.axhline(limit[0], color="0.2", linestyle="--", label="ISO 76 static limit")
             ax.legend(fontsize=7)
         include_zero(ax, y, unit)
-        ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
         ax.grid(True, axis="y", alpha=0.3)
     axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
     axes[-1].set_xlabel("load case", fontsize=8)
-    fig.suptitle(f"{prep.scene.title}\nlife, ball load and contact pressure per load case "
-                 f"({prep.scene.statics_method})", fontsize=9)
+    fig.suptitle(f"{prep.scene.title}\n" + ", ".join(describe(n, prep) for n in columns)
+                 + " per load case", fontsize=9)
     fig.tight_layout()
     return [("statics", fig)]
 

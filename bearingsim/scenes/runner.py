@@ -198,7 +198,9 @@ def prepare(scene: Scene) -> Prepared:
     if scene.analysis != "modes":  # modes need every degree of freedom
         args.update(spec.symmetric_args(args, scene_inputs(scene)))
     post_all = spec.post(args)
-    requested = list(scene.outputs or spec.default_outputs)
+    # a statics scene solves its own equilibrium: no default outputs to keep
+    requested = list(scene.outputs or ([] if scene.analysis == "statics"
+                                       else spec.default_outputs))
     post = {n: post_all[n] for n in requested if n in post_all}
     model_outputs = [n for n in requested if n not in post]
     for q in post.values():
@@ -212,7 +214,8 @@ def prepare(scene: Scene) -> Prepared:
         except ParameterError as exc:
             raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
                              path=scene.path) from None
-        plots = assembly_plots(spec, args, fidelity) if scene.output.plots else []
+        plots = (assembly_plots(spec, args, fidelity)
+                 if scene.output.plots and scene.analysis == "transient" else [])
         plot_outputs = list(dict.fromkeys(n for p in plots for n in p.needs
                                           if n not in model_outputs))
         try:
@@ -667,7 +670,7 @@ def _write_json(path: Path, data: dict[str, Any]) -> None:
 
 def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]:
     """SI unit of each column of an analysis table."""
-    from bearingsim.scenes.analyses import STATICS_COLUMNS
+    from bearingsim.scenes.analyses import statics_of
 
     scene = prep.scene
     units = point_units(prep, scene, _point_keys(scene))
@@ -676,7 +679,7 @@ def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]
                                         **{n: q.unit for n, q in prep.post.items()}}.items()
                       if n in prep.outputs})
     elif scene.analysis == "statics":
-        units.update(STATICS_COLUMNS)
+        units.update({n: unit for n, (unit, _) in statics_of(prep).columns.items()})
     else:
         point = set(units) | {"name"}
         units.update({n: "Hz" for row in rows for n in row if n not in point})
