@@ -527,8 +527,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         row.update({n: float(y[-1]) for n, y in series.items()})
         row.update(settled=check["settled"], time_constant=check["time_constant"],
                    unsettled=" ".join(check["unsettled"]))
-        return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names]),
-                "_check": check, "_result": result, "_series": series}
+        return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names])}
     from bearingsim.simulation import linearize, steady_state
 
     system = prep.system

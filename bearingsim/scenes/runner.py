@@ -79,7 +79,12 @@ class Prepared:
 
     @property
     def outputs(self) -> list[str]:
-        """The requested outputs in order (model and post-processed)."""
+        """The requested outputs in order (model and post-processed); for a statics scene the
+        columns of its assembly's statics solution."""
+        if self.scene.analysis == "statics":
+            from bearingsim.scenes.analyses import statics_of
+
+            return list(statics_of(self).columns)
         return self.scene.outputs or [n for n in self.spec.default_outputs
                                       if n in self.model_outputs or n in self.post]
 
@@ -239,8 +244,13 @@ def prepare(scene: Scene) -> Prepared:
     assemble_s = time.perf_counter() - t0
     _check_names(scene, system)
     symmetry = spec.symmetry(args, scene_inputs(scene)) if scene.analysis != "modes" else []
-    return Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
+    prep = Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
                     symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
+    if scene.analysis == "statics":
+        from bearingsim.scenes.analyses import statics_of
+
+        statics_of(prep)  # an assembly without statics: an error before anything runs
+    return prep
 
 
 def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
