@@ -447,8 +447,10 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         ax.grid(True, axis="y", alpha=0.3)
     axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
     axes[-1].set_xlabel("load case", fontsize=8)
-    fig.suptitle(f"{prep.scene.title}\n" + ", ".join(describe(n, prep) for n in columns)
-                 + " per load case", fontsize=9)
+    import textwrap
+
+    what = ", ".join(describe(n, prep) for n in columns) + " per load case"
+    fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(what, 90)]), fontsize=9)
     fig.tight_layout()
     return [("statics", fig)]
 
