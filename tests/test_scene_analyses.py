@@ -211,6 +211,11 @@ def test_settling_check_of_constant_and_oscillating_outputs():
     assert not check["outputs"]["ring"]["settled"]
     assert math.isnan(check["outputs"]["ring"]["time_constant"])
     assert check["unsettled"] == ["ring"]
+    # a life that is infinite while unloaded: settled once it keeps one value
+    life = np.where(t < 5.0, np.inf, 1e4)
+    assert settling_check(t, {"life": life}, Settling())["settled"]
+    late = np.where(t < 9.0, 1e4, np.inf)
+    assert not settling_check(t, {"life": late}, Settling())["settled"]
 
 
 def test_a_transient_that_has_not_settled_says_so():

@@ -76,7 +76,9 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
 
     An output has settled when its range over the last ``criterion.window`` of the run is at
     most ``criterion.tolerance`` times its final magnitude (its largest magnitude in the run
-    when it ends near zero, below 1e-3 of that). The time constant [s] is that of an
+    when it ends near zero, below 1e-3 of that); one that is not finite in the window (an
+    infinite life at no load) has settled when it keeps one value there. The time constant
+    [s] is that of an
     exponential approach through three equally spaced values of the window
     (``y = y_inf + a exp(-t / tau)``: ``tau = -h / ln(d2 / d1)`` for successive differences
     ``d1``, ``d2`` of the same sign and shrinking, the output monotone over the window),
@@ -106,10 +108,17 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
     outputs = {}
     for name, y in series.items():
         y = np.asarray(y, dtype=float)
-        peak = float(np.max(np.abs(y))) if y.size else 0.0
-        scale = max(abs(float(y[-1])), 1e-3 * peak)
-        change = float(np.ptp(y[inside])) / scale if scale > 0.0 else 0.0
         tau, estimate = math.nan, math.nan
+        window = y[inside]
+        if not np.all(np.isfinite(window)):  # e.g. an infinite life at no load
+            change = 0.0 if np.all(window == window[-1]) else math.inf
+            outputs[name] = {"settled": change == 0.0, "change": change,
+                             "time_constant": tau, "extrapolated": estimate}
+            continue
+        finite = y[np.isfinite(y)]
+        peak = float(np.max(np.abs(finite))) if finite.size else 0.0
+        scale = max(abs(float(y[-1])), 1e-3 * peak)
+        change = float(np.ptp(window)) / scale if scale > 0.0 else 0.0
         h = 0.5 * (t[-1] - start)
         if h > 0.0:
             y1, y2, y3 = np.interp([start, start + h, t[-1]], t, y)
