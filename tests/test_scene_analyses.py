@@ -403,3 +403,21 @@ def test_the_nested_ball_level_is_reachable_from_a_scene():
     assert isinstance(component, DynamicDoubleLayerBearing)
     assert spec.is_optional_input("inner_layer.load.Fy")
     assert "dynamic" in spec.fidelities and "dynamic" not in spec.auto_fidelities
+
+
+def test_a_steady_figure_never_plots_a_variable_against_itself():
+    """w_shaft is the imposed shaft speed, the x axis: its panel would be the identity
+    (issue 27: one sweep panel plotted w_shaft against itself); the figure leaves it out and
+    keeps the table column."""
+    from bearingsim.scenes.plots import analysis_figures
+    from bearingsim.scenes.runner import analysis_units
+
+    scene = parse_scene('analysis = "steady"\noutputs = ["w_shaft", "Rs"]\n[assembly]\n'
+                        'name = "double_layer_bearing"\nfidelity = "torque"\n[grid]\n'
+                        '"inputs.shaft_speed" = ["1000 rpm", "3000 rpm", "5000 rpm"]\n')
+    run = run_scene(scene, write=False)
+    assert [r["w_shaft"] for r in run.rows] == pytest.approx([r["shaft_speed"] for r in run.rows])
+    (name, fig), = analysis_figures(run.prepared, run.rows, ["shaft_speed"],
+                                    analysis_units(run.prepared, run.rows))
+    labels = [ax.get_ylabel().replace("\n", " ") for ax in fig.axes]
+    assert len(labels) == 1 and labels[0].startswith("speed distribution ratio")
