@@ -129,7 +129,7 @@ def _demo(args: argparse.Namespace) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     from bearingsim.scenes import run_scene
-    from bearingsim.units import engineering
+    from bearingsim.scenes.runner import console_lines
 
     run = run_scene(args.scene, out=args.out, overwrite=args.overwrite,
                     progress=False if args.no_progress else None, allow_paths=args.allow_path)
@@ -138,18 +138,17 @@ def _run(args: argparse.Namespace) -> int:
           f"({s['fidelity']['reason']})")
     for text in s["fidelity"].get("rejected", []):
         _say(f"  rejected {text}")
-    _say(f"  {s['system']['states']} states; assemble {s['timings_s']['assemble']:.2f} s, "
-          f"simulate {s['timings_s']['simulate']:.2f} s")
-    for kind, items in s["skipped"].items():
+    _say(f"  {s['system']['states']} states; "
+         + ", ".join(f"{k} {v:.2f} s" for k, v in s["timings_s"].items()))
+    for kind, items in s.get("skipped", {}).items():
         for item in items:
             text = item if isinstance(item, str) else f"{item['name']}: {item['note']}"
             _say(f"  skipped ({kind}): {text}")
-    for name, o in s["outputs"].items():
-        final = "inf/nan" if o["final"] is None else engineering(o["final"], o["unit"])
-        _say(f"  {name} = {final} at t_end")
+    for line in console_lines(s):
+        _say(line)
     result = getattr(run, "result", None)
     for name, echo in (result.input_echo() if result is not None else {}).items():
-        _say(f"  input {name} = {echo['shown']} at t_end")
+        _say(f"  input {name} = {echo['shown']}")
     for f in run.files:
         _say(f"  wrote {f}")
     for failure in s.get("plot_failures", []):
@@ -250,8 +249,9 @@ def _parser() -> argparse.ArgumentParser:
     p_list.add_argument("what", nargs="?", default="all", choices=("all", *LIST_SECTIONS),
                         help="one section (default: all)")
     p_list.add_argument("--filter", help="only names containing this text (any letter case)")
-    p_demo = sub.add_parser("demo", help="run the built-in demo scenes (PMSM spin-up of a "
-                            "double-layer bearing; its speed ratio against friction torque)")
+    p_demo = sub.add_parser("demo", help="run the built-in demo scenes, one per study question "
+                            "(double-layer Rs against speed and load, duplex-pair modes against "
+                            "preload, deep-groove life per duty condition) and a PMSM spin-up")
     p_demo.add_argument("--out", default="demo_output")
     p_demo.add_argument("--overwrite", action="store_true",
                         help="replace the files of an earlier demo run in the folder")

@@ -698,18 +698,27 @@ a friction torque, so ``M_shaft``, the losses, the loads and every other name ne
 
 
 def double_layer_from_scene(args: dict[str, Any], fidelity: str,
-                            drive: str = "speed") -> DoubleLayerBearing:
+                            drive: str = "speed") -> Assembly:
     """Build the bearing from the scene arguments of :data:`SCENE_SPEC`.
 
     Parameters
     ----------
     args : dict
         Every argument of ``SCENE_SPEC.args`` (defaults filled in).
-    fidelity : {"kinematic_approx", "kinematic", "torque"}
-        Fidelity level.
+    fidelity : {"kinematic_approx", "kinematic", "torque", "quasi-static", "dynamic"}
+        Fidelity level: ``quasi-static`` is the load sharing of
+        :class:`~bearingsim.assemblies.nested_static.NestedQuasiStatic` (inputs ``shaft.Fx``,
+        ``shaft.Fy``, ``shaft.Fz`` [N]), ``dynamic`` the ball and cage dynamics of both layers
+        (:class:`DynamicDoubleLayerBearing`, inputs ``shaft_speed`` and
+        ``inner_layer.load.Fx`` ... [N]); the friction-model arguments belong to the lower
+        levels.
     drive : {"speed", "flange"}
         Imposed shaft speed (input ``shaft_speed`` [rad/s]) or a free shaft flange.
     """
+    if fidelity in ("quasi-static", "dynamic"):
+        extra = {"drive": drive} if fidelity == "dynamic" else {}
+        return double_layer_bearing(args["inner"], args["outer"], structure=args["structure"],
+                                    fidelity=fidelity, lubrication=args["lubrication"], **extra)
     options = {k: v for k, v in (args["layer_options"] or {}).items() if v is not None}
     return double_layer_bearing(
         args["inner"], args["outer"], structure=args["structure"], fidelity=fidelity,
@@ -794,13 +803,13 @@ SCENE_SPEC = AssemblySpec(
                                  low=0.0),
         }),
     },
-    fidelities=FIDELITIES[:3],
+    fidelities=FIDELITIES,
     auto_fidelities=("kinematic", "torque"),
     output_fidelity=[(pattern, "kinematic") for pattern in _KINEMATIC_NAMES],
     default_outputs=["w_shaft", "w_middle", "Rs", "M_shaft"],
     post=_scene_post,
     parametric_args={"lubrication": _palmgren},
-    optional_inputs=("Fr", "Fa"),  # no load
+    optional_inputs=("Fr", "Fa", "shaft.F*", "middle.F*", "inner_layer.load.*"),  # no load
     reference_fidelity=declared_errors("double_layer_bearing")[0],
     level_errors=declared_errors("double_layer_bearing")[1],
 )

@@ -566,6 +566,10 @@ SCENE_SPEC = AssemblySpec(
     default_outputs=["shaft.x", "shaft.z", "shaft.ty"],
     symmetry=_symmetry,
     symmetric_args=_symmetric_args,
+    # the preload (spacer width difference, DT spring force) and the speed (with speed effects
+    # built in) are parameters of the assembled pair: a grid over them needs no re-assembly
+    parametric_args={"preload": lambda args: True, "preload_force": lambda args: True,
+                     "speed": lambda args: bool(args.get("speed_effects"))},
     fidelity_arg=None,
     optional_inputs=("shaft.*",),  # no external load (the preload alone)
 )

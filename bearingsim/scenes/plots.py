@@ -7,8 +7,10 @@ import.
 * deep-groove ball bearing: ball contact load against azimuth at the end of the run (0 deg is
   the direction of the radial load), with the zero-clearance Stribeck load distribution
   ``Q_max = 4.37 Fr / Z`` for comparison;
-* double-layer bearing (alone or in the motor drive): speed ratio Rs against shaft speed (when
-  the shaft speed varies), with the pure-rolling ratio;
+* double-layer bearing (alone or in the motor drive): the steady speed ratio Rs against shaft
+  speed over the run's speed range (when the shaft speed varies; solved directly at the loads
+  of the end of the run, not the run's transient trajectory), with the run's final point and
+  the pure-rolling ratio;
 * duplex pair: natural frequencies of the shaft on its rows by mode name ("radial x", "axial",
   ...) over the run, from the exact static stiffness at the equilibrium under each time's
   loads.
@@ -21,6 +23,7 @@ units by :func:`bearingsim.plotting.render`.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 import numpy as np
@@ -28,13 +31,18 @@ import numpy as np
 from bearingsim.assemblies.spec import AssemblyPlot
 from bearingsim.catalog import resolve_bearing
 from bearingsim.physics.double_layer_theory import speed_ratio_pure_rolling
-from bearingsim.plotting import Curve, FigureSpec, Panel
+from bearingsim.plotting import LINESTYLES, MARKERS, Curve, FigureSpec, Panel
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
+from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.studies.duplex import MODE_NAMES, modal_analysis
+from bearingsim.units import to_display
 
-__all__ = ["BUILTIN_PLOTS", "STRIBECK", "MODE_SAMPLES", "ball_loads", "deep_groove_plots",
-           "double_layer_plots", "duplex_plots", "mode_frequencies", "motor_drive_plots"]
+__all__ = ["BUILTIN_PLOTS", "STRIBECK", "MODE_SAMPLES", "analysis_figures", "axis_text",
+           "ball_loads", "characteristic_figures", "deep_groove_plots", "describe", "display",
+           "display_text", "double_layer_plots", "duplex_plots", "include_zero",
+           "mode_frequencies", "motor_drive_plots", "render_report", "statics_figures",
+           "steady_speed_ratio"]
 
 STRIBECK = 4.37
 """Stribeck's ratio ``Q_max Z / Fr`` of a radially loaded ball row with zero clearance
@@ -102,31 +110,72 @@ def deep_groove_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]
 
 
 # --------------------------------------------------------------------------- double layer
-def _rs_figure(prefix: str, bearing_args: dict[str, Any]):
+STEADY_SPEEDS = 15
+"""Shaft speeds at which the Rs figure of a transient scene solves the steady speed ratio."""
+
+
+def steady_speed_ratio(prep, result, speed_input: str, rs_name: str, speeds: np.ndarray
+                       ) -> np.ndarray:
+    """Steady speed ratio [-] at each of ``speeds`` [rad/s] of the input ``speed_input``, the
+    other inputs and the assembly's signals at their values at the end of the run, solved
+    directly (:func:`~bearingsim.simulation.steady_state`, each speed started from the
+    previous solution); NaN where no steady state is found."""
+    from bearingsim.errors import BearingsimError
+
+    system = prep.system
+    inputs = dict(result.inputs)
+    t_end = float(result.t[-1])
+    x = np.array([result.final(n) for n in system.state_names])
+    rs = np.full(speeds.size, np.nan)
+    for k, w in enumerate(speeds):
+        inputs[speed_input] = float(w)
+        try:
+            x = steady_state(system, inputs=inputs, parameters=result.parameters, x_guess=x,
+                             t=t_end)
+        except BearingsimError:
+            continue
+        u = system.u_default()
+        for name, value in inputs.items():
+            u[system.input_names.index(name)] = value
+        rs[k] = system.observe(t_end, x, u, system.p0(result.parameters))[rs_name]
+    return rs
+
+
+def _rs_figure(prefix: str, bearing_args: dict[str, Any], speed_input: str):
     def make(prep, result, series) -> FigureSpec | None:
         w, rs = series[prefix + "w_shaft"], series[prefix + "Rs"]
         if np.ptp(w) < _SPEED_SPAN:
             return None
+        top = float(np.max(np.abs(w)))
+        speeds = np.linspace(top / STEADY_SPEEDS, top, STEADY_SPEEDS)
+        steady = steady_speed_ratio(prep, result, speed_input, prefix + "Rs", speeds)
         kin = speed_ratio_pure_rolling(bearing_args["inner"], bearing_args["outer"])
-        panel = Panel([Curve(w, rs, "model", {"linestyle": "-", "marker": ".",
-                                              "markersize": 3}),
-                       Curve(np.array([np.min(w), np.max(w)]), np.array([kin, kin]),
-                             "pure rolling", {"linestyle": "--", "color": "0.5"})],
-                      "shaft speed", "rad/s", "speed ratio Rs = n_middle / n_shaft", "1")
-        return FigureSpec("rs_speed", "speed ratio against shaft speed", [panel])
+        curves = [Curve(speeds, steady, "steady (loads as at the end of the run)",
+                        {"linestyle": "-", "marker": "o", "markersize": 3}),
+                  Curve(np.array([abs(w[-1])]), np.array([rs[-1]]),
+                        f"the run at t = {result.t[-1]:g} s",
+                        {"linestyle": "none", "marker": "x", "markersize": 8,
+                         "color": "k"}),
+                  Curve(np.array([speeds[0], top]), np.array([kin, kin]), "pure rolling",
+                        {"linestyle": "--", "color": "0.5"})]
+        panel = Panel(curves, "shaft speed", "rad/s", "speed ratio Rs = n_middle / n_shaft",
+                      "1", scale="linear")
+        return FigureSpec("rs_speed", "steady speed ratio against shaft speed", [panel])
 
     return make
 
 
 def double_layer_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
-    """Rs against shaft speed."""
-    return [AssemblyPlot("rs_speed", ("w_shaft", "Rs"), _rs_figure("", args))]
+    """Rs against shaft speed (none at the quasi-static level: load sharing, no speeds)."""
+    if fidelity == "quasi-static":
+        return []
+    return [AssemblyPlot("rs_speed", ("w_shaft", "Rs"), _rs_figure("", args, "shaft_speed"))]
 
 
 def motor_drive_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
     """Rs of the bearing against shaft speed."""
     return [AssemblyPlot("rs_speed", ("bearing.w_shaft", "bearing.Rs"),
-                         _rs_figure("bearing.", args["bearing"]))]
+                         _rs_figure("bearing.", args["bearing"], "motor.w_ref"))]
 
 
 # --------------------------------------------------------------------------- duplex
@@ -187,3 +236,254 @@ BUILTIN_PLOTS = {
     "duplex_pair": duplex_plots,
 }
 """Assembly name -> ``plots(args, fidelity)`` of the built-in assemblies."""
+
+
+# --------------------------------------------------------------------------- display
+def display(values, unit: str) -> tuple[np.ndarray, str]:
+    """SI ``values`` of ``unit`` in the unit an engineer reads them in (r/min, µm, N mm, kN,
+    MPa, °C, h, ``-``; :func:`bearingsim.units.to_display`, the one display-unit table).
+
+    Returns
+    -------
+    (numpy.ndarray, str)
+        The converted values and the display unit.
+    """
+    values = np.asarray(values, dtype=float)
+    if unit == "Mrev":  # a life in millions of revolutions, as ISO 281 states it
+        return values, "10⁶ rev"
+    return to_display(values, unit)
+
+
+def display_text(value: float, unit: str) -> str:
+    """One SI value as text in its display unit (:func:`display`), e.g. ``"10000 r/min"``."""
+    if value is None or not math.isfinite(value):
+        return f"{value}"
+    shown, label = display(np.array([value]), unit)
+    return f"{shown[0]:.5g}" + ("" if label == "-" else f" {label}")
+
+
+def describe(name: str, prep: Any = None) -> str:
+    """The description of a variable, input, state, post-processed quantity or analysis
+    column, for axis labels (the name itself when it has none)."""
+    from bearingsim.scenes.analyses import STATICS
+
+    if prep is not None and prep.scene.analysis == "statics":
+        statics = STATICS.get(prep.spec.name)
+        if statics is not None and name in statics.columns:
+            return statics.columns[name][1]
+    if prep is not None:
+        if name in prep.post:
+            return prep.post[name].doc.split(" (")[0].split(";")[0]
+        system = prep.system
+        for sig in (*system.inputs, *system.states, *system.outputs):
+            if sig.name == name and sig.description:
+                return sig.description
+        if system.observed_descriptions.get(name):
+            return system.observed_descriptions[name]
+        arg = prep.spec.args.get(name)
+        if arg is not None and arg.doc:  # up to its unit: "axial preload [N] instead of ..."
+            return re.split(r"\s*[\[(]", arg.doc)[0]
+    return name
+
+
+def axis_text(name: str, prep: Any, unit: str) -> str:
+    """An axis label: the description and the display unit, ``"middle ring speed [r/min]"``,
+    wrapped to about 40 characters."""
+    import textwrap
+
+    lines = textwrap.wrap(describe(name, prep), 32) or [""]
+    if len(lines[-1]) + len(unit) + 3 <= 36:  # the unit never split: "[N mm]"
+        lines[-1] = f"{lines[-1]} [{unit}]".lstrip()
+    else:
+        lines.append(f"[{unit}]")
+    return "\n".join(lines)
+
+
+_FROM_ZERO = ("N", "kN", "N m", "N mm", "MPa", "h", "10⁶ rev", "Hz", "W", "N/µm")
+"""Display units of quantities whose axis shows 0 (loads, torques, pressures, lives,
+frequencies, powers, stiffnesses): a load on a log axis down to 1e-10 N reads as a load."""
+
+
+def include_zero(ax, values: np.ndarray, unit: str) -> bool:
+    """A linear value axis that shows 0 for the display units of :data:`_FROM_ZERO`; returns
+    whether the unit is one of them."""
+    if unit not in _FROM_ZERO:
+        return False
+    finite = values[np.isfinite(values)]
+    ax.set_yscale("linear")
+    if finite.size and np.min(finite) >= 0.0:
+        ax.set_ylim(bottom=0.0, top=max(float(np.max(finite)) * 1.05, 1e-300))
+    elif finite.size and np.max(finite) <= 0.0:
+        ax.set_ylim(top=0.0, bottom=min(float(np.min(finite)) * 1.05, -1e-300))
+    return True
+
+
+def _same_as(x: np.ndarray, y: np.ndarray) -> bool:
+    """Whether a series equals the x axis (a variable plotted against itself)."""
+    return x.shape == y.shape and bool(np.allclose(x, y, rtol=1e-9, atol=0.0))
+
+
+def _curves(rows: list[dict[str, Any]], keys: list[str]) -> list[tuple[dict, list[dict]]]:
+    """Rows grouped by the values of ``keys[1:]``: one curve over ``keys[0]`` each."""
+    groups: dict[tuple, list[dict]] = {}
+    for row in rows:
+        groups.setdefault(tuple(row.get(k) for k in keys[1:]), []).append(row)
+    return [(dict(zip(keys[1:], g, strict=True)), members) for g, members in groups.items()]
+
+
+def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
+    return ", ".join(f"{k} = {v}" if isinstance(v, str) else
+                     f"{k} = {display_text(v, units.get(k, ''))}" for k, v in values.items())
+
+
+def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
+                           units: dict[str, str], names: list[str], what: str):
+    """Steady characteristics: each output against the grid's first key, one curve per value
+    of the other keys (the ``steady`` and ``modes`` figures); a series equal to the x axis
+    (the variable against itself) is left out.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+    """
+    from matplotlib.figure import Figure
+
+    if not rows or not keys:
+        return []
+    xkey = keys[0]
+    x_all = np.array([row[xkey] for row in rows], dtype=float)
+    shown = [n for n in names if n != xkey
+             and not _same_as(x_all, np.array([row.get(n, math.nan) for row in rows], float))]
+    if not shown:
+        return []
+    per_panel = [shown] if what == "modes" else [[n] for n in shown]
+    fig = Figure(figsize=(7, 2.8 * len(per_panel) + 0.9))
+    axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
+    curves = _curves(rows, keys)
+    for ax, panel in zip(axes, per_panel, strict=True):
+        all_y = []
+        y_unit = ""
+        for k, (values, members) in enumerate(curves):
+            x, x_unit = display([m[xkey] for m in members], units.get(xkey, ""))
+            style = LINESTYLES[k % len(LINESTYLES)]
+            for j, n in enumerate(panel):
+                y, y_unit = display([m.get(n, math.nan) for m in members], units.get(n, ""))
+                if len(panel) > 1:  # several series: a colour each, a line style per curve
+                    label = n if k == 0 else None
+                    color = f"C{j % 10}"
+                else:
+                    label, color = _curve_label(values, units) or None, f"C{k % 10}"
+                ax.plot(x, y, label=label, color=color, marker=MARKERS[j % len(MARKERS)],
+                        linestyle=style, markersize=4)
+                all_y.append(y)
+            if len(panel) > 1 and len(curves) > 1:
+                ax.plot([], [], color="0.3", linestyle=style,
+                        label=_curve_label(values, units))
+        include_zero(ax, np.concatenate(all_y), "Hz" if what == "modes" else y_unit)
+        ax.set_ylabel("natural frequency [Hz]" if what == "modes"
+                      else axis_text(panel[0], prep, y_unit), fontsize=8)
+        if len(curves) > 1 or len(panel) > 1:
+            ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
+    per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""
+    question = ("natural frequencies by mode" if what == "modes"
+                else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
+    fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}",
+                 fontsize=9)
+    fig.tight_layout()
+    return [("modes" if what == "modes" else "steady", fig)]
+
+
+
+
+def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]):
+    """The assembly's statics columns (:attr:`~bearingsim.scenes.analyses.Statics.figure`:
+    life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
+    bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
+    drawn on a pressure panel."""
+    from matplotlib.figure import Figure
+
+    from bearingsim.scenes.analyses import statics_of
+
+    if not rows:
+        return []
+    names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
+    columns = [n for n in statics_of(prep).figure
+               if all(math.isfinite(row.get(n, math.nan)) for row in rows)]
+    if "L10h" in statics_of(prep).figure and "L10h" not in columns:
+        columns.insert(0, "L10r")  # no speed given: the life in revolutions
+    fig = Figure(figsize=(7, 2.6 * len(columns) + 1.0))
+    axes = np.atleast_1d(fig.subplots(len(columns), 1, sharex=True, squeeze=False)[:, 0])
+    pos = np.arange(len(rows))
+    for ax, n in zip(axes, columns, strict=True):
+        y, unit = display([row[n] for row in rows], units.get(n, ""))
+        ax.bar(pos, y, color="0.55")
+        for p, v in zip(pos, y, strict=True):
+            ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
+                        va="bottom", fontsize=7)
+        ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
+        if units.get(n) in ("h", "Mrev"):  # lives span decades between load cases
+            ax.set_yscale("log")
+            ax.grid(True, axis="y", which="both", alpha=0.3)
+            continue
+        if units.get(n) == "Pa":
+            limit, _ = display([STATIC_PRESSURE_LIMIT], "Pa")
+            ax.axhline(limit[0], color="0.2", linestyle="--", label="ISO 76 static limit")
+            ax.legend(fontsize=7)
+        include_zero(ax, y, unit)
+        ax.grid(True, axis="y", alpha=0.3)
+    axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
+    axes[-1].set_xlabel("load case", fontsize=8)
+    import textwrap
+
+    what = ", ".join(describe(n, prep) for n in columns) + " per load case"
+    fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(what, 90)]), fontsize=9)
+    fig.tight_layout()
+    return [("statics", fig)]
+
+
+def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
+                     units: dict[str, str]):
+    """The figures that answer a ``steady``, ``modes`` or ``statics`` scene: steady outputs
+    against the first grid key (one curve per value of the second), natural frequency against
+    the first key per mode, or life, ball load and pressure per load case.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        Figure name (``steady``, ``modes``, ``statics``) and figure.
+    """
+    analysis = prep.scene.analysis
+    if analysis == "statics":
+        return statics_figures(prep, rows, units)
+    point = set(keys) | {"name"}
+    names = [n for n in rows[0] if n not in point and not n.startswith("_")] if rows else []
+    return characteristic_figures(prep, rows, keys, units, names, analysis)
+
+
+def render_report(spec: FigureSpec, title: str = ""):
+    """:func:`bearingsim.plotting.render` of an assembly's figure in the scene display units
+    (:func:`display`: kN for every force, N mm for every torque, µm, r/min), loads and
+    torques on linear axes that show 0."""
+    from dataclasses import replace
+
+    from bearingsim.plotting import render
+
+    panels = []
+    for panel in spec.panels:
+        curves = []
+        for c in panel.curves:
+            x, x_unit = display(c.x, panel.x_unit)
+            y, y_unit = display(c.y, panel.y_unit)
+            curves.append(replace(c, x=x, y=y))
+        if not curves:
+            x_unit, y_unit = panel.x_unit, panel.y_unit
+        scale = "linear" if y_unit in _FROM_ZERO else panel.scale
+        panels.append(replace(panel, curves=curves, x_unit=x_unit, y_unit=y_unit, scale=scale))
+    fig = render(replace(spec, panels=panels), title)
+    for ax, panel in zip(fig.axes, panels, strict=False):
+        if panel.curves:
+            include_zero(ax, np.concatenate([np.asarray(c.y, float) for c in panel.curves]),
+                         panel.y_unit)
+    return fig

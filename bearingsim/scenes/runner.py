@@ -13,6 +13,7 @@ import json
 import math
 import re
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -22,21 +23,31 @@ import numpy as np
 from bearingsim.assembler import System, assemble
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
-from bearingsim.files import atomic_path, write_series_csv
-from bearingsim.plotting import render, set_value_scale
+from bearingsim.files import atomic_path, column_name, write_series_csv
+from bearingsim.plotting import set_value_scale
+from bearingsim.scenes.analyses import (
+    STATICS_INPUTS,
+    NotSettledWarning,
+    operating_points,
+    point_label,
+    point_units,
+    run_points,
+    settling_check,
+    steady_values,
+)
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.outputs import OutputFolder, command_line
-from bearingsim.scenes.plots import BUILTIN_PLOTS
+from bearingsim.scenes.plots import BUILTIN_PLOTS, analysis_figures, render_report
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.scenes.tables import scene_output_folder
 from bearingsim.simulation import Result, simulate
-from bearingsim.units import display_unit
 
 __all__ = [
     "Prepared",
     "SceneRun",
     "choose_fidelity",
+    "console_lines",
     "prepare",
     "run_scene",
     "scene_figures",
@@ -71,7 +82,12 @@ class Prepared:
 
     @property
     def outputs(self) -> list[str]:
-        """The requested outputs in order (model and post-processed)."""
+        """The requested outputs in order (model and post-processed); for a statics scene the
+        columns of its assembly's statics solution."""
+        if self.scene.analysis == "statics":
+            from bearingsim.scenes.analyses import statics_of
+
+            return list(statics_of(self).columns)
         return self.scene.outputs or [n for n in self.spec.default_outputs
                                       if n in self.model_outputs or n in self.post]
 
@@ -81,11 +97,15 @@ class SceneRun:
     """The outcome of :func:`run_scene`."""
 
     prepared: Prepared
-    result: Result
+    result: Result | None
+    """The run in time (None for the analyses steady, modes and statics)."""
     series: dict[str, np.ndarray]
-    """Requested outputs by name (post-processed ones included)."""
+    """Requested outputs by name (post-processed ones included); for an analysis, the table's
+    columns (one value per operating point)."""
     summary: dict[str, Any]
     files: list[Path]
+    rows: list[dict[str, Any]] = field(default_factory=list)
+    """An analysis's table: one row per operating point (plain names, SI values)."""
 
 
 def _check(scene: Scene) -> Scene:
@@ -114,7 +134,9 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     names = list(scene.outputs or spec.default_outputs)
     for n in names:
         need[n] = post[n].fidelity if n in post else spec.min_fidelity(n)
-    for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial):
+    point_names = [k.split(".", 1)[1] for k in _point_keys(scene)
+                   if k.split(".", 1)[0] in ("inputs", "parameters")]
+    for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial) + point_names:
         need[n] = spec.min_fidelity(n)
     level = 0
     for fid in need.values():
@@ -144,6 +166,31 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     return chosen, reason, rejected
 
 
+def _point_keys(scene: Scene) -> list[str]:
+    """The keys an operating grid or the load cases set."""
+    keys = list(scene.grid)
+    for case in scene.cases:
+        keys += [k for k in case if k != "name" and k not in keys]
+    return keys
+
+
+def scene_inputs(scene: Scene) -> dict[str, Any]:
+    """The inputs a scene sets: its ``inputs`` and those of its grid or cases (the text
+    ``"varies"`` for one that is not 0 at every point)."""
+    inputs = dict(scene.inputs)
+    values: dict[str, list[Any]] = {}
+    for key, vals in scene.grid.items():
+        values.setdefault(key, []).extend(vals)
+    for case in scene.cases:
+        for key, v in case.items():
+            values.setdefault(key, []).append(v)
+    for key, vals in values.items():
+        head, _, rest = key.partition(".")
+        if head == "inputs":
+            inputs[rest] = 0.0 if all(v == 0.0 for v in vals) else "varies"
+    return inputs
+
+
 def prepare(scene: Scene) -> Prepared:
     """Validate a scene, choose its fidelity and assemble the pruned model.
 
@@ -156,9 +203,12 @@ def prepare(scene: Scene) -> Prepared:
     scene = _check(scene)
     spec = scene.spec
     args = spec.with_defaults(scene.args)
-    args.update(spec.symmetric_args(args, scene.inputs))
+    if scene.analysis != "modes":  # modes need every degree of freedom
+        args.update(spec.symmetric_args(args, scene_inputs(scene)))
     post_all = spec.post(args)
-    requested = list(scene.outputs or spec.default_outputs)
+    # a statics scene solves its own equilibrium: no default outputs to keep
+    requested = list(scene.outputs or ([] if scene.analysis == "statics"
+                                       else spec.default_outputs))
     post = {n: post_all[n] for n in requested if n in post_all}
     model_outputs = [n for n in requested if n not in post]
     for q in post.values():
@@ -172,7 +222,8 @@ def prepare(scene: Scene) -> Prepared:
         except ParameterError as exc:
             raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
                              path=scene.path) from None
-        plots = assembly_plots(spec, args, fidelity) if scene.output.plots else []
+        plots = (assembly_plots(spec, args, fidelity)
+                 if scene.output.plots and scene.analysis == "transient" else [])
         plot_outputs = list(dict.fromkeys(n for p in plots for n in p.needs
                                           if n not in model_outputs))
         try:
@@ -195,9 +246,14 @@ def prepare(scene: Scene) -> Prepared:
                              scene.path) from None
     assemble_s = time.perf_counter() - t0
     _check_names(scene, system)
-    symmetry = spec.symmetry(args, scene.inputs)
-    return Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
+    symmetry = spec.symmetry(args, scene_inputs(scene)) if scene.analysis != "modes" else []
+    prep = Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
                     symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
+    if scene.analysis == "statics":
+        from bearingsim.scenes.analyses import statics_of
+
+        statics_of(prep)  # an assembly without statics: an error before anything runs
+    return prep
 
 
 def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
@@ -215,22 +271,29 @@ def _check_names(scene: Scene, system: System) -> None:
     def add(key, msg, allowed):
         problems.append(SceneError(msg, key, line_of(scene.text, key), allowed, scene.path))
 
-    for n in scene.inputs:
-        if n not in system.input_names:
-            add(f"inputs.{n}", f"the model has no input {n!r}",
-                ", ".join(system.input_names) or "none")
+    given = scene_inputs(scene)
+    extra = STATICS_INPUTS if scene.analysis == "statics" else ()
+    for n in given:
+        if n not in system.input_names and n not in extra:
+            key = f"inputs.{n}" if n in scene.inputs else ("grid" if scene.grid else "cases")
+            add(key, f"the model has no input {n!r}", ", ".join(system.input_names) or "none")
     units = {sig.name: sig.unit for sig in system.inputs}
     for n, si in scene.input_units.items():
         if n in units and units[n] != si:
             add(f"inputs.{n}", f"input {n} is in {units[n]}, but the value's unit is one of "
                 f"{si}", f"a number with a unit of {units[n]}, or a number in {units[n]}")
     missing = [n for n in system.input_names
-               if n not in scene.inputs and not scene.spec.is_optional_input(n)]
+               if n not in given and not scene.spec.is_optional_input(n)]
     if missing:
         add("inputs", "input(s) not given: " + ", ".join(f"{n} [{units[n]}]" for n in missing)
             + " (the run would hold them at their start value, e.g. a speed of 0)",
             "a number, an expression of t or a table for each; inputs that may be left out: "
             + (", ".join(scene.spec.optional_inputs) or "none"))
+    for key in _point_keys(scene):
+        head, _, rest = key.partition(".")
+        if head == "parameters" and rest not in system.parameter_names:
+            add("grid" if scene.grid else "cases", f"the model has no parameter {rest!r}",
+                ", ".join(system.parameter_names))
     for n, v in scene.parameters.items():
         try:
             system.p0({n: v})
@@ -316,17 +379,68 @@ def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
     return out
 
 
+def settling(prep: Prepared, result: Result, series: dict[str, np.ndarray]
+             ) -> dict[str, Any]:
+    """Whether a transient run's outputs settled (:func:`~bearingsim.scenes.analyses.
+    settling_check`, the scene's criterion), with the steady values of the outputs under the
+    final inputs where a steady state is found (started from the final state); warns
+    (:class:`~bearingsim.scenes.analyses.NotSettledWarning`) naming the outputs that had not
+    settled, unless the scene reports a transient on purpose."""
+    scene = prep.scene
+    if scene.transient_on_purpose:
+        return {"transient_on_purpose": True, "settled": None, "time_constant": None,
+                "criterion": "not checked: the scene reports a transient on purpose"}
+    check = settling_check(result.t, series, scene.settling)
+    check["transient_on_purpose"] = False
+    check["steady"] = {}
+    if check["settled"]:
+        return check
+    x_end = np.array([result.final(n) for n in prep.system.state_names])
+    steady = steady_values(prep, dict(result.inputs), dict(result.parameters), x_end,
+                           float(result.t[-1]))
+    check["steady"] = {n: steady[n] for n in check["unsettled"]} if steady else {}
+    units = _units(prep, result)
+    from bearingsim.scenes.plots import display_text
+
+    parts = []
+    for n in check["unsettled"]:
+        text = (f"{n} = {display_text(float(series[n][-1]), units.get(n, ''))} changed by "
+                f"{check['outputs'][n]['change']:.2g} of its value")
+        if n in check["steady"]:
+            text += f" (steady value {display_text(check['steady'][n], units.get(n, ''))})"
+        parts.append(text)
+    tau = check["time_constant"]
+    warnings.warn(
+        f"{scene.title}: not settled at t_end = {result.t[-1]:g} s ({check['criterion']}): "
+        + "; ".join(parts)
+        + (f"; time constant about {tau:.3g} s" if math.isfinite(tau) else "")
+        + ". Run longer (simulation.t_end), ask analysis = \"steady\" for the settled "
+        "point, or set transient_on_purpose = true", NotSettledWarning, stacklevel=3)
+    return check
+
+
+def _units(prep: Prepared, result: Result) -> dict[str, str]:
+    return {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
+
+
 def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
-            files: list[Path] | None = None) -> dict[str, Any]:
-    """The JSON summary of a run: sizes, timings, final values and every skip."""
+            files: list[Path] | None = None, settled: dict[str, Any] | None = None
+            ) -> dict[str, Any]:
+    """The JSON summary of a run: sizes, timings, final values, settling and every skip."""
     system = prep.system
-    units = {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
+    units = _units(prep, result)
     outs = {}
+    checked = (settled or {}).get("outputs", {})
     for n, y in series.items():
         finite = y[np.isfinite(y)]
         outs[n] = {"unit": units.get(n, ""), "final": y[-1],
                    "min": finite.min() if finite.size else None,
                    "max": finite.max() if finite.size else None}
+        if n in checked:
+            outs[n].update(settled=checked[n]["settled"], change=checked[n]["change"],
+                           time_constant=checked[n]["time_constant"])
+        if n in (settled or {}).get("steady", {}):
+            outs[n]["steady"] = settled["steady"][n]
     spec = prep.spec
     higher = []
     if prep.fidelity in spec.fidelities:
@@ -361,41 +475,87 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
                                  if isinstance(v, (int, float, str))}},
         "timings_s": {"assemble": round(prep.assemble_s, 4),
                       "simulate": round(float(result.stats.get("wall_time", 0.0)), 4)},
+        "analysis": "transient",
+        "settled": (settled or {}).get("settled"),
+        "time_constant_s": (settled or {}).get("time_constant"),
+        "settling": {k: v for k, v in (settled or {}).items() if k != "outputs"},
         "outputs": outs,
         "files": [str(f) for f in (files or [])],
     })
 
 
+def _varying_inputs(prep: Prepared, result: Result
+                    ) -> tuple[dict[str, np.ndarray], dict[str, str]]:
+    """The inputs that change during the run, by name, and their units: the model's inputs
+    and the assembly's signal arguments given as expressions of t (e.g. a load torque step);
+    constant ones are left out."""
+    out, units = {}, {}
+    for name in prep.system.input_names:
+        if name in result:
+            out[name] = np.asarray(result[name], dtype=float)
+            units[name] = prep.system.inputs[prep.system.input_names.index(name)].unit
+    for name, arg in prep.spec.args.items():
+        text = prep.args.get(name)
+        if arg.kind == "signal" and isinstance(text, str):
+            values = compile_expression(text, f"assembly.{name}")(result.t)
+            out[name] = np.broadcast_to(np.asarray(values, dtype=float).ravel(), result.t.shape)
+            m = re.search(r"\[([^\]]+)\]", arg.doc)
+            units[name] = m.group(1).replace(" ", ".") if m else ""
+    keep = {n: y for n, y in out.items()
+            if y.size and np.ptp(y[np.isfinite(y)]) > 0.0}
+    return keep, {n: units[n] for n in keep}
+
+
 def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
-                 units: dict[str, str], groups: list[list[str]], title: str
+                 units: dict[str, str], groups: list[list[str]], title: str,
+                 inputs: dict[str, np.ndarray] | None = None, prep: Prepared | None = None
                  ) -> list[tuple[str, Any]]:
-    """(file name, :class:`matplotlib.figure.Figure`) of the time traces: one panel per group
-    (default: per output), at most 6 panels a figure (made without pyplot)."""
+    """(file name, :class:`matplotlib.figure.Figure`) of the time traces, made without pyplot.
+
+    The inputs that change during the run are drawn on top of every figure (one panel per
+    unit), on the same time axis as the outputs they drive; then one panel per group
+    (default: per output), at most 6 panels a figure. Axes are labelled with the variables'
+    descriptions (``prep``) and display units (r/min, µm, N mm, kN, ...,
+    :func:`bearingsim.scenes.plots.display`); loads, torques and powers on linear axes that
+    show 0.
+    """
     from matplotlib.figure import Figure
 
+    from bearingsim.scenes.plots import axis_text, describe, display, include_zero
+
+    inputs = inputs or {}
+    by_unit: dict[str, list[str]] = {}
+    for name in inputs:
+        by_unit.setdefault(units.get(name, ""), []).append(name)
+    input_groups = list(by_unit.values())
+    data = {**inputs, **series}
     groups = groups or [[n] for n in series]
+    per_figure = max(6 - len(input_groups), 2)
     figures = []
-    for k in range(0, len(groups), 6):
-        chunk = groups[k:k + 6]
+    for k in range(0, len(groups), per_figure):
+        chunk = input_groups + groups[k:k + per_figure]
         fig = Figure(figsize=(7, 1.9 * len(chunk) + 1))
         axes = np.atleast_1d(fig.subplots(len(chunk), 1, sharex=True, squeeze=False)[:, 0])
-        for ax, group in zip(axes, chunk, strict=True):
-            # engineering units for display (r/min, um, deg, N mm, -); SI in the CSV
-            factor, unit = display_unit(units.get(group[0], ""),
-                                        np.concatenate([series[n] for n in group]))
+        for row, (ax, group) in enumerate(zip(axes, chunk, strict=True)):
+            unit = units.get(group[0], "")
+            shown = []
             for n in group:
-                y = series[n] * factor
-                ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=n)
-            set_value_scale(ax, [series[n] * factor for n in group])
-            label = group[0] if len(group) == 1 else ", ".join(group)
-            ax.set_ylabel(f"{label}\n[{unit}]", fontsize=8)
+                y, label_unit = display(data[n], unit)
+                shown.append(y)
+                ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=describe(n, prep),
+                        color="0.35" if row < len(input_groups) else None)
+            if not include_zero(ax, np.concatenate(shown), label_unit):
+                set_value_scale(ax, shown)
+            text = (axis_text(group[0], prep, label_unit) if len(group) == 1
+                    else f"[{label_unit}]")
+            ax.set_ylabel(("input: " if row < len(input_groups) else "") + text, fontsize=8)
             if len(group) > 1:
                 ax.legend(fontsize=7)
             ax.grid(True, alpha=0.3)
         axes[-1].set_xlabel("time [s]")
         fig.suptitle(title, fontsize=10)
         fig.tight_layout()
-        figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // 6 + 1}.png", fig))
+        figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // per_figure + 1}.png", fig))
     return figures
 
 
@@ -409,8 +569,8 @@ def assembly_figures(prep: Prepared, result: Result, series: dict[str, np.ndarra
     for plot in prep.plots:
         spec = plot.make(prep, result, data)
         if spec is not None:
-            figures.append((f"{stem}.{plot.name}.png", render(spec, f"{prep.scene.title}\n"
-                                                                    f"{spec.title}")))
+            figures.append((f"{stem}.{plot.name}.png",
+                            render_report(spec, f"{prep.scene.title}\n{spec.title}")))
     return figures
 
 
@@ -430,25 +590,10 @@ def scene_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray],
                          "outputs", "output.plot_groups",
                          line_of(prep.scene.text, "output.plot_groups"),
                          ", ".join(series), prep.scene.path)
+    inputs, input_units = _varying_inputs(prep, result)
     return (assembly_figures(prep, result, series, stem)
-            + time_figures(stem, result.t, series, units, groups, prep.scene.title))
-
-
-def write_plots(folder: Path, stem: str, t: np.ndarray, series: dict[str, np.ndarray],
-                units: dict[str, str], groups: list[list[str]], title: str) -> list[Path]:
-    """PNG figures of the time traces (:func:`time_figures`)."""
-    return save_figures(folder, time_figures(stem, t, series, units, groups, title))
-
-
-def save_figures(folder: Path, figures: list[tuple[str, Any]]) -> list[Path]:
-    """Write (file name, Figure) pairs as PNG files into ``folder`` (atomically)."""
-    files = []
-    for name, fig in figures:
-        path = folder / name
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=110)
-        files.append(path)
-    return files
+            + time_figures(stem, result.t, series, {**input_units, **units}, groups,
+                           prep.scene.title, inputs, prep))
 
 
 def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
@@ -510,13 +655,16 @@ def _run_and_write(scene: Scene, folder: Path, stem: str, lock: OutputFolder | N
                              f"them, or another output folder", "output.folder",
                              line_of(scene.text, "output.folder"), path=scene.path)
     prep = prepare(scene)
+    if scene.analysis != "transient":
+        return _run_analysis(prep, stem, lock)
     result = run_simulation(prep, progress=progress)
     series = output_series(prep, result)
     for n, y in series.items():
         if np.any(np.isnan(y)):
             raise ModelError(f"output {n} has NaN values; please report this scene")
     files: list[Path] = []
-    units = {**getattr(result, "units", {}), **{n: q.unit for n, q in prep.post.items()}}
+    units = _units(prep, result)
+    settled = settling(prep, result, series)
     if write:
         # the earlier summary goes first, the new one comes last (naming its files)
         lock.retire(f"{stem}.summary.json")
@@ -524,9 +672,119 @@ def _run_and_write(scene: Scene, folder: Path, stem: str, lock: OutputFolder | N
             lock.add(write_series_csv(folder / f"{stem}.csv", result.t, series, units))
         if prep.scene.output.plots:
             lock.save_figures(lambda: scene_figures(prep, result, series, stem, units))
-        summary_path = lock.write_summary(f"{stem}.summary.json", summary(prep, result, series))
+        summary_path = lock.write_summary(f"{stem}.summary.json",
+                                          summary(prep, result, series, None, settled))
         data = json.loads(summary_path.read_text())
         files = lock.files
     else:
-        data = summary(prep, result, series, files)
+        data = summary(prep, result, series, files, settled)
     return SceneRun(prep, result, series, data, files)
+
+
+def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]:
+    """SI unit of each column of an analysis table."""
+    from bearingsim.scenes.analyses import statics_of
+
+    scene = prep.scene
+    units = point_units(prep, scene, _point_keys(scene))
+    if scene.analysis == "steady":
+        units.update({n: u for n, u in {**prep.system.variable_units,
+                                        **{n: q.unit for n, q in prep.post.items()}}.items()
+                      if n in prep.outputs})
+    elif scene.analysis == "statics":
+        units.update({n: unit for n, (unit, _) in statics_of(prep).columns.items()})
+    else:
+        point = set(units) | {"name"}
+        units.update({n: "Hz" for row in rows for n in row if n not in point})
+    return units
+
+
+def write_table(path: Path, rows: list[dict[str, Any]], units: dict[str, str]) -> Path:
+    """An analysis table as CSV: one row per operating point, ``name [unit]`` headers (SI),
+    written atomically."""
+    import csv
+
+    names = [n for n in (rows[0] if rows else {}) if not n.startswith("_")]
+    for row in rows[1:]:
+        names += [n for n in row if n not in names and not n.startswith("_")]
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow([n if n == "name" else column_name(n, units.get(n, "")) for n in names])
+        w.writerows([[row.get(n, "") for n in names] for row in rows])
+    return path
+
+
+def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> SceneRun:
+    """Run a steady, modes or statics scene: one table row per operating point, the figures
+    that answer it and the JSON summary (written into ``lock``'s folder, last; None: write
+    nothing)."""
+    scene = prep.scene
+    t0 = time.perf_counter()
+    points = operating_points(scene)
+    rows = run_points(prep, points)
+    solve_s = time.perf_counter() - t0
+    units = analysis_units(prep, rows)
+    columns = {n: np.array([row.get(n, math.nan) for row in rows])
+               for n in rows[0] if n != "name"} if rows else {}
+    keys = [point_label(k) for k in _point_keys(scene)]
+    if lock is not None:
+        lock.retire(f"{stem}.summary.json")
+        if scene.output.csv:
+            lock.add(write_table(lock.folder / f"{stem}.csv", rows, units))
+        if scene.output.plots:
+            lock.save_figures(lambda: [(f"{stem}.{name}.png", fig) for name, fig in
+                                       analysis_figures(prep, rows, keys, units)])
+    data = _json_safe({
+        "title": scene.title,
+        "scene": scene.path,
+        "analysis": scene.analysis,
+        "assembly": prep.spec.name,
+        "arguments": prep.args,
+        "fidelity": {"requested": scene.fidelity, "chosen": prep.fidelity,
+                     "reason": prep.fidelity_reason, "attempts": prep.fidelity_attempts,
+                     "tolerance": scene.tolerance, "rejected": prep.fidelity_rejected},
+        "system": {"states": prep.system.n_states, "inputs": prep.system.input_names},
+        "points": len(rows),
+        "keys": keys,
+        "units": units,
+        "rows": rows,
+        "timings_s": {"assemble": round(prep.assemble_s, 4), "solve": round(solve_s, 4)},
+    })
+    files: list[Path] = []
+    if lock is not None:
+        path = lock.write_summary(f"{stem}.summary.json", data)
+        data = json.loads(path.read_text())
+        files = lock.files
+    return SceneRun(prep, None, columns, data, files, rows)
+
+
+def console_lines(summary_data: dict[str, Any]) -> list[str]:
+    """What ``bearingsim run`` prints of a run's results: a transient's final values with
+    whether they settled, or an analysis's table in engineering units."""
+    from bearingsim.scenes.plots import display_text
+
+    s = summary_data
+    if s.get("analysis", "transient") != "transient":
+        units = s["units"]
+        lines = [f"  {s['analysis']}: {s['points']} operating point(s)"]
+        for row in s["rows"]:
+            lines.append("  " + ", ".join(
+                f"{n} = {v}" if isinstance(v, str) else
+                f"{n} = {display_text(v, units.get(n, ''))}" for n, v in row.items()))
+        return lines
+    lines = []
+    for name, o in s["outputs"].items():
+        final = "inf/nan" if o["final"] is None else display_text(o["final"], o["unit"])
+        note = ""
+        if o.get("settled") is False:
+            note = " (NOT settled" + (f"; steady {display_text(o['steady'], o['unit'])}"
+                                      if o.get("steady") is not None else "") + ")"
+        lines.append(f"  {name} = {final} at t_end{note}")
+    st = s.get("settling", {})
+    if st.get("transient_on_purpose"):
+        lines.append("  transient on purpose: final values not checked for settling")
+    elif s.get("settled") is not None:
+        tau = s.get("time_constant_s")
+        lines.append(f"  settled: {'yes' if s['settled'] else 'NO'} ({st.get('criterion')})"
+                     + (f"; time constant {tau:.3g} s" if tau is not None else ""))
+    return lines

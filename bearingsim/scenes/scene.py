@@ -51,7 +51,9 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 __all__ = [
+    "ANALYSES",
     "Scene",
+    "Settling",
     "Simulation",
     "Output",
     "TableInput",
@@ -62,8 +64,18 @@ __all__ = [
     "line_of",
 ]
 
-TOP_KEYS = ("title", "description", "outputs", "tolerance", "bearings", "assembly", "inputs",
-            "parameters", "initial", "simulation", "output")
+TOP_KEYS = ("title", "description", "analysis", "outputs", "tolerance", "bearings", "assembly",
+            "inputs", "parameters", "initial", "grid", "cases", "settling",
+            "transient_on_purpose", "statics", "simulation", "output")
+ANALYSES = ("transient", "steady", "modes", "statics")
+"""What a scene asks (key ``analysis``): a run in time (``transient``, the default), the
+settled operating point (``steady``), natural frequencies and mode names at the equilibrium
+(``modes``) or quasi-static ball loads, stiffness, contact pressure and life (``statics``); the
+last three for each point of ``grid`` or ``cases`` (:mod:`bearingsim.scenes.analyses`)."""
+POINT_HEADS = ("inputs", "parameters", "assembly")
+"""Key heads of an operating grid or load case (``inputs.shaft_speed``, ``parameters.<name>``,
+``assembly.<argument>``)."""
+STATICS_METHODS = ("exact", "iso_ts_16281")
 DEFAULT_TOLERANCE = 0.05
 """Largest relative error of the requested outputs a scene accepts from ``fidelity = "auto"``
 when it gives no ``tolerance`` [-]."""
@@ -136,6 +148,21 @@ class Simulation:
 
 
 @dataclass
+class Settling:
+    """When a transient scene's outputs count as settled (key ``settling``).
+
+    An output has settled when its range (largest minus smallest value) over the last
+    ``window`` of the run is at most ``tolerance`` times its final magnitude (or, for an
+    output that ends near zero, ``tolerance`` times its largest magnitude in the run).
+    """
+
+    window: float = 0.2
+    """Fraction of the run checked, at its end [-], in (0, 1)."""
+    tolerance: float = 1e-3
+    """Largest relative change over the window [-]."""
+
+
+@dataclass
 class Output:
     """Where and what a scene run writes."""
 
@@ -172,6 +199,24 @@ class Scene:
     input_units : dict
         SI unit of each input given as a number with a unit (``"10000 rpm"`` -> ``rad/s``),
         checked against the model's input when assembled.
+    analysis : str
+        One of :data:`ANALYSES`.
+    grid : dict
+        Operating grid of a ``steady``, ``modes`` or ``statics`` scene: key (``inputs.<name>``,
+        ``parameters.<name>``, ``assembly.<argument>``) -> list of values (SI, inputs also
+        as ``"10000 rpm"``); every combination is one operating point, the first key varying
+        fastest (the x axis of the plot; the second key gives one curve per value).
+    cases : list of dict
+        Operating points given one by one (load cases), each a table of the same keys and an
+        optional ``name``.
+    settling : Settling
+        The criterion of settled outputs (transient scenes).
+    transient_on_purpose : bool
+        The scene reports a transient on purpose: its final values are not checked for
+        settling.
+    statics_method : str
+        ``statics`` scenes: ``"exact"`` or ``"iso_ts_16281"`` kinematics
+        (:func:`~bearingsim.studies.deep_groove_statics.deep_groove_statics`).
     tolerance : float
         Largest relative error [-] of the requested outputs that ``fidelity = "auto"`` may
         accept from a lower level (its measured error against the reference level,
@@ -197,6 +242,12 @@ class Scene:
     title: str = ""
     tolerance: float = DEFAULT_TOLERANCE
     input_units: dict[str, str] = field(default_factory=dict)
+    analysis: str = "transient"
+    grid: dict[str, list[Any]] = field(default_factory=dict)
+    cases: list[dict[str, Any]] = field(default_factory=list)
+    settling: Settling = field(default_factory=Settling)
+    transient_on_purpose: bool = False
+    statics_method: str = "exact"
     path: str | None = None
     text: str | None = field(default=None, repr=False)
     allow_paths: tuple[str, ...] = ()
@@ -214,8 +265,16 @@ class Scene:
                 v, TableInput) else v
         sim = asdict(self.simulation)
         out = asdict(self.output)
+        kind = ({"settling": asdict(self.settling),
+                 "transient_on_purpose": self.transient_on_purpose}
+                if self.analysis == "transient" else
+                {"grid": {k: list(v) for k, v in self.grid.items()},
+                 "cases": [dict(c) for c in self.cases],
+                 "statics": {"method": self.statics_method}})
         return {
             "title": self.title,
+            "analysis": self.analysis,
+            **kind,
             "outputs": list(self.outputs),
             "tolerance": self.tolerance,
             "assembly": {"name": self.assembly, "fidelity": self.fidelity, **self.args},
@@ -486,6 +545,105 @@ def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
                   f"[{sim.t_start:g}, {sim.t_end:g}] s)", "an expression finite for all t")
 
 
+def _point_value(c: _Collector, key: str, where: str, v: Any, spec: AssemblySpec | None,
+                 units: dict[str, str]) -> Any:
+    """One value of an operating grid or load case, checked against its key; inputs in SI."""
+    head, _, rest = key.partition(".")
+    if head not in POINT_HEADS or not rest:
+        c.add(where, f"{key!r} is not an operating-point key",
+              "inputs.<input>, parameters.<parameter>, assembly.<argument>")
+        return None
+    if head == "assembly":
+        if spec is None:
+            return None
+        arg = spec.args.get(rest)
+        if arg is None:
+            _unknown(c, where.rsplit(".", 1)[0], key, [f"assembly.{a}" for a in spec.args])
+            return None
+        if arg.kind == "float" and isinstance(v, str) and (q := parse_quantity(v)) is not None:
+            v = q[0]  # "4000 rpm": the argument's documented SI unit
+        return _check_arg(c, where, arg, v)
+    if head == "inputs" and isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
+        units[rest] = quantity[1]
+        return quantity[0]
+    value = _number(c, where, v, "SI units or a number with a unit ('10000 rpm')"
+                    if head == "inputs" else "SI units")
+    return None if value is None else float(value)
+
+
+def _operating_points(c: _Collector, d: dict[str, Any], spec: AssemblySpec | None,
+                      units: dict[str, str]) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
+    """The ``grid`` (key -> values) and ``cases`` (list of points) of a scene, checked."""
+    grid: dict[str, list[Any]] = {}
+    raw = d.get("grid", {})
+    if not isinstance(raw, dict):
+        c.add("grid", "must be a table", "key = [values]")
+        raw = {}
+    for key, values in _flatten(raw).items():
+        where = f"grid.{key}"
+        if not isinstance(values, list) or not values:
+            c.add(where, "must be a non-empty list of values", "a list, e.g. [0, 200, 500]")
+            continue
+        grid[key] = [_point_value(c, key, where, v, spec, units) for v in values]
+    cases: list[dict[str, Any]] = []
+    raw_cases = d.get("cases", [])
+    if not isinstance(raw_cases, list) or not all(isinstance(x, dict) for x in raw_cases):
+        c.add("cases", "must be a list of tables ([[cases]])", "[[cases]] name = ..., key = value")
+        raw_cases = []
+    for k, case in enumerate(raw_cases):
+        point: dict[str, Any] = {}
+        for key, v in _flatten(case).items():
+            where = f"cases.{key}"
+            if key == "name":
+                if not isinstance(v, str):
+                    c.add(where, f"case {k + 1}: the name must be text", "a string")
+                point["name"] = str(v)
+            else:
+                point[key] = _point_value(c, key, where, v, spec, units)
+        point.setdefault("name", f"case {k + 1}")
+        cases.append(point)
+    if grid and cases:
+        c.add("cases", "give the operating points either as a grid or as cases, not both",
+              "[grid] or [[cases]]")
+    return grid, cases
+
+
+def _settling(c: _Collector, d: dict[str, Any]) -> Settling:
+    settling = Settling()
+    for k, v, key in _section(c, d, "settling", Settling.__dataclass_fields__):
+        low, high = (0.0, 1.0) if k == "window" else (0.0, 0.5)
+        if _number(c, key, v, "[1]", low, high, True) is not None:
+            setattr(settling, k, float(v))
+    return settling
+
+
+def _analysis_options(c: _Collector, d: dict[str, Any], analysis: str,
+                      inputs: dict[str, Any]) -> str:
+    """Checks the keys that depend on the analysis kind; returns the statics method."""
+    method = "exact"
+    for _, v, key in _section(c, d, "statics", ("method",)):
+        if v not in STATICS_METHODS:
+            c.add(key, f"{v!r} is not a statics method", ", ".join(STATICS_METHODS))
+        else:
+            method = v
+    if analysis == "transient":
+        for key in ("grid", "cases", "statics"):
+            if key in d:
+                c.add(key, f"{key} is for the analyses steady, modes and statics; this scene is "
+                      "a transient (analysis = \"transient\")", "analysis = \"steady\", "
+                      "\"modes\" or \"statics\" with a grid or cases")
+        return method
+    for key in ("settling", "transient_on_purpose"):
+        if key in d:
+            c.add(key, f"{key} applies to transient scenes only (analysis = {analysis!r})")
+    for name, v in inputs.items():
+        if not isinstance(v, float):
+            c.add(f"inputs.{name}", f"a {analysis} analysis holds every input constant: give a "
+                  "number (or a number with a unit), not an expression of t or a table",
+                  "a number")
+    return method
+
+
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
                     text: str | None = None, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
@@ -502,6 +660,15 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     for k in d:
         if k not in TOP_KEYS:
             _unknown(c, "", k, TOP_KEYS)
+    analysis = d.get("analysis", "transient")
+    if analysis not in ANALYSES:
+        c.add("analysis", f"{analysis!r} is not an analysis", ", ".join(ANALYSES))
+        analysis = "transient"
+    on_purpose = d.get("transient_on_purpose", False)
+    if not isinstance(on_purpose, bool):
+        c.add("transient_on_purpose", f"must be true or false, got {on_purpose!r}",
+              "true, false")
+        on_purpose = False
     allowed = tuple(str(a) for a in allow_paths)
     for problem in load_bearings_files(d.get("bearings"), scene_folder(path), allowed):
         c.add(problem.key, problem.reason, problem.allowed)
@@ -595,7 +762,9 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "[1]", low,
                        high, strict) is not None:
                 setattr(sim, k, float(v))
-    if "t_end" not in (d.get("simulation") if isinstance(d.get("simulation"), dict) else {}):
+    if analysis != "transient":
+        pass  # no time span: the operating points are solved directly
+    elif "t_end" not in (d.get("simulation") if isinstance(d.get("simulation"), dict) else {}):
         c.add("simulation.t_end", "missing: the end time of the run", "a number in s > t_start")
     elif sim.t_end <= sim.t_start:
         c.add("simulation.t_end", f"{sim.t_end!r} must be after t_start = {sim.t_start!r}",
@@ -635,12 +804,18 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     tolerance = d.get("tolerance", DEFAULT_TOLERANCE)
     if _number(c, "tolerance", tolerance, "[1] (relative error)", 0.0, 10.0, True) is None:
         tolerance = DEFAULT_TOLERANCE
+    grid, cases = _operating_points(c, d, REGISTRY[name] if name is not None else None,
+                                    input_units)
+    settling = _settling(c, d)
+    statics_method = _analysis_options(c, d, analysis, inputs)
     c.raise_if_any()
     return Scene(
         assembly=name, args=args, fidelity=fidelity, inputs=inputs, input_units=input_units,
         parameters=values["parameters"], initial=values["initial"], outputs=list(outputs),
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
-        tolerance=float(tolerance), path=path, text=text, allow_paths=allowed,
+        tolerance=float(tolerance), analysis=analysis, grid=grid, cases=cases,
+        settling=settling, transient_on_purpose=on_purpose, statics_method=statics_method,
+        path=path, text=text, allow_paths=allowed,
     )
 
 

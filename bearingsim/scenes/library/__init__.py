@@ -10,12 +10,13 @@ __all__ = ["FOLDER", "DEMO_SCENES", "builtin_scenes", "builtin_scene_path"]
 FOLDER = Path(__file__).resolve().parent
 """Folder of the built-in scene files."""
 
-DEMO_SCENES = ("motor_drive_spinup", "double_layer_friction", "deep_groove_radial",
-               "duplex_pair_axial")
-"""The scenes ``bearingsim demo`` (and ``make demo``) runs: a PMSM spin-up of a double-layer
-bearing and the steady speed ratio of a double-layer bearing against its friction torque (each
-with Rs against shaft speed), the load distribution of a deep-groove ball bearing (ball load
-against azimuth) and a duplex pair under load steps (its modes by name)."""
+DEMO_SCENES = ("double_layer_rs", "duplex_modes", "deep_groove_statics", "motor_drive_spinup")
+"""The scenes ``bearingsim demo`` (and ``make demo``) runs: one per study question, each with
+its table and the figure that answers it (docs/studies.md): the steady speed ratio of a
+double-layer bearing against speed, one curve per radial load; the natural frequencies of a
+duplex pair against preload, by mode; the ISO/TS 16281 life, ball load and contact pressure of
+a deep-groove ball bearing per duty condition; and a PMSM spin-up of the double-layer bearing
+(a transient on purpose, with the load step drawn above the torque it drives)."""
 
 
 def builtin_scenes() -> list[str]:

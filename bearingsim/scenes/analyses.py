@@ -1,0 +1,582 @@
+"""What a scene asks: the analysis kinds and the single operating point they share.
+
+A scene's ``analysis`` (:data:`~bearingsim.scenes.scene.ANALYSES`) says which question it
+answers:
+
+* ``transient``: a run in time; its final values are checked for settling
+  (:func:`settling_check`, the criterion of :class:`~bearingsim.scenes.scene.Settling`);
+* ``steady``: the settled operating point, solved directly (``dx/dt = 0`` by Newton with the
+  exact Jacobian, :func:`~bearingsim.simulation.steady_state`), each point of the grid started
+  from the solution at the previous one (continuation along the grid's first key);
+* ``modes``: natural frequencies and mode names at the equilibrium of each point, from the
+  eigenvalues of the model linearized there (:func:`~bearingsim.simulation.linearize`);
+* ``statics``: quasi-static ball loads, stiffness, Hertz pressure and ISO/TS 16281 life of each
+  load case (:func:`~bearingsim.studies.deep_groove_statics.deep_groove_statics`).
+
+:func:`run_operating_point` runs ONE operating point of any kind and returns its table row; a
+scene runs it for each point of its grid or cases (:func:`run_points`), and a sweep runs it
+for each of its points.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from bearingsim.errors import BearingsimError, SimulationError
+from bearingsim.scenes.scene import Scene, SceneError, Settling, line_of
+
+__all__ = [
+    "MODE_NAMES",
+    "STATICS",
+    "NotSettledWarning",
+    "Statics",
+    "STATICS_INPUTS",
+        "name_modes",
+    "operating_points",
+    "point_label",
+    "point_model",
+    "point_units",
+    "run_operating_point",
+    "run_points",
+    "settling_check",
+    "split_point",
+    "statics_of",
+    "steady_values",
+]
+
+class NotSettledWarning(UserWarning):
+    """A transient scene reports final values of outputs that had not settled."""
+
+
+def _duplex_mode_names() -> dict[str, str]:
+    from bearingsim.studies.duplex import DOFS
+    from bearingsim.studies.duplex import MODE_NAMES as NAMES
+
+    return {f"shaft.{dof}": name for dof, name in zip(DOFS, NAMES, strict=True)}
+
+
+MODE_NAMES: dict[str, Any] = {"duplex_pair": _duplex_mode_names}
+"""Assembly name -> function returning state name -> mode name ("radial x", ...) for the
+modes named after their dominant degree of freedom; other assemblies' modes are named after
+the description of that state."""
+
+
+# --------------------------------------------------------------------------- settling
+def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Settling
+                   ) -> dict[str, Any]:
+    """Whether each output of a run has settled, and its time constant.
+
+    An output has settled when its range over the last ``criterion.window`` of the run is at
+    most ``criterion.tolerance`` times its final magnitude (its largest magnitude in the run
+    when it ends near zero, below 1e-3 of that); one that is not finite in the window (an
+    infinite life at no load) has settled when it keeps one value there. The time constant
+    [s] is that of an
+    exponential approach through three equally spaced values of the window
+    (``y = y_inf + a exp(-t / tau)``: ``tau = -h / ln(d2 / d1)`` for successive differences
+    ``d1``, ``d2`` of the same sign and shrinking, the output monotone over the window),
+    which also estimates the settled value
+    ``y_inf``; NaN when the output does not approach a value that way (constant, oscillating
+    or driven by an input that still changes).
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Save times [s].
+    series : dict of str to numpy.ndarray
+        Output values at those times.
+    criterion : Settling
+        Window and tolerance.
+
+    Returns
+    -------
+    dict
+        ``settled`` (bool, all outputs), ``time_constant`` [s] (the largest of the outputs',
+        NaN when none is known), ``unsettled`` (names), ``criterion`` (text) and ``outputs``
+        (name -> ``settled``, ``change`` [-], ``time_constant`` [s], ``extrapolated``).
+    """
+    t = np.asarray(t, dtype=float)
+    start = t[-1] - criterion.window * (t[-1] - t[0])
+    inside = t >= start
+    outputs = {}
+    for name, y in series.items():
+        y = np.asarray(y, dtype=float)
+        tau, estimate = math.nan, math.nan
+        window = y[inside]
+        if not np.all(np.isfinite(window)):  # e.g. an infinite life at no load
+            change = 0.0 if np.all(window == window[-1]) else math.inf
+            outputs[name] = {"settled": change == 0.0, "change": change,
+                             "time_constant": tau, "extrapolated": estimate}
+            continue
+        finite = y[np.isfinite(y)]
+        peak = float(np.max(np.abs(finite))) if finite.size else 0.0
+        scale = max(abs(float(y[-1])), 1e-3 * peak)
+        change = float(np.ptp(window)) / scale if scale > 0.0 else 0.0
+        h = 0.5 * (t[-1] - start)
+        if h > 0.0:
+            y1, y2, y3 = np.interp([start, start + h, t[-1]], t, y)
+            d1, d2 = y2 - y1, y3 - y2
+            monotone = bool(np.all(np.diff(y[inside]) * d1 >= 0.0))
+            if d1 != 0.0 and 0.0 < d2 / d1 < 1.0 and monotone:
+                r = d2 / d1
+                tau = -h / math.log(r)
+                estimate = float(y3 + d2 * r / (1.0 - r))
+        outputs[name] = {"settled": change <= criterion.tolerance, "change": change,
+                         "time_constant": tau, "extrapolated": estimate}
+    taus = [o["time_constant"] for o in outputs.values() if math.isfinite(o["time_constant"])]
+    return {
+        "settled": all(o["settled"] for o in outputs.values()),
+        "time_constant": max(taus) if taus else math.nan,
+        "unsettled": [n for n, o in outputs.items() if not o["settled"]],
+        "criterion": (f"range over the last {criterion.window:.0%} of the run at most "
+                      f"{criterion.tolerance:g} of the final magnitude"),
+        "outputs": outputs,
+    }
+
+
+def steady_values(prep: Any, inputs: dict[str, float], parameters: dict[str, float],
+                  x_guess: np.ndarray | None = None, t: float = 0.0
+                  ) -> dict[str, float] | None:
+    """The requested outputs at the steady state under constant ``inputs`` and the assembly's
+    own signals at time ``t`` [s] (None when no unique steady state is found from
+    ``x_guess``)."""
+    from bearingsim.simulation import steady_state
+
+    try:
+        x = steady_state(prep.system, inputs=inputs, parameters=parameters, x_guess=x_guess,
+                         t=t)
+    except (SimulationError, BearingsimError):
+        return None
+    return _observed_outputs(prep, x, inputs, parameters, t)
+
+
+def _observed_outputs(prep: Any, x: np.ndarray, inputs: dict[str, float],
+                      parameters: dict[str, float], t: float = 0.0) -> dict[str, float]:
+    system = prep.system
+    u = system.u_default()
+    for name, value in inputs.items():
+        u[system.input_names.index(name)] = value
+    obs = {**system.observe(t, x, u, system.p0(parameters)), **inputs}
+    out = {}
+    for name in prep.outputs:
+        if name in prep.post:
+            q = prep.post[name]
+            out[name] = float(np.asarray(q.compute({n: np.array([obs[n]]) for n in q.needs}),
+                                         dtype=float).ravel()[0])
+        else:
+            out[name] = float(obs[name])
+    return out
+
+
+# --------------------------------------------------------------------------- points
+def operating_points(scene: Scene) -> list[dict[str, Any]]:
+    """The operating points of a scene: every combination of its ``grid`` (the first key
+    varying fastest), its ``cases`` in order, or one point of its ``inputs`` alone."""
+    if scene.cases:
+        return [dict(c) for c in scene.cases]
+    if not scene.grid:
+        return [{}]
+    keys = list(scene.grid)
+    combos = itertools.product(*(scene.grid[k] for k in reversed(keys)))
+    return [dict(zip(keys, reversed(combo), strict=True)) for combo in combos]
+
+
+def point_label(key: str) -> str:
+    """The table column of a point key: ``inputs.shaft_speed`` -> ``shaft_speed``."""
+    return key.split(".", 1)[1] if key.split(".", 1)[0] in ("inputs", "parameters",
+                                                              "assembly") else key
+
+
+def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
+    """SI unit of each point key's column (inputs and parameters from the model, assembly
+    arguments from the ``[unit]`` of their description)."""
+    units = {}
+    system = prep.system if prep is not None else None
+    for key in keys:
+        head, _, rest = key.partition(".")
+        unit = ""
+        if head == "inputs" and system is not None and rest in system.input_names:
+            unit = system.inputs[system.input_names.index(rest)].unit
+        elif head == "inputs":
+            unit = scene.input_units.get(rest, "N" if re.search(r"\bF[xyzra]$", rest) else "")
+        elif head == "parameters" and system is not None and rest in system.parameter_names:
+            unit = system.params[system.parameter_names.index(rest)].unit
+        elif head == "assembly":
+            arg = scene.spec.args.get(rest)
+            m = re.search(r"\[([^\]]+)\]", arg.doc) if arg is not None else None
+            unit = m.group(1) if m else ""
+        units[point_label(key)] = unit
+    return units
+
+
+def split_point(scene: Scene, point: dict[str, Any]
+                ) -> tuple[dict[str, float], dict[str, float], dict[str, Any]]:
+    """The inputs, parameter values and assembly arguments of an operating point (the scene's
+    own merged with the point's)."""
+    inputs = {k: v for k, v in scene.inputs.items()}
+    parameters = dict(scene.parameters)
+    args = dict(scene.args)
+    for key, value in point.items():
+        head, _, rest = key.partition(".")
+        if head == "inputs":
+            inputs[rest] = value
+        elif head == "parameters":
+            parameters[rest] = value
+        elif head == "assembly":
+            args[rest] = value
+    return inputs, parameters, args
+
+
+def _parameter_values(component) -> dict[str, float]:
+    from bearingsim.language.declarations import Parameter
+
+    return {decl.path: float(decl.value) for comp in component.walk()
+            for decl in comp.declarations.values()
+            if isinstance(decl, Parameter) and decl.value is not None}
+
+
+def _is_parametric(spec: Any, key: str, args: dict[str, Any]) -> bool:
+    holds = spec.parametric_args.get(key)
+    return holds is not None and bool(holds(args))
+
+
+def point_model(prep: Any, args: dict[str, Any]) -> tuple[Any, dict[str, float]]:
+    """The prepared model that runs an operating point with the assembly arguments ``args``,
+    and the parameter overrides it needs.
+
+    Arguments the assembly declares parametric
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.parametric_args`, e.g. a duplex pair's
+    preload) become parameter overrides of the assembled model of ``prep``; any other changed
+    argument (an arrangement, a bearing) assembles the model for those arguments, once per
+    distinct set (cached on ``prep``).
+
+    Raises
+    ------
+    SceneError
+        When an argument declared parametric changes the model's parameters (please report),
+        or the arguments are invalid.
+    """
+    from bearingsim.scenes.registry import build_component
+    from bearingsim.scenes.runner import prepare
+
+    spec = prep.spec
+    full = spec.with_defaults(args)
+    full.update({k: v for k, v in prep.args.items() if k not in spec.args})  # symmetry
+    changed = [k for k in spec.args if full.get(k) != prep.args.get(k)]
+    if not changed:
+        return prep, {}
+    cache = prep.__dict__.setdefault("_point_models", {})
+    structural = [k for k in changed if not _is_parametric(spec, k, full)]
+    if structural:
+        key = repr(sorted((k, repr(full[k])) for k in structural))
+        if key not in cache:
+            scene = prep.scene
+            base = {k: v for k, v in scene.args.items()}
+            base.update({k: full[k] for k in structural})
+            cache[key] = prepare(scene.replace(args=base))
+        return point_model(cache[key], args)
+    if "base" not in cache:
+        cache["base"] = _parameter_values(build_component(spec, prep.args, prep.fidelity))
+    base_values = cache["base"]
+    try:
+        new = _parameter_values(build_component(spec, full, prep.fidelity))
+    except BearingsimError as exc:
+        raise SceneError(str(exc), "grid", line_of(prep.scene.text, "grid"),
+                         path=prep.scene.path) from None
+    if set(new) != set(base_values):
+        raise SceneError(f"the assembly argument(s) {', '.join(changed)}, declared parametric, "
+                         "change the model's structure; please report", "grid",
+                         line_of(prep.scene.text, "grid"), path=prep.scene.path)
+    names = set(prep.system.parameter_names)
+    return prep, {n: v for n, v in new.items() if n in names and v != base_values[n]}
+
+
+# --------------------------------------------------------------------------- modes
+def _rate_pairs(a: np.ndarray) -> dict[int, int]:
+    """Index of each state that has a rate -> index of its rate (``dx_k/dt = x_j`` exactly:
+    row k of A is the unit vector e_j)."""
+    pairs = {}
+    for k in range(a.shape[0]):
+        nz = np.flatnonzero(a[k])
+        if nz.size == 1 and a[k, nz[0]] == 1.0:
+            pairs[k] = int(nz[0])
+    return pairs
+
+
+def name_modes(linear: Any, names: dict[str, str], descriptions: dict[str, str]
+               ) -> list[str]:
+    """A name for each oscillatory mode of a linear model: that of its dominant degree of
+    freedom.
+
+    A degree of freedom is a state with a rate (``dx/dt = v``, found in A); its participation
+    in a mode is the larger of its own and its rate's amplitude over the angular frequency,
+    relative to the mode's largest. Modes and degrees of freedom are paired one to one for the
+    largest total participation (:func:`scipy.optimize.linear_sum_assignment`), so that two
+    modes of one repeated frequency (radial x and y of an axisymmetric pair, any combination
+    of which is a mode) or of nearly one (the whirl modes of a spinning shaft) get the two
+    degrees of freedom they share.
+
+    Parameters
+    ----------
+    linear : LinearModel
+        From :func:`~bearingsim.simulation.linearize`.
+    names : dict
+        State name -> mode name ("radial x"); other states are named by ``descriptions`` or
+        their own name.
+    descriptions : dict
+        State name -> description.
+
+    Returns
+    -------
+    list of str
+        One per natural frequency (ascending), unique.
+    """
+    from scipy.optimize import linear_sum_assignment
+
+    a = np.asarray(linear.A, dtype=float)
+    pairs = _rate_pairs(a)
+    dofs = sorted(pairs) or list(range(a.shape[0]))
+    freqs = np.asarray(linear.natural_frequencies)
+    shapes = np.asarray(linear.mode_shapes)
+    amplitude = np.zeros((freqs.size, len(dofs)))
+    for j in range(freqs.size):
+        w = max(2.0 * math.pi * freqs[j], 1e-300)
+        for i, k in enumerate(dofs):
+            rate = abs(shapes[pairs[k], j]) / w if k in pairs else 0.0
+            amplitude[j, i] = max(abs(shapes[k, j]), rate)
+        amplitude[j] /= max(float(np.max(amplitude[j])), 1e-300)
+    modes, chosen = linear_sum_assignment(-amplitude)
+    dof_of = dict(zip(modes.tolist(), chosen.tolist(), strict=True))
+    labels, seen = [], {}
+    for j in range(freqs.size):
+        i = dof_of.get(j, int(np.argmax(amplitude[j])))
+        state = linear.state_names[dofs[i]]
+        label = names.get(state) or descriptions.get(state) or state
+        seen[label] = seen.get(label, 0) + 1
+        labels.append(label if seen[label] == 1 else f"{label} ({seen[label]})")
+    return labels
+
+
+# --------------------------------------------------------------------------- statics
+@dataclass(frozen=True)
+class Statics:
+    """The quasi-static solution of an assembly's load cases (a ``statics`` scene).
+
+    ``solve(prep, inputs, args, guess) -> (row, state)`` solves one load case (inputs by
+    name, SI); ``columns`` are the row's names -> (unit, description); ``figure`` the columns
+    drawn per load case (bars); ``levels`` the fidelity levels it applies to (empty: all).
+    """
+
+    solve: Callable[..., tuple[dict[str, float], np.ndarray]]
+    columns: dict[str, tuple[str, str]]
+    figure: tuple[str, ...]
+    levels: tuple[str, ...] = ()
+
+
+_DEEP_GROOVE_COLUMNS = {
+    "Q_max": ("N", "largest ball load"),
+    "p_max": ("Pa", "largest Hertz contact pressure"),
+    "x": ("m", "inner ring displacement x"), "y": ("m", "inner ring displacement y"),
+    "z": ("m", "inner ring displacement z (axial)"),
+    "k_radial": ("N/m", "radial stiffness d Fx / d x"),
+    "k_axial": ("N/m", "axial stiffness d Fz / d z"),
+    "L10r": ("Mrev", "ISO/TS 16281 reference rating life L10r (10^6 revolutions)"),
+    "L10h": ("h", "ISO/TS 16281 reference rating life L10r in hours"),
+}
+
+
+def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
+                         guess: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
+    from bearingsim.studies.deep_groove_statics import LOAD_NAMES, deep_groove_statics
+
+    loads = {k: float(inputs.get(f"load.{k}", 0.0)) for k in LOAD_NAMES}
+    res = deep_groove_statics(args["bearing"], loads, method=prep.scene.statics_method,
+                              guess=guess)
+    speed = abs(float(inputs.get("shaft_speed", 0.0)))
+    revolutions_per_hour = speed / (2.0 * math.pi) * 3600.0
+    life_h = (res.reference_life * 1e6 / revolutions_per_hour if revolutions_per_hour > 0.0
+              else math.nan)
+    row = {"Q_max": float(np.max(res.ball_loads)), "p_max": float(res.max_pressure),
+           "x": float(res.displacement[0]), "y": float(res.displacement[1]),
+           "z": float(res.displacement[2]), "k_radial": float(res.stiffness[0, 0]),
+           "k_axial": float(res.stiffness[2, 2]), "L10r": float(res.reference_life),
+           "L10h": life_h}
+    return row, res.state
+
+
+_NESTED_COLUMNS = {
+    "Q_max_inner": ("N", "largest ball load of the inner layer"),
+    "Q_max_outer": ("N", "largest ball load of the outer layer"),
+    "x_shaft": ("m", "shaft displacement x"), "z_shaft": ("m", "shaft displacement z (axial)"),
+    "x_middle": ("m", "middle ring displacement x"),
+    "k_radial": ("N/m", "radial stiffness of the shaft against the housing"),
+}
+
+
+def _nested_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
+                    guess: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
+    from bearingsim.studies.nested_equilibrium import nested_equilibrium
+
+    if abs(float(inputs.get("shaft.Fy", 0.0))) > 0.0:
+        raise SceneError("the nested statics take the radial load along x (shaft.Fx) and the "
+                         "axial load (shaft.Fz); shaft.Fy must be 0", "cases",
+                         line_of(prep.scene.text, "cases"), "shaft.Fx, shaft.Fz",
+                         prep.scene.path)
+    eq = nested_equilibrium(prep.system, float(inputs.get("shaft.Fx", 0.0)),
+                            float(inputs.get("shaft.Fz", 0.0)), guess)
+    row = {"Q_max_inner": float(eq.inner_ball_loads.max()),
+           "Q_max_outer": float(eq.outer_ball_loads.max()),
+           "x_shaft": float(eq.shaft_displacement[0]),
+           "z_shaft": float(eq.shaft_displacement[2]),
+           "x_middle": float(eq.middle_displacement[0]),
+           "k_radial": float(eq.stiffness[0, 0])}
+    return row, eq.state
+
+
+STATICS = {
+    "deep_groove_ball_bearing": Statics(_deep_groove_statics, _DEEP_GROOVE_COLUMNS,
+                                        ("L10h", "Q_max", "p_max")),
+    "double_layer_bearing": Statics(_nested_statics, _NESTED_COLUMNS,
+                                    ("Q_max_inner", "Q_max_outer", "x_shaft", "x_middle"),
+                                    ("quasi-static",)),
+}
+"""Assembly name -> its :class:`Statics`: the deep-groove ball bearing's ball loads, Hertz
+pressure, stiffness and ISO/TS 16281 life
+(:func:`~bearingsim.studies.deep_groove_statics.deep_groove_statics`), the double-layer
+bearing's load sharing at its quasi-static level
+(:func:`~bearingsim.studies.nested_equilibrium.nested_equilibrium`)."""
+STATICS_INPUTS = ("shaft_speed",)
+"""Inputs a statics load case may give beyond the model's: the shaft speed [rad/s] turns the
+reference life in revolutions into hours."""
+
+
+def statics_of(prep: Any) -> Statics:
+    """The :class:`Statics` of a prepared scene's assembly and level.
+
+    Raises
+    ------
+    SceneError
+        When the assembly (or its level) has no statics solution, naming those that have.
+    """
+    statics = STATICS.get(prep.spec.name)
+    if statics is None or (statics.levels and prep.fidelity not in statics.levels):
+        have = ", ".join(f"{name}" + (f" (fidelity {', '.join(st.levels)})" if st.levels
+                                      else "") for name, st in STATICS.items())
+        raise SceneError(f"no statics analysis for the assembly {prep.spec.name} at fidelity "
+                         f"{prep.fidelity!r}", "analysis",
+                         line_of(prep.scene.text, "analysis"), f"statics for {have}; steady "
+                         "for the quasi-static equilibrium of the others", prep.scene.path)
+    return statics
+
+
+# --------------------------------------------------------------------------- one point
+def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
+                        x_guess: np.ndarray | None = None, progress: bool | None = False
+                        ) -> dict[str, Any]:
+    """Run ONE operating point of a prepared scene's analysis and return its table row.
+
+    Parameters
+    ----------
+    prep : Prepared
+        From :func:`bearingsim.scenes.runner.prepare` (its scene's ``analysis`` is the kind).
+    point : dict, optional
+        Keys ``inputs.<name>``, ``parameters.<name>``, ``assembly.<argument>`` (values in SI)
+        and an optional ``name``, on top of the scene's own values.
+    x_guess : numpy.ndarray, optional
+        Start of the steady or equilibrium solve (e.g. the state of the previous point).
+    progress : bool or None
+        Progress bar of a transient run.
+
+    Returns
+    -------
+    dict
+        Plain names -> values in SI: the point's keys (``shaft_speed``, ...), ``name`` of a
+        case, and by kind: ``transient`` the outputs' final values, ``settled`` (bool),
+        ``time_constant`` [s] and ``unsettled`` (names); ``steady`` the outputs;
+        ``modes`` the natural frequency [Hz] by mode name; ``statics`` the columns of
+        :class:`Statics`. ``_state`` holds the solved state (for continuation; not a
+        table column).
+
+    Raises
+    ------
+    SceneError
+        For assembly arguments that change the model structure, or a statics scene of an
+        assembly without a statics solution.
+    SimulationError
+        When the steady state or equilibrium is not found.
+    """
+    point = dict(point or {})
+    scene = prep.scene
+    inputs, parameters, args = split_point(scene, point)
+    row: dict[str, Any] = {}
+    if "name" in point:
+        row["name"] = point.pop("name")
+    row.update({point_label(k): v for k, v in point.items()})
+    if scene.analysis == "statics":
+        statics = statics_of(prep)
+        values, state = statics.solve(prep, inputs, prep.spec.with_defaults(args), x_guess)
+        return {**row, **values, "_state": state}
+    prep, overrides = point_model(prep, args)
+    parameters.update(overrides)
+    if x_guess is not None and np.size(x_guess) != prep.system.n_states:
+        x_guess = None  # the previous point's model had other states
+    if scene.analysis == "transient":
+        from bearingsim.scenes.runner import output_series, run_simulation
+
+        result = run_simulation(prep, parameters=parameters, inputs=inputs, progress=progress)
+        series = output_series(prep, result)
+        check = settling_check(result.t, series, scene.settling)
+        row.update({n: float(y[-1]) for n, y in series.items()})
+        row.update(settled=check["settled"], time_constant=check["time_constant"],
+                   unsettled=" ".join(check["unsettled"]))
+        return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names])}
+    from bearingsim.simulation import linearize, steady_state
+
+    system = prep.system
+    x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+    if scene.analysis == "steady":
+        return {**row, **_observed_outputs(prep, x, inputs, parameters), "_state": x}
+    linear = linearize(system, x, inputs=inputs, parameters=parameters)
+    make = MODE_NAMES.get(prep.spec.name)
+    known = make() if make else {}
+    names = name_modes(linear, known, {s.name: s.description for s in system.states})
+    order = list(known.values())
+    modes = sorted(zip(names, linear.natural_frequencies, strict=True),
+                   key=lambda m: order.index(m[0]) if m[0] in order else len(order))
+    row.update({n: float(f) for n, f in modes})
+    return {**row, "_state": x}
+
+
+def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """:func:`run_operating_point` for each point in order, each solve started from the
+    solution of the previous point (continuation along the grid; a new curve starts from the
+    first point of the previous curve).
+
+    Returns
+    -------
+    list of dict
+        The rows (``_state`` removed).
+    """
+    rows = []
+    first_key = next(iter(points[0]), None) if points else None
+    guess, curve_start = None, None
+    for k, point in enumerate(points):
+        new_curve = (prep.scene.grid and first_key is not None and k > 0
+                     and point[first_key] == points[0][first_key])
+        if new_curve:
+            guess = curve_start
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", NotSettledWarning)
+            row = run_operating_point(prep, point, guess)
+        guess = row.pop("_state")
+        if k == 0 or new_curve:
+            curve_start = guess
+        rows.append(row)
+    return rows

@@ -1,0 +1,423 @@
+"""Scenes that ask the engineer's question (issue 27, items 1, 2 and 6): the analysis kinds
+steady, modes and statics, the settling check of transient scenes, and the figures of every
+shipped scene."""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from bearingsim.scenes import SceneError, load_scene, parse_scene, run_scene
+from bearingsim.scenes.analyses import NotSettledWarning, run_operating_point, settling_check
+from bearingsim.scenes.library import DEMO_SCENES, builtin_scenes
+from bearingsim.scenes.scene import Settling
+from bearingsim.units import rpm_to_rad_s
+
+# the transient scene double_layer_rs was before issue 27: a spin-up to 10 000 r/min that ends
+# at 1 s, before the middle ring has settled (Rs 0.172 against a settled 0.2095)
+SPIN_UP = """
+title = "spin-up"
+outputs = ["w_middle", "Rs"]
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+[inputs]
+shaft_speed = "rpm(10000) * ramp(0, 0.5)"
+[simulation]
+t_end = {t_end}
+rtol = 1e-7
+atol = 1e-9
+n_points = 201
+"""
+
+
+# --------------------------------------------------------------------------- steady
+def test_rs_scene_equals_the_steady_torque_level_rs():
+    """Must show: the Rs scene's answer equals the steady torque-level Rs (steady_ratio of
+    the study, an independently assembled torque-level bearing) to 1e-6 at every operating
+    point; 0.2095 at 10 000 r/min without load (README)."""
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.studies.double_layer import steady_ratio
+
+    run = run_scene("double_layer_rs", write=False)
+    assert run.result is None and run.summary["analysis"] == "steady"
+    assert run.prepared.fidelity == "torque"
+    assert len(run.rows) == 6 * 3
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="torque"),
+                      outputs=["Rs", "M_shaft"])
+    for row in run.rows:
+        rs, _, _ = steady_ratio(system, row["shaft_speed"], (row["Fr"], 0.0))
+        assert row["Rs"] == pytest.approx(rs, rel=1e-6, abs=1e-9)
+        assert row["w_middle"] == pytest.approx(rs * row["shaft_speed"], rel=1e-6)
+    top = next(r for r in run.rows if r["Fr"] == 0.0
+               and r["shaft_speed"] == pytest.approx(rpm_to_rad_s(10000)))
+    assert round(top["Rs"], 4) == 0.2095
+    # a load slows the middle ring: Rs falls with the radial load at every speed
+    by_load = {fr: [r["Rs"] for r in run.rows if r["Fr"] == fr] for fr in (0.0, 200.0, 1000.0)}
+    assert np.all(np.array(by_load[1000.0]) < np.array(by_load[200.0]))
+    assert np.all(np.array(by_load[200.0]) < np.array(by_load[0.0]))
+
+
+def test_steady_table_and_figure_are_written(tmp_path):
+    scene = load_scene("double_layer_rs")
+    scene.grid = {"inputs.shaft_speed": [rpm_to_rad_s(2000), rpm_to_rad_s(4000)],
+                  "inputs.Fr": [0.0, 500.0]}
+    run = run_scene(scene, tmp_path)
+    names = sorted(p.name for p in run.files)
+    assert names == ["double_layer_rs.csv", "double_layer_rs.steady.png",
+                     "double_layer_rs.summary.json"]
+    lines = (tmp_path / "double_layer_rs.csv").read_text().splitlines()
+    assert lines[0] == "shaft_speed [rad/s],Fr [N],Rs [-],w_middle [rad/s],M_shaft [N.m]"
+    assert len(lines) == 1 + 4
+    first = [float(v) for v in lines[1].split(",")]
+    assert first[:2] == [pytest.approx(rpm_to_rad_s(2000)), 0.0]
+
+
+# --------------------------------------------------------------------------- modes
+def test_modes_scene_matches_the_duplex_study():
+    """The modes of the scene (linearize at the equilibrium) are those of the duplex study
+    (exact static stiffness and K phi = w^2 M phi) at the same preload, mode by mode."""
+    from bearingsim.studies.duplex import DuplexModel
+
+    model = DuplexModel("7020C", "DF")
+    light = model.preload_force("light")
+    scene = load_scene("duplex_modes")
+    scene.grid = {"assembly.preload_force": [light, 2.0 * light]}
+    run = run_scene(scene, write=False)
+    for row, force in zip(run.rows, (light, 2.0 * light), strict=True):
+        expected = model.modes(preload=force).by_name()
+        assert set(expected) <= set(row)
+        for name, f in expected.items():
+            assert row[name] == pytest.approx(f, rel=1e-6), name
+    assert run.rows[1]["axial"] > run.rows[0]["axial"]  # preload stiffens the pair
+
+
+def test_a_structural_argument_in_a_grid_assembles_its_own_model():
+    """A preload is a parameter of the assembled pair; an arrangement is not (it changes the
+    equations' signs): a grid over it assembles each arrangement's model instead of running
+    the first one's with other parameter values."""
+    from bearingsim.studies.duplex import DuplexModel
+
+    scene = load_scene("duplex_modes")
+    scene.grid = {"assembly.arrangement": ["DF", "DB"]}
+    scene.args["preload"] = "light"
+    run = run_scene(scene, write=False)
+    for row in run.rows:
+        expected = DuplexModel("7020C", row["arrangement"]).modes(preload="light").by_name()
+        assert row["tilt about x"] == pytest.approx(expected["tilt about x"], rel=1e-6)
+    # back to back holds the tilt stiffer than face to face
+    assert run.rows[1]["tilt about x"] > 1.1 * run.rows[0]["tilt about x"]
+
+
+# --------------------------------------------------------------------------- statics
+def test_statics_scene_matches_deep_groove_statics():
+    """Each load case's row is deep_groove_statics of that load; the life in hours is the
+    reference life L10r [10^6 rev] at the case's speed."""
+    from bearingsim.studies.deep_groove_statics import deep_groove_statics
+
+    run = run_scene("deep_groove_statics", write=False)
+    assert [r["name"][:2] for r in run.rows] == ["1:", "2:", "3:", "4:"]
+    for row in run.rows:
+        ref = deep_groove_statics("6304", {"Fx": row["load.Fx"]})
+        assert row["Q_max"] == pytest.approx(ref.ball_loads.max(), rel=1e-9)
+        assert row["p_max"] == pytest.approx(ref.max_pressure, rel=1e-9)
+        assert row["L10r"] == pytest.approx(ref.reference_life, rel=1e-9)
+        revolutions_per_hour = row["shaft_speed"] / (2 * math.pi) * 3600
+        assert row["L10h"] == pytest.approx(row["L10r"] * 1e6 / revolutions_per_hour, rel=1e-12)
+    # the study's finding: the life falls with the load and with the speed
+    life = {r["name"][0]: r["L10h"] for r in run.rows}
+    assert life["1"] < life["3"] and life["2"] < life["1"] and life["4"] < life["3"]
+
+
+def test_statics_of_an_assembly_without_statics_is_refused():
+    text = ('analysis = "statics"\n[assembly]\nname = "duplex_pair"\n'
+            '[[cases]]\n"inputs.shaft.Fz" = 100.0\n')
+    with pytest.raises(SceneError, match="no statics analysis for the assembly duplex_pair"):
+        run_scene(parse_scene(text), write=False)
+
+
+# --------------------------------------------------------------------------- validation
+@pytest.mark.parametrize("text, key, match", [
+    ('analysis = "static"\n', "analysis", "not an analysis"),
+    ('[grid]\n"inputs.Fr" = [0.0]\n[simulation]\nt_end = 1.0\n', "grid",
+     "for the analyses steady, modes and statics"),
+    ('analysis = "steady"\n[inputs]\nshaft_speed = "100 * t"\n', "inputs.shaft_speed",
+     "holds every input constant"),
+    ('analysis = "steady"\n[grid]\n"inputs.Fr" = []\n', "grid.inputs.Fr", "non-empty list"),
+    ('analysis = "steady"\n[grid]\n"simulation.rtol" = [1e-6]\n', "grid.simulation.rtol",
+     "not an operating-point key"),
+    ('analysis = "steady"\n[grid]\n"inputs.Fr" = [0.0]\n[[cases]]\n"inputs.Fr" = 1.0\n',
+     "cases", "either as a grid or as cases"),
+    ('analysis = "steady"\ntransient_on_purpose = true\n', "transient_on_purpose",
+     "transient scenes only"),
+    ('[settling]\nwindow = 1.5\n[simulation]\nt_end = 1.0\n', "settling.window",
+     "out of range"),
+])
+def test_analysis_keys_are_validated(text, key, match):
+    base = '[assembly]\nname = "double_layer_bearing"\n'
+    with pytest.raises(SceneError, match=match) as info:
+        parse_scene(text + base)
+    assert any(p.key == key for p in info.value.problems), [p.key for p in info.value.problems]
+
+
+def test_grid_values_take_units_and_the_first_key_varies_fastest():
+    from bearingsim.scenes.analyses import operating_points
+
+    scene = parse_scene('analysis = "steady"\n[assembly]\nname = "double_layer_bearing"\n'
+                        '[grid]\n"inputs.shaft_speed" = ["1000 rpm", 200.0]\n'
+                        '"inputs.Fr" = [0.0, 5.0]\n')
+    assert scene.grid["inputs.shaft_speed"] == [pytest.approx(rpm_to_rad_s(1000)), 200.0]
+    points = operating_points(scene)
+    assert [(p["inputs.shaft_speed"], p["inputs.Fr"]) for p in points] == [
+        (pytest.approx(rpm_to_rad_s(1000)), 0.0), (200.0, 0.0),
+        (pytest.approx(rpm_to_rad_s(1000)), 5.0), (200.0, 5.0)]
+
+
+# --------------------------------------------------------------------------- settled or not
+@given(tau=st.floats(0.05, 2.0), amplitude=st.floats(-1e3, 1e3).filter(lambda a: abs(a) > 1e-3),
+       offset=st.floats(-1e3, 1e3))
+def test_settling_check_recovers_an_exponential_approach(tau, amplitude, offset):
+    """y = offset + amplitude (1 - exp(-t / tau)): the time constant and the settled value
+    are those of the exponential (exact for three grid points of the window), and the output
+    counts as settled exactly when its range over the last 20 % is within 1e-3 of the
+    final magnitude."""
+    # differences in the window resolvable in double precision
+    assume(abs(amplitude) * math.exp(-0.8 / tau) > 1e-7 * (abs(offset) + abs(amplitude)))
+    t = np.linspace(0.0, 1.0, 1001)
+    y = offset + amplitude * (1.0 - np.exp(-t / tau))
+    check = settling_check(t, {"y": y}, Settling())
+    out = check["outputs"]["y"]
+    assert out["time_constant"] == pytest.approx(tau, rel=1e-6)
+    assert out["extrapolated"] == pytest.approx(offset + amplitude, rel=1e-6,
+                                                abs=1e-6 * abs(amplitude))
+    window = np.ptp(y[t >= 0.8 - 1e-12])
+    scale = max(abs(y[-1]), 1e-3 * np.max(np.abs(y)))
+    assert out["settled"] == (window / scale <= 1e-3)
+    assert check["settled"] == out["settled"]
+
+
+def test_settling_check_of_constant_and_oscillating_outputs():
+    t = np.linspace(0.0, 10.0, 2001)
+    check = settling_check(t, {"zero": np.zeros_like(t), "ring": 1.0 + 0.01 * np.sin(20 * t)},
+                           Settling(window=0.2, tolerance=1e-3))
+    assert check["outputs"]["zero"]["settled"]
+    assert not check["outputs"]["ring"]["settled"]
+    assert math.isnan(check["outputs"]["ring"]["time_constant"])
+    assert check["unsettled"] == ["ring"]
+    # a life that is infinite while unloaded: settled once it keeps one value
+    life = np.where(t < 5.0, np.inf, 1e4)
+    assert settling_check(t, {"life": life}, Settling())["settled"]
+    late = np.where(t < 9.0, 1e4, np.inf)
+    assert not settling_check(t, {"life": late}, Settling())["settled"]
+
+
+def test_a_transient_that_has_not_settled_says_so():
+    """Issue 27: the spin-up scene ended at 1 s with Rs 0.172 against a settled 0.2095, and
+    nothing warned. Now the warning names Rs with its steady value, and the summary and the
+    sweep row carry settled = False and the time constant (fails on the old code: no
+    warning, no 'settled' in the summary)."""
+    from bearingsim.scenes.runner import console_lines
+
+    scene = parse_scene(SPIN_UP.format(t_end=1.0))
+    with pytest.warns(NotSettledWarning) as record:
+        run = run_scene(scene, write=False)
+    text = str(record[0].message)
+    assert "Rs = 0.1716" in text and "steady value 0.2094" in text and "w_middle" in text
+    s = run.summary
+    assert s["settled"] is False and 0.1 < s["time_constant_s"] < 1.0
+    assert s["outputs"]["Rs"]["settled"] is False
+    assert s["outputs"]["Rs"]["steady"] == pytest.approx(0.20949, abs=1e-5)
+    assert any("NOT settled; steady 0.2094" in line for line in console_lines(s))
+    row = run_operating_point(run.prepared)
+    assert row["settled"] is False and row["unsettled"] == "w_middle Rs"
+    assert row["time_constant"] == pytest.approx(s["time_constant_s"])
+    assert row["Rs"] == pytest.approx(s["outputs"]["Rs"]["final"])
+
+
+def test_a_settled_transient_and_one_on_purpose_do_not_warn():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NotSettledWarning)
+        run = run_scene(parse_scene(SPIN_UP.format(t_end=12.0)), write=False)
+        assert run.summary["settled"] is True
+        assert run.summary["outputs"]["Rs"]["final"] == pytest.approx(0.20949, abs=2e-5)
+        purpose = parse_scene("transient_on_purpose = true\n" + SPIN_UP.format(t_end=1.0))
+        assert run_scene(purpose, write=False).summary["settled"] is None
+
+
+SHIPPED_TRANSIENTS = [n for n in builtin_scenes()
+                      if load_scene(n).analysis == "transient"]
+
+
+@pytest.mark.parametrize("name", SHIPPED_TRANSIENTS)
+def test_every_shipped_transient_settles_or_says_it_is_on_purpose(name):
+    scene = load_scene(name)
+    if scene.transient_on_purpose:
+        assert "transient" in (scene.text or "").split("transient_on_purpose")[0][-400:]
+        return
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NotSettledWarning)
+        run = run_scene(scene, write=False)
+    assert run.summary["settled"] is True
+
+
+def test_the_demo_runs_one_scene_per_study_question():
+    kinds = {n: load_scene(n).analysis for n in DEMO_SCENES}
+    assert kinds["double_layer_rs"] == "steady" and kinds["duplex_modes"] == "modes"
+    assert kinds["deep_groove_statics"] == "statics"
+
+
+# --------------------------------------------------------------------------- figures
+DISPLAY_UNITS = {"r/min", "µm", "deg", "kN", "N mm", "MPa", "N/µm", "h", "10⁶ rev", "Hz",
+                 "-", "s", "W", "A", "°C"}
+_DOTTED = re.compile(r"[a-z_]+\[?\d*\]?\.[a-z_]")
+_SHORT = {"deep_groove_duty1": 0.002, "deep_groove_radial": 1.5, "double_layer_friction": 3.0,
+          "duplex_pair_axial": 0.02, "duplex_pair_pure_axial": 0.001,
+          "motor_drive_spinup": 4.0}
+
+
+def _figures(name):
+    from bearingsim.scenes.plots import analysis_figures
+    from bearingsim.scenes.runner import analysis_units, scene_figures
+
+    scene = load_scene(name)
+    if scene.analysis != "transient":
+        scene.grid = {k: v[:3] for k, v in scene.grid.items()}  # the same figure, sooner
+        run = run_scene(scene, write=False)
+        keys = run.summary["keys"]
+        return run, dict(analysis_figures(run.prepared, run.rows, keys,
+                                          analysis_units(run.prepared, run.rows)))
+    scene.simulation.t_end = _SHORT[name]
+    scene.transient_on_purpose = True
+    if name == "deep_groove_duty1":
+        scene.args["n_slices"] = 0
+    run = run_scene(scene, write=False)
+    units = {**run.result.units, **{n: q.unit for n, q in run.prepared.post.items()}}
+    return run, dict(scene_figures(run.prepared, run.result, run.series, name, units))
+
+
+@pytest.mark.parametrize("name", builtin_scenes())
+def test_every_shipped_figure_reads_as_a_report(name):
+    """Every axis of every shipped scene's figures: labelled with a description (no dotted
+    model name) and a display unit (µm, not um; N mm for every torque), loads on linear axes
+    that show 0, and no curve plotting a variable against itself."""
+    _, figures = _figures(name)
+    assert figures
+    for file, fig in figures.items():
+        for ax in fig.axes:
+            if not ax.lines and not ax.patches:
+                continue
+            for label in (ax.get_xlabel(), ax.get_ylabel()):
+                if not label or label == "load case":  # categorical: the cases' names
+                    continue
+                flat = label.replace("\n", " ").replace("\u00a0", " ")
+                unit = re.fullmatch(r".*\[([^\]]*)\]", flat)
+                assert unit and unit.group(1) in DISPLAY_UNITS, (file, label)
+                assert not _DOTTED.search(flat.split("[")[0]), (file, label)
+            assert ax.get_ylabel(), file
+            unit = re.fullmatch(r".*\[([^\]]*)\]", ax.get_ylabel().replace("\n", " ")
+                                .replace("\u00a0", " ")).group(1)
+            if unit in ("kN", "N mm"):
+                low, high = ax.get_ylim()
+                assert ax.get_yscale() == "linear" and low <= 0.0 <= high, (file, unit)
+            for line in ax.lines:
+                x, y = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+                if x.size > 2 and x.shape == y.shape:
+                    assert not np.allclose(x, y), (file, line.get_label())
+
+
+def test_the_load_step_is_drawn_above_the_torque_it_drives():
+    _, figures = _figures("double_layer_friction")
+    axes = figures["double_layer_friction.png"].axes
+    load = axes[0]
+    assert load.get_ylabel().startswith("input: radial load")
+    t, fr = (np.asarray(v, float) for v in load.lines[0].get_data())
+    assert fr[t < 1.49].max() == pytest.approx(0.2) and fr[-1] == pytest.approx(1.0)  # kN
+    torque = next(ax for ax in axes if "friction torque" in ax.get_ylabel())
+    t2, m = (np.asarray(v, float) for v in torque.lines[0].get_data())
+    assert np.allclose(t, t2)
+    jump = np.argmax(np.abs(np.diff(m)))
+    assert t[jump] == pytest.approx(1.5, abs=0.02)  # the torque steps where the load does
+
+
+def test_the_steady_figure_draws_one_curve_per_load():
+    _, figures = _figures("double_layer_rs")
+    ax = figures["steady"].axes[0]
+    assert figures["steady"].axes[-1].get_xlabel() == "imposed shaft speed [r/min]"
+    assert ax.get_ylabel().replace("\n", " ").startswith("speed distribution ratio")
+    assert [line.get_label() for line in ax.lines] == ["Fr = 0 kN", "Fr = 0.2 kN", "Fr = 1 kN"]
+    x = ax.lines[0].get_xdata()
+    assert list(x) == pytest.approx([1000.0, 2000.0, 4000.0])  # the first three speeds
+
+
+def test_auto_rejects_the_kinematic_rs_of_a_steady_scene_without_loads():
+    """Without a load the kinematic level provides Rs, but its measured error (up to 350 %)
+    exceeds the 5 % tolerance: a steady scene gets the torque level, as a transient does."""
+    from bearingsim.scenes.runner import prepare
+
+    scene = parse_scene('analysis = "steady"\noutputs = ["Rs"]\n[assembly]\n'
+                        'name = "double_layer_bearing"\n[grid]\n'
+                        '"inputs.shaft_speed" = ["5000 rpm"]\n')
+    prep = prepare(scene)
+    assert prep.fidelity == "torque"
+    assert prep.fidelity_rejected[0].startswith("kinematic: Rs off by")
+
+
+# --------------------------------------------------------------------------- levels
+def test_the_double_layer_quasi_static_level_is_a_statics_scene():
+    """Issue 27: the double layer's quasi-static level was API-only. The shipped load-sharing
+    scene runs it; each case's row is nested_equilibrium of that load."""
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.studies.nested_equilibrium import nested_equilibrium
+
+    run = run_scene("double_layer_load_sharing", write=False)
+    assert run.prepared.fidelity == "quasi-static"
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="quasi-static"))
+    for row in run.rows:
+        eq = nested_equilibrium(system, row["shaft.Fx"], row.get("shaft.Fz", 0.0))
+        assert row["Q_max_inner"] == pytest.approx(eq.inner_ball_loads.max(), rel=1e-6)
+        assert row["x_middle"] == pytest.approx(eq.middle_displacement[0], rel=1e-6)
+    # the layers in series: the middle ring moves about half as far as the shaft
+    assert 0.3 < run.rows[1]["x_middle"] / run.rows[1]["x_shaft"] < 0.7
+
+
+def test_the_nested_ball_level_is_reachable_from_a_scene():
+    """The ball and cage dynamics of both layers (fidelity "dynamic") build from scene
+    arguments, with the shaft speed and the shaft loads as inputs (assembling it takes
+    minutes, so only the component is checked here)."""
+    from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
+    from bearingsim.scenes.registry import build_component
+
+    scene = parse_scene('outputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\n'
+                        'fidelity = "dynamic"\n[inputs]\nshaft_speed = "1000 rpm"\n'
+                        '"inner_layer.load.Fx" = 200.0\n[simulation]\nt_end = 0.01\n')
+    spec = scene.spec
+    component = build_component(spec, spec.with_defaults(scene.args), scene.fidelity)
+    assert isinstance(component, DynamicDoubleLayerBearing)
+    assert spec.is_optional_input("inner_layer.load.Fy")
+    assert "dynamic" in spec.fidelities and "dynamic" not in spec.auto_fidelities
+
+
+def test_a_steady_figure_never_plots_a_variable_against_itself():
+    """w_shaft is the imposed shaft speed, the x axis: its panel would be the identity
+    (issue 27: one sweep panel plotted w_shaft against itself); the figure leaves it out and
+    keeps the table column."""
+    from bearingsim.scenes.plots import analysis_figures
+    from bearingsim.scenes.runner import analysis_units
+
+    scene = parse_scene('analysis = "steady"\noutputs = ["w_shaft", "Rs"]\n[assembly]\n'
+                        'name = "double_layer_bearing"\nfidelity = "torque"\n[grid]\n'
+                        '"inputs.shaft_speed" = ["1000 rpm", "3000 rpm", "5000 rpm"]\n')
+    run = run_scene(scene, write=False)
+    assert [r["w_shaft"] for r in run.rows] == pytest.approx([r["shaft_speed"] for r in run.rows])
+    (name, fig), = analysis_figures(run.prepared, run.rows, ["shaft_speed"],
+                                    analysis_units(run.prepared, run.rows))
+    labels = [ax.get_ylabel().replace("\n", " ") for ax in fig.axes]
+    assert len(labels) == 1 and labels[0].startswith("speed distribution ratio")
