@@ -5,6 +5,8 @@ Each assembly module declares its scene spec (``SCENE_SPEC``, a
 them in the order ``bearingsim list`` shows them, and :mod:`bearingsim.scenes` reads it.
 """
 
+from bearingsim.assemblies.cylindrical_roller import SCENE_SPEC as _CYLINDRICAL_ROLLER_SPEC
+from bearingsim.assemblies.cylindrical_roller import cylindrical_roller_bearing
 from bearingsim.assemblies.deep_groove import SCENE_SPEC as _DEEP_GROOVE_SPEC
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing, deep_groove_ball_bearing
 from bearingsim.assemblies.double_layer import SCENE_SPEC as _DOUBLE_LAYER_SPEC
@@ -14,7 +16,8 @@ from bearingsim.assemblies.duplex import DuplexPair, ShaftSpec, duplex_pair
 from bearingsim.assemblies.motor_drive import SCENE_SPEC as _MOTOR_DRIVE_SPEC
 from bearingsim.assemblies.motor_drive import MotorDrive, motor_drive
 
-SCENE_SPECS = (_DOUBLE_LAYER_SPEC, _MOTOR_DRIVE_SPEC, _DEEP_GROOVE_SPEC, _DUPLEX_SPEC)
+SCENE_SPECS = (_DOUBLE_LAYER_SPEC, _MOTOR_DRIVE_SPEC, _DEEP_GROOVE_SPEC, _DUPLEX_SPEC,
+               _CYLINDRICAL_ROLLER_SPEC)
 """The built-in scene assemblies."""
 
 __all__ = [
@@ -24,6 +27,7 @@ __all__ = [
     "DuplexPair",
     "MotorDrive",
     "ShaftSpec",
+    "cylindrical_roller_bearing",
     "deep_groove_ball_bearing",
     "double_layer_bearing",
     "duplex_pair",

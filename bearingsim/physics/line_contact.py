@@ -99,9 +99,20 @@ def palmgren_load(deflection, length, smooth=None):
         compression = op.fmax(deflection, 0.0)
     else:
         check_range(smooth, "smooth", "m", 0.0, low_inclusive=False, where="palmgren_load")
-        compression = op.smooth_max0(deflection, smooth)
+        compression = _smooth_compression(deflection, smooth)
     return op.power(length, _LENGTH_EXPONENT) * op.power(
         compression / PALMGREN_LINE_CONSTANT, _LOAD_EXPONENT)
+
+
+def _smooth_compression(deflection, smooth):
+    """``(d + sqrt(d^2 + e^2)) / 2``, written for a gap (``d < 0``) as ``e^2 / (2 (sqrt(d^2 +
+    e^2) - d))``: the same value without the cancellation that makes the first form 0 or
+    negative (and its power NaN) for ``|d| >> e``; both branches stay finite."""
+    gap = op.fmin(deflection, 0.0)
+    closed = op.fmax(deflection, 0.0)
+    return op.if_else(deflection > 0.0,
+                      0.5 * (closed + op.sqrt(closed * closed + smooth * smooth)),
+                      0.5 * smooth * smooth / (op.sqrt(gap * gap + smooth * smooth) - gap))
 
 
 def slice_loads(deflections, length, smooth=None) -> list:
