@@ -69,7 +69,8 @@ class RollerRowParameters:
     Pd : diametral clearance [m]
     E_eff : effective modulus ``E'`` of roller and ring [Pa]
     psi0 : azimuth of roller 0 [rad]
-    smooth : regularization length of the contact law [m]
+    smooth : regularization length of the contact law [m]; None: the exact ``max(delta, 0)``
+        (numeric evaluation only, not differentiable at first contact)
     """
 
     Dw: float
@@ -78,7 +79,7 @@ class RollerRowParameters:
     Pd: float
     E_eff: float
     psi0: float = 0.0
-    smooth: float = 1e-9
+    smooth: float | None = 1e-9
 
 
 def roller_row_parameters(bearing: str | RollerBearingGeometry, clearance: float | None = None,

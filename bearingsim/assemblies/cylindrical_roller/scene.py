@@ -4,6 +4,7 @@ figure."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
@@ -52,12 +53,14 @@ def reference_life(args: dict[str, Any], series: dict[str, np.ndarray]) -> np.nd
         L10r [10^6 revolutions] (inf without load).
     """
     g = resolve_roller_bearing(args["bearing"])
-    rp = roller_row_parameters(g, args["clearance"])
+    # the exact contact law (no regularization): unloaded slices carry nothing, so a bearing
+    # at rest has an infinite life, not the huge one of the regularized slices' tiny loads
+    rp = dataclasses.replace(roller_row_parameters(g, args["clearance"]), smooth=None)
     out = []
     for x, y, tx, ty in zip(*(np.asarray(series[n], dtype=float) for n in _DISPLACEMENT),
                             strict=True):
         c = roller_row_loads(rp, [x, y, 0.0, tx, ty], [0.0] * 5, g.roller_count, N_SLICES)
-        q = [[max(float(v), 0.0) for v in r] for r in c.q]
+        q = [[float(v) for v in r] for r in c.q]
         out.append(float(roller_reference_rating_life(q, q, g.dynamic_load_rating, g.gamma)))
     return np.asarray(out)
 
