@@ -26,6 +26,7 @@ from bearingsim.assemblies import (
     double_layer_bearing,
     duplex_pair,
     motor_drive,
+    spindle,
 )
 from bearingsim.assemblies.motor_drive import MotorShaft
 from bearingsim.assemblies.nested_static import NestedQuasiStatic
@@ -87,6 +88,7 @@ def example_components() -> dict[type[Component], Component]:
         duplex_pair("7014C", preload=500.0),
         cylindrical_roller_bearing("NU206", "quasi-static", n_slices=2),
         cylindrical_roller_bearing("NU206", "torque"),
+        spindle(n_slices=2),
         NestedQuasiStatic("61905", "61907"),
         MotorShaft("dc"),
         AlignedBody(),

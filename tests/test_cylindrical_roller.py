@@ -351,3 +351,25 @@ def test_fmu_matches_simulate(tmp_path):
                            output=outputs, start_values={"load.Fx": 6000.0})
         for name in outputs:
             assert fmu[name][-1] == pytest.approx(reference[name][-1], rel=1e-8), (kind, name)
+
+
+def test_spindle_nu_is_the_non_locating_bearing():
+    """Spindle (7014C DB pair at the nose, NU 210 at the rear): after a radial step the shaft is
+    at rest and the three rows carry the load (force balance); the NU row takes a share of it
+    and, after an axial step, none of the axial load (no axial load path)."""
+    from bearingsim.assemblies import spindle
+
+    model = spindle("7014C", "NU210", "DB", preload="light", damping_ratio=0.1)
+    names = ["nu.inner.Fx", "nu.inner.Fz", "pair.row[0].inner.Fx", "pair.row[1].inner.Fx",
+             "pair.row[0].inner.Fz", "pair.row[1].inner.Fz", "pair.shaft.vx"]
+    system = assemble(model, outputs=names)
+    result = simulate(system, 0.04, inputs={"pair.shaft.Fx": 2000.0, "pair.shaft.Fz": 1000.0},
+                      n_points=5, method="LSODA", rtol=1e-6, atol=1e-12)
+    end = {n: float(result[n][-1]) for n in names}
+    radial = end["nu.inner.Fx"] + end["pair.row[0].inner.Fx"] + end["pair.row[1].inner.Fx"]
+    assert radial == pytest.approx(2000.0, rel=1e-4)
+    assert end["pair.row[0].inner.Fz"] + end["pair.row[1].inner.Fz"] == pytest.approx(
+        1000.0, rel=1e-4)
+    assert end["nu.inner.Fz"] == 0.0
+    assert abs(end["pair.shaft.vx"]) < 1e-6  # settled: the loads above are the equilibrium
+    assert 0.2 * 2000.0 < end["nu.inner.Fx"] < 0.5 * 2000.0

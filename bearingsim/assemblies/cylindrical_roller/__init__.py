@@ -6,7 +6,9 @@
 * :mod:`.torque`: the friction torque (Palmgren, SKF) between shaft and housing;
 * :mod:`.factory`: :func:`cylindrical_roller_bearing`;
 * :mod:`.scene`: :data:`SCENE_SPEC` (arguments, post-processed roller load, pressure and life,
-  the roller-load figure).
+  the roller-load figure);
+* :mod:`.spindle`: the NU bearing as the non-locating bearing of a spindle beside a duplex pair
+  (its own scene assembly, ``spindle``).
 """
 
 from bearingsim.assemblies.cylindrical_roller.factory import cylindrical_roller_bearing
