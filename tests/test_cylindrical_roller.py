@@ -373,3 +373,26 @@ def test_spindle_nu_is_the_non_locating_bearing():
     assert end["nu.inner.Fz"] == 0.0
     assert abs(end["pair.shaft.vx"]) < 1e-6  # settled: the loads above are the equilibrium
     assert 0.2 * 2000.0 < end["nu.inner.Fx"] < 0.5 * 2000.0
+
+
+@settings(max_examples=25, deadline=None)
+@given(x=st.floats(-4e-5, 4e-5), y=st.floats(-4e-5, 4e-5), tx=st.floats(-1e-3, 1e-3),
+       ty=st.floats(-1e-3, 1e-3), n=st.integers(1, 6))
+def test_row_loads_balance_and_follow_the_rollers(x, y, tx, ty, n):
+    """Action and reaction on the rings; the force on the inner ring is minus the sum of the
+    roller loads along their azimuths; turning the displacement by one roller pitch together
+    with the rollers' azimuth gives the same roller loads, shifted by one."""
+    p = roller_row_parameters(NU206)
+    c = roller_row_loads(p, [x, y, 0.0, tx, ty], [0.0] * 5, 12, n)
+    np.testing.assert_allclose(c.outer_load, [-v for v in c.inner_load])
+    psi = 2 * np.pi * np.arange(12) / 12
+    q = np.array(c.Q, dtype=float)
+    assert c.inner_load[0] == pytest.approx(-np.sum(q * np.cos(psi)), abs=1e-9)
+    assert c.inner_load[1] == pytest.approx(-np.sum(q * np.sin(psi)), abs=1e-9)
+    assert c.inner_load[2] == 0.0
+    step = 2 * np.pi / 12
+    turn = [x * np.cos(step) - y * np.sin(step), x * np.sin(step) + y * np.cos(step), 0.0,
+            tx * np.cos(step) - ty * np.sin(step), tx * np.sin(step) + ty * np.cos(step)]
+    turned = roller_row_loads(p, turn, [0.0] * 5, 12, n)
+    np.testing.assert_allclose(np.roll(q, 1), np.array(turned.Q, dtype=float), rtol=1e-9,
+                               atol=1e-9)
