@@ -30,6 +30,7 @@ from bench import (
     duplex,
     fmu_stepper,
     pruning,
+    roller,
     sundials_compiled,
     work_precision,
 )
@@ -120,6 +121,7 @@ def main(argv: list[str] | None = None) -> int:
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
+        ("cylindrical roller", lambda: roller.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
