@@ -30,12 +30,14 @@ import math
 from typing import Any
 
 from bearingsim import symbolic as op
+from bearingsim.errors import ParameterError
 from bearingsim.physics.hertz import STEEL, Material, effective_modulus
 from bearingsim.validation import check_choice, check_count, check_range
 
 __all__ = [
     "PALMGREN_LINE_CONSTANT_MM",
     "PALMGREN_LINE_CONSTANT",
+    "MIN_LENGTH",
     "palmgren_deflection",
     "palmgren_load",
     "slice_loads",
@@ -49,6 +51,9 @@ PALMGREN_LINE_CONSTANT_MM = 3.84e-5
 PALMGREN_LINE_CONSTANT = PALMGREN_LINE_CONSTANT_MM * 1e-3 * 1e3 ** -0.8
 """The same constant in SI, ``delta [m] = c Q^0.9 / l^0.8`` with Q [N], l [m]
 (``3.84e-5 * 1e-3 * 1e3^0.8 = 1.5287e-10``)."""
+MIN_LENGTH = 1e-6
+"""Smallest contact length, radius and roller diameter accepted [m] (1 um: far below any
+roller; below it the formulas overflow before they mean anything)."""
 _LOAD_EXPONENT = 10.0 / 9.0
 _LENGTH_EXPONENT = 8.0 / 9.0
 
@@ -61,7 +66,7 @@ def palmgren_deflection(load, length):
     load : float, array or SX
         Contact load Q [N], >= 0.
     length : float
-        Effective contact length l [m], > 0.
+        Effective contact length l [m], >= 1 um.
 
     Returns
     -------
@@ -69,7 +74,7 @@ def palmgren_deflection(load, length):
         Approach delta [m].
     """
     check_range(load, "load", "N", 0.0, where="palmgren_deflection")
-    check_range(length, "length", "m", 0.0, low_inclusive=False, where="palmgren_deflection")
+    check_range(length, "length", "m", MIN_LENGTH, where="palmgren_deflection")
     return PALMGREN_LINE_CONSTANT * op.power(load, 0.9) / length**0.8
 
 
@@ -83,7 +88,7 @@ def palmgren_load(deflection, length, smooth=None):
     deflection : float, array or SX
         Approach delta [m] (negative: a gap, no load).
     length : float or SX
-        Effective contact length l [m], > 0.
+        Effective contact length l [m], >= 1 um.
     smooth : float, optional
         Regularization length [m]: ``max(delta, 0)`` becomes ``(delta + sqrt(delta^2 +
         smooth^2)) / 2`` so that equations stay differentiable (error at most smooth/2 in delta).
@@ -94,7 +99,7 @@ def palmgren_load(deflection, length, smooth=None):
         Q [N] >= 0.
     """
     check_range(deflection, "deflection", "m", where="palmgren_load")
-    check_range(length, "length", "m", 0.0, low_inclusive=False, where="palmgren_load")
+    check_range(length, "length", "m", MIN_LENGTH, where="palmgren_load")
     if smooth is None:
         compression = op.fmax(deflection, 0.0)
     else:
@@ -135,6 +140,9 @@ def slice_loads(deflections, length, smooth=None) -> list:
     list
         Slice loads [N].
     """
+    if isinstance(deflections, (str, bytes)) or not hasattr(deflections, "__len__"):
+        raise ParameterError(f"slice_loads: deflections [m] must be a sequence with one "
+                             f"approach per slice, got {deflections!r:.60}")
     n = len(deflections)
     check_count(n, "number of slices", 1, where="slice_loads")
     return [palmgren_load(d, length, smooth) / n for d in deflections]
@@ -158,7 +166,7 @@ def line_contact_radius(roller_diameter: float, pitch_diameter: float, race: str
         R [m].
     """
     where = "line_contact_radius"
-    check_range(roller_diameter, "roller_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_range(roller_diameter, "roller_diameter", "m", MIN_LENGTH, where=where)
     check_range(pitch_diameter, "pitch_diameter", "m", roller_diameter, low_inclusive=False,
                 where=where)
     check_choice(race, "race", ("inner", "outer"), where)
@@ -175,9 +183,9 @@ def half_width(load, length: float, radius: float, roller: Material = STEEL,
     load : float, array or SX
         Contact load Q [N], >= 0.
     length : float
-        Contact length l [m], > 0.
+        Contact length l [m], >= 1 um.
     radius : float
-        Reduced radius R [m], > 0 (:func:`line_contact_radius`).
+        Reduced radius R [m], >= 1 um (:func:`line_contact_radius`).
     roller, ring : Material
 
     Returns
@@ -187,8 +195,8 @@ def half_width(load, length: float, radius: float, roller: Material = STEEL,
     """
     where = "half_width"
     check_range(load, "load", "N", 0.0, where=where)
-    check_range(length, "length", "m", 0.0, low_inclusive=False, where=where)
-    check_range(radius, "radius", "m", 0.0, low_inclusive=False, where=where)
+    check_range(length, "length", "m", MIN_LENGTH, where=where)
+    check_range(radius, "radius", "m", MIN_LENGTH, where=where)
     e_eff = effective_modulus(roller, ring)
     return op.sqrt(8.0 * load * radius / (math.pi * length * e_eff))
 
@@ -203,9 +211,9 @@ def max_pressure(load, length: float, radius: float, roller: Material = STEEL,
     load : float, array or SX
         Contact load Q [N], >= 0 (of the whole length, or of one slice with its width).
     length : float
-        Contact length l [m], > 0 (the slice width for a slice load).
+        Contact length l [m], >= 1 um (the slice width for a slice load).
     radius : float
-        Reduced radius R [m], > 0.
+        Reduced radius R [m], >= 1 um.
     roller, ring : Material
 
     Returns
@@ -215,7 +223,7 @@ def max_pressure(load, length: float, radius: float, roller: Material = STEEL,
     """
     where = "max_pressure"
     check_range(load, "load", "N", 0.0, where=where)
-    check_range(length, "length", "m", 0.0, low_inclusive=False, where=where)
-    check_range(radius, "radius", "m", 0.0, low_inclusive=False, where=where)
+    check_range(length, "length", "m", MIN_LENGTH, where=where)
+    check_range(radius, "radius", "m", MIN_LENGTH, where=where)
     e_eff = effective_modulus(roller, ring)
     return op.sqrt(load * e_eff / (2.0 * math.pi * length * radius))

@@ -1,6 +1,8 @@
 """Ratings and life of radial cylindrical roller bearings: ISO 281, ISO 76 and the roller (line
 contact, sliced) form of ISO/TS 16281.
 
+* **Basic rating life**: ``L10 = (C/P)^(10/3)`` (:func:`~bearingsim.physics.life.rating_life`
+  with :data:`LINE_LIFE_EXPONENT`).
 * **Basic dynamic radial load rating** (ISO 281:2007, eq. for radial roller bearings):
   ``Cr = bm fc (i Lwe cos a)^(7/9) Z^(3/4) Dwe^(29/27)`` [N, mm], ``bm = 1.1`` for cylindrical
   roller bearings (ISO 281:2007, Table 8) and ``fc`` of Table 7, the closed form
@@ -50,7 +52,6 @@ __all__ = [
     "roller_fc",
     "roller_dynamic_load_rating",
     "roller_static_load_rating",
-    "roller_rating_life",
     "line_load_integrals",
     "roller_raceway_ratings",
     "slice_equivalent_load",
@@ -162,25 +163,6 @@ def roller_static_load_rating(roller_diameter: float, pitch_diameter: float, rol
                  * roller_diameter * 1e3)
 
 
-def roller_rating_life(c, p):
-    """Basic rating life of a roller bearing, ``L10 = (C/P)^(10/3)`` [10^6 rev].
-
-    Parameters
-    ----------
-    c : float or array or SX
-        Basic dynamic load rating [N], > 0.
-    p : float or array or SX
-        Dynamic equivalent load [N], > 0.
-
-    Returns
-    -------
-    L10 [10^6 revolutions]
-    """
-    check_range(c, "c", "N", 0.0, low_inclusive=False, where="roller_rating_life")
-    check_range(p, "p", "N", 0.0, low_inclusive=False, where="roller_rating_life")
-    return op.power(c / p, LINE_LIFE_EXPONENT)
-
-
 @lru_cache(maxsize=16)
 def line_load_integrals(epsilon: float = 0.5) -> tuple[float, float, float]:
     """Sjovall's load integrals of a line contact row, ``(Jr, J1, J2)`` [-].
@@ -262,6 +244,9 @@ def slice_equivalent_load(loads: Sequence[Any], rotating: bool) -> Any:
     float or SX
         q_e [N].
     """
+    if isinstance(loads, (str, bytes)) or not hasattr(loads, "__iter__"):
+        raise ParameterError(f"slice_equivalent_load: loads [N] must be a sequence with one "
+                             f"entry per roller, got {loads!r:.60}")
     q = list(loads)
     if not q:
         raise ParameterError("slice_equivalent_load: loads [N] needs one entry per roller")
@@ -269,6 +254,18 @@ def slice_equivalent_load(loads: Sequence[Any], rotating: bool) -> Any:
         check_range(value, "loads", "N", 0.0, where="slice_equivalent_load")
     w = 4.0 if rotating else 4.5
     return op.power(sum(op.power(v, w) for v in q) / len(q), 1.0 / w)
+
+
+def _rollers(value: Any, name: str) -> list[list]:
+    """The slice loads of every roller as lists (a clear error for anything else)."""
+    def sequence(v):
+        return not isinstance(v, (str, bytes)) and hasattr(v, "__len__") and \
+            hasattr(v, "__getitem__")
+
+    if not sequence(value) or not all(sequence(r) for r in value):
+        raise ParameterError(f"roller_reference_rating_life: {name} [N] must hold one sequence "
+                             f"of slice loads per roller, got {value!r:.60}")
+    return [list(r) for r in value]
 
 
 def roller_reference_rating_life(slice_loads_inner: Sequence[Sequence[Any]],
@@ -298,8 +295,8 @@ def roller_reference_rating_life(slice_loads_inner: Sequence[Sequence[Any]],
     ParameterError
         For loads of different shapes, or fewer than 3 rollers.
     """
-    inner = [list(r) for r in slice_loads_inner]
-    outer = [list(r) for r in slice_loads_outer]
+    inner, outer = (_rollers(v, name) for v, name in ((slice_loads_inner, "slice_loads_inner"),
+                                                      (slice_loads_outer, "slice_loads_outer")))
     shape = (len(inner), len(inner[0]) if inner else 0)
     if shape != (len(outer), len(outer[0]) if outer else 0) or any(
             len(r) != shape[1] for r in inner + outer) or shape[1] == 0:
