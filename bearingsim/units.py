@@ -131,7 +131,7 @@ def engineering(value: float, unit: str) -> str:
 def display_unit(unit: str, values) -> tuple[float, str]:
     """Factor and unit to plot SI ``values`` of ``unit`` in: r/min for rad/s, um or mm for
     small lengths, deg for rad, N mm for small torques and N m for others, kN for forces from
-    1 kN, ``-`` for dimensionless; else SI."""
+    1 kN, MPa for pressures (contact pressures, ``Pa``), ``-`` for dimensionless; else SI."""
     import numpy as np
 
     finite = np.asarray(values, dtype=float)
@@ -153,4 +153,6 @@ def display_unit(unit: str, values) -> tuple[float, str]:
         return 1.0, "N m"
     if unit == "N" and peak >= 1e3:
         return 1e-3, "kN"
+    if unit == "Pa":
+        return 1e-6, "MPa"
     return 1.0, unit

@@ -396,3 +396,10 @@ def test_row_loads_balance_and_follow_the_rollers(x, y, tx, ty, n):
     turned = roller_row_loads(p, turn, [0.0] * 5, 12, n)
     np.testing.assert_allclose(np.roll(q, 1), np.array(turned.Q, dtype=float), rtol=1e-9,
                                atol=1e-9)
+
+
+def test_contact_pressures_plot_in_mpa():
+    """The scene's p_max is plotted in MPa (an engineering unit), not Pa."""
+    from bearingsim.units import display_unit
+
+    assert display_unit("Pa", [2.1e9]) == (1e-6, "MPa")

@@ -150,7 +150,8 @@ def test_reprs_show_units(df_pair):
 SCENE_END = {"deep_groove_duty1": 0.002, "deep_groove_radial": 1.0,
              "double_layer_friction": 0.3, "double_layer_rs": 0.3,
              "duplex_pair_axial": 0.01, "duplex_pair_pure_axial": 0.001,
-             "motor_drive_spinup": 0.3}
+             "motor_drive_spinup": 0.3, "cylindrical_roller_radial": 1.0,
+             "spindle_radial": 0.005}
 """Scene -> end time [s] of the test run (the pure axial pair before its load step: the
 stiff step takes 20 s)."""
 SCENE_PLOTS = {
@@ -166,10 +167,13 @@ SCENE_PLOTS = {
     "duplex_pair_pure_axial": {},  # one ball per row: no radial or tilt modes
     "motor_drive_spinup": {"rs_speed": ("shaft speed [r/min]",
                                         "speed ratio Rs = n_middle / n_shaft [-]")},
+    "cylindrical_roller_radial": {"roller_loads": ("azimuth from the load direction [deg]",
+                                                   "roller load [kN]")},
+    "spindle_radial": {},  # the time traces answer it (load shares of the rows)
 }
 """Scene -> its assembly plots -> (x label, y label)."""
 ENGINEERING = {"r/min", "um", "mm", "deg", "kN", "N", "N m", "N mm", "-", "s", "Hz", "W", "h",
-               "A"}
+               "A", "MPa"}
 
 
 def _scene_figures(name, t_end):
