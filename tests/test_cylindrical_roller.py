@@ -403,3 +403,22 @@ def test_contact_pressures_plot_in_mpa():
     from bearingsim.units import display_unit
 
     assert display_unit("Pa", [2.1e9]) == (1e-6, "MPa")
+
+
+def test_catalogue_rows_follow_their_stated_rules():
+    """The CSV header's rules: Dw = (E - F)/2, dm = (E + F)/2, Z = floor(0.8 pi dm / Dw), Pd the
+    middle of SKF's normal clearance group (GC 6000 p. 512, Table 1: d <= 30 mm 20-45 um,
+    30-40 mm 25-50 um, 40-50 mm 30-60 um, 50-65 mm 40-70 um)."""
+    import csv
+    from importlib import resources
+
+    text = resources.files("bearingsim.catalog").joinpath("cylindrical_rollers.csv").read_text()
+    rows = list(csv.DictReader(line for line in text.splitlines() if not line.startswith("#")))
+    assert len(rows) == 18
+    normal = ((30, 32.5), (40, 37.5), (50, 45.0), (65, 55.0))
+    for row in rows:
+        f, e, d = float(row["F_mm"]), float(row["E_mm"]), float(row["d_mm"])
+        assert float(row["Dw_mm"]) == pytest.approx((e - f) / 2)
+        assert float(row["dm_mm"]) == pytest.approx((e + f) / 2)
+        assert int(row["Z"]) == math.floor(0.8 * math.pi * (e + f) / 2 / ((e - f) / 2))
+        assert float(row["Pd_um"]) == next(pd for top, pd in normal if d <= top)
