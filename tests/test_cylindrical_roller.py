@@ -422,3 +422,12 @@ def test_catalogue_rows_follow_their_stated_rules():
         assert float(row["dm_mm"]) == pytest.approx((e + f) / 2)
         assert int(row["Z"]) == math.floor(0.8 * math.pi * (e + f) / 2 / ((e - f) / 2))
         assert float(row["Pd_um"]) == next(pd for top, pd in normal if d <= top)
+
+
+def test_bearingsim_list_shows_the_roller_catalogue(capsys):
+    from bearingsim.cli import main
+
+    assert main(["list", "bearings", "--filter", "NU20"]) == 0
+    out = capsys.readouterr().out
+    assert "cylindrical roller bearings" in out
+    assert "NU206" in out and "Z=12" in out and "44.0/ 36.5 kN" in out
