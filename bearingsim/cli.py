@@ -73,8 +73,20 @@ def _bearing_row(g) -> str:
             f"  {rating}{speeds}{preload}")
 
 
+def _roller_bearing_row(g) -> str:
+    """One catalogue roller bearing: dimensions, roller set, ratings, limiting speed."""
+    from bearingsim.units import rad_s_to_rpm
+
+    return (f"  {g.designation:8s} d={g.bore * 1e3:5.1f} D={g.outside_diameter * 1e3:5.1f} "
+            f"B={g.width * 1e3:4.1f} mm  Z={g.roller_count:2d} Dw={g.roller_diameter * 1e3:5.2f}"
+            f" Lwe={g.roller_length * 1e3:5.2f} mm  dm={g.pitch_diameter * 1e3:6.2f} mm  C/C0 "
+            f"{g.dynamic_load_rating * 1e-3:5.1f}/{g.static_load_rating * 1e-3:5.1f} kN  n_lim "
+            f"{rad_s_to_rpm(g.limiting_speed):6.0f} r/min")
+
+
 def _list(args: argparse.Namespace) -> int:
     from bearingsim.catalog import get_bearing, list_bearings
+    from bearingsim.catalog.rollers import get_roller_bearing, list_roller_bearings
     from bearingsim.physics.lubricant import known_lubricants
     from bearingsim.scenes.library import builtin_scenes
     from bearingsim.scenes.registry import REGISTRY
@@ -109,6 +121,11 @@ def _list(args: argparse.Namespace) -> int:
         for d in list_bearings():
             if keep(d):
                 print(_bearing_row(get_bearing(d)))
+        rollers = [d for d in list_roller_bearings() if keep(d)]
+        if rollers:
+            print("cylindrical roller bearings (cylindrical_roller_bearing, spindle):")
+            for d in rollers:
+                print(_roller_bearing_row(get_roller_bearing(d)))
     if "lubricants" in shown:
         print("lubricants: " + ", ".join(n for n in known_lubricants() if keep(n)))
     if "scenes" in shown:

@@ -21,10 +21,12 @@ from pathlib import Path
 import bearingsim.assemblies
 import bearingsim.components
 from bearingsim.assemblies import (
+    cylindrical_roller_bearing,
     deep_groove_ball_bearing,
     double_layer_bearing,
     duplex_pair,
     motor_drive,
+    spindle,
 )
 from bearingsim.assemblies.motor_drive import MotorShaft
 from bearingsim.assemblies.nested_static import NestedQuasiStatic
@@ -84,6 +86,9 @@ def example_components() -> dict[type[Component], Component]:
         motor_drive(double_layer_bearing(drive="flange"), motor="pmsm"),
         motor_drive(double_layer_bearing(drive="flange"), motor="dc"),
         duplex_pair("7014C", preload=500.0),
+        cylindrical_roller_bearing("NU206", "quasi-static", n_slices=2),
+        cylindrical_roller_bearing("NU206", "torque"),
+        spindle(n_slices=2),
         NestedQuasiStatic("61905", "61907"),
         MotorShaft("dc"),
         AlignedBody(),

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import re
+import shlex
 import sys
 import time
 from pathlib import Path
@@ -30,6 +31,7 @@ from bench import (
     duplex,
     fmu_stepper,
     pruning,
+    roller,
     sundials_compiled,
     table_inputs,
     work_precision,
@@ -97,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     out: Path = args.out
     img_dir = out.parent / "img"
     img_dir.mkdir(parents=True, exist_ok=True)
-    command = "python -m bench.run_all " + " ".join(sys.argv[1:] if argv is None else argv)
+    command = "python -m bench.run_all " + shlex.join(sys.argv[1:] if argv is None else argv)
     start = time.perf_counter()
     sections = []
     steps = [
@@ -122,6 +124,7 @@ def main(argv: list[str] | None = None) -> int:
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
         ("scene input tables", lambda: table_inputs.section(args.quick)),
+        ("cylindrical roller", lambda: roller.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
@@ -176,8 +179,8 @@ def _rerun_sections(out: Path, steps: list, only: list[str], command: str, start
     total = time.perf_counter() - start
     stamp = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     note = (f"Sections {', '.join(only)} re-run by `{command}`"
-            f"{' (quick mode)' if quick else ''} on {stamp} ({total:.0f} s); the others are "
-            "from the full run above.\n\n")
+            f"{' (quick mode)' if quick else ''} on {stamp} ({total:.0f} s); other sections are "
+            "from the full run above or the lines here.\n\n")
     head = head.rstrip("\n") + "\n\n" + note if "## Machine" not in head else (
         head.replace("## Machine", note + "## Machine", 1))
     body = "".join(by_number[k] for k in sorted(by_number))

@@ -12,6 +12,12 @@ from typing import Any
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.connectors import Flange
+from bearingsim.components.rolling_element import (
+    element_of,
+    friction_key,
+    resolve_geometry,
+    static_equivalent_load,
+)
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Parameter, Variable, der
 from bearingsim.physics.friction import (
@@ -20,7 +26,6 @@ from bearingsim.physics.friction import (
     palmgren_p1,
     skf_friction_components,
 )
-from bearingsim.physics.life import static_equivalent_load
 from bearingsim.physics.lubricant import as_lubricant
 from bearingsim.symbolic import smooth_abs
 
@@ -33,8 +38,9 @@ __all__ = [
 
 
 def friction_bearing_type(geometry: BearingGeometry) -> str:
-    """Key of the friction tables for a geometry ("deep_groove_ball", ...)."""
-    return f"{geometry.bearing_type}_ball"
+    """Key of the friction tables for a geometry ("deep_groove_ball", "cylindrical_roller",
+    ...; :func:`~bearingsim.components.rolling_element.friction_key`)."""
+    return friction_key(geometry)
 
 
 class BearingTorqueElement(Component):
@@ -81,7 +87,7 @@ class _LubricatedBearing(BearingTorqueElement):
 
     def __init__(self, bearing, lubricant, omega_reg: float, name=None):
         super().__init__(name)
-        self.geometry = resolve_bearing(bearing)
+        self.geometry = resolve_geometry(bearing)
         self.lubricant = as_lubricant(lubricant, type(self).__name__)
         g = self.geometry
         self.dm = Parameter(g.pitch_diameter, "m", "pitch diameter", low=0.0, low_inclusive=False)
@@ -110,7 +116,7 @@ class PalmgrenBearing(_LubricatedBearing):
 
     Parameters
     ----------
-    bearing : str or BearingGeometry
+    bearing : str or BearingGeometry or RollerBearingGeometry
         Catalogue designation or geometry.
     lubricant : str or Lubricant
         Lubricant object or name; sets ``nu`` and ``f0`` (both parameters afterwards).
@@ -167,7 +173,7 @@ class SkfBearing(_LubricatedBearing):
 
     Parameters
     ----------
-    bearing : str or BearingGeometry
+    bearing : str or BearingGeometry or RollerBearingGeometry
         Catalogue designation or geometry (needs C0).
     lubricant : str or Lubricant
         Lubricant object or name.
@@ -183,7 +189,9 @@ class SkfBearing(_LubricatedBearing):
                  omega_reg: float = 0.1, name=None, **options):
         super().__init__(bearing, lubricant, omega_reg, name)
         g = self.geometry
-        self._series = series or _skf_series(g.designation)
+        self._series = series or (_skf_series(g.designation) if element_of(g) == "ball"
+                                  else g.series)
+        self._roller_type = None if element_of(g) == "ball" else g.bearing_type
         self._options = options
 
     def friction_torque(self):
@@ -191,7 +199,7 @@ class SkfBearing(_LubricatedBearing):
         parts = skf_friction_components(
             self.w_rel, self.dm, self.lubricant, self._series, self.Fr, self.Fa,
             C0=g.static_load_rating, d=g.bore, D=g.outside_diameter,
-            omega_reg=self.omega_reg, **self._options,
+            omega_reg=self.omega_reg, bearing_type=self._roller_type, **self._options,
         )
         return self._signed(parts.total)
 

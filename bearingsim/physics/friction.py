@@ -47,6 +47,8 @@ __all__ = [
     "PALMGREN_F1",
     "SKF_DEEP_GROOVE",
     "SKF_ANGULAR_CONTACT",
+    "SKF_CYLINDRICAL_ROLLER",
+    "SKF_ROLLER_TYPES",
     "SKF_KRS",
     "SKF_KZ",
     "palmgren_f1",
@@ -121,9 +123,28 @@ SKF_KRS: dict[str, float] = {
     "grease": 6e-8,
     "oil_mist": 6e-8,
 }
+SKF_CYLINDRICAL_ROLLER: dict[str, dict[str, float]] = {
+    # Cylindrical roller bearings with a cage (N, NU, NJ, NUP) by dimension series:
+    # Grr = R1 dm^2.41 Fr^0.31, Gsl = S1 dm^0.9 Fa + S2 dm Fr. SKF General Catalogue 6000
+    # (Russian ed., 2006 data), p. 93, Table 3c (forms: Table 2b, p. 92); the full-complement
+    # row (2.13e-6, 0.16, 0.0015) is not taken.
+    "2": {"R1": 1.09e-6, "S1": 0.16, "S2": 0.0015},
+    "3": {"R1": 1.09e-6, "S1": 0.16, "S2": 0.0015},
+    "4": {"R1": 1.00e-6, "S1": 0.16, "S2": 0.0015},
+    "10": {"R1": 1.12e-6, "S1": 0.17, "S2": 0.0015},
+    "12": {"R1": 1.23e-6, "S1": 0.16, "S2": 0.0015},
+    "20": {"R1": 1.23e-6, "S1": 0.16, "S2": 0.0015},
+    "22": {"R1": 1.40e-6, "S1": 0.16, "S2": 0.0015},
+    "23": {"R1": 1.48e-6, "S1": 0.16, "S2": 0.0015},
+}
 SKF_KZ: dict[str, float] = {"deep_groove_ball": 3.1, "angular_contact_ball": 4.4}
 """Bearing type geometry constant Kz of the replenishment factor (SKF 2005, Table 5; verified
 against the SKF General Catalogue 6000, Russian ed., 2006 data, p. 98, Table 5)."""
+SKF_ROLLER_TYPES: dict[str, dict[str, float]] = {"cylindrical_roller": {"Kz": 5.1, "mu_EHL": 0.02}}
+"""Roller bearing types of the SKF model: their Kz (SKF General Catalogue 6000, Russian ed.,
+2006 data, p. 98, Table 5: 5.1 for cylindrical roller bearings with a cage) and the full-film
+sliding friction coefficient SKF prescribes for them instead of the lubricant's (same
+catalogue, p. 101: 0.02 for cylindrical roller bearings)."""
 
 _PALMGREN_BLEND = 3.2  # smoothing width of the M0 branch blend, 2 % of the 160 plateau
 _NU_N_BRANCH_CUBE_ROOT = 160.0  # 160 = the low-speed plateau of (nu n)^(2/3)
@@ -442,8 +463,14 @@ class SkfFriction:
         return self.rolling + self.sliding + self.seal + self.drag
 
 
-def _skf_g_factors(series, dm_mm, n_rpm, Fr, Fa, C0):  # noqa: N803
-    """Grr and Gsl (catalogue units) for a deep-groove or angular contact ball bearing."""
+def _skf_g_factors(series, dm_mm, n_rpm, Fr, Fa, C0, bearing_type=None):  # noqa: N803
+    """Grr and Gsl (catalogue units) for a deep-groove or angular contact ball bearing, or a
+    cylindrical roller bearing (``bearing_type="cylindrical_roller"``)."""
+    if bearing_type == "cylindrical_roller":
+        c = table_entry(SKF_CYLINDRICAL_ROLLER, series, "SKF cylindrical roller series")
+        g_rr = c["R1"] * dm_mm**2.41 * power(Fr, 0.31)
+        g_sl = c["S1"] * dm_mm**0.9 * Fa + c["S2"] * dm_mm * Fr
+        return g_rr, g_sl, bearing_type
     if series in SKF_ANGULAR_CONTACT:
         c = SKF_ANGULAR_CONTACT[series]
         fg_rr = c["R3"] * dm_mm**4 * n_rpm**2
@@ -482,6 +509,7 @@ def skf_friction_components(
     Dw: float | None = None,  # noqa: N803
     Z: int | None = None,  # noqa: N803
     omega_reg: float = 0.1,
+    bearing_type: str | None = None,
 ) -> SkfFriction:
     """SKF four-component frictional moment ``M = phi_ish phi_rs Mrr + Msl + Mseal + Mdrag``.
 
@@ -548,6 +576,11 @@ def skf_friction_components(
         Number of balls [-], for the drag term, a whole number >= 1.
     omega_reg : float
         Regularization speed of ``|omega_rel|`` [rad/s].
+    bearing_type : {None, "cylindrical_roller"}
+        None: a ball bearing (the table follows from ``series``); "cylindrical_roller": the
+        rows :data:`SKF_CYLINDRICAL_ROLLER` (``Grr = R1 dm^2.41 Fr^0.31``, ``Gsl = S1 dm^0.9 Fa
+        + S2 dm Fr``), ``Kz = 5.1`` and ``mu_EHL = 0.02`` (:data:`SKF_ROLLER_TYPES`); the
+        drag term then treats the rollers as balls of their diameter (an estimate).
 
     Returns
     -------
@@ -567,16 +600,19 @@ def skf_friction_components(
     n = rad_s_to_rpm(speed)
     nu = m2_s_to_cst(lubricant.kinematic_viscosity(T))
     dm_mm, d_mm, big_d_mm = dm * 1e3, d * 1e3, D * 1e3
-    g_rr, g_sl, kind = _skf_g_factors(series, dm_mm, n, Fr, Fa, C0)
+    g_rr, g_sl, kind = _skf_g_factors(series, dm_mm, n, Fr, Fa, C0, bearing_type)
+    roller = SKF_ROLLER_TYPES.get(kind)
     phi_ish = 1.0 / (1.0 + 1.84e-9 * power(n * dm_mm, 1.28) * power(nu, 0.64))
     # a Dry lubricant has no replenishment (nu = 0); a full oil bath (its level given, at or
     # above the lowest ball centre) and a vertical shaft are not starved (SKF 2017, p. 102)
     full_bath = lubricant.method == "oil_bath" and oil_level is not None
     krs = 0.0 if full_bath else SKF_KRS.get(lubricant.method, 0.0)
-    kz_term = np.sqrt(SKF_KZ[kind] / (2.0 * (big_d_mm - d_mm)))
+    kz = SKF_KZ[kind] if roller is None else roller["Kz"]
+    kz_term = np.sqrt(kz / (2.0 * (big_d_mm - d_mm)))
     phi_rs = exp(-krs * nu * n * (d_mm + big_d_mm) * kz_term)
     phi_bl = exp(-2.6e-8 * power(n * nu, 1.4) * dm_mm)
-    mu_sl = phi_bl * lubricant.mu_bl + (1.0 - phi_bl) * lubricant.mu_ehl
+    mu_ehl = lubricant.mu_ehl if roller is None else roller["mu_EHL"]
+    mu_sl = phi_bl * lubricant.mu_bl + (1.0 - phi_bl) * mu_ehl
     m_rr = g_rr * power(nu * n, 0.6)
     m_seal = 0.0
     if seal is not None:

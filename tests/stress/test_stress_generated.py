@@ -125,7 +125,8 @@ SKIP |= REGISTRY_FUNCTIONS
 """Functions with structured arguments, covered by their own tests and the model cases, and the
 registry functions."""
 ALLOW_INF = {"contact_life", "bearing_life", "rating_life", "reference_rating_life",
-             "life_hours", "raceway_equivalent_load", "lambda_ratio", "basic_rating_life_hours"}
+             "life_hours", "raceway_equivalent_load", "lambda_ratio", "basic_rating_life_hours",
+             "roller_reference_rating_life"}
 """Functions whose documented result is infinite for some valid inputs (e.g. no load)."""
 
 

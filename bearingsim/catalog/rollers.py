@@ -1,0 +1,264 @@
+"""Catalogue of cylindrical roller bearings (NU type) and their geometry, in SI units.
+
+The table ``cylindrical_rollers.csv`` holds catalogue values in mm, kN, r/min and um (its header
+names the source, pages and the rules for the internal geometry no catalogue publishes); they are
+converted to SI once, here. :class:`RollerBearingGeometry` is the roller counterpart of the ball
+:class:`~bearingsim.catalog.geometry.BearingGeometry`: it answers the rolling-element seam's
+geometry questions (:class:`~bearingsim.components.rolling_element.ElementGeometry`).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+
+from bearingsim.catalog.geometry import BearingGeometry
+from bearingsim.errors import CatalogError, ParameterError
+from bearingsim.units import mm, rpm_to_rad_s
+from bearingsim.validation import check_count, check_diameter, check_range
+
+__all__ = ["RollerBearingGeometry", "get_roller_bearing", "list_roller_bearings",
+           "resolve_roller_bearing"]
+
+_SPECIFIC_RATING = (10.0, 200.0)
+"""Valid range of a roller bearing's C and C0 per projected roller area, C / (Z Lwe Dw) [N/mm^2]
+(NU 206 ECP: 42.8 and 35.5; a rating given in kN is 1000 times below)."""
+
+
+@dataclass(frozen=True)
+class RollerBearingGeometry:
+    """Geometry of a single-row cylindrical roller bearing (NU type), SI units.
+
+    Attributes
+    ----------
+    designation : str
+        E.g. "NU206".
+    bore, outside_diameter, width : float
+        d, D, B [m].
+    roller_count : int
+        Rollers Z [-], >= 3.
+    roller_diameter : float
+        Dw [m].
+    pitch_diameter : float
+        dm [m].
+    roller_length : float
+        Effective roller length Lwe [m] (the contact length of a straight roller).
+    diametral_clearance : float
+        Radial internal clearance Pd [m] (total play of one ring against the other), >= 0.
+    dynamic_load_rating, static_load_rating : float or None
+        C, C0 [N].
+    fatigue_load_limit : float or None
+        Pu [N].
+    reference_speed, limiting_speed : float or None
+        [rad/s].
+    explorer : bool
+        An SKF Explorer bearing (its C lies above the ISO 281 value of its roller set).
+    estimated : tuple of str
+        Fields derived by the catalogue's stated rules.
+    source : str
+
+    Raises
+    ------
+    ParameterError
+        For a value out of range, rollers that do not fit the ring section or the pitch circle,
+        or ratings that are not of this roller set (e.g. given in kN).
+    """
+
+    designation: str
+    bore: float
+    outside_diameter: float
+    width: float
+    roller_count: int
+    roller_diameter: float
+    pitch_diameter: float
+    roller_length: float
+    diametral_clearance: float = 0.0
+    dynamic_load_rating: float | None = None
+    static_load_rating: float | None = None
+    fatigue_load_limit: float | None = None
+    reference_speed: float | None = None
+    limiting_speed: float | None = None
+    explorer: bool = False
+    estimated: tuple[str, ...] = ()
+    source: str = "user"
+
+    bearing_type = "cylindrical_roller"
+    """Key of the friction and life tables."""
+    rolling_element = "roller"
+    """The rolling element of the seam (:mod:`bearingsim.components.rolling_element`)."""
+    contact = "line"
+    """Contact law of the element."""
+    contact_angle = 0.0
+    """Nominal contact angle [rad] (radial bearing)."""
+
+    def __post_init__(self) -> None:
+        where = f"RollerBearingGeometry({self.designation})"
+        check_count(self.roller_count, "roller_count", 3, where=where)
+        for name in ("bore", "outside_diameter", "width", "pitch_diameter", "roller_diameter",
+                     "roller_length"):
+            check_diameter(getattr(self, name), name, where)
+        check_range(self.diametral_clearance, "diametral_clearance", "m", 0.0,
+                    0.1 * self.roller_diameter, where=where)
+        for name in ("dynamic_load_rating", "static_load_rating", "fatigue_load_limit",
+                     "reference_speed", "limiting_speed"):
+            if getattr(self, name) is not None:
+                check_range(getattr(self, name), name, "N" if "load" in name else "rad/s", 0.0,
+                            low_inclusive=False, where=where)
+        d, big_d, dw, dm = self.bore, self.outside_diameter, self.roller_diameter, \
+            self.pitch_diameter
+        if not (d < dm - dw and dm + dw < big_d):
+            raise ParameterError(
+                f"{where}: the rollers do not fit the ring section: need bore < dm - Dw and "
+                f"dm + Dw < outside_diameter, got bore = {d:g}, dm = {dm:g}, Dw = {dw:g}, "
+                f"outside_diameter = {big_d:g} [m]")
+        if dw >= dm * math.sin(math.pi / self.roller_count):
+            raise ParameterError(
+                f"{where}: {self.roller_count} rollers of Dw = {dw:g} m do not fit on the pitch "
+                f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
+                f"{dm * math.sin(math.pi / self.roller_count):g} m)")
+        if self.roller_length >= self.width:
+            raise ParameterError(
+                f"{where}: roller_length = {self.roller_length:g} m must be below the width "
+                f"{self.width:g} m")
+        area = self.roller_count * self.roller_length * 1e3 * dw * 1e3  # mm^2
+        for name in ("dynamic_load_rating", "static_load_rating"):
+            value = getattr(self, name)
+            if value is not None and not _SPECIFIC_RATING[0] <= value / area \
+                    <= _SPECIFIC_RATING[1]:
+                raise ParameterError(
+                    f"{where}: {name} = {value:g} N is not a rating of {self.roller_count} "
+                    f"rollers of {dw * 1e3:g} x {self.roller_length * 1e3:g} mm: "
+                    f"{name} / (Z Lwe Dw) = {value / area:.3g} N/mm^2, valid range "
+                    f"[{_SPECIFIC_RATING[0]:g}, {_SPECIFIC_RATING[1]:g}] N/mm^2")
+
+    @property
+    def gamma(self) -> float:
+        """``Dw / dm`` [-]."""
+        return self.roller_diameter / self.pitch_diameter
+
+    @property
+    def element_count(self) -> int:
+        """Number of rolling elements (the seam's name for Z)."""
+        return self.roller_count
+
+    @property
+    def element_diameter(self) -> float:
+        """Rolling element diameter [m] (the seam's name for Dw)."""
+        return self.roller_diameter
+
+    @property
+    def series(self) -> str | None:
+        """Dimension series of the designation ("2" for NU206, "3" for NU306, "22" for
+        NU2206), or None for a designation that does not follow it."""
+        digits = re.search(r"\d+", self.designation)
+        if digits is None or len(digits.group()) < 3:
+            return None
+        number = digits.group()
+        return number[:-2]
+
+    def check_speed(self, speed: float, where: str) -> None:
+        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed
+        (:meth:`BearingGeometry.check_speed <bearingsim.catalog.geometry.BearingGeometry.
+        check_speed>`).
+
+        Warns
+        -----
+        SpeedLimitWarning
+        """
+        BearingGeometry.check_speed(self, speed, where)  # type: ignore[arg-type]
+
+
+def _optional(text: str, scale: float) -> float | None:
+    return float(text) * scale if text.strip() else None
+
+
+def _row_to_geometry(row: dict[str, str]) -> RollerBearingGeometry:
+    return RollerBearingGeometry(
+        designation=row["designation"],
+        bore=mm(float(row["d_mm"])),
+        outside_diameter=mm(float(row["D_mm"])),
+        width=mm(float(row["B_mm"])),
+        roller_count=int(row["Z"]),
+        roller_diameter=mm(float(row["Dw_mm"])),
+        pitch_diameter=mm(float(row["dm_mm"])),
+        roller_length=mm(float(row["Lwe_mm"])),
+        diametral_clearance=float(row["Pd_um"]) * 1e-6,
+        dynamic_load_rating=_optional(row["C_kN"], 1e3),
+        static_load_rating=_optional(row["C0_kN"], 1e3),
+        fatigue_load_limit=_optional(row["Pu_kN"], 1e3),
+        reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),
+        limiting_speed=_optional(row["lim_speed_rpm"], rpm_to_rad_s(1.0)),
+        explorer=row["explorer"].strip() == "1",
+        estimated=tuple(f for f in row["estimated"].split(";") if f),
+        source=row["source"],
+    )
+
+
+@lru_cache(maxsize=1)
+def _catalogue() -> dict[str, RollerBearingGeometry]:
+    text = resources.files("bearingsim.catalog").joinpath("cylindrical_rollers.csv").read_text(
+        encoding="utf-8")
+    lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
+    return {row["designation"]: _row_to_geometry(row) for row in csv.DictReader(lines)}
+
+
+def list_roller_bearings() -> list[str]:
+    """Designations of the catalogued cylindrical roller bearings, in table order.
+
+    Returns
+    -------
+    list of str
+    """
+    return list(_catalogue())
+
+
+def _key(designation: str) -> str:
+    return re.sub(r"\s+", "", str(designation)).upper()
+
+
+def get_roller_bearing(designation: str) -> RollerBearingGeometry:
+    """Geometry of a catalogued cylindrical roller bearing.
+
+    Parameters
+    ----------
+    designation : str
+        E.g. "NU206" or "NU 206" (case- and space-insensitive).
+
+    Returns
+    -------
+    RollerBearingGeometry
+
+    Raises
+    ------
+    CatalogError
+        For an unknown designation (the message lists the known ones).
+    """
+    table = _catalogue()
+    key = _key(designation)
+    if key not in table:
+        raise CatalogError(f"unknown cylindrical roller bearing {designation!r}; known "
+                           f"designations: {', '.join(table)}")
+    return table[key]
+
+
+def resolve_roller_bearing(bearing: str | RollerBearingGeometry) -> RollerBearingGeometry:
+    """A designation or a geometry, as a :class:`RollerBearingGeometry`.
+
+    Parameters
+    ----------
+    bearing : str or RollerBearingGeometry
+
+    Returns
+    -------
+    RollerBearingGeometry
+
+    Raises
+    ------
+    CatalogError
+        For an unknown designation.
+    """
+    return bearing if isinstance(bearing, RollerBearingGeometry) else get_roller_bearing(bearing)

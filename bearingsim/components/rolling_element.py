@@ -1,0 +1,242 @@
+"""The rolling-element seam: what a bearing product needs to know about its rolling elements.
+
+A new element type is a new set of implementations of these interfaces, not edits on every
+floor:
+
+* **Geometry** (:class:`ElementGeometry`): the catalogue face of a bearing (bore, pitch
+  diameter, element count and diameter, ratings, speeds, ``bearing_type``, ``rolling_element``,
+  ``contact``). Implementations: the ball :class:`~bearingsim.catalog.geometry.BearingGeometry`
+  and the roller :class:`~bearingsim.catalog.rollers.RollerBearingGeometry`.
+* **Contact law** (:class:`ContactLaw`): the load of one element between both raceways at its
+  total elastic approach. Implementations: :class:`PointContact` (Hertz, ``Q = K delta^1.5``,
+  the ball's :func:`~bearingsim.physics.hertz.contact_load`) and :class:`LineContact`
+  (Palmgren, two line contacts in series, sliced: :mod:`bearingsim.physics.line_contact`).
+* **Row** (:class:`ElementRow`): a component with an inner and an outer
+  :class:`~bearingsim.components.connectors.RingFrame` that puts the elements' loads on them.
+  Implementations: :class:`~bearingsim.components.ball_row.BallRow` and
+  :class:`~bearingsim.components.roller_row.RollerRow`.
+* **Table keys and standards by element** (:func:`element_of`, :func:`friction_key`,
+  :func:`static_equivalent_load`, :func:`resolve_geometry`): the one place where the ball and
+  the roller differ for the friction tables (``f"{type}_ball"`` for balls, the roller's own
+  type), ISO 76 (ball: X0/Y0 of the type; radial roller bearing with ``a = 0``: ``P0 = Fr``)
+  and the catalogue lookup.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
+
+from bearingsim.catalog import BearingGeometry, resolve_bearing
+from bearingsim.catalog.rollers import RollerBearingGeometry, get_roller_bearing
+from bearingsim.errors import CatalogError
+from bearingsim.physics import line_contact
+from bearingsim.physics.hertz import contact_load
+from bearingsim.physics.life import static_equivalent_load as ball_static_equivalent_load
+from bearingsim.validation import check_count, check_range
+
+__all__ = [
+    "ContactLaw",
+    "ElementGeometry",
+    "ElementRow",
+    "LineContact",
+    "PointContact",
+    "element_of",
+    "friction_key",
+    "resolve_geometry",
+    "static_equivalent_load",
+]
+
+
+@runtime_checkable
+class ElementGeometry(Protocol):
+    """The catalogue face of a rolling bearing, SI units."""
+
+    designation: str
+    bore: float
+    outside_diameter: float
+    pitch_diameter: float
+    contact_angle: float
+    dynamic_load_rating: float | None
+    static_load_rating: float | None
+    limiting_speed: float | None
+
+    @property
+    def bearing_type(self) -> str:
+        """Type name, e.g. "deep_groove" (ball) or "cylindrical_roller"."""
+
+    def check_speed(self, speed: float, where: str) -> None:
+        """Warn above the catalogue limiting speed."""
+
+
+@runtime_checkable
+class ContactLaw(Protocol):
+    """Load of one rolling element between both raceways at its total elastic approach."""
+
+    kind: str
+    """"point" or "line"."""
+
+    def load(self, approach: Any, smooth: float | None = None) -> Any:
+        """Element load [N] at the total approach [m] (negative: a gap, no load)."""
+
+    def approach(self, load: float) -> float:
+        """Total approach [m] at the element load [N] (the inverse of :meth:`load`)."""
+
+
+@runtime_checkable
+class ElementRow(Protocol):
+    """A row of rolling elements between an inner and an outer ring frame."""
+
+    inner: Any
+    outer: Any
+
+    def output_names(self, key: str) -> list[str]:
+        """Dotted names of a per-element variable, in element order."""
+
+
+@dataclass(frozen=True)
+class PointContact:
+    """Hertz point contact of a ball between both raceways, ``Q = K delta^1.5``.
+
+    Attributes
+    ----------
+    stiffness : float
+        Combined load-deflection constant K of both contacts in series [N/m^1.5], > 0
+        (:func:`~bearingsim.physics.hertz.combined_load_deflection_constant`).
+    """
+
+    stiffness: float
+    kind = "point"
+
+    def __post_init__(self) -> None:
+        check_range(self.stiffness, "stiffness", "N/m^1.5", 0.0, low_inclusive=False,
+                    where="PointContact")
+
+    def load(self, approach: Any, smooth: float | None = None) -> Any:
+        """Ball load [N] (:func:`~bearingsim.physics.hertz.contact_load`)."""
+        return contact_load(self.stiffness, approach, smooth)
+
+    def approach(self, load: float) -> float:
+        """Total approach [m], ``(Q/K)^(2/3)``."""
+        check_range(load, "load", "N", 0.0, where="PointContact.approach")
+        return (load / self.stiffness) ** (2.0 / 3.0)
+
+
+@dataclass(frozen=True)
+class LineContact:
+    """Line contacts of a roller on both raceways (Palmgren), in series, sliced.
+
+    Palmgren's law does not depend on the radii, so both contacts of a free roller take half the
+    total approach of every slice (:mod:`bearingsim.physics.line_contact`).
+
+    Attributes
+    ----------
+    length : float
+        Effective roller length Lwe [m], > 0.
+    n_slices : int
+        Number of slices, >= 1.
+    """
+
+    length: float
+    n_slices: int = 1
+    kind = "line"
+
+    def __post_init__(self) -> None:
+        check_range(self.length, "length", "m", 0.0, low_inclusive=False, where="LineContact")
+        check_count(self.n_slices, "n_slices", 1, where="LineContact")
+
+    def slice_loads(self, approaches, smooth: float | None = None) -> list:
+        """Loads of the slices [N] at their total approaches [m] (one entry per slice)."""
+        return line_contact.slice_loads([0.5 * a for a in approaches], self.length, smooth)
+
+    def load(self, approach: Any, smooth: float | None = None) -> Any:
+        """Roller load [N] at a uniform total approach [m]."""
+        return line_contact.palmgren_load(0.5 * approach, self.length, smooth)
+
+    def approach(self, load: float) -> float:
+        """Total approach [m] of both contacts, ``2 c Q^0.9 / l^0.8``."""
+        return 2.0 * float(line_contact.palmgren_deflection(load, self.length))
+
+
+def element_of(geometry: Any) -> str:
+    """The rolling element of a geometry: "roller" or "ball" (the ball geometry predates the
+    seam and has no ``rolling_element``).
+
+    Parameters
+    ----------
+    geometry : ElementGeometry
+
+    Returns
+    -------
+    str
+    """
+    return getattr(geometry, "rolling_element", "ball")
+
+
+def friction_key(geometry: Any) -> str:
+    """Key of the friction tables (:data:`~bearingsim.physics.friction.PALMGREN_F1`, f0):
+    ``f"{bearing_type}_ball"`` for balls, the roller's own type ("cylindrical_roller").
+
+    Parameters
+    ----------
+    geometry : ElementGeometry
+
+    Returns
+    -------
+    str
+    """
+    if element_of(geometry) == "ball":
+        return f"{geometry.bearing_type}_ball"
+    return geometry.bearing_type
+
+
+def static_equivalent_load(Fr: Any, Fa: Any, geometry: Any) -> Any:  # noqa: N803
+    """ISO 76 static equivalent load [N] of a ball or roller geometry.
+
+    Ball bearings: :func:`bearingsim.physics.life.static_equivalent_load`. Radial roller
+    bearings with ``a = 0`` (cylindrical, NU type: no axial load path): ``P0 = Fr``
+    (ISO 76:2006, radial roller bearings).
+
+    Parameters
+    ----------
+    Fr, Fa : float, array or SX
+        Radial and axial load [N], >= 0.
+    geometry : ElementGeometry
+
+    Returns
+    -------
+    float, array or SX
+        P0 [N].
+    """
+    if element_of(geometry) == "ball":
+        return ball_static_equivalent_load(Fr, Fa, geometry)
+    check_range(Fr, "Fr", "N", 0.0, where="static_equivalent_load")
+    check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
+    return Fr + 0.0 * Fa
+
+
+def resolve_geometry(bearing: Any) -> BearingGeometry | RollerBearingGeometry:
+    """A geometry, or a designation looked up in the ball catalogue, then the roller one.
+
+    Parameters
+    ----------
+    bearing : str or ElementGeometry
+
+    Returns
+    -------
+    BearingGeometry or RollerBearingGeometry
+
+    Raises
+    ------
+    CatalogError
+        For a designation in neither catalogue (naming both).
+    """
+    if isinstance(bearing, (BearingGeometry, RollerBearingGeometry)):
+        return bearing
+    try:
+        return resolve_bearing(bearing)
+    except CatalogError as ball_error:
+        try:
+            return get_roller_bearing(bearing)
+        except CatalogError as roller_error:
+            raise CatalogError(f"{ball_error}; {roller_error}") from None
