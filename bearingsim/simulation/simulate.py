@@ -127,10 +127,8 @@ def simulate(
     progress : bool, optional
         Show a progress bar of the simulated time on standard error (``True``), never
         (``False``), or by default only when standard error is a terminal and the run takes
-        longer than about 2 s (:mod:`~bearingsim.simulation.progress`). CVODES and IDAS then
-        integrate in :data:`~bearingsim.simulation.sundials.PROGRESS_CHUNKS` calls instead of
-        one: a few percent more work (each call restarts BDF), results that agree with one
-        call's to the accuracy of the run.
+        longer than about 2 s (:mod:`~bearingsim.simulation.progress`). The bar observes the
+        run and never changes it: the same numbers bit for bit with or without it.
     compiled : bool or "auto"
         Backend ``"compiled"``: ``True`` or ``"auto"`` (the kernel is compiled now if it is not
         cached; ``False`` raises :class:`~bearingsim.errors.ParameterError`).
