@@ -19,6 +19,7 @@ input) in the same library is what ``casadi.external`` takes as the Jacobian of 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import os
 import shlex
@@ -60,8 +61,13 @@ class CompileError(BearingsimError):
 
 def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``."""
-    root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
-    return Path(root)
+    return _cache_dir(os.environ.get("BEARINGSIM_CACHE"), os.environ.get("HOME"))
+
+
+@functools.lru_cache(maxsize=8)
+def _cache_dir(setting: str | None, home: str | None) -> Path:
+    """The cache folder for these environment values (looked up once)."""
+    return Path(setting or Path.home() / ".cache" / "bearingsim")
 
 
 def c_compiler() -> str | None:

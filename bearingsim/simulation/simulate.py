@@ -7,7 +7,6 @@ import time as _time
 import warnings
 from typing import Any
 
-import casadi as ca
 import numpy as np
 import scipy.integrate
 import scipy.optimize
@@ -15,7 +14,8 @@ import scipy.optimize
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.closed import close_inputs
-from bearingsim.simulation.inputs import check_input_ranges, input_signal
+from bearingsim.simulation.fastcall import evaluate, mapped_function
+from bearingsim.simulation.inputs import InputSignal, check_input_ranges, input_signal
 from bearingsim.simulation.integrators import (
     BACKENDS,
     METHODS,
@@ -32,18 +32,18 @@ __all__ = ["simulate", "initial_state"]
 
 
 def initial_state(
-    system: System, u: ca.Function, p: np.ndarray, x0: np.ndarray, t0: float,
+    system: System, signal: InputSignal, p: np.ndarray, x0: np.ndarray, t0: float,
     steady: dict[str, Any] | None | bool,
 ) -> np.ndarray:
     """Consistent initial states: initial equations and, on request, a steady state.
 
-    ``u`` is the input vector as a function of time; ``steady`` is False for none, else the
-    run's input specification (``None`` or a dict) that the steady state is solved with.
+    ``signal`` is the run's inputs; ``steady`` is False for none, else the run's input
+    specification (``None`` or a dict) that the steady state is solved with.
     """
     x = x0.copy()
     if system.init_residual is not None:
         free = system.free_initial_states
-        u0 = np.asarray(u(t0), dtype=float).ravel()
+        u0 = signal.at(t0)[:, 0]
 
         def res(z):
             xx = x.copy()
@@ -179,10 +179,9 @@ def simulate(
     setup = _time.perf_counter()
     p = system.p0(parameters)
     signal = input_signal(system, inputs)
-    u_of_t = signal.of_time()
-    x_start = initial_state(system, u_of_t, p, system.x0(x0), t_start,
+    x_start = initial_state(system, signal, p, system.x0(x0), t_start,
                             inputs if initial == "steady" else False)
-    check_input_ranges(system, u_of_t, np.union1d(t_eval, [t_start, t_end]))
+    check_input_ranges(system, signal, _check_times(t_eval, t_start, t_end))
     # scipy's integrators call the closed functions from Python; SUNDIALS builds its own
     closed = close_inputs(system, inputs) if METHODS[method].backend == "scipy" else None
     wall = _time.perf_counter()
@@ -198,17 +197,16 @@ def simulate(
     stats["prepare_time"] = wall - setup
     if values is None:
         closed = closed or close_inputs(system, inputs)
-        obs = closed.observe.map(ts.size)
+        obs = mapped_function(closed.observe, ts.size)
         try:
-            values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
-                                dtype=float)
+            values = evaluate(obs, ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1))[0]
         except RuntimeError as exc:  # a Newton block of an algebraic loop did not converge
             raise SimulationError(
                 f"{system.name}: the variables could not be evaluated at the output times: "
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
     units = system.variable_units
-    u_end = np.asarray(u_of_t(ts[-1]), dtype=float).ravel()
+    u_end = signal.at(ts[-1])[:, 0]
     return Result(ts, list(system.observed_names), values, units, stats,
                   inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
                   parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)))
@@ -294,6 +292,13 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
             f"{times[k + 1]:g} s after t_eval[{k}] = {times[k]:g} s"
         )
     return times
+
+
+def _check_times(t_eval: np.ndarray, t_start: float, t_end: float) -> np.ndarray:
+    """The times the inputs are checked at: the output times with the start and end time."""
+    if t_eval[0] == t_start and t_eval[-1] == t_end:
+        return t_eval
+    return np.union1d(t_eval, [t_start, t_end])
 
 
 def _check_finite(system: System, ts: np.ndarray, values: np.ndarray) -> None:

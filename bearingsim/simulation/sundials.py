@@ -61,6 +61,7 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.diagnostics import diverged
+from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.ordering import fill_reducing_order
@@ -395,7 +396,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         ``stats``: ``method``, ``form``, ``backend`` ("compiled C" or "CasADi VM") and
         ``backend_reason``, ``library``, ``linear_solver``, ``setup_time`` [s] (building the
         integrator; 0 when it came from the cache), ``integrator_cached``,
-        ``progress_observed`` (the oracle had the progress clock), and CVODES/IDAS counts:
+        ``progress_observed`` (the oracle had the progress clock), ``integrate_time`` [s]
+        (the integrator call alone), and CVODES/IDAS counts:
         ``nsteps``,
         ``nfevals`` (right-hand side or residual), ``njevals`` (exact Jacobian),
         ``nlinsetups`` (factorizations), ``nniters``, ``netfails``, ``rhs_time``/``jac_time``
@@ -435,9 +437,11 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
             bar.update(span * (min(tau_now, 1.0) - reached[0]))
             reached[0] = min(tau_now, 1.0)
 
+    called = time.perf_counter()
     try:
         with _interrupts() as interrupted, _CLOCK.observing(observe):
             out = built.integrator(**args)
+        integrate_time = time.perf_counter() - called
         observe(1.0)
     except RuntimeError as exc:
         if interrupted.is_set():  # CasADi reports Ctrl-C as a failed evaluation
@@ -467,6 +471,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     stats = _stats(method, kernel, linear_solver, 0.0 if cached else built.build_time, cached,
                    totals)
     stats["progress_observed"] = observed
+    stats["integrate_time"] = integrate_time
     stats["state_order"] = "system" if built.order is None else "minimum degree"
     return SundialsRun(ts, xs, zs, values, stats)
 
@@ -500,11 +505,10 @@ def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarra
                xs: np.ndarray, zs: np.ndarray | None) -> np.ndarray:
     """Every observed variable at the output times (the kernel's backend, one mapped call)."""
     n = ts.size
-    us = np.asarray(signal.u.map(n)(ts[None, :], np.repeat(signal.q[:, None], n, axis=1)),
-                    dtype=float).reshape(-1, n)
+    us = signal.at(ts)
     ps = np.repeat(p[:, None], n, axis=1)
     args = (ts[None, :], xs, us, ps) if zs is None else (ts[None, :], xs, zs, us, ps)
-    return np.asarray(kernel.observe.map(n)(*args), dtype=float)
+    return evaluate(mapped_function(kernel.observe, n), *args)[0]
 
 
 _COUNTS = {"nsteps": "nsteps", "nfevals": "nfevals", "nlinsetups": "nlinsetups",
