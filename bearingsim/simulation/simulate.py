@@ -183,7 +183,8 @@ def simulate(
                             inputs if initial == "steady" else False)
     check_input_ranges(system, signal, _check_times(t_eval, t_start, t_end))
     # scipy's integrators call the closed functions from Python; SUNDIALS builds its own
-    closed = close_inputs(system, inputs) if METHODS[method].backend == "scipy" else None
+    closed = (close_inputs(system, inputs, signal=signal)
+              if METHODS[method].backend == "scipy" else None)
     wall = _time.perf_counter()
     if system.n_states == 0:
         traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {})
@@ -196,7 +197,7 @@ def simulate(
     stats["wall_time"] = _time.perf_counter() - wall
     stats["prepare_time"] = wall - setup
     if values is None:
-        closed = closed or close_inputs(system, inputs)
+        closed = closed or close_inputs(system, inputs, signal=signal)
         obs = mapped_function(closed.observe, ts.size)
         try:
             values = evaluate(obs, ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1))[0]
@@ -217,11 +218,11 @@ def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:
 
     SUNDIALS method names are accepted in any letter case, scipy's as scipy spells them.
     """
-    valid = "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
     if backend is not None:
         check_choice(backend, "backend", tuple(BACKENDS), "simulate")
     if method is None:
         return BACKENDS[backend or "scipy"], backend or "scipy"
+    valid = "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
     if not isinstance(method, str):
         raise ParameterError(f"simulate: method must be a string ({valid}), got {method!r}")
     name = method.lower() if method.lower() in methods_of("casadi") else method
