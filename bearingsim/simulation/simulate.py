@@ -13,6 +13,7 @@ import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
+from bearingsim.simulation.choice import MethodChoice, choose_method
 from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.inputs import InputSignal, check_input_ranges, input_signal
@@ -104,7 +105,13 @@ def simulate(
     initial : {"start", "steady"}
         ``"steady"`` starts from the steady state at ``t_start``.
     method : str, optional
-        Backend ``"scipy"``: ``"BDF"`` (the default), ``"Radau"``, ``"LSODA"`` (these with the
+        By default (neither ``method`` nor ``backend`` given) the fastest accurate method for
+        the system (:func:`~bearingsim.simulation.choice.choose_method`): ``"compiled_bdf"``
+        for the stiff ODE form when a C compiler exists (a short first run on a cold cache:
+        ``"cvodes"`` on the VM while C compiles), ``"cvodes"`` without one, ``"idas"`` for
+        models whose nonlinear blocks only the DAE form compiles; ``Result.stats["method"]``
+        and ``stats["method_reason"]`` say which and why.
+        Backend ``"scipy"``: ``"BDF"`` (its default), ``"Radau"``, ``"LSODA"`` (these with the
         exact sparse Jacobian), ``"RK45"``, ``"DOP853"``, ``"RK23"``; backend ``"casadi"``:
         ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case); backend
         ``"compiled"``: ``"compiled_bdf"``, a variable-order BDF whose step loop is C calling
@@ -177,6 +184,12 @@ def simulate(
     if linear_solver is not None:
         check_choice(linear_solver, "linear_solver", LINEAR_SOLVERS, "simulate")
     setup = _time.perf_counter()
+    if method is None:
+        choice = (MethodChoice("cvodes", compiled, "no states: nothing to integrate")
+                  if system.n_states == 0 else choose_method(system, t_end - t_start, compiled))
+        method, compiled, reason = choice.method, choice.compiled, choice.reason
+    else:
+        reason = f"method={method!r} given"
     p = system.p0(parameters)
     signal = input_signal(system, inputs)
     x_start = initial_state(system, signal, p, system.x0(x0), t_start,
@@ -194,6 +207,7 @@ def simulate(
                                      linear_solver)
         traj = METHODS[method].run(problem)
     ts, xs, values, stats = traj.t, traj.x, traj.values, traj.stats
+    stats["method_reason"] = reason
     stats["wall_time"] = _time.perf_counter() - wall
     stats["prepare_time"] = wall - setup
     if values is None:
@@ -213,15 +227,17 @@ def simulate(
                   parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)))
 
 
-def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:
-    """Checked ``(method, backend)``: each backend with its own methods, defaults filled in.
+def _method_backend(method: str | None, backend: str | None
+                    ) -> tuple[str, str] | tuple[None, None]:
+    """Checked ``(method, backend)``: each backend with its own methods, a backend's default
+    method filled in; ``(None, None)`` when neither is given (:func:`choose_method` decides).
 
     SUNDIALS method names are accepted in any letter case, scipy's as scipy spells them.
     """
     if backend is not None:
         check_choice(backend, "backend", tuple(BACKENDS), "simulate")
     if method is None:
-        return BACKENDS[backend or "scipy"], backend or "scipy"
+        return (None, None) if backend is None else (BACKENDS[backend], backend)
     valid = "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
     if not isinstance(method, str):
         raise ParameterError(f"simulate: method must be a string ({valid}), got {method!r}")
