@@ -123,8 +123,15 @@ def _cache_dir(setting: str | None, home: str | None) -> Path:
 
 
 def c_compiler() -> str | None:
-    """Path of the C compiler (``$CC``, else ``gcc``, else ``cc``), or None if there is none."""
-    return shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
+    """Path of the C compiler (``$CC``, else ``gcc``, else ``cc``), or None if there is none
+    (looked up once per ``$CC`` and ``$PATH``)."""
+    return _find_compiler(os.environ.get("CC", "gcc"), os.environ.get("PATH"))
+
+
+@functools.lru_cache(maxsize=8)
+def _find_compiler(cc: str, path: str | None) -> str | None:
+    """The compiler ``cc`` (else ``cc``) found on ``path``."""
+    return shutil.which(cc, path=path) or shutil.which("cc", path=path)
 
 
 def compilations() -> int:
