@@ -29,6 +29,7 @@ from bench import (
     double_layer_steady,
     duplex,
     fmu_stepper,
+    per_call,
     pruning,
     sundials_compiled,
     work_precision,
@@ -120,6 +121,7 @@ def main(argv: list[str] | None = None) -> int:
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
+        ("per-call cost", lambda: per_call.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
