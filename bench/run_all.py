@@ -119,7 +119,7 @@ def main(argv: list[str] | None = None) -> int:
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
         ("FMU stepper", lambda: fmu_stepper.section(args.quick)),
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
-        ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
+        ("deep-groove work-precision 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
         ("per-call cost", lambda: per_call.section(args.quick)),
     ]
