@@ -28,6 +28,7 @@ from bench import (
     dgbb_long,
     double_layer_steady,
     duplex,
+    first_run,
     fmu_stepper,
     per_call,
     pruning,
@@ -122,6 +123,7 @@ def main(argv: list[str] | None = None) -> int:
         ("deep-groove work-precision 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
         ("per-call cost", lambda: per_call.section(args.quick)),
+        ("first runs", lambda: first_run.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
