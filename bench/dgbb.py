@@ -36,13 +36,13 @@ __all__ = ["run"]
 RAMP = 0.005
 
 
-def _system(k: int, fidelity: str):
+def _system(k: int, fidelity: str, rootfinder: str | None = None):
     n_rpm, load = DUTY_CYCLE[k - 1]
     w = rpm_to_rad_s(n_rpm)
     outputs = ["w_cage"] + [f"inner[{j}].Q" for j in range(7)]
     bearing = deep_groove_ball_bearing("6304", fidelity, speed=lambda t: w * ca.fmin(t / RAMP, 1),
                                        loads={"Fx": load}, n_slices=0)
-    return assemble(bearing, outputs=outputs)
+    return assemble(bearing, outputs=outputs, rootfinder=rootfinder)
 
 
 RK4_REAL_LIMIT = 2.785

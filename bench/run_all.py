@@ -29,7 +29,9 @@ from bench import (
     dgbb_long,
     double_layer_steady,
     duplex,
+    first_run,
     fmu_stepper,
+    per_call,
     pruning,
     roller,
     sundials_compiled,
@@ -121,10 +123,12 @@ def main(argv: list[str] | None = None) -> int:
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
         ("FMU stepper", lambda: fmu_stepper.section(args.quick)),
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
-        ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
+        ("deep-groove work-precision 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
         ("scene input tables", lambda: table_inputs.section(args.quick)),
         ("cylindrical roller", lambda: roller.section(args.quick)),
+        ("per-call cost", lambda: per_call.section(args.quick)),
+        ("first runs", lambda: first_run.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

@@ -30,11 +30,9 @@ Sections (``python -m bench.sundials_compiled SECTION [--cases a,b]``):
 * ``linsol``: every SUNDIALS linear solver on the start-up run (compiled kernels);
 * ``setup``: first run (kernel from the disk cache, integrator built) and repeated runs (all
   cached) of a short run, as the secant speed ratio makes them;
-* ``chunks``: the cost of the progress bar: 20 ms and 300 ms start-up runs with 501 output
-  points in one integrator call, in 10, 20 and 50 calls (a bar forced on; the default is
-  :data:`~bearingsim.simulation.sundials.PROGRESS_CHUNKS`) and with ``progress=None`` on a
-  terminal: CPU and wall time, steps, Jacobians and the error of the states against a tight
-  reference run.
+* ``progress``: the cost of the progress bar's clock in the oracle: 20 ms and 300 ms start-up
+  runs with 501 output points without and with a bar, CPU time and whether the values are
+  identical bit for bit (they must be: the bar observes the run).
 """
 
 from __future__ import annotations
@@ -54,7 +52,7 @@ import numpy as np
 
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System
-from bearingsim.simulation import simulate, sundials
+from bearingsim.simulation import simulate
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
 from bearingsim.simulation.ordering import fill_reducing_order
@@ -239,11 +237,48 @@ def calls(case: Case) -> dict[str, float]:
     if form == "ode" and choose_linear_solver(n, nnz, form) == "csparse":
         # the default above DENSE_LIMIT: the ordered sparse LU of the run's own Newton matrix
         jac_x = np.asarray(ca.densify(jac(*args, *value)[1]))
-        out["lu fact+solve"] = sparse_lu_us(np.eye(n) - 1e-3 * jac_x, kern.function)
+        newton = np.eye(n) - 1e-3 * jac_x
+        out["lu fact+solve"] = sparse_lu_us(newton, kern.function)
+        out["lu solve"] = lu_solve_us(newton, kern.function)
     else:
         out["lu fact+solve"] = dense_lu_us(n)
+        out["lu solve"] = lu_solve_us(np.eye(n) + 0.01 * np.random.default_rng(0)
+                                      .standard_normal((n, n)))
     out["n"] = n
     return out
+
+
+def lu_solve_us(newton: np.ndarray, fn: ca.Function | None = None, n: int = 2000) -> float:
+    """Cost of one solve [us] with the LU factors of a Newton matrix (scipy): dense LAPACK
+    factors, or (with ``fn``) SuperLU's of the matrix in the minimum-degree order the
+    integrator uses, without further ordering."""
+    import scipy.linalg
+    import scipy.sparse
+    import scipy.sparse.linalg
+
+    rhs = np.ones(newton.shape[0])
+    if fn is None:
+        factors = scipy.linalg.lu_factor(newton)
+        solve = lambda: scipy.linalg.lu_solve(factors, rhs)  # noqa: E731
+    else:
+        jac = fn.jacobian()
+        pattern = jac.sparsity_out(jac.name_out().index("jac_ode_x")) + ca.Sparsity.diag(
+            newton.shape[0])
+        order = [int(i) for i in fill_reducing_order(pattern)]
+        matrix = scipy.sparse.csc_matrix(newton[np.ix_(order, order)])
+        solve = scipy.sparse.linalg.splu(matrix, permc_spec="NATURAL").solve
+        solve = (lambda f: lambda: f(rhs))(solve)
+    start = time.perf_counter()
+    for _ in range(n):
+        solve()
+    return (time.perf_counter() - start) / n * 1e6
+
+
+def newton_solves(stats: dict) -> int:
+    """Linear solves of a run: CVODES/IDAS one per Newton iteration (``nniters``);
+    compiled_bdf one per right-hand side in its Newton iterations (``nfevals``, less the two
+    of its start)."""
+    return int(stats["nniters"]) if "nniters" in stats else max(int(stats["nfevals"]) - 2, 0)
 
 
 def sparse_lu_us(newton: np.ndarray, fn: ca.Function) -> float:
@@ -373,19 +408,24 @@ def run_rows(case: Case, data: dict) -> list[list]:
         wall = min(walls)
         limit = physical_limit_s(st, pc["rhs C"], pc["jac C"])
         limit_la = physical_limit_s(st, pc["rhs C"], pc["jac C"], pc["lu fact+solve"])
+        solves = newton_solves(st)
+        limit_all = limit_la + max(solves - st["nlinsetups"], 0) * pc["lu solve"] * 1e-6
         rows.append([label, phase, fmt(span), fmt(wall / span), fmt(max(walls) / min(walls)),
                      fmt(st["nsteps"] / span), fmt(st["nfevals"] / span),
-                     fmt(st["njevals"] / span), fmt(limit / span), fmt(wall / limit),
+                     fmt(st["njevals"] / span), fmt(solves / st["nsteps"]),
+                     fmt(limit / span), fmt(wall / limit),
                      fmt(limit_la / span), fmt(wall / limit_la),
+                     fmt(limit_all / span), fmt(wall / limit_all),
                      *[fmt(st[key] / wall, 2) if key in st else "-"
                        for key in ("rhs_time", "jac_time")]])
     return rows
 
 
 RUN_HEADER = ["backend", "phase", "sim [s]", "wall / sim s", "spread (max/min)",
-              "steps / sim s", "rhs / sim s", "jac / sim s", "limit / sim s (kernels)",
-              "wall / limit", "limit / sim s (+LU)", "wall / limit (+LU)", "rhs share",
-              "jac share"]
+              "steps / sim s", "rhs / sim s", "jac / sim s", "solves / step",
+              "limit / sim s (kernels)", "wall / limit", "limit / sim s (+LU per set-up)",
+              "wall / limit (+LU per set-up)", "limit / sim s (+every solve)",
+              "wall / limit (+every solve)", "rhs share", "jac share"]
 
 
 # ------------------------------------------------------------------------------ linsol
@@ -436,7 +476,7 @@ def setup_costs(case: Case, n: int = 5) -> list[list]:
     return rows
 
 
-# ------------------------------------------------------------------------------ chunks
+# ------------------------------------------------------------------------------ progress
 class _Terminal(io.StringIO):
     """Standard error as a terminal (the bar's output discarded)."""
 
@@ -444,55 +484,37 @@ class _Terminal(io.StringIO):
         return True
 
 
-def chunk_costs(case: Case, t_runs=(0.02, 0.3), counts=(10, 20, 50), n_points: int = 501,
-                repeats: int = 3) -> list[list]:
-    """Start-up runs over ``t_runs`` [s] in one integrator call, in ``counts`` calls (the bar
-    forced on, ``progress=True``) and as ``progress=None`` on a terminal makes them: least
-    process CPU time and wall time of ``repeats`` (compiled kernels, integrators cached),
-    steps and Jacobians, each against one call, and the largest error of the states against
-    a run at ``rtol = 1e-9``, ``atol = 1e-12`` in tolerance units,
-    ``|x - x_ref| / (rtol |x_ref| + atol)``."""
+def progress_costs(case: Case, t_runs=(0.02, 0.3), n_points: int = 501,
+                   repeats: int = 3) -> list[list]:
+    """Start-up runs over ``t_runs`` [s] without and with a progress bar (``progress=True``,
+    the bar's output discarded): least process CPU time of ``repeats`` (compiled kernels,
+    integrators cached), the cost of the bar's clock, and whether the two runs' values are
+    identical bit for bit."""
     system, common = case.system()
-    saved = sundials.PROGRESS_CHUNKS
 
-    def run(progress, rtol=case.rtol, atol=case.atol):
+    def run(progress):
         with contextlib.redirect_stderr(_Terminal()):
             cpu = time.process_time()
-            res = simulate(system, t_run, method=case.method, rtol=rtol, atol=atol,
+            res = simulate(system, t_run, method=case.method, rtol=case.rtol, atol=case.atol,
                            n_points=n_points, compiled=True, progress=progress, **common)
         return res, time.process_time() - cpu
 
     rows = []
-    try:
-        for t_run in t_runs:
-            sundials.PROGRESS_CHUNKS = 1
-            exact = np.array([run(False, 1e-9, 1e-12)[0][n] for n in system.state_names])
-            tol = case.rtol * np.abs(exact) + case.atol
-            one = None
-            for count, progress in ((1, False), *((c, True) for c in counts),
-                                    (saved, None)):
-                sundials.PROGRESS_CHUNKS = count
-                runs_ = [run(progress) for _ in range(repeats)]
-                res = runs_[0][0]
-                cpu = min(c for _, c in runs_)
-                wall = min(r.stats["wall_time"] for r, _ in runs_)
-                st = res.stats
-                one = one or (cpu, wall, st)
-                err = np.abs(np.array([res[n] for n in system.state_names]) - exact) / tol
-                rows.append([fmt(t_run * 1e3), {False: "off", True: "on", None: "None"}[
-                    progress], st["chunks"], fmt(cpu * 1e3), f"{100 * (cpu / one[0] - 1):+.1f} %",
-                    fmt(wall * 1e3), f"{100 * (wall / one[1] - 1):+.1f} %", st["nsteps"],
-                    f"{100 * (st['nsteps'] / one[2]['nsteps'] - 1):+.1f} %", st["njevals"],
-                    f"{100 * (st['njevals'] / one[2]['njevals'] - 1):+.1f} %",
-                    f"{err.max():.0f}"])
-    finally:
-        sundials.PROGRESS_CHUNKS = saved
+    for t_run in t_runs:
+        runs_ = {flag: [run(flag) for _ in range(repeats)] for flag in (False, True)}
+        plain, shown = runs_[False][0][0], runs_[True][0][0]
+        cpu = {flag: min(c for _, c in r) for flag, r in runs_.items()}
+        rows.append([fmt(t_run * 1e3), plain.stats["nsteps"], plain.stats["nfevals"],
+                     fmt(cpu[False] * 1e3), fmt(cpu[True] * 1e3),
+                     f"{100 * (cpu[True] / cpu[False] - 1):+.1f} %",
+                     fmt((cpu[True] - cpu[False]) / plain.stats["nfevals"] * 1e6),
+                     "yes" if np.array_equal(plain.values, shown.values) else "NO"])
     return rows
 
 
-CHUNK_HEADER = ["run [ms]", "progress", "calls", "CPU [ms]", "CPU vs 1 call", "wall [ms]",
-                "wall vs 1 call", "steps", "steps vs 1 call", "jac", "jac vs 1 call",
-                "max state error [tol]"]
+PROGRESS_HEADER = ["run [ms]", "steps", "rhs evaluations", "CPU no bar [ms]",
+                   "CPU with bar [ms]", "bar's cost", "per evaluation [us]",
+                   "values identical"]
 
 
 # ------------------------------------------------------------------------------ main
@@ -529,8 +551,8 @@ def report(sections: tuple[str, ...], cases: tuple[str, ...],
             out.append(markdown_table(["backend", "run [s]", "first call [ms]", "kernel [ms]",
                                        "integrator build [ms]", "later calls [ms]",
                                        "prepare (inputs, x0) [ms]"], setup_costs(case)) + "\n")
-        if "chunks" in sections:
-            out.append(markdown_table(CHUNK_HEADER, chunk_costs(case)) + "\n")
+        if "progress" in sections:
+            out.append(markdown_table(PROGRESS_HEADER, progress_costs(case)) + "\n")
     return "\n".join(out)
 
 
@@ -550,7 +572,11 @@ def section(quick: bool = False) -> Section:
         "default picks above 200 states; one factorisation and solve per linear set-up; the "
         "compiled_bdf rows use the same LU cost, not that of their own LU, which skips the "
         "structural zeros), the physical limit of this "
-        "machine; *wall / limit*: the distance to it. Goals: at most 1 s per "
+        "machine; *wall / limit*: the distance to it; *+every solve*: the limit counted "
+        "with one LU solve per Newton iteration besides the set-ups' (CVODES' `nniters`, "
+        "compiled_bdf's right-hand sides), the solve's cost measured on the same Newton "
+        "matrix (scipy: LAPACK dense, SuperLU in the integrator's order); *solves / step*: "
+        "Newton iterations per step. Goals: at most 1 s per "
         "simulated second for the 6304 massive-ball level, 10 s for the nested dynamic bearing. "
         "Set-up: a 1 ms run repeated, first call (kernel from the disk cache, integrator built) "
         "and later calls (both cached).\n\n"
@@ -582,7 +608,7 @@ def main() -> None:
     """Command line: one or more sections for the chosen cases, Markdown on stdout."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("sections", nargs="+",
-                        choices=["calls", "compile", "runs", "linsol", "setup", "chunks"])
+                        choices=["calls", "compile", "runs", "linsol", "setup", "progress"])
     parser.add_argument("--cases", default="torque,massive,qs,nested")
     parser.add_argument("--levels", default="-O0,-O1,-O2")
     args = parser.parse_args()

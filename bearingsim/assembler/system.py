@@ -11,6 +11,7 @@ import numpy as np
 
 from bearingsim.assembler.dae import Param
 from bearingsim.assembler.mapped import MappedForms
+from bearingsim.assembler.numeric import buffered
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
 from bearingsim.units import to_si, unit_label
@@ -148,8 +149,15 @@ class System:
     def x0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
         """Start values of the states, with optional overrides by name."""
         x = np.array([s.start for s in self.states], dtype=float)
+        overrides = check_mapping(overrides, "x0", self.name, "state names")
+        if not overrides:
+            return x
         index = {s.name: k for k, s in enumerate(self.states)}
-        for name, val in check_mapping(overrides, "x0", self.name, "state names").items():
+        values = np.array([_plain_float(v) for v in overrides.values()])
+        if np.all(np.isfinite(values)) and all(name in index for name in overrides):
+            x[[index[name] for name in overrides]] = values  # every override a finite number
+            return x
+        for name, val in overrides.items():
             k = index.get(name)
             if k is None:
                 raise ParameterError(
@@ -194,15 +202,19 @@ class System:
         """Every variable of the model at one point, by dotted name."""
         u = self.u_default() if u is None else u
         p = self.p0() if p is None else p
-        vals = np.asarray(self.functions["observe"](t, x, u, p), dtype=float).ravel()
+        vals = buffered(self.functions["observe"])(t, x, u, p)[0].ravel()
         return dict(zip(self.observed_names, vals, strict=True))
 
     @property
     def variable_units(self) -> dict[str, str]:
-        """Unit of every observed variable, state, input and output, by dotted name."""
-        units = dict(self.observed_units)
-        units.update({s.name: s.unit for s in self.states + self.inputs + self.outputs})
-        return units
+        """Unit of every observed variable, state, input and output, by dotted name (a new
+        dict, copied from one built on first use)."""
+        units = self.__dict__.get("_variable_units")
+        if units is None:
+            units = dict(self.observed_units)
+            units.update({s.name: s.unit for s in self.states + self.inputs + self.outputs})
+            self.__dict__["_variable_units"] = units
+        return dict(units)
 
     def __repr__(self) -> str:
         shown = ", ".join(f"{sig.name} [{unit_label(sig.unit)}]" for sig in self.inputs[:4])
@@ -225,6 +237,15 @@ class System:
         for s in self.skipped:
             lines.append(f"  skipped: {s}")
         return "\n".join(lines)
+
+
+def _plain_float(value: Any) -> float:
+    """``value`` as a float when it is a real number (not a bool), else NaN (which sends it
+    through the full check with its error message)."""
+    if isinstance(value, (float, int, np.floating, np.integer)) and not isinstance(
+            value, (bool, np.bool_)):
+        return float(value)
+    return float("nan")
 
 
 def as_system(value: Any, where: str) -> System:

@@ -2,7 +2,10 @@
 call.
 
 Inputs given as constants, symbolic functions of time or tables (:mod:`.inputs`) are composed
-into the system's functions, so no Python runs inside an integration.
+into the system's functions, so no Python runs inside an integration. The composition with
+``u(t, q)`` (the run's numbers ``q`` free) is built once per system and input structure and
+kept with the system; a run binds its numbers with a thin wrapper (building the composition of
+a ball-level model's observed variables costs milliseconds, the wrapper microseconds).
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ from typing import Any
 import casadi as ca
 
 from bearingsim.assembler.system import System
-from bearingsim.simulation.inputs import input_expression
+from bearingsim.simulation.inputs import InputSignal, input_signal
 
 __all__ = ["ClosedModel", "close_inputs"]
 
@@ -30,12 +33,10 @@ class ClosedModel:
     """``observe(t, x, p)``: every variable of the model (``System.observed_names``)."""
     u: ca.Function
     """``u(t)``: the input vector."""
-    symbolic: bool
-    """Whether ``f``, ``jac`` and ``observe`` are SX functions (else MX)."""
 
 
 def close_inputs(system: System, inputs: dict[str, Any] | None,
-                 symbolic: bool = False) -> ClosedModel:
+                 symbolic: bool = False, signal: InputSignal | None = None) -> ClosedModel:
     """Compose the system's functions with symbolic input signals of time.
 
     Parameters
@@ -44,31 +45,63 @@ def close_inputs(system: System, inputs: dict[str, Any] | None,
         An assembled system.
     inputs : dict, optional
         Input name -> constant, symbolic function of time or ``(times, values)`` table
-        (:func:`~bearingsim.simulation.inputs.input_expression`).
+        (:func:`~bearingsim.simulation.inputs.input_signal`).
     symbolic : bool
         Use the symbolic originals of a compiled system (needed where CasADi differentiates the
         functions, as in its integrators).
+    signal : InputSignal, optional
+        ``input_signal(system, inputs)`` when the caller has it already.
 
     Returns
     -------
     ClosedModel
+        The same object for runs with the same inputs (the last :data:`CLOSED_PER_SYSTEM`
+        input sets are kept with the system).
     """
+    signal = input_signal(system, inputs) if signal is None else signal
+    cache = system.__dict__.setdefault("_closed_models", {})
+    key = (signal.key, signal.q.tobytes(), symbolic)
+    found = cache.get(key)
+    if found is not None:
+        return found
+    generic = _composed(system, signal, symbolic)
+    t, x, p = ca.MX.sym("t"), ca.MX.sym("x", system.n_states), ca.MX.sym("p", len(system.params))
+    q = ca.DM(signal.q)
+    args, names = [t, x, p], ["t", "x", "p"]
+    bound = [ca.Function(name, args, [fn(t, x, p, q)], names, [out])
+             for fn, name, out in zip(generic, ("f", "J", "obs"), ("xdot", "J", "y"),
+                                      strict=True)]
+    t_u = ca.SX.sym("t")
+    u_fn = ca.Function("u", [t_u], [signal.u(t_u, q)])
+    if len(cache) >= CLOSED_PER_SYSTEM:
+        del cache[next(iter(cache))]
+    closed = cache[key] = ClosedModel(f=bound[0], jac=bound[1], observe=bound[2], u=u_fn)
+    return closed
+
+
+CLOSED_PER_SYSTEM = 16
+"""Input sets whose closed model a system keeps (the oldest are dropped first)."""
+
+
+def _composed(system: System, signal: InputSignal,
+              symbolic: bool) -> tuple[ca.Function, ca.Function, ca.Function]:
+    """``(f, J, observe)`` of ``(t, x, p, q)`` with ``u(t, q)`` composed in; built once per
+    system, input structure and ``symbolic`` (kept with the system)."""
+    cache = system.__dict__.setdefault("_closed_cache", {})
+    key = (signal.key, symbolic)
+    if key in cache:
+        return cache[key]
     funcs = (system.symbolic_functions or system.functions) if symbolic else system.functions
     ode, obs, jac = (funcs[k] for k in ("ode", "observe", "jac_x"))
-    t_sx = ca.SX.sym("t")
-    u_expr = input_expression(system, inputs, t_sx)
-    u_fn = ca.Function("u", [t_sx], [u_expr])
-    sx = ode.is_a("SXFunction")
-    sym = ca.SX if sx else ca.MX
+    sym = ca.SX if ode.is_a("SXFunction") else ca.MX
     t = sym.sym("t")
     x = sym.sym("x", system.n_states)
     p = sym.sym("p", len(system.params))
-    u = u_fn(t)
-    args, names = [t, x, p], ["t", "x", "p"]
-    return ClosedModel(
-        f=ca.Function("f", args, [ode(t, x, u, p)], names, ["xdot"]),
-        jac=ca.Function("J", args, [jac(t, x, u, p)], names, ["J"]),
-        observe=ca.Function("obs", args, [obs(t, x, u, p)], names, ["y"]),
-        u=u_fn,
-        symbolic=sx,
-    )
+    q = sym.sym("q", signal.q.size)
+    u = signal.u(t, q)
+    args = [t, x, p, q]
+    composed = (ca.Function("f", args, [ode(t, x, u, p)]),
+                ca.Function("J", args, [jac(t, x, u, p)]),
+                ca.Function("obs", args, [obs(t, x, u, p)]))
+    cache[key] = composed
+    return composed

@@ -18,14 +18,19 @@ input) in the same library is what ``casadi.external`` takes as the Jacobian of 
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import dataclasses
+import functools
 import hashlib
 import os
 import shlex
 import shutil
+import signal
 import subprocess
 import tempfile
 import threading
+import time
 from collections.abc import Callable, Sequence
 from functools import partial
 from pathlib import Path
@@ -38,8 +43,9 @@ from bearingsim.errors import BearingsimError
 from bearingsim.simulation.c_units import generate_source, generate_units
 
 __all__ = ["Build", "CompileError", "build_library", "c_compiler", "compilations", "compile_source",
-           "compile_system", "default_cache_dir", "generate_source", "generate_units",
-           "library_path", "DEFAULT_FLAGS", "DEFAULT_SPLIT_FLAGS"]
+           "compile_estimate", "compile_system", "default_cache_dir", "generate_source",
+           "generate_units", "library_path", "stop_builds", "DEFAULT_FLAGS",
+           "DEFAULT_SPLIT_FLAGS"]
 
 DEFAULT_FLAGS: tuple[str, ...] = ("-O1",)
 """Compiler flags of the SUNDIALS kernels: -O1 compiles 2-3x faster than -O2 and runs as fast on
@@ -52,6 +58,53 @@ take as long (``bench/sundials_compiled.py``, section "compile")."""
 
 _COMPILATIONS = [0]
 _LOCK = threading.Lock()
+_RUNNING: set[Build] = set()
+
+EXIT_GRACE = 10.0
+"""Seconds [s] a build still running at interpreter exit may take to finish before it is
+stopped (a finished library serves the next program)."""
+
+DEFAULT_COMPILE_RATE = 1.7e5
+"""C source bytes compiled per wall second [bytes/s] before this machine has recorded its own
+(:func:`compile_estimate`): the 6304 massive-ball kernel, 0.35 MB of C in 3 units, builds in
+about 2 s on the benchmark machine (the units in parallel)."""
+
+_RATE_FILE = "compile_rate.txt"
+
+
+def _record_rate(cache: Path, rate: float) -> None:
+    """Remember the speed of a finished build in the cache folder (atomic write)."""
+    with contextlib.suppress(OSError):
+        tmp = cache / f".{_RATE_FILE}.{os.getpid()}"
+        tmp.write_text(f"{rate:.6g}\n")
+        os.replace(tmp, cache / _RATE_FILE)
+
+
+def compile_estimate(source_bytes: int, cache_dir: str | Path | None = None) -> float:
+    """Expected wall time [s] of building a library from ``source_bytes`` of C: at the speed
+    of the last build recorded in the cache folder, else :data:`DEFAULT_COMPILE_RATE`."""
+    rate = DEFAULT_COMPILE_RATE
+    path = Path(cache_dir or default_cache_dir()) / _RATE_FILE
+    with contextlib.suppress(OSError, ValueError):
+        rate = float(path.read_text().strip())
+    return 0.2 + source_bytes / max(rate, 1.0)
+
+
+def stop_builds(grace: float = EXIT_GRACE) -> None:
+    """Give running builds ``grace`` seconds [s] to finish, then stop the rest (run at
+    interpreter exit: no compiler outlives the program)."""
+    deadline = time.perf_counter() + grace
+    with _LOCK:
+        running = list(_RUNNING)
+    for build in running:
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            build._proc.wait(timeout=max(deadline - time.perf_counter(), 0.0))
+        if build.done():
+            continue
+        build.stop()
+
+
+atexit.register(stop_builds)
 
 
 class CompileError(BearingsimError):
@@ -60,13 +113,25 @@ class CompileError(BearingsimError):
 
 def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``."""
-    root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
-    return Path(root)
+    return _cache_dir(os.environ.get("BEARINGSIM_CACHE"), os.environ.get("HOME"))
+
+
+@functools.lru_cache(maxsize=8)
+def _cache_dir(setting: str | None, home: str | None) -> Path:
+    """The cache folder for these environment values (looked up once)."""
+    return Path(setting or Path.home() / ".cache" / "bearingsim")
 
 
 def c_compiler() -> str | None:
-    """Path of the C compiler (``$CC``, else ``gcc``, else ``cc``), or None if there is none."""
-    return shutil.which(os.environ.get("CC", "gcc")) or shutil.which("cc")
+    """Path of the C compiler (``$CC``, else ``gcc``, else ``cc``), or None if there is none
+    (looked up once per ``$CC`` and ``$PATH``)."""
+    return _find_compiler(os.environ.get("CC", "gcc"), os.environ.get("PATH"))
+
+
+@functools.lru_cache(maxsize=8)
+def _find_compiler(cc: str, path: str | None) -> str | None:
+    """The compiler ``cc`` (else ``cc``) found on ``path``."""
+    return shutil.which(cc, path=path) or shutil.which("cc", path=path)
 
 
 def compilations() -> int:
@@ -102,9 +167,11 @@ class Build:
     The library's translation units (:func:`~bearingsim.simulation.c_units.generate_units`)
     are compiled in parallel and linked. The child works in a private build directory inside
     the cache and renames the library into place only when complete, so the library appears
-    whole or not at all, a concurrent build of the same library by another process is
-    harmless, and a build outlives the Python process that started it (no waiting at
-    interpreter exit; the next process finds the library).
+    whole or not at all and a concurrent build of the same library by another process is
+    harmless. No compiler outlives the program: at interpreter exit a build still running is
+    given :data:`EXIT_GRACE` seconds to finish, then stopped and its build directory removed
+    (:func:`stop_builds`). A finished build records its speed (source bytes per second of
+    wall time) for :func:`compile_estimate`.
 
     Parameters
     ----------
@@ -126,6 +193,9 @@ class Build:
         units = [sources] if isinstance(sources, str) else list(sources)
         lib.parent.mkdir(parents=True, exist_ok=True)
         self.lib = lib
+        self.source_bytes = sum(len(unit) for unit in units)
+        """Size of the C source [bytes]."""
+        self.started = time.perf_counter()
         self._dir = Path(tempfile.mkdtemp(dir=lib.parent, prefix=".build_"))
         self._log = self._dir / "cc.log"
         tmp_lib = self._dir / lib.name
@@ -155,10 +225,34 @@ class Build:
                                       stdout=subprocess.DEVNULL, start_new_session=True)
         with _LOCK:
             _COMPILATIONS[0] += 1
+            _RUNNING.add(self)
 
     def done(self) -> bool:
         """Whether the compiler has finished (successfully or not)."""
-        return self._proc.poll() is not None
+        finished = self._proc.poll() is not None
+        if finished:
+            self._finished()
+        return finished
+
+    def _finished(self) -> None:
+        """Record a successful build's speed (once) and forget it as running."""
+        with _LOCK:
+            if self not in _RUNNING:
+                return
+            _RUNNING.discard(self)
+        if self._proc.returncode == 0 and self.lib.exists():
+            _record_rate(self.lib.parent, self.source_bytes / max(
+                time.perf_counter() - self.started, 1e-3))
+
+    def stop(self) -> None:
+        """Stop the compiler (its whole process group) and remove the build directory."""
+        if self._proc.poll() is None:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.killpg(self._proc.pid, signal.SIGKILL)
+            self._proc.wait()
+        with _LOCK:
+            _RUNNING.discard(self)
+        shutil.rmtree(self._dir, ignore_errors=True)
 
     def wait(self) -> Path:
         """Wait for the library.
@@ -168,7 +262,9 @@ class Build:
         CompileError
             With the compiler's messages, if it failed.
         """
-        if self._proc.wait() != 0 or not self.lib.exists():
+        returncode = self._proc.wait()
+        self._finished()
+        if returncode != 0 or not self.lib.exists():
             log = self._log.read_text()[-2000:] if self._log.exists() else ""
             shutil.rmtree(self._dir, ignore_errors=True)
             raise CompileError(f"{self.command} failed:\n{log}")

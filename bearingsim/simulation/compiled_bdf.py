@@ -233,7 +233,7 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
     bar = progress_bar(t0, t1, progress)
     xs = np.empty((t_out.size, n))
     stats = np.zeros(len(STAT_NAMES), dtype=np.int64)
-    start = time.perf_counter()
+    start = time.thread_time()
     try:
         status = dll.bsm_bdf_start(solver)
         times = np.ascontiguousarray(t_out, dtype=float)
@@ -261,5 +261,5 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
         if bar is not None:
             bar.close()
     run_stats = {name: int(v) for name, v in zip(STAT_NAMES, stats, strict=True)}
-    run_stats["run_time"] = time.perf_counter() - start
+    run_stats["integrate_cpu_time"] = time.thread_time() - start
     return CompiledRun(t_out, xs.T.copy(), run_stats)

@@ -19,6 +19,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SpeedLimitWarning
+from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.intervals import locate_problem
 from bearingsim.units import CUSTOMARY_DIFFERS, engineering, is_quantity, to_si
 from bearingsim.units.registry import si_factor
@@ -74,16 +75,33 @@ class InputSignal:
         The lifted numbers of this run.
     key : str
         The structure of ``u``: equal keys mean the same function of ``(t, q)``.
+    lifted : tuple of (int, int) or None
+        Per input, the slice ``q[first:last]`` of its numbers (a constant: one number; a table:
+        its times, then its values), or None for a function of time.
     """
 
     u: ca.Function
     q: np.ndarray
     key: str
+    lifted: tuple[tuple[int, int] | None, ...] = ()
 
     def of_time(self) -> ca.Function:
         """``u(t)`` with this run's numbers substituted."""
         t = ca.SX.sym("t")
         return ca.Function("u", [t], [self.u(t, ca.DM(self.q))], ["t"], ["u"])
+
+    def at(self, times: np.ndarray) -> np.ndarray:
+        """Every input at ``times`` [s]: shape ``(n_inputs, len(times))`` (one mapped call of
+        ``u``, the mapped function built once per structure and number of times)."""
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        n = times.size
+        mapped = mapped_function(self.u, n)
+        return evaluate(mapped, times[None, :], np.repeat(self.q[:, None], n, axis=1))[0]
+
+
+_SIGNALS: dict[str, ca.Function] = {}
+"""``u(t, q)`` by the signal's structure key (names, kinds, expressions of ``t``)."""
+_SIGNALS_LIMIT = 256
 
 
 def _one(name: str, spec: Any, t: ca.SX, unit: str,
@@ -171,7 +189,7 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
             + " (the run would hold them at their start value, e.g. a speed of 0); give each "
               "as a number in its unit, a number with a unit ('10000 rpm'), a function of time "
               "or a (times, values) table")
-    t = ca.SX.sym("t")
+    t = _T
     lifted: list[float] = []
     exprs, keys, slices = [], [], []
     for sig in system.inputs:
@@ -180,17 +198,38 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
                           lifted)
         exprs.append(expr)
         keys.append(f"{sig.name}={kind}")
-        slices.append((first, len(lifted)))
-    q = ca.SX.sym("q", len(lifted))
-    for k, (first, last) in enumerate(slices):
+        slices.append((first, len(lifted)) if expr is None else None)
+    key = "|".join(keys)
+    u = _SIGNALS.get(key)
+    if u is None:
+        u = _signal_function(exprs, slices, len(lifted))
+        if len(_SIGNALS) >= _SIGNALS_LIMIT:
+            del _SIGNALS[next(iter(_SIGNALS))]
+        _SIGNALS[key] = u
+    return InputSignal(u, np.array(lifted, dtype=float), key, tuple(slices))
+
+
+_T = ca.SX.sym("t")
+"""The time symbol of every input expression (one symbol: equal expressions, equal keys)."""
+
+
+def _signal_function(exprs: list[ca.SX | None], slices: list[tuple[int, int] | None],
+                     n_q: int) -> ca.Function:
+    """``u(t, q)`` from the inputs' expressions of ``t`` and the slices of ``q`` holding the
+    lifted constants and tables."""
+    q = ca.SX.sym("q", n_q)
+    exprs = list(exprs)
+    for k, piece in enumerate(slices):
+        if piece is None:
+            continue
+        first, last = piece
         if last - first == 1:
             exprs[k] = q[first]
-        elif last > first:
+        else:
             n = (last - first) // 2
-            exprs[k] = table_expression(t, q[first:first + n], q[first + n:last])
+            exprs[k] = table_expression(_T, q[first:first + n], q[first + n:last])
     u = ca.vertcat(*exprs) if exprs else ca.SX(0, 1)
-    return InputSignal(ca.Function("u", [t, q], [u], ["t", "q"], ["u"]),
-                       np.array(lifted, dtype=float), "|".join(keys))
+    return ca.Function("u", [_T, q], [u], ["t", "q"], ["u"])
 
 
 def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) -> ca.SX:
@@ -200,10 +239,20 @@ def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) ->
     return signal.u(t, ca.DM(signal.q))
 
 
-def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
+_CHECKED: dict[tuple, bool] = {}
+"""Signals found valid, by (the inputs' ranges, structure, numbers, time span)."""
+_CHECKED_LIMIT = 1024
+
+
+def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -> None:
     """Check every input signal against its declared range and for singularities, at the given
-    times and, by interval arithmetic (:mod:`~bearingsim.simulation.intervals`), everywhere
-    between the first and the last of them.
+    times and everywhere between the first and the last of them.
+
+    Constants and tables are checked exactly on their numbers (a table, linear between its
+    rows and held outside them, ranges over its values); functions of time at the given times
+    and, by interval arithmetic (:mod:`~bearingsim.simulation.intervals`), between them. A
+    signal found valid is remembered (by system, structure, numbers and time span), so
+    repeated runs check it once.
 
     Raises
     ------
@@ -214,19 +263,73 @@ def check_input_ranges(system: System, u_fn: ca.Function, times: np.ndarray) -> 
     """
     if not system.inputs or times.size == 0:
         return
-    t = ca.SX.sym("t")
-    u = u_fn(t)
-    for k, sig in enumerate(system.inputs):
-        component = ca.Function(f"u{k}", [t], [u[k]])
-        problem = locate_problem(component, float(times[0]), float(times[-1]), sig.low,
-                                 sig.high)
-        if problem is not None:
-            raise ParameterError(
-                f"input {sig.name} [{sig.unit}]: {problem.reason} between t = "
-                f"{problem.t_lo:.9g} s and {problem.t_hi:.9g} s (checked by interval "
-                f"arithmetic over [{times[0]:g}, {times[-1]:g}] s, between the output points "
-                f"too){_bare_number_hint(sig)}")
-    _check_sampled(system, u_fn, times)
+    t0, t1 = float(times[0]), float(times[-1])
+    key = (tuple((sig.low, sig.high) for sig in system.inputs), signal.key,
+           signal.q.tobytes(), t0, t1)
+    if _CHECKED.get(key):
+        return
+    functions = []
+    for k, (sig, piece) in enumerate(zip(system.inputs, signal.lifted, strict=True)):
+        if piece is None:
+            functions.append(k)
+            continue
+        first, last = piece
+        values = signal.q[first:last] if last - first == 1 else \
+            signal.q[first + (last - first) // 2:last]
+        _check_values(sig, values, None if last - first == 1 else "table value")
+    if functions:
+        u = signal.u(_T, ca.DM(signal.q))
+        for k in functions:
+            sig = system.inputs[k]
+            problem = locate_problem(ca.Function(f"u{k}", [_T], [u[k]]), t0, t1, sig.low,
+                                     sig.high)
+            if problem is not None:
+                raise ParameterError(
+                    f"input {sig.name} [{sig.unit}]: {problem.reason} between t = "
+                    f"{problem.t_lo:.9g} s and {problem.t_hi:.9g} s (checked by interval "
+                    f"arithmetic over [{t0:g}, {t1:g}] s, between the output points too)"
+                    f"{_bare_number_hint(sig)}")
+        values = signal.at(times)
+        for k in functions:
+            _check_values(system.inputs[k], values[k], times)
+    if len(_CHECKED) >= _CHECKED_LIMIT:
+        del _CHECKED[next(iter(_CHECKED))]
+    _CHECKED[key] = True
+
+
+def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None) -> None:
+    """Values of one input: finite and within its declared range. ``times``: the times of the
+    values [s], or a word naming them (``"table value"``), or None for a constant."""
+    bad = ~np.isfinite(values)
+
+    def where(k: int) -> str:
+        if times is None:
+            return ""
+        return f" ({times} {k})" if isinstance(times, str) else f" at t = {times[k]:g} s"
+
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise ParameterError(f"input {sig.name} = {values[k]:g} [{sig.unit}]{where(k)} is not "
+                             f"a finite number")
+    if sig.low is not None:
+        bad |= values < sig.low
+    if sig.high is not None:
+        bad |= values > sig.high
+    if bad.any():
+        k = int(np.argmax(bad))
+        lo = "-inf" if sig.low is None else f"{sig.low:g}"
+        hi = "inf" if sig.high is None else f"{sig.high:g}"
+        raise ParameterError(
+            f"input {sig.name} = {values[k]:g} [{sig.unit}]{where(k)} is outside its valid "
+            f"range [{lo}, {hi}] [{sig.unit}]{_bare_number_hint(sig)}")
+    limit = getattr(sig, "warn_above", None)
+    if limit is not None and values.size and np.max(np.abs(values)) > limit:
+        k = int(np.argmax(np.abs(values)))
+        warnings.warn(
+            f"input {sig.name} reaches {engineering(abs(values[k]), sig.unit, both=True)}"
+            f"{where(k)}, above its limit {engineering(limit, sig.unit, both=True)} (the "
+            f"bearing's limiting speed: the catalogue no longer vouches for the bearing there)",
+            SpeedLimitWarning, stacklevel=4)
 
 
 def _bare_number_hint(sig) -> str:
@@ -241,35 +344,3 @@ def _bare_number_hint(sig) -> str:
         text += (f"; a bare number is in {sig.unit}, a number with a unit converts "
                  f"(e.g. '10000 rpm', '25 µm', '30 N mm')")
     return text
-
-
-def _check_sampled(system: System, u_fn: ca.Function, times: np.ndarray) -> None:
-    """Every input at ``times``: finite and within its declared range."""
-    values = np.asarray(u_fn.map(times.size)(times[None, :]), dtype=float).reshape(
-        len(system.inputs), times.size)
-    for sig, row in zip(system.inputs, values, strict=True):
-        bad = ~np.isfinite(row)
-        if bad.any():
-            k = int(np.argmax(bad))
-            raise ParameterError(f"input {sig.name} = {row[k]:g} [{sig.unit}] at t = "
-                                 f"{times[k]:g} s is not a finite number")
-        if sig.low is not None:
-            bad |= row < sig.low
-        if sig.high is not None:
-            bad |= row > sig.high
-        if bad.any():
-            k = int(np.argmax(bad))
-            lo = "-inf" if sig.low is None else f"{sig.low:g}"
-            hi = "inf" if sig.high is None else f"{sig.high:g}"
-            raise ParameterError(
-                f"input {sig.name} = {row[k]:g} [{sig.unit}] at t = {times[k]:g} s is outside its "
-                f"valid range [{lo}, {hi}] [{sig.unit}]{_bare_number_hint(sig)}"
-            )
-        limit = getattr(sig, "warn_above", None)
-        if limit is not None and np.max(np.abs(row)) > limit:
-            k = int(np.argmax(np.abs(row)))
-            warnings.warn(
-                f"input {sig.name} reaches {engineering(abs(row[k]), sig.unit, both=True)} at "
-                f"t = {times[k]:g} s, above its limit {engineering(limit, sig.unit, both=True)} "
-                f"(the bearing's limiting speed: the catalogue no longer vouches for the "
-                f"bearing there)", SpeedLimitWarning, stacklevel=4)

@@ -159,6 +159,7 @@ class ScipyIntegrator(Integrator):
                 matrix = jac.sparse(t, x, pb.p)
                 return matrix.toarray() if self.name == "LSODA" else matrix
             kwargs["jac"] = jacobian
+        called = time.thread_time()
         try:
             sol = scipy.integrate.solve_ivp(
                 fun, (pb.t0, pb.t1), pb.x0, method=self.name, t_eval=pb.t_eval, rtol=pb.rtol,
@@ -181,7 +182,7 @@ class ScipyIntegrator(Integrator):
                 f"{diverged(system, last[1], pb.x0)}"
             )
         stats = {"method": self.name, "nfev": sol.nfev, "njev": sol.njev, "nlu": sol.nlu,
-                 "n_rhs_calls": n_f[0]}
+                 "n_rhs_calls": n_f[0], "integrate_cpu_time": time.thread_time() - called}
         return Trajectory(sol.t, sol.y, None, stats)
 
 

@@ -63,7 +63,7 @@ from bearingsim.simulation.compile import (
     library_path,
 )
 
-__all__ = ["COMPILED", "VM", "Kernel", "cache_key", "kernel", "clear_kernel_cache",
+__all__ = ["COMPILED", "VM", "Kernel", "cache_key", "kernel", "clear_kernel_cache", "pending_build",
            "wait_for_compilations"]
 
 SOURCES = {"ode": ("ode", "observe"), "dae": ("dae_ode", "dae_alg", "dae_observe")}
@@ -396,3 +396,15 @@ def _with_jacobian(fn: ca.Function, jac: ca.Function) -> ca.Function:
                        {"custom_jacobian": jac, "enable_forward": False,
                         "enable_reverse": False, "never_inline": True,
                         "is_diff_in": fn.is_diff_in()})
+
+
+def pending_build(system: System, form: str = "ode",
+                  cache_dir: str | Path | None = None) -> Build | None:
+    """The background build of ``system``'s ``compiled="auto"`` kernel library still running
+    in this process, if any (started by :func:`kernel`)."""
+    lib = _system_cache(system).get(("library", *cache_key(form, "auto", cache_dir=cache_dir)))
+    if lib is None:
+        return None
+    with _LOCK:
+        build = _PENDING.get(lib)
+    return None if build is None or build.done() else build

@@ -7,15 +7,16 @@ import time as _time
 import warnings
 from typing import Any
 
-import casadi as ca
 import numpy as np
 import scipy.integrate
 import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
+from bearingsim.simulation.choice import MethodChoice, choose_method
 from bearingsim.simulation.closed import close_inputs
-from bearingsim.simulation.inputs import check_input_ranges, input_signal
+from bearingsim.simulation.fastcall import evaluate, mapped_function
+from bearingsim.simulation.inputs import InputSignal, check_input_ranges, input_signal
 from bearingsim.simulation.integrators import (
     BACKENDS,
     METHODS,
@@ -32,18 +33,18 @@ __all__ = ["simulate", "initial_state"]
 
 
 def initial_state(
-    system: System, u: ca.Function, p: np.ndarray, x0: np.ndarray, t0: float,
+    system: System, signal: InputSignal, p: np.ndarray, x0: np.ndarray, t0: float,
     steady: dict[str, Any] | None | bool,
 ) -> np.ndarray:
     """Consistent initial states: initial equations and, on request, a steady state.
 
-    ``u`` is the input vector as a function of time; ``steady`` is False for none, else the
-    run's input specification (``None`` or a dict) that the steady state is solved with.
+    ``signal`` is the run's inputs; ``steady`` is False for none, else the run's input
+    specification (``None`` or a dict) that the steady state is solved with.
     """
     x = x0.copy()
     if system.init_residual is not None:
         free = system.free_initial_states
-        u0 = np.asarray(u(t0), dtype=float).ravel()
+        u0 = signal.at(t0)[:, 0]
 
         def res(z):
             xx = x.copy()
@@ -104,7 +105,13 @@ def simulate(
     initial : {"start", "steady"}
         ``"steady"`` starts from the steady state at ``t_start``.
     method : str, optional
-        Backend ``"scipy"``: ``"BDF"`` (the default), ``"Radau"``, ``"LSODA"`` (these with the
+        By default (neither ``method`` nor ``backend`` given) the fastest accurate method for
+        the system (:func:`~bearingsim.simulation.choice.choose_method`): ``"compiled_bdf"``
+        for the stiff ODE form when a C compiler exists (a short first run on a cold cache:
+        ``"cvodes"`` on the VM while C compiles), ``"cvodes"`` without one, ``"idas"`` for
+        models whose nonlinear blocks only the DAE form compiles; ``Result.stats["method"]``
+        and ``stats["method_reason"]`` say which and why.
+        Backend ``"scipy"``: ``"BDF"`` (its default), ``"Radau"``, ``"LSODA"`` (these with the
         exact sparse Jacobian), ``"RK45"``, ``"DOP853"``, ``"RK23"``; backend ``"casadi"``:
         ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case); backend
         ``"compiled"``: ``"compiled_bdf"``, a variable-order BDF whose step loop is C calling
@@ -127,10 +134,8 @@ def simulate(
     progress : bool, optional
         Show a progress bar of the simulated time on standard error (``True``), never
         (``False``), or by default only when standard error is a terminal and the run takes
-        longer than about 2 s (:mod:`~bearingsim.simulation.progress`). CVODES and IDAS then
-        integrate in :data:`~bearingsim.simulation.sundials.PROGRESS_CHUNKS` calls instead of
-        one: a few percent more work (each call restarts BDF), results that agree with one
-        call's to the accuracy of the run.
+        longer than about 2 s (:mod:`~bearingsim.simulation.progress`). The bar observes the
+        run and never changes it: the same numbers bit for bit with or without it.
     compiled : bool or "auto"
         Backend ``"compiled"``: ``True`` or ``"auto"`` (the kernel is compiled now if it is not
         cached; ``False`` raises :class:`~bearingsim.errors.ParameterError`).
@@ -179,14 +184,20 @@ def simulate(
     if linear_solver is not None:
         check_choice(linear_solver, "linear_solver", LINEAR_SOLVERS, "simulate")
     setup = _time.perf_counter()
+    if method is None:
+        choice = (MethodChoice("cvodes", compiled, "no states: nothing to integrate")
+                  if system.n_states == 0 else choose_method(system, t_end - t_start, compiled))
+        method, compiled, reason = choice.method, choice.compiled, choice.reason
+    else:
+        reason = f"method={method!r} given"
     p = system.p0(parameters)
     signal = input_signal(system, inputs)
-    u_of_t = signal.of_time()
-    x_start = initial_state(system, u_of_t, p, system.x0(x0), t_start,
+    x_start = initial_state(system, signal, p, system.x0(x0), t_start,
                             inputs if initial == "steady" else False)
-    check_input_ranges(system, u_of_t, np.union1d(t_eval, [t_start, t_end]))
+    check_input_ranges(system, signal, _check_times(t_eval, t_start, t_end))
     # scipy's integrators call the closed functions from Python; SUNDIALS builds its own
-    closed = close_inputs(system, inputs) if METHODS[method].backend == "scipy" else None
+    closed = (close_inputs(system, inputs, signal=signal)
+              if METHODS[method].backend == "scipy" else None)
     wall = _time.perf_counter()
     if system.n_states == 0:
         traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {})
@@ -196,21 +207,21 @@ def simulate(
                                      linear_solver)
         traj = METHODS[method].run(problem)
     ts, xs, values, stats = traj.t, traj.x, traj.values, traj.stats
+    stats["method_reason"] = reason
     stats["wall_time"] = _time.perf_counter() - wall
     stats["prepare_time"] = wall - setup
     if values is None:
-        closed = closed or close_inputs(system, inputs)
-        obs = closed.observe.map(ts.size)
+        closed = closed or close_inputs(system, inputs, signal=signal)
+        obs = mapped_function(closed.observe, ts.size)
         try:
-            values = np.asarray(obs(ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1)),
-                                dtype=float)
+            values = evaluate(obs, ts[None, :], xs, np.repeat(p[:, None], ts.size, axis=1))[0]
         except RuntimeError as exc:  # a Newton block of an algebraic loop did not converge
             raise SimulationError(
                 f"{system.name}: the variables could not be evaluated at the output times: "
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
     units = system.variable_units
-    u_end = np.asarray(u_of_t(ts[-1]), dtype=float).ravel()
+    u_end = signal.at(ts[-1])[:, 0]
     return Result(ts, list(system.observed_names), values, units, stats,
                   inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
                   parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)),
@@ -227,16 +238,18 @@ def _shown_outputs(system: System) -> list[str]:
     return [n for n in system.observed_names if "." not in n and not n.startswith("der(")]
 
 
-def _method_backend(method: str | None, backend: str | None) -> tuple[str, str]:
-    """Checked ``(method, backend)``: each backend with its own methods, defaults filled in.
+def _method_backend(method: str | None, backend: str | None
+                    ) -> tuple[str, str] | tuple[None, None]:
+    """Checked ``(method, backend)``: each backend with its own methods, a backend's default
+    method filled in; ``(None, None)`` when neither is given (:func:`choose_method` decides).
 
     SUNDIALS method names are accepted in any letter case, scipy's as scipy spells them.
     """
-    valid = "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
     if backend is not None:
         check_choice(backend, "backend", tuple(BACKENDS), "simulate")
     if method is None:
-        return BACKENDS[backend or "scipy"], backend or "scipy"
+        return (None, None) if backend is None else (BACKENDS[backend], backend)
+    valid = "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
     if not isinstance(method, str):
         raise ParameterError(f"simulate: method must be a string ({valid}), got {method!r}")
     name = method.lower() if method.lower() in methods_of("casadi") else method
@@ -307,6 +320,13 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
             f"{times[k + 1]:g} s after t_eval[{k}] = {times[k]:g} s"
         )
     return times
+
+
+def _check_times(t_eval: np.ndarray, t_start: float, t_end: float) -> np.ndarray:
+    """The times the inputs are checked at: the output times with the start and end time."""
+    if t_eval[0] == t_start and t_eval[-1] == t_end:
+        return t_eval
+    return np.union1d(t_eval, [t_start, t_end])
 
 
 def _check_finite(system: System, ts: np.ndarray, values: np.ndarray) -> None:

@@ -8,9 +8,11 @@ CasADi's VM, with the same numbers either way.
 
 from __future__ import annotations
 
+import casadi as ca
 import numpy as np
 import scipy.optimize
 
+from bearingsim.assembler.numeric import buffered
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.inputs import input_signal
@@ -92,7 +94,7 @@ def steady_state(
                 where=where)
     check_flag(require_unique, "require_unique", where)
     signal = input_signal(system, inputs)
-    u = np.asarray(signal.u(t, signal.q), dtype=float).ravel()
+    u = signal.at(t)[:, 0]
     p = system.p0(parameters) if p is None else p
     x = (system.x0() if x_guess is None
          else check_vector(x_guess, system.n_states, "x_guess", "state units", where))
@@ -100,32 +102,77 @@ def steady_state(
     free = [k for k in range(system.n_states) if k not in skip]
     if not free:
         return x
-    rhs = kernel(system, "ode", compiled).function
-    jacobian = rhs.jacobian()
+    rhs_fn, jac_fn = _newton_functions(kernel(system, "ode", compiled).function)
+    rhs, jacobian = buffered(rhs_fn), buffered(jac_fn)
 
     def res(z):
         xx = x.copy()
         xx[free] = z
-        return np.asarray(rhs(t, xx, u, p), dtype=float).ravel()[free]
+        return rhs(t, xx, u, p)[0].ravel()[free]
 
     def jac(z):
         xx = x.copy()
         xx[free] = z
-        d_dx = jacobian(t, xx, u, p, 0.0)[1]  # outputs: d/dt, d/dx, d/du, d/dp
-        return np.asarray(d_dx.sparse().toarray())[np.ix_(free, free)]
+        return jacobian(t, xx, u, p)[0][np.ix_(free, free)]
 
-    sol = scipy.optimize.root(res, x[free], jac=jac, method="hybr", tol=tol)
-    converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
-    if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
-        raise SimulationError(
-            "steady state not found: " + str(sol.message) + "; residual max "
-            f"{np.max(np.abs(res(sol.x))):.3g} for states "
-            + ", ".join(system.state_names[k] for k in free)
-        )
+    solution = _newton(res, jac, x[free], tol, residual_tol)
+    if solution is None:  # Newton did not converge from this guess: the trust region's way
+        sol = scipy.optimize.root(res, x[free], jac=jac, method="hybr", tol=tol)
+        converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
+        if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
+            raise SimulationError(
+                "steady state not found: " + str(sol.message) + "; residual max "
+                f"{np.max(np.abs(res(sol.x))):.3g} for states "
+                + ", ".join(system.state_names[k] for k in free)
+            )
+        solution = sol.x
     if require_unique:
-        _check_determined(system, jac(sol.x), free)
-    x[free] = sol.x
+        _check_determined(system, jac(solution), free)
+    x[free] = solution
     return x
+
+
+NEWTON_ITERATIONS = 12
+"""Most full Newton steps :func:`steady_state` tries before it hands the problem to MINPACK's
+trust-region method (``hybr``) from the original guess."""
+
+
+def _newton(res, jac, z: np.ndarray, tol: float, residual_tol: float) -> np.ndarray | None:
+    """Full Newton steps on ``res(z) = 0`` with the exact Jacobian: the solution once a step
+    is below ``tol`` relative to ``z`` (as MINPACK's ``xtol``) and the residual is below
+    ``residual_tol`` after it, else None (a singular Jacobian, a residual that is not finite,
+    no convergence in :data:`NEWTON_ITERATIONS` steps)."""
+    r = res(z)
+    for _ in range(NEWTON_ITERATIONS):
+        if not np.all(np.isfinite(r)):
+            return None
+        try:
+            step = np.linalg.solve(jac(z), -r)
+        except np.linalg.LinAlgError:
+            return None
+        z_new = z + step
+        r_new = res(z_new)
+        z, r = z_new, r_new
+        if (np.linalg.norm(step) <= tol * max(np.linalg.norm(z), tol)
+                and np.max(np.abs(r)) <= residual_tol):
+            return z
+    return None
+
+
+_NEWTON: dict[int, tuple[ca.Function, ca.Function, ca.Function]] = {}
+"""By ``id(rhs)``: ``(rhs, rhs, d rhs / dx)``, the first kept so that its id stays unique."""
+
+
+def _newton_functions(rhs: ca.Function) -> tuple[ca.Function, ca.Function]:
+    """The right-hand side ``f(t, x, u, p)`` and its state Jacobian ``df/dx(t, x, u, p)``
+    (built once per kernel function)."""
+    found = _NEWTON.get(id(rhs))
+    if found is None or found[0] is not rhs:
+        jacobian = rhs.jacobian()  # (t, x, u, p, out) -> d/dt, d/dx, d/du, d/dp
+        args = rhs.mx_in()
+        d_dx = ca.Function("jac_x", args, [jacobian(*args, ca.MX(*rhs.size_out(0)))[1]])
+        found = _NEWTON[id(rhs)] = (rhs, rhs, d_dx)
+    return found[1], found[2]
 
 
 def _check_determined(system: System, jacobian: np.ndarray, free: list[int],

@@ -31,19 +31,14 @@ ball's states come before the ring and cage states they couple to and the factor
 Jacobian's sparsity instead of filling in; the permutation is applied around the integrator
 call, and callers see the system's order.
 
-A progress bar needs the run in pieces: with a bar shown, :func:`sundials_run` makes
-:data:`PROGRESS_CHUNKS` calls of equal length (equally spaced output points grouped, one cached
-integrator for all of them) and moves the bar between them; without one, a single call. Each
-call restarts BDF; on the 6304 massive-ball model (76 states, compiled kernels, 501 output
-points; ``python -m bench.sundials_compiled chunks --cases massive``) a restart cost 1.3-1.8 ms
-of CPU time and 5-6 Jacobians: 20 calls made a 20 ms start-up run (1474 steps, 0.18 s CPU)
-19 % dearer (+6 % steps, +76 % Jacobians; 10 calls +11 %, 50 calls +60 %) and a 300 ms run
-(12951 steps, 0.56 s CPU) 4 % dearer (+0.4 % steps, +10 % Jacobians; 10 calls +2 %). The
-chunked runs were as far from a run at ``rtol = 1e-9`` as the single call (at most 742-5185
-against 1479-2892 times ``rtol |x| + atol``, in the balls' ``dz``): within the run's own
-accuracy. A bar appears only after :data:`~bearingsim.simulation.progress.DELAY` (2 s), so 20 calls
-cost under 2 % of any run that shows one; a shorter run on a terminal (``progress=None``)
-finishes in one call after the first.
+A progress bar observes the run, it never changes it: every run is one integrator call. With
+a bar (``progress=True``, or ``None`` with standard error a terminal) the integrator's oracle
+subtracts the output of :class:`_Clock` from the right-hand side: a CasADi callback that
+records the normalized time of each evaluation, moves the bar now and then, and returns exactly
+``0.0``. ``x - 0.0 == x`` for every float (``-0.0`` included), so the run with a bar takes the
+same steps and gives the same numbers bit for bit as the run without, on a terminal or piped, on
+a fast or a slow machine (``tests/test_progress.py``). The callback costs a Python call per
+evaluation (``python -m bench.sundials_compiled progress``).
 """
 
 from __future__ import annotations
@@ -66,10 +61,11 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.diagnostics import diverged
+from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.ordering import fill_reducing_order
-from bearingsim.simulation.progress import DELAY, progress_bar
+from bearingsim.simulation.progress import progress_bar, shows_progress
 
 __all__ = ["LINEAR_SOLVERS", "SundialsRun", "choose_linear_solver", "clear_integrator_cache",
            "observe_at", "sundials_run"]
@@ -85,10 +81,6 @@ DENSE_LIMIT = 200
 dense LAPACK LU; above it a sparse LU is faster on the ball-level models (the nested
 double-layer bearing: ``bench/sundials_compiled.py``, ``linsol``; at the 76 states of the 6304
 massive-ball model dense LU and the ordered sparse LU are even)."""
-
-PROGRESS_CHUNKS = 20
-"""Integrator calls of a run with a progress bar (:func:`sundials_run`); their cost is measured
-in the module docstring."""
 
 MAX_NUM_DIR = 1024
 """Directions per sweep when CasADi differentiates the oracle (all colours of the Jacobian's
@@ -242,11 +234,56 @@ def _normalized_grid(t0: float, t1: float, t_out: np.ndarray) -> tuple[np.ndarra
     return tau, ("grid", tau.tobytes())
 
 
+class _Clock(ca.Callback):
+    """Observer of a run's progress inside the integrator's oracle: records the normalized time
+    ``tau`` of every right-hand-side evaluation, passes it to the calling thread's
+    :attr:`observer` every :data:`CLOCK_EVERY` evaluations, and returns exactly ``0.0`` (which
+    the oracle subtracts: the integration is unchanged bit for bit)."""
+
+    def __init__(self) -> None:
+        ca.Callback.__init__(self)
+        self._local = threading.local()
+        self.construct("progress_clock", {})
+
+    def get_n_in(self) -> int:
+        return 1
+
+    def get_n_out(self) -> int:
+        return 1
+
+    def has_eval_buffer(self) -> bool:
+        return True
+
+    def eval_buffer(self, arg, res) -> int:
+        res[0].cast("d")[0] = 0.0
+        local = self._local
+        local.calls = getattr(local, "calls", 0) + 1
+        observer = getattr(local, "observer", None)
+        if observer is not None and local.calls % CLOCK_EVERY == 0:
+            observer(arg[0].cast("d")[0])
+        return 0
+
+    @contextlib.contextmanager
+    def observing(self, observer: Any) -> Iterator[None]:
+        """Call ``observer(tau)`` from this thread's evaluations while the context lasts."""
+        self._local.observer, self._local.calls = observer, 0
+        try:
+            yield
+        finally:
+            self._local.observer = None
+
+
+CLOCK_EVERY = 16
+"""Right-hand-side evaluations between two calls of a run's progress observer."""
+
+_CLOCK = _Clock()
+
+
 def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int,
-            order: np.ndarray | None = None) -> ca.Function:
+            order: np.ndarray | None = None, observed: bool = False) -> ca.Function:
     """The DAE in normalized time: ``dx/dtau = T f(t0 + T tau, x, [z,] u(t0 + T tau, q), p)``,
     ``0 = g(...)``; integrator parameters ``[p, q, t0, T]``; with ``order``, in the states
-    ``x[order]``."""
+    ``x[order]``; ``observed``: minus the progress clock's ``0.0`` (:class:`_Clock`)."""
     tau, x_int = ca.MX.sym("t"), ca.MX.sym("x", n_x)
     x = x_int if order is None else x_int[[int(i) for i in np.argsort(order)]]
     n_q = signal.q.size
@@ -263,8 +300,11 @@ def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int,
         ode, alg = fn(t, x, u, p), ca.MX(0, 1)
     if order is not None:
         ode = ode[[int(i) for i in order]]
+    rate = span * ode
+    if observed:
+        rate = rate - _CLOCK(tau)
     return ca.Function("dae", [tau, x_int, z, pp, ca.MX(0, 1)],
-                       [span * ode, alg, ca.MX(0, 1), ca.MX(0, 1)],
+                       [rate, alg, ca.MX(0, 1), ca.MX(0, 1)],
                        ["t", "x", "z", "p", "u"], ["ode", "alg", "quad", "zero"],
                        {"max_num_dir": MAX_NUM_DIR})
 
@@ -288,78 +328,21 @@ def _state_order(kernel: Kernel, linear_solver: str) -> np.ndarray | None:
     return fill_reducing_order(jac.sparsity_out(jac.name_out().index("jac_ode_x")))
 
 
-@dataclass(frozen=True)
-class _Chunk:
-    """One integrator call of a run: normalized time ``tau`` in [0, 1] is ``t = a + (b - a)
-    tau``."""
-
-    a: float
-    """Start [s]."""
-    b: float
-    """End of normalized time [s]."""
-    tau: np.ndarray
-    """Output times of the call, normalized."""
-    grid_key: tuple
-    """Cache key of ``tau`` (:func:`_normalized_grid`)."""
-    keep: np.ndarray | None
-    """Which of the call's outputs are the run's output times (None: all)."""
-
-
-def _plan(t0: float, t1: float, t_out: np.ndarray, n_chunks: int) -> list[_Chunk]:
-    """The integrator calls of a run: one over every output time (``n_chunks <= 1``), else
-    ``n_chunks`` calls one after the other.
-
-    Equally spaced output times (ending at ``t1``) give calls over equal numbers of equal
-    intervals, of ``m`` or ``m + 1`` intervals (two cached integrators at most), each output
-    interval split into as many intervals as make ``n_chunks`` calls (the extra points are
-    dropped); other output times are split into groups of consecutive times.
-    """
-    tau, grid_key = _normalized_grid(t0, t1, t_out)
-    if n_chunks <= 1:
-        return [_Chunk(t0, t1, tau, grid_key, None)]
-    span = t1 - t0
-    if grid_key[0] == "linspace":
-        sub = -(-n_chunks // tau.size)
-        fine = tau.size * sub
-        bounds = np.rint(np.linspace(0, fine, n_chunks + 1)).astype(int)
-        return [_Chunk(t0 + span * lo / fine, t0 + span * hi / fine,
-                       np.linspace(0.0, 1.0, hi - lo + 1)[1:], ("linspace", int(hi - lo)),
-                       np.arange(lo + 1, hi + 1) % sub == 0)
-                for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)]
-    chunks, a = [], t0
-    for group in np.array_split(t_out, min(n_chunks, t_out.size)):
-        b = float(group[-1])
-        chunks.append(_Chunk(a, b, *_normalized_grid(a, b, group), None))
-        a = b
-    return chunks
-
-
-def _merge(chunks: list[_Chunk]) -> _Chunk:
-    """One call over consecutive ``chunks``."""
-    a, b = chunks[0].a, chunks[-1].b
-    times = np.concatenate([c.a + (c.b - c.a) * c.tau for c in chunks])
-    tau, grid_key = _normalized_grid(a, b, times)
-    keep = None
-    if any(c.keep is not None for c in chunks):
-        keep = np.concatenate([np.ones(c.tau.size, bool) if c.keep is None else c.keep
-                               for c in chunks])
-    return _Chunk(a, b, tau, grid_key, keep)
-
-
 def _integrator(method: str, system: System, kernel: Kernel, signal: InputSignal, n_p: int,
-                chunk: _Chunk, opts: dict[str, Any]) -> tuple[_Built, bool]:
-    """The integrator of one call (from the cache or built now) and whether it was cached."""
+                tau: np.ndarray, grid_key: tuple, opts: dict[str, Any],
+                observed: bool) -> tuple[_Built, bool]:
+    """The integrator of a run (from the cache or built now) and whether it was cached."""
     # the kernel by what it evaluates (kernels are rebuilt after clear_kernel_cache)
     kernel_key = (kernel.form, kernel.backend, str(kernel.library))
-    key = (method, kernel_key, signal.key, chunk.grid_key,
+    key = (method, kernel_key, signal.key, grid_key, observed,
            tuple(sorted((k, repr(v)) for k, v in opts.items())))
     built = _INTEGRATORS.get(system, key)
     if built is not None:
         return built, True
     start = time.perf_counter()
     order = _state_order(kernel, opts["linear_solver"])
-    oracle = _oracle(kernel, signal, system.n_states, n_p, order)
-    integ = ca.integrator(f"{method}_{kernel.form}", method, oracle, 0.0, chunk.tau, opts)
+    oracle = _oracle(kernel, signal, system.n_states, n_p, order, observed)
+    integ = ca.integrator(f"{method}_{kernel.form}", method, oracle, 0.0, tau, opts)
     built = _Built(integ, oracle, time.perf_counter() - start, order)
     if opts["linear_solver"] == "mumps":
         _MUMPS_USED.set()
@@ -403,23 +386,22 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     options : dict, optional
         Further CasADi integrator options (e.g. ``newton_scheme``), part of the cache key.
     progress : bool or None
-        Progress bar (:mod:`~bearingsim.simulation.progress`). Without one (``False``, or
-        ``None`` and standard error not a terminal) the run is one integrator call; with one,
-        :data:`PROGRESS_CHUNKS` calls, the bar moving between them, except that for ``None``
-        the rest of the run is one call when the first call, extrapolated, says the whole run
-        takes less than :data:`~bearingsim.simulation.progress.DELAY` (the bar would not
-        appear).
+        Progress bar (:mod:`~bearingsim.simulation.progress`), moved by the progress clock
+        in the oracle (:class:`_Clock`); the run is one integrator call either way, with the
+        same numbers bit for bit.
 
     Returns
     -------
     SundialsRun
         ``stats``: ``method``, ``form``, ``backend`` ("compiled C" or "CasADi VM") and
         ``backend_reason``, ``library``, ``linear_solver``, ``setup_time`` [s] (building the
-        integrators; 0 when they came from the cache), ``integrator_cached``, ``chunks``
-        (integrator calls), and CVODES/IDAS counts summed over the calls: ``nsteps``,
+        integrator; 0 when it came from the cache), ``integrator_cached``,
+        ``progress_observed`` (the oracle had the progress clock), ``integrate_cpu_time``
+        [s] (CPU time of the integrator call alone), and CVODES/IDAS counts:
+        ``nsteps``,
         ``nfevals`` (right-hand side or residual), ``njevals`` (exact Jacobian),
         ``nlinsetups`` (factorizations), ``nniters``, ``netfails``, ``rhs_time``/``jac_time``
-        [s] (CasADi's timers of those calls), ``state_order`` (``"system"``, or ``"minimum
+        [s] (CasADi's timers), ``state_order`` (``"system"``, or ``"minimum
         degree"``: the order
         :func:`~bearingsim.simulation.ordering.fill_reducing_order` gave the sparse LU).
     """
@@ -435,63 +417,48 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         linear_solver = choose_linear_solver(*_jacobian_size(kernel, n_x), kernel.form)
     base: dict[str, Any] = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000,
                             "linear_solver": linear_solver, **(options or {})}
+    span = t1 - t0
+    tau, grid_key = _normalized_grid(t0, t1, t_out)
+    opts = dict(base)
+    if np.isfinite(max_step):
+        opts["max_step_size"] = float(max_step) / span
+    observed = shows_progress(progress)
+    built, cached = _integrator(method, system, kernel, signal, p.size, tau, grid_key, opts,
+                                observed)
+    p_ext = np.concatenate([p, signal.q, [t0, span]])
+    args = {"x0": built.to_integrator(np.asarray(x0, dtype=float)), "p": p_ext}
+    if kernel.form == "dae":
+        args["z0"] = z0
     bar = progress_bar(t0, t1, progress)
-    pending = _plan(t0, t1, t_out, PROGRESS_CHUNKS if bar is not None else 1)
-    x, z = np.asarray(x0, dtype=float), z0
-    xs_parts: list[np.ndarray] = []
-    zs_parts: list[np.ndarray] = []
-    totals: dict[str, float] = {}
-    setup_time, cached, calls = 0.0, True, 0
+    reached = [0.0]
+
+    def observe(tau_now: float) -> None:
+        if bar is not None and tau_now > reached[0]:
+            bar.update(span * (min(tau_now, 1.0) - reached[0]))
+            reached[0] = min(tau_now, 1.0)
+
+    called = time.thread_time()
     try:
-        while pending:
-            chunk = pending.pop(0)
-            span = chunk.b - chunk.a
-            opts = dict(base)
-            if np.isfinite(max_step):
-                opts["max_step_size"] = float(max_step) / span
-            built, hit = _integrator(method, system, kernel, signal, p.size, chunk, opts)
-            cached &= hit
-            setup_time += 0.0 if hit else built.build_time
-            p_ext = np.concatenate([p, signal.q, [chunk.a, span]])
-            args = {"x0": built.to_integrator(x), "p": p_ext}
-            if kernel.form == "dae":
-                args["z0"] = z
-            called = time.perf_counter()
-            try:
-                with _interrupts() as interrupted:
-                    out = built.integrator(**args)
-            except RuntimeError as exc:
-                if interrupted.is_set():  # CasADi reports Ctrl-C as a failed evaluation
-                    raise KeyboardInterrupt(f"{method.upper()} run interrupted") from None
-                _locate_failure(method, system, built, opts, p_ext, x, z, x0, chunk.a, span,
-                                chunk.tau, exc)
-                raise
-            _add_counts(totals, built.integrator.stats())
-            xk = built.from_integrator(
-                np.asarray(out["xf"], dtype=float).reshape(n_x, chunk.tau.size))
-            if not np.all(np.isfinite(xk)):
-                k = int(np.argmax(~np.all(np.isfinite(xk), axis=0)))
-                raise SimulationError(
-                    f"{method.upper()} produced non-finite states by "
-                    f"t = {chunk.a + span * chunk.tau[k]:.6g} s; {diverged(system, xk[:, k], x0)}"
-                )
-            x = xk[:, -1]
-            xs_parts.append(xk if chunk.keep is None else xk[:, chunk.keep])
-            if kernel.form == "dae":
-                zk = np.asarray(out["zf"], dtype=float).reshape(z0.size, chunk.tau.size)
-                z = zk[:, -1]
-                zs_parts.append(zk if chunk.keep is None else zk[:, chunk.keep])
-            calls += 1
-            if bar is not None:
-                bar.update(span)
-            if (calls == 1 and progress is None and len(pending) > 1
-                    and (time.perf_counter() - called) * (len(pending) + 1) < DELAY):
-                pending = [_merge(pending)]  # no bar would appear: the rest in one call
+        with _interrupts() as interrupted, _CLOCK.observing(observe):
+            out = built.integrator(**args)
+        integrate_cpu_time = time.thread_time() - called
+        observe(1.0)
+    except RuntimeError as exc:
+        if interrupted.is_set():  # CasADi reports Ctrl-C as a failed evaluation
+            raise KeyboardInterrupt(f"{method.upper()} run interrupted") from None
+        _locate_failure(method, system, built, opts, p_ext, x0, z0, x0, t0, span, tau, exc)
+        raise
     finally:
         if bar is not None:
             bar.close()
-    xs = np.hstack(xs_parts)
-    zs = np.hstack(zs_parts) if kernel.form == "dae" else None
+    xs = built.from_integrator(np.asarray(out["xf"], dtype=float).reshape(n_x, tau.size))
+    if not np.all(np.isfinite(xs)):
+        k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
+        raise SimulationError(
+            f"{method.upper()} produced non-finite states by t = {t_out[k]:.6g} s; "
+            f"{diverged(system, xs[:, k], x0)}")
+    zs = (np.asarray(out["zf"], dtype=float).reshape(z0.size, tau.size)
+          if kernel.form == "dae" else None)
     ts = t_out
     if t_eval[0] <= t0:
         ts = np.concatenate([[t0], t_out])
@@ -499,8 +466,12 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         if zs is not None:
             zs = np.hstack([np.asarray(z0, dtype=float)[:, None], zs])
     values = observe_at(kernel, signal, p, ts, xs, zs)
-    stats = _stats(method, kernel, linear_solver, setup_time, cached, totals)
-    stats["chunks"] = calls
+    totals: dict[str, float] = {}
+    _add_counts(totals, built.integrator.stats())
+    stats = _stats(method, kernel, linear_solver, 0.0 if cached else built.build_time, cached,
+                   totals)
+    stats["progress_observed"] = observed
+    stats["integrate_cpu_time"] = integrate_cpu_time
     stats["state_order"] = "system" if built.order is None else "minimum degree"
     return SundialsRun(ts, xs, zs, values, stats)
 
@@ -534,11 +505,10 @@ def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarra
                xs: np.ndarray, zs: np.ndarray | None) -> np.ndarray:
     """Every observed variable at the output times (the kernel's backend, one mapped call)."""
     n = ts.size
-    us = np.asarray(signal.u.map(n)(ts[None, :], np.repeat(signal.q[:, None], n, axis=1)),
-                    dtype=float).reshape(-1, n)
+    us = signal.at(ts)
     ps = np.repeat(p[:, None], n, axis=1)
     args = (ts[None, :], xs, us, ps) if zs is None else (ts[None, :], xs, zs, us, ps)
-    return np.asarray(kernel.observe.map(n)(*args), dtype=float)
+    return evaluate(mapped_function(kernel.observe, n), *args)[0]
 
 
 _COUNTS = {"nsteps": "nsteps", "nfevals": "nfevals", "nlinsetups": "nlinsetups",

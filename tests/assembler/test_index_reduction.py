@@ -9,6 +9,7 @@ derivative selection leaves two states.
 from __future__ import annotations
 
 import math
+import sys
 
 import casadi as ca
 import pytest
@@ -80,3 +81,38 @@ def test_differentiating_an_input_is_refused():
     model = dae([u, x, dx], [eq(dx.sym - 1.0, "der(x) = 1"), eq(x.sym - u.sym, "x = u")])
     with pytest.raises(ModelError, match="time derivative of input u"):
         index_reduction.run(state_of(model))
+
+
+def test_an_augmenting_path_longer_than_the_recursion_limit_is_found(monkeypatch):
+    """Issue 29: Pantelides' search is iterative. A chain v0 - e1 - v1 - ... - e_N where only
+    e0 has a free variable: the augmenting path from e_N runs through all N equations, five
+    times deeper than Python's default recursion limit (the recursive search raised
+    RecursionError here; the pass used to raise the limit with sys.setrecursionlimit)."""
+    from bearingsim.assembler.passes.index_reduction import _augment
+
+    monkeypatch.setattr(sys, "setrecursionlimit", None)  # any call fails
+    n = 5 * sys.getrecursionlimit()
+    eqs = [f"e{k}" for k in range(n + 1)]
+    incidence = {"e0": ["free", "v0"], **{f"e{k}": [f"v{k - 1}", f"v{k}"] for k in range(1, n)},
+                 f"e{n}": [f"v{n - 1}"]}
+    assign = {f"v{k}": f"e{k}" for k in range(n)}
+    colored_e, colored_v = set(), set()
+    assert _augment(eqs[-1], incidence.__getitem__, lambda v: True, assign, colored_e,
+                    colored_v)
+    # flipped along the path: each v_k now matched to e_{k+1}, the free variable to e0
+    assert assign == {"free": "e0", **{f"v{k}": f"e{k + 1}" for k in range(n)}}
+    assert colored_e == set(eqs) and colored_v == {f"v{k}" for k in range(n)}
+
+
+def test_a_failed_search_colours_what_it_visited():
+    """No free variable at the end of any path: False, every reachable node coloured, the
+    assignment unchanged (the colours are the equations to differentiate)."""
+    from bearingsim.assembler.passes.index_reduction import _augment
+
+    incidence = {"a": ["x", "y"], "b": ["x"], "c": ["y", "x"]}
+    assign = {"x": "b", "y": "c"}
+    colored_e, colored_v = set(), set()
+    assert not _augment("a", incidence.__getitem__, lambda v: True, assign, colored_e,
+                        colored_v)
+    assert assign == {"x": "b", "y": "c"}
+    assert colored_e == {"a", "b", "c"} and colored_v == {"x", "y"}

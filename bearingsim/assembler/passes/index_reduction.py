@@ -9,7 +9,6 @@ selection uses the Jacobian at the start values with column pivoting (static sta
 
 from __future__ import annotations
 
-import sys
 from typing import TYPE_CHECKING
 
 import casadi as ca
@@ -62,18 +61,46 @@ def _differentiate(dae: DAE, eq: Eq, lookup: dict[str, Var]) -> Eq:
 
 
 def _augment(e: Eq, inc, eligible, assign: dict, colored_e: set, colored_v: set) -> bool:
-    """Pantelides' augmenting path search from equation ``e`` (colours what it visits)."""
+    """Pantelides' augmenting path search from equation ``e`` (colours what it visits).
+
+    A depth-first search with an explicit stack (the path through the assigned variables can
+    be as long as the model has equations, deeper than Python's recursion allows), visiting in
+    the order of the recursive formulation: an equation first takes a free eligible variable of
+    its own, else follows its eligible uncoloured variables to the equations they are assigned
+    to; a path that ends at a free variable is flipped along its length.
+    """
+    if _take_free(e, inc, eligible, assign, colored_e):
+        return True
+    stack = [(e, iter(inc(e)))]
+    via: list = []  # via[k]: the variable that led from stack[k] to stack[k + 1]
+    while stack:
+        here, candidates = stack[-1]
+        for v in candidates:
+            if eligible(v) and v not in colored_v:
+                colored_v.add(v)
+                nxt = assign[v]
+                if _take_free(nxt, inc, eligible, assign, colored_e):
+                    assign[v] = here
+                    for (frame, _), step in zip(stack[:-1], via, strict=True):
+                        assign[step] = frame
+                    return True
+                via.append(v)
+                stack.append((nxt, iter(inc(nxt))))
+                break
+        else:
+            stack.pop()
+            if via:
+                via.pop()
+    return False
+
+
+def _take_free(e: Eq, inc, eligible, assign: dict, colored_e: set) -> bool:
+    """Colour ``e`` and assign it a free eligible variable of its own, if it has one."""
     colored_e.add(e)
     for v in inc(e):
         if eligible(v) and assign.get(v) is None:
             assign[v] = e
             return True
-    for v in inc(e):
-        if eligible(v) and v not in colored_v:
-            colored_v.add(v)
-            if _augment(assign[v], inc, eligible, assign, colored_e, colored_v):
-                assign[v] = e
-                return True
     return False
 
 
@@ -101,37 +128,32 @@ def pantelides(dae: DAE, max_passes: int = 20) -> int:
     start = maximum_matching(incidence_map(dae, dae.eqs, candidates), candidates)
     assign: dict[Var, Eq] = {v: e for e, v in start.items()}
     added = 0
-    old_limit = sys.getrecursionlimit()
-    sys.setrecursionlimit(max(old_limit, 20 * len(dae.eqs) + 1000))
-    try:
-        for k in list(dae.eqs):
-            if k in start:
-                continue
-            i = k
-            for _ in range(max_passes):
-                colored_e: set[Eq] = set()
-                colored_v: set[Var] = set()
+    for k in list(dae.eqs):
+        if k in start:
+            continue
+        i = k
+        for _ in range(max_passes):
+            colored_e: set[Eq] = set()
+            colored_v: set[Var] = set()
 
-                if _augment(i, inc, eligible, assign, colored_e, colored_v):
-                    break
-                for v in colored_v:
-                    _derivative_var(dae, v, lookup)
-                for e in colored_e:
-                    if e.differentiated is None:
-                        added += 1
-                    _differentiate(dae, e, lookup)
-                for v in colored_v:
-                    assign[v.derivative] = assign[v].differentiated
-                i = i.differentiated
-            else:
-                raise SingularBlockError(
-                    f"index reduction did not converge after {max_passes} differentiations: "
-                    "the equations are structurally singular",
-                    equations=[e.describe() for e in colored_e],
-                    unknowns=[v.name for v in colored_v],
-                )
-    finally:
-        sys.setrecursionlimit(old_limit)
+            if _augment(i, inc, eligible, assign, colored_e, colored_v):
+                break
+            for v in colored_v:
+                _derivative_var(dae, v, lookup)
+            for e in colored_e:
+                if e.differentiated is None:
+                    added += 1
+                _differentiate(dae, e, lookup)
+            for v in colored_v:
+                assign[v.derivative] = assign[v].differentiated
+            i = i.differentiated
+        else:
+            raise SingularBlockError(
+                f"index reduction did not converge after {max_passes} differentiations: "
+                "the equations are structurally singular",
+                equations=[e.describe() for e in colored_e],
+                unknowns=[v.name for v in colored_v],
+            )
     return added
 
 

@@ -1,0 +1,143 @@
+"""Benchmark: the fixed cost of a ``simulate`` call on a cached system.
+
+Every shipped scene (``scenes/*.toml``) is prepared once (assembled, its inputs converted,
+kernels and integrators cached by a first run); then ``simulate`` of a 1 ms run from its start
+time (3 output points, the scene's method, inputs and tolerances) is repeated.
+*Total* is the CPU time of the call (this thread,
+robust against other processes on the machine); *integrator* the CPU time inside the
+integrator alone (``Result.stats["integrate_cpu_time"]``); *per-call cost* their difference:
+argument and input checks, input functions, start values, kernel look-up, observed variables
+at the output times, the result. Median of the repeats.
+
+The same runs are timed on a baseline commit of the package in a subprocess (``--baseline``,
+default the commit before issue 31's work), side by side in one run; the baseline has no
+``integrate_cpu_time``, so only the totals compare (the integration is the same).
+
+Command: ``python -m bench.per_call [--baseline COMMIT] [--repeats N]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+from bench.common import Section, fmt, markdown_table
+
+__all__ = ["BASELINE", "measure", "section"]
+
+ROOT = Path(__file__).resolve().parents[1]
+BASELINE = "7955f3a"
+"""The commit before issue 31's work on fixed costs."""
+RUN_S = 1e-3
+"""Length of the timed runs [s]."""
+
+
+def measure(repeats: int = 20) -> list[dict]:
+    """Time a 1 ms run of every shipped scene ``repeats`` times (after 3 warm-up runs).
+
+    Returns
+    -------
+    list of dict
+        Per scene: ``scene``, ``method``, ``states``, ``total_ms`` and ``overhead_ms``
+        (medians; ``overhead_ms`` NaN where the stats have no ``integrate_cpu_time``).
+    """
+    from bearingsim.scenes import parse_scene
+    from bearingsim.scenes.runner import prepare, simulate_inputs
+    from bearingsim.simulation import simulate
+
+    rows = []
+    for path in sorted((ROOT / "scenes").glob("*.toml")):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            prep = prepare(parse_scene(path.read_text(encoding="utf-8")))
+            s = prep.scene.simulation
+            args = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
+                    "n_points": 3, "max_step": s.max_step, "initial": s.initial,
+                    "inputs": simulate_inputs(prep.scene.inputs),
+                    "parameters": prep.scene.parameters, "x0": prep.scene.initial or None,
+                    "progress": False}
+            t_end = s.t_start + RUN_S
+            for _ in range(3):
+                result = simulate(prep.system, t_end, **args)
+            totals, overheads = [], []
+            for _ in range(repeats):
+                start = time.thread_time()
+                result = simulate(prep.system, t_end, **args)
+                total = time.thread_time() - start
+                totals.append(total)
+                overheads.append(total - result.stats.get("integrate_cpu_time", float("nan")))
+        rows.append({"scene": path.stem, "method": str(result.stats.get("method", "-")),
+                     "states": prep.system.n_states,
+                     "total_ms": 1e3 * statistics.median(totals),
+                     "overhead_ms": 1e3 * statistics.median(overheads)})
+    return rows
+
+
+def _baseline(commit: str, repeats: int) -> list[dict]:
+    """:func:`measure` on the package at ``commit`` (exported from git into a temporary
+    folder, run in a subprocess)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "bearingsim"],
+                                 check=True, capture_output=True).stdout
+        with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+            tar.extractall(tmp, filter="data")
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join([tmp, str(ROOT)])}
+        out = subprocess.run([sys.executable, "-m", "bench.per_call", "--json",
+                              "--repeats", str(repeats)], check=True, capture_output=True,
+                             text=True, env=env, cwd=str(ROOT)).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def section(quick: bool = False, baseline: str = BASELINE) -> Section:
+    """The run_all section: per-call cost per shipped scene, this code and the baseline."""
+    repeats = 8 if quick else 20
+    old = {row["scene"]: row for row in _baseline(baseline, repeats)}
+    new = measure(repeats)
+    rows = []
+    for row in new:
+        before = old.get(row["scene"], {}).get("total_ms", float("nan"))
+        rows.append([row["scene"], row["method"], row["states"], fmt(before),
+                     fmt(row["total_ms"]), fmt(row["overhead_ms"]),
+                     fmt(before - row["total_ms"])])
+    worst = max(row["overhead_ms"] for row in new)
+    text = (
+        f"A {RUN_S * 1e3:g} ms run of every shipped scene on its cached system (assembled, "
+        "kernels and integrators built by warm-up runs), the scene's method, inputs and "
+        f"tolerances, 3 output points; median of {repeats} calls. *per-call cost*: the call's "
+        "CPU time (this thread) minus the CPU time inside the integrator "
+        "(`Result.stats[\"integrate_cpu_time\"]`): "
+        "checks, input functions, start values, kernel look-up, observed variables, the "
+        f"result. *total before*: the same runs on commit {baseline} (before issue 31), in a "
+        "subprocess of this run. Goal: per-call cost <= 0.3 ms.\n\n"
+        f"Command: `python -m bench.per_call --baseline {baseline} --repeats {repeats}`\n\n"
+        + markdown_table(["scene", "method", "states", f"total before ({baseline}) [ms]",
+                          "total now [ms]", "per-call cost now [ms]", "saved [ms]"], rows)
+        + f"\n\nLargest per-call cost now: {worst:.2f} ms.\n")
+    return Section("Per-call cost of simulate", text, {"rows": new, "baseline": old})
+
+
+def main() -> None:
+    """Command line: the section's Markdown, or (``--json``) the raw rows of this code."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--baseline", default=BASELINE)
+    parser.add_argument("--repeats", type=int, default=20)
+    parser.add_argument("--json", action="store_true", help="raw rows of this code only")
+    args = parser.parse_args()
+    if args.json:
+        print(json.dumps(measure(args.repeats)))
+    else:
+        print(section(args.repeats < 20, args.baseline).body)
+
+
+if __name__ == "__main__":
+    main()
