@@ -32,6 +32,7 @@ from pathlib import Path
 
 import casadi as ca
 
+from bearingsim.assembler.cache import cache_root
 from bearingsim.assembler.passes.codegen import mapped_ode_functions
 from bearingsim.assembler.system import FunctionTable, System
 from bearingsim.errors import BearingsimError
@@ -59,9 +60,9 @@ class CompileError(BearingsimError):
 
 
 def default_cache_dir() -> Path:
-    """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``."""
-    root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
-    return Path(root)
+    """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root shared with the assembled
+    systems (:func:`bearingsim.assembler.cache.cache_root`)."""
+    return cache_root()
 
 
 def c_compiler() -> str | None:
