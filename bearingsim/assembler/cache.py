@@ -54,7 +54,8 @@ from bearingsim.language.component import Component
 from bearingsim.language.declarations import Declaration, Parameter
 
 __all__ = ["CacheInfo", "assemble_cached", "cache_info", "cache_root", "clear_cache",
-           "code_version", "dumps_system", "loads_system", "structure_key", "systems_dir"]
+           "code_version", "dumps_system", "loads_system", "read_payload", "structure_key",
+           "systems_dir"]
 
 MAGIC = b"bearingsim-system\n"
 """First bytes of an entry file."""
@@ -387,6 +388,12 @@ def _read_entry(path: Path, key: str, values: dict[str, float]) -> bytes | None:
         path.unlink(missing_ok=True)
         return None
     return entry["payload"]
+
+
+def read_payload(path: str | Path, key: str) -> bytes | None:
+    """The system bytes (:func:`dumps_system`) of a valid entry, or None (see
+    :data:`LAST` for the path and key of the last lookup)."""
+    return _read_entry(Path(path), key, {})
 
 
 def _parameter_declarations(component: Component) -> dict[str, Parameter]:
