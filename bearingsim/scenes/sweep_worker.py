@@ -16,6 +16,7 @@ the final value of every output.
 
 from __future__ import annotations
 
+import ctypes
 import dataclasses
 import os
 import threading
@@ -29,7 +30,8 @@ from bearingsim.assembler.cache import loads_system
 from bearingsim.scenes.runner import Prepared, output_series, run_simulation
 from bearingsim.scenes.scene import Scene
 
-__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "load_model", "run_chunk", "run_job"]
+__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",
+           "run_job", "warm"]
 
 
 @dataclass
@@ -95,16 +97,23 @@ def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     return row
 
 
+class PointTimeout(Exception):
+    """Raised inside a point's thread when it exceeds its time budget."""
+
+
 def _run_with_budget(prep: Prepared, job: Job, timeout: float) -> dict[str, Any]:
-    """:func:`run_job` in a daemon thread; a point still running after ``timeout`` seconds is
-    returned as failed (the thread finishes in the background: a solver cannot be stopped
-    from outside, but the sweep goes on)."""
+    """:func:`run_job` in a thread; a point still running after ``timeout`` seconds is
+    returned as failed, and :class:`PointTimeout` is raised in its thread, which stops the
+    solver at its next return to Python (between save points: a solver inside one C call
+    cannot be stopped from outside; the sweep goes on either way)."""
     box: dict[str, Any] = {}
     thread = threading.Thread(target=lambda: box.update(run_job(prep, job)), daemon=True,
                               name=f"sweep-point-{job.index}")
     thread.start()
     thread.join(timeout)
     if thread.is_alive():
+        ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(thread.ident),
+                                                   ctypes.py_object(PointTimeout))
         return {"index": job.index, "pid": os.getpid(), "status": "failed", "final": {},
                 "error": f"TimeoutError: the point exceeded its time budget of {timeout:g} s",
                 "wall_s": float(timeout)}
