@@ -31,6 +31,7 @@ from bench import (
     fmu_stepper,
     pruning,
     sundials_compiled,
+    sweep_scaling,
     work_precision,
 )
 from bench import fmu as fmu_bench
@@ -120,6 +121,7 @@ def main(argv: list[str] | None = None) -> int:
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
+        ("sweep scaling", sweep_scaling.section),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

@@ -151,3 +151,15 @@ def test_cache_info_and_clear(tmp_path, monkeypatch):
     after = system_cache.cache_info()
     assert (after.systems, after.libraries) == (0, 0)
     assert (tmp_path / "notes.txt").exists()
+
+
+def test_cache_command_shows_and_clears(tmp_path, monkeypatch, capsys):
+    from bearingsim.cli import main
+
+    monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
+    assemble_cached(TwoInertiaDrive())
+    assert main(["cache"]) == 0
+    assert f"{tmp_path} holds: 1 assembled system(s)" in capsys.readouterr().out
+    assert main(["cache", "clear"]) == 0
+    assert f"{tmp_path} removed: 1 assembled system(s)" in capsys.readouterr().out
+    assert not _entries(tmp_path)

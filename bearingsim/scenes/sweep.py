@@ -89,6 +89,11 @@ class SweepResult:
     """Points per task."""
     point_s: float = math.nan
     """Wall time of the point measured on the client to size the chunks [s]."""
+    phases: dict[str, float] = field(default_factory=dict)
+    """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
+    ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
+    ``probe`` (the measured point), ``points`` (first chunk out to last row in), ``finish``
+    (close the cluster; sorted table, plot, summary)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -469,6 +474,14 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     if resume and out is None:
         raise SweepError("resume needs the output folder of the earlier run (out=...)")
     wall = time.perf_counter()
+    phases: dict[str, float] = {}
+    clock = [wall]
+
+    def lap(name: str) -> None:
+        now = time.perf_counter()
+        phases[name] = now - clock[0]
+        clock[0] = now
+
     own = client is None
     starting = (concurrent.futures.ThreadPoolExecutor(1).submit(_client, scheduler, n_workers)
                 if own else None)  # the cluster starts while the client plans
@@ -491,6 +504,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
             rows = {k: {c: (_from_cell(v) if c not in keys else plan.values[k][c])
                         for c, v in r.items()} for k, r in done.items()}
         todo = [job for job in plan.jobs if job.index not in rows]
+        lap("plan")
         results: dict[int, dict[str, Any]] = {}
 
         def record(r: dict[str, Any]) -> None:
@@ -502,6 +516,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
 
         if own:
             client, cluster = starting.result()
+        lap("cluster")
         n_live = max(1, len(client.scheduler_info()["workers"]))
         shipped = {}
         for key, payload in plan.payloads.items():
@@ -512,12 +527,14 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         warming = [client.submit(warm, fut, workers=[addr], pure=False,
                                  allow_other_workers=False)
                    for addr in client.scheduler_info()["workers"] for fut in shipped.values()]
+        lap("ship")
         point_s = math.nan
         if todo and chunk is None:
             job = todo.pop(0)  # measured here while the workers load the model
             r = run_job(plan.prepared[plan.structure[job.index]], job)
             point_s = r["wall_s"]
             record(r)
+        lap("probe")
         size = chunk or chunk_size(point_s, len(todo), n_live)
         futures = {}
         for key, fut in shipped.items():
@@ -546,6 +563,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         finally:
             bar.close()
         client.cancel(warming)
+        lap("points")
     finally:
         if own:
             if client is None and starting is not None:
@@ -561,8 +579,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
                 for r in ordered if r["status"] != "ok"]
     res = SweepResult(keys, ordered, failures, len(plan.prepared), resumed=len(done or {}),
-                      chunk_size=size, point_s=point_s)
-    res.wall_s = time.perf_counter() - wall
+                      chunk_size=size, point_s=point_s, phases=phases)
     if table is not None:
         folder = table.path.parent
         res.files = table.finish(ordered)
@@ -577,12 +594,14 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
                                               for r in results.values()
                                               if "model_loads" in r}),
             "scheduler": scheduler or f"LocalCluster({n_workers} workers)",
-            "timeout_s": timeout, "wall_s": round(res.wall_s, 3),
+            "timeout_s": timeout, "phases_s": {k: round(v, 3) for k, v in phases.items()},
         }
         path = folder / f"{stem}.json"
         with atomic_path(path) as tmp:
             tmp.write_text(json.dumps(summary, indent=2, default=str))
         res.files.append(path)
+    lap("finish")
+    res.wall_s = time.perf_counter() - wall
     return res
 
 
