@@ -183,7 +183,7 @@ def _sweep(args: argparse.Namespace) -> int:
         return 130
     print(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed"
           + (f" ({res.resumed} from the earlier run)" if res.resumed else "")
-          + f"; {res.models_built} model(s) shipped; {res.chunk_size} point(s) a task; "
+          + f"; {res.models_built} model(s) built and shipped; {res.chunk_size} point(s) a task; "
           f"{res.wall_s:.1f} s")
     if res.failures:
         print(describe_failures(res), file=sys.stderr)
