@@ -181,6 +181,8 @@ class _Fingerprint:
                     self.feed(obj.binding)
         elif isinstance(obj, type):
             self.text("class", obj.__module__, obj.__qualname__)
+        elif isinstance(obj, types.ModuleType):  # its code is in the code version
+            self.text("module", obj.__name__)
         elif isinstance(obj, types.CodeType):
             self.text("code", obj.co_name, obj.co_names, obj.co_code.hex())
             self.feed(obj.co_consts)
