@@ -137,3 +137,33 @@ def test_chunks_hold_a_quarter_second_of_work_and_balance_the_workers():
     assert chunk_size(0.001, 64, 2) == 8  # 4 chunks per worker at the end
     assert chunk_size(2.0, 64, 2) == 1
     assert chunk_size(float("nan"), 64, 16) == 1
+
+
+def test_ctrl_c_keeps_the_finished_points(scene, tmp_path):
+    """SIGINT to the command's process group (what Ctrl-C in a terminal sends): exit status 130,
+    a message saying how to go on, and the finished rows stay in the table."""
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "bearingsim.cli", "sweep", str(scene), "--out", str(out),
+           "--workers", "1", "--chunk", "1", "--no-progress"]
+    for g in GRID:
+        cmd += ["--grid", g]
+    proc = subprocess.Popen(cmd, env={**os.environ, "PYTHONPATH": str(WORKTREE)},
+                            start_new_session=True, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    table = out / "bearing.sweep.csv"
+    try:
+        deadline = time.monotonic() + 240
+        while time.monotonic() < deadline and proc.poll() is None:
+            if table.is_file() and table.read_text().count("\n") >= 3:
+                break
+            time.sleep(0.05)
+        os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130, err[-2000:]
+    assert "add --resume" in err
+    rows = list(csv.DictReader(table.open()))
+    assert len(rows) >= 2 and all(r["status"] == "ok" for r in rows)
