@@ -517,7 +517,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         if own:
             client, cluster = starting.result()
         lap("cluster")
-        n_live = max(1, len(client.scheduler_info()["workers"]))
+        addresses = list(client.nthreads())  # every worker (scheduler_info may list a few)
+        n_live = max(1, len(addresses))
         shipped = {}
         for key, payload in plan.payloads.items():
             if any(plan.structure[j.index] == key for j in todo):
@@ -526,7 +527,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
                 shipped[key] = client.scatter([payload], broadcast=True)[0]
         warming = [client.submit(warm, fut, workers=[addr], pure=False,
                                  allow_other_workers=False)
-                   for addr in client.scheduler_info()["workers"] for fut in shipped.values()]
+                   for addr in addresses for fut in shipped.values()]
         lap("ship")
         point_s = math.nan
         if todo and chunk is None:
