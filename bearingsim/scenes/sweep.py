@@ -61,7 +61,7 @@ from bearingsim.scenes.sampling import (
 )
 from bearingsim.scenes.scene import Scene, SceneError, load_scene
 from bearingsim.scenes.sweep_table import SweepTable, cell, open_table
-from bearingsim.scenes.sweep_worker import Job, ModelPayload, run_chunk, run_job, warm
+from bearingsim.scenes.sweep_worker import Job, ModelPayload, run_chunk, run_point, warm
 from bearingsim.units import display_unit
 
 __all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
@@ -522,9 +522,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         shipped = {}
         for key, payload in plan.payloads.items():
             if any(plan.structure[j.index] == key for j in todo):
-                # in a list: a dataclass given to scatter alone would be stored as is, but
-                # scatter([x]) keeps it one object per worker, loaded once per process
-                shipped[key] = client.scatter([payload], broadcast=True)[0]
+                shipped[key] = client.scatter(payload, broadcast=True)
         warming = [client.submit(warm, fut, workers=[addr], pure=False,
                                  allow_other_workers=False)
                    for addr in addresses for fut in shipped.values()]
@@ -532,7 +530,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         point_s = math.nan
         if todo and chunk is None:
             job = todo.pop(0)  # measured here while the workers load the model
-            r = run_job(plan.prepared[plan.structure[job.index]], job)
+            r = run_point(plan.prepared[plan.structure[job.index]], job, timeout)
             point_s = r["wall_s"]
             record(r)
         lap("probe")

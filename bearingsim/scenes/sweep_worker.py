@@ -31,7 +31,7 @@ from bearingsim.scenes.runner import Prepared, output_series, run_simulation
 from bearingsim.scenes.scene import Scene
 
 __all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",
-           "run_job", "warm"]
+           "run_job", "run_point", "warm"]
 
 
 @dataclass
@@ -120,6 +120,11 @@ def _run_with_budget(prep: Prepared, job: Job, timeout: float) -> dict[str, Any]
     return box
 
 
+def run_point(prep: Prepared, job: Job, timeout: float | None = None) -> dict[str, Any]:
+    """:func:`run_job`, within a time budget of ``timeout`` seconds when given."""
+    return run_job(prep, job) if timeout is None else _run_with_budget(prep, job, timeout)
+
+
 def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = None
               ) -> list[dict[str, Any]]:
     """Run a chunk of points of one model (a dask task); one row per point.
@@ -136,7 +141,7 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
     prep = load_model(payload)
     rows = []
     for job in jobs:
-        row = run_job(prep, job) if timeout is None else _run_with_budget(prep, job, timeout)
+        row = run_point(prep, job, timeout)
         row["model_loads"] = LOADS.get(payload.token, 0)
         rows.append(row)
     return rows
