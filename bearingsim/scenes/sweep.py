@@ -331,14 +331,17 @@ def _distributed():
 
 
 def _client(scheduler: str | None, n_workers: int):
+    """A client of the scheduler, or of a new LocalCluster whose workers are still starting
+    (each imports bearingsim first): the sweep goes on as soon as one is up."""
     distributed = _distributed()
     Client, LocalCluster = distributed.Client, distributed.LocalCluster  # noqa: N806
 
     if scheduler:
         return Client(scheduler), None
-    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+    cluster = LocalCluster(n_workers=0, threads_per_worker=1, processes=True,
                            preload=["bearingsim.scenes.sweep_worker"],
                            dashboard_address=None, silence_logs=logging.CRITICAL)
+    cluster.scale(n_workers)
     return Client(cluster), cluster
 
 
@@ -516,9 +519,11 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
 
         if own:
             client, cluster = starting.result()
+        client.wait_for_workers(1)
         lap("cluster")
         addresses = list(client.nthreads())  # every worker (scheduler_info may list a few)
-        n_live = max(1, len(addresses))
+        # workers still starting get the model from a peer with their first chunk
+        n_live = max(len(addresses), n_workers if cluster is not None else 1)
         shipped = {}
         for key, payload in plan.payloads.items():
             if any(plan.structure[j.index] == key for j in todo):
