@@ -1,4 +1,4 @@
-"""Command line: ``bearingsim run | validate | sweep | list | demo | export-fmu``.
+"""Command line: ``bearingsim run | validate | sweep | cache | list | demo | export-fmu``.
 
 Exit status: 0 success; 1 a simulation (or a sweep point) or a plot failed; 2 an invalid scene,
 command line or a file that cannot be read or written.
@@ -207,17 +207,26 @@ def _sweep(args: argparse.Namespace) -> int:
         raise SweepError("give at least one --grid key=v1,v2,... or --sample key=low:high")
     points = grid_points(parse_grid(args.grid)) if args.grid else [{}]
     if args.sample:
-        samples = sample_points(parse_sample(args.sample), args.samples, args.seed)
+        samples = sample_points(parse_sample(args.sample), args.samples, args.seed,
+                                method=args.sampler, scramble=not args.no_scramble)
         points = [{**p, **s} for p in points for s in samples]
     from bearingsim.scenes import load_scene
     from bearingsim.scenes.tables import scene_output_folder
 
     scene = load_scene(args.scene, args.allow_path)
     out = args.out if args.out is not None else scene_output_folder(scene)
-    res = run_sweep(scene, points, scheduler=args.scheduler, n_workers=args.workers,
-                    out=out, progress=not args.no_progress)
-    _say(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed; "
-          f"{res.models_built} model(s) built and shipped; {res.wall_s:.1f} s")
+    try:
+        res = run_sweep(scene, points, scheduler=args.scheduler, n_workers=args.workers,
+                        out=out, progress=not args.no_progress, resume=args.resume,
+                        timeout=args.timeout, chunk=args.chunk)
+    except KeyboardInterrupt:
+        _say(f"bearingsim sweep: interrupted; the finished points are in {out}; add --resume "
+             "to run the others", err=True)
+        return 130
+    _say(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed"
+         + (f" ({res.resumed} from the earlier run)" if res.resumed else "")
+         + f"; {res.models_built} model(s) built and shipped; {res.chunk_size} point(s) a task; "
+         f"{res.wall_s:.1f} s")
     if res.failures:
         _say(describe_failures(res), err=True)
     for f in res.files:
@@ -225,8 +234,20 @@ def _sweep(args: argparse.Namespace) -> int:
     return 1 if res.failures else 0
 
 
+def _cache(args: argparse.Namespace) -> int:
+    from bearingsim.assembler.cache import cache_info, clear_cache
+
+    info = clear_cache() if args.action == "clear" else cache_info()
+    verb = "removed" if args.action == "clear" else "holds"
+    print(f"{info.root} {verb}: {info.systems} assembled system(s), "
+          f"{info.systems_bytes / 1e6:.1f} MB; {info.libraries} compiled librar"
+          f"{'y' if info.libraries == 1 else 'ies'}, {info.libraries_bytes / 1e6:.1f} MB")
+    return 0
+
+
 def _parser() -> argparse.ArgumentParser:
     from bearingsim import __version__
+    from bearingsim.scenes.sampling import SAMPLERS
 
     parser = argparse.ArgumentParser(prog="bearingsim", description="bearing system simulator")
     parser.add_argument("--version", action="version", version=f"bearingsim {__version__}")
@@ -253,14 +274,30 @@ def _parser() -> argparse.ArgumentParser:
                            "simulation.X, assembly.X); repeat for a Cartesian product; "
                            "separate expressions with ';'")
     p_sw.add_argument("--sample", action="append", default=[], metavar="KEY=LOW:HIGH",
-                      help="Latin-hypercube sample of a numeric key")
+                      help="quasi-random sample of a numeric key (see --sampler)")
     p_sw.add_argument("--samples", type=int, default=8, help="number of samples")
     p_sw.add_argument("--seed", type=int, default=0, help="seed of the sample")
+    p_sw.add_argument("--sampler", choices=SAMPLERS, default="lhs",
+                      help="Latin hypercube (default), LHS with optimal permutations, or Sobol "
+                           "(scipy.stats.qmc)")
+    p_sw.add_argument("--no-scramble", action="store_true",
+                      help="unscrambled sample (LHS cell centres, Sobol from the origin)")
+    p_sw.add_argument("--resume", action="store_true",
+                      help="keep the rows of an earlier run of this sweep in the output folder "
+                           "and run only the other points")
+    p_sw.add_argument("--timeout", type=float, metavar="SECONDS",
+                      help="time budget of one point: a point still running after it is "
+                           "recorded as failed")
+    p_sw.add_argument("--chunk", type=int, metavar="N",
+                      help="points per task (default: sized from one point measured first)")
     p_sw.add_argument("--scheduler", help="address of a dask scheduler (default: a "
                                           "LocalCluster)")
     p_sw.add_argument("--workers", type=int, default=2, help="LocalCluster workers")
     p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
     p_sw.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p_cache = sub.add_parser("cache", help="size of the cache of assembled systems and "
+                             "compiled kernels ($BEARINGSIM_CACHE), or clear it")
+    p_cache.add_argument("action", nargs="?", default="show", choices=("show", "clear"))
     p_list = sub.add_parser("list", help="assemblies, components, catalogue bearings, "
                             "lubricants and built-in scenes")
     p_list.add_argument("what", nargs="?", default="all", choices=("all", *LIST_SECTIONS),
@@ -289,7 +326,7 @@ def main(argv: list[str] | None = None) -> int:
         return cli_export(argv[1:]) or 0
     args = _parser().parse_args(argv)
     handlers = {"list": _list, "demo": _demo, "run": _run,
-                "validate": _validate, "sweep": _sweep}
+                "validate": _validate, "sweep": _sweep, "cache": _cache}
     try:
         return handlers[args.command](args)
     except SimulationError as exc:

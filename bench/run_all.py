@@ -35,6 +35,7 @@ from bench import (
     pruning,
     roller,
     sundials_compiled,
+    sweep_scaling,
     table_inputs,
     work_precision,
 )
@@ -129,6 +130,7 @@ def main(argv: list[str] | None = None) -> int:
         ("cylindrical roller", lambda: roller.section(args.quick)),
         ("per-call cost", lambda: per_call.section(args.quick)),
         ("first runs", lambda: first_run.section(args.quick)),
+        ("sweep scaling", sweep_scaling.section),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

@@ -154,11 +154,11 @@ def test_a_mapped_run_never_builds_the_inlined_functions():
 
 
 def test_a_packed_system_keeps_its_mapped_kernel(massive):
-    """Sweeps ship systems to other processes (scenes.portable): the mapped kernel goes along,
-    built once on the sending side."""
-    from bearingsim.scenes.portable import pack, unpack
+    """Sweeps and the system cache ship systems to other processes (assembler.cache): the
+    mapped kernel goes along, built once on the sending side."""
+    from bearingsim.assembler.cache import dumps_system, loads_system
 
-    restored = unpack(pack(massive))
+    restored = loads_system(dumps_system(massive))
     assert restored.mapped.summary == "root: 7 members"
     with pytest.raises(NotMappable, match="no nonlinear blocks"):
         restored.mapped.get("dae")

@@ -25,7 +25,6 @@ from bearingsim.scenes import (
     prepare,
     run_scene,
 )
-from bearingsim.scenes.portable import pack, unpack
 from bearingsim.scenes.runner import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.scene import line_of
 from bearingsim.scenes.sweep import (
@@ -34,10 +33,10 @@ from bearingsim.scenes.sweep import (
     grid_points,
     parse_grid,
     parse_sample,
-    run_point,
     run_sweep,
     sample_points,
 )
+from bearingsim.scenes.sweep_worker import load_model, run_job
 from bearingsim.simulation import simulate
 from bearingsim.units import rpm_to_rad_s
 
@@ -329,9 +328,9 @@ def test_motor_drive_scene_runs_with_kinematic_bearing_when_only_speeds_are_aske
 # ----------------------------------------------------------------------------- portability, sweeps
 def test_packed_system_gives_identical_results():
     prep = prepare(_scene(["Rs", "M_shaft"], fidelity="torque"))
-    import pickle
+    from bearingsim.assembler.cache import dumps_system, loads_system
 
-    clone = unpack(pickle.loads(pickle.dumps(pack(prep.system))))
+    clone = loads_system(dumps_system(prep.system))
     ins = simulate_inputs(prep.scene.inputs)
     a = simulate(prep.system, 0.3, inputs=ins, progress=False)
     b = simulate(clone, 0.3, inputs=ins, progress=False)
@@ -365,11 +364,11 @@ def test_lubricant_swap_is_a_parameter_change_equal_to_reassembly():
     scene = _scene(["Rs", "M_shaft"])
     plan = _plan(scene, grid_points(parse_grid(["assembly.lubrication=ISO VG 32,ISO VG 150"])))
     assert len(plan.prepared) == 1  # one model for both lubricants
-    (packed,) = plan.packed.values()
-    swapped = run_point(packed, plan.jobs[1])
+    (payload,) = plan.payloads.values()
+    swapped = run_job(load_model(payload), plan.jobs[1])
     assert swapped["status"] == "ok"
     # the viscosity changes; Palmgren's f0 depends on the lubrication method, not the grade
-    assert set(plan.jobs[1]["parameters"]) == {"inner_layer.nu", "outer_layer.nu"}
+    assert set(plan.jobs[1].parameters) == {"inner_layer.nu", "outer_layer.nu"}
     direct = run_scene(scene.replace(args={"lubrication": "ISO VG 150"}), write=False)
     for name in ("Rs", "M_shaft"):
         assert swapped["final"][name] == pytest.approx(direct.series[name][-1], rel=1e-9,

@@ -7,9 +7,10 @@ typed :class:`AssemblyState`, as the staged lists :data:`STAGES`; the result is 
 :mod:`bearingsim.simulation` integrates, linearizes and solves.
 """
 
+from bearingsim.assembler.cache import assemble_cached
 from bearingsim.assembler.pipeline import PASS_NAMES, STAGES, Pass, Stage, assemble
 from bearingsim.assembler.state import AssemblyState
 from bearingsim.assembler.system import Signal, System
 
 __all__ = ["PASS_NAMES", "STAGES", "AssemblyState", "Pass", "Signal", "Stage", "System",
-           "assemble"]
+           "assemble", "assemble_cached"]

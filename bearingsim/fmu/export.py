@@ -11,7 +11,7 @@ import uuid
 from collections.abc import Sequence
 from pathlib import Path
 
-from bearingsim.assembler import System, assemble
+from bearingsim.assembler import System, assemble_cached
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
@@ -51,7 +51,8 @@ def _system(model, outputs):
             )
         return model
     if isinstance(model, Component):
-        return assemble(model, list(outputs) if outputs else None, rootfinder="fast_newton")
+        return assemble_cached(model, list(outputs) if outputs else None,
+                               rootfinder="fast_newton")
     raise ParameterError(
         f"export_fmu: expected an assembly (Component) or a System, got {type(model).__name__}"
     )

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.assembler import System, assemble
+from bearingsim.assembler import System, assemble_cached
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.files import atomic_path, column_name, write_series_csv
@@ -227,7 +227,7 @@ def prepare(scene: Scene) -> Prepared:
         plot_outputs = list(dict.fromkeys(n for p in plots for n in p.needs
                                           if n not in model_outputs))
         try:
-            system = assemble(component, outputs=model_outputs + plot_outputs)
+            system = assemble_cached(component, outputs=model_outputs + plot_outputs)
             break
         except ModelError as exc:
             if "unknown output variable" not in str(exc):

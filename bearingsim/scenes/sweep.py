@@ -1,7 +1,8 @@
 """Parameter sweeps of a scene on dask.distributed.
 
 A sweep runs one scene over a grid (``--grid key=v1,v2,...``, the Cartesian product of all
-grids) or a random sample (``--sample key=low:high --samples N``) of keys:
+grids) or a quasi-random sample (``--sample key=low:high --samples N``, Latin hypercube or
+Sobol from :mod:`scipy.stats.qmc`, :mod:`bearingsim.scenes.sampling`) of keys:
 
 * ``inputs.<name>``: a number or an expression of ``t``;
 * ``parameters.<name>``, ``initial.<state>``: numbers;
@@ -9,21 +10,30 @@ grids) or a random sample (``--sample key=low:high --samples N``) of keys:
   ``n_points``, ``initial``;
 * ``assembly.<argument>`` (also ``assembly.bearing.lubrication`` and ``assembly.fidelity``).
 
-Every point is validated before anything runs. The model is assembled on the client once per
+Every point is validated before anything runs. The model is prepared on the client once per
 distinct structure (arguments that only change parameter values, such as the lubricant of a
-Palmgren friction model, become parameter overrides), serialized with
-``casadi.Function.serialize`` and scattered to the workers, which deserialize it once per process.
-Results gather into one table (CSV; also Parquet when pyarrow is installed) with a progress bar;
-a failing point is recorded with its parameters and error and does not affect the others.
+Palmgren friction model, become parameter overrides) through the on-disk cache of assembled
+systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
+process loads it once (:mod:`bearingsim.scenes.sweep_worker`), ahead of its first points.
+Points go out in chunks sized from the measured time of one point (run on the client while the
+workers load), so a task's scheduling cost is spread over ~0.25 s of work; each point runs what
+``bearingsim run`` runs for that scene and returns the final value of every output.
+
+Rows are appended to ``<scene>.sweep.csv`` as they arrive (:mod:`bearingsim.scenes.sweep_table`);
+``resume=True`` skips the points already there; a point that fails or exceeds ``timeout`` is
+recorded with its error and does not affect the others; a worker lost mid-sweep has its chunks
+re-run by the scheduler on the others.
 """
 
 from __future__ import annotations
 
+import concurrent.futures
 import copy
-import itertools
+import dataclasses
+import hashlib
 import json
+import logging
 import math
-import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -37,27 +47,35 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-from bearingsim.errors import BearingsimError, ParameterError
-from bearingsim.files import atomic_path, column_name
-from bearingsim.scenes.portable import LOADS, load_cached, pack
+from bearingsim.assembler import cache as system_cache
+from bearingsim.errors import ParameterError
+from bearingsim.files import atomic_path
 from bearingsim.scenes.registry import build_component
-from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare, simulate_inputs
-from bearingsim.scenes.scene import Scene, SceneError, TableInput, load_scene
+from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare
+from bearingsim.scenes.sampling import (
+    SweepError,
+    check_key,
+    grid_points,
+    parse_sample,
+    sample_points,
+)
+from bearingsim.scenes.scene import Scene, SceneError, load_scene
+from bearingsim.scenes.sweep_table import SweepTable, cell, open_table
+from bearingsim.scenes.sweep_worker import Job, ModelPayload, run_chunk, run_point, warm
 from bearingsim.units import display_unit
 
 __all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
-           "sample_points", "run_sweep"]
+           "sample_points", "run_sweep", "describe_failures", "chunk_size"]
 
-SIM_KEYS = ("t_end", "t_start", "rtol", "atol", "method", "max_step", "n_points", "initial")
-
-
-class SweepError(ParameterError):
-    """A sweep specification is invalid (key, value or point), naming it."""
+CHUNK_SECONDS = 0.25
+"""Target wall time of one task [s]: a chunk holds about this much integration."""
+CHUNKS_PER_WORKER = 4
+"""At least this many chunks per worker (load balance at the end of a sweep)."""
 
 
 @dataclass
 class SweepResult:
-    """Rows of the result table (one per point), failures and written files."""
+    """Rows of the result table (one per point, in point order), failures and written files."""
 
     keys: list[str]
     rows: list[dict[str, Any]]
@@ -65,6 +83,17 @@ class SweepResult:
     models_built: int
     files: list[Path] = field(default_factory=list)
     wall_s: float = 0.0
+    resumed: int = 0
+    """Points taken from the table of an earlier run (``resume``)."""
+    chunk_size: int = 1
+    """Points per task."""
+    point_s: float = math.nan
+    """Wall time of the point measured on the client to size the chunks [s]."""
+    phases: dict[str, float] = field(default_factory=dict)
+    """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
+    ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
+    ``probe`` (the measured point), ``points`` (first chunk out to last row in), ``finish``
+    (close the cluster; sorted table, plot, summary)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -117,18 +146,6 @@ def _value(text: str) -> Any:
     return int(v) if v.is_integer() and "." not in text and "e" not in low else v
 
 
-def _check_key(key: str) -> None:
-    head = key.split(".", 1)[0]
-    if head not in ("inputs", "parameters", "initial", "simulation", "assembly") or "." not in key:
-        raise SweepError(
-            f"sweep key {key!r}: must start with inputs., parameters., initial., simulation. "
-            "or assembly. (e.g. inputs.shaft_speed, parameters.inner_layer.nu, "
-            "assembly.lubrication, simulation.rtol)")
-    if head == "simulation" and key.split(".", 1)[1] not in SIM_KEYS:
-        raise SweepError(f"sweep key {key!r}: allowed simulation settings: "
-                         + ", ".join(SIM_KEYS))
-
-
 def parse_grid(items: list[str]) -> dict[str, list[Any]]:
     """``["inputs.shaft_speed=100,200", ...]`` -> ``{"inputs.shaft_speed": ["100", "200"]}``.
 
@@ -141,60 +158,12 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
             raise SweepError(f"--grid {item!r}: expected key=v1,v2,...")
         key, values = item.split("=", 1)
         key = key.strip()
-        _check_key(key)
+        check_key(key)
         vals = _split_values(values)
         if not vals:
             raise SweepError(f"--grid {key}: no values")
         grid[key] = vals
     return grid
-
-
-def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
-    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``; the
-    bounds may carry units (``inputs.shaft_speed=500rpm:1000rpm``, SI values returned)."""
-    ranges = {}
-    for item in items:
-        if "=" not in item or ":" not in item.split("=", 1)[1]:
-            raise SweepError(f"--sample {item!r}: expected key=low:high")
-        key, rng = item.split("=", 1)
-        key = key.strip()
-        _check_key(key)
-        try:
-            lo, hi = (_sample_bound(x) for x in rng.split(":", 1))
-        except (ValueError, ParameterError):
-            raise SweepError(f"--sample {key}: low and high must be numbers, got {rng!r}"
-                             ) from None
-        if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
-            raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
-        ranges[key] = (lo, hi)
-    return ranges
-
-
-def _sample_bound(text: str) -> float:
-    """A sample bound: a number (SI) or a number with a unit (``500rpm``), in SI."""
-    from bearingsim.units import parse_quantity
-
-    quantity = parse_quantity(text)
-    return quantity[0] if quantity is not None else float(text)
-
-
-def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
-    """The Cartesian product of a grid, as a list of {key: value}."""
-    keys = list(grid)
-    return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
-
-
-def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int = 0
-                  ) -> list[dict[str, Any]]:
-    """``n`` Latin-hypercube points in the given ranges (reproducible with ``seed``)."""
-    if n < 1:
-        raise SweepError(f"--samples must be >= 1, got {n}")
-    rng = np.random.default_rng(seed)
-    cols = {}
-    for key, (lo, hi) in ranges.items():
-        u = (rng.permutation(n) + rng.random(n)) / n
-        cols[key] = lo + u * (hi - lo)
-    return [{k: float(cols[k][i]) for k in ranges} for i in range(n)]
 
 
 # --------------------------------------------------------------------------- planning
@@ -265,9 +234,11 @@ def _parameter_values(component) -> dict[str, float]:
 
 
 def _structure(sc: Scene) -> tuple[str, str]:
-    """Key of the model structure of a point: fidelity and the non-parametric arguments."""
+    """Key of the model structure of a point: fidelity and the non-parametric arguments (with
+    the symmetry the point's inputs allow, as :func:`~bearingsim.scenes.runner.prepare` uses)."""
     spec = sc.spec
     args = spec.with_defaults(sc.args)
+    args.update(spec.symmetric_args(args, sc.inputs))
     post_all = spec.post(args)
     post = {n: post_all[n] for n in (sc.outputs or spec.default_outputs) if n in post_all}
     fidelity, _, _ = choose_fidelity(sc, spec, post)
@@ -281,20 +252,35 @@ def _structure(sc: Scene) -> tuple[str, str]:
     return fidelity, json.dumps(stripped, sort_keys=True, default=str)
 
 
+def _payload(prep: Prepared) -> ModelPayload:
+    """The prepared model as bytes for the workers: the cache entry just used by ``prepare``
+    (no second serialization), else the system serialized now."""
+    last = system_cache.LAST
+    data = system_cache.read_payload(last["path"], last["key"]) if last.get("path") else None
+    if data is None:
+        data = system_cache.dumps_system(prep.system)
+    token = hashlib.sha256(data).hexdigest()
+    return ModelPayload(token, dataclasses.replace(prep, system=None), data)
+
+
 @dataclass
 class _Plan:
     prepared: dict[tuple, Prepared]
-    packed: dict[tuple, dict]
-    jobs: list[dict[str, Any]]
+    payloads: dict[tuple, ModelPayload]
+    jobs: list[Job]
+    structure: dict[int, tuple]
+    """Point number -> structure key."""
+    values: list[dict[str, Any]]
+    """Point number -> swept values (converted)."""
 
 
 def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
     spec = scene.spec
     scenes = [_point_scene(scene, p) for p in points]
     prepared: dict[tuple, Prepared] = {}
-    packed: dict[tuple, dict] = {}
+    payloads: dict[tuple, ModelPayload] = {}
     base_values: dict[tuple, dict[str, float]] = {}
-    jobs = []
+    jobs, structure, values = [], {}, []
     for k, (raw, sc) in enumerate(zip(points, scenes, strict=True)):
         pt = {key: _coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
@@ -304,11 +290,12 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
             except SceneError as exc:
                 raise SweepError(f"sweep point {pt}: {exc}") from None
             prepared[key] = prep
-            packed[key] = pack(prep.system)
+            payloads[key] = _payload(prep)
             base_values[key] = _parameter_values(build_component(spec, prep.args, prep.fidelity))
         prep = prepared[key]
         params: dict[str, float] = {}
         args = spec.with_defaults(sc.args)
+        args.update(spec.symmetric_args(args, sc.inputs))
         if json.dumps(args, sort_keys=True, default=str) != json.dumps(
                 prep.args, sort_keys=True, default=str):
             # parametric arguments differ from the assembled ones: parameter overrides
@@ -318,60 +305,21 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
                                  "although declared parametric; please report")
             params.update({n: v for n, v in new.items()
                            if n in prep.system.parameter_names and v != base_values[key][n]})
-        params.update(sc.parameters)
         try:
-            prep.system.p0(params)
+            prep.system.p0({**sc.parameters, **params})
         except ParameterError as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
         for name in sc.inputs:
             if name not in prep.system.input_names:
                 raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "
                                  + ", ".join(prep.system.input_names))
-        inputs = {n: ((list(v.times), list(v.values)) if isinstance(v, TableInput) else v)
-                  for n, v in sc.inputs.items()}
-        s = sc.simulation
-        jobs.append({
-            "index": k, "point": pt, "structure": key, "parameters": params, "inputs": inputs,
-            "x0": dict(sc.initial),
-            "sim": {"t_end": s.t_end, "t_start": s.t_start, "method": s.method, "rtol": s.rtol,
-                    "atol": s.atol, "n_points": s.n_points, "max_step": s.max_step,
-                    "initial": s.initial},
-            "outputs": list(prep.model_outputs),
-        })
-    return _Plan(prepared, packed, jobs)
+        jobs.append(Job(k, sc, params))
+        structure[k] = key
+        values.append(_si_values(pt))
+    return _Plan(prepared, payloads, jobs, structure, values)
 
 
 # --------------------------------------------------------------------------- execution
-def run_point(packed: dict[str, Any], job: dict[str, Any]) -> dict[str, Any]:
-    """Run one sweep point (on a worker): returns final values or the error; never raises."""
-    from bearingsim.simulation import simulate
-
-    t0 = time.perf_counter()
-    out = {"index": job["index"], "pid": os.getpid(), "token": packed["token"]}
-    try:
-        system = load_cached(packed)
-        inputs = {n: (tuple(np.asarray(x, dtype=float) for x in v) if isinstance(v, (list, tuple))
-                      else v) for n, v in job["inputs"].items()}
-        sim = dict(job["sim"])
-        t_end = sim.pop("t_end")
-        res = simulate(system, t_end, inputs=simulate_inputs(inputs),
-                       parameters=job["parameters"] or None, x0=job["x0"] or None,
-                       progress=False, **sim)
-        final = {}
-        for n in job["outputs"]:
-            y = np.asarray(res[n], dtype=float)
-            if not np.all(np.isfinite(y)):
-                raise BearingsimError(f"output {n} is not finite")
-            final[n] = float(y[-1])
-        out.update(status="ok", final=final, error="",
-                   nsteps=int(res.stats.get("nfev", res.stats.get("nsteps", 0)) or 0))
-    except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
-        out.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
-    out["wall_s"] = time.perf_counter() - t0
-    out["model_loads"] = LOADS.get(packed["token"], 0)
-    return out
-
-
 def _distributed():
     """The ``distributed`` package, or a named error saying how to install it."""
     try:
@@ -383,20 +331,39 @@ def _distributed():
 
 
 def _client(scheduler: str | None, n_workers: int):
+    """A client of the scheduler, or of a new LocalCluster whose workers are still starting
+    (each imports bearingsim first): the sweep goes on as soon as one is up."""
     distributed = _distributed()
     Client, LocalCluster = distributed.Client, distributed.LocalCluster  # noqa: N806
 
     if scheduler:
         return Client(scheduler), None
-    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=40)
+    cluster = LocalCluster(n_workers=0, threads_per_worker=1, processes=True,
+                           preload=["bearingsim.scenes.sweep_worker"],
+                           dashboard_address=None, silence_logs=logging.CRITICAL)
+    cluster.scale(n_workers)
     return Client(cluster), cluster
 
 
-def _column_units(plan_prepared: dict, keys: list[str]) -> dict[str, str]:
+def chunk_size(point_s: float, n_points: int, n_workers: int) -> int:
+    """Points per task: about :data:`CHUNK_SECONDS` of work, and at least
+    :data:`CHUNKS_PER_WORKER` tasks per worker.
+
+    Parameters
+    ----------
+    point_s : float
+        Measured wall time of one point [s].
+    n_points, n_workers : int
+        Points to run and workers to run them.
+    """
+    by_time = CHUNK_SECONDS / max(point_s, 1e-4) if math.isfinite(point_s) else 1.0
+    by_balance = n_points / (CHUNKS_PER_WORKER * max(n_workers, 1))
+    return max(1, min(int(by_time), math.ceil(by_balance)))
+
+
+def _column_units(prep: Prepared, keys: list[str]) -> dict[str, str]:
     """Unit of every numeric sweep column: the swept inputs, parameters and initial values and
     the outputs (from the first model; every model of a sweep has the same outputs)."""
-    prep = next(iter(plan_prepared.values()))
     system = prep.system
     units = system.variable_units
     units.update({n: q.unit for n, q in prep.post.items()})
@@ -410,34 +377,24 @@ def _column_units(plan_prepared: dict, keys: list[str]) -> dict[str, str]:
     return out
 
 
-def _write_table(rows: list[dict[str, Any]], folder: Path, stem: str,
-                 units: dict[str, str]) -> list[Path]:
-    """The sweep table: one row per point, headers ``name [unit]`` for the numeric columns
-    (readable by ``pandas.read_csv`` without options), and a Parquet copy with pyarrow."""
-    import csv
+def _table_row(index: int, values: dict[str, Any], outputs: list[str],
+               r: dict[str, Any]) -> dict[str, Any]:
+    row: dict[str, Any] = {"point": index, **values, "status": r["status"]}
+    for name in outputs:
+        row[name] = r["final"].get(name, float("nan")) if r["status"] == "ok" else float("nan")
+    row["wall_s"] = round(float(r.get("wall_s", float("nan"))), 4)
+    row["error"] = r["error"]
+    return row
 
-    cols: list[str] = []
-    for r in rows:
-        for k in r:
-            if k not in cols:
-                cols.append(k)
-    path = folder / f"{stem}.csv"
-    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow([column_name(k, units[k]) if k in units else k for k in cols])
-        for r in rows:
-            w.writerow([r.get(k, "") for k in cols])
-    files = [path]
-    try:
-        import pyarrow  # noqa: F401
-        import pyarrow.csv as pacsv
-        import pyarrow.parquet as pq
 
-        pq.write_table(pacsv.read_csv(path), folder / f"{stem}.parquet")
-        files.append(folder / f"{stem}.parquet")
-    except ImportError:
-        pass
-    return files
+def _from_cell(text: str) -> Any:
+    """A table cell read back: int, float or text."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
 
 
 def _sweep_plot(rows: list[dict[str, Any]], keys: list[str], units: dict[str, str],
@@ -473,8 +430,9 @@ def _sweep_plot(rows: list[dict[str, Any]], keys: list[str], units: dict[str, st
 
 def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
-              progress: bool = True, client=None) -> SweepResult:
-    """Run a scene at every point on dask.distributed and gather one table.
+              progress: bool = True, client=None, resume: bool = False,
+              timeout: float | None = None, chunk: int | None = None) -> SweepResult:
+    """Run a scene at every point on dask.distributed; one table, appended as points finish.
 
     Parameters
     ----------
@@ -486,16 +444,26 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     n_workers : int
         Workers of the LocalCluster.
     out : path, optional
-        Folder for ``<scene>.sweep.csv`` (and ``.parquet``) and ``.sweep.json``; None: no files.
+        Folder for ``<scene>.sweep.csv`` (and ``.parquet``, ``.png``) and ``.sweep.json``;
+        None: no files (and no ``resume``).
     progress : bool
         Show a progress bar.
     client : distributed.Client, optional
         Use this client (and leave it open).
+    resume : bool
+        Keep the rows of an earlier run of the same sweep in ``out`` and run only the others.
+    timeout : float, optional
+        Time budget of one point [s]: a point still running after it is recorded as failed.
+    chunk : int, optional
+        Points per task (default: :func:`chunk_size` of a point measured on the client).
 
     Raises
     ------
     SweepError
-        For an invalid key or point (before anything runs).
+        For an invalid key or point (before anything runs), or a table that ``resume`` cannot
+        continue.
+    KeyboardInterrupt
+        On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
     as_completed = _distributed().as_completed
     from tqdm import tqdm
@@ -504,81 +472,140 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         scene = load_scene(scene)
     if not points:
         raise SweepError("a sweep needs at least one point")
+    if timeout is not None and not (math.isfinite(timeout) and timeout > 0):
+        raise SweepError(f"--timeout must be a positive number of seconds, got {timeout!r}")
+    if resume and out is None:
+        raise SweepError("resume needs the output folder of the earlier run (out=...)")
     wall = time.perf_counter()
-    plan = _plan(scene, points)
+    phases: dict[str, float] = {}
+    clock = [wall]
+
+    def lap(name: str) -> None:
+        now = time.perf_counter()
+        phases[name] = now - clock[0]
+        clock[0] = now
+
     own = client is None
+    starting = (concurrent.futures.ThreadPoolExecutor(1).submit(_client, scheduler, n_workers)
+                if own else None)  # the cluster starts while the client plans
     cluster = None
-    if own:
-        client, cluster = _client(scheduler, n_workers)
     try:
-        # a dict given to scatter is stored key by key ("token", "fields": the same keys for
-        # every model), so each packed model goes in a list of its own
-        shipped = {k: client.scatter([v], broadcast=True)[0] for k, v in plan.packed.items()}
-        futures = {}
-        for job in plan.jobs:
-            fut = client.submit(run_point, shipped[job["structure"]], job, pure=False,
-                                key=f"sweep-point-{job['index']}-{time.time_ns()}")
-            futures[fut] = job
+        plan = _plan(scene, points)
+        keys = list(points[0])
+        first = next(iter(plan.prepared.values()))
+        outputs = list(first.outputs)
+        units = _column_units(first, keys)
+        columns = ["point", *keys, "status", *outputs, "wall_s", "error"]
+        table = done = None
+        stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
+        rows: dict[int, dict[str, Any]] = {}
+        if out is not None:
+            table = SweepTable(Path(out) / f"{stem}.csv", columns, units)
+            expected = {k: {key: cell(v) for key, v in values.items()}
+                        for k, values in enumerate(plan.values)}
+            done = open_table(table, resume, expected)
+            rows = {k: {c: (_from_cell(v) if c not in keys else plan.values[k][c])
+                        for c, v in r.items()} for k, r in done.items()}
+        todo = [job for job in plan.jobs if job.index not in rows]
+        lap("plan")
         results: dict[int, dict[str, Any]] = {}
-        bar = tqdm(total=len(futures), unit="point", disable=not progress, leave=False)
-        for fut in as_completed(futures):
-            job = futures[fut]
-            try:
-                r = fut.result()
-            except Exception as exc:  # noqa: BLE001 - a lost worker fails only its point
-                r = {"index": job["index"], "status": "failed", "final": {},
-                     "error": f"{type(exc).__name__}: {exc}", "wall_s": float("nan")}
-            results[job["index"]] = r
-            bar.update(1)
-        bar.close()
+
+        def record(r: dict[str, Any]) -> None:
+            results[r["index"]] = r
+            row = _table_row(r["index"], plan.values[r["index"]], outputs, r)
+            rows[r["index"]] = row
+            if table is not None:
+                table.append(row)
+
+        if own:
+            client, cluster = starting.result()
+        client.wait_for_workers(1)
+        lap("cluster")
+        addresses = list(client.nthreads())  # every worker (scheduler_info may list a few)
+        # workers still starting get the model from a peer with their first chunk
+        n_live = max(len(addresses), n_workers if cluster is not None else 1)
+        shipped = {}
+        for key, payload in plan.payloads.items():
+            if any(plan.structure[j.index] == key for j in todo):
+                shipped[key] = client.scatter(payload, broadcast=True)
+        warming = [client.submit(warm, fut, workers=[addr], pure=False,
+                                 allow_other_workers=False)
+                   for addr in addresses for fut in shipped.values()]
+        lap("ship")
+        point_s = math.nan
+        if todo and chunk is None:
+            job = todo.pop(0)  # measured here while the workers load the model
+            r = run_point(plan.prepared[plan.structure[job.index]], job, timeout)
+            point_s = r["wall_s"]
+            record(r)
+        lap("probe")
+        size = chunk or chunk_size(point_s, len(todo), n_live)
+        futures = {}
+        for key, fut in shipped.items():
+            mine = [j for j in todo if plan.structure[j.index] == key]
+            for k in range(0, len(mine), size):
+                part = mine[k:k + size]
+                task = client.submit(run_chunk, fut, part, timeout, pure=False,
+                                     key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
+                futures[task] = part
+        bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
+                   leave=False)
+        try:
+            for fut in as_completed(futures):
+                try:
+                    chunk_rows = fut.result()
+                except Exception as exc:  # noqa: BLE001 - a chunk lost for good fails its points
+                    chunk_rows = [{"index": j.index, "status": "failed", "final": {},
+                                   "error": f"{type(exc).__name__}: {exc}",
+                                   "wall_s": float("nan")} for j in futures[fut]]
+                for r in chunk_rows:
+                    record(r)
+                bar.update(len(chunk_rows))
+        except KeyboardInterrupt:
+            client.cancel(list(futures) + warming)
+            raise
+        finally:
+            bar.close()
+        client.cancel(warming)
+        lap("points")
     finally:
         if own:
-            client.close()
+            if client is None and starting is not None:
+                try:
+                    client, cluster = starting.result()
+                except Exception:  # noqa: BLE001 - the planning error is the one to report
+                    client = None
+            if client is not None:
+                client.close()
             if cluster is not None:
                 cluster.close()
-    keys = list(points[0])
-    rows, failures = [], []
-    for job in plan.jobs:
-        r = results[job["index"]]
-        prep = plan.prepared[job["structure"]]
-        row: dict[str, Any] = {"point": job["index"], **_si_values(job["point"]),
-                               "status": r["status"]}
-        finals = {k: np.array([v]) for k, v in r["final"].items()}
-        for name in prep.outputs:
-            if r["status"] != "ok":
-                row[name] = float("nan")
-            elif name in prep.post:
-                row[name] = float(prep.post[name].compute(finals, {"args": prep.args})[0])
-            else:
-                row[name] = r["final"][name]
-        row["wall_s"] = round(float(r.get("wall_s", float("nan"))), 4)
-        row["error"] = r["error"]
-        rows.append(row)
-        if r["status"] != "ok":
-            failures.append({"point": job["index"], "values": job["point"], "error": r["error"]})
-    res = SweepResult(keys, rows, failures, len(plan.prepared))
-    res.wall_s = time.perf_counter() - wall
-    if out is not None:
-        folder = Path(out)
-        folder.mkdir(parents=True, exist_ok=True)
-        stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
-        units = _column_units(plan.prepared, keys)
-        res.files = _write_table(rows, folder, stem, units)
-        res.files += _sweep_plot(rows, keys, units, folder, stem)
+    ordered = [rows[k] for k in sorted(rows)]
+    failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
+                for r in ordered if r["status"] != "ok"]
+    res = SweepResult(keys, ordered, failures, len(plan.prepared), resumed=len(done or {}),
+                      chunk_size=size, point_s=point_s, phases=phases)
+    if table is not None:
+        folder = table.path.parent
+        res.files = table.finish(ordered)
+        res.files += _sweep_plot(ordered, keys, units, folder, stem)
         summary = {
-            "scene": scene.path, "points": len(rows), "ok": len(res.ok),
+            "scene": scene.path, "points": len(ordered), "ok": len(res.ok),
             "failed": len(failures), "failures": failures, "models_built": res.models_built,
+            "resumed": res.resumed, "chunk_size": size, "point_s": point_s,
             "structures": [{"fidelity": k[0], "arguments": json.loads(k[1])}
                            for k in plan.prepared],
             "model_loads_per_worker": sorted({(r.get("pid"), r.get("model_loads"))
-                                              for r in results.values() if "pid" in r}),
+                                              for r in results.values()
+                                              if "model_loads" in r}),
             "scheduler": scheduler or f"LocalCluster({n_workers} workers)",
-            "wall_s": round(res.wall_s, 3),
+            "timeout_s": timeout, "phases_s": {k: round(v, 3) for k, v in phases.items()},
         }
         path = folder / f"{stem}.json"
         with atomic_path(path) as tmp:
             tmp.write_text(json.dumps(summary, indent=2, default=str))
         res.files.append(path)
+    lap("finish")
+    res.wall_s = time.perf_counter() - wall
     return res
 
 

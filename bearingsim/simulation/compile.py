@@ -37,6 +37,7 @@ from pathlib import Path
 
 import casadi as ca
 
+from bearingsim.assembler.cache import cache_root
 from bearingsim.assembler.passes.codegen import mapped_ode_functions
 from bearingsim.assembler.system import FunctionTable, System
 from bearingsim.errors import BearingsimError
@@ -112,14 +113,9 @@ class CompileError(BearingsimError):
 
 
 def default_cache_dir() -> Path:
-    """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``."""
-    return _cache_dir(os.environ.get("BEARINGSIM_CACHE"), os.environ.get("HOME"))
-
-
-@functools.lru_cache(maxsize=8)
-def _cache_dir(setting: str | None, home: str | None) -> Path:
-    """The cache folder for these environment values (looked up once)."""
-    return Path(setting or Path.home() / ".cache" / "bearingsim")
+    """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root shared with the assembled
+    systems (:func:`bearingsim.assembler.cache.cache_root`)."""
+    return cache_root()
 
 
 def c_compiler() -> str | None:

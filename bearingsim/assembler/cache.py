@@ -1,0 +1,518 @@
+"""Assembled systems kept on disk: a model whose structure was assembled before loads instead
+of re-assembling (the 270-state nested double-layer bearing: ~11 s to assemble).
+
+An entry is keyed by the model's *structure* and the *code version*:
+
+* the structure is a hash over the instance tree (component classes, names, declarations with
+  their units, ranges and start values, connections, and every other attribute, e.g. geometry
+  numbers and option strings) **without parameter values**, plus the requested outputs and
+  the assembler options; a parameter given another value hits the same entry, and the loaded
+  system takes the values (and range checks) of the component it is loaded for;
+* the code version is a hash over bearingsim's own source files and the CasADi, NumPy and
+  Python versions: any edit of the package starts a new set of entries.
+
+An entry is written atomically (a temporary file renamed into place) as a magic line, the
+SHA-256 of the payload and the payload; one whose magic, checksum, format, key or code version
+does not match is removed and the model re-assembled, never loaded. The payload holds the
+CasADi functions serialized (``Function.serialize``): the right-hand side, observed and output
+functions (their Jacobians are rebuilt on first use, as after an assembly), the mapped
+per-ball kernels and everything else of the :class:`~bearingsim.assembler.System` as plain
+data.
+
+The entries live in ``<root>/systems`` with ``root`` from ``BEARINGSIM_CACHE`` (default
+``~/.cache/bearingsim``), the same root as the compiled kernel libraries.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import functools
+import hashlib
+import os
+import pickle
+import re
+import shutil
+import sys
+import time
+import types
+from collections.abc import Callable, Mapping
+from functools import partial
+from pathlib import Path
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from bearingsim.assembler.dae import Param
+from bearingsim.assembler.mapped import MappedForms, MappedKernel, NotMappable
+from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
+from bearingsim.assembler.pipeline import assemble
+from bearingsim.assembler.system import FunctionTable, System
+from bearingsim.files import atomic_path
+from bearingsim.language.component import Component
+from bearingsim.language.declarations import Declaration, Parameter
+
+__all__ = ["CacheInfo", "assemble_cached", "cache_info", "cache_root", "clear_cache",
+           "code_version", "dumps_system", "loads_system", "read_payload", "structure_key",
+           "systems_dir"]
+
+MAGIC = b"bearingsim-system\n"
+"""First bytes of an entry file."""
+FORMAT = 1
+"""Version of the payload layout (part of every entry)."""
+SUFFIX = ".bsys"
+"""File suffix of an entry."""
+
+
+def cache_root() -> Path:
+    """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root of every cache of bearingsim
+    (assembled systems here, compiled kernel libraries by
+    :func:`~bearingsim.simulation.compile.default_cache_dir`)."""
+    root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
+    return Path(root)
+
+
+def systems_dir(root: str | Path | None = None) -> Path:
+    """The folder of the assembled systems: ``<root>/systems``."""
+    return Path(root if root is not None else cache_root()) / "systems"
+
+
+@functools.cache
+def code_version() -> str:
+    """Hash of bearingsim's source files (paths and contents) and the CasADi, NumPy and Python
+    versions: entries written by other code are never loaded."""
+    package = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256()
+    for path in sorted(package.rglob("*.py")):
+        digest.update(str(path.relative_to(package)).encode())
+        digest.update(path.read_bytes())
+    digest.update(f"casadi {ca.__version__} numpy {np.__version__} python "
+                  f"{sys.version_info[:3]} format {FORMAT}".encode())
+    return digest.hexdigest()
+
+
+# --------------------------------------------------------------------------- structure key
+_DECLARATION_SKIP = frozenset({"owner", "sym", "_value", "_derivative", "integral", "binding"})
+"""Declaration attributes that are not structure: back references, symbols, parameter values
+(``binding``, an expression, is added separately)."""
+
+
+_PLAIN = frozenset({type(None), bool, int, float, str, bytes, complex})
+"""Types hashed by their ``repr`` (which tells them apart: ``1``, ``1.0``, ``True``, ``'1'``)."""
+_PARENT = frozenset({"parent"})
+
+
+class _Fingerprint:
+    """A deterministic hash of an object graph; objects seen before hash as a back reference."""
+
+    def __init__(self) -> None:
+        self.parts: list[str] = []
+        self.seen: dict[int, int] = {}
+        self.symbols: dict[str, str] = {}
+        self.keep: list[Any] = []  # ids stay unique while the walk runs
+
+    def text(self, *parts: Any) -> None:
+        self.parts.extend(map(str, parts))
+
+    def casadi(self, expr: ca.SX | ca.MX) -> None:
+        """A symbol or expression with its symbols numbered in order of appearance (their
+        names carry a process-wide counter: ``J__2`` in one build is ``J__28`` in the next)."""
+        if expr.is_symbolic() and expr.numel() == 1:
+            self.parts.append(self._symbol(expr.name()))
+            return
+        names = {s.name(): self._symbol(s.name()) for s in ca.symvar(expr)}
+        text = str(expr)
+        if names:
+            pattern = re.compile(r"\b(" + "|".join(map(re.escape, sorted(names, key=len,
+                                                                           reverse=True)))
+                                 + r")\b")
+            text = pattern.sub(lambda m: names[m.group(0)], text)
+        self.text("expr", expr.shape, text)
+
+    def _symbol(self, name: str) -> str:
+        return self.symbols.setdefault(name, f"sym{len(self.symbols)}")
+
+    def hexdigest(self) -> str:
+        return hashlib.sha256("\x00".join(self.parts).encode()).hexdigest()
+
+    def fields(self, state: dict[str, Any], skip: frozenset[str] | set[str] = frozenset()
+               ) -> None:
+        """Attributes by name (plain values inline: this is the hot loop of a large tree)."""
+        parts = self.parts
+        for name in sorted(state):
+            if name in skip:
+                continue
+            value = state[name]
+            parts.append(name)
+            if type(value) in _PLAIN:
+                parts.append(repr(value))
+            else:
+                self.feed(value)
+
+    def feed(self, obj: Any) -> None:
+        if type(obj) in _PLAIN:
+            self.parts.append(repr(obj))
+            return
+        if isinstance(obj, (ca.SX, ca.MX)):
+            self.casadi(obj)
+            return
+        if isinstance(obj, ca.DM):
+            self.text("DM", obj.shape, str(obj))
+            return
+        if isinstance(obj, np.generic):
+            self.text("np", obj.dtype, repr(obj.item()))
+            return
+        key = id(obj)
+        if key in self.seen:
+            self.text("ref", self.seen[key])
+            return
+        self.seen[key] = len(self.seen)
+        self.keep.append(obj)
+        if isinstance(obj, np.ndarray):
+            self.text("array", obj.dtype, obj.shape,
+                      hashlib.sha256(np.ascontiguousarray(obj).tobytes()).hexdigest())
+        elif isinstance(obj, Declaration):
+            self.text("decl", type(obj).__qualname__)
+            self.fields(vars(obj), _DECLARATION_SKIP)
+            if isinstance(obj, Parameter):
+                self.text("bound" if obj.binding is not None else "free")
+                if obj.binding is not None:
+                    self.feed(obj.binding)
+        elif isinstance(obj, type):
+            self.text("class", obj.__module__, obj.__qualname__)
+        elif isinstance(obj, types.ModuleType):  # its code is in the code version
+            self.text("module", obj.__name__)
+        elif isinstance(obj, types.CodeType):
+            self.text("code", obj.co_name, obj.co_names, obj.co_code.hex())
+            self.feed(obj.co_consts)
+        elif isinstance(obj, enum.Enum):
+            self.text("enum", type(obj).__qualname__, obj.name)
+        elif isinstance(obj, Mapping):
+            self.text("map", type(obj).__qualname__, len(obj))
+            for k in sorted(obj, key=repr):
+                self.feed(k)
+                self.feed(obj[k])
+        elif isinstance(obj, (list, tuple)):
+            self.text("seq", type(obj).__qualname__, len(obj))
+            for item in obj:
+                self.feed(item)
+        elif isinstance(obj, (set, frozenset)):
+            self.text("set", sorted(repr(item) for item in obj))
+        elif isinstance(obj, (functools.partial,)):
+            self.text("partial")
+            self.feed(obj.func)
+            self.feed(obj.args)
+            self.feed(obj.keywords)
+        elif callable(obj) and hasattr(obj, "__qualname__") and not hasattr(obj, "__dict__"):
+            self.text("callable", getattr(obj, "__module__", ""), obj.__qualname__)
+        elif hasattr(obj, "__code__"):  # a Python function: its code and the values it closes
+            self.text("function", obj.__module__, obj.__qualname__)
+            self.feed(obj.__code__)
+            for cell in obj.__closure__ or ():
+                try:
+                    self.feed(cell.cell_contents)
+                except ValueError:  # an empty cell
+                    self.text("empty cell")
+            self.feed(obj.__defaults__)
+        elif hasattr(obj, "__dict__") or hasattr(type(obj), "__slots__"):
+            cls = type(obj)
+            self.text("object", cls.__module__, cls.__qualname__)
+            state = dict(getattr(obj, "__dict__", {}))
+            for slot in getattr(cls, "__slots__", ()):
+                if hasattr(obj, slot):
+                    state[slot] = getattr(obj, slot)
+            # the tree is walked from its root
+            self.fields(state, _PARENT if isinstance(obj, Component) else frozenset())
+        else:  # no state to read: its text (an address in it only costs a cache miss)
+            self.text("repr", type(obj).__qualname__, repr(obj))
+
+
+def structure_key(component: Component, outputs: list[str] | None = None,
+                  **options: Any) -> str:
+    """The cache key of assembling ``component``: its structure without parameter values,
+    the outputs, the assembler options and :func:`code_version` (SHA-256, hex)."""
+    fp = _Fingerprint()
+    fp.text("outputs", None if outputs is None else list(outputs))
+    fp.text("options", sorted(options.items()))
+    fp.text("code", code_version())
+    fp.feed(component)
+    return fp.hexdigest()
+
+
+# --------------------------------------------------------------------------- (de)serializing
+def _detached(decl: Any) -> Any:
+    """A copy of a parameter declaration without its instance tree (range checks and messages
+    unchanged: its path becomes its name)."""
+    if not isinstance(decl, Parameter):
+        return None
+    copy = decl.clone()
+    copy.attr = decl.path
+    copy.binding = None
+    return copy
+
+
+def dumps_system(system: System) -> bytes:
+    """A system as bytes (pickle of plain data, CasADi functions serialized).
+
+    Builds what a loaded system cannot rebuild by itself: the right-hand side, observed and
+    output functions (one shared common subexpression elimination) and the mapped per-ball
+    kernels of both forms. The Jacobians are left to be built on first use.
+    """
+    data: dict[str, Any] = {}
+    skip = {"functions", "params", "mapped", "init_residual", "symbolic_functions"}
+    for f in dataclasses.fields(System):
+        if f.name not in skip:
+            data[f.name] = getattr(system, f.name)
+    table = system.functions
+    ready = {k: table[k] for k in table
+             if k in GRAPH_KEYS or not isinstance(table, FunctionTable) or table.built(k)}
+    data["functions"] = {k: f.serialize() for k, f in ready.items()}
+    data["rebuilt"] = [k for k in JACOBIANS if k in table and k not in ready]
+    data["params"] = [(q.name, float(q.value), q.unit, q.description, _detached(q.declaration))
+                      for q in system.params]
+    data["mapped"] = system.mapped.to_data() if system.mapped is not None else None
+    data["init_residual"] = (system.init_residual.serialize()
+                             if system.init_residual is not None else None)
+    if system.symbolic_functions is not None:
+        raise ValueError("dumps_system: a compiled system (symbolic_functions set) is not "
+                         "cached; cache the assembled one")
+    return pickle.dumps(data, protocol=pickle.HIGHEST_PROTOCOL)
+
+
+class _LoadedForms(MappedForms):
+    """Mapped kernels of a loaded system, deserialized on first request per form."""
+
+    def __init__(self, data: dict):
+        super().__init__(None, None, None)
+        self.summary = data["summary"]
+        self._serialized = data["forms"]
+
+    def get(self, form: str) -> MappedKernel:
+        if form not in self._built and form in self._serialized:
+            value = self._serialized[form]
+            self._built[form] = (NotMappable(value) if isinstance(value, str) else MappedKernel(
+                *[ca.Function.deserialize(v) for v in value]))
+        return super().get(form)
+
+
+def _jacobian(function: Callable[[str], ca.Function], name: str, of: str, wrt_index: int,
+              out_name: str) -> ca.Function:
+    """``d of(t, x, u, p) / d (x or u)`` as a function of (t, x, u, p), built from a loaded
+    function (``function(of)``) like the assembler builds it from the shared graph."""
+    of = function(of)
+    sym = ca.SX if of.is_a("SXFunction") else ca.MX
+    args = [sym.sym(n, of.size1_in(k), of.size2_in(k)) for k, n in enumerate("txup")]
+    return ca.Function(name, args, [ca.jacobian(of(*args), args[wrt_index])],
+                       list("txup"), [out_name])
+
+
+def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = None) -> System:
+    """The :class:`System` of :func:`dumps_system` bytes.
+
+    Parameters
+    ----------
+    payload : bytes
+        From :func:`dumps_system` (trusted: checked by the cache before).
+    parameters : mapping, optional
+        Parameter declarations by dotted path (of the component the system is loaded for):
+        their values and range checks replace the stored ones.
+    """
+    data = pickle.loads(payload)  # noqa: S301 - checksummed entries of the user's own cache
+    pending = {k: partial(ca.Function.deserialize, v) for k, v in data.pop("functions").items()}
+    wrt = {"x": 1, "u": 2}
+
+    def function(name: str) -> ca.Function:
+        return table[name]
+
+    for k in data.pop("rebuilt"):
+        of, by, out = JACOBIANS[k]
+        pending[k] = partial(_jacobian, function, k, of, wrt[by], out)
+    table = FunctionTable({}, pending)
+    params = []
+    live = parameters or {}
+    for name, value, unit, description, decl in data.pop("params"):
+        own = live.get(name)
+        if own is not None and own.value is not None:
+            value, decl = float(own.value), own
+        params.append(Param(name, ca.SX.sym(name), value, unit, description, decl))
+    mapped = data.pop("mapped")
+    init_residual = data.pop("init_residual")
+    return System(**data, functions=table, params=params,
+                  mapped=_LoadedForms(mapped) if mapped is not None else None,
+                  init_residual=(ca.Function.deserialize(init_residual)
+                                 if init_residual is not None else None))
+
+
+# --------------------------------------------------------------------------- entries
+def _entry(key: str, root: str | Path | None) -> Path:
+    return systems_dir(root) / f"{key}{SUFFIX}"
+
+
+def _value_dependent(system: System) -> dict[str, float] | None:
+    """The parameter values the structure was chosen at, when it depends on them: index
+    reduction picks dummy derivatives from the Jacobian at the start point (parameter values
+    included); None otherwise."""
+    if "index reduction" not in system.report:
+        return None
+    return {q.name: float(q.value) for q in system.params}
+
+
+def _write_entry(path: Path, key: str, payload: bytes, values: dict | None) -> None:
+    body = pickle.dumps({"format": FORMAT, "key": key, "code": code_version(),
+                         "values": values, "payload": payload},
+                        protocol=pickle.HIGHEST_PROTOCOL)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_path(path) as tmp:
+        tmp.write_bytes(MAGIC + hashlib.sha256(body).digest() + body)
+
+
+def _read_entry(path: Path, key: str, values: dict[str, float]) -> bytes | None:
+    """The payload of a valid entry; None (and the file removed) for a missing, stale or
+    corrupt one, or one whose structure was chosen at other parameter ``values``."""
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        return None
+    head = len(MAGIC) + 32
+    body = raw[head:]
+    valid = raw[:len(MAGIC)] == MAGIC and raw[len(MAGIC):head] == hashlib.sha256(body).digest()
+    entry = None
+    if valid:
+        try:
+            entry = pickle.loads(body)  # noqa: S301 - checksum verified above
+        except Exception:  # noqa: BLE001 - any undecodable entry is rebuilt
+            entry = None
+    if (not isinstance(entry, dict) or entry.get("format") != FORMAT or entry.get("key") != key
+            or entry.get("code") != code_version()
+            or (entry.get("values") is not None
+                and any(values.get(n, v) != v for n, v in entry["values"].items()))):
+        path.unlink(missing_ok=True)
+        return None
+    return entry["payload"]
+
+
+def read_payload(path: str | Path, key: str) -> bytes | None:
+    """The system bytes (:func:`dumps_system`) of a valid entry, or None (see
+    :data:`LAST` for the path and key of the last lookup)."""
+    return _read_entry(Path(path), key, {})
+
+
+def _parameter_declarations(component: Component) -> dict[str, Parameter]:
+    return {decl.path: decl for comp in component.walk()
+            for decl in comp.declarations.values() if isinstance(decl, Parameter)}
+
+
+LAST: dict[str, Any] = {}
+"""What the last :func:`assemble_cached` call of this process did: ``hit`` (bool), ``key``,
+``path``, ``seconds`` (for reports and tests)."""
+
+
+def assemble_cached(component: Component, outputs: list[str] | None = None, *,
+                    cache: bool = True, cache_dir: str | Path | None = None,
+                    **options: Any) -> System:
+    """:func:`~bearingsim.assembler.assemble` through the on-disk cache.
+
+    Parameters
+    ----------
+    component : Component
+        The model.
+    outputs : list of str, optional
+        As for ``assemble``.
+    cache : bool
+        Look up and store the entry; False: assemble only.
+    cache_dir : path, optional
+        Root of the cache (default :func:`cache_root`).
+    **options
+        Keywords of ``assemble`` (``newton_tol``, ``rootfinder``); with ``extra_passes`` the
+        model is assembled and not cached (user passes are not part of the key).
+
+    Returns
+    -------
+    System
+        Loaded (a hit: ``system.report["cache"]`` says so, ``system.timings`` holds the load
+        time) or assembled and stored.
+    """
+    if not cache or options.get("extra_passes"):
+        return assemble(component, outputs, **options)
+    t0 = time.perf_counter()
+    key = structure_key(component, outputs, **options)
+    path = _entry(key, cache_dir)
+    declarations = _parameter_declarations(component)
+    payload = _read_entry(path, key, {n: d.value for n, d in declarations.items()})
+    if payload is not None:
+        try:
+            system = loads_system(payload, declarations)
+        except Exception:  # noqa: BLE001 - an entry that does not load is rebuilt
+            path.unlink(missing_ok=True)
+        else:
+            seconds = time.perf_counter() - t0
+            system.report = {**system.report, "cache": f"loaded {path.name} in {seconds:.2f} s"}
+            system.timings = [("cache load", seconds)]
+            LAST.update(hit=True, key=key, path=path, seconds=seconds)
+            return system
+    system = assemble(component, outputs, **options)
+    try:
+        _write_entry(path, key, dumps_system(system), _value_dependent(system))
+    except OSError:
+        pass  # a read-only or full cache only costs the next run an assembly
+    LAST.update(hit=False, key=key, path=path, seconds=time.perf_counter() - t0)
+    return system
+
+
+# --------------------------------------------------------------------------- housekeeping
+@dataclasses.dataclass
+class CacheInfo:
+    """What the cache holds: its root, the assembled systems and the compiled libraries."""
+
+    root: Path
+    systems: int
+    systems_bytes: int
+    libraries: int
+    libraries_bytes: int
+
+
+def _libraries(root: Path) -> list[Path]:
+    """The compiled kernel libraries (``<prefix>_<16 hex>.so`` and their companions) and
+    unfinished build folders in ``root``."""
+    if not root.is_dir():
+        return []
+    out = []
+    for p in root.iterdir():
+        stem = p.name.split(".so", 1)[0]
+        if p.name.startswith(".build_") or (".so" in p.name and len(stem) > 17
+                                            and stem[-17] == "_"
+                                            and all(c in "0123456789abcdef"
+                                                    for c in stem[-16:])):
+            out.append(p)
+    return out
+
+
+def _size(path: Path) -> int:
+    if path.is_dir():
+        return sum(f.stat().st_size for f in path.rglob("*") if f.is_file())
+    return path.stat().st_size
+
+
+def cache_info(root: str | Path | None = None) -> CacheInfo:
+    """Count and size [bytes] of the cached systems and libraries under ``root``."""
+    root = Path(root) if root is not None else cache_root()
+    systems = sorted(systems_dir(root).glob(f"*{SUFFIX}")) if systems_dir(root).is_dir() else []
+    libs = _libraries(root)
+    return CacheInfo(root, len(systems), sum(_size(p) for p in systems), len(libs),
+                     sum(_size(p) for p in libs))
+
+
+def clear_cache(root: str | Path | None = None) -> CacheInfo:
+    """Remove every cached system and compiled library under ``root``; returns what was
+    there. Other files in the folder are left alone."""
+    root = Path(root) if root is not None else cache_root()
+    before = cache_info(root)
+    if systems_dir(root).is_dir():
+        shutil.rmtree(systems_dir(root))
+    for p in _libraries(root):
+        if p.is_dir():
+            shutil.rmtree(p, ignore_errors=True)
+        else:
+            p.unlink(missing_ok=True)
+    return before

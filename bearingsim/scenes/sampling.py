@@ -1,0 +1,145 @@
+"""Sweep points: the keys a point can set, the Cartesian product of grids, and quasi-random
+samples of ranges.
+
+Samples come from :mod:`scipy.stats.qmc`: a Latin hypercube (``"lhs"``, optionally
+``"lhs-optimal"`` with CD-optimal random permutations) or a Sobol sequence (``"sobol"``; a
+power of two keeps its balance properties, other counts are accepted with scipy's warning
+silenced). Both are scrambled by default and reproducible with ``seed``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import warnings
+from typing import Any
+
+from scipy.stats import qmc
+
+from bearingsim.errors import ParameterError
+from bearingsim.units import parse_quantity
+
+__all__ = ["SAMPLERS", "SIM_KEYS", "SweepError", "check_key", "grid_points", "parse_sample",
+           "sample_points"]
+
+SAMPLERS = ("lhs", "lhs-optimal", "sobol")
+"""Names of the samplers :func:`sample_points` takes."""
+
+
+SIM_KEYS = ("t_end", "t_start", "rtol", "atol", "method", "max_step", "n_points", "initial")
+"""The ``simulation.<setting>`` keys a sweep can set."""
+
+
+class SweepError(ParameterError):
+    """A sweep specification is invalid (key, value or point), naming it."""
+
+
+def check_key(key: str) -> None:
+    """Raise :class:`SweepError` for a key a sweep point cannot set (naming the allowed ones)."""
+    head = key.split(".", 1)[0]
+    if head not in ("inputs", "parameters", "initial", "simulation", "assembly") or "." not in key:
+        raise SweepError(
+            f"sweep key {key!r}: must start with inputs., parameters., initial., simulation. "
+            "or assembly. (e.g. inputs.shaft_speed, parameters.inner_layer.nu, "
+            "assembly.lubrication, simulation.rtol)")
+    if head == "simulation" and key.split(".", 1)[1] not in SIM_KEYS:
+        raise SweepError(f"sweep key {key!r}: allowed simulation settings: "
+                         + ", ".join(SIM_KEYS))
+
+
+def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
+    """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``.
+
+    Parameters
+    ----------
+    items : list of str
+        ``key=low:high`` each, low and high in the key's SI unit or with a unit
+        (``inputs.shaft_speed=500rpm:1000rpm``; SI values returned).
+
+    Raises
+    ------
+    SweepError
+        For a key a sweep cannot set, a malformed item or a range that is not finite with
+        low < high.
+    """
+    ranges = {}
+    for item in items:
+        if "=" not in item or ":" not in item.split("=", 1)[1]:
+            raise SweepError(f"--sample {item!r}: expected key=low:high")
+        key, rng = item.split("=", 1)
+        key = key.strip()
+        check_key(key)
+        try:
+            lo, hi = (_bound(x) for x in rng.split(":", 1))
+        except (ValueError, ParameterError):
+            raise SweepError(f"--sample {key}: low and high must be numbers, got {rng!r}"
+                             ) from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+            raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
+        ranges[key] = (lo, hi)
+    return ranges
+
+
+def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
+    """The Cartesian product of a grid, as a list of ``{key: value}`` (last key fastest)."""
+    keys = list(grid)
+    return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
+
+
+def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | None = 0,
+                  method: str = "lhs", scramble: bool = True) -> list[dict[str, Any]]:
+    """``n`` quasi-random points in the box ``ranges`` (scipy.stats.qmc).
+
+    Parameters
+    ----------
+    ranges : dict
+        Key -> (low, high) in the key's unit.
+    n : int
+        Number of points (>= 1).
+    seed : int or None
+        Seed of the scrambling and permutations (None: fresh entropy, not reproducible).
+    method : {"lhs", "lhs-optimal", "sobol"}
+        Latin hypercube, Latin hypercube with centred-discrepancy optimal permutations, or
+        the Sobol sequence.
+    scramble : bool
+        Random placement inside the Latin hypercube cells / Owen scrambling of Sobol; without
+        it a Latin hypercube puts points at cell centres and Sobol starts at the origin.
+
+    Returns
+    -------
+    list of dict
+        ``n`` dicts key -> float.
+
+    Raises
+    ------
+    SweepError
+        For ``n < 1``, an unknown method or no ranges.
+    """
+    if n < 1:
+        raise SweepError(f"--samples must be >= 1, got {n}")
+    if not ranges:
+        raise SweepError("a sample needs at least one key=low:high range")
+    d = len(ranges)
+    if method == "lhs":
+        engine = qmc.LatinHypercube(d, scramble=scramble, rng=seed)
+    elif method == "lhs-optimal":
+        engine = qmc.LatinHypercube(d, scramble=scramble, optimization="random-cd", rng=seed)
+    elif method == "sobol":
+        engine = qmc.Sobol(d, scramble=scramble, rng=seed)
+    else:
+        raise SweepError(f"--sampler {method!r}: allowed: {', '.join(SAMPLERS)}")
+    with warnings.catch_warnings():
+        # Sobol balance needs n = 2^m; other counts are the user's choice, not an error
+        warnings.filterwarnings("ignore", message=".*balance properties.*")
+        unit = engine.random(n)
+    lows = [lo for lo, _ in ranges.values()]
+    highs = [hi for _, hi in ranges.values()]
+    box = qmc.scale(unit, lows, highs)
+    keys = list(ranges)
+    return [{k: float(row[j]) for j, k in enumerate(keys)} for row in box]
+
+
+def _bound(text: str) -> float:
+    """A sample bound: a number (SI) or a number with a unit (``500rpm``), in SI."""
+    quantity = parse_quantity(text)
+    return quantity[0] if quantity is not None else float(text)

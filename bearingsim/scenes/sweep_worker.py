@@ -1,0 +1,153 @@
+"""The worker side of a sweep: a model loaded once per process, chunks of points run through
+the scene runner's single-run functions, compact rows back.
+
+A :class:`ModelPayload` carries one assembled model: the prepared scene of its structure
+(everything :class:`~bearingsim.scenes.runner.Prepared` holds but the system) and the system as
+bytes (:func:`bearingsim.assembler.cache.dumps_system`, the format of the on-disk cache). A
+worker loads it on first use and keeps it for the life of the process (:data:`MODELS`), so a
+sweep of N points costs one load per worker and model, and a persistent worker (``dask
+worker`` on a cluster) loads a model once across sweeps.
+
+Each point runs exactly what ``bearingsim run`` runs for that scene
+(:func:`~bearingsim.scenes.runner.run_simulation`, then
+:func:`~bearingsim.scenes.runner.output_series` for the post-processed quantities) and returns
+the final value of every output.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import dataclasses
+import os
+import threading
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from bearingsim.assembler.cache import loads_system
+from bearingsim.scenes.runner import Prepared, output_series, run_simulation
+from bearingsim.scenes.scene import Scene
+
+__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",
+           "run_job", "run_point", "warm"]
+
+
+@dataclass
+class ModelPayload:
+    """One assembled model for the workers (picklable; the system as bytes)."""
+
+    token: str
+    """Identifies the model (hash of the bytes)."""
+    prepared: Prepared
+    """The prepared scene of the model's structure, ``system`` None."""
+    system: bytes
+
+
+@dataclass
+class Job:
+    """One sweep point."""
+
+    index: int
+    scene: Scene
+    """The scene with the point's values applied (inputs, parameters, initial values,
+    simulation settings)."""
+    parameters: dict[str, float]
+    """Parameter overrides from arguments that only change parameter values."""
+
+
+MODELS: dict[str, Prepared] = {}
+"""Models loaded in this process, by token."""
+LOADS: dict[str, int] = {}
+"""How often each model was loaded in this process (for tests and the sweep summary)."""
+_LOCK = threading.Lock()
+
+
+def load_model(payload: ModelPayload) -> Prepared:
+    """The prepared model of ``payload``, loaded on first use in this process."""
+    with _LOCK:
+        prep = MODELS.get(payload.token)
+        if prep is None:
+            system = loads_system(payload.system)
+            prep = dataclasses.replace(payload.prepared, system=system)
+            MODELS[payload.token] = prep
+            LOADS[payload.token] = LOADS.get(payload.token, 0) + 1
+        return prep
+
+
+def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
+    """Run one point; returns ``index``, ``status`` ("ok"/"failed"), ``final`` (output ->
+    value at the end), ``error``, ``wall_s``, ``pid``. Never raises for a failing point."""
+    t0 = time.perf_counter()
+    row: dict[str, Any] = {"index": job.index, "pid": os.getpid()}
+    try:
+        point = dataclasses.replace(prep, scene=job.scene)
+        result = run_simulation(point, parameters=job.parameters or None, progress=False)
+        series = output_series(point, result)
+        final = {}
+        for name, y in series.items():
+            if np.any(np.isnan(y)):
+                raise ValueError(f"output {name} has NaN values")
+            final[name] = float(y[-1])
+        row.update(status="ok", final=final, error="")
+    except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
+        row.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
+    row["wall_s"] = time.perf_counter() - t0
+    return row
+
+
+class PointTimeout(Exception):
+    """Raised inside a point's thread when it exceeds its time budget."""
+
+
+def _run_with_budget(prep: Prepared, job: Job, timeout: float) -> dict[str, Any]:
+    """:func:`run_job` in a thread; a point still running after ``timeout`` seconds is
+    returned as failed, and :class:`PointTimeout` is raised in its thread, which stops the
+    solver at its next return to Python (between save points: a solver inside one C call
+    cannot be stopped from outside; the sweep goes on either way)."""
+    box: dict[str, Any] = {}
+    thread = threading.Thread(target=lambda: box.update(run_job(prep, job)), daemon=True,
+                              name=f"sweep-point-{job.index}")
+    thread.start()
+    thread.join(timeout)
+    if thread.is_alive():
+        ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(thread.ident),
+                                                   ctypes.py_object(PointTimeout))
+        return {"index": job.index, "pid": os.getpid(), "status": "failed", "final": {},
+                "error": f"TimeoutError: the point exceeded its time budget of {timeout:g} s",
+                "wall_s": float(timeout)}
+    return box
+
+
+def run_point(prep: Prepared, job: Job, timeout: float | None = None) -> dict[str, Any]:
+    """:func:`run_job`, within a time budget of ``timeout`` seconds when given."""
+    return run_job(prep, job) if timeout is None else _run_with_budget(prep, job, timeout)
+
+
+def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = None
+              ) -> list[dict[str, Any]]:
+    """Run a chunk of points of one model (a dask task); one row per point.
+
+    Parameters
+    ----------
+    payload : ModelPayload
+        The model (loaded once per process).
+    jobs : list of Job
+        The points.
+    timeout : float, optional
+        Time budget of each point [s] (None: none).
+    """
+    prep = load_model(payload)
+    rows = []
+    for job in jobs:
+        row = run_point(prep, job, timeout)
+        row["model_loads"] = LOADS.get(payload.token, 0)
+        rows.append(row)
+    return rows
+
+
+def warm(payload: ModelPayload) -> int:
+    """Load the model ahead of the first chunk (a task per worker); returns the process id."""
+    load_model(payload)
+    return os.getpid()

@@ -1,0 +1,87 @@
+"""Sweep samples from scipy.stats.qmc: stratification (Latin hypercube: one point per cell in
+every dimension; Sobol with 2^m points: one per dyadic interval in every dimension, the
+(t, m, s)-net property of Sobol' 1967), ranges, seeds, and the CLI flags."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from bearingsim.cli import _parser
+from bearingsim.scenes.sampling import SweepError, check_key, parse_sample, sample_points
+
+RANGES = {"parameters.shaft.J": (1e-4, 1e-3), "inputs.shaft_speed": (100.0, 600.0)}
+
+
+def _cells(points, key, n):
+    lo, hi = RANGES[key]
+    return sorted(int(math.floor((p[key] - lo) / (hi - lo) * n)) for p in points)
+
+
+@given(n=st.integers(1, 64), seed=st.integers(0, 2**32 - 1),
+       method=st.sampled_from(["lhs", "lhs-optimal"]))
+@settings(max_examples=30, deadline=None)
+def test_latin_hypercube_puts_one_point_in_every_cell(n, seed, method):
+    points = sample_points(RANGES, n, seed, method=method)
+    assert len(points) == n
+    for key in RANGES:
+        assert _cells(points, key, n) == list(range(n))
+
+
+@pytest.mark.parametrize("m", [1, 3, 6])
+def test_sobol_power_of_two_is_stratified_in_each_dimension(m):
+    n = 2**m
+    points = sample_points(RANGES, n, seed=5, method="sobol")
+    for key in RANGES:
+        assert _cells(points, key, n) == list(range(n))
+
+
+def test_unscrambled_samples_are_cell_centres_and_sobol_starts_at_the_origin():
+    centres = sample_points({"inputs.x": (0.0, 1.0)}, 4, seed=0, scramble=False)
+    assert sorted(p["inputs.x"] for p in centres) == pytest.approx([0.125, 0.375, 0.625,
+                                                                    0.875])
+    sobol = sample_points({"inputs.x": (0.0, 1.0)}, 4, seed=0, method="sobol", scramble=False)
+    assert [p["inputs.x"] for p in sobol] == pytest.approx([0.0, 0.5, 0.75, 0.25])
+
+
+def test_seeds_reproduce_and_differ():
+    a = sample_points(RANGES, 16, seed=3, method="sobol")
+    assert a == sample_points(RANGES, 16, seed=3, method="sobol")
+    assert a != sample_points(RANGES, 16, seed=4, method="sobol")
+    assert sample_points(RANGES, 7, seed=3) == sample_points(RANGES, 7, seed=3)
+
+
+@given(lo=st.floats(-1e6, 1e6), width=st.floats(1e-6, 1e6), n=st.integers(1, 40))
+@settings(max_examples=40, deadline=None)
+def test_samples_stay_in_their_range(lo, width, n):
+    hi = lo + width
+    if not hi > lo:
+        return
+    for method in ("lhs", "sobol"):
+        values = np.array([p["inputs.x"] for p in sample_points({"inputs.x": (lo, hi)}, n,
+                                                                  seed=1, method=method)])
+        assert np.all(values >= lo) and np.all(values <= hi)
+
+
+def test_bad_specifications_are_named():
+    with pytest.raises(SweepError, match="--samples must be >= 1"):
+        sample_points(RANGES, 0)
+    with pytest.raises(SweepError, match="allowed: lhs, lhs-optimal, sobol"):
+        sample_points(RANGES, 4, method="halton")
+    with pytest.raises(SweepError, match="low < high"):
+        parse_sample(["inputs.x=2:1"])
+    with pytest.raises(SweepError, match="must start with"):
+        parse_sample(["x=1:2"])
+    with pytest.raises(SweepError, match="allowed simulation settings"):
+        check_key("simulation.solver")
+
+
+def test_cli_flags_kept_and_sampler_added():
+    args = _parser().parse_args(["sweep", "s.toml", "--sample", "inputs.x=1:2", "--samples",
+                                 "16", "--seed", "7", "--sampler", "sobol", "--no-scramble"])
+    assert (args.samples, args.seed, args.sampler, args.no_scramble) == (16, 7, "sobol", True)
+    assert _parser().parse_args(["sweep", "s.toml"]).sampler == "lhs"
