@@ -11,10 +11,14 @@ import uuid
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 from bearingsim.assembler import System, assemble
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
+    TEMPLATE_OPTIMISATION,
+    build_description_xml,
     compile_shared_library,
     copy_templates,
     write_archive,
@@ -23,6 +27,7 @@ from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
 from bearingsim.fmu.model_c import STEPPERS, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
+from bearingsim.fmu.nominal import state_nominals
 from bearingsim.language import Component
 from bearingsim.simulation.ordering import fill_reducing_order
 
@@ -61,7 +66,12 @@ def _outputs(system, outputs) -> tuple[list[str], list[str], list[str]]:
     """FMU output names, units and descriptions; inputs of the system are dropped."""
     known = {s.name: s for s in system.states + system.outputs}
     known.update({f"der({s.name})": None for s in system.states})
-    names = list(outputs) if outputs else system.output_names
+    state_names = {s.name for s in system.states}
+    if outputs:
+        names = list(outputs)
+    else:  # every variable, but the rate of a variable that is no state is not a derivative
+        names = [n for n in system.output_names
+                 if not (n.startswith("der(") and n[4:-1] not in state_names)]
     inputs = set(system.input_names)
     dropped = [n for n in names if n in inputs]
     if dropped:
@@ -192,20 +202,28 @@ def export_fmu(
     name = model_name or system.name
     ident = _identifier(name)
     functions = fmu_functions(system, names)
-    iface = build_interface(system, functions, names, units, descriptions, u0, p0)
+    x0 = np.array([s.start for s in system.states], dtype=float)
+    jacobian = functions["jac_x"](0.0, x0, u0, p0).full()
+    iface = build_interface(system, functions, names, units, descriptions, u0, p0,
+                            state_nominals(jacobian, x0))
     guid = "{" + str(uuid.uuid4()) + "}"
-    xml = model_description_xml(iface, fmi_version, name, ident, guid, kinds,
-                                description=_description(model, system))
     with tempfile.TemporaryDirectory(prefix="bearingsim_fmu_") as tmp:
         src = Path(tmp) / "sources"
         src.mkdir()
-        work = generate_c(functions, src)
+        work, generated = generate_c(functions, src)
         order = fill_reducing_order(functions["jac_x"].sparsity_out(0))
-        write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
-                      lu_order=[int(k) for k in order])
-        copy_templates(src, fmi_version)
+        written = write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
+                                lu_order=[int(k) for k in order])
+        template = copy_templates(src, fmi_version)
+        flags = {g.name: g.optimisation for g in generated}
+        c_files = sorted(n for n in [*flags, *written, *template] if n.endswith(".c"))
+        xml = model_description_xml(iface, fmi_version, name, ident, guid, kinds,
+                                    description=_description(model, system),
+                                    source_files=c_files)
+        if fmi_version == "3.0":
+            (src / "buildDescription.xml").write_text(build_description_xml(ident, c_files))
         binary = Path(tmp) / f"{ident}.so"
-        c_files = sorted(src.glob("*.c"))
-        compile_shared_library(c_files, binary, src)
+        compile_shared_library([(src / n, flags.get(n, TEMPLATE_OPTIMISATION)) for n in c_files],
+                               binary, src)
         return write_archive(Path(path), xml, binary, BINARY_PLATFORMS[fmi_version], ident,
                              sorted(src.iterdir()))
