@@ -135,9 +135,13 @@ def export_fmu(
 ) -> Path:
     """Export an assembly or an assembled system as a Functional Mock-up Unit.
 
-    The model's functions are generated as C by CasADi, joined to the generic FMI template of
-    ``bearingsim/fmu/templates`` and compiled with the system C compiler (``$CC``, default
-    ``gcc``) into ``binaries/linux64/<model>.so``. No Python runs inside the FMU.
+    The model's functions are generated as C by CasADi (one file per function), joined to the
+    generic FMI template of ``bearingsim/fmu/templates`` and compiled in parallel with the
+    system C compiler (``$CC``, default ``gcc``) into ``binaries/linux64/<model>.so``, a
+    binary that loads on glibc 2.17 and later. The sources travel in ``sources/`` with their
+    build description (FMI 2.0 ``SourceFiles``, FMI 3.0 ``buildDescription.xml``). States
+    carry nominal values from the model's scales (:mod:`bearingsim.fmu.nominal`). No Python
+    runs inside the FMU.
 
     Parameters
     ----------
@@ -179,7 +183,8 @@ def export_fmu(
         For an unknown FMI version, kind, stepper, output, input or parameter, or a value out
         of range.
     FmuBuildError
-        If the C compiler is missing or fails.
+        If the C compiler is missing or fails, or the binary would need a glibc newer than
+        2.17.
     """
     if fmi_version not in FMI_VERSIONS:
         raise ParameterError(
