@@ -52,7 +52,9 @@ def _outputs(md) -> list[str]:
 @pytest.mark.parametrize("label", list(SHIPPED))
 def test_shipped_assembly_exports_validates_and_runs(label, fmi_version, shipped, tmp_path):
     """ME (fmpy's CVode, atol = rtol x nominal) and CS (the FMU's own stepper) agree on every
-    output at the same tolerance: two different integrators of one exported model."""
+    output at the same tolerance, to 1e-3 of the output's largest value or 1e-6 absolute (the
+    6304 cage has only reached 7e-7 rad/s after 2 ms from rest; the integrators' absolute
+    tolerances are rtol x nominal ~ 1e-6 there): two different integrators of one model."""
     path = shipped(label, fmi_version)
     assert validate_fmu(str(path)) == []
     md = read_model_description(str(path))
@@ -71,7 +73,7 @@ def test_shipped_assembly_exports_validates_and_runs(label, fmi_version, shipped
     for name in outputs:
         assert np.all(np.isfinite(cs[name])), name
         scale = max(np.max(np.abs(cs[name])), 1e-12)
-        assert np.max(np.abs(me[name] - cs[name])) <= 1e-3 * scale, name
+        assert np.max(np.abs(me[name] - cs[name])) <= 1e-3 * scale + 1e-6, name
 
 
 @pytest.mark.parametrize("label", list(SHIPPED))
