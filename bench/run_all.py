@@ -117,10 +117,10 @@ def main(argv: list[str] | None = None) -> int:
         ("ball-level assembly", ball_level_assembly.section),
         ("FMU", lambda: fmu_bench.section(args.quick, img_dir, out)),
         ("FMU stepper", lambda: fmu_stepper.section(args.quick)),
-        ("FMU export time", fmu_bench.export_section),
         ("SUNDIALS on compiled kernels", lambda: sundials_compiled.section(args.quick)),
         ("deep-groove work-precision, 50 ms", lambda: dgbb_long.section(args.quick)),
         ("co-simulation masters", lambda: cosim.section(args.quick)),
+        ("FMU export time", fmu_bench.export_section),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
