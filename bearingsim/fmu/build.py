@@ -15,9 +15,11 @@ from pathlib import Path
 from bearingsim.errors import BearingsimError
 from bearingsim.files import atomic_path
 
-__all__ = ["BINARY_PLATFORMS", "FmuBuildError", "GLIBC_BASELINE", "TEMPLATE_OPTIMISATION",
+__all__ = ["BINARY_PLATFORMS", "CROSS_PLATFORMS", "FmuBuildError", "GLIBC_BASELINE",
+           "TEMPLATE_OPTIMISATION",
            "LU_FILES", "RUNTIME_FILES", "TEMPLATE_FILES", "build_description_xml",
-           "compile_shared_library", "copy_templates", "fmi_header_dir", "glibc_versions",
+           "compile_shared_library", "copy_templates", "cross_compile_shared_library",
+           "fmi_header_dir", "glibc_versions",
            "write_archive"]
 
 RUNTIME_FILES = ("bsm_model.h", "bsm_eval.c", "bsm_solver.c")
@@ -87,6 +89,49 @@ TEMPLATE_OPTIMISATION = "-O2"
 :data:`bearingsim.fmu.codegen.OPTIMISATION`)."""
 
 
+CROSS_PLATFORMS = {
+    "linux-aarch64": ("aarch64-linux-gnu.2.17", {"3.0": "aarch64-linux"}, ".so"),
+    "darwin-x86_64": ("x86_64-macos", {"2.0": "darwin64", "3.0": "x86_64-darwin"}, ".dylib"),
+    "darwin-aarch64": ("aarch64-macos", {"3.0": "aarch64-darwin"}, ".dylib"),
+    "windows-x86_64": ("x86_64-windows-gnu", {"2.0": "win64", "3.0": "x86_64-windows"}, ".dll"),
+}
+"""Opt-in cross-built binaries (``export_fmu(platforms=...)``): zig's C compiler target, the
+``binaries/`` folder per FMI version (FMI 2.0 names no aarch64 platform) and the library
+extension. Built with ``python -m ziglang cc`` (the ``ziglang`` wheel, extra ``fmu-cross``);
+none of them is loaded or run on the build machine: they are untested."""
+
+
+def cross_compile_shared_library(sources: list[tuple[Path, str]], output: Path, include: Path,
+                                 platform_name: str) -> None:
+    """Cross-compile the sources for one of :data:`CROSS_PLATFORMS` with zig's C compiler.
+
+    Parameters
+    ----------
+    sources : list of (pathlib.Path, str)
+        The ``.c`` files and the optimisation flag of each.
+    output : pathlib.Path
+        The library to write.
+    include : pathlib.Path
+        Folder with the headers.
+    platform_name : str
+        A key of :data:`CROSS_PLATFORMS`.
+
+    Raises
+    ------
+    FmuBuildError
+        If the ``ziglang`` package is missing or the compiler fails.
+    """
+    import importlib.util
+    import sys
+
+    if importlib.util.find_spec("ziglang") is None:
+        raise FmuBuildError(f"cross-building for {platform_name} needs zig's C compiler: "
+                            "pip install ziglang (or bearingsim[fmu-cross])")
+    target = CROSS_PLATFORMS[platform_name][0]
+    _compile_and_link([sys.executable, "-m", "ziglang", "cc", "-target", target], sources,
+                      output, include, pic=not target.startswith("x86_64-windows"))
+
+
 def compile_shared_library(sources: list[tuple[Path, str]], output: Path, include: Path) -> None:
     """Compile C sources, each with its own flags and in parallel, into a shared library that
     loads on glibc 2.17 and later.
@@ -110,24 +155,8 @@ def compile_shared_library(sources: list[tuple[Path, str]], output: Path, includ
     if shutil.which(cc) is None:
         raise FmuBuildError(f"C compiler {cc!r} not found; install gcc or set CC")
     pin = resources.files("bearingsim.fmu") / "templates" / GLIBC_PIN_HEADER
-    base = [cc, "-c", "-fPIC", "-std=c99", "-fvisibility=hidden", "-DCASADI_SYMBOL_EXPORT=",
-            f"-I{include}", "-include", str(pin)]
-    jobs = []
-    for source, optimisation in sources:
-        obj = output.parent / f"{source.stem}.o"
-        cmd = [*base, optimisation, str(source), "-o", str(obj)]
-        jobs.append((cmd, obj, subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
-                                                stderr=subprocess.PIPE, text=True)))
-    errors = [(cmd, proc.communicate()[1], proc.returncode) for cmd, _, proc in jobs]
-    failed = [(cmd, err) for cmd, err, code in errors if code != 0]
-    if failed:
-        cmd, err = failed[0]
-        raise FmuBuildError(f"compiling the FMU failed ({' '.join(cmd)}):\n{err[-4000:]}")
-    link = [cc, "-shared", "-Wl,-Bsymbolic", *[str(obj) for _, obj, _ in jobs],
-            "-o", str(output), "-lm"]
-    proc = subprocess.run(link, capture_output=True, text=True, check=False)
-    if proc.returncode != 0:
-        raise FmuBuildError(f"linking the FMU failed ({' '.join(link)}):\n{proc.stderr[-4000:]}")
+    _compile_and_link([cc], sources, output, include, extra=("-include", str(pin)),
+                      link_extra=("-Wl,-Bsymbolic",))
     too_new = {sym: v for sym, v in glibc_versions(output).items() if v > GLIBC_BASELINE}
     if too_new:
         found = ", ".join(f"{sym}@GLIBC_{'.'.join(map(str, v))}"
@@ -136,6 +165,30 @@ def compile_shared_library(sources: list[tuple[Path, str]], output: Path, includ
             f"the FMU binary needs glibc symbols newer than "
             f"{'.'.join(map(str, GLIBC_BASELINE))}: {found}; pin them in "
             f"bearingsim/fmu/templates/{GLIBC_PIN_HEADER}")
+
+
+def _compile_and_link(cc: list[str], sources: list[tuple[Path, str]], output: Path,
+                      include: Path, extra: tuple[str, ...] = (),
+                      link_extra: tuple[str, ...] = (), pic: bool = True) -> None:
+    """Compile each source with its optimisation, all in parallel, and link them."""
+    base = [*cc, "-c", *(["-fPIC"] if pic else []), "-std=c99", "-fvisibility=hidden",
+            "-DCASADI_SYMBOL_EXPORT=", f"-I{include}", *extra]
+    jobs = []
+    for source, optimisation in sources:
+        obj = output.parent / f"{output.stem}_{source.stem}.o"
+        cmd = [*base, optimisation, str(source), "-o", str(obj)]
+        jobs.append((cmd, obj, subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
+                                                stderr=subprocess.PIPE, text=True)))
+    errors = [(cmd, proc.communicate()[1], proc.returncode) for cmd, _, proc in jobs]
+    failed = [(cmd, err) for cmd, err, code in errors if code != 0]
+    if failed:
+        cmd, err = failed[0]
+        raise FmuBuildError(f"compiling the FMU failed ({' '.join(cmd)}):\n{err[-4000:]}")
+    link = [*cc, "-shared", *link_extra, *[str(obj) for _, obj, _ in jobs],
+            "-o", str(output), "-lm"]
+    proc = subprocess.run(link, capture_output=True, text=True, check=False)
+    if proc.returncode != 0:
+        raise FmuBuildError(f"linking the FMU failed ({' '.join(link)}):\n{proc.stderr[-4000:]}")
 
 
 def glibc_versions(library: Path) -> dict[str, tuple[int, ...]]:
@@ -221,8 +274,8 @@ def build_description_xml(model_identifier: str, c_files: list[str]) -> str:
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode")
 
 
-def write_archive(path: Path, model_description: str, binary: Path, platform: str,
-                  model_identifier: str, sources: list[Path]) -> Path:
+def write_archive(path: Path, model_description: str, binaries: dict[str, Path],
+                  sources: list[Path]) -> Path:
     """Zip the model description, binary and sources into an ``.fmu``.
 
     Parameters
@@ -231,12 +284,8 @@ def write_archive(path: Path, model_description: str, binary: Path, platform: st
         The ``.fmu`` file to write (replaced if it exists).
     model_description : str
         The XML text.
-    binary : pathlib.Path
-        The compiled shared library.
-    platform : str
-        Binary folder name, e.g. ``"linux64"`` (FMI 2.0) or ``"x86_64-linux"`` (FMI 3.0).
-    model_identifier : str
-        Library name without extension.
+    binaries : dict of str to pathlib.Path
+        Path inside the archive (e.g. ``"binaries/linux64/model.so"``) -> compiled library.
     sources : list of pathlib.Path
         Files stored under ``sources/``.
 
@@ -247,7 +296,8 @@ def write_archive(path: Path, model_description: str, binary: Path, platform: st
     path.parent.mkdir(parents=True, exist_ok=True)
     with atomic_path(path) as tmp, zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("modelDescription.xml", model_description)
-        z.write(binary, f"binaries/{platform}/{model_identifier}.so")
+        for name, binary in binaries.items():
+            z.write(binary, name)
         for src in sources:
             z.write(src, f"sources/{src.name}")
     return path

@@ -77,6 +77,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "motor=pmsm or inner=\"61905\" (repeatable; TOML values)")
     parser.add_argument("--fmi-version", default="2.0", choices=["2.0", "3.0"],
                         help="FMI version (default 2.0)")
+    parser.add_argument("--platforms", type=_csv, default=[],
+                        help="cross-built binaries besides Linux x86-64, UNTESTED: "
+                        "linux-aarch64, darwin-x86_64, darwin-aarch64, windows-x86_64 (aarch64: "
+                        "FMI 3.0 only; needs pip install ziglang)")
     parser.add_argument("--stepper", default="ros34pw2", choices=["ros34pw2", "rodas3"],
                         help="co-simulation stepper (default ros34pw2, a Rosenbrock-W method "
                         "that reuses the Jacobian; rodas3 evaluates it at every step)")
@@ -208,7 +212,7 @@ def cli_export(argv: Sequence[str] | None = None) -> int:
             model, args.output, inputs=dict(args.input),
             outputs=args.outputs if args.outputs is not None else default_outputs,
             parameters=dict(args.param), fmi_version=args.fmi_version, kinds=args.kinds,
-            model_name=args.name, stepper=args.stepper,
+            model_name=args.name, stepper=args.stepper, platforms=args.platforms,
         )
     except BearingsimError as exc:
         print(f"export-fmu: {exc}", file=sys.stderr)

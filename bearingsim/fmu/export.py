@@ -17,10 +17,12 @@ from bearingsim.assembler import System, assemble
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
+    CROSS_PLATFORMS,
     TEMPLATE_OPTIMISATION,
     build_description_xml,
     compile_shared_library,
     copy_templates,
+    cross_compile_shared_library,
     write_archive,
 )
 from bearingsim.fmu.codegen import fmu_functions, generate_c
@@ -132,6 +134,7 @@ def export_fmu(
     kinds: Sequence[str] = ("ME", "CS"),
     model_name: str | None = None,
     stepper: str = STEPPERS[0],
+    platforms: Sequence[str] = (),
 ) -> Path:
     """Export an assembly or an assembled system as a Functional Mock-up Unit.
 
@@ -171,6 +174,11 @@ def export_fmu(
         the Jacobian and its LU factorisation over many steps, or Rodas3, which evaluates the
         Jacobian and factorises at every internal step. Both are order 3 with an embedded
         order-2 error estimate.
+    platforms : sequence of str
+        Cross-built binaries besides the Linux x86-64 one, from
+        :data:`~bearingsim.fmu.build.CROSS_PLATFORMS` (``"linux-aarch64"``, ``"darwin-x86_64"``,
+        ``"darwin-aarch64"``, ``"windows-x86_64"``; the aarch64 ones FMI 3.0 only), built with
+        zig's C compiler (``pip install ziglang``). Untested: none is loaded here.
 
     Returns
     -------
@@ -198,6 +206,13 @@ def export_fmu(
     if stepper not in STEPPERS:
         raise ParameterError(f"export_fmu: stepper must be one of {', '.join(STEPPERS)}, got "
                              f"{stepper!r}")
+    platforms = tuple(platforms)
+    bad = [p for p in platforms
+           if p not in CROSS_PLATFORMS or fmi_version not in CROSS_PLATFORMS[p][1]]
+    if bad:
+        offered = [p for p, (_, folders, _) in CROSS_PLATFORMS.items() if fmi_version in folders]
+        raise ParameterError(f"export_fmu: platform(s) {', '.join(bad)} not offered for FMI "
+                             f"{fmi_version}; cross platforms: {', '.join(offered)}")
     if platform.system() != "Linux" or platform.machine() not in ("x86_64", "AMD64"):
         raise ParameterError("export_fmu: only Linux x86_64 binaries can be built")
     system = _system(model, outputs)
@@ -227,8 +242,14 @@ def export_fmu(
                                     source_files=c_files)
         if fmi_version == "3.0":
             (src / "buildDescription.xml").write_text(build_description_xml(ident, c_files))
+        units = [(src / n, flags.get(n, TEMPLATE_OPTIMISATION)) for n in c_files]
         binary = Path(tmp) / f"{ident}.so"
-        compile_shared_library([(src / n, flags.get(n, TEMPLATE_OPTIMISATION)) for n in c_files],
-                               binary, src)
-        return write_archive(Path(path), xml, binary, BINARY_PLATFORMS[fmi_version], ident,
-                             sorted(src.iterdir()))
+        compile_shared_library(units, binary, src)
+        binaries = {f"binaries/{BINARY_PLATFORMS[fmi_version]}/{ident}.so": binary}
+        for name in platforms:
+            _, folders, extension = CROSS_PLATFORMS[name]
+            cross = Path(tmp) / name / f"{ident}{extension}"
+            cross.parent.mkdir()
+            cross_compile_shared_library(units, cross, src, name)
+            binaries[f"binaries/{folders[fmi_version]}/{ident}{extension}"] = cross
+        return write_archive(Path(path), xml, binaries, sorted(src.iterdir()))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib.util
 import shutil
 import subprocess
 import zipfile
@@ -118,3 +119,29 @@ def test_build_description_alone_is_enough_to_rebuild(drive_system, fmu_dir, tmp
     for name in DRIVE_OUTPUTS:
         scale = np.max(np.abs(shipped[name]))
         assert np.max(np.abs(rebuilt[name] - shipped[name])) <= 1e-12 * scale, name
+
+
+def test_cross_platform_not_offered_for_fmi2(drive_system, tmp_path):
+    from bearingsim.errors import ParameterError
+
+    with pytest.raises(ParameterError, match="linux-aarch64 not offered for FMI 2.0"):
+        export_fmu(drive_system, tmp_path / "x.fmu", platforms=["linux-aarch64"])
+
+
+@pytest.mark.skipif(importlib.util.find_spec("ziglang") is None, reason="needs pip ziglang")
+def test_cross_built_binaries_are_libraries_of_their_platform(drive_system, fmu_dir):
+    """Opt-in cross builds (untested: nothing here can load them): each is a shared library
+    of its platform's format and machine that defines the FMI 3 functions."""
+    path = export_fmu(drive_system, fmu_dir / "drive_cross.fmu", fmi_version="3.0",
+                      platforms=["linux-aarch64", "darwin-aarch64"])
+    assert validate_fmu(str(path)) == []
+    with zipfile.ZipFile(path) as z:
+        elf = z.read("binaries/aarch64-linux/drive.so")
+        macho = z.read("binaries/aarch64-darwin/drive.dylib")
+        assert "binaries/x86_64-linux/drive.so" in z.namelist()
+    assert elf[:4] == b"\x7fELF" and int.from_bytes(elf[18:20], "little") == 183  # EM_AARCH64
+    assert int.from_bytes(macho[:4], "little") == 0xFEEDFACF  # 64-bit Mach-O
+    assert int.from_bytes(macho[4:8], "little") == 0x0100000C  # CPU_TYPE_ARM64
+    assert int.from_bytes(macho[12:16], "little") == 6  # MH_DYLIB
+    for binary in (elf, macho):
+        assert b"fmi3DoStep" in binary and b"fmi3InstantiateCoSimulation" in binary
