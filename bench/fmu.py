@@ -36,8 +36,8 @@ import numpy as np
 from bearingsim import Assembly, Input, connect
 from bearingsim.components.rotational import Damper, Fixed, Inertia, SpringDamper, TorqueSource
 
-__all__ = ["BearingsimPythonSlave", "MODELS", "PythonStepper", "RotationalDrive", "run",
-           "section"]
+__all__ = ["BearingsimPythonSlave", "EXPORTS", "MODELS", "PythonStepper", "RotationalDrive",
+           "export_section", "export_times", "run", "section"]
 
 COMM_STEP = 1e-3
 """Communication step of every run [s]."""
@@ -396,6 +396,66 @@ def run(quick: bool, log=print) -> str:
     ])
 
 
+EXPORTS = {
+    "double-layer bearing (torque level)": ["double_layer_bearing"],
+    "motor drive (torque level)": ["motor_drive"],
+    "duplex pair": ["duplex_pair"],
+    "duplex pair, damped": ["duplex_pair", "--arg", "damping_ratio=0.05"],
+    "6304 ball level (massive balls)": ["deep_groove_ball_bearing", "--arg", "bearing=6304",
+                                        "--arg", "fidelity=dynamic_massive_balls"],
+}
+"""The shipped assemblies as ``bearingsim export-fmu`` arguments (scene names: the scene's
+outputs)."""
+
+
+def export_times(log=print) -> list[dict]:
+    """Export every shipped assembly as ME+CS, FMI 2.0 and 3.0, each in a fresh process (cold:
+    imports, assembly, code generation and compilation; the export keeps no cache): wall time
+    and the CPU time of the process and its compilers."""
+    import resource
+
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="bench_fmu_export_") as tmp:
+        for label, args in EXPORTS.items():
+            row = {"label": label}
+            for version in ("2.0", "3.0"):
+                log(f"  export {label}, FMI {version}")
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
+                t0 = time.perf_counter()
+                subprocess.run([sys.executable, "-m", "bearingsim.cli", "export-fmu", *args,
+                                str(Path(tmp) / "m.fmu"), "--kinds", "ME,CS", "--fmi-version",
+                                version], check=True, capture_output=True)
+                wall = time.perf_counter() - t0
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+                row[version] = (wall, cpu)
+            rows.append(row)
+    return rows
+
+
+def export_section(log=print):
+    """Export time per shipped assembly as a :class:`bench.common.Section`."""
+    from bench.common import Section, markdown_table
+
+    rows = export_times(log)
+    table = markdown_table(
+        ["assembly", "FMI 2.0 wall / CPU [s]", "FMI 3.0 wall / CPU [s]"],
+        [[r["label"], *(f"{r[v][0]:.1f} / {r[v][1]:.1f}" for v in ("2.0", "3.0"))]
+         for r in rows])
+    body = "\n".join([
+        "`bearingsim export-fmu NAME model.fmu --kinds ME,CS` per shipped assembly (its scene "
+        "name: the scene's outputs), each in a fresh Python process: imports, assembly, code "
+        "generation and compilation, nothing cached. CPU: user + system time of the process "
+        "and its C compilers (on a 2-core machine shared with other jobs the wall time can be "
+        "several times the CPU time). One C file per model function, compiled in parallel, "
+        "the right-hand side at -O2, the state and input Jacobians at -O1, the outputs at -O0 "
+        "(`bearingsim.fmu.codegen.OPTIMISATION`).",
+        "",
+        table,
+    ])
+    return Section("FMU export time per assembly", body)
+
+
 def section(quick: bool, img_dir: Path | None = None, out_md: Path | None = None, log=print):
     """:func:`run` as a :class:`bench.common.Section` (the signature of ``bench.run_all``)."""
     from bench.common import Section
@@ -408,7 +468,13 @@ def section(quick: bool, img_dir: Path | None = None, out_md: Path | None = None
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="0.2 s instead of 1 s per run")
+    parser.add_argument("--export-times", action="store_true",
+                        help="only the export time per shipped assembly")
     args = parser.parse_args(argv)
+    if args.export_times:
+        s = export_section()
+        print(f"## {s.title}\n\n{s.body}")
+        return 0
     print(run(args.quick))
     return 0
 

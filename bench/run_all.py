@@ -131,6 +131,7 @@ def main(argv: list[str] | None = None) -> int:
         ("per-call cost", lambda: per_call.section(args.quick)),
         ("first runs", lambda: first_run.section(args.quick)),
         ("sweep scaling", sweep_scaling.section),
+        ("FMU export time", fmu_bench.export_section),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

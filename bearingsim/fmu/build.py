@@ -1,10 +1,13 @@
-"""Compiling the FMU's C sources with the system C compiler and zipping the archive."""
+"""Compiling the FMU's C sources with the system C compiler (a binary that loads on glibc 2.17
+and later), describing how to rebuild them, and zipping the archive."""
 
 from __future__ import annotations
 
 import os
 import shutil
+import struct
 import subprocess
+import xml.etree.ElementTree as ET
 import zipfile
 from importlib import resources
 from pathlib import Path
@@ -12,8 +15,12 @@ from pathlib import Path
 from bearingsim.errors import BearingsimError
 from bearingsim.files import atomic_path
 
-__all__ = ["BINARY_PLATFORMS", "FmuBuildError", "LU_FILES", "RUNTIME_FILES", "TEMPLATE_FILES",
-           "compile_shared_library", "copy_templates", "fmi_header_dir", "write_archive"]
+__all__ = ["BINARY_PLATFORMS", "CROSS_PLATFORMS", "FmuBuildError", "GLIBC_BASELINE",
+           "TEMPLATE_OPTIMISATION",
+           "LU_FILES", "RUNTIME_FILES", "TEMPLATE_FILES", "build_description_xml",
+           "compile_shared_library", "copy_templates", "cross_compile_shared_library",
+           "fmi_header_dir", "glibc_versions",
+           "write_archive"]
 
 RUNTIME_FILES = ("bsm_model.h", "bsm_eval.c", "bsm_solver.c")
 """The FMI-independent runtime of the C template, shared by every exported FMU."""
@@ -70,43 +77,205 @@ def copy_templates(directory: Path, fmi_version: str = "2.0") -> list[str]:
     return [*files, *LU_FILES, *FMI_HEADERS[fmi_version]]
 
 
-def compile_shared_library(sources: list[Path], output: Path, include: Path,
-                           optimize: str = "-O2") -> None:
-    """Compile C sources into a shared library.
+GLIBC_BASELINE = (2, 17)
+"""Oldest glibc the Linux x86-64 binaries load on (the manylinux2014 / RHEL 7 baseline)."""
+
+GLIBC_PIN_HEADER = "glibc_2_17.h"
+"""Template header force-included (``-include``) into every file of the shipped Linux binary:
+pins the libm symbols that glibc 2.29 versioned anew to their original version."""
+
+TEMPLATE_OPTIMISATION = "-O2"
+"""Optimisation of the template runtime (of the generated model functions:
+:data:`bearingsim.fmu.codegen.OPTIMISATION`)."""
+
+
+CROSS_PLATFORMS = {
+    "linux-aarch64": ("aarch64-linux-gnu.2.17", {"3.0": "aarch64-linux"}, ".so"),
+    "darwin-x86_64": ("x86_64-macos", {"2.0": "darwin64", "3.0": "x86_64-darwin"}, ".dylib"),
+    "darwin-aarch64": ("aarch64-macos", {"3.0": "aarch64-darwin"}, ".dylib"),
+    "windows-x86_64": ("x86_64-windows-gnu", {"2.0": "win64", "3.0": "x86_64-windows"}, ".dll"),
+}
+"""Opt-in cross-built binaries (``export_fmu(platforms=...)``): zig's C compiler target, the
+``binaries/`` folder per FMI version (FMI 2.0 names no aarch64 platform) and the library
+extension. Built with ``python -m ziglang cc`` (the ``ziglang`` wheel, extra ``fmu-cross``);
+none of them is loaded or run on the build machine: they are untested."""
+
+
+def cross_compile_shared_library(sources: list[tuple[Path, str]], output: Path, include: Path,
+                                 platform_name: str) -> None:
+    """Cross-compile the sources for one of :data:`CROSS_PLATFORMS` with zig's C compiler.
 
     Parameters
     ----------
-    sources : list of pathlib.Path
-        The ``.c`` files.
+    sources : list of (pathlib.Path, str)
+        The ``.c`` files and the optimisation flag of each.
     output : pathlib.Path
-        The ``.so`` to write.
+        The library to write.
     include : pathlib.Path
         Folder with the headers.
-    optimize : str
-        Optimisation flag for the compiler.
+    platform_name : str
+        A key of :data:`CROSS_PLATFORMS`.
 
     Raises
     ------
     FmuBuildError
-        With the compiler's messages.
+        If the ``ziglang`` package is missing or the compiler fails.
+    """
+    import importlib.util
+    import sys
+
+    if importlib.util.find_spec("ziglang") is None:
+        raise FmuBuildError(f"cross-building for {platform_name} needs zig's C compiler: "
+                            "pip install ziglang (or bearingsim[fmu-cross])")
+    target = CROSS_PLATFORMS[platform_name][0]
+    _compile_and_link([sys.executable, "-m", "ziglang", "cc", "-target", target], sources,
+                      output, include, pic=not target.startswith("x86_64-windows"))
+
+
+def compile_shared_library(sources: list[tuple[Path, str]], output: Path, include: Path) -> None:
+    """Compile C sources, each with its own flags and in parallel, into a shared library that
+    loads on glibc 2.17 and later.
+
+    Parameters
+    ----------
+    sources : list of (pathlib.Path, str)
+        The ``.c`` files and the optimisation flag of each.
+    output : pathlib.Path
+        The ``.so`` to write.
+    include : pathlib.Path
+        Folder with the headers.
+
+    Raises
+    ------
+    FmuBuildError
+        With the compiler's messages, or if the library needs a glibc symbol version newer
+        than :data:`GLIBC_BASELINE`.
     """
     cc = os.environ.get("CC", "gcc")
     if shutil.which(cc) is None:
         raise FmuBuildError(f"C compiler {cc!r} not found; install gcc or set CC")
-    cmd = [
-        cc, "-shared", "-fPIC", optimize, "-std=c99", "-fvisibility=hidden",
-        "-Wl,-Bsymbolic", "-DCASADI_SYMBOL_EXPORT=", f"-I{include}",
-        *[str(s) for s in sources], "-o", str(output), "-lm",
-    ]
-    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
-    if proc.returncode != 0:
+    pin = resources.files("bearingsim.fmu") / "templates" / GLIBC_PIN_HEADER
+    _compile_and_link([cc], sources, output, include, extra=("-include", str(pin)),
+                      link_extra=("-Wl,-Bsymbolic",))
+    too_new = {sym: v for sym, v in glibc_versions(output).items() if v > GLIBC_BASELINE}
+    if too_new:
+        found = ", ".join(f"{sym}@GLIBC_{'.'.join(map(str, v))}"
+                          for sym, v in sorted(too_new.items()))
         raise FmuBuildError(
-            f"compiling the FMU failed ({' '.join(cmd)}):\n{proc.stderr[-4000:]}"
-        )
+            f"the FMU binary needs glibc symbols newer than "
+            f"{'.'.join(map(str, GLIBC_BASELINE))}: {found}; pin them in "
+            f"bearingsim/fmu/templates/{GLIBC_PIN_HEADER}")
 
 
-def write_archive(path: Path, model_description: str, binary: Path, platform: str,
-                  model_identifier: str, sources: list[Path]) -> Path:
+def _compile_and_link(cc: list[str], sources: list[tuple[Path, str]], output: Path,
+                      include: Path, extra: tuple[str, ...] = (),
+                      link_extra: tuple[str, ...] = (), pic: bool = True) -> None:
+    """Compile each source with its optimisation, all in parallel, and link them."""
+    base = [*cc, "-c", *(["-fPIC"] if pic else []), "-std=c99", "-fvisibility=hidden",
+            "-DCASADI_SYMBOL_EXPORT=", f"-I{include}", *extra]
+    jobs = []
+    for source, optimisation in sources:
+        obj = output.parent / f"{output.stem}_{source.stem}.o"
+        cmd = [*base, optimisation, str(source), "-o", str(obj)]
+        jobs.append((cmd, obj, subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
+                                                stderr=subprocess.PIPE, text=True)))
+    errors = [(cmd, proc.communicate()[1], proc.returncode) for cmd, _, proc in jobs]
+    failed = [(cmd, err) for cmd, err, code in errors if code != 0]
+    if failed:
+        cmd, err = failed[0]
+        raise FmuBuildError(f"compiling the FMU failed ({' '.join(cmd)}):\n{err[-4000:]}")
+    link = [*cc, "-shared", *link_extra, *[str(obj) for _, obj, _ in jobs],
+            "-o", str(output), "-lm"]
+    proc = subprocess.run(link, capture_output=True, text=True, check=False)
+    if proc.returncode != 0:
+        raise FmuBuildError(f"linking the FMU failed ({' '.join(link)}):\n{proc.stderr[-4000:]}")
+
+
+def glibc_versions(library: Path) -> dict[str, tuple[int, ...]]:
+    """The glibc version each imported symbol of an ELF64 little-endian shared library is bound
+    to, read from its ``.dynsym``, ``.gnu.version`` and ``.gnu.version_r`` sections (what
+    ``objdump -T`` prints as ``(GLIBC_2.29) pow``).
+
+    Parameters
+    ----------
+    library : pathlib.Path
+        The shared library.
+
+    Returns
+    -------
+    dict of str to tuple of int
+        Symbol name -> version, e.g. ``{"pow": (2, 2, 5)}``; symbols of other libraries or
+        without a ``GLIBC_`` version are left out.
+    """
+    data = Path(library).read_bytes()
+    if data[:4] != b"\x7fELF" or data[4] != 2 or data[5] != 1:
+        raise FmuBuildError(f"{library} is not an ELF64 little-endian file")
+    shoff, = struct.unpack_from("<Q", data, 0x28)
+    shentsize, shnum = struct.unpack_from("<HH", data, 0x3A)
+    sections = [struct.unpack_from("<IIQQQQIIQQ", data, shoff + k * shentsize)
+                for k in range(shnum)]
+    by_type = {sh[1]: sh for sh in sections}
+
+    def string(table: int, offset: int) -> str:
+        start = sections[table][4] + offset
+        return data[start:data.index(b"\0", start)].decode()
+
+    names: dict[int, str] = {}  # version index -> version name
+    verneed = by_type.get(_SHT_GNU_VERNEED)
+    if verneed is not None:
+        pos = verneed[4]
+        for _ in range(verneed[7]):
+            _, count, _, aux, nxt = struct.unpack_from("<HHIII", data, pos)
+            apos = pos + aux
+            for _ in range(count):
+                _, _, other, name, anext = struct.unpack_from("<IHHII", data, apos)
+                names[other] = string(verneed[6], name)
+                apos += anext
+            pos += nxt
+    dynsym, versym = by_type.get(_SHT_DYNSYM), by_type.get(_SHT_GNU_VERSYM)
+    if dynsym is None or versym is None:
+        return {}
+    out = {}
+    for k in range(dynsym[5] // 24):
+        name, _, _, shndx, _, _ = struct.unpack_from("<IBBHQQ", data, dynsym[4] + 24 * k)
+        version = names.get(struct.unpack_from("<H", data, versym[4] + 2 * k)[0] & 0x7FFF, "")
+        if shndx == 0 and version.startswith("GLIBC_"):
+            out[string(dynsym[6], name)] = tuple(int(v) for v in version[6:].split("."))
+    return out
+
+
+_SHT_DYNSYM, _SHT_GNU_VERNEED, _SHT_GNU_VERSYM = 11, 0x6FFFFFFE, 0x6FFFFFFF
+
+
+def build_description_xml(model_identifier: str, c_files: list[str]) -> str:
+    """``sources/buildDescription.xml`` of an FMI 3.0 source FMU: one C99 file set and libm.
+
+    Parameters
+    ----------
+    model_identifier : str
+        The library name.
+    c_files : list of str
+        The ``.c`` files under ``sources/``.
+
+    Returns
+    -------
+    str
+        The XML document.
+    """
+    root = ET.Element("fmiBuildDescription", fmiVersion="3.0")
+    config = ET.SubElement(root, "BuildConfiguration", modelIdentifier=model_identifier)
+    files = ET.SubElement(config, "SourceFileSet", language="C99")
+    for name in c_files:
+        ET.SubElement(files, "SourceFile", name=name)
+    ET.SubElement(files, "PreprocessorDefinition", name="CASADI_SYMBOL_EXPORT", value="",
+                  description="the model functions stay inside the library")
+    ET.SubElement(config, "Library", name="m", description="the C math library (POSIX)")
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode")
+
+
+def write_archive(path: Path, model_description: str, binaries: dict[str, Path],
+                  sources: list[Path]) -> Path:
     """Zip the model description, binary and sources into an ``.fmu``.
 
     Parameters
@@ -115,12 +284,8 @@ def write_archive(path: Path, model_description: str, binary: Path, platform: st
         The ``.fmu`` file to write (replaced if it exists).
     model_description : str
         The XML text.
-    binary : pathlib.Path
-        The compiled shared library.
-    platform : str
-        Binary folder name, e.g. ``"linux64"`` (FMI 2.0) or ``"x86_64-linux"`` (FMI 3.0).
-    model_identifier : str
-        Library name without extension.
+    binaries : dict of str to pathlib.Path
+        Path inside the archive (e.g. ``"binaries/linux64/model.so"``) -> compiled library.
     sources : list of pathlib.Path
         Files stored under ``sources/``.
 
@@ -131,7 +296,8 @@ def write_archive(path: Path, model_description: str, binary: Path, platform: st
     path.parent.mkdir(parents=True, exist_ok=True)
     with atomic_path(path) as tmp, zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("modelDescription.xml", model_description)
-        z.write(binary, f"binaries/{platform}/{model_identifier}.so")
+        for name, binary in binaries.items():
+            z.write(binary, name)
         for src in sources:
             z.write(src, f"sources/{src.name}")
     return path

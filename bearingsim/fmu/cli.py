@@ -4,7 +4,8 @@ The factory is ``pkg.module:callable`` (importable, the current folder included)
 ``path/to/file.py:callable`` or the name of an assembly that scenes know (``bearingsim list``:
 built-in or a plug-in's); ``--arg NAME=VALUE`` passes keyword arguments to it (values read as
 TOML values: numbers, true/false, quoted or bare text, lists). For an assembly name the
-arguments are its scene arguments, plus ``fidelity`` (default: its highest automatic level).
+arguments are its scene arguments, plus ``fidelity`` (default: its highest automatic level),
+and the FMU's outputs default to the ones its scenes report.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["build_parser", "cli_export"]
+__all__ = ["build_parser", "cli_export", "scene_outputs"]
 
 
 def _assignment(text: str) -> tuple[str, float]:
@@ -62,7 +63,8 @@ def build_parser() -> argparse.ArgumentParser:
                                         "name (bearingsim list)")
     parser.add_argument("output", help="path of the .fmu to write")
     parser.add_argument("--outputs", type=_csv, default=None,
-                        help="comma-separated dotted names of the outputs")
+                        help="comma-separated dotted names of the outputs (default: for an "
+                        "assembly name, the outputs its scenes report; else every variable)")
     parser.add_argument("--kinds", type=_csv, default=["ME", "CS"],
                         help="ME, CS or ME,CS (default)")
     parser.add_argument("--name", default=None, help="model name (default: the assembly's)")
@@ -75,15 +77,48 @@ def build_parser() -> argparse.ArgumentParser:
                         "motor=pmsm or inner=\"61905\" (repeatable; TOML values)")
     parser.add_argument("--fmi-version", default="2.0", choices=["2.0", "3.0"],
                         help="FMI version (default 2.0)")
+    parser.add_argument("--platforms", type=_csv, default=[],
+                        help="cross-built binaries besides Linux x86-64, UNTESTED: "
+                        "linux-aarch64, darwin-x86_64, darwin-aarch64, windows-x86_64 (aarch64: "
+                        "FMI 3.0 only; needs pip install ziglang)")
     parser.add_argument("--stepper", default="ros34pw2", choices=["ros34pw2", "rodas3"],
                         help="co-simulation stepper (default ros34pw2, a Rosenbrock-W method "
                         "that reuses the Jacobian; rodas3 evaluates it at every step)")
     return parser
 
 
+def scene_outputs(spec, model, fidelity: str) -> list[str]:
+    """The outputs a scene of this assembly reports at ``fidelity``: its default outputs that
+    the model at that level has, else the plain names its output table assigns to that level
+    (the 6304 ball level: ``w_cage``, ``slip``); inputs are never outputs.
+
+    Parameters
+    ----------
+    spec : AssemblySpec
+        The assembly's scene description.
+    model : Component
+        The assembly built at ``fidelity``.
+    fidelity : str
+        Its level.
+
+    Returns
+    -------
+    list of str
+        Dotted names (empty when the scene names none the model has).
+    """
+    from bearingsim.language.declarations import Input, Parameter
+
+    declared = {f"{c.path}.{n}" if c.path else n: d
+                for c in model.walk() for n, d in c.declarations.items()}
+    reported = {n for n, d in declared.items() if not isinstance(d, (Input, Parameter))}
+    names = [n for n in spec.default_outputs if n in reported]
+    return names or [pattern for pattern, level in spec.output_fidelity
+                     if level == fidelity and pattern in reported]
+
+
 def _from_registry(name: str, kwargs: dict[str, Any]):
-    """The assembly a scene would build from ``name`` and the arguments ``kwargs`` (None when no
-    assembly has that name)."""
+    """The assembly a scene would build from ``name`` and the arguments ``kwargs``, and the
+    outputs such a scene reports (None when no assembly has that name)."""
     from bearingsim.assemblies.registry import REGISTRY
     from bearingsim.errors import BearingsimError
 
@@ -105,16 +140,19 @@ def _from_registry(name: str, kwargs: dict[str, Any]):
         if texts:
             raise SystemExit(f"export-fmu: {name}: give {', '.join(texts)} as a number (an "
                              "expression of t is for scenes; the FMU's inputs vary in time)")
-        return spec.build(spec.with_defaults(kwargs), fidelity)
+        model = spec.build(spec.with_defaults(kwargs), fidelity)
+        return model, scene_outputs(spec, model, fidelity)
     except BearingsimError as exc:
         raise SystemExit(f"export-fmu: {name}: {exc}") from None
 
 
 def _load(spec: str, kwargs: dict[str, Any]):
+    """The model a factory or assembly name gives, and its default outputs (None: every
+    variable)."""
     if ":" not in spec:
-        model = _from_registry(spec, kwargs)
-        if model is not None:
-            return model
+        found = _from_registry(spec, kwargs)
+        if found is not None:
+            return found
     module, sep, attr = spec.rpartition(":")
     if not sep or not module or not attr:
         raise SystemExit(f"export-fmu: expected pkg.module:callable, file.py:callable or an "
@@ -143,9 +181,9 @@ def _load(spec: str, kwargs: dict[str, Any]):
     if not callable(obj):
         if kwargs:
             raise SystemExit(f"export-fmu: {attr} is not callable, so --arg cannot be given")
-        return obj
+        return obj, None
     try:
-        return obj(**kwargs)
+        return obj(**kwargs), None
     except TypeError as exc:
         raise SystemExit(f"export-fmu: {attr}({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
                          f" failed: {exc}") from None
@@ -168,12 +206,13 @@ def cli_export(argv: Sequence[str] | None = None) -> int:
     from bearingsim.fmu.export import export_fmu
 
     args = build_parser().parse_args(argv)
-    model = _load(args.factory, dict(args.arg))
+    model, default_outputs = _load(args.factory, dict(args.arg))
     try:
         path = export_fmu(
-            model, args.output, inputs=dict(args.input), outputs=args.outputs,
+            model, args.output, inputs=dict(args.input),
+            outputs=args.outputs if args.outputs is not None else default_outputs,
             parameters=dict(args.param), fmi_version=args.fmi_version, kinds=args.kinds,
-            model_name=args.name, stepper=args.stepper,
+            model_name=args.name, stepper=args.stepper, platforms=args.platforms,
         )
     except BearingsimError as exc:
         print(f"export-fmu: {exc}", file=sys.stderr)

@@ -11,18 +11,25 @@ import uuid
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 from bearingsim.assembler import System, assemble_cached
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
+    CROSS_PLATFORMS,
+    TEMPLATE_OPTIMISATION,
+    build_description_xml,
     compile_shared_library,
     copy_templates,
+    cross_compile_shared_library,
     write_archive,
 )
 from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
 from bearingsim.fmu.model_c import STEPPERS, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
+from bearingsim.fmu.nominal import state_nominals
 from bearingsim.language import Component
 from bearingsim.simulation.ordering import fill_reducing_order
 
@@ -62,7 +69,12 @@ def _outputs(system, outputs) -> tuple[list[str], list[str], list[str]]:
     """FMU output names, units and descriptions; inputs of the system are dropped."""
     known = {s.name: s for s in system.states + system.outputs}
     known.update({f"der({s.name})": None for s in system.states})
-    names = list(outputs) if outputs else system.output_names
+    state_names = {s.name for s in system.states}
+    if outputs:
+        names = list(outputs)
+    else:  # every variable, but the rate of a variable that is no state is not a derivative
+        names = [n for n in system.output_names
+                 if not (n.startswith("der(") and n[4:-1] not in state_names)]
     inputs = set(system.input_names)
     dropped = [n for n in names if n in inputs]
     if dropped:
@@ -123,12 +135,17 @@ def export_fmu(
     kinds: Sequence[str] = ("ME", "CS"),
     model_name: str | None = None,
     stepper: str = STEPPERS[0],
+    platforms: Sequence[str] = (),
 ) -> Path:
     """Export an assembly or an assembled system as a Functional Mock-up Unit.
 
-    The model's functions are generated as C by CasADi, joined to the generic FMI template of
-    ``bearingsim/fmu/templates`` and compiled with the system C compiler (``$CC``, default
-    ``gcc``) into ``binaries/linux64/<model>.so``. No Python runs inside the FMU.
+    The model's functions are generated as C by CasADi (one file per function), joined to the
+    generic FMI template of ``bearingsim/fmu/templates`` and compiled in parallel with the
+    system C compiler (``$CC``, default ``gcc``) into ``binaries/linux64/<model>.so``, a
+    binary that loads on glibc 2.17 and later. The sources travel in ``sources/`` with their
+    build description (FMI 2.0 ``SourceFiles``, FMI 3.0 ``buildDescription.xml``). States
+    carry nominal values from the model's scales (:mod:`bearingsim.fmu.nominal`). No Python
+    runs inside the FMU.
 
     Parameters
     ----------
@@ -158,6 +175,11 @@ def export_fmu(
         the Jacobian and its LU factorisation over many steps, or Rodas3, which evaluates the
         Jacobian and factorises at every internal step. Both are order 3 with an embedded
         order-2 error estimate.
+    platforms : sequence of str
+        Cross-built binaries besides the Linux x86-64 one, from
+        :data:`~bearingsim.fmu.build.CROSS_PLATFORMS` (``"linux-aarch64"``, ``"darwin-x86_64"``,
+        ``"darwin-aarch64"``, ``"windows-x86_64"``; the aarch64 ones FMI 3.0 only), built with
+        zig's C compiler (``pip install ziglang``). Untested: none is loaded here.
 
     Returns
     -------
@@ -170,7 +192,8 @@ def export_fmu(
         For an unknown FMI version, kind, stepper, output, input or parameter, or a value out
         of range.
     FmuBuildError
-        If the C compiler is missing or fails.
+        If the C compiler is missing or fails, or the binary would need a glibc newer than
+        2.17.
     """
     if fmi_version not in FMI_VERSIONS:
         raise ParameterError(
@@ -184,6 +207,13 @@ def export_fmu(
     if stepper not in STEPPERS:
         raise ParameterError(f"export_fmu: stepper must be one of {', '.join(STEPPERS)}, got "
                              f"{stepper!r}")
+    platforms = tuple(platforms)
+    bad = [p for p in platforms
+           if p not in CROSS_PLATFORMS or fmi_version not in CROSS_PLATFORMS[p][1]]
+    if bad:
+        offered = [p for p, (_, folders, _) in CROSS_PLATFORMS.items() if fmi_version in folders]
+        raise ParameterError(f"export_fmu: platform(s) {', '.join(bad)} not offered for FMI "
+                             f"{fmi_version}; cross platforms: {', '.join(offered)}")
     if platform.system() != "Linux" or platform.machine() not in ("x86_64", "AMD64"):
         raise ParameterError("export_fmu: only Linux x86_64 binaries can be built")
     system = _system(model, outputs)
@@ -193,20 +223,34 @@ def export_fmu(
     name = model_name or system.name
     ident = _identifier(name)
     functions = fmu_functions(system, names)
-    iface = build_interface(system, functions, names, units, descriptions, u0, p0)
+    x0 = np.array([s.start for s in system.states], dtype=float)
+    jacobian = functions["jac_x"](0.0, x0, u0, p0).full()
+    iface = build_interface(system, functions, names, units, descriptions, u0, p0,
+                            state_nominals(jacobian, x0))
     guid = "{" + str(uuid.uuid4()) + "}"
-    xml = model_description_xml(iface, fmi_version, name, ident, guid, kinds,
-                                description=_description(model, system))
     with tempfile.TemporaryDirectory(prefix="bearingsim_fmu_") as tmp:
         src = Path(tmp) / "sources"
         src.mkdir()
-        work = generate_c(functions, src)
+        work, generated = generate_c(functions, src)
         order = fill_reducing_order(functions["jac_x"].sparsity_out(0))
-        write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
-                      lu_order=[int(k) for k in order])
-        copy_templates(src, fmi_version)
+        written = write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
+                                lu_order=[int(k) for k in order])
+        template = copy_templates(src, fmi_version)
+        flags = {g.name: g.optimisation for g in generated}
+        c_files = sorted(n for n in [*flags, *written, *template] if n.endswith(".c"))
+        xml = model_description_xml(iface, fmi_version, name, ident, guid, kinds,
+                                    description=_description(model, system),
+                                    source_files=c_files)
+        if fmi_version == "3.0":
+            (src / "buildDescription.xml").write_text(build_description_xml(ident, c_files))
+        units = [(src / n, flags.get(n, TEMPLATE_OPTIMISATION)) for n in c_files]
         binary = Path(tmp) / f"{ident}.so"
-        c_files = sorted(src.glob("*.c"))
-        compile_shared_library(c_files, binary, src)
-        return write_archive(Path(path), xml, binary, BINARY_PLATFORMS[fmi_version], ident,
-                             sorted(src.iterdir()))
+        compile_shared_library(units, binary, src)
+        binaries = {f"binaries/{BINARY_PLATFORMS[fmi_version]}/{ident}.so": binary}
+        for name in platforms:
+            _, folders, extension = CROSS_PLATFORMS[name]
+            cross = Path(tmp) / name / f"{ident}{extension}"
+            cross.parent.mkdir()
+            cross_compile_shared_library(units, cross, src, name)
+            binaries[f"binaries/{folders[fmi_version]}/{ident}{extension}"] = cross
+        return write_archive(Path(path), xml, binaries, sorted(src.iterdir()))

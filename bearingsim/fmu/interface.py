@@ -48,6 +48,8 @@ class FmuVariable:
         Start value (written when not ``None``).
     low, high : float or None
         ``min``/``max`` (parameter ranges).
+    nominal : float or None
+        ``nominal`` (states: :mod:`bearingsim.fmu.nominal`; None: not written).
     """
 
     name: str
@@ -62,6 +64,7 @@ class FmuVariable:
     description: str = ""
     low: float | None = None
     high: float | None = None
+    nominal: float | None = None
 
 
 @dataclass
@@ -131,7 +134,8 @@ def _pattern(fn: ca.Function, iind: int) -> np.ndarray:
 
 def build_interface(system, functions: dict[str, ca.Function], output_names: list[str],
                     output_units: list[str], output_descriptions: list[str],
-                    input_starts: np.ndarray, parameter_values: np.ndarray) -> FmuInterface:
+                    input_starts: np.ndarray, parameter_values: np.ndarray,
+                    state_nominals: np.ndarray | None = None) -> FmuInterface:
     """Lay out the FMU variables of a system.
 
     Parameters
@@ -146,6 +150,8 @@ def build_interface(system, functions: dict[str, ca.Function], output_names: lis
         Start values of the inputs.
     parameter_values : numpy.ndarray
         Start values (defaults) of the parameters, validated.
+    state_nominals : numpy.ndarray, optional
+        Nominal values of the states (default 1).
 
     Returns
     -------
@@ -176,6 +182,7 @@ def build_interface(system, functions: dict[str, ca.Function], output_names: lis
         variables.append(FmuVariable(
             s.name, k, "state", k, causality, "continuous", "exact", float(s.start),
             normalize_unit(s.unit), s.description,
+            nominal=1.0 if state_nominals is None else float(state_nominals[k]),
         ))
     for k, s in enumerate(system.states):
         causality = "output" if nx + k in merged else "local"

@@ -1,6 +1,7 @@
 """The model-specific C part of an FMU: ``model_config.h`` (sizes, value-reference blocks, work
-sizes, GUID) and ``model_data.c`` (start values, parameter ranges, names and the table of the
-CasADi-generated functions). Everything else in the FMU's C code is the generic template."""
+sizes, GUID) and ``model_data.c`` (start and nominal values, parameter ranges, names and the
+table of the CasADi-generated functions). Everything else in the FMU's C code is the generic
+template."""
 
 from __future__ import annotations
 
@@ -110,6 +111,7 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
 #endif
 """
     x_start = [_c_double(v.start) for v in iface.by_kind("state")]
+    x_nominal = [_c_double(v.nominal) for v in iface.by_kind("state")]
     u_start = [_c_double(v.start) for v in iface.by_kind("input")]
     params = iface.by_kind("parameter")
     p_start = [_c_double(v.start) for v in params]
@@ -126,6 +128,7 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         '#include "bsm_model.h"\n'
         f'#include "{casadi_header}"\n\n'
         + _array("double", "bsm_x_start", "NX", x_start)
+        + _array("double", "bsm_x_nominal", "NX", x_nominal)
         + _array("double", "bsm_u_start", "NU", u_start)
         + _array("double", "bsm_p_start", "NP", p_start)
         + _array("double", "bsm_p_low", "NP", [_c_double(b[0]) for b in bounds])

@@ -52,7 +52,7 @@ _VERSIONS = {
                       "providesDirectionalDerivative": "true"},
         model_exchange={},
         co_simulation={"canHandleVariableCommunicationStepSize": "true",
-                       "canInterpolateInputs": "true"},
+                       "canInterpolateInputs": "true", "maxOutputDerivativeOrder": "1"},
     ),
     "3.0": _Version(
         identity="instantiationToken",
@@ -62,7 +62,7 @@ _VERSIONS = {
                       "providesAdjointDerivatives": "false"},
         model_exchange={"needsCompletedIntegratorStep": "false"},
         co_simulation={"canHandleVariableCommunicationStepSize": "true",
-                       "maxOutputDerivativeOrder": "0", "hasEventMode": "false",
+                       "maxOutputDerivativeOrder": "1", "hasEventMode": "false",
                        "providesIntermediateUpdate": "false",
                        "canReturnEarlyAfterIntermediateUpdate": "false"},
     ),
@@ -113,7 +113,7 @@ def _variable_attributes(v: FmuVariable) -> dict[str, str]:
 
 
 def _value_attributes(v: FmuVariable, derivative_of: int | None) -> dict[str, str]:
-    """Unit, range, start and the ``derivative`` reference of a real variable."""
+    """Unit, range, nominal, start and the ``derivative`` reference of a real variable."""
     attrs: dict[str, str] = {}
     if v.unit:
         attrs["unit"] = v.unit
@@ -121,6 +121,8 @@ def _value_attributes(v: FmuVariable, derivative_of: int | None) -> dict[str, st
         attrs["min"] = _fmt(v.low)
     if v.high is not None:
         attrs["max"] = _fmt(v.high)
+    if v.nominal is not None:
+        attrs["nominal"] = _fmt(v.nominal)
     if v.start is not None:
         attrs["start"] = _fmt(v.start)
     if derivative_of is not None:
@@ -198,7 +200,8 @@ def _initial_unknowns(iface: FmuInterface) -> set[int]:
 
 def model_description_xml(iface: FmuInterface, fmi_version: str, model_name: str,
                           model_identifier: str, token: str, kinds: tuple[str, ...],
-                          description: str = "", tolerance: float = 1e-6) -> str:
+                          description: str = "", tolerance: float = 1e-6,
+                          source_files: list[str] | None = None) -> str:
     """Build the model description of an FMI 2.0 or 3.0 FMU.
 
     Parameters
@@ -218,6 +221,9 @@ def model_description_xml(iface: FmuInterface, fmi_version: str, model_name: str
         One line about the model.
     tolerance : float
         Default relative tolerance.
+    source_files : list of str, optional
+        The ``.c`` files under ``sources/``; FMI 2.0 lists them as ``SourceFiles`` of both
+        interfaces (FMI 3.0 describes them in ``sources/buildDescription.xml`` instead).
 
     Returns
     -------
@@ -240,10 +246,16 @@ def model_description_xml(iface: FmuInterface, fmi_version: str, model_name: str
         **spec.root,
     })
     common = {"modelIdentifier": model_identifier, **spec.capabilities}
+    interfaces = []
     if "ME" in kinds:
-        ET.SubElement(root, "ModelExchange", {**common, **spec.model_exchange})
+        interfaces.append(ET.SubElement(root, "ModelExchange", {**common, **spec.model_exchange}))
     if "CS" in kinds:
-        ET.SubElement(root, "CoSimulation", {**common, **spec.co_simulation})
+        interfaces.append(ET.SubElement(root, "CoSimulation", {**common, **spec.co_simulation}))
+    if fmi_version == "2.0" and source_files:
+        for element in interfaces:
+            files = ET.SubElement(element, "SourceFiles")
+            for file_name in source_files:
+                ET.SubElement(files, "File", name=file_name)
     _unit_definitions(root, iface.variables, extra=("s",) if fmi_version == "3.0" else ())
     cats = ET.SubElement(root, "LogCategories")
     for name in LOG_CATEGORIES:

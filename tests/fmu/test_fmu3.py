@@ -13,6 +13,7 @@ import zipfile
 import numpy as np
 import pytest
 from fmpy import read_model_description
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
@@ -205,3 +206,24 @@ def test_motor_and_bearing_fmi3_cosimulation(cosim_pair, tmp_path):
     # fmpy accumulates time += h: the kink of the ramp at 0.1 s falls a few ulp differently
     np.testing.assert_allclose(out[:, 0], res["motor.w_shaft"], rtol=1e-7)
     np.testing.assert_allclose(out[:, 1], res["bearing.M_shaft"], rtol=1e-7, atol=1e-12)
+
+
+def test_output_derivatives(drive3, tmp_path):
+    """fmi3GetOutputDerivatives: a state reported as output gives its derivative, a computed
+    output (the spring torque sd.tau = c (phi1 - phi2) + ...) the chain rule through the
+    states, equal to the forward difference of a short doStep; second order is refused."""
+    fmu, md, vr = open3(drive3, tmp_path)
+    assert md.coSimulation.maxOutputDerivativeOrder == 1
+    fmu.enterInitializationMode(tolerance=1e-10)
+    fmu.exitInitializationMode()
+    fmu.doStep(0.0, 0.3)
+    (dw,) = fmu.getOutputDerivatives([vr["j2.w"]], [1])
+    assert dw == fmu.getFloat64([vr["der(j2.w)"]])[0]
+    (dtau,) = fmu.getOutputDerivatives([vr["sd.tau"]], [1])
+    h = 1e-6
+    tau0 = fmu.getFloat64([vr["sd.tau"]])[0]
+    fmu.doStep(0.3, h)
+    assert (fmu.getFloat64([vr["sd.tau"]])[0] - tau0) / h == pytest.approx(dtau, rel=1e-4)
+    with pytest.raises(FMICallException):
+        fmu.getOutputDerivatives([vr["sd.tau"]], [2])
+    fmu.freeInstance()

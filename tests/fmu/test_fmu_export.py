@@ -22,8 +22,9 @@ def test_archive_layout(drive_fmu):
     with zipfile.ZipFile(drive_fmu) as z:
         names = set(z.namelist())
     assert {"modelDescription.xml", "binaries/linux64/drive.so"} <= names
-    for src in ("sources/bsm_casadi.c", "sources/model_config.h", "sources/model_data.c",
-                "sources/fmi2_api.c", "sources/bsm_solver.c", "sources/fmi2Functions.h"):
+    for src in ("sources/bsm_c_ode.c", "sources/bsm_casadi.h", "sources/model_config.h",
+                "sources/model_data.c", "sources/fmi2_api.c", "sources/bsm_solver.c",
+                "sources/fmi2Functions.h"):
         assert src in names
 
 

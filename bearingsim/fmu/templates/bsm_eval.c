@@ -251,6 +251,43 @@ BsmCall bsm_directional_derivative(BsmInstance *m, const unsigned int *unknowns,
     return BSM_CALL_DONE;
 }
 
+BsmCall bsm_output_derivatives(BsmInstance *m, const unsigned int *vr, size_t n,
+                               const int *order, double *values, const char *function) {
+    size_t i;
+    int j;
+    if (n == 0) return BSM_CALL_DONE;
+    for (i = 0; i < n; ++i)
+        if (order[i] != 1 || !(vr[i] < VR_DX || (vr[i] >= VR_Y && vr[i] < VR_P))) {
+            bsm_log(m, BSM_ERROR, "logStatusError", "%s: only first derivatives of outputs "
+                    "(got value reference %u, order %d)", function, vr[i], order[i]);
+            return BSM_CALL_REFUSED;
+        }
+    if (bsm_current_derivatives(m) != BSM_OK) return BSM_CALL_FAILED;
+    if (NY > 0) {
+        bsm_eval_dense(m, FN_OUT_JAC_X, m->s.time, m->s.x, m->s.u, m->yx);
+        if (NU > 0) bsm_eval_dense(m, FN_OUT_JAC_U, m->s.time, m->s.x, m->s.u, m->yu);
+        bsm_eval_dense(m, FN_OUT_JAC_T, m->s.time, m->s.x, m->s.u, m->yt);
+    }
+    for (i = 0; i < n; ++i) {
+        double sum;
+        if (vr[i] < VR_DX) {
+            sum = m->dx[vr[i] - VR_X];
+        } else {
+            int k = (int)(vr[i] - VR_Y);
+            sum = m->yt[k];
+            for (j = 0; j < NX; ++j) sum += m->yx[k * NX + j] * m->dx[j];
+            for (j = 0; j < NU; ++j) sum += m->yu[k * NU + j] * m->s.du[j];
+        }
+        if (!isfinite(sum)) {
+            bsm_log(m, BSM_ERROR, "logStatusError", "%s: derivative of %u is not finite at "
+                    "t = %g s", function, vr[i], m->s.time);
+            return BSM_CALL_FAILED;
+        }
+        values[i] = sum;
+    }
+    return BSM_CALL_DONE;
+}
+
 /* ------------------------------------------------------------------ FMU state serialization */
 typedef struct {
     unsigned int magic;

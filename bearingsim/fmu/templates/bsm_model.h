@@ -31,13 +31,18 @@ typedef struct {
 } BsmFunction;
 
 /* Order of the function table (bearingsim.fmu.codegen.FUNCTION_NAMES). */
-enum { FN_ODE, FN_JAC_X, FN_JAC_U, FN_JAC_T, FN_OUTPUT, FN_OUT_JAC_X, FN_OUT_JAC_U, FN_COUNT };
+enum {
+    FN_ODE, FN_JAC_X, FN_JAC_U, FN_JAC_T, FN_OUTPUT, FN_OUT_JAC_X, FN_OUT_JAC_U, FN_OUT_JAC_T,
+    FN_COUNT
+};
 
 /* Bound flags of a parameter range. */
 enum { BSM_HAS_LOW = 1, BSM_LOW_INCLUSIVE = 2, BSM_HAS_HIGH = 4, BSM_HIGH_INCLUSIVE = 8 };
 
 extern const BsmFunction bsm_functions[FN_COUNT];
 extern const double bsm_x_start[BSM_DIM(NX)];
+/* Typical magnitudes of the states (bearingsim.fmu.nominal), for importers' tolerances. */
+extern const double bsm_x_nominal[BSM_DIM(NX)];
 extern const double bsm_u_start[BSM_DIM(NU)];
 extern const double bsm_p_start[BSM_DIM(NP)];
 extern const double bsm_p_low[BSM_DIM(NP)];
@@ -100,6 +105,7 @@ typedef struct {
     double jt[BSM_DIM(NX)];
     double yx[BSM_DIM(NY * NX)];
     double yu[BSM_DIM(NY * NU)];
+    double yt[BSM_DIM(NY)];
     /* stepper work */
     double w_jx[BSM_DIM(NX * NX)]; /* the stepper's Jacobians (kept across doSteps) */
     double w_jt[BSM_DIM(NX)];
@@ -163,6 +169,11 @@ BsmCall bsm_set_real(BsmInstance *m, unsigned int r, double v, int states_settab
 BsmCall bsm_directional_derivative(BsmInstance *m, const unsigned int *unknowns, size_t n_unknown,
                                    const unsigned int *knowns, size_t n_known,
                                    const double *seed, double *out, const char *function);
+/* First time derivatives of outputs (states reported as outputs included) at the current state,
+ * with the input slopes set by SetRealInputDerivatives: dy/dt = dy/dx der(x) + dy/du du +
+ * partial dy/dt. */
+BsmCall bsm_output_derivatives(BsmInstance *m, const unsigned int *vr, size_t n,
+                               const int *order, double *values, const char *function);
 size_t bsm_serialized_size(void);
 BsmStatus bsm_serialize(BsmInstance *m, const BsmState *s, unsigned int magic, void *buffer,
                         size_t size, const char *function);

@@ -162,9 +162,10 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component) {
 
 fmi2Status fmi2Terminate(fmi2Component component) {
     INSTANCE("fmi2Terminate", RUN_MODES | MODE_ERROR)
-    bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
-            "(%ld rejected), %ld Jacobians, %ld LU factorisations", c->m.s.time, c->m.s.n_steps,
-            c->m.s.n_rejected, c->m.s.n_jac, c->m.s.n_lu);
+    if (c->m.s.is_cs) /* Model Exchange: the importer integrates, the stepper never ran */
+        bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
+                "(%ld rejected), %ld Jacobians, %ld LU factorisations", c->m.s.time,
+                c->m.s.n_steps, c->m.s.n_rejected, c->m.s.n_jac, c->m.s.n_lu);
     c->m.s.mode = MODE_TERMINATED;
     return fmi2OK;
 }
@@ -439,7 +440,7 @@ fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component component, fmi2Real x
                                              size_t nx) {
     size_t i;
     INSTANCE("fmi2GetNominalsOfContinuousStates", ANY_MODE)
-    for (i = 0; i < nx; ++i) x_nominal[i] = 1.0;
+    for (i = 0; i < nx && i < NX; ++i) x_nominal[i] = bsm_x_nominal[i];
     return fmi2OK;
 }
 
@@ -472,12 +473,8 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component component, const fmi2Value
                                         size_t nvr, const fmi2Integer order[],
                                         fmi2Real value[]) {
     INSTANCE("fmi2GetRealOutputDerivatives", ANY_MODE)
-    (void)vr;
-    (void)order;
-    (void)value;
-    if (nvr == 0) return fmi2OK;
-    bsm_log(&c->m, BSM_ERROR, "logStatusError", "output derivatives are not provided");
-    return fmi2Error;
+    return outcome(c, bsm_output_derivatives(&c->m, vr, nvr, order, value, /* fmi2Integer: int */
+                                             "fmi2GetRealOutputDerivatives"));
 }
 
 fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoint,

@@ -214,9 +214,10 @@ fmi3Status fmi3EnterEventMode(fmi3Instance instance) {
 
 fmi3Status fmi3Terminate(fmi3Instance instance) {
     INSTANCE("fmi3Terminate", RUN_MODES | MODE_ERROR)
-    bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
-            "(%ld rejected), %ld Jacobians, %ld LU factorisations", c->m.s.time, c->m.s.n_steps,
-            c->m.s.n_rejected, c->m.s.n_jac, c->m.s.n_lu);
+    if (c->m.s.is_cs) /* Model Exchange: the importer integrates, the stepper never ran */
+        bsm_log(&c->m, BSM_OK, "logAll", "terminated at t = %g s after %ld internal steps "
+                "(%ld rejected), %ld Jacobians, %ld LU factorisations", c->m.s.time,
+                c->m.s.n_steps, c->m.s.n_rejected, c->m.s.n_jac, c->m.s.n_lu);
     c->m.s.mode = MODE_TERMINATED;
     return fmi3OK;
 }
@@ -696,7 +697,7 @@ fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 
                                              size_t nContinuousStates) {
     size_t i;
     INSTANCE("fmi3GetNominalsOfContinuousStates", ANY_MODE)
-    for (i = 0; i < nContinuousStates; ++i) nominals[i] = 1.0;
+    for (i = 0; i < nContinuousStates && i < NX; ++i) nominals[i] = bsm_x_nominal[i];
     return fmi3OK;
 }
 
@@ -723,13 +724,10 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance,
                                     size_t nValueReferences, const fmi3Int32 orders[],
                                     fmi3Float64 values[], size_t nValues) {
     INSTANCE("fmi3GetOutputDerivatives", ANY_MODE)
-    (void)valueReferences;
-    (void)orders;
-    (void)values;
-    (void)nValues;
-    return nValueReferences == 0 ? fmi3OK
-                                 : not_provided(c, "fmi3GetOutputDerivatives "
-                                                   "(maxOutputDerivativeOrder = 0)");
+    if (nValues != nValueReferences)
+        return count_mismatch(c, "fmi3GetOutputDerivatives", nValues, nValueReferences);
+    return outcome(c, bsm_output_derivatives(&c->m, valueReferences, nValueReferences, orders,
+                                             values, "fmi3GetOutputDerivatives"));
 }
 
 fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,

@@ -1,0 +1,67 @@
+"""Exporting an assembly by its scene name: the scene's outputs and inputs, nothing more."""
+
+from __future__ import annotations
+
+import pytest
+from fmpy import read_model_description
+from fmpy.validation import validate_fmu
+
+from bearingsim.assemblies.registry import REGISTRY
+from bearingsim.fmu import cli_export, export_fmu
+from bearingsim.fmu.cli import scene_outputs
+from tests.fmu.helpers import LogCapture, open_fmu
+
+
+@pytest.mark.parametrize("name, fidelity, expected", [
+    ("duplex_pair", "quasi-static", ["shaft.x", "shaft.z", "shaft.ty"]),
+    ("double_layer_bearing", "torque", ["w_shaft", "w_middle", "Rs", "M_shaft"]),
+    # the scene's default outputs (row.Q_i[0], ...) belong to the quasi-static level: the ball
+    # level reports what its own output table names (shaft_speed is its input)
+    ("deep_groove_ball_bearing", "dynamic_massive_balls", ["w_cage", "slip"]),
+])
+def test_scene_outputs_per_level(name, fidelity, expected):
+    spec = REGISTRY[name]
+    model = spec.build(spec.with_defaults({}), fidelity)
+    assert scene_outputs(spec, model, fidelity) == expected
+
+
+def test_scene_name_exports_its_outputs_and_inputs(tmp_path):
+    path = tmp_path / "pair.fmu"
+    assert cli_export(["duplex_pair", str(path), "--kinds", "ME,CS"]) == 0
+    assert validate_fmu(str(path)) == []
+    md = read_model_description(str(path))
+    outputs = [v.name for v in md.modelVariables if v.causality == "output"]
+    inputs = [v.name for v in md.modelVariables if v.causality == "input"]
+    assert sorted(outputs) == sorted(["shaft.x", "shaft.z", "shaft.ty"])
+    assert inputs == ["shaft.Fx", "shaft.Fy", "shaft.Fz", "shaft.Mx", "shaft.My"]
+
+
+def test_only_state_derivatives_are_derivatives(tmp_path):
+    """Every variable of the kinematic double-layer bearing: the rate of the outer ring's angle
+    (fixed, not a state) is no state derivative, so it is left out of the default outputs; the
+    derivatives declared are exactly those of the states."""
+    spec = REGISTRY["double_layer_bearing"]
+    model = spec.build(spec.with_defaults({}), "kinematic")
+    path = export_fmu(model, tmp_path / "dl.fmu", kinds=("ME",))
+    md = read_model_description(str(path))
+    states = {d.variable.derivative.name for d in md.derivatives}
+    names = {v.name for v in md.modelVariables}
+    rates = {n for n in names if n.startswith("der(")}
+    assert rates == {f"der({s})" for s in states}
+    for v in md.modelVariables:
+        if v.derivative is not None:
+            assert v.name == f"der({v.derivative.name})" and v.derivative.name in states
+
+
+def test_model_exchange_terminate_is_silent_about_the_stepper(drive_fmu, tmp_path):
+    for kind, says in (("ME", False), ("CS", True)):
+        log = LogCapture()
+        fmu, _, _ = open_fmu(drive_fmu, tmp_path, kind=kind, log=log, logging_on=True)
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        if kind == "CS":
+            fmu.doStep(0.0, 0.1)
+        fmu.terminate()
+        fmu.freeInstance()
+        assert ("internal steps" in log.text()) is says, (kind, log.text())
