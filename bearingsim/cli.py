@@ -165,7 +165,7 @@ def _run(args: argparse.Namespace) -> int:
         _say(line)
     result = getattr(run, "result", None)
     for name, echo in (result.input_echo() if result is not None else {}).items():
-        _say(f"  input {name} = {echo['shown']}")
+        _say(f"  input {name} = {echo['shown']} at t_end")
     for f in run.files:
         _say(f"  wrote {f}")
     for failure in s.get("plot_failures", []):

@@ -8,6 +8,7 @@ and short rows were accepted or reported without the row.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 
@@ -281,6 +282,11 @@ def test_the_linear_time_table_matches_numpy_interp(values, steps, probes):
 
 # ----------------------------------------------------------------------------- properties
 _UNITS = {"time": ["s", "ms"], "value": ["rpm", "rad/s", "kN", "N", "mm", "N mm", "deg", "-"]}
+_FACTORS = {"s": (1.0, "s"), "ms": (1e-3, "s"), "rpm": (math.pi / 30.0, "rad/s"),
+            "rad/s": (1.0, "rad/s"), "kN": (1e3, "N"), "N": (1.0, "N"), "mm": (1e-3, "m"),
+            "N mm": (1e-3, "N.m"), "deg": (math.pi / 180.0, "rad"), "-": (1.0, None)}
+"""Each unit's factor to SI and SI unit, from the units' definitions (1 r/min = 2 pi / 60
+rad/s; 1 deg = pi / 180 rad)."""
 
 
 @settings(max_examples=40, deadline=None)
@@ -291,7 +297,6 @@ def test_a_written_table_reads_back_in_si(tmp_path_factory, values, t_unit, v_un
     """Property: any table written with units in the header (or a unit row) reads back as
     value x factor (repr round-trips a float exactly), in order, with the unit recorded."""
     from bearingsim.scenes.tables import read_table_file
-    from bearingsim.units import QUANTITY_UNITS
 
     folder = tmp_path_factory.mktemp("t")
     times = [0.5 * k for k in range(len(values))]
@@ -300,10 +305,10 @@ def test_a_written_table_reads_back_in_si(tmp_path_factory, values, t_unit, v_un
     (folder / "t.csv").write_text(head + body)
     got_t, got_v, source, unit = read_table_file("inputs.w", {"file": "t.csv", "column": "w"},
                                                  folder)
-    t_factor = QUANTITY_UNITS[t_unit][1]
-    si, v_factor = QUANTITY_UNITS.get(v_unit, (None, 1.0))
-    assert got_t == [t * t_factor for t in times]
-    assert got_v == [v * v_factor for v in values]
+    t_factor = _FACTORS[t_unit][0]
+    v_factor, si = _FACTORS[v_unit]
+    assert got_t == pytest.approx([t * t_factor for t in times], rel=1e-15)
+    assert got_v == pytest.approx([v * v_factor for v in values], rel=1e-15)
     assert unit == si and source == "t.csv:w"
 
 

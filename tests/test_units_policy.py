@@ -43,8 +43,9 @@ def torque_system():
 
 
 def _scene(**inputs):
-    d = load_scene("double_layer_rs").to_dict()
-    d["inputs"] = inputs
+    d = load_scene("double_layer_rs").to_dict()  # a steady scene: made a short transient here
+    d.update(analysis="transient", inputs=inputs)
+    d.pop("grid", None)
     d["simulation"].update(t_end=0.05, n_points=3)
     return scene_from_dict(d)
 

@@ -31,7 +31,7 @@ from bearingsim.files import (
     open_regular,
     os_reason,
 )
-from bearingsim.scenes.expressions import ExpressionError, compile_expression
+from bearingsim.scenes.expressions import ExpressionError, compile_expression, constant_value
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
 from bearingsim.scenes.tables import (
@@ -637,10 +637,16 @@ def _analysis_options(c: _Collector, d: dict[str, Any], analysis: str,
         if key in d:
             c.add(key, f"{key} applies to transient scenes only (analysis = {analysis!r})")
     for name, v in inputs.items():
-        if not isinstance(v, float):
+        try:
+            constant = constant_value(v, f"inputs.{name}")
+        except ExpressionError:
+            constant = None
+        if constant is None:
             c.add(f"inputs.{name}", f"a {analysis} analysis holds every input constant: give a "
                   "number (or a number with a unit), not an expression of t or a table",
-                  "a number")
+                  "a number, a number with a unit or a constant expression (rpm(1000))")
+        else:
+            inputs[name] = constant  # a constant expression (rpm(1000)) as its SI value
     return method
 
 

@@ -15,7 +15,7 @@ import scipy.optimize
 from bearingsim.assembler.numeric import buffered
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import SimulationError
-from bearingsim.simulation.inputs import input_signal
+from bearingsim.simulation.inputs import check_input_ranges, input_signal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.validation import check_flag, check_range, check_vector, entry_point
 
@@ -94,6 +94,7 @@ def steady_state(
                 where=where)
     check_flag(require_unique, "require_unique", where)
     signal = input_signal(system, inputs)
+    check_input_ranges(system, signal, np.array([float(t)]))  # bounds, limiting speeds
     u = signal.at(t)[:, 0]
     p = system.p0(parameters) if p is None else p
     x = (system.x0() if x_guess is None
