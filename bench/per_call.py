@@ -52,7 +52,7 @@ def measure(repeats: int = 20) -> list[dict]:
         (medians; ``overhead_ms`` NaN where the stats have no ``integrate_cpu_time``).
     """
     from bearingsim.scenes import parse_scene
-    from bearingsim.scenes.runner import prepare, simulate_inputs
+    from bearingsim.scenes.preparation import prepare, simulate_inputs
     from bearingsim.simulation import simulate
 
     rows = []

@@ -359,7 +359,7 @@ def test_the_steady_figure_draws_one_curve_per_load():
 def test_auto_rejects_the_kinematic_rs_of_a_steady_scene_without_loads():
     """Without a load the kinematic level provides Rs, but its measured error (up to 350 %)
     exceeds the 5 % tolerance: a steady scene gets the torque level, as a transient does."""
-    from bearingsim.scenes.runner import prepare
+    from bearingsim.scenes.preparation import prepare
 
     scene = parse_scene('analysis = "steady"\noutputs = ["Rs"]\n[assembly]\n'
                         'name = "double_layer_bearing"\n[grid]\n'

@@ -25,7 +25,7 @@ from bearingsim.scenes import (
     prepare,
     run_scene,
 )
-from bearingsim.scenes.runner import output_series, run_simulation, simulate_inputs
+from bearingsim.scenes.preparation import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.scene import line_of
 from bearingsim.scenes.sweep import (
     SweepError,

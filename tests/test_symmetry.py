@@ -10,7 +10,7 @@ import pytest
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import duplex_pair
-from bearingsim.scenes.runner import prepare
+from bearingsim.scenes.preparation import prepare
 from bearingsim.scenes.scene import load_scene, parse_scene
 from bearingsim.simulation import simulate
 

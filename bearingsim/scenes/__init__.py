@@ -6,15 +6,9 @@ outputs need (pruning, automatic fidelity), simulates and writes CSV, a JSON sum
 """
 
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
+from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare, validate_scene
 from bearingsim.scenes.registry import REGISTRY, get_spec, register, unregister
-from bearingsim.scenes.runner import (
-    Prepared,
-    SceneRun,
-    choose_fidelity,
-    prepare,
-    run_scene,
-    validate_scene,
-)
+from bearingsim.scenes.runner import SceneRun, run_scene
 from bearingsim.scenes.scene import (
     Output,
     Scene,

@@ -24,22 +24,19 @@ import itertools
 import math
 import re
 import warnings
-from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from bearingsim.errors import BearingsimError, SimulationError
+from bearingsim.scenes.preparation import output_series, prepare, run_simulation
 from bearingsim.scenes.scene import Scene, SceneError, Settling, line_of
+from bearingsim.scenes.statics_table import statics_of
 
 __all__ = [
     "MODE_NAMES",
-    "STATICS",
     "NotSettledWarning",
-    "Statics",
-    "STATICS_INPUTS",
-        "name_modes",
+    "name_modes",
     "operating_points",
     "point_label",
     "point_model",
@@ -48,7 +45,6 @@ __all__ = [
     "run_points",
     "settling_check",
     "split_point",
-    "statics_of",
     "steady_values",
 ]
 
@@ -264,7 +260,6 @@ def point_model(prep: Any, args: dict[str, Any]) -> tuple[Any, dict[str, float]]
         or the arguments are invalid.
     """
     from bearingsim.scenes.registry import build_component
-    from bearingsim.scenes.runner import prepare
 
     spec = prep.spec
     full = spec.with_defaults(args)
@@ -365,116 +360,6 @@ def name_modes(linear: Any, names: dict[str, str], descriptions: dict[str, str]
 
 
 # --------------------------------------------------------------------------- statics
-@dataclass(frozen=True)
-class Statics:
-    """The quasi-static solution of an assembly's load cases (a ``statics`` scene).
-
-    ``solve(prep, inputs, args, guess) -> (row, state)`` solves one load case (inputs by
-    name, SI); ``columns`` are the row's names -> (unit, description); ``figure`` the columns
-    drawn per load case (bars); ``levels`` the fidelity levels it applies to (empty: all).
-    """
-
-    solve: Callable[..., tuple[dict[str, float], np.ndarray]]
-    columns: dict[str, tuple[str, str]]
-    figure: tuple[str, ...]
-    levels: tuple[str, ...] = ()
-
-
-_DEEP_GROOVE_COLUMNS = {
-    "Q_max": ("N", "largest ball load"),
-    "p_max": ("Pa", "largest Hertz contact pressure"),
-    "x": ("m", "inner ring displacement x"), "y": ("m", "inner ring displacement y"),
-    "z": ("m", "inner ring displacement z (axial)"),
-    "k_radial": ("N/m", "radial stiffness d Fx / d x"),
-    "k_axial": ("N/m", "axial stiffness d Fz / d z"),
-    "L10r": ("Mrev", "ISO/TS 16281 reference rating life L10r (10^6 revolutions)"),
-    "L10h": ("h", "ISO/TS 16281 reference rating life L10r in hours"),
-}
-
-
-def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
-                         guess: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
-    from bearingsim.studies.deep_groove_statics import LOAD_NAMES, deep_groove_statics
-
-    loads = {k: float(inputs.get(f"load.{k}", 0.0)) for k in LOAD_NAMES}
-    res = deep_groove_statics(args["bearing"], loads, method=prep.scene.statics_method,
-                              guess=guess)
-    speed = abs(float(inputs.get("shaft_speed", 0.0)))
-    revolutions_per_hour = speed / (2.0 * math.pi) * 3600.0
-    life_h = (res.reference_life * 1e6 / revolutions_per_hour if revolutions_per_hour > 0.0
-              else math.nan)
-    row = {"Q_max": float(np.max(res.ball_loads)), "p_max": float(res.max_pressure),
-           "x": float(res.displacement[0]), "y": float(res.displacement[1]),
-           "z": float(res.displacement[2]), "k_radial": float(res.stiffness[0, 0]),
-           "k_axial": float(res.stiffness[2, 2]), "L10r": float(res.reference_life),
-           "L10h": life_h}
-    return row, res.state
-
-
-_NESTED_COLUMNS = {
-    "Q_max_inner": ("N", "largest ball load of the inner layer"),
-    "Q_max_outer": ("N", "largest ball load of the outer layer"),
-    "x_shaft": ("m", "shaft displacement x"), "z_shaft": ("m", "shaft displacement z (axial)"),
-    "x_middle": ("m", "middle ring displacement x"),
-    "k_radial": ("N/m", "radial stiffness of the shaft against the housing"),
-}
-
-
-def _nested_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
-                    guess: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
-    from bearingsim.studies.nested_equilibrium import nested_equilibrium
-
-    if abs(float(inputs.get("shaft.Fy", 0.0))) > 0.0:
-        raise SceneError("the nested statics take the radial load along x (shaft.Fx) and the "
-                         "axial load (shaft.Fz); shaft.Fy must be 0", "cases",
-                         line_of(prep.scene.text, "cases"), "shaft.Fx, shaft.Fz",
-                         prep.scene.path)
-    eq = nested_equilibrium(prep.system, float(inputs.get("shaft.Fx", 0.0)),
-                            float(inputs.get("shaft.Fz", 0.0)), guess)
-    row = {"Q_max_inner": float(eq.inner_ball_loads.max()),
-           "Q_max_outer": float(eq.outer_ball_loads.max()),
-           "x_shaft": float(eq.shaft_displacement[0]),
-           "z_shaft": float(eq.shaft_displacement[2]),
-           "x_middle": float(eq.middle_displacement[0]),
-           "k_radial": float(eq.stiffness[0, 0])}
-    return row, eq.state
-
-
-STATICS = {
-    "deep_groove_ball_bearing": Statics(_deep_groove_statics, _DEEP_GROOVE_COLUMNS,
-                                        ("L10h", "Q_max", "p_max")),
-    "double_layer_bearing": Statics(_nested_statics, _NESTED_COLUMNS,
-                                    ("Q_max_inner", "Q_max_outer", "x_shaft", "x_middle"),
-                                    ("quasi-static",)),
-}
-"""Assembly name -> its :class:`Statics`: the deep-groove ball bearing's ball loads, Hertz
-pressure, stiffness and ISO/TS 16281 life
-(:func:`~bearingsim.studies.deep_groove_statics.deep_groove_statics`), the double-layer
-bearing's load sharing at its quasi-static level
-(:func:`~bearingsim.studies.nested_equilibrium.nested_equilibrium`)."""
-STATICS_INPUTS = ("shaft_speed",)
-"""Inputs a statics load case may give beyond the model's: the shaft speed [rad/s] turns the
-reference life in revolutions into hours."""
-
-
-def statics_of(prep: Any) -> Statics:
-    """The :class:`Statics` of a prepared scene's assembly and level.
-
-    Raises
-    ------
-    SceneError
-        When the assembly (or its level) has no statics solution, naming those that have.
-    """
-    statics = STATICS.get(prep.spec.name)
-    if statics is None or (statics.levels and prep.fidelity not in statics.levels):
-        have = ", ".join(f"{name}" + (f" (fidelity {', '.join(st.levels)})" if st.levels
-                                      else "") for name, st in STATICS.items())
-        raise SceneError(f"no statics analysis for the assembly {prep.spec.name} at fidelity "
-                         f"{prep.fidelity!r}", "analysis",
-                         line_of(prep.scene.text, "analysis"), f"statics for {have}; steady "
-                         "for the quasi-static equilibrium of the others", prep.scene.path)
-    return statics
-
 
 # --------------------------------------------------------------------------- one point
 def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
@@ -485,7 +370,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     Parameters
     ----------
     prep : Prepared
-        From :func:`bearingsim.scenes.runner.prepare` (its scene's ``analysis`` is the kind).
+        From :func:`bearingsim.scenes.preparation.prepare` (its scene's ``analysis`` is the kind).
     point : dict, optional
         Keys ``inputs.<name>``, ``parameters.<name>``, ``assembly.<argument>`` (values in SI)
         and an optional ``name``, on top of the scene's own values.
@@ -528,8 +413,6 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     if x_guess is not None and np.size(x_guess) != prep.system.n_states:
         x_guess = None  # the previous point's model had other states
     if scene.analysis == "transient":
-        from bearingsim.scenes.runner import output_series, run_simulation
-
         result = run_simulation(prep, parameters=parameters, inputs=inputs, progress=progress)
         series = output_series(prep, result)
         check = settling_check(result.t, series, scene.settling)

@@ -32,6 +32,7 @@ from bearingsim.assemblies.spec import AssemblyPlot
 from bearingsim.catalog import resolve_bearing
 from bearingsim.physics.double_layer_theory import speed_ratio_pure_rolling
 from bearingsim.plotting import LINESTYLES, MARKERS, Curve, FigureSpec, Panel
+from bearingsim.scenes.statics_table import STATICS, statics_of
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
@@ -265,8 +266,6 @@ def display_text(value: float, unit: str) -> str:
 def describe(name: str, prep: Any = None) -> str:
     """The description of a variable, input, state, post-processed quantity or analysis
     column, for axis labels (the name itself when it has none)."""
-    from bearingsim.scenes.analyses import STATICS
-
     if prep is not None and prep.scene.analysis == "statics":
         statics = STATICS.get(prep.spec.name)
         if statics is not None and name in statics.columns:
@@ -398,13 +397,11 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
 
 
 def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]):
-    """The assembly's statics columns (:attr:`~bearingsim.scenes.analyses.Statics.figure`:
+    """The assembly's statics columns (:attr:`~bearingsim.scenes.statics_table.Statics.figure`:
     life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
     bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
     drawn on a pressure panel."""
     from matplotlib.figure import Figure
-
-    from bearingsim.scenes.analyses import statics_of
 
     if not rows:
         return []

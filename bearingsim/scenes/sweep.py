@@ -50,8 +50,8 @@ else:  # pragma: no cover - Python 3.10
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path
+from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.registry import build_component
-from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.sampling import (
     SweepError,
     check_key,
@@ -235,7 +235,8 @@ def _parameter_values(component) -> dict[str, float]:
 
 def _structure(sc: Scene) -> tuple[str, str]:
     """Key of the model structure of a point: fidelity and the non-parametric arguments (with
-    the symmetry the point's inputs allow, as :func:`~bearingsim.scenes.runner.prepare` uses)."""
+    the symmetry the point's inputs allow, as :func:`~bearingsim.scenes.preparation.prepare`
+    uses)."""
     spec = sc.spec
     args = spec.with_defaults(sc.args)
     args.update(spec.symmetric_args(args, sc.inputs))

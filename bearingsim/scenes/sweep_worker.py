@@ -2,16 +2,16 @@
 the scene runner's single-run functions, compact rows back.
 
 A :class:`ModelPayload` carries one assembled model: the prepared scene of its structure
-(everything :class:`~bearingsim.scenes.runner.Prepared` holds but the system) and the system as
-bytes (:func:`bearingsim.assembler.cache.dumps_system`, the format of the on-disk cache). A
-worker loads it on first use and keeps it for the life of the process (:data:`MODELS`), so a
-sweep of N points costs one load per worker and model, and a persistent worker (``dask
-worker`` on a cluster) loads a model once across sweeps.
+(everything :class:`~bearingsim.scenes.preparation.Prepared` holds but the system) and the
+system as bytes (:func:`bearingsim.assembler.cache.dumps_system`, the format of the on-disk
+cache). A worker loads it on first use and keeps it for the life of the process
+(:data:`MODELS`), so a sweep of N points costs one load per worker and model, and a persistent
+worker (``dask worker`` on a cluster) loads a model once across sweeps.
 
 Each point runs exactly what ``bearingsim run`` runs for that scene
-(:func:`~bearingsim.scenes.runner.run_simulation`, then
-:func:`~bearingsim.scenes.runner.output_series` for the post-processed quantities) and returns
-the final value of every output.
+(:func:`~bearingsim.scenes.preparation.run_simulation`, then
+:func:`~bearingsim.scenes.preparation.output_series` for the post-processed quantities) and
+returns the final value of every output.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assembler.cache import loads_system
-from bearingsim.scenes.runner import Prepared, output_series, run_simulation
+from bearingsim.scenes.preparation import Prepared, output_series, run_simulation
 from bearingsim.scenes.scene import Scene
 
 __all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",

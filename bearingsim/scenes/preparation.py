@@ -1,0 +1,327 @@
+"""Prepare a scene: choose the fidelity, assemble only what the outputs need, simulate.
+
+``prepare`` builds and assembles the model (pruned to the requested outputs) and checks the
+scene's names against it; ``run_simulation`` simulates a prepared scene and ``output_series``
+computes its requested outputs (post-processed ones included). Running a whole scene and
+writing its files is :func:`bearingsim.scenes.runner.run_scene`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from bearingsim.assembler import System, assemble_cached
+from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
+from bearingsim.errors import ModelError, ParameterError
+from bearingsim.scenes.expressions import compile_expression
+from bearingsim.scenes.plots import BUILTIN_PLOTS
+from bearingsim.scenes.registry import build_component
+from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
+from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
+from bearingsim.simulation import Result, simulate
+
+__all__ = [
+    "Prepared",
+    "choose_fidelity",
+    "output_series",
+    "prepare",
+    "run_simulation",
+    "scene_inputs",
+    "simulate_inputs",
+    "validate_scene",
+]
+
+
+@dataclass
+class Prepared:
+    """A scene with its assembled (pruned) system."""
+
+    scene: Scene
+    spec: AssemblySpec
+    args: dict[str, Any]
+    fidelity: str
+    fidelity_reason: str
+    system: System
+    model_outputs: list[str]
+    """Variables kept by pruning: the requested ones and those the post-processing reads."""
+    post: dict[str, PostQuantity]
+    """Requested quantities computed after the integration."""
+    symmetry: list[str]
+    assemble_s: float
+    fidelity_attempts: list[str] = field(default_factory=list)
+    fidelity_rejected: list[str] = field(default_factory=list)
+    """Lower levels ``auto`` rejected because their measured error exceeds the tolerance."""
+    plots: list[AssemblyPlot] = field(default_factory=list)
+    """The assembly's figures at the chosen level (when the scene writes plots)."""
+    plot_outputs: list[str] = field(default_factory=list)
+    """Variables kept by pruning only for those figures (not in the CSV)."""
+
+    @property
+    def outputs(self) -> list[str]:
+        """The requested outputs in order (model and post-processed); for a statics scene the
+        columns of its assembly's statics solution."""
+        if self.scene.analysis == "statics":
+            return list(statics_of(self).columns)
+        return self.scene.outputs or [n for n in self.spec.default_outputs
+                                      if n in self.model_outputs or n in self.post]
+
+
+
+def _check(scene: Scene) -> Scene:
+    """Re-validate a scene built in Python (dataclass) through the TOML validator."""
+    if scene.text is not None:
+        return scene
+    return scene_from_dict(scene.to_dict(), path=scene.path, allow_paths=scene.allow_paths)
+
+
+def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]
+                    ) -> tuple[str, str, list[str]]:
+    """The fidelity to assemble, why, and the lower levels rejected for accuracy.
+
+    ``auto`` takes the lowest level in ``spec.auto_fidelities`` that provides every requested
+    output, every input and parameter the scene sets, and every post-processed quantity, and
+    whose measured error (:meth:`~bearingsim.assemblies.spec.AssemblySpec.level_error`) on each
+    requested output is within ``scene.tolerance``; a level that is too inaccurate for one
+    output is rejected for the whole scene.
+    """
+    if spec.fidelity_arg is None:
+        return spec.fidelities[0], "the assembly has a single fidelity level", []
+    if scene.fidelity != "auto":
+        return scene.fidelity, "requested by the scene", []
+    order = list(spec.auto_fidelities)
+    need = {}
+    names = list(scene.outputs or spec.default_outputs)
+    for n in names:
+        need[n] = post[n].fidelity if n in post else spec.min_fidelity(n)
+    point_names = [k.split(".", 1)[1] for k in _point_keys(scene)
+                   if k.split(".", 1)[0] in ("inputs", "parameters")]
+    for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial) + point_names:
+        need[n] = spec.min_fidelity(n)
+    level = 0
+    for fid in need.values():
+        level = max(level, order.index(fid) if fid in order else len(order) - 1)
+    provided = order[level]
+    rejected = []
+    for candidate in order[level:]:
+        too_far = {n: e for n in names
+                   if (e := spec.level_error(candidate, n)) is not None and e > scene.tolerance}
+        if not too_far or candidate == order[-1]:
+            break
+        worst = max(too_far, key=too_far.get)
+        rejected.append(
+            f"{candidate}: {', '.join(sorted(too_far))} off by up to {too_far[worst]:.0%} "
+            f"against '{spec.reference_fidelity}' (measured; tolerance {scene.tolerance:.0%})")
+    chosen = candidate
+    drivers = sorted(n for n, f in need.items() if f == provided)
+    if chosen != provided:
+        reason = (f"'{chosen}' is the lowest level whose measured error on the requested "
+                  f"outputs is within the tolerance of {scene.tolerance:.0%}")
+    elif level == 0:
+        reason = (f"'{chosen}' (the lowest level) provides every requested name within the "
+                  f"tolerance of {scene.tolerance:.0%}")
+    else:
+        reason = (f"'{chosen}' is the lowest level that provides "
+                  + ", ".join(drivers[:8]) + (" ..." if len(drivers) > 8 else ""))
+    return chosen, reason, rejected
+
+
+def _point_keys(scene: Scene) -> list[str]:
+    """The keys an operating grid or the load cases set."""
+    keys = list(scene.grid)
+    for case in scene.cases:
+        keys += [k for k in case if k != "name" and k not in keys]
+    return keys
+
+
+def scene_inputs(scene: Scene) -> dict[str, Any]:
+    """The inputs a scene sets: its ``inputs`` and those of its grid or cases (the text
+    ``"varies"`` for one that is not 0 at every point)."""
+    inputs = dict(scene.inputs)
+    values: dict[str, list[Any]] = {}
+    for key, vals in scene.grid.items():
+        values.setdefault(key, []).extend(vals)
+    for case in scene.cases:
+        for key, v in case.items():
+            values.setdefault(key, []).append(v)
+    for key, vals in values.items():
+        head, _, rest = key.partition(".")
+        if head == "inputs":
+            inputs[rest] = 0.0 if all(v == 0.0 for v in vals) else "varies"
+    return inputs
+
+
+def prepare(scene: Scene) -> Prepared:
+    """Validate a scene, choose its fidelity and assemble the pruned model.
+
+    Raises
+    ------
+    SceneError
+        For names the model does not have (outputs, inputs, parameters, initial values) or
+        parameter values outside their range, naming the key and line.
+    """
+    scene = _check(scene)
+    spec = scene.spec
+    args = spec.with_defaults(scene.args)
+    if scene.analysis != "modes":  # modes need every degree of freedom
+        args.update(spec.symmetric_args(args, scene_inputs(scene)))
+    post_all = spec.post(args)
+    # a statics scene solves its own equilibrium: no default outputs to keep
+    requested = list(scene.outputs or ([] if scene.analysis == "statics"
+                                       else spec.default_outputs))
+    post = {n: post_all[n] for n in requested if n in post_all}
+    model_outputs = [n for n in requested if n not in post]
+    for q in post.values():
+        model_outputs += [n for n in q.needs if n not in model_outputs]
+    fidelity, reason, rejected = choose_fidelity(scene, spec, post)
+    attempts = []
+    t0 = time.perf_counter()
+    while True:
+        try:
+            component = build_component(spec, args, fidelity)
+        except ParameterError as exc:
+            raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
+                             path=scene.path) from None
+        plots = (assembly_plots(spec, args, fidelity)
+                 if scene.output.plots and scene.analysis == "transient" else [])
+        plot_outputs = list(dict.fromkeys(n for p in plots for n in p.needs
+                                          if n not in model_outputs))
+        try:
+            system = assemble_cached(component, outputs=model_outputs + plot_outputs)
+            break
+        except ModelError as exc:
+            if "unknown output variable" not in str(exc):
+                raise
+            order = list(spec.auto_fidelities)
+            if scene.fidelity == "auto" and fidelity in order and fidelity != order[-1]:
+                attempts.append(f"{fidelity}: {exc}")
+                fidelity = order[order.index(fidelity) + 1]
+                reason += f"; raised to '{fidelity}' ({exc})"
+                continue
+            key = "outputs"
+            raise SceneError(str(exc).replace("unknown output variable", "unknown output"),
+                             key, line_of(scene.text, key),
+                             "model variables (see the CSV of a run without 'outputs') or "
+                             "post-processed: " + (", ".join(post_all) or "none"),
+                             scene.path) from None
+    assemble_s = time.perf_counter() - t0
+    _check_names(scene, system)
+    symmetry = spec.symmetry(args, scene_inputs(scene)) if scene.analysis != "modes" else []
+    prep = Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
+                    symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
+    if scene.analysis == "statics":
+        statics_of(prep)  # an assembly without statics: an error before anything runs
+    return prep
+
+
+def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
+                   ) -> list[AssemblyPlot]:
+    """The figures of an assembly at a level: those its spec declares
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) and, for a built-in assembly,
+    those of :data:`bearingsim.scenes.plots.BUILTIN_PLOTS`."""
+    builtin = BUILTIN_PLOTS.get(spec.name)
+    return spec.plots(args, fidelity) + (builtin(args, fidelity) if builtin else [])
+
+
+def _check_names(scene: Scene, system: System) -> None:
+    problems = []
+
+    def add(key, msg, allowed):
+        problems.append(SceneError(msg, key, line_of(scene.text, key), allowed, scene.path))
+
+    given = scene_inputs(scene)
+    extra = STATICS_INPUTS if scene.analysis == "statics" else ()
+    for n in given:
+        if n not in system.input_names and n not in extra:
+            key = f"inputs.{n}" if n in scene.inputs else ("grid" if scene.grid else "cases")
+            add(key, f"the model has no input {n!r}", ", ".join(system.input_names) or "none")
+    units = {sig.name: sig.unit for sig in system.inputs}
+    for n, si in scene.input_units.items():
+        if n in units and units[n] != si:
+            add(f"inputs.{n}", f"input {n} is in {units[n]}, but the value's unit is one of "
+                f"{si}", f"a number with a unit of {units[n]}, or a number in {units[n]}")
+    missing = [n for n in system.input_names
+               if n not in given and not scene.spec.is_optional_input(n)]
+    if missing:
+        add("inputs", "input(s) not given: " + ", ".join(f"{n} [{units[n]}]" for n in missing)
+            + " (the run would hold them at their start value, e.g. a speed of 0)",
+            "a number, an expression of t or a table for each; inputs that may be left out: "
+            + (", ".join(scene.spec.optional_inputs) or "none"))
+    for key in _point_keys(scene):
+        head, _, rest = key.partition(".")
+        if head == "parameters" and rest not in system.parameter_names:
+            add("grid" if scene.grid else "cases", f"the model has no parameter {rest!r}",
+                ", ".join(system.parameter_names))
+    for n, v in scene.parameters.items():
+        try:
+            system.p0({n: v})
+        except ParameterError as exc:
+            allowed = (", ".join(system.parameter_names) if n not in system.parameter_names
+                       else "see the range in the message")
+            add(f"parameters.{n}", str(exc), allowed)
+    for n in scene.initial:
+        if n not in system.state_names:
+            add(f"initial.{n}", f"{n!r} is not a state of the (pruned) model",
+                ", ".join(system.state_names) or "none")
+    if problems:
+        first = problems[0]
+        raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,
+                         problems=problems)
+
+
+def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
+    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays."""
+    out = {}
+    for k, v in inputs.items():
+        if isinstance(v, str):
+            out[k] = compile_expression(v, f"inputs.{k}")
+        elif isinstance(v, TableInput):
+            out[k] = v.as_tuple()
+        else:
+            out[k] = v
+    return out
+
+
+def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,
+                   allow_paths: list[str | Path] | tuple = ()) -> Prepared | Scene:
+    """Check a scene without running it: the file, and (by default) its names against the
+    assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`);
+    ``allow_paths`` as :func:`~bearingsim.scenes.scene.load_scene` takes it."""
+    from bearingsim.scenes.scene import load_scene
+
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene, allow_paths)
+    scene = _check(scene)
+    return prepare(scene) if assemble_model else scene
+
+
+def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
+                   inputs: dict[str, Any] | None = None, progress: bool | None = False,
+                   **overrides) -> Result:
+    """Simulate a prepared scene (optionally with other parameters, inputs or settings;
+    ``progress`` as :func:`~bearingsim.simulation.simulate` takes it)."""
+    s = prep.scene.simulation
+    opts = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
+            "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial}
+    opts.update(overrides)
+    t_end = opts.pop("t_end", s.t_end)
+    params = {**prep.scene.parameters, **(parameters or {})}
+    ins = simulate_inputs({**prep.scene.inputs, **(inputs or {})})
+    return simulate(prep.system, t_end, inputs=ins, parameters=params,
+                    x0=prep.scene.initial or None, progress=progress, **opts)
+
+
+def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
+    """The requested outputs: model series from the result, post-processed ones computed."""
+    series = {n: np.asarray(result[n]) for n in prep.model_outputs}
+    out = {}
+    for n in prep.outputs:
+        if n in prep.post:
+            out[n] = np.asarray(prep.post[n].compute(series), dtype=float)
+        else:
+            out[n] = series[n]
+    return out
