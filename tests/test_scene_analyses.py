@@ -279,7 +279,7 @@ DISPLAY_UNITS = {"r/min", "µm", "deg", "kN", "N mm", "MPa", "N/µm", "h", "10�
 _DOTTED = re.compile(r"[a-z_]+\[?\d*\]?\.[a-z_]")
 _SHORT = {"deep_groove_duty1": 0.002, "deep_groove_radial": 1.5, "double_layer_friction": 3.0,
           "duplex_pair_axial": 0.02, "duplex_pair_pure_axial": 0.001,
-          "motor_drive_spinup": 4.0}
+          "motor_drive_spinup": 4.0, "cylindrical_roller_radial": 1.25, "spindle_radial": 0.03}
 
 
 def _figures(name):

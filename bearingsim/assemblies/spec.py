@@ -130,7 +130,7 @@ class AssemblyPlot:
 
     ``needs`` are model variables the figure reads (kept by the pruning, not written to the
     CSV); ``make(prep, result, series)`` gets the prepared scene
-    (:class:`bearingsim.scenes.runner.Prepared`), the :class:`~bearingsim.simulation.Result`
+    (:class:`bearingsim.scenes.preparation.Prepared`), the :class:`~bearingsim.simulation.Result`
     and a dict name -> array of the requested outputs and ``needs``, and returns a
     :class:`bearingsim.plotting.FigureSpec` (values in SI; the figure shows them in engineering
     units) or None when the run does not allow it (e.g. no load).
