@@ -17,6 +17,7 @@ __all__ = [
     "SingularBlockError",
     "UnconnectedInputError",
     "SimulationError",
+    "BudgetExceededError",
     "PassOrderError",
     "CatalogError",
     "PlasticDeformationWarning",
@@ -88,6 +89,26 @@ class UnconnectedInputError(ModelError):
 
 class SimulationError(BearingsimError, RuntimeError):
     """The integrator failed; the message names the time reached and the diverging variables."""
+
+
+class BudgetExceededError(SimulationError):
+    """A run used up its step or wall-time budget (``max_steps``, ``timeout``).
+
+    Attributes
+    ----------
+    t_reached : float
+        Simulated time reached [s].
+    steps : int
+        Steps taken [-].
+    wall_time : float
+        Wall time used [s].
+    """
+
+    def __init__(self, message: str, t_reached: float, steps: int, wall_time: float):
+        super().__init__(message)
+        self.t_reached = t_reached
+        self.steps = steps
+        self.wall_time = wall_time
 
 
 class PassOrderError(BearingsimError, RuntimeError):

@@ -27,6 +27,7 @@ from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.registry import REGISTRY
+from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, MAX_TIMEOUT
 from bearingsim.simulation.integrators import METHODS
 from bearingsim.units import parse_quantity
 
@@ -115,6 +116,8 @@ class Simulation:
     n_points: int = 501
     max_step: float = math.inf
     initial: str = "start"
+    max_steps: int = DEFAULT_MAX_STEPS
+    timeout: float | None = None
 
 
 @dataclass
@@ -191,7 +194,7 @@ class Scene:
         for k, v in self.inputs.items():
             inputs[k] = {"times": list(v.times), "values": list(v.values)} if isinstance(
                 v, TableInput) else v
-        sim = asdict(self.simulation)
+        sim = {k: v for k, v in asdict(self.simulation).items() if v is not None}
         out = asdict(self.output)
         return {
             "title": self.title,
@@ -601,6 +604,12 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         elif k == "n_points":
             if _number(c, key, v, "points", 2, 1_000_000, integer=True) is not None:
                 sim.n_points = int(v)
+        elif k == "max_steps":
+            if _number(c, key, v, "steps", 1, None, integer=True) is not None:
+                sim.max_steps = int(v)
+        elif k == "timeout":
+            if _number(c, key, v, "s", 0.0, MAX_TIMEOUT, strict_low=True) is not None:
+                sim.timeout = float(v)
         else:
             low, strict, high = {"t_end": (None, False, None), "t_start": (None, False, None),
                                  "rtol": (0.0, True, 0.1), "atol": (0.0, True, None),

@@ -14,6 +14,7 @@ import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
+from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
 from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.inputs import check_input_ranges, input_signal
 from bearingsim.simulation.integrators import (
@@ -83,6 +84,8 @@ def simulate(
     progress: bool | None = None,
     compiled: bool | str = "auto",
     linear_solver: str | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    timeout: float | None = None,
 ) -> Result:
     """Integrate a system and return every variable as a named series.
 
@@ -145,6 +148,13 @@ def simulate(
         Backend ``"casadi"``: the SUNDIALS linear solver, one of
         :data:`~bearingsim.simulation.sundials.LINEAR_SOLVERS`; default by size
         (:func:`~bearingsim.simulation.sundials.choose_linear_solver`).
+    max_steps : int
+        Step budget of the run [-], >= 1 (default
+        :data:`~bearingsim.simulation.budget.DEFAULT_MAX_STEPS`; CVODES and IDAS get it as
+        ``max_num_steps`` per call).
+    timeout : float, optional
+        Wall-time budget of the integration [s], > 0 (``None``: none). Exceeding either budget
+        raises :class:`~bearingsim.errors.BudgetExceededError` with the time reached.
 
     Returns
     -------
@@ -160,6 +170,8 @@ def simulate(
         of ``backend``'s.
     SimulationError
         With the time reached and the variables that diverged.
+    BudgetExceededError
+        When the run uses up ``max_steps`` or ``timeout``, with the time reached.
     """
     system = as_system(system, "simulate")
     check_flag(progress, "progress", "simulate", allow_none=True)
@@ -170,6 +182,7 @@ def simulate(
     if max_step != np.inf:
         check_range(max_step, "max_step", "s", 0.0, None, low_inclusive=False, where="simulate")
     method, backend = _method_backend(method, backend)
+    budget = RunBudget(max_steps, timeout, method, t_end)
     check_choice(initial, "initial", ("start", "steady"), "simulate")
     t_eval = _output_times(t_start, t_end, n_points, t_eval)
     _check_work(system, t_start, t_end, t_eval.size, max_step)
@@ -188,12 +201,13 @@ def simulate(
     # scipy's integrators call the closed functions from Python; SUNDIALS builds its own
     closed = close_inputs(system, inputs) if METHODS[method].backend == "scipy" else None
     wall = _time.perf_counter()
+    budget.start()
     if system.n_states == 0:
         traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {})
     else:
         problem = IntegrationProblem(system, closed, inputs, p, x_start, t_start, t_end, t_eval,
                                      rtol, atol, max_step, progress, signal, compiled,
-                                     linear_solver)
+                                     linear_solver, budget)
         traj = METHODS[method].run(problem)
     ts, xs, values, stats = traj.t, traj.x, traj.values, traj.stats
     stats["wall_time"] = _time.perf_counter() - wall

@@ -372,7 +372,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
                  rtol: float, atol: float, max_step: float = np.inf,
                  linear_solver: str | None = None, z0: np.ndarray | None = None,
                  options: dict[str, Any] | None = None,
-                 progress: bool | None = False) -> SundialsRun:
+                 progress: bool | None = False, budget=None) -> SundialsRun:
     """Integrate with CVODES (``kernel.form == "ode"``) or IDAS (either form).
 
     Parameters
@@ -409,6 +409,9 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         the rest of the run is one call when the first call, extrapolated, says the whole run
         takes less than :data:`~bearingsim.simulation.progress.DELAY` (the bar would not
         appear).
+    budget : RunBudget, optional
+        The run's budget (:mod:`~bearingsim.simulation.budget`): its ``max_steps`` is
+        ``max_num_steps`` of each call (default 100000).
 
     Returns
     -------
@@ -433,7 +436,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     n_x = system.n_states
     if linear_solver is None:
         linear_solver = choose_linear_solver(*_jacobian_size(kernel, n_x), kernel.form)
-    base: dict[str, Any] = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000,
+    base: dict[str, Any] = {"abstol": atol, "reltol": rtol,
+                            "max_num_steps": budget.max_steps if budget else 100000,
                             "linear_solver": linear_solver, **(options or {})}
     bar = progress_bar(t0, t1, progress)
     pending = _plan(t0, t1, t_out, PROGRESS_CHUNKS if bar is not None else 1)
