@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics.drag import orbital_drag_force
 from bearingsim.physics.lubricant import Lubricant
@@ -625,3 +626,6 @@ def skf_friction_torque(omega_rel: Any, dm: float, lubricant: Lubricant, series:
     """
     parts = skf_friction_components(omega_rel, dm, lubricant, series, Fr, Fa, **kwargs)
     return _signed(parts.total, omega_rel, kwargs.get("omega_reg", 0.1), "skf_friction_torque")
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)
