@@ -28,6 +28,7 @@ import os
 import sys
 import typing
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -40,8 +41,13 @@ from bearingsim.symbolic import is_symbolic
 __all__ = [
     "ATOL_RANGE",
     "MAX_OUTPUT_FRACTION",
+    "MAX_SPEED_FACTOR",
+    "MAX_STATIC_LOAD_FACTOR",
     "NEWTON_TOL_RANGE",
     "RTOL_RANGE",
+    "check_arguments",
+    "check_identifier",
+    "check_output_file",
     "check_output_size",
     "check_tolerance",
     "checked",
@@ -58,6 +64,17 @@ ATOL_RANGE = (1e-20, 1.0)
 NEWTON_TOL_RANGE = (1e-16, 1e-2)
 """Valid residual or step tolerance of a Newton solve [residual units]: above 1e-2 a start
 guess passes for a solution."""
+MAX_STATIC_LOAD_FACTOR = 10.0
+"""Largest plausible load as a multiple of the static load rating C0 [-]: at C0 the most loaded
+contact reaches 4 200 MPa (ISO 76, permanent deformation begins); at 10 C0 it would be about
+9 000 MPa, beyond the compressive strength of bearing steel: a load there is a unit slip (N
+for kN, N for mN) or a typo, and is refused. Between C0 and this limit the models compute and
+warn (:class:`~bearingsim.errors.PlasticDeformationWarning`)."""
+MAX_SPEED_FACTOR = 5.0
+"""Largest plausible speed as a multiple of the catalogue limiting speed [-]: beyond it the
+cage and ball centrifugal loads leave every model's range (r/min given for rad/s is a factor
+9.5); between the limiting speed and this limit the models warn
+(:class:`~bearingsim.errors.SpeedLimitWarning`)."""
 MAX_OUTPUT_FRACTION = 0.5
 """Largest share of the machine's physical memory one output may take."""
 
@@ -79,49 +96,94 @@ def _too_large_int(value: Any) -> bool:
         return abs(value) > sys.float_info.max
     if isinstance(value, (list, tuple)):
         return any(_too_large_int(v) for v in value)
+    if isinstance(value, dict):
+        return any(_too_large_int(v) for v in value.values())
     return False
 
 
-def checked(func: Callable) -> Callable:
-    """Decorator of a public entry point: each argument is checked against its type hint.
-
-    Hints that name classes this module cannot resolve (forward references) and ``Any`` are
-    not checked. Unknown or missing arguments raise as :func:`bearingsim.validation.entry_point`
-    does.
+def check_identifier(value: Any, name: str, where: str) -> str:
+    """A name usable in dotted variable paths: a Python identifier (letters, digits and ``_``,
+    not starting with a digit, no dots).
 
     Raises
     ------
     ParameterError
-        ``"<function>: <argument> must be <hint>, got <value> (<type>)"``.
+        For anything else (``''``, ``'a.b'``, ``'1abc'``, a number).
+    """
+    if not (isinstance(value, str) and value.isidentifier()):
+        raise ParameterError(
+            f"{where}: {name} must be an identifier (letters, digits and _, not starting with "
+            f"a digit; it becomes part of dotted variable names such as {name}.w), got "
+            f"{value!r:.40}")
+    return value
+
+
+def _hints(func: Callable) -> dict[str, Any]:
+    """The resolved type hints of ``func`` (or of a class's constructor), without the return;
+    empty when a hint names a class imported only for type checking."""
+    target = func.__init__ if isinstance(func, type) else func
+    try:
+        hints = typing.get_type_hints(target)
+    except (NameError, TypeError):
+        return {}
+    hints.pop("return", None)
+    return hints
+
+
+def check_arguments(func: Callable, args: tuple, kwargs: dict[str, Any], where: str,
+                    label: str = "{name}", skip: tuple[str, ...] = ()) -> None:
+    """Check a call's arguments against ``func``'s signature and type hints (see
+    :func:`checked`); ``label`` formats an argument's name in messages (e.g.
+    ``"layer_options[{name!r}]"``).
+
+    Raises
+    ------
+    ParameterError
+        For unknown or missing arguments, a value that does not match its hint, or an integer
+        beyond the float range.
     """
     signature = inspect.signature(func)
-    where = func.__qualname__.replace(".__init__", "")
+    hints = _hints(func)
     try:
-        hints = typing.get_type_hints(func)
-    except (NameError, TypeError):  # a hint naming a class imported only for type checking
-        hints = {}
-    hints.pop("return", None)
+        bound = signature.bind_partial(*args, **kwargs) if isinstance(func, type) else \
+            signature.bind(*args, **kwargs)
+    except TypeError as exc:
+        names = [n for n in signature.parameters if n != "self"]
+        raise ParameterError(f"{where}: {exc}; its arguments are {', '.join(names)}") from None
+    for name, value in bound.arguments.items():
+        shown = label.format(name=name)
+        if _too_large_int(value):
+            raise ParameterError(f"{where}: {shown} = {str(value)[:20]}... is beyond the range "
+                                 f"of a float (about 1.8e308)")
+        hint = hints.get(name)
+        if name in skip or hint is None or hint is Any or signature.parameters[name].kind in (
+                inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD):
+            continue
+        if not is_bearable(value, hint, conf=_CONF):
+            raise ParameterError(f"{where}: {shown} must be {_describe(hint)}, got "
+                                 f"{value!r:.60} ({type(value).__name__})")
+
+
+def checked(func: Callable | None = None, *, skip: tuple[str, ...] = ()) -> Callable:
+    """Decorator of a public entry point: each argument is checked against its type hint.
+
+    Hints that cannot be resolved (classes imported only for type checking) and ``Any`` are
+    not checked; integers beyond the float range (``10**400``) are refused whatever the hint.
+    ``skip`` names arguments whose type the function checks itself (with a better message).
+
+    Raises
+    ------
+    ParameterError
+        ``"<function>: <argument> must be <hint>, got <value> (<type>)"``; for unknown or
+        missing arguments the signature's complaint and the accepted names.
+    """
+    if func is None:
+        return functools.partial(checked, skip=skip)
+    where = func.__qualname__.replace(".__init__", "")
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        try:
-            bound = signature.bind(*args, **kwargs)
-        except TypeError as exc:
-            names = [n for n in signature.parameters if n != "self"]
-            raise ParameterError(f"{where}: {exc}; its arguments are {', '.join(names)}"
-                                 ) from None
-        for name, value in bound.arguments.items():
-            hint = hints.get(name)
-            if _too_large_int(value):
-                raise ParameterError(
-                    f"{where}: {name} = {str(value)[:20]}... is beyond the range of a float "
-                    f"(about 1.8e308)")
-            if hint is None or hint is Any or signature.parameters[name].kind in (
-                    inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD):
-                continue
-            if not is_bearable(value, hint, conf=_CONF):
-                raise ParameterError(f"{where}: {name} must be {_describe(hint)}, got "
-                                     f"{value!r:.60} ({type(value).__name__})")
+        check_arguments(func, args, kwargs, where, skip=skip)
         return func(*args, **kwargs)
 
     return wrapper
@@ -269,6 +331,25 @@ def check_output_size(count: float, bytes_each: float, what: str, where: str) ->
         raise ParameterError(
             f"{where}: {what} = {float(count):.4g} would take {size / 1024**3:.3g} GiB, more "
             f"than {limit / 1024**3:.3g} GiB (half the memory of this machine); ask for fewer")
+
+
+def check_output_file(path: Any, suffix: str, name: str, where: str) -> Path:
+    """A path to write one file to: text or path-like, not an existing folder, ending in
+    ``suffix``.
+
+    Raises
+    ------
+    ParameterError
+        Naming the argument and what it accepts.
+    """
+    if not isinstance(path, (str, os.PathLike)) or not str(path):
+        raise ParameterError(f"{where}: {name} must be a file path ending in {suffix}, got "
+                             f"{path!r:.60} ({type(path).__name__})")
+    out = Path(path)
+    if out.is_dir() or out.suffix.lower() != suffix:
+        raise ParameterError(f"{where}: {name} must be a file path ending in {suffix} (not a "
+                             f"folder), got {str(path)!r:.80}")
+    return out
 
 
 def check_tolerance(value: Any, name: str, kind: str, where: str) -> float:

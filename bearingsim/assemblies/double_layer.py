@@ -26,6 +26,7 @@ from bearingsim.assemblies.spec import (
     factory_default,
 )
 from bearingsim.catalog import resolve_bearing
+from bearingsim.checks import check_arguments
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
     PureRollingLayer,
@@ -139,9 +140,11 @@ def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dic
         return PureRollingLayer(geometry, exact=fidelity == "kinematic", **options)
     check_options(options, layer_option_names(friction_model), "double_layer_bearing",
                   "layer_options", f"of the {friction_model!r} friction model (torque level)")
-    if friction_model == "palmgren":
-        return PalmgrenBearing(geometry, lubricant, **options)
-    return SkfBearing(geometry, lubricant, **options)
+    layer = PalmgrenBearing if friction_model == "palmgren" else SkfBearing
+    check_arguments(layer, (), {k: v for k, v in options.items()
+                                if k in keyword_names(layer)},
+                    "double_layer_bearing", "layer_options[{name!r}]")
+    return layer(geometry, lubricant, **options)
 
 
 def _with_method(lubricant, method: str):

@@ -9,6 +9,7 @@ from typing import Any
 from bearingsim.assemblies import double_layer
 from bearingsim.assemblies.double_layer import DoubleLayerBearing, double_layer_bearing
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default, nested_post
+from bearingsim.checks import checked
 from bearingsim.components.motor import MOTOR_DRIVES, speed_controlled_motor
 from bearingsim.components.rotational import Inertia, TorqueSource
 from bearingsim.language import Assembly, Component, Input, Variable, connect
@@ -50,6 +51,7 @@ class MotorDrive(Assembly):
         connect(self.shaft.flange_b, self.bearing.shaft, self.load.flange)
 
 
+@checked
 def motor_drive(bearing: DoubleLayerBearing | None = None, **kwargs) -> MotorDrive:
     """Build a :class:`MotorDrive`."""
     return MotorDrive(bearing, **kwargs)

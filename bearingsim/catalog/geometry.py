@@ -12,6 +12,7 @@ import re
 import warnings
 from dataclasses import dataclass
 
+from bearingsim.checks import MAX_SPEED_FACTOR
 from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_range
 
@@ -204,7 +205,19 @@ class BearingGeometry:
         Warns
         -----
         SpeedLimitWarning
+
+        Raises
+        ------
+        ParameterError
+            Beyond :data:`~bearingsim.checks.MAX_SPEED_FACTOR` x the limiting speed.
         """
+        if self.limiting_speed is not None and abs(float(speed)) > (
+                MAX_SPEED_FACTOR * self.limiting_speed):
+            raise ParameterError(
+                f"{where}: speed {abs(float(speed)):g} rad/s is more than {MAX_SPEED_FACTOR:g} x "
+                f"the limiting speed of {self.designation} ({self.limiting_speed:.4g} rad/s): "
+                f"r/min given for rad/s? valid |speed| <= "
+                f"{MAX_SPEED_FACTOR * self.limiting_speed:.4g} rad/s")
         if self.limiting_speed is not None and abs(float(speed)) > self.limiting_speed:
             warnings.warn(
                 f"{where}: {abs(float(speed)):g} rad/s ({abs(float(speed)) * 30 / math.pi:.0f} "

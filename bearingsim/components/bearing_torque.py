@@ -21,7 +21,7 @@ from bearingsim.physics.friction import (
     skf_friction_components,
 )
 from bearingsim.physics.life import static_equivalent_load
-from bearingsim.physics.lubricant import as_lubricant
+from bearingsim.physics.lubricant import KINEMATIC_VISCOSITY_RANGE, as_lubricant
 from bearingsim.symbolic import smooth_abs
 
 __all__ = [
@@ -132,6 +132,7 @@ class PalmgrenBearing(_LubricatedBearing):
         self.nu = Parameter(
             float(self.lubricant.kinematic_viscosity()), "m2/s",
             "kinematic viscosity of the (base) oil at operating temperature", low=0.0,
+            high=KINEMATIC_VISCOSITY_RANGE[1],
         )
         self.f0 = Parameter(
             float(self.lubricant.palmgren_f0(self.bearing_type, self.geometry.series)), "1",

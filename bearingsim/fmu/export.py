@@ -12,6 +12,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from bearingsim.assembler import System, assemble
+from bearingsim.checks import check_output_file
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
@@ -171,6 +172,7 @@ def export_fmu(
     FmuBuildError
         If the C compiler is missing or fails.
     """
+    check_output_file(path, ".fmu", "path", "export_fmu")
     if fmi_version not in FMI_VERSIONS:
         raise ParameterError(
             f"export_fmu: fmi_version must be one of {', '.join(FMI_VERSIONS)}, got "

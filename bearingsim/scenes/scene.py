@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
+from bearingsim.checks import ATOL_RANGE, RTOL_RANGE
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
@@ -612,7 +613,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
                 sim.timeout = float(v)
         else:
             low, strict, high = {"t_end": (None, False, None), "t_start": (None, False, None),
-                                 "rtol": (0.0, True, 0.1), "atol": (0.0, True, None),
+                                 "rtol": (RTOL_RANGE[0], False, RTOL_RANGE[1]),
+                                 "atol": (ATOL_RANGE[0], False, ATOL_RANGE[1]),
                                  "max_step": (0.0, True, None)}[k]
             if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "[1]", low,
                        high, strict) is not None:

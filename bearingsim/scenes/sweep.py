@@ -37,6 +37,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
+from bearingsim.checks import check_output_size
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.files import atomic_path, column_name
 from bearingsim.scenes.portable import LOADS, load_cached, pack
@@ -44,6 +45,7 @@ from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.runner import Prepared, choose_fidelity, prepare, simulate_inputs
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, load_scene
 from bearingsim.units import display_unit
+from bearingsim.validation import check_count
 
 __all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
            "sample_points", "run_sweep"]
@@ -172,6 +174,8 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
 def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
     """The Cartesian product of a grid, as a list of {key: value}."""
     keys = list(grid)
+    check_output_size(math.prod(len(v) for v in grid.values()), 300 + 100 * len(keys),
+                      "the number of grid points", "grid_points")
     return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
 
 
@@ -180,6 +184,7 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int = 0
     """``n`` Latin-hypercube points in the given ranges (reproducible with ``seed``)."""
     if n < 1:
         raise SweepError(f"--samples must be >= 1, got {n}")
+    check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")
     rng = np.random.default_rng(seed)
     cols = {}
     for key, (lo, hi) in ranges.items():
@@ -488,6 +493,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     SweepError
         For an invalid key or point (before anything runs).
     """
+    check_count(n_workers, "n_workers", 1, "run_sweep")
     as_completed = _distributed().as_completed
     from tqdm import tqdm
 

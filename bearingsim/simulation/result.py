@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bearingsim.checks import checked
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path, column_name, write_series_csv
 from bearingsim.plotting import set_value_scale
@@ -69,6 +70,7 @@ class Result:
     def __contains__(self, name: str) -> bool:
         return name in self._index
 
+    @checked
     def final(self, name: str) -> float:
         """Value at the last time point."""
         return float(self[name][-1])

@@ -13,6 +13,7 @@ import scipy.integrate
 import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
+from bearingsim.checks import check_tolerance
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
 from bearingsim.simulation.closed import close_inputs
@@ -118,7 +119,8 @@ def simulate(
         Integrator family; by default the one ``method`` belongs to. A method of another
         family raises :class:`~bearingsim.errors.ParameterError`.
     rtol, atol : float
-        Relative tolerance in (0, 1] and absolute tolerance > 0.
+        Relative tolerance in :data:`~bearingsim.checks.RTOL_RANGE` and absolute tolerance
+        [state units] in :data:`~bearingsim.checks.ATOL_RANGE`.
     n_points : int
         Number of equally spaced output points in ``[t_start, t_end]``, an integer >= 2
         (ignored when ``t_eval`` is given).
@@ -177,8 +179,8 @@ def simulate(
     check_flag(progress, "progress", "simulate", allow_none=True)
     check_range(t_start, "t_start", "s", where="simulate")
     check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
-    check_range(rtol, "rtol", "1", 0.0, 1.0, low_inclusive=False, where="simulate")
-    check_range(atol, "atol", "1", 0.0, None, low_inclusive=False, where="simulate")
+    check_tolerance(rtol, "rtol", "rtol", "simulate")
+    check_tolerance(atol, "atol", "atol", "simulate")
     if max_step != np.inf:
         check_range(max_step, "max_step", "s", 0.0, None, low_inclusive=False, where="simulate")
     method, backend = _method_backend(method, backend)

@@ -9,6 +9,7 @@ import numpy as np
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System, as_system
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double_layer_bearing
+from bearingsim.checks import checked
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import simulate, steady_state
 from bearingsim.validation import check_range
@@ -29,6 +30,7 @@ class SpeedRatioSweep:
     """Friction torque on the shaft at each speed [N m]."""
 
 
+@checked(skip=("system",))
 def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None,
                  x_guess=None) -> tuple[float, float, np.ndarray]:
     """Steady ``Rs`` and shaft friction torque of an assembled double-layer bearing.
