@@ -23,6 +23,7 @@ __all__ = [
     "PlasticDeformationWarning",
     "LongRunWarning",
     "SpeedLimitWarning",
+    "MultipleSteadyStatesWarning",
 ]
 
 
@@ -123,6 +124,12 @@ class PlasticDeformationWarning(UserWarning):
 
 class LongRunWarning(UserWarning):
     """A run whose size (steps forced by ``max_step``, output bytes) makes it long or large."""
+
+
+class MultipleSteadyStatesWarning(UserWarning):
+    """A model with more than one stable steady state at the operating point (the SKF friction
+    model's bistable speed ratio): the message lists them and says which one was returned and
+    why."""
 
 
 class SpeedLimitWarning(UserWarning):

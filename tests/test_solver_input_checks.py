@@ -385,3 +385,43 @@ def test_end_time_of_1e308_is_refused_by_the_budget_not_run_for_ever(torque_syst
 
     with pytest.raises((ParameterError, BudgetExceededError)):
         simulate(torque_system, 1e308, inputs=SPEED, method="BDF", max_steps=200, n_points=2)
+
+
+# ------------------------------------------------------------------ SKF bistability
+@pytest.fixture(scope="module")
+def skf_system():
+    return assemble(double_layer_bearing("61905", "61907", fidelity="torque",
+                                         friction_model="skf"), outputs=["Rs", "M_shaft"])
+
+
+@pytest.mark.parametrize("start", [0.0, 50.0, 99.9])
+def test_skf_bistable_speed_ratio_is_named_and_the_branch_is_the_one_a_run_reaches(
+        skf_system, start):
+    """The SKF model at 100 rad/s, Fr = 1000 N has stable steady states at Rs = 0.0013 and
+    0.998 and an unstable one at 0.560; steady_ratio used to return one of them silently by
+    start guess. Now it warns with all three and returns the one a run from the start settles
+    on (checked by integrating from the same start)."""
+    from bearingsim.errors import MultipleSteadyStatesWarning
+
+    with pytest.warns(MultipleSteadyStatesWarning,
+                      match=r"3 steady states, Rs = 0.001346 \(stable\), Rs = 0.5602 "
+                            r"\(unstable\), Rs = 0.9981 \(stable\); returned Rs = ") as info:
+        rs, _, _ = steady_ratio(skf_system, 100.0, loads=(1000.0, 0.0),
+                                x_guess=np.array([start]))
+    assert f"returned Rs = {rs:.4g}" in str(info[0].message)
+    run = simulate(skf_system, 20.0, inputs={"shaft_speed": 100.0, "Fr": 1000.0, "Fa": 0.0},
+                   x0={"middle.sleeve.w": start}, method="cvodes", n_points=3)
+    assert run.final("Rs") == pytest.approx(rs, rel=1e-3, abs=1e-5)
+
+
+def test_palmgren_speed_ratio_has_one_branch_and_no_warning(torque_system):
+    import warnings
+
+    from bearingsim.studies.double_layer import steady_branches
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        steady_ratio(torque_system, 100.0, loads=(1000.0, 0.0))
+    branches = steady_branches(torque_system, {"shaft_speed": 100.0, "Fr": 1000.0, "Fa": 0.0},
+                               torque_system.p0())
+    assert len(branches) == 1 and branches[0].stable
