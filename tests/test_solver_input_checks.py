@@ -425,3 +425,22 @@ def test_palmgren_speed_ratio_has_one_branch_and_no_warning(torque_system):
     branches = steady_branches(torque_system, {"shaft_speed": 100.0, "Fr": 1000.0, "Fa": 0.0},
                                torque_system.p0())
     assert len(branches) == 1 and branches[0].stable
+
+
+def test_scene_budgets_are_read_checked_and_end_the_run():
+    from bearingsim.errors import BudgetExceededError
+    from bearingsim.scenes.runner import prepare, run_simulation
+    from bearingsim.scenes.scene import SceneError, scene_from_dict
+
+    base = {"assembly": {"name": "double_layer_bearing", "fidelity": "torque"},
+            "inputs": {"shaft_speed": 100.0}, "outputs": ["Rs"]}
+    for bad in ({"timeout": -1.0}, {"timeout": "10 s"}, {"max_steps": 0},
+                {"max_steps": 2.5}, {"atol": 1e300}, {"rtol": 0.5}):
+        with pytest.raises(SceneError, match=f"simulation.{next(iter(bad))}"):
+            scene_from_dict({**base, "simulation": {"t_end": 1.0, **bad}})
+    scene = scene_from_dict({**base, "simulation": {"t_end": 50.0, "max_step": 1e-3,
+                                                    "max_steps": 30, "timeout": 60.0}})
+    assert (scene.simulation.max_steps, scene.simulation.timeout) == (30, 60.0)
+    assert scene.replace(title="again").simulation.timeout == 60.0  # survives to_dict
+    with pytest.raises(BudgetExceededError, match=r"step budget of 30 steps"):
+        run_simulation(prepare(scene))

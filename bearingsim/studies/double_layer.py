@@ -179,7 +179,7 @@ def _choose_branch(system: System, inputs: dict[str, float], parameters, x_guess
         f"steady_ratio at {w:g} rad/s, loads Fr, Fa = {tuple(loads)} N: the model has "
         f"{len(branches)} steady states, {listed}; returned Rs = {chosen.w_middle / w:.4g}, the "
         f"stable one a run from the start value middle-ring speed {start:g} rad/s settles on "
-        f"(give x_guess near another to get it)", MultipleSteadyStatesWarning, stacklevel=3)
+        f"(give x_guess near another to get it)", MultipleSteadyStatesWarning, stacklevel=4)
     return np.array([chosen.w_middle])
 
 

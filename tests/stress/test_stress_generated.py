@@ -161,7 +161,7 @@ def _arguments(fn):
 
 @pytest.mark.parametrize("fn", _physics_functions())
 def test_physics_functions_give_finite_numbers_or_named_errors(fn):
-    @_settings(120)
+    @_settings(30)
     @given(_arguments(fn))
     def run(kwargs):
         outcome(lambda: fn(**kwargs), allow_inf=fn.__name__ in ALLOW_INF)
@@ -176,7 +176,7 @@ EXPR_ATOMS = st.sampled_from(["t", "1", "0", "-2.5", "pi", "1e308", "0.1234567",
                               "rpm(", "abs(", "sin("])
 
 
-@_settings(2000)
+@_settings(300)
 @given(st.lists(EXPR_ATOMS, max_size=14).map("".join), st.floats(0.01, 10.0))
 def test_expressions_compile_and_run_or_raise_named_errors(text, t_end):
     """A generated input expression either fails to compile with its name in the message, or
@@ -208,7 +208,7 @@ KEYS = st.sampled_from(["name", "fidelity", "inner", "outer", "lubrication", "st
                         "max_step", "folder", "plots", "inner_layer.nu", "bogus"])
 
 
-@_settings(1500)
+@_settings(300)
 @given(st.dictionaries(SECTIONS, st.dictionaries(KEYS, SCALARS, max_size=4), max_size=4))
 def test_generated_scenes_parse_or_name_every_problem(d):
     from bearingsim.scenes.scene import SceneError, scene_from_dict
@@ -236,7 +236,7 @@ def torque_system(friction_model: str):
                     outputs=["Rs", "M_shaft"])
 
 
-@_settings(600)
+@_settings(100)
 @given(st.sampled_from(["palmgren", "skf"]), st.floats(-2000.0, 2000.0),
        st.floats(-100.0, 5000.0), st.floats(-100.0, 5000.0),
        st.sampled_from(["ISO VG 32", "ISO VG 150", "lithium grease"]))
@@ -260,7 +260,7 @@ def kinematic_system(fidelity: str):
                     outputs=["Rs", "w_middle"])
 
 
-@_settings(250)
+@_settings(40)
 @given(st.sampled_from(["kinematic", "kinematic_approx"]), st.floats(-3000.0, 3000.0),
        st.floats(1e-3, 0.5))
 def test_kinematic_levels_run(fidelity, speed, t_end):
@@ -273,7 +273,7 @@ def test_kinematic_levels_run(fidelity, speed, t_end):
 LOAD = st.one_of(st.floats(-5000.0, 5000.0), st.sampled_from([0.0, math.nan, 1e7]))
 
 
-@_settings(700)
+@_settings(60)
 @given(st.sampled_from(["6304", "6204", "61905", "7014C"]), LOAD, LOAD, LOAD,
        st.floats(-20.0, 20.0), st.floats(-20.0, 20.0),
        st.sampled_from([None, 0.0, 5e-6, 30e-6, -1e-6]),
@@ -305,7 +305,7 @@ def quasi_static_level(speed: float):
         return assemble(deep_groove_ball_bearing("6304", "quasi-static", speed=speed))
 
 
-@_settings(300)
+@_settings(60)
 @given(st.sampled_from([0.0, 500.0, 2000.0]), st.floats(0.0, 4000.0), st.floats(-3000.0, 3000.0),
        st.floats(-1500.0, 1500.0))
 def test_quasi_static_level_at_speed_with_load_inputs(speed, fx, fy, fz):
@@ -323,7 +323,7 @@ def duplex_model(bearing: str, arrangement: str):
     return DuplexModel(bearing, arrangement=arrangement)
 
 
-@_settings(300)
+@_settings(30)
 @given(st.sampled_from(["7020C", "7020A"]), st.sampled_from(["DF", "DB", "DT"]),
        st.floats(-3000.0, 3000.0), st.floats(-3000.0, 3000.0), st.floats(-50.0, 50.0))
 def test_duplex_pair_equilibrium(bearing, arrangement, fx, fz, my):
@@ -351,7 +351,7 @@ def ball_level(fidelity: str):
                                              n_slices=0))
 
 
-@_settings(24)
+@_settings(4)
 @given(st.sampled_from(["dynamic_massive_balls", "dynamic"]), st.floats(0.0, 400.0),
        st.floats(50.0, 1500.0))
 def test_ball_levels_start_up(fidelity, speed, load):
