@@ -245,6 +245,8 @@ CASES += [
      .export_fmu(SYSTEM, "."), "path must be a file path ending in .fmu"),
     ("simulate max_steps 0", lambda: simulate(SYSTEM, 1.0, inputs=SP, max_steps=0),
      "max_steps"),
+    ("export_fmu nu in mm2/s", lambda: __import__("bearingsim.fmu", fromlist=["x"])
+     .export_fmu(SYSTEM, "never_written.fmu", parameters={"inner_layer.nu": 32.0}), "mm^2/s"),
 ]
 
 
