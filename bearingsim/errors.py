@@ -17,11 +17,13 @@ __all__ = [
     "SingularBlockError",
     "UnconnectedInputError",
     "SimulationError",
+    "BudgetExceededError",
     "PassOrderError",
     "CatalogError",
     "PlasticDeformationWarning",
     "LongRunWarning",
     "SpeedLimitWarning",
+    "MultipleSteadyStatesWarning",
 ]
 
 
@@ -90,6 +92,26 @@ class SimulationError(BearingsimError, RuntimeError):
     """The integrator failed; the message names the time reached and the diverging variables."""
 
 
+class BudgetExceededError(SimulationError):
+    """A run used up its step or wall-time budget (``max_steps``, ``timeout``).
+
+    Attributes
+    ----------
+    t_reached : float
+        Simulated time reached [s].
+    steps : int
+        Steps taken [-].
+    wall_time : float
+        Wall time used [s].
+    """
+
+    def __init__(self, message: str, t_reached: float, steps: int, wall_time: float):
+        super().__init__(message)
+        self.t_reached = t_reached
+        self.steps = steps
+        self.wall_time = wall_time
+
+
 class PassOrderError(BearingsimError, RuntimeError):
     """An assembler pass ran before the pass that produces what it needs (an extra pass
     inserted too early, or an internal error)."""
@@ -102,6 +124,12 @@ class PlasticDeformationWarning(UserWarning):
 
 class LongRunWarning(UserWarning):
     """A run whose size (steps forced by ``max_step``, output bytes) makes it long or large."""
+
+
+class MultipleSteadyStatesWarning(UserWarning):
+    """A model with more than one stable steady state at the operating point (the SKF friction
+    model's bistable speed ratio): the message lists them and says which one was returned and
+    why."""
 
 
 class SpeedLimitWarning(UserWarning):

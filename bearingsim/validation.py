@@ -102,9 +102,9 @@ def check_range(
             f"{label} must be a number in {unit}, got {value!r} ({type(value).__name__})")
     try:
         arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ParameterError(
-            f"{label} must be a number in {unit}, got {value!r} ({type(value).__name__})"
+            f"{label} must be a number in {unit}, got {value!r:.60} ({type(value).__name__})"
         ) from None
     if not np.all(np.isfinite(arr)):
         raise ParameterError(f"{label} must be finite, got {value!r} [{unit}]")
@@ -120,9 +120,11 @@ def check_range(
         if high is None:
             rb = ")"
         shown = value if arr.ndim == 0 else f"array with min {arr.min():g}, max {arr.max():g}"
+        slip = (" (a value in mm^2/s? give m^2/s: 1 mm^2/s = 1e-6 m^2/s)"
+                if unit in ("m2/s", "m^2/s") and not hi_ok else "")
         raise ParameterError(
             f"{label} = {shown} [{unit}] is outside the valid range {lb}{lo}, {hi}{rb} [{unit}]"
-        )
+            f"{slip}")
     if arr.ndim == 0 and not math.isfinite(float(arr)):
         raise ParameterError(f"{label} must be finite [{unit}]")
     return value

@@ -32,8 +32,9 @@ def kernel_cache(tmp_path, monkeypatch):
     clear_integrator_cache()
 
 
-STRESS_TOTAL = {"cases": 0, "seconds": 0.0}
-"""Generated stress cases of all workers and their time [s] (controller side)."""
+STRESS_TOTAL: dict[str, float] = {}
+"""Stress cases of all workers by kind and their times [s] (controller side;
+``tests/stress/conftest.py`` names the kinds)."""
 
 
 def _local_stress() -> dict:
@@ -43,7 +44,12 @@ def _local_stress() -> dict:
     for name, module in list(sys.modules.items()):
         if name.endswith("test_stress_generated") and hasattr(module, "STRESS"):
             return dict(module.STRESS)
-    return {"cases": 0, "seconds": 0.0}
+    return {}
+
+
+def _add(counts: dict) -> None:
+    for key, value in counts.items():
+        STRESS_TOTAL[key] = STRESS_TOTAL.get(key, 0) + value
 
 
 def pytest_sessionfinish(session):
@@ -52,21 +58,22 @@ def pytest_sessionfinish(session):
     if hasattr(session.config, "workeroutput"):
         session.config.workeroutput["stress"] = counts
     else:
-        STRESS_TOTAL["cases"] += counts["cases"]
-        STRESS_TOTAL["seconds"] += counts["seconds"]
+        _add(counts)
 
 
 def pytest_testnodedown(node, error):
     """Collect a worker's stress count (pytest-xdist controller)."""
-    counts = getattr(node, "workeroutput", {}).get("stress", {})
-    STRESS_TOTAL["cases"] += counts.get("cases", 0)
-    STRESS_TOTAL["seconds"] += counts.get("seconds", 0.0)
+    _add(getattr(node, "workeroutput", {}).get("stress", {}))
 
 
 def pytest_terminal_summary(terminalreporter):
-    """Print the size of the generated stress suite when it ran."""
-    if STRESS_TOTAL["cases"]:
+    """Print the stress suite's two counts when it ran."""
+    total = STRESS_TOTAL
+    if total.get("cases"):
         terminalreporter.write_line(
-            f"stress suite: {STRESS_TOTAL['cases']} generated cases in "
-            f"{STRESS_TOTAL['seconds']:.1f} s, each finite or a named error, none over its "
-            "time bound")
+            f"stress suite: {total.get('valid', 0)} valid operating points run and checked "
+            f"against their invariants in {total.get('valid_seconds', 0.0):.1f} s; "
+            f"{total.get('invalid', 0)} invalid inputs refused with a named error in "
+            f"{total.get('invalid_seconds', 0.0):.1f} s ({total.get('invalid_accepted', 0)} "
+            f"generated bad-input draws were valid and gave finite numbers); "
+            f"{total['seconds']:.1f} s in all (a case over its time limit fails its test)")

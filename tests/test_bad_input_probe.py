@@ -199,6 +199,57 @@ CASES = [
 ]
 
 
+RESULT = simulate(SYSTEM, 0.01, inputs=SP, n_points=3)
+
+# issue 30: each raised TypeError, OverflowError or AttributeError, or was accepted, before
+CASES += [
+    ("steady ratio speed list", lambda: steady_ratio(SYSTEM, [1.0]), "speed must be float"),
+    ("steady ratio speed 10**400", lambda: steady_ratio(SYSTEM, 10**400), "speed"),
+    ("simulate t_end 10**400", lambda: simulate(SYSTEM, 10**400, inputs=SP), "t_end"),
+    ("simulate input 10**400", lambda: simulate(SYSTEM, 1.0, inputs={"shaft_speed": 10**400}),
+     "shaft_speed"),
+    ("dgbb speed 10**400", lambda: deep_groove_ball_bearing("6304", "quasi-static",
+                                                            speed=10**400), "speed"),
+    ("motor_drive bearing name", lambda: motor_drive(bearing="61905"), "bearing must be"),
+    ("Result.final number", lambda: RESULT.final(5), "name must be str"),
+    ("assembly name empty", lambda: double_layer_bearing("61905", "61907", name=""), "name"),
+    ("assembly name dotted", lambda: double_layer_bearing("61905", "61907", name="a.b"),
+     "identifier"),
+    ("assembly name digit", lambda: double_layer_bearing("61905", "61907", name="1abc"),
+     "identifier"),
+    ("layer option bool as text", lambda: double_layer_bearing(
+        "61905", "61907", fidelity="torque", layer_options={"smooth": "no"}),
+     "layer_options['smooth'] must be bool"),
+    ("newton_tol 1e6", lambda: assemble(COMPONENT, newton_tol=1e6), "newton_tol"),
+    ("simulate atol 1e300", lambda: simulate(SYSTEM, 1.0, inputs=SP, atol=1e300), "atol"),
+    ("simulate rtol 0.5", lambda: simulate(SYSTEM, 1.0, inputs=SP, rtol=0.5), "rtol"),
+    ("nu in mm2/s as parameter", lambda: simulate(SYSTEM, 1.0, inputs=SP,
+                                                  parameters={"inner_layer.nu": 32.0}),
+     "mm^2/s"),
+    ("palmgren m0 nu in mm2/s", lambda: __import__(
+        "bearingsim.physics.friction", fromlist=["x"]).palmgren_m0(32.0, 100.0, 0.04, 2.0),
+     "mm^2/s"),
+    ("dgbb speed 1e9 rad/s", lambda: deep_groove_ball_bearing("6304", "quasi-static",
+                                                              speed=1e9), "limiting speed"),
+    ("dgbb load 1e12 N", lambda: deep_groove_ball_bearing("6304", "quasi-static",
+                                                          loads={"Fx": 1e12}), "static load"),
+    ("palmgren f1 P0 1e12 N", lambda: __import__(
+        "bearingsim.physics.friction", fromlist=["x"]).palmgren_f1(
+        "deep_groove_ball", 1e12, 7800.0), "P0"),
+    ("grid of 10^12 points", lambda: __import__(
+        "bearingsim.scenes.sweep", fromlist=["x"]).grid_points(
+        {f"k{i}": list(range(1000)) for i in range(4)}), "grid_points"),
+    ("sweep n_workers 0", lambda: __import__("bearingsim.scenes.sweep", fromlist=["x"])
+     .run_sweep("scenes/deep_groove_radial.toml", [{}], n_workers=0), "n_workers"),
+    ("export_fmu into a folder", lambda: __import__("bearingsim.fmu", fromlist=["x"])
+     .export_fmu(SYSTEM, "."), "path must be a file path ending in .fmu"),
+    ("simulate max_steps 0", lambda: simulate(SYSTEM, 1.0, inputs=SP, max_steps=0),
+     "max_steps"),
+    ("export_fmu nu in mm2/s", lambda: __import__("bearingsim.fmu", fromlist=["x"])
+     .export_fmu(SYSTEM, "never_written.fmu", parameters={"inner_layer.nu": 32.0}), "mm^2/s"),
+]
+
+
 @pytest.mark.parametrize(("call", "fragment"), [c[1:] for c in CASES], ids=[c[0] for c in CASES])
 def test_bad_input_raises_a_named_error(call, fragment):
     with pytest.raises(BearingsimError) as err:

@@ -15,7 +15,7 @@ from bearingsim import Assembly, Input, Variable
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.double_layer import DoubleLayerBearing
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import simulate
 from bearingsim.studies.double_layer import speed_ratio_sweep, steady_ratio
 
@@ -270,3 +270,183 @@ def test_an_interrupted_write_leaves_no_partial_file(tmp_path, torque_system, mo
     monkeypatch.undo()
     assert res.to_csv(tmp_path / "run.csv").exists()
     assert [p.name for p in tmp_path.iterdir()] == ["run.csv"]
+
+
+# ------------------------------------------------------------------ budgets and BDF stalls
+def _duplex_step_scene(arrangement: str, fz: float):
+    from pathlib import Path
+
+    from bearingsim.scenes.runner import prepare
+    from bearingsim.scenes.scene import load_scene
+
+    scene = load_scene(Path(__file__).parents[1] / "scenes" / "duplex_pair_axial.toml")
+    scene = scene.replace(args={**scene.args, "arrangement": arrangement},
+                          inputs={**scene.inputs, "shaft.Fz": f"{fz} * step(0.002)"})
+    return prepare(scene)
+
+
+@pytest.mark.parametrize(("arrangement", "fz"), [("DF", 2000.0), ("DB", 1000.0)])
+def test_bdf_finishes_the_duplex_load_step_that_stalled_it(arrangement, fz):
+    """scipy's BDF refused every step once the damped shaft had settled to round-off (its
+    Newton test took corrections 1e-9 of the tolerance that stopped shrinking for divergence):
+    DF 2000 N stalled at t = 1.4966 ms with steps of 1e-12 s. With the stagnation rule the run
+    ends in under 3 000 steps and agrees with LSODA."""
+    from bearingsim.scenes.runner import run_simulation
+
+    prep = _duplex_step_scene(arrangement, fz)
+    bdf = run_simulation(prep, method="BDF", max_steps=3000)
+    lsoda = run_simulation(prep, method="LSODA")
+    assert bdf.stats["n_steps"] <= 3000
+    for name in ("shaft.z", "shaft.x", "shaft.ty"):
+        np.testing.assert_allclose(bdf[name][-1], lsoda[name][-1], rtol=1e-5,
+                                   atol=1e-6 * np.max(np.abs(lsoda[name])))
+
+
+def test_bdf_newton_accepts_corrections_stagnating_at_round_off():
+    """A damped oscillator at rest whose right-hand side carries 1e-10 round-off noise: scipy's
+    BDF refuses Newton solve after Newton solve until its step is below the spacing of floats
+    (status -1 after ~3 000 steps); the stagnation rule runs through in ~250 steps."""
+    import scipy.integrate
+
+    from bearingsim.simulation.integrators import StagnationTolerantBDF
+
+    def steps(solver):
+        rng = np.random.default_rng(0)
+        counted = [0]
+
+        class Counted(solver):
+            def _step_impl(self):
+                counted[0] += 1
+                return super()._step_impl()
+
+        sol = scipy.integrate.solve_ivp(
+            lambda t, y: np.array([y[1], -1e6 * y[0] - 2e2 * y[1]
+                                   + 1e-10 * rng.standard_normal()]),
+            (0.0, 0.04), [0.0, 0.0], method=Counted, rtol=1e-6, atol=1e-12,
+            jac=lambda t, y: np.array([[0.0, 1.0], [-1e6, -2e2]]))
+        return sol, counted[0]
+
+    ours, n_ours = steps(StagnationTolerantBDF)
+    assert ours.status == 0 and n_ours < 500
+    assert np.max(np.abs(ours.y[0])) < 1e-12  # stays at rest to the noise level
+    scipys, n_scipys = steps(scipy.integrate.BDF)
+    assert scipys.status == -1 or n_scipys > 2000
+
+
+@pytest.mark.parametrize("method", ["BDF", "LSODA", "RK45", "compiled_bdf", "cvodes"])
+def test_step_budget_ends_the_run_with_the_time_reached(torque_system, method):
+    from bearingsim.errors import BudgetExceededError, SimulationError
+
+    with pytest.raises(SimulationError, match=r"stopped at t = .* s of 50 s|CVODES failed "
+                       r"between t = 0 s") as info:
+        simulate(torque_system, 50.0, inputs=SPEED, method=method, max_steps=20, max_step=1e-3)
+    if method != "cvodes":  # CVODES reports its own max_num_steps failure
+        assert isinstance(info.value, BudgetExceededError)
+        assert 0.0 < info.value.t_reached < 50.0
+        assert "step budget of 20 steps (max_steps)" in str(info.value)
+
+
+def test_wall_time_budget_ends_the_run(torque_system):
+    from bearingsim.errors import BudgetExceededError
+
+    with pytest.raises(BudgetExceededError, match=r"wall-time budget of 0.001 s \(timeout\)"):
+        simulate(torque_system, 1e3, inputs=SPEED, method="RK45", timeout=1e-3,
+                 max_steps=10**9, max_step=1e-3)
+
+
+@pytest.mark.parametrize(("kwargs", "match"), [
+    ({"max_steps": 0}, r"max_steps = 0 \[-\] is outside the valid range \[1, inf\)"),
+    ({"max_steps": 2.5}, "max_steps must be a whole number >= 1"),
+    ({"max_steps": "many"}, "max_steps must be a whole number >= 1"),
+    ({"timeout": -1.0}, r"timeout = -1.0 \[s\] is outside"),
+    ({"timeout": float("nan")}, "timeout must be finite"),
+])
+def test_budget_arguments_are_checked(torque_system, kwargs, match):
+    with pytest.raises(ParameterError, match=match):
+        simulate(torque_system, 0.1, inputs=SPEED, **kwargs)
+
+
+def test_scipy_failure_before_the_first_output_time_reports_the_time_reached(
+        torque_system, monkeypatch):
+    """solve_ivp leaves ``sol.t`` an empty list when it fails before the first output time:
+    the failure path raised AttributeError ('list' object has no attribute 'size')."""
+    import scipy.integrate
+
+    real = scipy.integrate.solve_ivp
+
+    def failing(fun, t_span, y0, **kwargs):
+        sol = real(fun, t_span, y0, **{**kwargs, "t_eval": kwargs["t_eval"][-1:]})
+        sol.status, sol.message, sol.t = -1, "Required step size is less than spacing", []
+        return sol
+
+    monkeypatch.setattr(scipy.integrate, "solve_ivp", failing)
+    for method in ("BDF", "LSODA"):
+        with pytest.raises(SimulationError, match=rf"{method} failed at t = .* s of 0.1 s: "
+                           "Required step size"):
+            simulate(torque_system, 0.1, inputs=SPEED, method=method)
+
+
+def test_end_time_of_1e308_is_refused_by_the_budget_not_run_for_ever(torque_system):
+    from bearingsim.errors import BudgetExceededError
+
+    with pytest.raises((ParameterError, BudgetExceededError)):
+        simulate(torque_system, 1e308, inputs=SPEED, method="BDF", max_steps=200, n_points=2)
+
+
+# ------------------------------------------------------------------ SKF bistability
+@pytest.fixture(scope="module")
+def skf_system():
+    return assemble(double_layer_bearing("61905", "61907", fidelity="torque",
+                                         friction_model="skf"), outputs=["Rs", "M_shaft"])
+
+
+@pytest.mark.parametrize("start", [0.0, 50.0, 99.9])
+def test_skf_bistable_speed_ratio_is_named_and_the_branch_is_the_one_a_run_reaches(
+        skf_system, start):
+    """The SKF model at 100 rad/s, Fr = 1000 N has stable steady states at Rs = 0.0013 and
+    0.998 and an unstable one at 0.560; steady_ratio used to return one of them silently by
+    start guess. Now it warns with all three and returns the one a run from the start settles
+    on (checked by integrating from the same start)."""
+    from bearingsim.errors import MultipleSteadyStatesWarning
+
+    with pytest.warns(MultipleSteadyStatesWarning,
+                      match=r"3 steady states, Rs = 0.001346 \(stable\), Rs = 0.5602 "
+                            r"\(unstable\), Rs = 0.9981 \(stable\); returned Rs = ") as info:
+        rs, _, _ = steady_ratio(skf_system, 100.0, loads=(1000.0, 0.0),
+                                x_guess=np.array([start]))
+    assert f"returned Rs = {rs:.4g}" in str(info[0].message)
+    run = simulate(skf_system, 20.0, inputs={"shaft_speed": 100.0, "Fr": 1000.0, "Fa": 0.0},
+                   x0={"middle.sleeve.w": start}, method="cvodes", n_points=3)
+    assert run.final("Rs") == pytest.approx(rs, rel=1e-3, abs=1e-5)
+
+
+def test_palmgren_speed_ratio_has_one_branch_and_no_warning(torque_system):
+    import warnings
+
+    from bearingsim.studies.double_layer import steady_branches
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        steady_ratio(torque_system, 100.0, loads=(1000.0, 0.0))
+    branches = steady_branches(torque_system, {"shaft_speed": 100.0, "Fr": 1000.0, "Fa": 0.0},
+                               torque_system.p0())
+    assert len(branches) == 1 and branches[0].stable
+
+
+def test_scene_budgets_are_read_checked_and_end_the_run():
+    from bearingsim.errors import BudgetExceededError
+    from bearingsim.scenes.runner import prepare, run_simulation
+    from bearingsim.scenes.scene import SceneError, scene_from_dict
+
+    base = {"assembly": {"name": "double_layer_bearing", "fidelity": "torque"},
+            "inputs": {"shaft_speed": 100.0}, "outputs": ["Rs"]}
+    for bad in ({"timeout": -1.0}, {"timeout": "10 s"}, {"max_steps": 0},
+                {"max_steps": 2.5}, {"atol": 1e300}, {"rtol": 0.5}):
+        with pytest.raises(SceneError, match=f"simulation.{next(iter(bad))}"):
+            scene_from_dict({**base, "simulation": {"t_end": 1.0, **bad}})
+    scene = scene_from_dict({**base, "simulation": {"t_end": 50.0, "max_step": 1e-3,
+                                                    "max_steps": 30, "timeout": 60.0}})
+    assert (scene.simulation.max_steps, scene.simulation.timeout) == (30, 60.0)
+    assert scene.replace(title="again").simulation.timeout == 60.0  # survives to_dict
+    with pytest.raises(BudgetExceededError, match=r"step budget of 30 steps"):
+        run_simulation(prepare(scene))

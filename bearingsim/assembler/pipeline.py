@@ -37,9 +37,10 @@ from bearingsim.assembler.passes import (
 )
 from bearingsim.assembler.state import AssemblyState
 from bearingsim.assembler.system import System
+from bearingsim.checks import check_tolerance
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
-from bearingsim.validation import check_choice, check_mapping, check_range, entry_point
+from bearingsim.validation import check_choice, check_mapping, entry_point
 
 __all__ = ["Pass", "Stage", "STAGES", "PASS_NAMES", "assemble"]
 
@@ -147,8 +148,7 @@ def assemble(
             isinstance(o, str) for o in outputs)):
         raise ParameterError(f"assemble: outputs must be a list of variable names, got "
                              f"{outputs!r:.80}")
-    check_range(newton_tol, "newton_tol", "1", 0.0, None, low_inclusive=False,
-                where="assemble")
+    check_tolerance(newton_tol, "newton_tol", "newton", "assemble")
     if rootfinder is None:
         rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
                       else "fast_newton")

@@ -28,6 +28,7 @@ from typing import Any
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
 from bearingsim.catalog.geometry import speed_input_bounds
+from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.ball_row import BallRow, row_equilibrium, row_parameters
 from bearingsim.components.connectors import Flange, RingFrame
 from bearingsim.components.dynamic import (
@@ -475,6 +476,12 @@ def _warn_beyond_static_rating(geometry, forces, where: str) -> None:
         return
     p0 = float(static_equivalent_load(math.hypot(forces[0], forces[1]), abs(forces[2]),
                                       geometry))
+    if p0 > MAX_STATIC_LOAD_FACTOR * geometry.static_load_rating:
+        raise ParameterError(
+            f"{where}: the static equivalent load {p0:.4g} N is more than "
+            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 = "
+            f"{geometry.static_load_rating:.0f} N of {geometry.designation}: beyond the "
+            f"strength of bearing steel (N given for kN?)")
     if p0 > geometry.static_load_rating:
         warnings.warn(f"{where}: the static equivalent load {p0:.0f} N exceeds the static load "
                       f"rating C0 = {geometry.static_load_rating:.0f} N of "

@@ -27,6 +27,7 @@ from bearingsim.assemblies.spec import (
 )
 from bearingsim.catalog import resolve_bearing
 from bearingsim.catalog.geometry import check_speed_limit, speed_input_bounds
+from bearingsim.checks import check_arguments
 from bearingsim.components.bearing_torque import (
     PalmgrenBearing,
     PureRollingLayer,
@@ -179,9 +180,11 @@ def _layer(geometry, lubricant, fidelity: str, friction_model: str, options: dic
         return PureRollingLayer(geometry, exact=fidelity == "kinematic", **options)
     check_options(options, layer_option_names(friction_model), "double_layer_bearing",
                   "layer_options", f"of the {friction_model!r} friction model (torque level)")
-    if friction_model == "palmgren":
-        return PalmgrenBearing(geometry, lubricant, **options)
-    return SkfBearing(geometry, lubricant, **options)
+    layer = PalmgrenBearing if friction_model == "palmgren" else SkfBearing
+    check_arguments(layer, (), {k: v for k, v in options.items()
+                                if k in keyword_names(layer)},
+                    "double_layer_bearing", "layer_options[{name!r}]")
+    return layer(geometry, lubricant, **options)
 
 
 def _with_method(lubricant, method: str):

@@ -15,6 +15,7 @@ from bearingsim.assemblies.double_layer import (
 )
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default, nested_post
 from bearingsim.catalog.geometry import check_speed_limit, speed_input_bounds
+from bearingsim.checks import checked
 from bearingsim.components.motor import MOTOR_DRIVES, speed_controlled_motor
 from bearingsim.components.rotational import Inertia, TorqueSource
 from bearingsim.language import Assembly, Component, Input, Variable, connect
@@ -74,6 +75,7 @@ def _limit_reference(motor: Component, speed_ref, bearing: Component) -> None:
             *(g.designation for g in geometries)))
 
 
+@checked
 def motor_drive(bearing: DoubleLayerBearing | None = None, **kwargs) -> MotorDrive:
     """Build a :class:`MotorDrive`."""
     return MotorDrive(bearing, **kwargs)

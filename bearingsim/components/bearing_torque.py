@@ -26,7 +26,7 @@ from bearingsim.physics.friction import (
     palmgren_p1,
     skf_friction_components,
 )
-from bearingsim.physics.lubricant import as_lubricant
+from bearingsim.physics.lubricant import KINEMATIC_VISCOSITY_RANGE, as_lubricant
 from bearingsim.symbolic import smooth_abs
 
 __all__ = [
@@ -138,6 +138,7 @@ class PalmgrenBearing(_LubricatedBearing):
         self.nu = Parameter(
             float(self.lubricant.kinematic_viscosity()), "m2/s",
             "kinematic viscosity of the (base) oil at operating temperature", low=0.0,
+            high=KINEMATIC_VISCOSITY_RANGE[1],
         )
         self.f0 = Parameter(
             float(self.lubricant.palmgren_f0(self.bearing_type, self.geometry.series)), "1",

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from bearingsim.assembler import System, assemble_cached
+from bearingsim.checks import check_output_file
 from bearingsim.errors import ParameterError
 from bearingsim.fmu.build import (
     BINARY_PLATFORMS,
@@ -195,6 +196,7 @@ def export_fmu(
         If the C compiler is missing or fails, or the binary would need a glibc newer than
         2.17.
     """
+    check_output_file(path, ".fmu", "path", "export_fmu")
     if fmi_version not in FMI_VERSIONS:
         raise ParameterError(
             f"export_fmu: fmi_version must be one of {', '.join(FMI_VERSIONS)}, got "

@@ -8,6 +8,7 @@ from typing import Any
 
 import casadi as ca
 
+from bearingsim.checks import check_identifier
 from bearingsim.errors import ConnectionError_, ModelError
 from bearingsim.language.connector import Connector
 from bearingsim.language.declarations import Declaration, Parameter
@@ -66,6 +67,8 @@ class Component:
         object.__setattr__(self, "_connections", [])
         object.__setattr__(self, "_extra_equations", [])
         object.__setattr__(self, "parent", None)
+        if name is not None:
+            check_identifier(name, "name", type(self).__name__)
         object.__setattr__(self, "name", name)
 
     # ------------------------------------------------------------------ declarations

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.physics.traction import regularized_coulomb
 from bearingsim.symbolic import (
     fmax,
@@ -430,3 +431,6 @@ def cage_guidance_force(
               / (Cg * sqrt(1.0 - film.eps * film.eps)))
     return CageGuidance(fx=film.fx, fy=film.fy, radial=film.radial,
                         tangential=film.tangential, moment=moment, eps=film.eps)
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

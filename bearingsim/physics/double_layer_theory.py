@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
+from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
 
 __all__ = [
@@ -96,3 +97,6 @@ def design_report(inner, outer, rs: float | None = None) -> PairingReport:
                          n_max(rs_opt))
 
 
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

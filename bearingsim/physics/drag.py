@@ -12,6 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.checks import guard_public_functions
+from bearingsim.physics.lubricant import check_kinematic_viscosity
 from bearingsim.symbolic import smooth_abs, sqrt
 from bearingsim.validation import MIN_LENGTH, check_range
 
@@ -273,4 +275,8 @@ def taylor_number(omega: Any, radius: float, gap: float, nu: float) -> Any:
     check_range(radius, "radius", "m", MIN_LENGTH, 6.0, where=where)
     check_range(gap, "gap", "m", MIN_LENGTH, 6.0, where=where)
     check_range(nu, "nu", "m^2/s", 0.0, None, low_inclusive=False, where=where)
+    check_kinematic_viscosity(nu, "nu", where)
     return smooth_abs(omega, 1e-12) * radius * gap / nu * np.sqrt(gap / radius)
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

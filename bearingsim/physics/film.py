@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.symbolic import cos, exp, power, smooth_abs, sqrt
 from bearingsim.validation import (
     MAX_BALL_DIAMETER,
@@ -356,3 +357,6 @@ def lambda_ratio(h_min: Any, sigma_a: float, sigma_b: float) -> Any:
     composite = sqrt(sigma_a * sigma_a + sigma_b * sigma_b)
     check_range(composite, "composite roughness", "m", 0.0, None, low_inclusive=False, where=where)
     return h_min / composite
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

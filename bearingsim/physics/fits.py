@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass
 
 from bearingsim.catalog.geometry import BearingGeometry
+from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
 from bearingsim.validation import check_choice, check_range
 
@@ -300,3 +301,6 @@ def operating_clearance(geometry: BearingGeometry, shaft_zone: str | None = "k6"
     outer = taken(housing_zone, "housing", geometry.outside_diameter,
                   raceway_factor_outer(geometry.outside_diameter, outer_raceway, housing_outside))
     return OperatingClearance(float(initial), inner, outer)
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

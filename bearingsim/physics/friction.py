@@ -19,9 +19,10 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.checks import MAX_STATIC_LOAD_FACTOR, guard_public_functions
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics.drag import orbital_drag_force
-from bearingsim.physics.lubricant import Lubricant
+from bearingsim.physics.lubricant import Lubricant, check_kinematic_viscosity
 from bearingsim.symbolic import (
     arccos,
     exp,
@@ -175,10 +176,20 @@ def palmgren_f1(bearing_type: str, P0: Any, C0: float) -> Any:  # noqa: N803
     -----
     PlasticDeformationWarning
         For a numeric ``P0 > C0`` (the formula's catalogue range ends at C0).
+
+    Raises
+    ------
+    ParameterError
+        For ``P0`` beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` x ``C0``.
     """
     z, y = table_entry(PALMGREN_F1, bearing_type, "bearing type")
     check_range(P0, "P0", "N", 0.0, None, where="palmgren_f1")
     check_range(C0, "C0", "N", 0.0, None, low_inclusive=False, where="palmgren_f1")
+    if not is_symbolic(P0) and np.any(np.asarray(P0) > MAX_STATIC_LOAD_FACTOR * C0):
+        raise ParameterError(
+            f"palmgren_f1: P0 = {np.max(P0):g} N is more than {MAX_STATIC_LOAD_FACTOR:g} x the "
+            f"static load rating C0 = {C0:g} N: beyond the strength of bearing steel (a load "
+            f"in N given for kN?); valid P0 in [0, {MAX_STATIC_LOAD_FACTOR * C0:g}] N")
     if not is_symbolic(P0) and np.any(np.asarray(P0) > C0):
         warnings.warn(f"palmgren_f1: P0 = {np.max(P0):g} N exceeds the static load rating "
                       f"C0 = {C0:g} N: the contacts deform permanently, and f1 = z (P0/C0)^y is "
@@ -269,7 +280,7 @@ def palmgren_m0(nu: Any, n_abs: Any, dm: float, f0: float, smooth: bool = True) 
     float, array or casadi.SX
         ``M0`` [N m], >= 0.
     """
-    check_range(nu, "nu", "m^2/s", 0.0, None, where="palmgren_m0")
+    check_kinematic_viscosity(nu, "nu", "palmgren_m0")
     check_range(n_abs, "n_abs", "rad/s", 0.0, None, where="palmgren_m0")
     check_diameter(dm, "dm", "palmgren_m0")
     check_range(f0, "f0", "-", 0.0, None, where="palmgren_m0")
@@ -661,3 +672,6 @@ def skf_friction_torque(omega_rel: Any, dm: float, lubricant: Lubricant, series:
     """
     parts = skf_friction_components(omega_rel, dm, lubricant, series, Fr, Fa, **kwargs)
     return _signed(parts.total, omega_rel, kwargs.get("omega_reg", 0.1), "skf_friction_torque")
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

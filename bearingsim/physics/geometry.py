@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from bearingsim import symbolic as op
+from bearingsim.checks import guard_public_functions
 from bearingsim.validation import check_choice, check_finite, check_range
 
 __all__ = [
@@ -119,3 +120,6 @@ def ball_pass_ratio(ball_count, gamma, race: str):
     check_choice(race, "race", ("inner", "outer"), "ball_pass_ratio")
     sign = 1.0 if race == "inner" else -1.0
     return 0.5 * ball_count * (1.0 + sign * gamma)
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from bearingsim import symbolic as op
+from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
 from bearingsim.validation import (
     MAX_BALL_DIAMETER,
@@ -544,3 +545,6 @@ def contact_stiffness(k_const, delta, smooth=None):
     if smooth is None:
         return stiffness
     return stiffness * 0.5 * (1.0 + delta / op.smooth_abs(delta, smooth))
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

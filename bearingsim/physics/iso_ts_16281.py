@@ -45,6 +45,7 @@ import numpy as np
 
 from bearingsim import symbolic as op
 from bearingsim.catalog import BearingGeometry
+from bearingsim.checks import guard_public_functions
 from bearingsim.physics.hertz import (
     STEEL,
     Material,
@@ -190,3 +191,6 @@ def raceway_ratings(c: float, geometry: BearingGeometry, rows: int = 1) -> tuple
     # bearingsim divides by i^0.7 cos(a); the standard by (i cos(a))^0.7
     factor = float(np.cos(geometry.contact_angle)) ** 0.3
     return float(qci) * factor, float(qce) * factor
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

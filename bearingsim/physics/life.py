@@ -29,6 +29,7 @@ from bearingsim.physics.geometry import ball_pass_ratio, pitch_ratio
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.validation import (
     MAX_BALL_DIAMETER,
     check_choice,
@@ -866,3 +867,7 @@ def reference_rating_life(loads_inner, loads_outer, c, fi, fo, gamma, contact_an
     qei = raceway_equivalent_load(loads_inner, rotating=inner_rotating)
     qee = raceway_equivalent_load(loads_outer, rotating=not inner_rotating)
     return bearing_life(contact_life(qci, qei), contact_life(qce, qee))
+
+
+# no NaN in or out (bearingsim.checks); an unloaded contact's life is infinite
+guard_public_functions(globals(), infinite_results=True)

@@ -21,7 +21,7 @@ import numpy as np
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.lubrication import LUBRICATION_METHODS, palmgren_f0
 from bearingsim.physics.traction import EHL_TRACTION_DEFAULT, ehl_traction, regularized_coulomb
-from bearingsim.symbolic import log, power
+from bearingsim.symbolic import is_symbolic, log, power
 from bearingsim.units import celsius_to_kelvin, cst_to_m2_s
 from bearingsim.validation import check_range
 
@@ -31,12 +31,36 @@ __all__ = [
     "Grease",
     "Dry",
     "ISO_VG_NU100",
+    "KINEMATIC_VISCOSITY_RANGE",
+    "check_kinematic_viscosity",
     "as_lubricant",
     "get_lubricant",
     "known_lubricants",
     "register_lubricant",
     "unregister_lubricant",
 ]
+
+KINEMATIC_VISCOSITY_RANGE = (1e-7, 1e-2)
+"""Plausible kinematic viscosity [m^2/s] of a bearing lubricant at its operating temperature:
+0.1 mm^2/s (below water's 1 mm^2/s) to 10 000 mm^2/s (an ISO VG 680 gear oil near 0 degC). A
+value above it is most likely given in mm^2/s (1 mm^2/s = 1e-6 m^2/s)."""
+
+
+def check_kinematic_viscosity(nu: Any, name: str = "nu", where: str = "") -> Any:
+    """A kinematic viscosity [m^2/s] within :data:`KINEMATIC_VISCOSITY_RANGE`, or 0 (a dry
+    contact, :class:`Dry`); CasADi symbols pass unchecked.
+
+    Raises
+    ------
+    ParameterError
+        Outside the range; above it with the hint that mm^2/s were probably given
+        (:func:`~bearingsim.validation.check_range` adds it for every m^2/s value).
+    """
+    if not is_symbolic(nu) and np.all(np.asarray(check_range(nu, name, "m^2/s", where=where),
+                                                 dtype=float) == 0.0):
+        return nu
+    return check_range(nu, name, "m^2/s", *KINEMATIC_VISCOSITY_RANGE, where=where)
+
 
 ISO_VG_NU100: dict[int, float] = {
     10: 2.6, 15: 3.4, 22: 4.3, 32: 5.4, 46: 6.8, 68: 8.7,

@@ -8,6 +8,7 @@ through the lubricant. This module imports neither of the two.
 
 from __future__ import annotations
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.validation import table_entry
 
 __all__ = ["LUBRICATION_METHODS", "PALMGREN_F0", "PALMGREN_F0_BY_SERIES", "palmgren_f0"]
@@ -98,3 +99,6 @@ def palmgren_f0(bearing_type: str, method: str, series: str | None = None) -> fl
     if by_series is not None and method in _SERIES_COLUMN:
         return by_series[_SERIES_COLUMN[method]]
     return value
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

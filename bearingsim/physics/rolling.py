@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.physics.film import (
     dimensionless_load,
     dimensionless_material,
@@ -113,3 +114,6 @@ def rolling_resistance(Q: Any, u: Any, Rx: Any, Ry: Any, E_eff: Any, eta0: Any, 
     return hydrodynamic_rolling_force(
         dimensionless_speed(eta0, u, E_eff, Rx), dimensionless_material(alpha, E_eff),
         dimensionless_load(Q, E_eff, Rx), ellipticity(Rx, Ry), E_eff, Rx)
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
 from bearingsim.symbolic import exp, smooth_abs, sqrt
 from bearingsim.validation import check_range, check_regularization
@@ -271,3 +272,6 @@ def slice_traction(
         forces_r=forces_r,
         forces_t=forces_t,
     )
+
+
+guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

@@ -306,7 +306,8 @@ def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
     ``progress`` as :func:`~bearingsim.simulation.simulate` takes it)."""
     s = prep.scene.simulation
     opts = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
-            "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial}
+            "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial,
+            "max_steps": s.max_steps, "timeout": s.timeout}
     opts.update(overrides)
     t_end = opts.pop("t_end", s.t_end)
     params = {**prep.scene.parameters, **(parameters or {})}

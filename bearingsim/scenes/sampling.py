@@ -16,6 +16,7 @@ from typing import Any
 
 from scipy.stats import qmc
 
+from bearingsim.checks import check_output_size
 from bearingsim.errors import ParameterError
 from bearingsim.units import parse_quantity
 
@@ -83,6 +84,8 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
 def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
     """The Cartesian product of a grid, as a list of ``{key: value}`` (last key fastest)."""
     keys = list(grid)
+    check_output_size(math.prod(len(v) for v in grid.values()), 300 + 100 * len(keys),
+                      "the number of grid points", "grid_points")
     return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
 
 
@@ -119,6 +122,7 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
         raise SweepError(f"--samples must be >= 1, got {n}")
     if not ranges:
         raise SweepError("a sample needs at least one key=low:high range")
+    check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")
     d = len(ranges)
     if method == "lhs":
         engine = qmc.LatinHypercube(d, scramble=scramble, rng=seed)

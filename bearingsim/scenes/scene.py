@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
+from bearingsim.checks import ATOL_RANGE, RTOL_RANGE
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.files import (
     FileAccessError,
@@ -42,6 +43,7 @@ from bearingsim.scenes.tables import (
     read_table_file,
     scene_folder,
 )
+from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, MAX_TIMEOUT
 from bearingsim.simulation.integrators import METHODS
 from bearingsim.units import parse_quantity
 
@@ -145,6 +147,8 @@ class Simulation:
     n_points: int = 501
     max_step: float = math.inf
     initial: str = "start"
+    max_steps: int = DEFAULT_MAX_STEPS
+    timeout: float | None = None
 
 
 @dataclass
@@ -263,7 +267,7 @@ class Scene:
         for k, v in self.inputs.items():
             inputs[k] = {"times": list(v.times), "values": list(v.values)} if isinstance(
                 v, TableInput) else v
-        sim = asdict(self.simulation)
+        sim = {k: v for k, v in asdict(self.simulation).items() if v is not None}
         out = asdict(self.output)
         kind = ({"settling": asdict(self.settling),
                  "transient_on_purpose": self.transient_on_purpose}
@@ -761,9 +765,16 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         elif k == "n_points":
             if _number(c, key, v, "points", 2, 1_000_000, integer=True) is not None:
                 sim.n_points = int(v)
+        elif k == "max_steps":
+            if _number(c, key, v, "steps", 1, None, integer=True) is not None:
+                sim.max_steps = int(v)
+        elif k == "timeout":
+            if _number(c, key, v, "s", 0.0, MAX_TIMEOUT, strict_low=True) is not None:
+                sim.timeout = float(v)
         else:
             low, strict, high = {"t_end": (None, False, None), "t_start": (None, False, None),
-                                 "rtol": (0.0, True, 0.1), "atol": (0.0, True, None),
+                                 "rtol": (RTOL_RANGE[0], False, RTOL_RANGE[1]),
+                                 "atol": (ATOL_RANGE[0], False, ATOL_RANGE[1]),
                                  "max_step": (0.0, True, None)}[k]
             if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "[1]", low,
                        high, strict) is not None:

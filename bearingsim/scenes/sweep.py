@@ -63,6 +63,7 @@ from bearingsim.scenes.scene import Scene, SceneError, load_scene
 from bearingsim.scenes.sweep_table import SweepTable, cell, open_table
 from bearingsim.scenes.sweep_worker import Job, ModelPayload, run_chunk, run_point, warm
 from bearingsim.units import display_unit
+from bearingsim.validation import check_count
 
 __all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
            "sample_points", "run_sweep", "describe_failures", "chunk_size"]
@@ -466,6 +467,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     KeyboardInterrupt
         On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
+    check_count(n_workers, "n_workers", 1, "run_sweep")
     as_completed = _distributed().as_completed
     from tqdm import tqdm
 

@@ -173,7 +173,7 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
 def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.ndarray,
                      x0: np.ndarray, t0: float, t1: float, t_out: np.ndarray, rtol: float,
                      atol: float, max_step: float = np.inf, progress: bool | None = False,
-                     cache_dir: str | Path | None = None) -> CompiledRun:
+                     cache_dir: str | Path | None = None, budget=None) -> CompiledRun:
     """Integrate ``x' = ode(t, x, u(t), p)`` from ``t0`` to ``t1`` in C.
 
     Parameters
@@ -200,6 +200,9 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
         Progress bar (:mod:`~bearingsim.simulation.progress`).
     cache_dir : path, optional
         Library cache (default: the kernels').
+    budget : RunBudget, optional
+        The run's budget (:mod:`~bearingsim.simulation.budget`), counted per batch of
+        ``STEPS_PER_CALL`` steps.
 
     Returns
     -------
@@ -244,6 +247,8 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
                                          _pointer(xs[done:]), STEPS_PER_CALL,
                                          ctypes.byref(written))
             done += written.value
+            if budget is not None and status == 0 and done < times.size:
+                budget.step(dll.bsm_bdf_time(solver), STEPS_PER_CALL)
             if bar is not None:
                 now = min(dll.bsm_bdf_time(solver), t1)
                 bar.update(now - reached)

@@ -10,6 +10,7 @@ Python runs inside the integration; other callables are evaluated numerically.
 
 from __future__ import annotations
 
+import sys
 import warnings
 from dataclasses import dataclass
 from typing import Any
@@ -120,8 +121,8 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
         raise ParameterError(f"input {name} must be a number in {unit}, a function of time or "
                              f"a (times, values) table, got {spec!r}")
     if isinstance(spec, (int, float, np.floating, np.integer)):
-        if not np.isfinite(spec):
-            raise ParameterError(f"input {name} must be finite, got {spec!r}")
+        if not abs(spec) <= sys.float_info.max:  # NaN, inf, or an int beyond float (10**400)
+            raise ParameterError(f"input {name} must be finite, got {spec!r:.40}")
         lifted.append(float(spec))
         return None, "const"
     if isinstance(spec, tuple) and len(spec) == 2:

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bearingsim.checks import checked
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path, write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
@@ -124,6 +125,7 @@ class Result:
             return first
         return first + [n for n in self.names if n not in set(first)]
 
+    @checked
     def final(self, name: str) -> float:
         """Value at the last time point."""
         if not isinstance(name, str):

@@ -12,7 +12,9 @@ import scipy.integrate
 import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
+from bearingsim.checks import check_tolerance
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
+from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
 from bearingsim.simulation.choice import MethodChoice, choose_method
 from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.fastcall import evaluate, mapped_function
@@ -84,6 +86,8 @@ def simulate(
     progress: bool | None = None,
     compiled: bool | str = "auto",
     linear_solver: str | None = None,
+    max_steps: int = DEFAULT_MAX_STEPS,
+    timeout: float | None = None,
 ) -> Result:
     """Integrate a system and return every variable as a named series.
 
@@ -122,7 +126,8 @@ def simulate(
         Integrator family; by default the one ``method`` belongs to. A method of another
         family raises :class:`~bearingsim.errors.ParameterError`.
     rtol, atol : float
-        Relative tolerance in (0, 1] and absolute tolerance > 0.
+        Relative tolerance in :data:`~bearingsim.checks.RTOL_RANGE` and absolute tolerance
+        [state units] in :data:`~bearingsim.checks.ATOL_RANGE`.
     n_points : int
         Number of equally spaced output points in ``[t_start, t_end]``, an integer >= 2
         (ignored when ``t_eval`` is given).
@@ -150,6 +155,13 @@ def simulate(
         Backend ``"casadi"``: the SUNDIALS linear solver, one of
         :data:`~bearingsim.simulation.sundials.LINEAR_SOLVERS`; default by size
         (:func:`~bearingsim.simulation.sundials.choose_linear_solver`).
+    max_steps : int
+        Step budget of the run [-], >= 1 (default
+        :data:`~bearingsim.simulation.budget.DEFAULT_MAX_STEPS`; CVODES and IDAS get it as
+        ``max_num_steps`` per call).
+    timeout : float, optional
+        Wall-time budget of the integration [s], > 0 (``None``: none). Exceeding either budget
+        raises :class:`~bearingsim.errors.BudgetExceededError` with the time reached.
 
     Returns
     -------
@@ -165,16 +177,19 @@ def simulate(
         of ``backend``'s.
     SimulationError
         With the time reached and the variables that diverged.
+    BudgetExceededError
+        When the run uses up ``max_steps`` or ``timeout``, with the time reached.
     """
     system = as_system(system, "simulate")
     check_flag(progress, "progress", "simulate", allow_none=True)
     check_range(t_start, "t_start", "s", where="simulate")
     check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
-    check_range(rtol, "rtol", "1", 0.0, 1.0, low_inclusive=False, where="simulate")
-    check_range(atol, "atol", "1", 0.0, None, low_inclusive=False, where="simulate")
+    check_tolerance(rtol, "rtol", "rtol", "simulate")
+    check_tolerance(atol, "atol", "atol", "simulate")
     if max_step != np.inf:
         check_range(max_step, "max_step", "s", 0.0, None, low_inclusive=False, where="simulate")
     method, backend = _method_backend(method, backend)
+    budget = RunBudget(max_steps, timeout, method, t_end)
     check_choice(initial, "initial", ("start", "steady"), "simulate")
     t_eval = _output_times(t_start, t_end, n_points, t_eval)
     _check_work(system, t_start, t_end, t_eval.size, max_step)
@@ -199,12 +214,13 @@ def simulate(
     closed = (close_inputs(system, inputs, signal=signal)
               if METHODS[method].backend == "scipy" else None)
     wall = _time.perf_counter()
+    budget.start()
     if system.n_states == 0:
         traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {})
     else:
         problem = IntegrationProblem(system, closed, inputs, p, x_start, t_start, t_end, t_eval,
                                      rtol, atol, max_step, progress, signal, compiled,
-                                     linear_solver)
+                                     linear_solver, budget)
         traj = METHODS[method].run(problem)
     ts, xs, values, stats = traj.t, traj.x, traj.values, traj.stats
     stats["method_reason"] = reason

@@ -355,7 +355,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
                  rtol: float, atol: float, max_step: float = np.inf,
                  linear_solver: str | None = None, z0: np.ndarray | None = None,
                  options: dict[str, Any] | None = None,
-                 progress: bool | None = False) -> SundialsRun:
+                 progress: bool | None = False, budget=None) -> SundialsRun:
     """Integrate with CVODES (``kernel.form == "ode"``) or IDAS (either form).
 
     Parameters
@@ -389,6 +389,9 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         Progress bar (:mod:`~bearingsim.simulation.progress`), moved by the progress clock
         in the oracle (:class:`_Clock`); the run is one integrator call either way, with the
         same numbers bit for bit.
+    budget : RunBudget, optional
+        The run's budget (:mod:`~bearingsim.simulation.budget`): its ``max_steps`` is
+        ``max_num_steps`` of the integrator call (default 100000).
 
     Returns
     -------
@@ -415,7 +418,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     n_x = system.n_states
     if linear_solver is None:
         linear_solver = choose_linear_solver(*_jacobian_size(kernel, n_x), kernel.form)
-    base: dict[str, Any] = {"abstol": atol, "reltol": rtol, "max_num_steps": 100000,
+    base: dict[str, Any] = {"abstol": atol, "reltol": rtol,
+                            "max_num_steps": budget.max_steps if budget else 100000,
                             "linear_solver": linear_solver, **(options or {})}
     span = t1 - t0
     tau, grid_key = _normalized_grid(t0, t1, t_out)

@@ -2,19 +2,80 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.optimize
 
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System, as_system
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double_layer_bearing
-from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.checks import checked
+from bearingsim.errors import MultipleSteadyStatesWarning, ParameterError, SimulationError
 from bearingsim.simulation import simulate, steady_state
 from bearingsim.validation import check_range
 
-__all__ = ["SpeedRatioEstimate", "SpeedRatioSweep", "speed_ratio", "speed_ratio_sweep",
-           "steady_ratio"]
+__all__ = ["SpeedRatioEstimate", "SpeedRatioSweep", "SteadyBranch", "speed_ratio",
+           "speed_ratio_sweep", "steady_branches", "steady_ratio"]
+
+BRANCH_SCAN_POINTS = 200
+"""Middle-ring speeds sampled in [-|w|, 2|w|] when looking for every steady state."""
+
+
+@dataclass(frozen=True)
+class SteadyBranch:
+    """One steady state of a one-state (torque-level) double-layer bearing."""
+
+    w_middle: float
+    """Middle-ring speed [rad/s]."""
+    stable: bool
+    """Whether small deviations decay (d(dw/dt)/dw < 0)."""
+
+
+def steady_branches(system: System, inputs: dict[str, float], p: np.ndarray
+                    ) -> list[SteadyBranch]:
+    """Every steady state of a system with one state (the middle-ring speed of the torque
+    level) at constant inputs, with its stability, in increasing speed.
+
+    The derivative is sampled at :data:`BRANCH_SCAN_POINTS` middle-ring speeds in
+    ``[-|w|, 2|w|]`` (``w`` the shaft speed; friction alone cannot drive the middle ring
+    outside ``[0, w]``, the margin catches sign slips) and every sign change refined with
+    Brent's method.
+    """
+    u = system.u_default()
+    for name, value in inputs.items():
+        u[system.input_names.index(name)] = value
+    rhs = system.functions["ode"]
+    w = abs(inputs["shaft_speed"])
+
+    def f(wm: float) -> float:
+        return float(np.asarray(rhs(0.0, [wm], u, p)).ravel()[0])
+
+    grid = np.linspace(-w, 2.0 * w, BRANCH_SCAN_POINTS)
+    n = grid.size
+    values = np.asarray(rhs.map(n)(np.zeros((1, n)), grid[None, :], np.repeat(
+        u[:, None], n, axis=1), np.repeat(p[:, None], n, axis=1)), dtype=float).ravel()
+    branches = []
+    for k in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0.0):
+        if values[k] == 0.0 and k > 0 and values[k - 1] == 0.0:
+            continue  # a flat zero counted once
+        root = grid[k] if values[k] == 0.0 else scipy.optimize.brentq(
+            f, grid[k], grid[k + 1], xtol=1e-12 * max(w, 1.0))
+        stable = values[k] >= 0.0 >= values[k + 1] and values[k] != values[k + 1]
+        branches.append(SteadyBranch(float(root), bool(stable)))
+    return branches
+
+
+def _settles_on(branches: list[SteadyBranch], start: float, moving_up: bool
+                ) -> SteadyBranch | None:
+    """The stable branch a one-state run from ``start`` settles on (it moves monotonically to
+    the next steady state in the direction of its derivative)."""
+    ahead = [b for b in branches if (b.w_middle >= start if moving_up else b.w_middle <= start)]
+    if not ahead:
+        return None
+    nearest = min(ahead, key=lambda b: abs(b.w_middle - start))
+    return nearest if nearest.stable else None
 
 
 @dataclass
@@ -29,6 +90,7 @@ class SpeedRatioSweep:
     """Friction torque on the shaft at each speed [N m]."""
 
 
+@checked(skip=("system",))
 def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None,
                  x_guess=None) -> tuple[float, float, np.ndarray]:
     """Steady ``Rs`` and shaft friction torque of an assembled double-layer bearing.
@@ -54,6 +116,17 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
         Evaluated with the inputs above and every other input at its start value
         (``system.u_default()``), the values the steady state was solved with.
 
+    Warns
+    -----
+    MultipleSteadyStatesWarning
+        When a one-state (torque-level) model has more than one stable steady state (the SKF
+        model at low speed and moderate load: Rs near 0 and near 1, an unstable one between).
+        The branches are found by :func:`steady_branches`; the one returned is the stable
+        steady state a run from the start value (``x_guess``, else the model's start value of
+        the middle-ring speed) settles on, exactly so for one state: the speed moves
+        monotonically to the next steady state in the direction of its derivative. The
+        warning lists every branch with its stability and says which was returned.
+
     Raises
     ------
     SimulationError
@@ -64,6 +137,8 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
     inputs = {"shaft_speed": float(speed)}
     if "Fr" in system.input_names:
         inputs.update({"Fr": float(loads[0]), "Fa": float(loads[1])})
+    if system.n_states == 1 and speed != 0.0:
+        x_guess = _choose_branch(system, inputs, parameters, x_guess, loads)
     try:
         x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
     except SimulationError as exc:
@@ -77,6 +152,35 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
         u[system.input_names.index(name)] = value
     obs = system.observe(0.0, x, u, system.p0(parameters))
     return obs["Rs"], obs["M_shaft"], x
+
+
+def _choose_branch(system: System, inputs: dict[str, float], parameters, x_guess,
+                   loads) -> np.ndarray | None:
+    """The start guess of the branch :func:`steady_ratio` returns, warning when the model has
+    another stable steady state (see :func:`steady_ratio`)."""
+    p = system.p0(parameters)
+    branches = steady_branches(system, inputs, p)
+    stable = [b for b in branches if b.stable]
+    if not stable:
+        return x_guess
+    start = float(system.x0()[0] if x_guess is None else np.ravel(x_guess)[0])
+    u = system.u_default()
+    for name, value in inputs.items():
+        u[system.input_names.index(name)] = value
+    moving_up = float(np.asarray(system.functions["ode"](0.0, [start], u, p)).ravel()[0]) >= 0
+    chosen = _settles_on(branches, start, moving_up) or min(
+        stable, key=lambda b: abs(b.w_middle - start))
+    if len(stable) == 1:
+        return np.array([chosen.w_middle])  # one branch: its speed starts the Newton solve
+    w = inputs["shaft_speed"]
+    listed = ", ".join(f"Rs = {b.w_middle / w:.4g} ({'stable' if b.stable else 'unstable'})"
+                       for b in branches)
+    warnings.warn(
+        f"steady_ratio at {w:g} rad/s, loads Fr, Fa = {tuple(loads)} N: the model has "
+        f"{len(branches)} steady states, {listed}; returned Rs = {chosen.w_middle / w:.4g}, the "
+        f"stable one a run from the start value middle-ring speed {start:g} rad/s settles on "
+        f"(give x_guess near another to get it)", MultipleSteadyStatesWarning, stacklevel=4)
+    return np.array([chosen.w_middle])
 
 
 def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), parameters=None,

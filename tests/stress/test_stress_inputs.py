@@ -5,7 +5,6 @@ pass."""
 
 from __future__ import annotations
 
-import math
 from functools import cache
 
 import numpy as np
@@ -15,7 +14,7 @@ from hypothesis import strategies as st
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing, motor_drive
-from bearingsim.errors import BearingsimError, CatalogError, ParameterError, SimulationError
+from bearingsim.errors import BearingsimError, CatalogError, ParameterError
 from bearingsim.scenes import ExpressionError, SceneError, compile_expression, parse_scene
 from bearingsim.scenes.scene import scene_from_dict
 from bearingsim.simulation import simulate
@@ -171,17 +170,14 @@ def test_arbitrary_expressions_compile_or_raise_expression_error(text):
     except ExpressionError as exc:
         assert "inputs.u" in str(exc)
         return
+    from bearingsim.simulation.intervals import locate_problem
+
     t = ca.SX.sym("t")
-    value = ca.Function("f", [t], [ca.SX(f(t))])(0.5)  # evaluates; non-finite is caught later
-    assert value.shape == (1, 1) or value.numel() == 1
+    fn = ca.Function("f", [t], [ca.SX(f(t))])
+    if locate_problem(fn, 0.0, 1.0) is None:  # no pole or overflow found: finite everywhere
+        assert np.all(np.isfinite(np.asarray(fn.map(9)(np.linspace(0.0, 1.0, 9)[None, :]))))
 
 
 def test_nonfinite_expression_is_caught_before_running():
     with pytest.raises(SceneError, match="not finite at t = 0"):
         parse_scene(SCENE_HEAD + '[inputs]\nshaft_speed = "1 / t"\n')
-    assert math.isfinite(1.0)
-
-
-def test_documented_errors_are_bearingsim_errors():
-    for cls in (SceneError, ExpressionError, SimulationError, CatalogError):
-        assert issubclass(cls, BearingsimError)

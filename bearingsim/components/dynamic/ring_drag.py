@@ -6,7 +6,7 @@ from bearingsim import symbolic as op
 from bearingsim.components.connectors import Flange
 from bearingsim.language import Component, Input, Parameter, Variable, der
 from bearingsim.physics.friction import palmgren_m0
-from bearingsim.physics.lubricant import Lubricant
+from bearingsim.physics.lubricant import KINEMATIC_VISCOSITY_RANGE, Lubricant
 
 __all__ = ["RingDrag"]
 
@@ -70,7 +70,8 @@ class RingDrag(Component):
         super().__init__(name)
         self.dm = Parameter(pitch_diameter, "m", "pitch diameter", low=0.0, low_inclusive=False)
         self.nu = Parameter(float(lubricant.kinematic_viscosity()), "m2/s",
-                            "kinematic viscosity of the (base) oil", low=0.0)
+                            "kinematic viscosity of the (base) oil", low=0.0,
+                            high=KINEMATIC_VISCOSITY_RANGE[1])
         self.f0 = Parameter(float(lubricant.palmgren_f0(bearing_type, series)), "1",
                             "Palmgren load-independent friction factor f0", low=0.0)
         self.omega_reg = Parameter(omega_reg, "rad/s", "regularization speed", low=0.0,
