@@ -10,7 +10,7 @@ argument and input checks, input functions, start values, kernel look-up, observ
 at the output times, the result. Median of the repeats.
 
 The same runs are timed on a baseline commit of the package in a subprocess (``--baseline``,
-default the commit before issue 31's work), side by side in one run; the baseline has no
+default the commit before the fixed-cost work), side by side in one run; the baseline has no
 ``integrate_cpu_time``, so only the totals compare (the integration is the same).
 
 Command: ``python -m bench.per_call [--baseline COMMIT] [--repeats N]``.
@@ -37,7 +37,7 @@ __all__ = ["BASELINE", "measure", "section"]
 
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE = "7955f3a"
-"""The commit before issue 31's work on fixed costs."""
+"""The commit before the work on fixed costs."""
 RUN_S = 1e-3
 """Length of the timed runs [s]."""
 
@@ -117,7 +117,7 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "CPU time (this thread) minus the CPU time inside the integrator "
         "(`Result.stats[\"integrate_cpu_time\"]`): "
         "checks, input functions, start values, kernel look-up, observed variables, the "
-        f"result. *total before*: the same runs on commit {baseline} (before issue 31), in a "
+        f"result. *total before*: the same runs on commit {baseline} (before the fixed-cost work), in a "
         "subprocess of this run. Goal: per-call cost <= 0.3 ms.\n\n"
         f"Command: `python -m bench.per_call --baseline {baseline} --repeats {repeats}`\n\n"
         + markdown_table(["scene", "method", "states", f"total before ({baseline}) [ms]",

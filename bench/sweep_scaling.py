@@ -1,6 +1,6 @@
 """Benchmark: sweep scaling and the warm load of a cached model.
 
-Two measurements (issue 32):
+Two measurements:
 
 * **Warm load.** The nested ball-level double-layer bearing (61905/61907, ``dynamic``, 270
   states) assembled into an empty system cache, then loaded from it in a fresh Python process

@@ -38,7 +38,7 @@ def test_a_table_leaving_its_range_between_output_times_is_refused(torque_level)
 def test_a_constant_outside_its_range_names_the_value_and_range(torque_level):
     with pytest.raises(ParameterError, match=r"input Fa = -1 \[N\] is outside its valid "
                                              r"range \[0, inf\] \[N\]"):
-        check_input_ranges(torque_level, input_signal(torque_level, {"Fa": -1.0}),
+        check_input_ranges(torque_level, input_signal(torque_level, {"shaft_speed": 100.0, "Fa": -1.0}),
                            np.array([0.0, 1.0]))
 
 
@@ -46,7 +46,8 @@ def test_a_function_of_time_is_still_checked_between_the_output_times(torque_lev
     with pytest.raises(ParameterError, match=r"input Fr \[N\]: below its valid minimum 0 "
                                              r"between t = 0.0123"):
         check_input_ranges(torque_level, input_signal(
-            torque_level, {"Fr": lambda t: 1.0 - 2.0 * (t > 0.012345)}), np.array([0.0, 0.1]))
+            torque_level, {"shaft_speed": 100.0, "Fr": lambda t: 1.0 - 2.0 * (t > 0.012345)}),
+            np.array([0.0, 0.1]))
 
 
 def test_an_input_signal_is_checked_once_per_numbers_and_span(torque_level, monkeypatch):

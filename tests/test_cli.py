@@ -261,12 +261,12 @@ def test_the_core_install_pulls_no_test_tool():
     project = tomllib.loads((root / "pyproject.toml").read_text())["project"]
     core = " ".join(project["dependencies"])
     for tool in ("pytest", "hypothesis", "ruff", "libcosimpy", "pythonfmu", "xdist", "nbclient",
-                 "ipykernel", "pandas", "dask", "distributed"):
+                 "ipykernel", "pandas", "dask", "distributed", "ziglang"):
         assert tool not in core
     extras = project["optional-dependencies"]
     assert "libcosimpy>=0.0.6" in extras["fmu-cosim"]
     assert extras["dask"] == ["dask[distributed]>=2024.1"]  # sweeps only: not in the demo
-    assert "bearingsim[dask,fmu-cosim,notebook]" in extras["test"]
+    assert "bearingsim[dask,fmu-cosim,fmu-cross,notebook]" in extras["test"]
     assert isinstance(project["license"], str)  # SPDX string: no setuptools deprecation warning
     makefile = (root / "Makefile").read_text()
     assert "demo: $(BASE)" in makefile and 'pip install --quiet -e .\n' in makefile
