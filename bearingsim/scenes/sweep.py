@@ -49,9 +49,9 @@ else:  # pragma: no cover - Python 3.10
 
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
-from bearingsim.files import atomic_path
+from bearingsim.scenes.analyses import point_model
+from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
-from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.sampling import (
     SweepError,
     check_key,
@@ -203,8 +203,13 @@ def _coerce(scene: Scene, key: str, value: Any) -> Any:
 
 
 def _point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
-    """The scene with the point's values applied, validated (errors name the sweep key)."""
+    """The scene with the point's values applied, validated (errors name the sweep key); an
+    analysis scene's own grid or cases are left out (the sweep's point is its one operating
+    point)."""
     d = scene.to_dict()
+    if scene.analysis != "transient":
+        d.pop("grid", None)
+        d.pop("cases", None)
     for key, value in point.items():
         value = _coerce(scene, key, value)
         head, rest = key.split(".", 1)
@@ -223,15 +228,17 @@ def _point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
         raise SweepError(f"sweep point ({shown}): {why}") from None
 
 
-def _parameter_values(component) -> dict[str, float]:
-    from bearingsim.language.declarations import Parameter
-
-    out = {}
-    for comp in component.walk():
-        for decl in comp.declarations.values():
-            if isinstance(decl, Parameter) and decl.value is not None:
-                out[decl.path] = float(decl.value)
-    return out
+def _check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
+    """Raise :class:`SweepError` when an input the analysis scene takes from its own grid
+    (which a sweep replaces) has no value at the sweep's points (a load case leaves out the
+    inputs it does not set: those keep the scene's value or none)."""
+    missing = sorted(k for k in scene.grid if k.startswith("inputs.") and k not in points[0]
+                     and k.split(".", 1)[1] not in scene.inputs)
+    if missing:
+        raise SweepError(
+            f"the sweep replaces the grid of this {scene.analysis} scene, and "
+            f"{', '.join(missing)} then has no value: sweep it (--grid {missing[0]}=...) or "
+            f"give it under [inputs]")
 
 
 def _structure(sc: Scene) -> tuple[str, str]:
@@ -277,42 +284,26 @@ class _Plan:
 
 
 def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
-    spec = scene.spec
     scenes = [_point_scene(scene, p) for p in points]
+    if scene.analysis != "transient":
+        _check_operating_points(scene, points)
     prepared: dict[tuple, Prepared] = {}
     payloads: dict[tuple, ModelPayload] = {}
-    base_values: dict[tuple, dict[str, float]] = {}
     jobs, structure, values = [], {}, []
     for k, (raw, sc) in enumerate(zip(points, scenes, strict=True)):
         pt = {key: _coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
-        if key not in prepared:
-            try:
-                prep = prepare(sc)
-            except SceneError as exc:
-                raise SweepError(f"sweep point {pt}: {exc}") from None
-            prepared[key] = prep
-            payloads[key] = _payload(prep)
-            base_values[key] = _parameter_values(build_component(spec, prep.args, prep.fidelity))
-        prep = prepared[key]
-        params: dict[str, float] = {}
-        args = spec.with_defaults(sc.args)
-        args.update(spec.symmetric_args(args, sc.inputs))
-        if json.dumps(args, sort_keys=True, default=str) != json.dumps(
-                prep.args, sort_keys=True, default=str):
-            # parametric arguments differ from the assembled ones: parameter overrides
-            new = _parameter_values(build_component(spec, args, prep.fidelity))
-            if set(new) != set(base_values[key]):
-                raise SweepError(f"sweep point {pt}: the arguments change the model structure "
-                                 "although declared parametric; please report")
-            params.update({n: v for n, v in new.items()
-                           if n in prep.system.parameter_names and v != base_values[key][n]})
         try:
+            if key not in prepared:
+                prepared[key] = prepare(sc)
+                payloads[key] = _payload(prepared[key])
+            prep = prepared[key]
+            _, params = point_model(prep, sc.args)
             prep.system.p0({**sc.parameters, **params})
-        except ParameterError as exc:
+        except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
-        for name in sc.inputs:
-            if name not in prep.system.input_names:
+        for name in sc.inputs:  # (a statics load case also takes the speed, for the life)
+            if sc.analysis != "statics" and name not in prep.system.input_names:
                 raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "
                                  + ", ".join(prep.system.input_names))
         jobs.append(Job(k, sc, params))
@@ -363,14 +354,45 @@ def chunk_size(point_s: float, n_points: int, n_workers: int) -> int:
     return max(1, min(int(by_time), math.ceil(by_balance)))
 
 
-def _column_units(prep: Prepared, keys: list[str]) -> dict[str, str]:
-    """Unit of every numeric sweep column: the swept inputs, parameters and initial values and
-    the outputs (from the first model; every model of a sweep has the same outputs)."""
+TRANSIENT_COLUMNS = ("settled", "time_constant", "unsettled")
+"""The columns a transient point adds to its outputs' final values
+(:func:`~bearingsim.scenes.analyses.run_operating_point`)."""
+
+
+def _result_columns(prep: Prepared, probe: dict[str, Any] | None
+                    ) -> tuple[list[str], dict[str, str]]:
+    """The result columns of a sweep's rows and their SI units: those of the scene's own table
+    row for its analysis (a transient's outputs with ``settled``, ``time_constant`` and
+    ``unsettled``; a steady point's outputs; a statics point's columns; a modes point's mode
+    names, read from the ``probe`` row of the first point)."""
+    from bearingsim.scenes.runner import analysis_units
+    from bearingsim.scenes.statics_table import statics_of
+
+    kind = prep.scene.analysis
+    if kind == "transient":
+        system = prep.system
+        units = {**system.variable_units, **{n: q.unit for n, q in prep.post.items()},
+                 **{p.name: p.unit for p in system.params}}
+        return ([*prep.outputs, *TRANSIENT_COLUMNS],
+                {**{n: units[n] for n in prep.outputs if n in units}, "time_constant": "s"})
+    if kind == "statics":
+        names = list(statics_of(prep).columns)
+    elif kind == "modes":
+        names = [n for n in (probe or {}) if not n.startswith("_")]
+    else:
+        names = list(prep.outputs)
+    units = analysis_units(prep, [probe] if probe else [])
+    return names, {n: units[n] for n in names if units.get(n)}
+
+
+def _column_units(prep: Prepared, keys: list[str], results: dict[str, str]
+                  ) -> dict[str, str]:
+    """Unit of every numeric sweep column: the swept inputs, parameters and initial values
+    (from the first model; every model of a sweep has the same names), the results' and
+    ``wall_s``."""
     system = prep.system
-    units = system.variable_units
-    units.update({n: q.unit for n, q in prep.post.items()})
-    units.update({p.name: p.unit for p in system.params})
-    out = {n: units[n] for n in prep.outputs if n in units}
+    units = {**system.variable_units, **{p.name: p.unit for p in system.params}}
+    out = dict(results)
     for key in keys:
         head, _, name = key.partition(".")
         if head in ("inputs", "parameters", "initial") and name in units:
@@ -379,10 +401,10 @@ def _column_units(prep: Prepared, keys: list[str]) -> dict[str, str]:
     return out
 
 
-def _table_row(index: int, values: dict[str, Any], outputs: list[str],
+def _table_row(index: int, values: dict[str, Any], results: list[str],
                r: dict[str, Any]) -> dict[str, Any]:
     row: dict[str, Any] = {"point": index, **values, "status": r["status"]}
-    for name in outputs:
+    for name in results:
         row[name] = r["final"].get(name, float("nan")) if r["status"] == "ok" else float("nan")
     row["wall_s"] = round(float(r.get("wall_s", float("nan"))), 4)
     row["error"] = r["error"]
@@ -390,26 +412,42 @@ def _table_row(index: int, values: dict[str, Any], outputs: list[str],
 
 
 def _from_cell(text: str) -> Any:
-    """A table cell read back: int, float or text."""
+    """A table cell read back: int, float, bool or text."""
     for kind in (int, float):
         try:
             return kind(text)
         except ValueError:
             pass
-    return text
+    return {"True": True, "False": False}.get(text, text)
 
 
-def _sweep_plot(rows: list[dict[str, Any]], keys: list[str], units: dict[str, str],
-                folder: Path, stem: str) -> list[Path]:
-    """``<stem>.png``: each output against the first numeric swept key (engineering units),
-    one panel per output; none when no swept key is numeric."""
+def _sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
+                   results: list[str], units: dict[str, str], stem: str) -> list:
+    """``<stem>.png``: each result against the first numeric swept key (engineering units);
+    a transient's one panel per output, an analysis's one curve per value of the other keys
+    (:func:`~bearingsim.scenes.plots.characteristic_figures`, natural frequencies in one
+    panel); none when no swept key is numeric.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+    """
     from matplotlib.figure import Figure
 
+    from bearingsim.scenes.plots import characteristic_figures
+
     ok = [r for r in rows if r["status"] == "ok"]
-    numeric = [k for k in keys if ok and all(isinstance(r.get(k), (int, float)) for r in ok)]
-    outputs = [k for k in units if k not in keys and k != "wall_s"]
+    numeric = [k for k in keys if ok and all(isinstance(r.get(k), (int, float))
+                                             and not isinstance(r.get(k), bool) for r in ok)]
+    outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
     if not numeric or not outputs:
         return []
+    kind = prep.scene.analysis
+    if kind != "transient":
+        order = [numeric[0], *(k for k in keys if k != numeric[0])]
+        what = "modes" if kind == "modes" else "steady"
+        figs = characteristic_figures(prep, ok, order, units, outputs, what)
+        return [(f"{stem}.png", fig) for _, fig in figs[:1]]
     x_key = numeric[0]
     x = np.array([r[x_key] for r in ok], dtype=float)
     order = np.argsort(x)
@@ -424,17 +462,25 @@ def _sweep_plot(rows: list[dict[str, Any]], keys: list[str], units: dict[str, st
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(f"{x_key} [{x_unit}]")
     fig.tight_layout()
-    path = folder / f"{stem}.png"
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110)
-    return [path]
+    return [(f"{stem}.png", fig)]
+
+
+def _earlier_files(folder: Path, stem: str) -> list[str]:
+    """Names of an earlier sweep's files of this scene in ``folder``."""
+    names = [f"{stem}.{ext}" for ext in ("json", "csv", "parquet", "png")]
+    return [n for n in names if (folder / n).exists()]
 
 
 def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
               progress: bool = True, client=None, resume: bool = False,
-              timeout: float | None = None, chunk: int | None = None) -> SweepResult:
+              timeout: float | None = None, chunk: int | None = None,
+              overwrite: bool = False) -> SweepResult:
     """Run a scene at every point on dask.distributed; one table, appended as points finish.
+
+    Each point runs the scene's analysis for that operating point
+    (:func:`~bearingsim.scenes.analyses.run_operating_point`, as ``bearingsim run`` does);
+    an analysis scene's own grid or cases are replaced by the sweep's points.
 
     Parameters
     ----------
@@ -446,8 +492,9 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     n_workers : int
         Workers of the LocalCluster.
     out : path, optional
-        Folder for ``<scene>.sweep.csv`` (and ``.parquet``, ``.png``) and ``.sweep.json``;
-        None: no files (and no ``resume``).
+        Folder for ``<scene>.sweep.csv`` (and ``.parquet``, ``.png``) and ``.sweep.json``,
+        written through :class:`~bearingsim.scenes.outputs.OutputFolder` (locked for the
+        sweep; the summary last); None: no files (and no ``resume``).
     progress : bool
         Show a progress bar.
     client : distributed.Client, optional
@@ -456,29 +503,56 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         Keep the rows of an earlier run of the same sweep in ``out`` and run only the others.
     timeout : float, optional
         Time budget of one point [s]: a point still running after it is recorded as failed.
+        Default: the scene's ``simulation.timeout`` (None there: no budget).
     chunk : int, optional
         Points per task (default: :func:`chunk_size` of a point measured on the client).
+    overwrite : bool
+        Replace an earlier sweep's files of this scene in ``out`` (without it, and without
+        ``resume``, such files stop the sweep before anything runs).
 
     Raises
     ------
     SweepError
-        For an invalid key or point (before anything runs), or a table that ``resume`` cannot
+        For an invalid key or point (before anything runs), an earlier sweep's files in
+        ``out`` without ``overwrite`` or ``resume``, or a table that ``resume`` cannot
         continue.
+    OutputFolderBusy
+        When another run or sweep is writing into ``out``.
     KeyboardInterrupt
         On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
     check_count(n_workers, "n_workers", 1, "run_sweep")
-    as_completed = _distributed().as_completed
-    from tqdm import tqdm
-
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     if not points:
         raise SweepError("a sweep needs at least one point")
+    if timeout is None:
+        timeout = scene.simulation.timeout
     if timeout is not None and not (math.isfinite(timeout) and timeout > 0):
         raise SweepError(f"--timeout must be a positive number of seconds, got {timeout!r}")
     if resume and out is None:
         raise SweepError("resume needs the output folder of the earlier run (out=...)")
+    stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
+    if out is None:
+        return _sweep(scene, points, None, stem, scheduler, n_workers, progress, client,
+                      resume, timeout, chunk)
+    with OutputFolder(out, command_line()) as folder:
+        earlier = _earlier_files(folder.folder, stem)
+        if earlier and not (overwrite or resume):
+            raise SweepError(f"{folder.folder} holds an earlier sweep of this scene ("
+                             + ", ".join(earlier) + "): add --overwrite to replace it, "
+                             "--resume to continue it, or give another --out")
+        return _sweep(scene, points, folder, stem, scheduler, n_workers, progress, client,
+                      resume, timeout, chunk)
+
+
+def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | None, stem: str,
+           scheduler: str | None, n_workers: int, progress: bool, client, resume: bool,
+           timeout: float | None, chunk: int | None) -> SweepResult:
+    """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
+    as_completed = _distributed().as_completed
+    from tqdm import tqdm
+
     wall = time.perf_counter()
     phases: dict[str, float] = {}
     clock = [wall]
@@ -496,29 +570,45 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         plan = _plan(scene, points)
         keys = list(points[0])
         first = next(iter(plan.prepared.values()))
-        outputs = list(first.outputs)
-        units = _column_units(first, keys)
-        columns = ["point", *keys, "status", *outputs, "wall_s", "error"]
+        probe = None
+        if scene.analysis == "modes":  # the mode names (columns) come from a point
+            job = plan.jobs[0]
+            probe = run_point(plan.prepared[plan.structure[job.index]], job, timeout)
+            if probe["status"] != "ok":
+                raise SweepError(f"the first point of this modes sweep, which names the "
+                                 f"columns, failed: {probe['error']}")
+        results_names, result_units = _result_columns(first, probe and probe["final"])
+        units = _column_units(first, keys, result_units)
+        columns = ["point", *keys, "status", *results_names, "wall_s", "error"]
         table = done = None
-        stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
         rows: dict[int, dict[str, Any]] = {}
-        if out is not None:
-            table = SweepTable(Path(out) / f"{stem}.csv", columns, units)
+        if folder is not None:
+            if resume:  # the table stays; the summary is written anew when it is whole
+                (folder.folder / f"{stem}.json").unlink(missing_ok=True)
+            else:
+                folder.retire(f"{stem}.json")
+            table = SweepTable(folder.folder / f"{stem}.csv", columns, units)
             expected = {k: {key: cell(v) for key, v in values.items()}
                         for k, values in enumerate(plan.values)}
             done = open_table(table, resume, expected)
             rows = {k: {c: (_from_cell(v) if c not in keys else plan.values[k][c])
                         for c, v in r.items()} for k, r in done.items()}
         todo = [job for job in plan.jobs if job.index not in rows]
-        lap("plan")
         results: dict[int, dict[str, Any]] = {}
 
         def record(r: dict[str, Any]) -> None:
             results[r["index"]] = r
-            row = _table_row(r["index"], plan.values[r["index"]], outputs, r)
+            row = _table_row(r["index"], plan.values[r["index"]], results_names, r)
             rows[r["index"]] = row
             if table is not None:
                 table.append(row)
+
+        point_s = math.nan
+        if probe is not None and todo and todo[0].index == probe["index"]:
+            todo.pop(0)
+            point_s = probe["wall_s"]
+            record(probe)
+        lap("plan")
 
         if own:
             client, cluster = starting.result()
@@ -535,8 +625,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
                                  allow_other_workers=False)
                    for addr in addresses for fut in shipped.values()]
         lap("ship")
-        point_s = math.nan
-        if todo and chunk is None:
+        if todo and chunk is None and math.isnan(point_s):
             job = todo.pop(0)  # measured here while the workers load the model
             r = run_point(plan.prepared[plan.structure[job.index]], job, timeout)
             point_s = r["wall_s"]
@@ -588,12 +677,14 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     res = SweepResult(keys, ordered, failures, len(plan.prepared), resumed=len(done or {}),
                       chunk_size=size, point_s=point_s, phases=phases)
     if table is not None:
-        folder = table.path.parent
-        res.files = table.finish(ordered)
-        res.files += _sweep_plot(ordered, keys, units, folder, stem)
+        for path in table.finish(ordered):
+            folder.add(path)
+        folder.save_figures(lambda: _sweep_figures(first, ordered, keys, results_names, units,
+                                                   stem))
         summary = {
-            "scene": scene.path, "points": len(ordered), "ok": len(res.ok),
-            "failed": len(failures), "failures": failures, "models_built": res.models_built,
+            "scene": scene.path, "analysis": scene.analysis, "points": len(ordered),
+            "ok": len(res.ok), "failed": len(failures), "failures": failures,
+            "models_built": res.models_built,
             "resumed": res.resumed, "chunk_size": size, "point_s": point_s,
             "structures": [{"fidelity": k[0], "arguments": json.loads(k[1])}
                            for k in plan.prepared],
@@ -603,10 +694,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
             "scheduler": scheduler or f"LocalCluster({n_workers} workers)",
             "timeout_s": timeout, "phases_s": {k: round(v, 3) for k, v in phases.items()},
         }
-        path = folder / f"{stem}.json"
-        with atomic_path(path) as tmp:
-            tmp.write_text(json.dumps(summary, indent=2, default=str))
-        res.files.append(path)
+        folder.write_summary(f"{stem}.json", json.loads(json.dumps(summary, default=str)))
+        res.files = list(folder.files)
     lap("finish")
     res.wall_s = time.perf_counter() - wall
     return res

@@ -8,10 +8,11 @@ cache). A worker loads it on first use and keeps it for the life of the process
 (:data:`MODELS`), so a sweep of N points costs one load per worker and model, and a persistent
 worker (``dask worker`` on a cluster) loads a model once across sweeps.
 
-Each point runs exactly what ``bearingsim run`` runs for that scene
-(:func:`~bearingsim.scenes.preparation.run_simulation`, then
-:func:`~bearingsim.scenes.preparation.output_series` for the post-processed quantities) and
-returns the final value of every output.
+Each point runs exactly what ``bearingsim run`` runs for one operating point of that scene
+(:func:`~bearingsim.scenes.analyses.run_operating_point`, whatever the scene's ``analysis``)
+and returns its table row: a transient's final values with ``settled`` and
+``time_constant``, a steady point's outputs, a modes point's natural frequencies or a statics
+point's columns.
 """
 
 from __future__ import annotations
@@ -27,7 +28,8 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assembler.cache import loads_system
-from bearingsim.scenes.preparation import Prepared, output_series, run_simulation
+from bearingsim.scenes.analyses import run_operating_point
+from bearingsim.scenes.preparation import Prepared
 from bearingsim.scenes.scene import Scene
 
 __all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",
@@ -54,7 +56,9 @@ class Job:
     """The scene with the point's values applied (inputs, parameters, initial values,
     simulation settings)."""
     parameters: dict[str, float]
-    """Parameter overrides from arguments that only change parameter values."""
+    """Parameter overrides from arguments that only change parameter values (checked on the
+    client; the point's run derives them again from its arguments,
+    :func:`~bearingsim.scenes.analyses.point_model`)."""
 
 
 MODELS: dict[str, Prepared] = {}
@@ -77,19 +81,17 @@ def load_model(payload: ModelPayload) -> Prepared:
 
 
 def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
-    """Run one point; returns ``index``, ``status`` ("ok"/"failed"), ``final`` (output ->
-    value at the end), ``error``, ``wall_s``, ``pid``. Never raises for a failing point."""
+    """Run one point; returns ``index``, ``status`` ("ok"/"failed"), ``final`` (the table
+    row of :func:`~bearingsim.scenes.analyses.run_operating_point`, columns starting with
+    ``_`` left out), ``error``, ``wall_s``, ``pid``. Never raises for a failing point."""
     t0 = time.perf_counter()
     row: dict[str, Any] = {"index": job.index, "pid": os.getpid()}
     try:
-        point = dataclasses.replace(prep, scene=job.scene)
-        result = run_simulation(point, parameters=job.parameters or None, progress=False)
-        series = output_series(point, result)
-        final = {}
-        for name, y in series.items():
-            if np.any(np.isnan(y)):
-                raise ValueError(f"output {name} has NaN values")
-            final[name] = float(y[-1])
+        values = run_operating_point(dataclasses.replace(prep, scene=job.scene))
+        final = {k: v for k, v in values.items() if not k.startswith("_")}
+        for name in prep.outputs:
+            if isinstance(final.get(name), float) and np.isnan(final[name]):
+                raise ValueError(f"output {name} is NaN")
         row.update(status="ok", final=final, error="")
     except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
         row.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
