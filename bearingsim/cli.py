@@ -218,7 +218,7 @@ def _sweep(args: argparse.Namespace) -> int:
     try:
         res = run_sweep(scene, points, scheduler=args.scheduler, n_workers=args.workers,
                         out=out, progress=not args.no_progress, resume=args.resume,
-                        timeout=args.timeout, chunk=args.chunk)
+                        timeout=args.timeout, chunk=args.chunk, overwrite=args.overwrite)
     except KeyboardInterrupt:
         _say(f"bearingsim sweep: interrupted; the finished points are in {out}; add --resume "
              "to run the others", err=True)
@@ -285,9 +285,11 @@ def _parser() -> argparse.ArgumentParser:
     p_sw.add_argument("--resume", action="store_true",
                       help="keep the rows of an earlier run of this sweep in the output folder "
                            "and run only the other points")
+    p_sw.add_argument("--overwrite", action="store_true",
+                      help="replace the files of an earlier sweep of this scene in the folder")
     p_sw.add_argument("--timeout", type=float, metavar="SECONDS",
                       help="time budget of one point: a point still running after it is "
-                           "recorded as failed")
+                           "recorded as failed (default: the scene's simulation.timeout)")
     p_sw.add_argument("--chunk", type=int, metavar="N",
                       help="points per task (default: sized from one point measured first)")
     p_sw.add_argument("--scheduler", help="address of a dask scheduler (default: a "

@@ -5,6 +5,7 @@ sized from the measured time of a point."""
 from __future__ import annotations
 
 import csv
+import json
 import os
 import signal
 import subprocess
@@ -15,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from bearingsim.scenes.outputs import LOCK_NAME, OutputFolder, OutputFolderBusy
 from bearingsim.scenes.sweep import (
     CHUNK_SECONDS,
     SweepError,
@@ -167,3 +169,47 @@ def test_ctrl_c_keeps_the_finished_points(scene, tmp_path):
     assert "add --resume" in err
     rows = list(csv.DictReader(table.open()))
     assert len(rows) >= 2 and all(r["status"] == "ok" for r in rows)
+
+
+def test_a_second_sweep_into_a_used_folder_needs_overwrite(scene, tmp_path, client):
+    """The files of an earlier sweep are not replaced silently: the second sweep stops before
+    anything runs, naming them; with ``overwrite`` it replaces them and its summary (written
+    last) names the new files."""
+    out = tmp_path / "out"
+    points = grid_points(parse_grid(["inputs.shaft_speed=100,200"]))
+    run_sweep(scene, points, client=client, out=out, progress=False)
+    before = (out / "bearing.sweep.csv").read_bytes()
+    with pytest.raises(SweepError, match=r"earlier sweep .*bearing\.sweep\.csv.*--overwrite"):
+        run_sweep(scene, grid_points(parse_grid(["inputs.shaft_speed=300,400"])),
+                  client=client, out=out, progress=False)
+    assert (out / "bearing.sweep.csv").read_bytes() == before
+    res = run_sweep(scene, grid_points(parse_grid(["inputs.shaft_speed=300,400"])),
+                    client=client, out=out, progress=False, overwrite=True)
+    assert [r["inputs.shaft_speed [rad/s]"] for r in _table(out)] == ["300.0", "400.0"]
+    summary = json.loads((out / "bearing.sweep.json").read_text())
+    assert res.files[-1] == out / "bearing.sweep.json"
+    assert {f["name"] for f in summary["files"]} >= {"bearing.sweep.csv", "bearing.sweep.png"}
+    assert not (out / LOCK_NAME).exists()
+
+
+def test_a_sweep_into_a_folder_in_use_is_told_who_holds_it(scene, tmp_path, client):
+    out = tmp_path / "out"
+    with OutputFolder(out, "bearingsim run other.toml"), \
+            pytest.raises(OutputFolderBusy, match=r"in use: held by process \d+ .*other\.toml"):
+        run_sweep(scene, [{"inputs.shaft_speed": 100.0}], client=client, out=out,
+                  progress=False)
+    assert not (out / "bearing.sweep.csv").exists()
+
+
+@pytest.mark.filterwarnings("ignore::bearingsim.errors.LongRunWarning")
+def test_the_point_budget_comes_from_the_scene_unless_given(tmp_path, client):
+    """``simulation.timeout`` of the scene is each point's budget; ``timeout`` overrides it."""
+    path = tmp_path / "bearing.toml"
+    path.write_text(SCENE + "timeout = 1.5\n")
+    long = [{"simulation.t_end": 200.0, "simulation.max_step": 1e-4,
+             "simulation.n_points": 20001}]
+    res = run_sweep(path, long, client=client, progress=False, chunk=1)
+    assert res.rows[0]["status"] == "failed"
+    assert "budget of 1.5 s" in res.rows[0]["error"]
+    res = run_sweep(path, long, client=client, progress=False, chunk=1, timeout=1.0)
+    assert "budget of 1 s" in res.rows[0]["error"]

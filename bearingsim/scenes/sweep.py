@@ -530,6 +530,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         timeout = scene.simulation.timeout
     if timeout is not None and not (math.isfinite(timeout) and timeout > 0):
         raise SweepError(f"--timeout must be a positive number of seconds, got {timeout!r}")
+    if timeout != scene.simulation.timeout:  # the solver's own budget too (--timeout wins)
+        scene = scene.replace(simulation=dataclasses.replace(scene.simulation, timeout=timeout))
     if resume and out is None:
         raise SweepError("resume needs the output folder of the earlier run (out=...)")
     stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
