@@ -17,11 +17,17 @@ systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes
 process loads it once (:mod:`bearingsim.scenes.sweep_worker`), ahead of its first points.
 Points go out in chunks sized from the measured time of one point (run on the client while the
 workers load), so a task's scheduling cost is spread over ~0.25 s of work; each point runs what
-``bearingsim run`` runs for that scene and returns the final value of every output.
+``bearingsim run`` runs for one operating point of that scene
+(:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
+``settled`` and ``time_constant``, a steady, modes or statics point's table row; an analysis
+scene's own grid or cases are replaced by the sweep's points).
 
-Rows are appended to ``<scene>.sweep.csv`` as they arrive (:mod:`bearingsim.scenes.sweep_table`);
+Files go through :class:`~bearingsim.scenes.outputs.OutputFolder` (one writer at a time, an
+earlier sweep's files replaced only with ``overwrite``, the summary last). Rows are appended
+to ``<scene>.sweep.csv`` as they arrive (:mod:`bearingsim.scenes.sweep_table`);
 ``resume=True`` skips the points already there; a point that fails or exceeds ``timeout`` is
-recorded with its error and does not affect the others; a worker lost mid-sweep has its chunks
+recorded with its error and does not affect the others (``timeout`` defaults to the scene's
+``simulation.timeout``); a worker lost mid-sweep has its chunks
 re-run by the scheduler on the others.
 """
 
