@@ -117,8 +117,8 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "CPU time (this thread) minus the CPU time inside the integrator "
         "(`Result.stats[\"integrate_cpu_time\"]`): "
         "checks, input functions, start values, kernel look-up, observed variables, the "
-        f"result. *total before*: the same runs on commit {baseline} (before the fixed-cost work), in a "
-        "subprocess of this run. Goal: per-call cost <= 0.3 ms.\n\n"
+        f"result. *total before*: the same runs on commit {baseline} (before the fixed-cost "
+        "work), in a subprocess of this run. Goal: per-call cost <= 0.3 ms.\n\n"
         f"Command: `python -m bench.per_call --baseline {baseline} --repeats {repeats}`\n\n"
         + markdown_table(["scene", "method", "states", f"total before ({baseline}) [ms]",
                           "total now [ms]", "per-call cost now [ms]", "saved [ms]"], rows)

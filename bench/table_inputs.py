@@ -1,4 +1,5 @@
-"""Benchmark: scene input tables from 10^3 to 10^5 rows (a quadratic build took 277 s for 10^5 rows).
+"""Benchmark: scene input tables from 10^3 to 10^5 rows (a quadratic build took 277 s for
+10^5 rows).
 
 Three stages, each timed on the same tables in one run:
 

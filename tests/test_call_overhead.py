@@ -38,7 +38,8 @@ def test_a_table_leaving_its_range_between_output_times_is_refused(torque_level)
 def test_a_constant_outside_its_range_names_the_value_and_range(torque_level):
     with pytest.raises(ParameterError, match=r"input Fa = -1 \[N\] is outside its valid "
                                              r"range \[0, inf\] \[N\]"):
-        check_input_ranges(torque_level, input_signal(torque_level, {"shaft_speed": 100.0, "Fa": -1.0}),
+        check_input_ranges(torque_level,
+                           input_signal(torque_level, {"shaft_speed": 100.0, "Fa": -1.0}),
                            np.array([0.0, 1.0]))
 
 
