@@ -479,7 +479,11 @@ def console_lines(summary_data: dict[str, Any]) -> list[str]:
                 f"{n} = {v}" if isinstance(v, str) else
                 f"{n} = {display_text(v, units.get(n, ''))}" for n, v in row.items()))
         return lines
-    lines = []
+    stats = s.get("simulation", {}).get("stats", {})
+    lines = [f"  solver: {stats.get('method', '?')}"
+             + (f" ({stats['method_reason']})" if stats.get("method_reason") else "")
+             + (f"; evaluator {stats['backend']} ({stats['backend_reason']})"
+                if stats.get("backend_reason") else "")]
     for name, o in s["outputs"].items():
         final = "inf/nan" if o["final"] is None else display_text(o["final"], o["unit"])
         note = ""
