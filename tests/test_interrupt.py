@@ -67,7 +67,8 @@ system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", n_sl
 kernel(system, "ode", True)  # compiled before the signal
 print("running", flush=True)
 res = simulate(system, 200.0, inputs={"shaft_speed": 1500.0, "load.Fx": 2000.0},
-               method="compiled_bdf", n_points=3, progress=False)
+               method="compiled_bdf", n_points=3, progress=False,
+               max_steps=10**9)  # the step budget would end it before the Ctrl-C
 res.to_csv(sys.argv[1] + "/result.csv")
 print("finished", flush=True)
 """

@@ -57,7 +57,7 @@ def test_getitem_by_name_and_by_list(res):
     assert list(sub.to_pandas().columns) == ["Rs", "w_middle"]
     with pytest.raises(KeyError, match="did you mean w_middle"):
         res[["Rs", "w_midle"]]
-    with pytest.raises(ParameterError, match="variable name"):
+    with pytest.raises(ParameterError, match="variable name|name must be str"):
         res.final(5)
 
 

@@ -267,8 +267,21 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
     t0, t1 = float(times[0]), float(times[-1])
     key = (tuple((sig.low, sig.high) for sig in system.inputs), signal.key,
            signal.q.tobytes(), t0, t1)
-    if _CHECKED.get(key):
-        return
+    notes = _CHECKED.get(key)
+    if notes is None:
+        notes = _check_signal(system, signal, times)
+        if len(_CHECKED) >= _CHECKED_LIMIT:
+            del _CHECKED[next(iter(_CHECKED))]
+        _CHECKED[key] = notes
+    for note in notes:
+        warnings.warn(note, SpeedLimitWarning, stacklevel=3)
+
+
+def _check_signal(system: System, signal: InputSignal, times: np.ndarray) -> list[str]:
+    """:func:`check_input_ranges` without the memory: raises for an input out of range,
+    returns the warnings (speeds above a limiting speed)."""
+    t0, t1 = float(times[0]), float(times[-1])
+    notes: list[str | None] = []
     functions = []
     for k, (sig, piece) in enumerate(zip(system.inputs, signal.lifted, strict=True)):
         if piece is None:
@@ -277,7 +290,7 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
         first, last = piece
         values = signal.q[first:last] if last - first == 1 else \
             signal.q[first + (last - first) // 2:last]
-        _check_values(sig, values, None if last - first == 1 else "table value")
+        notes.append(_check_values(sig, values, None if last - first == 1 else "table value"))
     if functions:
         u = signal.u(_T, ca.DM(signal.q))
         for k in functions:
@@ -291,16 +304,15 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
                     f"arithmetic over [{t0:g}, {t1:g}] s, between the output points too)"
                     f"{_bare_number_hint(sig)}")
         values = signal.at(times)
-        for k in functions:
-            _check_values(system.inputs[k], values[k], times)
-    if len(_CHECKED) >= _CHECKED_LIMIT:
-        del _CHECKED[next(iter(_CHECKED))]
-    _CHECKED[key] = True
+        notes += [_check_values(system.inputs[k], values[k], times) for k in functions]
+    return [note for note in notes if note is not None]
 
 
-def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None) -> None:
-    """Values of one input: finite and within its declared range. ``times``: the times of the
-    values [s], or a word naming them (``"table value"``), or None for a constant."""
+def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None) -> str | None:
+    """Values of one input: finite and within its declared range (else ParameterError); the
+    warning when they exceed the input's limit (``warn_above``), else None. ``times``: the
+    times of the values [s], or a word naming them (``"table value"``), or None for a
+    constant."""
     bad = ~np.isfinite(values)
 
     def where(k: int) -> str:
@@ -326,11 +338,11 @@ def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None) -> No
     limit = getattr(sig, "warn_above", None)
     if limit is not None and values.size and np.max(np.abs(values)) > limit:
         k = int(np.argmax(np.abs(values)))
-        warnings.warn(
-            f"input {sig.name} reaches {engineering(abs(values[k]), sig.unit, both=True)}"
-            f"{where(k)}, above its limit {engineering(limit, sig.unit, both=True)} (the "
-            f"bearing's limiting speed: the catalogue no longer vouches for the bearing there)",
-            SpeedLimitWarning, stacklevel=4)
+        return (f"input {sig.name} reaches {engineering(abs(values[k]), sig.unit, both=True)}"
+                f"{where(k)}, above its limit {engineering(limit, sig.unit, both=True)} (the "
+                f"bearing's limiting speed: the catalogue no longer vouches for the bearing "
+                f"there)")
+    return None
 
 
 def _bare_number_hint(sig) -> str:
