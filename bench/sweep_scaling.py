@@ -7,7 +7,7 @@ Two measurements:
   (modules imported, nothing in memory): build of the component tree, structure key and load,
   against the assembly it replaces.
 * **Sweep scaling.** The shipped ball-level scene ``deep_groove_duty1`` (6304, massive balls,
-  75 states) over load x speed, ``t_end`` 10 ms, ``N_POINTS`` points on a LocalCluster of 1
+  75 states) over load x speed, ``t_end`` 100 ms, ``N_POINTS`` points on a LocalCluster of 1
   worker, then of ``--workers``. Each worker times every point it runs
   (:func:`bearingsim.scenes.sweep_worker.run_job`: the simulation and its outputs, what
   ``bearingsim run`` does for the point); the per-point overhead is the rest of the workers'
@@ -38,7 +38,7 @@ from bench.common import Section, fmt, markdown_table
 __all__ = ["run", "section"]
 
 N_POINTS = 64
-T_END = 0.01
+T_END = 0.1
 """Simulated time of each sweep point [s]."""
 
 WARM_LOAD = """
