@@ -130,8 +130,8 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
     text = (
         f"A {RUN_S * 1e3:g} ms run of every shipped transient scene on its cached system "
         "(assembled, kernels and integrators built by warm-up runs), the scene's method, "
-        f"inputs and tolerances, 3 output points; median of {repeats} calls. *per-call cost*: the call's "
-        "CPU time (this thread) minus the CPU time inside the integrator "
+        f"inputs and tolerances, 3 output points; median of {repeats} calls. *per-call cost*: "
+        "the call's CPU time (this thread) minus the CPU time inside the integrator "
         "(`Result.stats[\"integrate_cpu_time\"]`): "
         "checks, input functions, start values, kernel look-up, observed variables, the "
         f"result. *total before*: the same runs on commit {baseline} (before the fixed-cost "
