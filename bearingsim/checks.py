@@ -41,7 +41,6 @@ from bearingsim.symbolic import is_symbolic
 __all__ = [
     "ATOL_RANGE",
     "MAX_OUTPUT_FRACTION",
-    "MAX_SPEED_FACTOR",
     "MAX_STATIC_LOAD_FACTOR",
     "NEWTON_TOL_RANGE",
     "RTOL_RANGE",
@@ -70,11 +69,6 @@ contact reaches 4 200 MPa (ISO 76, permanent deformation begins); at 10 C0 it wo
 9 000 MPa, beyond the compressive strength of bearing steel: a load there is a unit slip (N
 for kN, N for mN) or a typo, and is refused. Between C0 and this limit the models compute and
 warn (:class:`~bearingsim.errors.PlasticDeformationWarning`)."""
-MAX_SPEED_FACTOR = 5.0
-"""Largest plausible speed as a multiple of the catalogue limiting speed [-]: beyond it the
-cage and ball centrifugal loads leave every model's range (r/min given for rad/s is a factor
-9.5); between the limiting speed and this limit the models warn
-(:class:`~bearingsim.errors.SpeedLimitWarning`)."""
 MAX_OUTPUT_FRACTION = 0.5
 """Largest share of the machine's physical memory one output may take."""
 
