@@ -274,11 +274,6 @@ class BearingGeometry:
         Warns
         -----
         SpeedLimitWarning
-
-        Raises
-        ------
-        ParameterError
-            Beyond :data:`~bearingsim.checks.MAX_SPEED_FACTOR` x the limiting speed.
         """
         check_speed_limit(speed, self.limiting_speed, where,
                           f"the limiting speed of {self.designation}")
