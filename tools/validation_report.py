@@ -40,6 +40,7 @@ TEST_FILES = (
     "tests/physics/test_published_catalogue_checks.py",
     "tests/physics/test_published_contact_film.py",
     "tests/physics/test_published_examples.py",
+    "tests/physics/test_published_roller_checks.py",
     "tests/physics/test_published_tables.py",
     "tests/physics/test_published_textbook_examples.py",
     "tests/test_fidelity_errors.py",
