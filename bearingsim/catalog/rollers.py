@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
-from bearingsim.catalog.geometry import BearingGeometry
+from bearingsim.catalog.geometry import check_speed_limit
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.units import mm, rpm_to_rad_s
 from bearingsim.validation import check_count, check_diameter, check_range
@@ -161,15 +161,16 @@ class RollerBearingGeometry:
         return number[:-2]
 
     def check_speed(self, speed: float, where: str) -> None:
-        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed
-        (:meth:`BearingGeometry.check_speed <bearingsim.catalog.geometry.BearingGeometry.
-        check_speed>`).
+        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed, refuse
+        it above the shared multiple (:func:`~bearingsim.catalog.geometry.check_speed_limit`,
+        the rule of the ball geometries too).
 
         Warns
         -----
         SpeedLimitWarning
         """
-        BearingGeometry.check_speed(self, speed, where)  # type: ignore[arg-type]
+        check_speed_limit(speed, self.limiting_speed, where,
+                          f"the limiting speed of {self.designation}")
 
 
 def _optional(text: str, scale: float) -> float | None:

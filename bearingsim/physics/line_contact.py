@@ -193,10 +193,7 @@ def half_width(load, length: float, radius: float, roller: Material = STEEL,
     float, array or SX
         b [m].
     """
-    where = "half_width"
-    check_range(load, "load", "N", 0.0, where=where)
-    check_range(length, "length", "m", MIN_LENGTH, where=where)
-    check_range(radius, "radius", "m", MIN_LENGTH, where=where)
+    _check_hertz(load, length, radius, "half_width")
     e_eff = effective_modulus(roller, ring)
     return op.sqrt(8.0 * load * radius / (math.pi * length * e_eff))
 
@@ -221,9 +218,13 @@ def max_pressure(load, length: float, radius: float, roller: Material = STEEL,
     float, array or SX
         p0 [Pa].
     """
-    where = "max_pressure"
+    _check_hertz(load, length, radius, "max_pressure")
+    e_eff = effective_modulus(roller, ring)
+    return op.sqrt(load * e_eff / (2.0 * math.pi * length * radius))
+
+
+def _check_hertz(load, length: float, radius: float, where: str) -> None:
+    """The arguments of a Hertz line contact: load >= 0 N, length and radius >= 1 um."""
     check_range(load, "load", "N", 0.0, where=where)
     check_range(length, "length", "m", MIN_LENGTH, where=where)
     check_range(radius, "radius", "m", MIN_LENGTH, where=where)
-    e_eff = effective_modulus(roller, ring)
-    return op.sqrt(load * e_eff / (2.0 * math.pi * length * radius))
