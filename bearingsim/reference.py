@@ -28,8 +28,8 @@ from bearingsim.assemblies import (
     motor_drive,
     spindle,
 )
+from bearingsim.assemblies.double_layer.quasi_static import NestedQuasiStatic
 from bearingsim.assemblies.motor_drive import MotorShaft
-from bearingsim.assemblies.nested_static import NestedQuasiStatic
 from bearingsim.components.aligned_body import AlignedBody
 from bearingsim.components.rings import ConstantLoad
 from bearingsim.components.rotational import (

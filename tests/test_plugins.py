@@ -129,7 +129,7 @@ def test_a_name_clash_with_a_builtin_assembly_is_an_error_naming_both(site, caps
             {"duplex": "bsim_plugin_clash:flywheel"}, dist="bsim-clash")
     with pytest.raises(PluginError, match=r"entry point duplex = bsim_plugin_clash:flywheel "
                                           r"\(distribution bsim-clash 0.1\).*built-in assembly "
-                                          r"'duplex_pair' \(bearingsim.assemblies.duplex\)"):
+                                          r"'duplex_pair' \(bearingsim.assemblies.duplex.scene\)"):
         REGISTRY["duplex_pair"]
     assert main(["list", "assemblies"]) == 2
     err = capsys.readouterr().err

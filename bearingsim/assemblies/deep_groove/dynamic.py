@@ -1,35 +1,14 @@
-"""Single deep-groove ball bearing: quasi-static and dynamic fidelity (docs/studies.md, section C).
-
-Coordinates: z is the bearing axis (the study of docs/studies.md, section C uses x): its axial
-force ``Fx`` is our ``Fz``, its radial ``Fy, Fz`` are our ``Fx, Fy`` and its moments ``My, Mz``
-our ``Mx, My``.
-
-Dynamic fidelities build, for every ball j, a :class:`~bearingsim.components.dynamic.Ball`, its
-inner and outer :class:`~bearingsim.components.dynamic.RaceContact`, a
-:class:`~bearingsim.components.dynamic.PocketContact` with the cage and (with a viscous
-lubricant) a :class:`~bearingsim.components.dynamic.BallDrag`; the cage is guided by the outer
-ring land. The inner ring is a 5-DOF :class:`~bearingsim.components.dynamic.RingBody` (its mass,
-not a quasi-static balance as in the study, so the ring mode is resolved rather than eliminated)
-loaded by a :class:`~bearingsim.components.dynamic.RingLoad`, and turned through a rotational
-flange by a speed source (or by whatever the user connects to ``shaft``). The outer ring is
-fixed to the housing. For a nested bearing either ring's translations can instead be left to an
-enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
-``outer_support="frame"``).
-"""
+"""The deep-groove ball bearing with ball and cage dynamics (:class:`DeepGrooveBallBearing`:
+quasi-static or massive balls, traction, cage pockets and land, film damping)."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
-import numbers
-import warnings
 from collections.abc import Callable
 from typing import Any
 
-from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
+from bearingsim.assemblies.deep_groove.options import _W_REG, FILM_DAMPING
 from bearingsim.catalog.geometry import speed_input_bounds
-from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
-from bearingsim.components.ball_row import BallRow, row_equilibrium, row_parameters
 from bearingsim.components.connectors import Flange, RingFrame
 from bearingsim.components.dynamic import (
     Ball,
@@ -42,35 +21,20 @@ from bearingsim.components.dynamic import (
     RingBody,
     RingDrag,
     RingLoad,
-    TiltGuide,
 )
 from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError, PlasticDeformationWarning, SimulationError
+from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
-from bearingsim.physics.bearing_design import BRASS, BearingDesign, bearing_design
+from bearingsim.physics.bearing_design import BRASS, BearingDesign
 from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
-from bearingsim.physics.life import static_equivalent_load
-from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
+from bearingsim.physics.lubricant import Lubricant
 from bearingsim.validation import (
     check_choice,
     check_number,
-    check_options,
     check_range,
-    keyword_names,
 )
-
-__all__ = ["FIDELITIES", "FILM_DAMPING", "SCENE_SPEC", "DeepGrooveBallBearing",
-           "QuasiStaticDeepGroove", "deep_groove_ball_bearing"]
-
-FIDELITIES = ("quasi-static", "dynamic", "dynamic_massive_balls")
-"""Fidelity levels, lowest first."""
-_W_REG = 1e-2  # rad/s, regularization of the slip ratio at standstill
-FILM_DAMPING = 1e-5
-"""Damping of a lubricated race contact over its tangent stiffness [s] (Kramer 1993: rolling
-bearings damp 0.25e-5 .. 2.5e-5 times their stiffness; see
-:class:`~bearingsim.components.dynamic.RaceContact`)."""
 
 
 def _pocket_constant(design: BearingDesign) -> float:
@@ -389,211 +353,3 @@ class DeepGrooveBallBearing(Assembly):
         for ball, drag in zip(self.ball, getattr(self, "drag", []), strict=False):
             power = power + ball_port(drag.ball, ball)
         return power
-
-
-class QuasiStaticDeepGroove(Assembly):
-    """Quasi-static deep-groove bearing: a :class:`~bearingsim.components.ball_row.BallRow`
-    (``reference="centred"``) between the fixed outer ring and an inner ring in force balance
-    with the external load (its displacement is algebraic, solved by the assembler's Newton).
-
-    With ``speed`` > 0 the row uses its Jones-Harris form (centrifugal force, gyroscopic moment)
-    at that inner-ring speed; the shaft holds the ring straight (no tilt), so the ring takes no
-    moment. The Newton blocks start from the numeric equilibrium at the constant loads
-    (:func:`~bearingsim.components.ball_row.row_equilibrium`; load inputs count as 0 there); with
-    load inputs at speed the assembler gives the blocks a line search (CasADi's ``newton``
-    rootfinder, which generates no C code), without them plain Newton (``fast_newton``).
-
-    Parameters
-    ----------
-    geometry : BearingGeometry
-        Its ``diametral_clearance`` Pd sets the free contact angle.
-    loads : dict
-        ``Fx, Fy, Fz`` [N]: finite constants, functions of time or None for inputs (missing
-        keys are inputs with default 0). ``Mx, My`` may only be absent or 0 (the shaft takes
-        the moments); other keys raise :class:`~bearingsim.errors.ParameterError`.
-    speed : float
-        Constant inner-ring speed [rad/s], >= 0.
-
-    Raises
-    ------
-    ParameterError
-        For an unknown load key, a non-finite constant load, a moment load, a speed that is not
-        a finite number >= 0 (a function of time or an input needs a dynamic level), or a speed
-        at which the balls have no quasi-static equilibrium under the constant loads (the
-        message names the speed).
-    """
-
-    def __init__(self, geometry, loads: dict[str, Any] | None = None, speed: float = 0.0,
-                 name="bearing"):
-        super().__init__(name)
-        where = "deep_groove_ball_bearing(quasi-static)"
-        loads = check_loads(loads, where)
-        for key in ("Mx", "My"):
-            if key in loads and loads[key] != 0.0:
-                raise ParameterError(f"{where}: loads[{key!r}] = {loads[key]!r} [N.m], but the "
-                                     f"shaft holds the inner ring straight at this level and "
-                                     f"takes the moments; give only Fx, Fy, Fz (or use a dynamic "
-                                     f"fidelity with free_tilt=True)")
-        if callable(speed) or speed is None or isinstance(speed, bool) \
-                or not isinstance(speed, numbers.Real):
-            raise ParameterError(f"{where}: speed must be a constant number >= 0 [rad/s], got "
-                                 f"{speed!r}; a speed that varies in time or an input "
-                                 f"shaft_speed needs a dynamic fidelity")
-        speed = float(check_range(speed, "speed", "rad/s", 0.0, where=where))
-        geometry.check_speed(speed, where)
-        # start values of the Newton blocks (ring translation, ball centres at speed): the
-        # equilibrium at the constant loads (inputs count as 0)
-        constant = [float(v) if isinstance(v, (int, float)) else 0.0
-                    for v in (loads.get(k) for k in ("Fx", "Fy", "Fz"))]
-        try:
-            start = row_equilibrium(row_parameters(geometry), geometry.ball_count, constant,
-                                    speeds=(speed, 0.0), speed_effects=speed > 0.0)
-        except SimulationError as exc:
-            raise ParameterError(
-                f"{where}: no quasi-static ball equilibrium at the inner-ring speed {speed:g} "
-                f"rad/s ({speed * 30.0 / math.pi:.0f} r/min) under the loads {constant} N; "
-                f"the balls' equilibrium is lost there ({exc})") from None
-        _warn_beyond_static_rating(geometry, constant, where)
-        self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0,
-                           centre_start=start.centres)
-        # load inputs move the equilibrium away from the start values; at speed the Jones-Harris
-        # ball equations then need Newton with a line search (CasADi's "newton": no C code)
-        self.needs_line_search = speed > 0.0 and any(
-            not isinstance(loads.get(k, None), (int, float)) for k in ("Fx", "Fy", "Fz"))
-        self.row.inner_speed = speed
-        self.housing = FixedFrame()
-        self.guide = TiltGuide()
-        self.load = RingLoad({**loads, "Mx": 0.0, "My": 0.0})
-        self.row.inner.guess(**dict(zip(("x", "y", "z"), start.inner.tolist(), strict=True)))
-        connect(self.row.outer, self.housing.frame)
-        connect(self.row.inner, self.load.frame, self.guide.frame)
-
-
-def _warn_beyond_static_rating(geometry, forces, where: str) -> None:
-    """Warn when the static equivalent load of constant forces ``(Fx, Fy, Fz)`` exceeds C0
-    (ISO 76: 4 200 MPa at the most loaded contact, permanent deformation beyond)."""
-    if geometry.static_load_rating is None:
-        return
-    p0 = float(static_equivalent_load(math.hypot(forces[0], forces[1]), abs(forces[2]),
-                                      geometry))
-    if p0 > MAX_STATIC_LOAD_FACTOR * geometry.static_load_rating:
-        raise ParameterError(
-            f"{where}: the static equivalent load {p0:.4g} N is more than "
-            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 = "
-            f"{geometry.static_load_rating:.0f} N of {geometry.designation}: beyond the "
-            f"strength of bearing steel (N given for kN?)")
-    if p0 > geometry.static_load_rating:
-        warnings.warn(f"{where}: the static equivalent load {p0:.0f} N exceeds the static load "
-                      f"rating C0 = {geometry.static_load_rating:.0f} N of "
-                      f"{geometry.designation}: the raceways deform permanently",
-                      PlasticDeformationWarning, stacklevel=3)
-
-
-_SET_BY_FACTORY = ("design", "lubricant", "massive_balls", "speed", "loads")
-"""Arguments of :class:`DeepGrooveBallBearing` that :func:`deep_groove_ball_bearing` sets."""
-
-
-def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
-                             lubricant: Lubricant | str = "ISO VG 32",
-                             clearance: float | None = None, housing: str = "fixed",
-                             speed: Callable | float | None = None,
-                             loads: dict[str, Any] | None = None, **options: Any):
-    """Build a single deep-groove ball bearing at a chosen fidelity.
-
-    Parameters
-    ----------
-    designation : str or BearingGeometry
-        Catalogue designation (``"6304"`` has the validation geometry of
-        docs/studies.md, section C).
-    fidelity : {"quasi-static", "dynamic", "dynamic_massive_balls"}
-        ``"dynamic"``: ball orbit and spin dynamics, cage dynamics, quasi-static ball positions
-        (algebraic, solved by the assembler's Newton blocks) as in the study (docs/studies.md,
-        section C);
-        ``"dynamic_massive_balls"``: the balls' radial and axial motion with inertia too;
-        ``"quasi-static"``: the ``BallRow`` of the duplex pairs (Hertz load sharing only).
-    lubricant : Lubricant or str
-        ``Oil``, ``Grease``, ``Dry`` or a name for
-        :func:`~bearingsim.physics.lubricant.get_lubricant`.
-    clearance : float, optional
-        Diametral clearance Pd [m]; default: catalogue (at every fidelity).
-    housing : {"fixed"}
-        The outer ring is fixed to a rigid housing (the only option of the dynamic levels).
-    speed : callable or float or None
-        Inner-ring speed [rad/s]. Dynamic levels: a function of time, a constant or ``None``
-        (input ``shaft_speed``). Quasi-static level: a constant >= 0 (centrifugal and
-        gyroscopic ball loads when > 0) or ``None`` for a bearing at rest (no input); a
-        function of time raises :class:`~bearingsim.errors.ParameterError`.
-    loads : dict, optional
-        External loads on the inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]; finite
-        constants, functions of time or None (inputs); other keys raise
-        :class:`~bearingsim.errors.ParameterError`. At the quasi-static level the shaft holds
-        the ring straight and takes the moments: ``Mx, My`` must then be absent or 0.
-    **options
-        Dynamic levels only: further keyword arguments of :class:`DeepGrooveBallBearing`
-        (``drive``, ``damping``, ``n_slices``, ``drag``, ``traction_scale``, ...), and
-        ``pocket_clearance``, ``guide_clearance`` of
-        :func:`~bearingsim.physics.bearing_design.bearing_design`; another name raises
-        :class:`~bearingsim.errors.ParameterError` listing the accepted ones. The quasi-static
-        level takes none and raises :class:`~bearingsim.errors.ParameterError` if any is given.
-
-    Returns
-    -------
-    DeepGrooveBallBearing or QuasiStaticDeepGroove
-    """
-    if fidelity not in FIDELITIES:
-        raise ParameterError(f"deep_groove_ball_bearing: fidelity must be one of "
-                             f"{', '.join(FIDELITIES)}, got {fidelity!r}")
-    if housing != "fixed":
-        raise ParameterError(f"deep_groove_ball_bearing: housing must be 'fixed', got "
-                             f"{housing!r}")
-    lub = as_lubricant(lubricant, "deep_groove_ball_bearing")
-    if not isinstance(lub, (Lubricant, Oil)):
-        raise ParameterError(f"deep_groove_ball_bearing: lubricant must be a Lubricant or a "
-                             f"name, got {type(lubricant).__name__}")
-    if fidelity == "quasi-static" and options:
-        raise ParameterError(f"deep_groove_ball_bearing: the quasi-static level takes no "
-                             f"options (they belong to the dynamic levels), got "
-                             f"{', '.join(sorted(options))}")
-    cage_keys = ("pocket_clearance", "guide_clearance")
-    if options:
-        check_options(options, keyword_names(DeepGrooveBallBearing, _SET_BY_FACTORY) + cage_keys,
-                      "deep_groove_ball_bearing", "option(s)", f"at fidelity {fidelity!r}")
-    design = bearing_design(designation, clearance,
-                            **{k: options.pop(k) for k in cage_keys if k in options})
-    if fidelity == "quasi-static":
-        geometry = dataclasses.replace(design.geometry, diametral_clearance=design.clearance)
-        return QuasiStaticDeepGroove(geometry, loads, 0.0 if speed is None else speed)
-    return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
-                                 speed=speed, loads=loads, **options)
-
-
-# --------------------------------------------------------------------------- scene spec
-def _deep_groove_from_scene(args: dict[str, Any], fidelity: str):
-    """Build the bearing from the scene arguments of :data:`SCENE_SPEC` (defaults filled in)."""
-    return deep_groove_ball_bearing(args["bearing"], fidelity=fidelity,
-                                    lubricant=args["lubricant"])
-
-
-_QUASI_STATIC, _DYNAMIC, _MASSIVE_BALLS = FIDELITIES
-
-SCENE_SPEC = AssemblySpec(
-    name="deep_groove_ball_bearing",
-    description="single deep-groove ball bearing: quasi-static load distribution, or ball "
-                "and cage dynamics (cage slip, pocket forces); inputs shaft_speed [rad/s] "
-                "(dynamic levels), load.Fx, Fy, Fz [N]",
-    build=_deep_groove_from_scene,
-    args={
-        "bearing": ArgSpec("bearing", factory_default(deep_groove_ball_bearing, "designation"),
-                           "catalogue designation"),
-        "lubricant": ArgSpec("lubricant", factory_default(deep_groove_ball_bearing, "lubricant"),
-                             "lubricant name"),
-    },
-    fidelities=FIDELITIES,
-    auto_fidelities=(_QUASI_STATIC, _MASSIVE_BALLS),
-    output_fidelity=[("row.*", _QUASI_STATIC), ("load.*", _QUASI_STATIC),
-                     *((pattern, _MASSIVE_BALLS) for pattern in
-                       ("w_cage", "slip", "inner*", "outer*", "pocket*", "shaft_speed"))],
-    default_outputs=["row.Q_i[0]", "row.alpha_i[0]"],
-    optional_inputs=("load.*",),  # no load on the inner ring
-)
-"""The single deep-groove ball bearing as a scene assembly (:mod:`bearingsim.scenes`)."""
