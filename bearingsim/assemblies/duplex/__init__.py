@@ -22,6 +22,8 @@ preloaded by a constant axial (spring) force on the shaft instead.
 * :mod:`.shaft`: :class:`ShaftSpec`;
 * :mod:`.preload`: arrangements, preload classes, offsets and preload stiffness;
 * :mod:`.pair`: :class:`DuplexPair`, :func:`duplex_pair`;
+* :mod:`.figures`: natural frequencies by mode name over a run; mode names of a
+  ``modes`` scene;
 * :mod:`.scene`: :data:`SCENE_SPEC`.
 """
 
