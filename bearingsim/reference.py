@@ -6,7 +6,7 @@ Regenerate after changing a component::
 
     python -m bearingsim.reference docs/components.md
 
-``tests/test_component_docs.py`` checks that every component class has an example here, a
+``tests/language/test_component_docs.py`` checks that every component class has an example here, a
 docstring listing its constructor arguments, a unit and description for every declaration, and
 that the file is current.
 """
