@@ -9,7 +9,7 @@ floor:
   and the roller :class:`~bearingsim.catalog.rollers.RollerBearingGeometry`.
 * **Contact law** (:class:`ContactLaw`): the load of one element between both raceways at its
   total elastic approach. Implementations: :class:`PointContact` (Hertz, ``Q = K delta^1.5``,
-  the ball's :func:`~bearingsim.physics.hertz.contact_load`) and :class:`LineContact`
+  the ball's :func:`~bearingsim.physics.contact_law.contact_load`) and :class:`LineContact`
   (Palmgren, two line contacts in series, sliced: :mod:`bearingsim.physics.line_contact`).
 * **Row** (:class:`ElementRow`): a component with an inner and an outer
   :class:`~bearingsim.components.connectors.RingFrame` that puts the elements' loads on them.
@@ -31,7 +31,7 @@ from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.catalog.rollers import RollerBearingGeometry, get_roller_bearing
 from bearingsim.errors import CatalogError
 from bearingsim.physics import line_contact
-from bearingsim.physics.hertz import contact_load
+from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.life import static_equivalent_load as ball_static_equivalent_load
 from bearingsim.validation import check_count, check_range
 
@@ -113,7 +113,7 @@ class PointContact:
                     where="PointContact")
 
     def load(self, approach: Any, smooth: float | None = None) -> Any:
-        """Ball load [N] (:func:`~bearingsim.physics.hertz.contact_load`)."""
+        """Ball load [N] (:func:`~bearingsim.physics.contact_law.contact_load`)."""
         return contact_load(self.stiffness, approach, smooth)
 
     def approach(self, load: float) -> float:

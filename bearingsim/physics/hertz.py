@@ -56,8 +56,6 @@ __all__ = [
     "bearing_load_deflection_constants",
     "orthogonal_shear_stress",
     "hertz_contact",
-    "contact_load",
-    "contact_stiffness",
 ]
 
 METHODS = ("exact", "hamrock_brewe")
@@ -493,58 +491,6 @@ def hertz_contact(load, rx, ry, e_eff, method: str = "exact") -> HertzContact:
         tau0=tau0,
         z0=z0,
     )
-
-
-def _compression(delta, smooth):
-    if smooth is None:
-        return op.fmax(delta, 0.0)
-    check_range(smooth, "smooth", "m", 0.0, low_inclusive=False, where="contact_load")
-    return op.smooth_max0(delta, smooth)
-
-
-def contact_load(k_const, delta, smooth=None):
-    """Hertz contact load ``Q = K max(delta, 0)^1.5`` [N].
-
-    Parameters
-    ----------
-    k_const : float or array or SX
-        Load-deflection constant K [N/m^1.5], >= 0.
-    delta : float or array or SX
-        Approach (overlap, positive in compression) [m], finite (any sign: a negative value
-        is a gap and gives no load).
-    smooth : float, optional
-        If given, ``max(delta, 0)`` is replaced by the smooth
-        ``(delta + sqrt(delta^2 + smooth^2)) / 2`` [m], differentiable everywhere for use in
-        equations (error at most smooth/2 in delta).
-
-    Returns
-    -------
-    Q [N], non-negative and non-decreasing in delta.
-
-    Raises
-    ------
-    ParameterError
-        For a negative or non-finite ``k_const``, a NaN or infinite ``delta`` or a
-        non-positive ``smooth`` (symbolic values are passed through unchecked).
-    """
-    check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_load")
-    check_range(delta, "delta", "m", where="contact_load")
-    return k_const * op.sqrt_power(_compression(delta, smooth), 1)
-
-
-def contact_stiffness(k_const, delta, smooth=None):
-    """Tangent contact stiffness ``dQ/d delta`` of :func:`contact_load` [N/m].
-
-    ``1.5 K max(delta, 0)^0.5``, or with ``smooth`` the exact derivative of the smooth form,
-    ``1.5 K s^0.5 (1 + delta / sqrt(delta^2 + smooth^2)) / 2``. Parameters are those of
-    :func:`contact_load`.
-    """
-    check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_stiffness")
-    check_range(delta, "delta", "m", where="contact_stiffness")
-    stiffness = 1.5 * k_const * op.sqrt(_compression(delta, smooth))
-    if smooth is None:
-        return stiffness
-    return stiffness * 0.5 * (1.0 + delta / op.smooth_abs(delta, smooth))
 
 
 guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

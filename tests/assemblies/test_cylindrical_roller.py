@@ -49,8 +49,9 @@ from bearingsim.components.rolling_element import (
     static_equivalent_load,
 )
 from bearingsim.errors import CatalogError, ParameterError
+from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.friction import palmgren_m0
-from bearingsim.physics.hertz import combined_load_deflection_constant, contact_load
+from bearingsim.physics.hertz import combined_load_deflection_constant
 from bearingsim.physics.line_contact import (
     palmgren_deflection,
     palmgren_load,

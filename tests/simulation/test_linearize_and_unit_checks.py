@@ -15,7 +15,7 @@ import pytest
 from bearingsim import Component, Input, Parameter, Variable, der, time
 from bearingsim.assembler import assemble
 from bearingsim.errors import ParameterError
-from bearingsim.physics import film, hertz, life
+from bearingsim.physics import contact_law, film, hertz, life
 from bearingsim.physics.friction import (
     palmgren_m0,
     palmgren_torque,
@@ -91,7 +91,7 @@ def test_linearize_rejects_a_result_of_another_system(decay):
         linearize(decay, res)
 
 
-@pytest.mark.parametrize("function", [hertz.contact_load, hertz.contact_stiffness])
+@pytest.mark.parametrize("function", [contact_law.contact_load, contact_law.contact_stiffness])
 @pytest.mark.parametrize("smooth", [None, 1e-8])
 def test_contact_load_and_stiffness_reject_a_non_finite_approach(function, smooth):
     name = function.__name__

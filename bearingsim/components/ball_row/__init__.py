@@ -39,7 +39,8 @@ and spin speeds ``wm``, ``wR`` follow from pure rolling at both contacts with th
 contact angles.
 
 **Regularization.** ``max(delta, 0)`` is replaced by ``(delta + sqrt(delta^2 + eps^2)) / 2``
-(:func:`bearingsim.physics.hertz.contact_load` with ``smooth = eps``) so that unloaded balls keep
+(:func:`bearingsim.physics.contact_law.contact_load` with ``smooth = eps``) so that unloaded
+balls keep
 the equations differentiable. For a loaded contact the load is then too high by the relative
 amount ``(3/8) (eps / delta)^2`` (3.75e-7 at ``delta = 1 um`` with the default ``eps = 1 nm``);
 a contact that just touches carries ``K (eps/2)^1.5`` (about 1e-4 N for a 7020 ball), and one

@@ -12,9 +12,9 @@ import scipy.optimize
 from bearingsim import symbolic as op
 from bearingsim.components.ball_row.parameters import STEEL_DENSITY, RowParameters
 from bearingsim.errors import ParameterError
+from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.hertz import (
     combined_load_deflection_constant,
-    contact_load,
 )
 from bearingsim.validation import check_range
 from bearingsim.vectors import add, cross, rotate, rotation, scale
