@@ -16,6 +16,7 @@ import scipy.linalg
 import scipy.optimize
 
 from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.validation import check_range, check_vector
 
 __all__ = ["DOFS", "LOSS_FACTOR", "MODE_NAMES", "Modes", "modal_analysis"]
 
@@ -131,11 +132,24 @@ def modal_analysis(stiffness: np.ndarray, mass: np.ndarray,
 
     Raises
     ------
+    ParameterError
+        For matrices that are not 5 x 5 finite numbers, a mass matrix that is not positive
+        definite or a negative loss factor.
     BearingsimError
         If K is not positive definite (a direction without stiffness, e.g. unloaded rows).
     """
+    where = "modal_analysis"
+    size = len(DOFS)
+    stiffness = check_vector(stiffness, size * size, "stiffness", "N/m, N/rad, N m/rad",
+                             where).reshape(size, size)
+    mass = check_vector(mass, size * size, "mass", "kg, kg m^2", where).reshape(size, size)
+    check_range(loss_factor, "loss_factor", "1", 0.0, where=where)
     k_sym = 0.5 * (stiffness + stiffness.T)
-    w2, shapes = scipy.linalg.eigh(k_sym, mass)
+    try:
+        w2, shapes = scipy.linalg.eigh(k_sym, 0.5 * (mass + mass.T))
+    except np.linalg.LinAlgError:
+        raise ParameterError(f"{where}: the mass matrix must be symmetric positive definite "
+                             f"(masses [kg] and inertias [kg m^2] > 0)") from None
     if w2[0] <= 0.0:
         raise BearingsimError(
             "the stiffness matrix is not positive definite (smallest eigenvalue "
