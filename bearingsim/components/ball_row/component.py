@@ -60,6 +60,8 @@ class BallRow(Component):
     centre_start : sequence of (float, float), optional
         Jones-Harris form: start values (Newton guesses) of every ball's ``(b_r, b_z)`` [m],
         e.g. from :func:`row_equilibrium`; default 0 (the pitch circle).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Parameters (model)
     ------------------
@@ -140,11 +142,28 @@ class BallRow(Component):
                 for j in range(n_centres)]
 
     def output_names(self, key: str) -> list[str]:
-        """Dotted names of the per-ball variable ``key`` (e.g. "Q_i") in ball order."""
+        """Dotted names of the per-ball variable ``key`` (e.g. "Q_i") in ball order.
+
+        Parameters
+        ----------
+        key : str
+            A per-ball variable ("Q_i", "alpha_i", ...).
+
+        Returns
+        -------
+        list of str
+            Its dotted names, one per ball.
+        """
         return [f"{self.path}.{key}[{j}]" for j in range(self.n_balls)]
 
     def loads(self) -> BallContacts:
-        """:func:`row_loads` on this row's symbols."""
+        """:func:`row_loads` on this row's symbols.
+
+        Returns
+        -------
+        BallContacts
+            Contact loads and angles of every ball (symbols).
+        """
         return row_loads(self, self.inner.displacement(), self.outer.displacement(),
                          self.n_balls, self.direction, reference=self.reference,
                          exact=self.exact, ball_centres=self._centres,
@@ -152,7 +171,13 @@ class BallRow(Component):
                          ball_density=self.ball_density)
 
     def representative_loads(self) -> BallContacts:
-        """:func:`row_loads` of ball 0 alone under the axial part of the ring displacements."""
+        """:func:`row_loads` of ball 0 alone under the axial part of the ring displacements.
+
+        Returns
+        -------
+        BallContacts
+            Contact loads and angles of ball 0 (symbols).
+        """
         def axial(frame):
             return [0.0, 0.0, frame.z, 0.0, 0.0]
 

@@ -112,6 +112,8 @@ class RaceContact(Component):
         Reduced radii of the contact along and across rolling [m] (rolling resistance).
     e_eff : float, optional
         Effective modulus ``E'`` [Pa] (rolling resistance).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
