@@ -57,6 +57,20 @@ def contact_stiffness(k_const, delta, smooth=None):
     ``1.5 K max(delta, 0)^0.5``, or with ``smooth`` the exact derivative of the smooth form,
     ``1.5 K s^0.5 (1 + delta / sqrt(delta^2 + smooth^2)) / 2``. Parameters are those of
     :func:`contact_load`.
+
+    Parameters
+    ----------
+    k_const : float or array or SX
+        Load-deflection constant K [N/m^1.5], >= 0.
+    delta : float or array or SX
+        Approach [m] (negative: a gap).
+    smooth : float, optional
+        Smoothing length [m], > 0 (None: exact).
+
+    Returns
+    -------
+    float or array or SX
+        dQ/d delta [N/m].
     """
     check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_stiffness")
     check_range(delta, "delta", "m", where="contact_stiffness")

@@ -57,13 +57,30 @@ class Modes:
     mass: np.ndarray
 
     def frequency(self, name: str) -> float:
-        """Natural frequency of the mode called ``name`` [Hz]."""
+        """Natural frequency of the mode called ``name`` [Hz].
+
+        Parameters
+        ----------
+        name : str
+            A mode name of :data:`MODE_NAMES`.
+
+        Returns
+        -------
+        float
+            Its frequency [Hz].
+        """
         if name not in self.names:
             raise ParameterError(f"no mode named {name!r}; modes: {', '.join(self.names)}")
         return float(self.frequencies[self.names.index(name)])
 
     def by_name(self) -> dict[str, float]:
-        """Frequencies [Hz] keyed by mode name, in :data:`MODE_NAMES` order."""
+        """Frequencies [Hz] keyed by mode name, in :data:`MODE_NAMES` order.
+
+        Returns
+        -------
+        dict of str to float
+            Frequency [Hz] by mode name.
+        """
         return {n: self.frequency(n) for n in MODE_NAMES}
 
     def __repr__(self) -> str:
@@ -75,7 +92,13 @@ class Modes:
         return f"<Modes: {modes}; damping ratio {damping}>"
 
     def damping_matrix(self) -> np.ndarray:
-        """Viscous damping matrix of the modal damping ratios, ``M Phi diag(2 zeta w) Phi^T M``."""
+        """Viscous damping matrix of the modal damping ratios, ``M Phi diag(2 zeta w) Phi^T M``.
+
+        Returns
+        -------
+        numpy.ndarray
+            C (5, 5) [N s/m, N m s/rad].
+        """
         w = 2.0 * np.pi * self.frequencies
         mp = self.mass @ self.shapes
         return mp @ np.diag(2.0 * self.damping_ratios * w) @ mp.T
