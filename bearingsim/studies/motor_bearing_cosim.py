@@ -50,6 +50,16 @@ def bearing_model(**kwargs):
 
     ``kwargs`` go to :func:`bearingsim.assemblies.double_layer.double_layer_bearing`
     (``drive="speed"`` and ``speed=None`` are fixed).
+
+    Parameters
+    ----------
+    **kwargs
+        Keywords of :func:`~bearingsim.assemblies.double_layer.double_layer_bearing`.
+
+    Returns
+    -------
+    Assembly
+        The bearing, its shaft speed an input.
     """
     from bearingsim.assemblies.double_layer import double_layer_bearing
 
