@@ -122,11 +122,6 @@ def base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, flo
 def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
     """Factor and offset from ``unit`` to ``si_unit`` (``si = factor * x + offset``).
 
-    Raises
-    ------
-    UnitError
-        When the two are not units of the same quantity (radians counted).
-
     Parameters
     ----------
     unit : str
@@ -138,6 +133,11 @@ def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
     -------
     tuple of float
         ``(factor, offset)``.
+
+    Raises
+    ------
+    UnitError
+        When the two are not units of the same quantity (radians counted).
     """
     e1, f1, o1 = base_exponents(unit)
     e2, f2, o2 = base_exponents(si_unit)
