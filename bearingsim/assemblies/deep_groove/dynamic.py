@@ -92,7 +92,7 @@ class DeepGrooveBallBearing(Assembly):
     ...     bearing_design("6304"), get_lubricant("ISO VG 32"),
     ...     DeepGrooveOptions(loads={"Fx": 500.0}, rings=RingOptions(drive="flange")))
     >>> len(bearing.ball), bearing.options.cage.pocket_mu
-    (8, 0.1)
+    (7, 0.1)
     """
 
     def __init__(self, design: BearingDesign, lubricant: Lubricant,

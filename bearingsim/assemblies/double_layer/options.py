@@ -124,8 +124,9 @@ class LayerPairOptions:
     lubrication: Any = _DEFAULT_LUBRICATION
     drive: str = "speed"
     speed: Callable | float | None = None
-    geometries: tuple[BearingGeometry, BearingGeometry] = field(init=False, repr=False)
-    lubricants: tuple[Lubricant, Lubricant] = field(init=False, repr=False)
+    geometries: tuple[BearingGeometry, BearingGeometry] = field(init=False, repr=False,
+                                                               compare=False)
+    lubricants: tuple[Lubricant, Lubricant] = field(init=False, repr=False, compare=False)
 
     def _resolve_geometries(self) -> None:
         self._set(geometries=(resolve_bearing(self.inner), resolve_bearing(self.outer)))
@@ -226,8 +227,8 @@ class DoubleLayerOptions(LayerPairOptions):
     oil_level: float | None = None
     middle_ring_drag: dict | None = None
     layer_options: dict | None = None
-    layer_options_each: tuple[dict, dict] = field(init=False, repr=False)
-    gap: tuple[float, ...] | None = field(init=False, repr=False)
+    layer_options_each: tuple[dict, dict] = field(init=False, repr=False, compare=False)
+    gap: tuple[float, ...] | None = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self._resolve_geometries()
@@ -309,7 +310,7 @@ class DynamicDoubleLayerOptions(LayerPairOptions):
     w_middle0: float = 0.0
     fits: bool = False
     layer_options: dict | None = None
-    layer: DeepGrooveOptions = field(init=False, repr=False)
+    layer: DeepGrooveOptions = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self._resolve_geometries()

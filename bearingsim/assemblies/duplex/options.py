@@ -115,10 +115,10 @@ class DuplexOptions:
     smooth: float = 1e-9
     axisymmetric: bool = False
     damping_ratio: float | None = None
-    geometry: BearingGeometry = field(init=False, repr=False)
-    shaft_spec: ShaftSpec = field(init=False, repr=False)
-    preload_force: float = field(init=False, repr=False)
-    spacer_width_difference: float = field(init=False, repr=False)
+    geometry: BearingGeometry = field(init=False, repr=False, compare=False)
+    shaft_spec: ShaftSpec = field(init=False, repr=False, compare=False)
+    preload_force: float = field(init=False, repr=False, compare=False)
+    spacer_width_difference: float = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         g = resolve_bearing(self.bearing)
