@@ -25,6 +25,7 @@ from bearingsim.assemblies.double_layer import (
     DoubleLayerBearing,
     DoubleLayerOptions,
     DynamicDoubleLayerOptions,
+    LayerPairOptions,
     double_layer_bearing,
 )
 from bearingsim.assemblies.duplex import (
@@ -98,6 +99,7 @@ def test_double_layer_options_resolve_the_pair_and_each_layer():
     bearing = DoubleLayerBearing(options)
     assert bearing.options is options and bearing.structure == "Z"
     assert double_layer_bearing(friction_model="skf", oil_level=0.0).options == options
+    assert LayerPairOptions().structure == "Z"   # the shared base resolves on its own too
     with pytest.raises(ParameterError, match="built by double_layer_bearing"):
         DoubleLayerOptions(fidelity="quasi-static")
     with pytest.raises(ParameterError, match="options must be a DoubleLayerOptions"):

@@ -92,7 +92,7 @@ def _pair(lubrication) -> tuple[Any, Any]:
 @dataclass(frozen=True, kw_only=True)
 class LayerPairOptions:
     """The two layers, their lubricants and the shaft's drive (every level with friction or
-    dynamics).
+    dynamics); checked at construction. The base of the levels' options.
 
     Attributes
     ----------
@@ -116,6 +116,13 @@ class LayerPairOptions:
         Derived: (inner, outer).
     lubricants : (Lubricant, Lubricant)
         Derived: (inner, outer).
+
+    Raises
+    ------
+    ParameterError
+        For a structure or drive outside the ones above, a lubrication that is not one
+        lubricant or a pair, or a constant speed above the limit;
+        :class:`~bearingsim.errors.CatalogError` for an unknown bearing or lubricant.
     """
 
     inner: str | BearingGeometry = "61905"
@@ -127,6 +134,14 @@ class LayerPairOptions:
     geometries: tuple[BearingGeometry, BearingGeometry] = field(init=False, repr=False,
                                                                compare=False)
     lubricants: tuple[Lubricant, Lubricant] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        # the levels' options run these steps in their own order, with their own checks
+        self._resolve_geometries()
+        self._resolve_structure()
+        self._check_drive()
+        self._resolve_lubricants()
+        self._check_speed()
 
     def _resolve_geometries(self) -> None:
         self._set(geometries=(resolve_bearing(self.inner), resolve_bearing(self.outer)))
