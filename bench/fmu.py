@@ -66,7 +66,7 @@ class RotationalDrive(Assembly):
 
 
 def _bearing():
-    from bearingsim.fmu.cosim_models import bearing_model
+    from bearingsim.studies.motor_bearing_cosim import bearing_model
 
     return bearing_model()
 

@@ -37,7 +37,8 @@ subtracts the output of :class:`_Clock` from the right-hand side: a CasADi callb
 records the normalized time of each evaluation, moves the bar now and then, and returns exactly
 ``0.0``. ``x - 0.0 == x`` for every float (``-0.0`` included), so the run with a bar takes the
 same steps and gives the same numbers bit for bit as the run without, on a terminal or piped, on
-a fast or a slow machine (``tests/test_progress.py``). The callback costs a Python call per
+a fast or a slow machine (``tests/simulation/test_progress.py``). The callback costs a Python
+call per
 evaluation (``python -m bench.sundials_compiled progress``).
 """
 

@@ -6,7 +6,8 @@ The file is written by this module from the models themselves, never by hand::
 
     python -m bearingsim.studies.fidelity_errors
 
-and ``tests/test_fidelity_errors.py`` re-measures every entry. Each declared error is the largest
+and ``tests/studies/test_fidelity_errors.py`` re-measures every entry. Each declared error is the
+largest
 relative deviation ``|q_level - q_reference| / |q_reference|`` over the operating points of
 :data:`DOUBLE_LAYER_POINTS`, rounded up to two significant digits.
 """

@@ -11,8 +11,8 @@ from fmpy.ssp.simulation import simulate_ssp
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.motor_drive import MotorShaft, motor_drive
-from bearingsim.fmu.cosim_models import BEARING_OUTPUTS, MOTOR_OUTPUTS
 from bearingsim.simulation import simulate
+from bearingsim.studies.motor_bearing_cosim import BEARING_OUTPUTS, MOTOR_OUTPUTS
 from tests.fmu.conftest import COSIM_FR, cosim_ramp
 from tests.fmu.helpers import open_fmu
 

@@ -23,6 +23,7 @@ enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
 * :mod:`.quasi_static`: :class:`QuasiStaticDeepGroove`;
 * :mod:`.dynamic`: :class:`DeepGrooveBallBearing`;
 * :mod:`.factory`: :func:`deep_groove_ball_bearing`;
+* :mod:`.figures`: ball load against azimuth with Stribeck's distribution;
 * :mod:`.scene`: :data:`SCENE_SPEC`.
 """
 

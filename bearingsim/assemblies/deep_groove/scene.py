@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.assemblies.deep_groove.factory import deep_groove_ball_bearing
+from bearingsim.assemblies.deep_groove.figures import deep_groove_plots
 from bearingsim.assemblies.deep_groove.options import FIDELITIES
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
 
@@ -37,5 +38,6 @@ SCENE_SPEC = AssemblySpec(
                        ("w_cage", "slip", "inner*", "outer*", "pocket*", "shaft_speed"))],
     default_outputs=["row.Q_i[0]", "row.alpha_i[0]"],
     optional_inputs=("load.*",),  # no load on the inner ring
+    plots=deep_groove_plots,
 )
 """The single deep-groove ball bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

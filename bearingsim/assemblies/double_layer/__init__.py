@@ -17,6 +17,7 @@ drags the middle ring to a speed ``n_z``; the speed distribution ratio is ``Rs =
 * :mod:`.dynamic`: ball and cage dynamics of both layers (``dynamic``),
   :class:`DynamicDoubleLayerBearing`;
 * :mod:`.factory`: :func:`double_layer_bearing`;
+* :mod:`.figures`: the steady speed ratio against shaft speed;
 * :mod:`.scene`: :data:`SCENE_SPEC` (arguments, the build from a scene, each layer's life and
   the total friction power).
 """

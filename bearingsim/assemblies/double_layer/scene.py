@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.assemblies.double_layer.factory import double_layer_bearing
+from bearingsim.assemblies.double_layer.figures import double_layer_plots
 from bearingsim.assemblies.double_layer.options import (
     FIDELITIES,
     FRICTION_MODELS,
@@ -148,5 +149,6 @@ SCENE_SPEC = AssemblySpec(
     optional_inputs=("Fr", "Fa", "shaft.F*", "middle.F*", "inner_layer.load.*"),  # no load
     reference_fidelity=declared_errors("double_layer_bearing")[0],
     level_errors=declared_errors("double_layer_bearing")[1],
+    plots=double_layer_plots,
 )
 """The double-layer bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

@@ -24,6 +24,8 @@ preloaded by a constant axial (spring) force on the shaft instead.
 * :mod:`.options`: :class:`DuplexOptions`, everything a pair is built from, checked once;
 * :mod:`.pair`: :class:`DuplexPair` (built from a :class:`DuplexOptions`), :func:`duplex_pair`
   (from keywords);
+* :mod:`.figures`: natural frequencies by mode name over a run; mode names of a
+  ``modes`` scene;
 * :mod:`.scene`: :data:`SCENE_SPEC`.
 """
 

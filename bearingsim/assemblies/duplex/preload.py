@@ -25,7 +25,8 @@ No published rule was found (catalogues tabulate preload classes per bearing, no
 fraction of C), so the fractions are the ones the catalogue's own classes imply: the NSK
 precision 7020 series of docs/studies.md, section B (7020C 15 deg: 540/1270/2550 N, 7020A5 25 deg:
 830/1960/3920 N, 7020A 30 deg: 840/2750/4310 N) divided by the ISO 281 C of their ball set
-(63.5, 59.9 and 57.5 kN), rounded to two digits; ``tests/test_duplex.py`` recomputes them. For
+(63.5, 59.9 and 57.5 kN), rounded to two digits; ``tests/assemblies/test_duplex.py``
+recomputes them. For
 a 15 deg bearing that is about 1 %, 2 % and 4 % of C."""
 
 

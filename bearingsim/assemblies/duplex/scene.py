@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from bearingsim.assemblies.duplex.figures import MODE_NAMES_BY_STATE, duplex_plots
 from bearingsim.assemblies.duplex.options import DuplexOptions
 from bearingsim.assemblies.duplex.pair import DuplexPair, duplex_pair
 from bearingsim.assemblies.duplex.preload import ARRANGEMENTS, PRELOAD_CLASSES
@@ -81,5 +82,7 @@ SCENE_SPEC = AssemblySpec(
                      "speed": lambda args: bool(args.get("speed_effects"))},
     fidelity_arg=None,
     optional_inputs=("shaft.*",),  # no external load (the preload alone)
+    plots=duplex_plots,
+    mode_names=MODE_NAMES_BY_STATE,
 )
 """The duplex pair as a scene assembly (:mod:`bearingsim.scenes`)."""

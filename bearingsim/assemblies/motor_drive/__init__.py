@@ -2,6 +2,7 @@
 motor side alone (:class:`MotorShaft`), loaded by a bearing torque input, for co-simulation.
 
 * :mod:`.drive`: :class:`MotorDrive`, :func:`motor_drive`, :class:`MotorShaft`;
+* :mod:`.figures`: the bearing's steady speed ratio against shaft speed;
 * :mod:`.scene`: :data:`SCENE_SPEC` (the motor's arguments and the double-layer bearing's
   nested under ``bearing``).
 """

@@ -7,6 +7,7 @@ from typing import Any
 
 from bearingsim.assemblies import double_layer
 from bearingsim.assemblies.motor_drive.drive import MotorDrive, motor_drive
+from bearingsim.assemblies.motor_drive.figures import motor_drive_plots
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default, nested_post
 from bearingsim.components.motor import MOTOR_DRIVES
 
@@ -57,5 +58,6 @@ SCENE_SPEC = AssemblySpec(
     level_errors={level: {"motor.w_ref": 0.0,  # an input: exact at every level
                           **{"bearing." + pattern: error for pattern, error in errors.items()}}
                   for level, errors in _BEARING.level_errors.items()},
+    plots=motor_drive_plots,
 )
 """The motor drive with a double-layer bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

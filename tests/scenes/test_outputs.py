@@ -29,7 +29,7 @@ from bearingsim.files import FileAccessError, atomic_write_text
 from bearingsim.scenes.outputs import LOCK_NAME, OutputFolder, OutputFolderBusy, file_record
 from bearingsim.simulation import Result
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 FAST = """
 title = "outputs test"

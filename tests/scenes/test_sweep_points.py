@@ -18,7 +18,7 @@ from bearingsim.scenes.sweep import SweepError, grid_points, parse_grid, run_swe
 
 distributed = pytest.importorskip("distributed")
 
-SCENES = sorted((Path(__file__).resolve().parent.parent / "scenes").glob("*.toml"))
+SCENES = sorted((Path(__file__).resolve().parents[2] / "scenes").glob("*.toml"))
 T_SHORT = 0.04
 """Simulated time of the points [s] (short: the test compares, it does not study)."""
 

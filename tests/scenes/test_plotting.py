@@ -165,7 +165,7 @@ def _scene_figures(name, t_end):
 
 
 # every shipped scene's figures (labels, display units, loads from 0, no self-plot):
-# tests/test_scene_analyses.py::test_every_shipped_figure_reads_as_a_report (issue 27)
+# tests/scenes/test_scene_analyses.py::test_every_shipped_figure_reads_as_a_report (issue 27)
 
 
 def test_ball_loads_against_azimuth_match_the_model_and_stribeck():

@@ -22,7 +22,7 @@ from bearingsim.reference import (
 
 CLASSES = component_classes()
 EXAMPLES = example_components()
-DOCS = Path(__file__).resolve().parent.parent / "docs" / "components.md"
+DOCS = Path(__file__).resolve().parents[2] / "docs" / "components.md"
 
 
 def test_the_walk_finds_the_components():

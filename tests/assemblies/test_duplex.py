@@ -34,7 +34,7 @@ from bearingsim.studies.duplex import (
     sweep,
 )
 from bearingsim.units import deg
-from tests.test_ball_row import jones_contact_angle
+from tests.components.test_ball_row import jones_contact_angle
 
 ROW = row_parameters("7020C")
 A = (ROW.fi + ROW.fo - 1.0) * ROW.Dw

@@ -40,7 +40,7 @@ from bearingsim.scenes.sweep_worker import load_model, run_job
 from bearingsim.simulation import simulate
 from bearingsim.units import rpm_to_rad_s
 
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
 BASE = """
 title = "test"

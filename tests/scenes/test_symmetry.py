@@ -15,7 +15,7 @@ from bearingsim.scenes.scene import load_scene, parse_scene
 from bearingsim.simulation import simulate
 
 OUTPUTS = ["shaft.z", "row[0].Q_i[0]", "row[1].Q_i[5]", "row[0].alpha_i[0]"]
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
 
 @pytest.fixture(scope="module")

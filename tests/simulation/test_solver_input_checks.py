@@ -42,7 +42,7 @@ def test_method_of_the_other_backend_is_rejected(torque_system, backend, method,
                     n_points=3).stats["method"] == "cvodes"
     assert simulate(torque_system, 0.1, inputs=SPEED, backend="scipy",
                     n_points=3).stats["method"] == "BDF"
-    # neither given: the default method for the system (tests/test_method_choice.py); the
+    # neither given: the default method for the system (tests/simulation/test_method_choice.py); the
     # 3-state torque level is tiny, so CVODES on the VM
     assert simulate(torque_system, 0.1, inputs=SPEED, n_points=3).stats["method"] == "cvodes"
 
@@ -280,7 +280,7 @@ def _duplex_step_scene(arrangement: str, fz: float):
     from bearingsim.scenes.runner import prepare
     from bearingsim.scenes.scene import load_scene
 
-    scene = load_scene(Path(__file__).parents[1] / "scenes" / "duplex_pair_axial.toml")
+    scene = load_scene(Path(__file__).parents[2] / "scenes" / "duplex_pair_axial.toml")
     scene = scene.replace(args={**scene.args, "arrangement": arrangement},
                           inputs={**scene.inputs, "shaft.Fz": f"{fz} * step(0.002)"})
     return prepare(scene)

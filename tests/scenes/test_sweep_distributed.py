@@ -22,7 +22,7 @@ from bearingsim.scenes.sweep import grid_points, parse_grid, run_sweep
 
 distributed = pytest.importorskip("distributed")
 
-WORKTREE = Path(__file__).resolve().parent.parent
+WORKTREE = Path(__file__).resolve().parents[2]
 DASK = Path(sys.executable).parent / "dask"
 SCENE = """outputs = ["Rs", "M_shaft"]
 [assembly]

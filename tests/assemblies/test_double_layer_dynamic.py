@@ -166,7 +166,7 @@ def test_more_friction_in_the_inner_layer_raises_the_ratio(nested, oil_ratio):
 def test_static_reference_is_the_nested_quasi_static_level():
     # the single-layer quasi-static solution (the dynamic components' contact geometry) in
     # series reproduces the nested quasi-static level (BallRow): 23.6247 vs 23.6232 um at 200 N
-    # radial (axially: tests/test_nested_static.py, 70.38 / 135.13 um under 100 N)
+    # radial (axially: tests/assemblies/test_nested_static.py, 70.38 / 135.13 um under 100 N)
     from bearingsim.studies.nested_equilibrium import nested_equilibrium
 
     bearing = double_layer_bearing("61905", "61907", fidelity="quasi-static")

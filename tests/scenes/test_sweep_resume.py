@@ -41,7 +41,7 @@ n_points = 3
 """
 GRID = ["inputs.shaft_speed=100,150,200,250,300,350,400,450,500,550,600,650",
         "inputs.Fr=100,400"]
-WORKTREE = Path(__file__).resolve().parent.parent
+WORKTREE = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")
