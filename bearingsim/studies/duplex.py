@@ -21,7 +21,6 @@ overrides only what it is given.
 from __future__ import annotations
 
 import functools
-import inspect
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
@@ -31,7 +30,8 @@ import numpy as np
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.duplex import (
     ARRANGEMENTS,
-    DuplexPair,
+    DuplexOptions,
+    duplex_pair,
     offset_preload,
     preload_force,
     preload_offset,
@@ -43,7 +43,7 @@ from bearingsim.physics.shaft_modes import DOFS, LOSS_FACTOR, MODE_NAMES, Modes,
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 from bearingsim.units import engineering, to_deg
-from bearingsim.validation import check_mapping
+from bearingsim.validation import check_mapping, keyword_names
 
 __all__ = [
     "MODE_NAMES",
@@ -68,7 +68,7 @@ SWEEP_PARAMETERS = {
 """Sweepable configuration parameters: (display unit, factor from SI to it)."""
 _LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))
 _POSITIONS = tuple(f"shaft.{k}" for k in DOFS)
-_PAIR_OPTIONS = frozenset(inspect.signature(DuplexPair).parameters) - {"bearing", "arrangement"}
+_PAIR_OPTIONS = frozenset(keyword_names(DuplexOptions, ("bearing", "arrangement"))) | {"name"}
 _UNLOADED = 1e-3  # N: a row whose largest ball load is below this is reported as unloaded
 _ACCEL_TOL = 1e-7  # m/s^2, rad/s^2: equilibrium residual (displacement error ~ m a / k < 1e-13)
 
@@ -146,7 +146,7 @@ class DuplexModel:
         (7020C, 7020A5, 7020A) share one model: pass them to :meth:`parameters`.
     arrangement : {"DF", "DB", "DT"}
     pair_options : dict
-        Further keyword arguments of :class:`~bearingsim.assemblies.duplex.DuplexPair`
+        Further fields of :class:`~bearingsim.assemblies.duplex.DuplexOptions` and ``name``
         (shaft, speed_effects, housing_stiffness, exact, smooth, ...). The configuration
         options ``preload`` [N or class], ``speed`` [rad/s], ``contact_angle`` [rad],
         ``ball_position_angle`` [rad] and ``spacer_offset`` [m] become the model's default
@@ -183,7 +183,7 @@ class DuplexModel:
                 "radial/tilt loads, 5x5 stiffness and modes would be wrong; build the pair with "
                 "duplex_pair(..., axisymmetric=True) for pure axial loads"
             )
-        self.pair = DuplexPair(self.bearing, self.arrangement, **options)
+        self.pair = duplex_pair(self.bearing, self.arrangement, **options)
         self.geometry = self.pair.geometry
         self.system = assemble(self.pair)
         spec = self.pair.shaft_spec
@@ -239,7 +239,8 @@ class DuplexModel:
         """Parameter overrides of one configuration.
 
         Every argument left at None takes the value the pair was built with (the
-        configuration options of ``pair_options``, else :class:`DuplexPair`'s defaults).
+        configuration options of ``pair_options``, else the defaults of
+        :class:`~bearingsim.assemblies.duplex.DuplexOptions`).
 
         Parameters
         ----------

@@ -8,7 +8,12 @@ import pytest
 
 from bearingsim import Assembly, connect
 from bearingsim.assembler import assemble
-from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
+from bearingsim.assemblies.deep_groove import (
+    DeepGrooveBallBearing,
+    DeepGrooveOptions,
+    FilmOptions,
+    RingOptions,
+)
 from bearingsim.components.rotational import SpeedSource
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Oil
@@ -20,9 +25,11 @@ W = 100.0  # rad/s
 class CoRotating(Assembly):
     def __init__(self):
         super().__init__("rig")
+        options = DeepGrooveOptions(massive_balls=True, speed=W, loads={"Fx": 300.0},
+                                    rings=RingOptions(outer_ring="flange"),
+                                    film=FilmOptions(n_slices=1, drag=False))
         self.bearing = DeepGrooveBallBearing(bearing_design("6304"), Oil.from_iso_vg(32),
-                                             massive_balls=True, speed=W, loads={"Fx": 300.0},
-                                             outer_ring="flange", n_slices=1, drag=False)
+                                             options)
         self.outer_drive = SpeedSource(W)
         connect(self.outer_drive.flange, self.bearing.outer_flange)
 

@@ -11,7 +11,11 @@ import pytest
 from bearingsim import Assembly, connect
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
-from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
+from bearingsim.assemblies.deep_groove import (
+    DeepGrooveBallBearing,
+    DeepGrooveOptions,
+    RingOptions,
+)
 from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing
 from bearingsim.components.dynamic import RingDrag
 from bearingsim.components.dynamic.ball import MICRON
@@ -60,14 +64,17 @@ def test_dynamic_level_nests_two_ball_bearings_on_the_middle_ring():
     assert bearing.middle_body.parameter("m").value == pytest.approx(bearing.middle.mass)
     assert not hasattr(bearing.outer_layer, "ring") and not hasattr(bearing.outer_layer, "load")
     assert not hasattr(bearing.inner_layer, "housing")
+    # the ring options are checked when they are built, before any bearing
     with pytest.raises(ParameterError, match="inner_ring"):
-        DeepGrooveBallBearing(bearing.designs[0], OIL, inner_ring="shaft")
+        RingOptions(inner_ring="shaft")
     with pytest.raises(ParameterError, match="outer_support"):
-        DeepGrooveBallBearing(bearing.designs[0], OIL, outer_support="sleeve")
+        RingOptions(outer_support="sleeve")
     with pytest.raises(ParameterError, match="outer_start"):
-        DeepGrooveBallBearing(bearing.designs[0], OIL, outer_start=(0.0, 0.0, 1e-6))
+        RingOptions(outer_start=(0.0, 0.0, 1e-6))
     with pytest.raises(ParameterError, match="constants"):
-        DeepGrooveBallBearing(bearing.designs[0], OIL, inner_ring="frame", loads={"Fz": None})
+        DeepGrooveOptions(loads={"Fz": None}, rings=RingOptions(inner_ring="frame"))
+    with pytest.raises(ParameterError, match="options must be a DeepGrooveOptions"):
+        DeepGrooveBallBearing(bearing.designs[0], OIL, {"inner_ring": "frame"})
 
 
 class _DragRig(Assembly):

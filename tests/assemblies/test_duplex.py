@@ -13,6 +13,7 @@ import pytest
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.duplex import (
     PRELOAD_FRACTIONS,
+    DuplexOptions,
     DuplexPair,
     ShaftSpec,
     duplex_pair,
@@ -241,11 +242,12 @@ def test_pair_options_speed_reaches_the_system_parameters():
 
 def test_spacer_offset_sets_the_reported_and_the_solved_preload():
     offset = preload_offset("7020C", 1270.0, "DF")
-    pair = DuplexPair("7020C", "DF", spacer_offset=offset)
+    pair = DuplexPair(DuplexOptions("7020C", "DF", spacer_offset=offset))
     assert pair.preload_force == pytest.approx(1270.0, rel=1e-9)
+    assert pair.preload is None and pair.spacer_width_difference == offset
     assert offset_preload("7020C", offset, "DF") == pytest.approx(1270.0, rel=1e-9)
     with pytest.raises(ParameterError, match="either preload"):
-        DuplexPair("7020C", "DF", preload="heavy", spacer_offset=offset)
+        DuplexOptions("7020C", "DF", preload="heavy", spacer_offset=offset)
     model = DuplexModel("7020C", "DF", pair_options={"spacer_offset": offset})
     assert model.parameters()["inner_spacer.width_difference"] == offset
     assert model.equilibrium().row_axial_loads == pytest.approx([1270.0, 1270.0], rel=1e-9)

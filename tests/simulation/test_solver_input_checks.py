@@ -14,7 +14,7 @@ import pytest
 from bearingsim import Assembly, Input, Variable
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
-from bearingsim.assemblies.double_layer import DoubleLayerBearing
+from bearingsim.assemblies.double_layer import DoubleLayerBearing, DoubleLayerOptions
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import simulate
 from bearingsim.studies.double_layer import speed_ratio_sweep, steady_ratio
@@ -153,8 +153,9 @@ class _LoadedByDefault(Assembly):
 
     def __init__(self):
         super().__init__("loaded")
-        self.bearing = DoubleLayerBearing("61905", "61907", fidelity="torque",
-                                          layer_options={"load_dependent": True})
+        self.bearing = DoubleLayerBearing(DoubleLayerOptions(
+            inner="61905", outer="61907", fidelity="torque",
+            layer_options={"load_dependent": True}))
         self.shaft_speed = Input(0.0, "rad/s", "shaft speed")
         self.load = Input(2000.0, "N", "radial load", low=0.0)
         self.Rs = Variable(unit="1")

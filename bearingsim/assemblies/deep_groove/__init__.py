@@ -17,7 +17,9 @@ fixed to the housing. For a nested bearing either ring's translations can instea
 enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
 ``outer_support="frame"``).
 
-* :mod:`.options`: fidelity levels and shared constants;
+* :mod:`.options`: fidelity levels, shared constants and the dynamic levels' options
+  (:class:`DeepGrooveOptions` with its groups :class:`RingOptions`, :class:`FilmOptions`,
+  :class:`CageOptions`), checked once;
 * :mod:`.quasi_static`: :class:`QuasiStaticDeepGroove`;
 * :mod:`.dynamic`: :class:`DeepGrooveBallBearing`;
 * :mod:`.factory`: :func:`deep_groove_ball_bearing`;
@@ -27,9 +29,17 @@ enclosing assembly through a ring-frame connector (``inner_ring="frame"``,
 
 from bearingsim.assemblies.deep_groove.dynamic import DeepGrooveBallBearing
 from bearingsim.assemblies.deep_groove.factory import deep_groove_ball_bearing
-from bearingsim.assemblies.deep_groove.options import FIDELITIES, FILM_DAMPING
+from bearingsim.assemblies.deep_groove.options import (
+    FIDELITIES,
+    FILM_DAMPING,
+    CageOptions,
+    DeepGrooveOptions,
+    FilmOptions,
+    RingOptions,
+)
 from bearingsim.assemblies.deep_groove.quasi_static import QuasiStaticDeepGroove
 from bearingsim.assemblies.deep_groove.scene import SCENE_SPEC
 
-__all__ = ["FIDELITIES", "FILM_DAMPING", "SCENE_SPEC", "DeepGrooveBallBearing",
-           "QuasiStaticDeepGroove", "deep_groove_ball_bearing"]
+__all__ = ["FIDELITIES", "FILM_DAMPING", "SCENE_SPEC", "CageOptions", "DeepGrooveBallBearing",
+           "DeepGrooveOptions", "FilmOptions", "QuasiStaticDeepGroove", "RingOptions",
+           "deep_groove_ball_bearing"]

@@ -8,15 +8,12 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.assemblies.deep_groove.dynamic import DeepGrooveBallBearing
-from bearingsim.assemblies.deep_groove.options import _SET_BY_FACTORY, FIDELITIES
+from bearingsim.assemblies.deep_groove.options import FIDELITIES, DeepGrooveOptions
 from bearingsim.assemblies.deep_groove.quasi_static import QuasiStaticDeepGroove
 from bearingsim.errors import ParameterError
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
-from bearingsim.validation import (
-    check_options,
-    keyword_names,
-)
+from bearingsim.validation import check_options
 
 
 def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
@@ -55,12 +52,17 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         :class:`~bearingsim.errors.ParameterError`. At the quasi-static level the shaft holds
         the ring straight and takes the moments: ``Mx, My`` must then be absent or 0.
     **options
-        Dynamic levels only: further keyword arguments of :class:`DeepGrooveBallBearing`
-        (``drive``, ``damping``, ``n_slices``, ``drag``, ``traction_scale``, ...), and
-        ``pocket_clearance``, ``guide_clearance`` of
-        :func:`~bearingsim.physics.bearing_design.bearing_design`; another name raises
-        :class:`~bearingsim.errors.ParameterError` listing the accepted ones. The quasi-static
-        level takes none and raises :class:`~bearingsim.errors.ParameterError` if any is given.
+        Dynamic levels only: the fields of the option groups of
+        :class:`~bearingsim.assemblies.deep_groove.options.DeepGrooveOptions` by name
+        (:class:`~bearingsim.assemblies.deep_groove.options.RingOptions`: ``drive``,
+        ``free_tilt``, ...; :class:`~bearingsim.assemblies.deep_groove.options.FilmOptions`:
+        ``damping``, ``n_slices``, ``drag``, ``traction_scale``, ...;
+        :class:`~bearingsim.assemblies.deep_groove.options.CageOptions`: ``pocket_mu``,
+        ``land_mu``, ``cage_damping``), ``name``, and ``pocket_clearance``,
+        ``guide_clearance`` of :func:`~bearingsim.physics.bearing_design.bearing_design`;
+        another name raises :class:`~bearingsim.errors.ParameterError` listing the accepted
+        ones. The quasi-static level takes none and raises
+        :class:`~bearingsim.errors.ParameterError` if any is given.
 
     Returns
     -------
@@ -82,12 +84,14 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
                              f"{', '.join(sorted(options))}")
     cage_keys = ("pocket_clearance", "guide_clearance")
     if options:
-        check_options(options, keyword_names(DeepGrooveBallBearing, _SET_BY_FACTORY) + cage_keys,
+        check_options(options, DeepGrooveOptions.keyword_names() + ("name",) + cage_keys,
                       "deep_groove_ball_bearing", "option(s)", f"at fidelity {fidelity!r}")
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":
         geometry = dataclasses.replace(design.geometry, diametral_clearance=design.clearance)
         return QuasiStaticDeepGroove(geometry, loads, 0.0 if speed is None else speed)
-    return DeepGrooveBallBearing(design, lub, massive_balls=fidelity == "dynamic_massive_balls",
-                                 speed=speed, loads=loads, **options)
+    name = options.pop("name", "bearing")
+    return DeepGrooveBallBearing(design, lub, DeepGrooveOptions.from_keywords(
+        massive_balls=fidelity == "dynamic_massive_balls", speed=speed, loads=loads, **options),
+        name=name)

@@ -7,11 +7,12 @@ connections (the assembler's alias elimination and index reduction merge them). 
 the inner bearing's inner ring; the outer bearing's outer ring sits in the housing. Friction
 drags the middle ring to a speed ``n_z``; the speed distribution ratio is ``Rs = n_z / n_i``.
 
-* :mod:`.options`: fidelity levels, friction models, the layer options each level takes;
+* :mod:`.options`: fidelity levels, friction models, the layer options each level takes, and
+  the levels' options checked once: :class:`DoubleLayerOptions` (with each layer's lubrication
+  method and oil-bath level, the middle ring's oil gap), :class:`DynamicDoubleLayerOptions`;
 * :mod:`.speed`: the limiting shaft speed and the speed ratio ``Rs``;
-* :mod:`.layers`: each layer's friction element and lubrication, the middle ring's oil gap;
 * :mod:`.torque`: pure rolling (``kinematic``) and friction torque (``torque``, Palmgren or SKF),
-  :class:`DoubleLayerBearing`;
+  :class:`DoubleLayerBearing` with each layer's element;
 * :mod:`.quasi_static`: load sharing (``quasi-static``), :class:`NestedQuasiStatic`;
 * :mod:`.dynamic`: ball and cage dynamics of both layers (``dynamic``),
   :class:`DynamicDoubleLayerBearing`;
@@ -26,6 +27,9 @@ from bearingsim.assemblies.double_layer.factory import double_layer_bearing
 from bearingsim.assemblies.double_layer.options import (
     FIDELITIES,
     FRICTION_MODELS,
+    DoubleLayerOptions,
+    DynamicDoubleLayerOptions,
+    LayerPairOptions,
     layer_option_names,
 )
 from bearingsim.assemblies.double_layer.quasi_static import NestedQuasiStatic
@@ -39,9 +43,12 @@ from bearingsim.assemblies.double_layer.torque import DoubleLayerBearing
 
 __all__ = [
     "DoubleLayerBearing",
+    "DoubleLayerOptions",
     "DynamicDoubleLayerBearing",
+    "DynamicDoubleLayerOptions",
     "FIDELITIES",
     "FRICTION_MODELS",
+    "LayerPairOptions",
     "NestedQuasiStatic",
     "RS_REGULARIZATION",
     "SCENE_SPEC",

@@ -3,41 +3,16 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any
-
-from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing
-from bearingsim.assemblies.double_layer.options import _LAYER_SETS, _check_drive, _pair
-from bearingsim.assemblies.double_layer.speed import (
-    _check_shaft_speed,
-    _shaft_speed_input,
-    speed_ratio,
-)
-from bearingsim.catalog import resolve_bearing
+from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing, DeepGrooveOptions
+from bearingsim.assemblies.double_layer.options import DynamicDoubleLayerOptions
+from bearingsim.assemblies.double_layer.speed import _shaft_speed_input, speed_ratio
 from bearingsim.components.connectors import Flange
 from bearingsim.components.dynamic import RingBody
-from bearingsim.components.middle_ring import (
-    MiddleRing,
-    middle_ring_bodies,
-    middle_ring_structure,
-    mounted_geometries,
-)
+from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies
 from bearingsim.components.rotational import SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
-from bearingsim.physics.lubricant import as_lubricant
-from bearingsim.validation import (
-    check_flag,
-    check_mapping,
-    check_options,
-    keyword_names,
-)
-
-_DYNAMIC_SETS = ("drive", "outer_ring", "ring_inertia", "speed", "loads", "drag",
-                 "massive_balls", "inner_ring", "outer_support", "outer_start",
-                 "rolling_resistance", "ring_drag")
-"""Arguments of the layers' :class:`DeepGrooveBallBearing` that the dynamic level sets."""
 
 
 class DynamicDoubleLayerBearing(Assembly):
@@ -70,41 +45,13 @@ class DynamicDoubleLayerBearing(Assembly):
 
     Parameters
     ----------
-    inner, outer : str or BearingGeometry
-        Inner and outer deep-groove bearing (contact angle 0).
-    structure : {"I", "Z"} or None
-        Middle ring type (None: "I" when the inner bearing fits in the outer one's bore).
-    lubrication : lubricant or (lubricant, lubricant)
-        Viscous lubricant (``Oil``, ``Grease`` or a name) of both layers or of (inner, outer).
-    drive : {"speed", "flange"}
-        ``"speed"``: a speed source turns the shaft at ``speed`` (an input ``shaft_speed``
-        [rad/s] when ``speed`` is None); ``"flange"``: ``shaft`` (with the inner ring's polar
-        inertia) is left for a motor.
-    speed : callable or float or None
-        Shaft speed [rad/s] for ``drive="speed"``.
-    loads : dict, optional
-        Loads on the shaft (the inner layer's inner ring), ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]
-        (z is the axis); constants, functions of time or None, missing keys are inputs
-        (``inner_layer.load.Fx``, ...). The constant ones set the start values. The shaft is
-        held straight, so ``Mx, My`` may only be 0 (anything else raises
-        :class:`~bearingsim.errors.ParameterError`; the missing ones stay inputs, without
-        effect).
-    massive_balls : bool
-        Balls' radial and axial motion with inertia (True, the fast ODE level) or quasi-static.
-    rolling_resistance, ring_drag : bool
-        The two viscous loss terms above (with both, each layer's viscous loss is the torque
-        level's M0 and the ratio follows its lubricant dependence).
-    w_middle0 : float
-        Initial middle ring speed [rad/s].
-    fits : bool
-        Mount both layers with the study's fits (k6 shaft seats, H7 bores): each layer's
-        clearance becomes its operating clearance
-        (:func:`~bearingsim.components.middle_ring.mounted_geometries`); default False, the
-        clearance before mounting (catalogue rows: the CN mean).
-    layer_options : dict, optional
-        Further keyword arguments of both layers (``n_slices``, ``damping``, ...), those of
-        :class:`~bearingsim.assemblies.deep_groove.DeepGrooveBallBearing` that this assembly
-        does not set; others raise :class:`~bearingsim.errors.ParameterError`.
+    options : DynamicDoubleLayerOptions, optional
+        The layers, lubricants, drive, loads and loss terms, checked when it was built
+        (:class:`~bearingsim.assemblies.double_layer.options.DynamicDoubleLayerOptions`);
+        default: 61905 in 61907, ISO VG 32, massive balls, rolling resistance and ring drag,
+        driven by the input ``shaft_speed``, every load an input.
+    name : str
+        Instance name.
 
     Connectors
     ----------
@@ -118,63 +65,31 @@ class DynamicDoubleLayerBearing(Assembly):
     ``inner_layer.ring.x, y, z`` (shaft) and ``middle_body.x, y, z`` (middle ring) [m]
     """
 
-    def __init__(self, inner="61905", outer="61907", structure: str | None = None,
-                 lubrication=("ISO VG 32", "ISO VG 32"), drive: str = "speed",
-                 speed: Callable | float | None = None, loads: dict[str, Any] | None = None,
-                 massive_balls: bool = True, rolling_resistance: bool = True,
-                 ring_drag: bool = True, w_middle0: float = 0.0, fits: bool = False,
-                 layer_options: dict | None = None, name="bearing"):
+    def __init__(self, options: DynamicDoubleLayerOptions | None = None, name="bearing"):
         super().__init__(name)
-        gi, go = resolve_bearing(inner), resolve_bearing(outer)
-        self.structure = middle_ring_structure(gi, go, structure)
-        check_flag(fits, "fits", "double_layer_bearing")
-        if fits:
-            gi, go = mounted_geometries(gi, go, self.structure)
-        _check_drive(drive)
-        lub_i, lub_o = (as_lubricant(x, "double_layer_bearing") for x in _pair(lubrication))
-        for lub in (lub_i, lub_o):
-            if not lub.is_viscous:
-                raise ParameterError(f"double_layer_bearing: the dynamic level needs viscous "
-                                     f"lubricants (oil or grease), got {lub.describe()}")
-        opts = check_mapping(layer_options, "layer_options", "double_layer_bearing",
-                             "option names")
-        for key in _DYNAMIC_SETS:
-            if key in opts:
-                raise ParameterError(f"double_layer_bearing: layer_options may not set "
-                                     f"{key!r} (the nested assembly sets it)")
-        if "oil_fraction" in opts:
-            raise ParameterError("double_layer_bearing: layer_options 'oil_fraction' is not "
-                                 "used: the dynamic level has no ball drag (drag=False)")
-        check_options(opts, keyword_names(DeepGrooveBallBearing, _DYNAMIC_SETS + _LAYER_SETS
-                                           + ("design", "oil_fraction")),
-                      "double_layer_bearing", "layer_options", "at the dynamic level")
-        if not opts.get("free_tilt", False):
-            for key in ("Mx", "My"):
-                if key in (loads or {}) and loads[key] != 0.0:
-                    raise ParameterError(
-                        f"double_layer_bearing: loads[{key!r}] = {loads[key]!r} [N.m] is not "
-                        f"applied: the shaft and the middle ring are held straight (free_tilt="
-                        f"False) and the moments are reactions; give {key} = 0 or leave it out")
-        self.geometries = (gi, go)
+        options = DynamicDoubleLayerOptions() if options is None else options
+        if not isinstance(options, DynamicDoubleLayerOptions):
+            raise ParameterError(f"double_layer_bearing: options must be a "
+                                 f"DynamicDoubleLayerOptions, got {type(options).__name__}")
+        self.options = options
+        self.structure = options.structure
+        self.geometries = gi, go = options.geometries
         self.designs = (bearing_design(gi), bearing_design(go))
-        loads = dict(loads or {})
-        constant = {k: v for k, v in loads.items() if isinstance(v, (int, float))}
-        common = dict(massive_balls=massive_balls, drag=False,
-                      rolling_resistance=rolling_resistance, ring_drag=ring_drag,
-                      drive="flange", **opts)
+        lub_i, lub_o = options.lubricants
+        loads = options.loads
+        constant = DeepGrooveOptions.constant_loads(loads)
         self.shaft = Flange()
-        self.middle = MiddleRing(middle_ring_bodies(gi, go, self.structure), w0=w_middle0)
-        self.outer_layer = DeepGrooveBallBearing(self.designs[1], lub_o, ring_inertia=False,
-                                                 loads=constant, inner_ring="frame", **common)
+        self.middle = MiddleRing(middle_ring_bodies(gi, go, self.structure), w0=options.w_middle0)
+        self.outer_layer = DeepGrooveBallBearing(self.designs[1], lub_o, options.for_layer(
+            constant, ring_inertia=False, inner_ring="frame"))
         start = self.outer_layer.start
         middle0 = tuple(float(v) for v in start.ring[:3]) if start else (0.0, 0.0, 0.0)
         self.middle_body = RingBody(self.middle.mass, 0.5 * self.middle.J,
                                       start=(*middle0, 0.0, 0.0))
         # an imposed shaft speed needs no shaft inertia (which would need the input's derivative)
-        self.inner_layer = DeepGrooveBallBearing(self.designs[0], lub_i, outer_ring="flange",
-                                                 ring_inertia=drive == "flange", loads=loads,
-                                                 outer_support="frame", outer_start=middle0,
-                                                 **common)
+        self.inner_layer = DeepGrooveBallBearing(self.designs[0], lub_i, options.for_layer(
+            loads, outer_ring="flange", ring_inertia=options.drive == "flange",
+            outer_support="frame", outer_start=middle0))
         self.w_shaft = Variable(unit="rad/s", description="shaft (inner ring) speed")
         self.w_middle = Variable(unit="rad/s", description="middle ring speed")
         self.Rs = Variable(unit="1", description="speed distribution ratio n_z / n_i")
@@ -184,13 +99,11 @@ class DynamicDoubleLayerBearing(Assembly):
         connect(self.middle.outer_side, self.outer_layer.shaft)
         connect(self.middle_body.frame, self.inner_layer.outer_frame,
                 self.outer_layer.inner_frame)
-        if drive == "speed":
-            self.drive = SpeedSource(speed)
+        if options.drive == "speed":
+            self.drive = SpeedSource(options.speed)
             connect(self.drive.flange, self.shaft)
-            if speed is None:
+            if options.speed is None:
                 self.shaft_speed = _shaft_speed_input(gi, go)
-            else:
-                _check_shaft_speed(speed, gi, go)
 
     def rolling_start(self, w_shaft: float, w_middle: float,
                       states: list[str]) -> dict[str, float]:

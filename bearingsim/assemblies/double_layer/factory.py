@@ -3,8 +3,15 @@ fidelity level asked for."""
 
 from __future__ import annotations
 
+import dataclasses
+
 from bearingsim.assemblies.double_layer.dynamic import DynamicDoubleLayerBearing
-from bearingsim.assemblies.double_layer.options import _pair
+from bearingsim.assemblies.double_layer.options import (
+    _DEFAULT_LUBRICATION,
+    DoubleLayerOptions,
+    DynamicDoubleLayerOptions,
+    _pair,
+)
 from bearingsim.assemblies.double_layer.quasi_static import NestedQuasiStatic
 from bearingsim.assemblies.double_layer.torque import DoubleLayerBearing
 from bearingsim.errors import ParameterError
@@ -13,8 +20,6 @@ from bearingsim.validation import (
     keyword_names,
 )
 
-_DEFAULT_LUBRICATION = ("ISO VG 32", "ISO VG 32")
-
 
 def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity="torque",
                          lubrication=_DEFAULT_LUBRICATION, **kwargs):
@@ -22,12 +27,15 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
 
     ``fidelity="quasi-static"`` returns a
     :class:`.NestedQuasiStatic` (load through both layers in series; keywords ``axial``,
-    ``name``; it has no friction, so a ``lubrication`` other than the default raises);
-    ``fidelity="dynamic"`` a :class:`DynamicDoubleLayerBearing`
-    (keywords ``drive``, ``speed``, ``loads``, ``massive_balls``, ``rolling_resistance``,
-    ``ring_drag``, ``w_middle0``, ``layer_options``, ``name``); the other levels a
-    :class:`DoubleLayerBearing` (keywords ``friction_model``, ``drive``, ``speed``,
-    ``layer_options``, ``name``).
+    ``fits``, ``name``; it has no friction, so a ``lubrication`` other than the default
+    raises); ``fidelity="dynamic"`` a :class:`DynamicDoubleLayerBearing` built from a
+    :class:`~bearingsim.assemblies.double_layer.options.DynamicDoubleLayerOptions` (keywords
+    ``drive``, ``speed``, ``loads``, ``massive_balls``, ``rolling_resistance``, ``ring_drag``,
+    ``w_middle0``, ``fits``, ``layer_options``, and ``name``); the other levels a
+    :class:`DoubleLayerBearing` built from a
+    :class:`~bearingsim.assemblies.double_layer.options.DoubleLayerOptions` (keywords
+    ``friction_model``, ``drive``, ``speed``, ``lubrication_method``, ``oil_level``,
+    ``middle_ring_drag``, ``layer_options``, and ``name``).
 
     Parameters
     ----------
@@ -40,7 +48,7 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
     lubrication : lubricant or (lubricant, lubricant)
         Lubricant of both layers or of (inner, outer).
     **kwargs
-        Keywords of the class built for ``fidelity`` (above).
+        Keywords of the options of the level built for ``fidelity`` (above).
 
     Returns
     -------
@@ -50,7 +58,7 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
     ------
     ParameterError
         For a keyword the chosen level does not take (listing the ones it takes), and the
-        checks of the class built.
+        checks of the level's options.
     """
     if fidelity == "quasi-static":
         where = "double_layer_bearing"
@@ -61,13 +69,18 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
                                  f"quasi-static level has no friction (Hertz load sharing "
                                  f"only); leave lubrication out")
         return NestedQuasiStatic(inner, outer, structure, **kwargs)
+    level = DynamicDoubleLayerOptions if fidelity == "dynamic" else DoubleLayerOptions
+    context = "at fidelity 'dynamic'" if fidelity == "dynamic" else f"at fidelity {fidelity!r}"
+    check_options(kwargs, _option_names(level) + ("name",), "double_layer_bearing",
+                  "keyword(s)", context)
+    name = kwargs.pop("name", "bearing")
+    pair = dict(inner=inner, outer=outer, structure=structure, lubrication=lubrication)
     if fidelity == "dynamic":
-        check_options(kwargs, keyword_names(DynamicDoubleLayerBearing,
-                                            ("inner", "outer", "structure", "lubrication")),
-                      "double_layer_bearing", "keyword(s)", "at fidelity 'dynamic'")
-        return DynamicDoubleLayerBearing(inner, outer, structure, lubrication, **kwargs)
-    check_options(kwargs, keyword_names(DoubleLayerBearing,
-                                        ("inner", "outer", "structure", "fidelity",
-                                         "lubrication")),
-                  "double_layer_bearing", "keyword(s)", f"at fidelity {fidelity!r}")
-    return DoubleLayerBearing(inner, outer, structure, fidelity, lubrication, **kwargs)
+        return DynamicDoubleLayerBearing(DynamicDoubleLayerOptions(**pair, **kwargs), name)
+    return DoubleLayerBearing(DoubleLayerOptions(**pair, fidelity=fidelity, **kwargs), name)
+
+
+def _option_names(level: type) -> tuple[str, ...]:
+    """The keywords of a level's options that the factory does not take as its own."""
+    own = ("inner", "outer", "structure", "fidelity", "lubrication")
+    return tuple(f.name for f in dataclasses.fields(level) if f.init and f.name not in own)

@@ -7,8 +7,11 @@ from typing import Any
 
 from bearingsim.assemblies.double_layer.factory import double_layer_bearing
 from bearingsim.assemblies.double_layer.figures import double_layer_plots
-from bearingsim.assemblies.double_layer.options import FIDELITIES, FRICTION_MODELS
-from bearingsim.assemblies.double_layer.torque import DoubleLayerBearing
+from bearingsim.assemblies.double_layer.options import (
+    FIDELITIES,
+    FRICTION_MODELS,
+    DoubleLayerOptions,
+)
 from bearingsim.assemblies.spec import (
     ArgSpec,
     AssemblySpec,
@@ -115,7 +118,7 @@ SCENE_SPEC = AssemblySpec(
                              choices=STRUCTURES),
         "lubrication": ArgSpec("lubricant", factory_default(double_layer_bearing, "lubrication"),
                                "lubricant of both layers, or [inner, outer]"),
-        "friction_model": ArgSpec("choice", factory_default(DoubleLayerBearing, "friction_model"),
+        "friction_model": ArgSpec("choice", factory_default(DoubleLayerOptions, "friction_model"),
                                   "friction torque model (torque level)",
                                   choices=FRICTION_MODELS),
         "lubrication_method": ArgSpec("choice", None, "lubrication method of both layers "

@@ -21,12 +21,15 @@ preloaded by a constant axial (spring) force on the shaft instead.
 
 * :mod:`.shaft`: :class:`ShaftSpec`;
 * :mod:`.preload`: arrangements, preload classes, offsets and preload stiffness;
-* :mod:`.pair`: :class:`DuplexPair`, :func:`duplex_pair`;
+* :mod:`.options`: :class:`DuplexOptions`, everything a pair is built from, checked once;
+* :mod:`.pair`: :class:`DuplexPair` (built from a :class:`DuplexOptions`), :func:`duplex_pair`
+  (from keywords);
 * :mod:`.figures`: natural frequencies by mode name over a run; mode names of a
   ``modes`` scene;
 * :mod:`.scene`: :data:`SCENE_SPEC`.
 """
 
+from bearingsim.assemblies.duplex.options import DuplexOptions
 from bearingsim.assemblies.duplex.pair import DuplexPair, duplex_pair
 from bearingsim.assemblies.duplex.preload import (
     ARRANGEMENTS,
@@ -40,6 +43,6 @@ from bearingsim.assemblies.duplex.preload import (
 from bearingsim.assemblies.duplex.scene import SCENE_SPEC
 from bearingsim.assemblies.duplex.shaft import ShaftSpec
 
-__all__ = ["ShaftSpec", "DuplexPair", "duplex_pair", "ARRANGEMENTS", "PRELOAD_CLASSES",
-           "PRELOAD_FRACTIONS", "SCENE_SPEC", "preload_offset", "preload_force", "offset_preload",
-           "preload_stiffness"]
+__all__ = ["ShaftSpec", "DuplexOptions", "DuplexPair", "duplex_pair", "ARRANGEMENTS",
+           "PRELOAD_CLASSES", "PRELOAD_FRACTIONS", "SCENE_SPEC", "preload_offset", "preload_force",
+           "offset_preload", "preload_stiffness"]

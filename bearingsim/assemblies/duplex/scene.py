@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.assemblies.duplex.figures import MODE_NAMES_BY_STATE, duplex_plots
+from bearingsim.assemblies.duplex.options import DuplexOptions
 from bearingsim.assemblies.duplex.pair import DuplexPair, duplex_pair
 from bearingsim.assemblies.duplex.preload import ARRANGEMENTS, PRELOAD_CLASSES
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
@@ -63,9 +64,9 @@ SCENE_SPEC = AssemblySpec(
                                  low=0.0),
         "speed": ArgSpec("float", factory_default(duplex_pair, "speed"), "shaft speed [rad/s]",
                          low=-1e9),
-        "speed_effects": ArgSpec("bool", factory_default(DuplexPair, "speed_effects"),
+        "speed_effects": ArgSpec("bool", factory_default(DuplexOptions, "speed_effects"),
                                  "centrifugal and gyroscopic ball loads"),
-        "damping_ratio": ArgSpec("float", factory_default(DuplexPair, "damping_ratio"),
+        "damping_ratio": ArgSpec("float", factory_default(DuplexOptions, "damping_ratio"),
                                  "damping ratio of the shaft against the housing [-], 0 to 1 "
                                  "(default: none, a load step rings for ever)"),
     },
