@@ -94,6 +94,8 @@ def check_range(
     ParameterError
         If the value is not a number, is NaN or infinite, or lies outside the range.
     """
+    if _plain_in_range(value, low, high, low_inclusive, high_inclusive):
+        return value  # the common case, without numpy (a failure takes the path below)
     if is_symbolic(value):
         return value
     label = f"{where}: {name}" if where else name
@@ -128,6 +130,29 @@ def check_range(
     if arr.ndim == 0 and not math.isfinite(float(arr)):
         raise ParameterError(f"{label} must be finite [{unit}]")
     return value
+
+
+_PLAIN_INT_LIMIT = 2**53
+"""Largest magnitude of a Python ``int`` the fast path of :func:`check_range` takes (exact as a
+float; larger ones, up to those beyond the float range, go through numpy)."""
+_PLAIN = (float, int)
+
+
+def _plain_in_range(value: Any, low: float | None, high: float | None, low_inclusive: bool,
+                    high_inclusive: bool) -> bool:
+    """Whether ``value`` is a Python ``float`` or ``int`` (not ``bool``), finite and within the
+    bounds: :func:`check_range`'s answer for plain numbers without building an array."""
+    if not (low is None or type(low) in _PLAIN) or not (high is None or type(high) in _PLAIN):
+        return False
+    kind = type(value)
+    if kind is float:
+        if not math.isfinite(value):
+            return False
+    elif kind is not int or not -_PLAIN_INT_LIMIT <= value <= _PLAIN_INT_LIMIT:
+        return False
+    if low is not None and not (value >= low if low_inclusive else value > low):
+        return False
+    return high is None or (value <= high if high_inclusive else value < high)
 
 
 def check_choice(value: Any, name: str, allowed: tuple, where: str = "") -> Any:
@@ -188,6 +213,8 @@ def check_count(value, name: str, low: int = 1, where: str = ""):
     ParameterError
         ``"<where>: <name> must be a whole number >= <low> [-], got <value>"``.
     """
+    if type(value) is int and low <= value <= _PLAIN_INT_LIMIT:
+        return value  # the common case, without numpy
     if is_symbolic(value):
         return value
     label = f"{where}: {name}" if where else name
@@ -405,9 +432,12 @@ def entry_point(func: Callable) -> Callable:
     accepted = [n for n, p in signature.parameters.items()
                 if p.kind not in (inspect.Parameter.VAR_POSITIONAL,
                                   inspect.Parameter.VAR_KEYWORD)]
+    binds = _binding_rule(signature)
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        if binds is not None and binds(args, kwargs):
+            return func(*args, **kwargs)
         try:
             signature.bind(*args, **kwargs)
         except TypeError as exc:
@@ -421,6 +451,33 @@ def entry_point(func: Callable) -> Callable:
         return func(*args, **kwargs)
 
     return wrapper
+
+
+def _binding_rule(signature: inspect.Signature) -> Callable[[tuple, dict], bool] | None:
+    """For a signature of plain parameters (positional-or-keyword, keyword-only; no ``*args``,
+    ``**kwargs`` or positional-only), a cheap test that a call binds: no more positional
+    arguments than it takes, keywords among its names and not given positionally too, every
+    parameter without a default given. ``signature.bind`` is the fallback (and the error)
+    where the test says no; None for other signatures."""
+    params = list(signature.parameters.values())
+    kinds = {inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY}
+    if any(p.kind not in kinds for p in params):
+        return None
+    positional = [p.name for p in params if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD]
+    names = frozenset(p.name for p in params)
+    required = [k for k, p in enumerate(params) if p.default is inspect.Parameter.empty]
+    required_names = [params[k].name for k in required]
+
+    def binds(args: tuple, kwargs: dict) -> bool:
+        n = len(args)
+        if n > len(positional) or not names.issuperset(kwargs):
+            return False
+        if any(name in kwargs for name in positional[:n]):
+            return False
+        return all(k < n or name in kwargs for k, name in zip(required, required_names,
+                                                               strict=True))
+
+    return binds
 
 
 MIN_REGULARIZATION = 1e-100
