@@ -111,6 +111,9 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
     ``lifted`` (a constant: one number; a table: its times, then its values), and its
     structure key. A number with a unit (text or :class:`pint.Quantity`) is converted to
     ``unit`` first."""
+    if type(spec) is float and abs(spec) <= sys.float_info.max:  # the common case, at once
+        lifted.append(spec)
+        return None, "const"
     spec = to_si(spec, unit, f"input {name}")
     if isinstance(spec, str):
         raise ParameterError(
