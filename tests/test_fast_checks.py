@@ -12,8 +12,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from bearingsim.entry_points import _binding_rule
 from bearingsim.errors import ParameterError
-from bearingsim.validation import _binding_rule, _plain_in_range, check_count, check_range
+from bearingsim.validation import _plain_in_range, check_count, check_range
 
 NUMBERS = st.one_of(st.floats(allow_nan=True, allow_infinity=True),
                     st.integers(min_value=-(10**400), max_value=10**400), st.booleans())
