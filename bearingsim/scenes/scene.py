@@ -141,7 +141,9 @@ class Simulation:
 
     t_end: float = 1.0
     t_start: float = 0.0
-    method: str = "BDF"
+    method: str | None = None
+    """The integration method; None: ``simulate``'s fastest accurate choice
+    (:func:`~bearingsim.simulation.choice.choose_method`)."""
     rtol: float = 1e-6
     atol: float = 1e-8
     n_points: int = 501

@@ -114,7 +114,14 @@ class CompileError(BearingsimError):
 
 def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root shared with the assembled
-    systems (:func:`bearingsim.assembler.cache.cache_root`)."""
+    systems (:func:`bearingsim.assembler.cache.cache_root`; found once per value of the
+    variables it depends on: every run's kernel look-up asks for it)."""
+    return _cache_dir(os.environ.get("BEARINGSIM_CACHE"), os.environ.get("HOME"))
+
+
+@functools.lru_cache(maxsize=8)
+def _cache_dir(setting: str | None, home: str | None) -> Path:
+    """:func:`cache_root` for these values of ``$BEARINGSIM_CACHE`` and ``$HOME``."""
     return cache_root()
 
 

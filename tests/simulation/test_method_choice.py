@@ -129,3 +129,60 @@ def _running_in_group(group: int) -> list[int]:
             if int(fields[2]) == group and fields[0] != "Z":
                 running.append(int(entry))
     return running
+
+
+SCENE = """
+title = "torque level, no method given"
+outputs = ["Rs"]
+
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+inner = "61905"
+outer = "61907"
+
+[inputs]
+shaft_speed = "rpm(3000) * ramp(0, 0.005)"
+
+[simulation]
+t_end = 0.01
+n_points = 11
+{method}
+"""
+
+
+def _scene_run(method_line: str = ""):
+    from bearingsim.scenes import parse_scene
+    from bearingsim.scenes.preparation import prepare, run_simulation
+
+    prep = prepare(parse_scene(SCENE.format(method=method_line)))
+    return prep, run_simulation(prep)
+
+
+@needs_cc
+def test_a_scene_without_a_method_runs_the_default_method(cold_cache):
+    prep, _ = _scene_run()
+    assert prep.scene.simulation.method is None
+    kernels.kernel(prep.system, "ode", True)  # the kernels compiled: the warm-cache rule
+    _, res = _scene_run()
+    assert res.stats["method"] == "compiled_bdf" and res.stats["backend"] == "compiled C"
+    assert res.stats["method_reason"] == ("stiff ODE form, compiled kernels cached: the BDF "
+                                          "step loop in C")
+    # the same numbers as the method given by name, and as CVODES to its tolerance
+    _, named = _scene_run('method = "compiled_bdf"')
+    assert named.stats["method_reason"] == "method='compiled_bdf' given"
+    assert (res["Rs"] == named["Rs"]).all()
+    _, cvodes = _scene_run('method = "cvodes"')
+    assert abs(res["Rs"][-1] - cvodes["Rs"][-1]) <= 1e-4 * abs(cvodes["Rs"][-1])
+
+
+def test_a_scene_without_a_method_and_no_compiler_runs_cvodes(monkeypatch):
+    monkeypatch.setattr(choice, "c_compiler", lambda: None)
+    _, res = _scene_run()
+    assert res.stats["method"] == "cvodes" and res.stats["backend"] == "CasADi VM"
+    assert res.stats["method_reason"] == "no C compiler: CVODES on CasADi's VM"
+
+
+def test_a_scene_keeps_the_method_it_states():
+    _, res = _scene_run('method = "BDF"')
+    assert res.stats["method"] == "BDF" and res.stats["method_reason"] == "method='BDF' given"
