@@ -17,7 +17,18 @@ __all__ = ["entry_point"]
 def entry_point(func: Callable) -> Callable:
     """Decorator of public entry points: a call with unknown or missing arguments raises
     :class:`~bearingsim.errors.ParameterError` naming the function, the argument (with a
-    did-you-mean hint) and the accepted ones, instead of Python's bare ``TypeError``."""
+    did-you-mean hint) and the accepted ones, instead of Python's bare ``TypeError``.
+
+    Parameters
+    ----------
+    func : callable
+        The entry point.
+
+    Returns
+    -------
+    callable
+        ``func`` with its arguments checked on every call.
+    """
     signature = inspect.signature(func)
     accepted = [n for n, p in signature.parameters.items()
                 if p.kind not in (inspect.Parameter.VAR_POSITIONAL,
