@@ -38,7 +38,9 @@ from __future__ import annotations
 import concurrent.futures
 import copy
 import dataclasses
+import functools
 import hashlib
+import importlib
 import json
 import math
 import sys
@@ -102,8 +104,8 @@ class SweepResult:
     phases: dict[str, float] = field(default_factory=dict)
     """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
-    ``points`` (first chunk out to last row in), ``finish`` (close the cluster; sorted table,
-    plot, summary)."""
+    ``points`` (first chunk out to last row in), ``close`` (close the cluster), ``write``
+    (sorted table, Parquet copy, plot, summary)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -298,7 +300,7 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
         _check_operating_points(scene, points)
     prepared: dict[tuple, Prepared] = {}
     payloads: dict[tuple, ModelPayload] = {}
-    jobs, structure, values = [], {}, []
+    jobs, structure, values, converted = [], {}, [], {}
     for k, (raw, sc) in enumerate(zip(points, scenes, strict=True)):
         pt = {key: _coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
@@ -317,7 +319,7 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
                                  + ", ".join(prep.system.input_names))
         jobs.append(Job(k, sc, params))
         structure[k] = key
-        values.append(_si_values(pt))
+        values.append(_si_values(pt, converted))
     return _Plan(prepared, payloads, jobs, structure, values)
 
 
@@ -431,6 +433,21 @@ def _sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     axes[-1].set_xlabel(f"{x_key} [{x_unit}]")
     fig.tight_layout()
     return [(f"{stem}.png", fig)]
+
+
+def _ready_to_write(units: dict[str, str], cluster_up) -> None:
+    """Import what writing the results takes (Parquet, the figure) and resolve the display
+    units of the columns, a step at a time until ``cluster_up()``: the client does it while it
+    would wait idle for the workers, instead of after the last point."""
+    steps = [SweepTable.ready,
+             *(functools.partial(importlib.import_module, name) for name in (
+                 "matplotlib.figure", "matplotlib.backends.backend_agg",
+                 "bearingsim.scenes.plots")),
+             *(functools.partial(display_unit, unit) for unit in set(units.values()))]
+    for step in steps:
+        if cluster_up():
+            return
+        step()
 
 
 def _earlier_files(folder: Path, stem: str) -> list[str]:
@@ -582,6 +599,8 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         lap("plan")
 
         if own:
+            if table is not None:
+                _ready_to_write(units, starting.done)
             client, cluster = starting.result()
         client.wait_for_workers(1)
         lap("cluster")
@@ -622,6 +641,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                 client.close()
             if cluster is not None:
                 cluster.close()
+    lap("close")
     ordered = [rows[k] for k in sorted(rows)]
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
                 for r in ordered if r["status"] != "ok"]
@@ -647,20 +667,28 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         }
         folder.write_summary(f"{stem}.json", json.loads(json.dumps(summary, default=str)))
         res.files = list(folder.files)
-    lap("finish")
+    lap("write")
     res.wall_s = time.perf_counter() - wall
     return res
 
 
-def _si_values(point: dict[str, Any]) -> dict[str, Any]:
+def _si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any]:
     """The swept values as the table stores them: SI numbers for inputs that are constant
-    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given."""
+    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given. ``memo``
+    keeps the converted values across the points of a sweep (a grid repeats each value)."""
     from bearingsim.scenes.expressions import constant_value
 
+    memo = {} if memo is None else memo
     out = {}
     for key, value in point.items():
-        si = constant_value(value, key) if key.startswith("inputs.") else None
-        out[key] = value if si is None else si
+        if not key.startswith("inputs."):
+            out[key] = value
+            continue
+        seen = (key, repr(value))
+        if seen not in memo:
+            si = constant_value(value, key)
+            memo[seen] = value if si is None else si
+        out[key] = memo[seen]
     return out
 
 

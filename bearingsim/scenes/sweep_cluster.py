@@ -59,15 +59,22 @@ def _forked_local_cluster(n_workers: int):
     """A LocalCluster of ``n_workers`` single-thread worker processes forked from a server
     that imported bearingsim (started on first use, kept for the life of this process);
     returns when every worker is up."""
-    import dask
-    from distributed import LocalCluster
-    from distributed.utils import get_mp_context
+    import multiprocessing
 
+    import dask
+    import distributed.utils
+    from distributed import LocalCluster
+
+    # distributed's first forkserver context would import its optional packages (pandas, ...)
+    # into this process to preload them in the server (while the client plans); the workers
+    # need bearingsim's modules instead
+    distributed.utils._forkserver_preload_set = True
+    multiprocessing.get_context("forkserver").set_forkserver_preload(
+        ["distributed", WORKER_MODULE])
     # the variables bearingsim reads at run time go to every worker as they are now (the
     # fork server keeps the environment it started with)
     env = {k: v for k, v in os.environ.items() if k.startswith("BEARINGSIM_")}
     with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver"}):
-        get_mp_context().set_forkserver_preload(["distributed", WORKER_MODULE])
         return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
                             preload=[WORKER_MODULE], env=env, dashboard_address=None,
                             # no dashboard; the scheduler's HTTP server on a free port
