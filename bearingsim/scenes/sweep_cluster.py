@@ -41,6 +41,9 @@ CHUNKS_PER_WORKER = 4
 """At least this many chunks per worker of the points still to go (balance at the end)."""
 TASKS_PER_WORKER = 2
 """Tasks in flight per worker thread: one running, one queued on the worker."""
+WORKERS_RECOUNT_S = 2.0
+"""How often the worker threads are counted again during a sweep [s] (on a cluster, workers
+join and leave)."""
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """Imported by the fork server (and preloaded by every worker)."""
 
@@ -142,6 +145,7 @@ class ChunkFeeder:
         self.largest = 0
         """Most points in one task so far."""
         self.running: dict[Any, list[Job]] = {}
+        self._counted = time.monotonic()
         # results come with the futures (fetched by the client's event loop, not one
         # round trip per chunk after it is reported done)
         self.done = distributed_module().as_completed(with_results=True, raise_errors=False)
@@ -158,6 +162,9 @@ class ChunkFeeder:
 
     def _fill(self) -> None:
         """Submit chunks until :data:`TASKS_PER_WORKER` per worker are in flight."""
+        if time.monotonic() - self._counted > WORKERS_RECOUNT_S:  # workers joined or left
+            self.n_workers = max(1, sum(self.client.nthreads().values()))
+            self._counted = time.monotonic()
         while self.todo and len(self.running) < TASKS_PER_WORKER * self.n_workers:
             key = self.todo[0][0]
             size = self._size()
