@@ -447,7 +447,10 @@ def _ready_to_write(units: dict[str, str], cluster_up) -> None:
     for step in steps:
         if cluster_up():
             return
-        step()
+        try:
+            step()
+        except Exception:  # noqa: BLE001, S112 - writing the results reports it, if it recurs
+            continue
 
 
 def _earlier_files(folder: Path, stem: str) -> list[str]:
