@@ -19,53 +19,21 @@ solved block by block.
 from __future__ import annotations
 
 from collections import defaultdict
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Eq, Var
-from bearingsim.assembler.passes.ball_sets import BallSet, find_ball_sets, function_identity
-from bearingsim.assembler.passes.blt import Block
+from bearingsim.assembler.ir import BallSet, Block, Causal, NonlinearBlock
+from bearingsim.assembler.passes.ball_sets import find_ball_sets, function_identity
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["NAME", "run", "NonlinearBlock", "Causal", "causalize", "rootfinder_options"]
+__all__ = ["NAME", "run", "causalize"]
 
 NAME = "tearing and block solving"
 """The pass name in timings, logs and ``extra_passes``."""
-
-
-@dataclass
-class NonlinearBlock:
-    """Residuals ``g(z) = 0`` in the tearing variables ``z`` (their own symbols)."""
-
-    tears: list[Var]
-    residuals: ca.SX
-    guess: list[float]
-    equations: list[Eq]
-
-
-@dataclass
-class Causal:
-    """Every unknown as an expression of base symbols and nonlinear-block tearing variables."""
-
-    expr: dict[Var, ca.SX] = field(default_factory=dict)
-    nonlinear: list[NonlinearBlock] = field(default_factory=list)
-    n_blocks: int = 0
-    n_linear_loops: int = 0
-    largest_block: int = 0
-    copied_members: int = 0
-    """Members of ball sets whose solutions were copied from member 0's."""
-    copied: set[tuple[str, int, int]] = field(default_factory=set)
-    """(set name, set size, member) of the members all of whose blocks were copied: their
-    solutions are member 0's with their own symbols, by construction."""
-
-    def value(self, v: Var) -> ca.SX:
-        """``v`` through the base symbols: its own symbol for a state or input, else its
-        solution."""
-        return v.sym if v.is_state or v.is_input else self.expr[v]
 
 
 def _vanishes(coef: ca.SX) -> bool:
@@ -328,15 +296,6 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
     for member in mirrors.blocks_of if mirrors is not None else ():
         flush(member)
     return out
-
-
-def rootfinder_options(rootfinder: str, newton_tol: float) -> dict:
-    """CasADi options of a nonlinear block's rootfinder: ``fast_newton`` (plain Newton steps,
-    C generation) or ``newton`` (with a line search), to ``newton_tol`` on the residual."""
-    if rootfinder == "fast_newton":
-        return {"abstol": newton_tol, "max_iter": 50}
-    return {"abstol": newton_tol, "max_iter": 100, "line_search": True,
-            "show_eval_warnings": False}
 
 
 def _guess(v: Var) -> float:
