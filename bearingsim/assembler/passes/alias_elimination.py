@@ -51,7 +51,7 @@ def _classify_all(dae: DAE) -> list[tuple]:
     entries: dict[int, list[tuple[int, ca.SX]]] = {}
     for k, (i, j) in enumerate(zip(jrows, jcols, strict=True)):
         entries.setdefault(i, []).append((j, jnz[k]))
-    rest_nz = [rest[i] for i in range(len(cand))]
+    rest_nz = ca.vertsplit(rest)
     out = []
     for i, row in entries.items():
         eq = dae.eqs[cand[i]]
@@ -185,8 +185,8 @@ def _one_round(dae: DAE) -> bool:
         res = ca.substitute(
             ca.vertcat(*[e.residual for e in targets]), ca.vertcat(*syms), ca.vertcat(*repl)
         )
-        for i, e in enumerate(targets):
-            e.residual = res[i]
+        for e, r in zip(targets, ca.vertsplit(res), strict=True):
+            e.residual = r
     removed_ids = {id(v) for v in removed}
     dae.vars = [v for v in dae.vars if id(v) not in removed_ids]
     # derivative pointers that referred to removed derivative vars

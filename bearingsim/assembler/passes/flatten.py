@@ -247,8 +247,8 @@ def _substitute_bindings(eqs, init_eqs, bound_syms, bound_exprs, params) -> None
             )
     all_eqs = eqs + init_eqs
     res = ca.substitute(ca.vertcat(*[e.residual for e in all_eqs]), bound, exprs)
-    for i, e in enumerate(all_eqs):
-        e.residual = res[i]
+    for e, r in zip(all_eqs, ca.vertsplit(res), strict=True):
+        e.residual = r
 
 
 def run(state: AssemblyState) -> None:

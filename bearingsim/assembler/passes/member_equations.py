@@ -157,6 +157,7 @@ class MemberEquations:
         self._residuals: dict[int, list[ca.SX]] = {}
         self._derivatives: dict[int, set[int]] = {}
         self._instantiated: dict[int, dict[int, list[ca.SX]]] = {}
+        self._stacked: dict[int, ca.SX | None] = {}
         self.instantiated = 0
         """How many components got their equations by substitution."""
 
@@ -203,15 +204,8 @@ class MemberEquations:
         created = [b for a, b in corr.decls
                    if isinstance(a, Variable) and a.derivative is not None
                    and id(a) not in before]
-        own = {a.sym.name() for a, _ in corr.decls}
-        own |= {a.derivative.sym.name() for a, _ in corr.decls
-                if isinstance(a, Variable) and a.derivative is not None}
-        own.add(time.name())
-        residuals = [r for a, _ in pairs for r in self._residuals[id(a)]]
-        if not residuals:
-            return None
-        stacked = ca.vertcat(*residuals)
-        if any(s.name() not in own for s in ca.symvar(stacked)):
+        stacked = self._stacked_residuals(twin, corr)
+        if stacked is None:
             return None
         for b in created:
             b.derivative_symbol()
@@ -220,10 +214,25 @@ class MemberEquations:
                   and b.derivative is not None]
         old = ca.vertcat(corr.twin_syms, *[a for a, _ in derivs])
         new = ca.vertcat(corr.member_syms, *[b for _, b in derivs])
-        values = ca.substitute(stacked, old, new)
+        values = ca.vertsplit(ca.substitute(stacked, old, new))
         out, pos = {}, 0
         for a, b in pairs:
             n = len(self._residuals[id(a)])
-            out[id(b)] = [values[pos + i] for i in range(n)]
+            out[id(b)] = values[pos:pos + n]
             pos += n
         return out
+
+    def _stacked_residuals(self, twin: Component, corr: _Correspondence) -> ca.SX | None:
+        """Member 0's residuals stacked, or None when there are none or they use a symbol from
+        outside member 0's subtree (and time); worked out once per array."""
+        if id(twin) not in self._stacked:
+            own = {a.sym.name() for a, _ in corr.decls}
+            own |= {a.derivative.sym.name() for a, _ in corr.decls
+                    if isinstance(a, Variable) and a.derivative is not None}
+            own.add(time.name())
+            residuals = [r for a, _ in _pairs(twin, twin) for r in self._residuals[id(a)]]
+            stacked = ca.vertcat(*residuals) if residuals else None
+            if stacked is not None and any(s.name() not in own for s in ca.symvar(stacked)):
+                stacked = None
+            self._stacked[id(twin)] = stacked
+        return self._stacked[id(twin)]
