@@ -241,7 +241,7 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
             # linearity and the coefficient are those of the resolved equation.
             e, v = block[0]
             coef = _linear_coefficient(e.residual, v)
-            if coef is not None and not _vanishes(resolved(coef)):
+            if coef is not None and (coef.is_constant() or not _vanishes(resolved(coef))):
                 out.expr[v] = resolved(_solve_linear_scalar(e.residual, v, coef))
             else:
                 out.expr[v] = v.sym
