@@ -27,6 +27,7 @@ Member ``k``'s derivative declarations are created for the variables whose deriv
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator
 from typing import Any
 
@@ -98,8 +99,16 @@ class _Correspondence:
             for key, conn in a._connectors.items():
                 self.objects[id(conn)] = b._connectors[key]
             self.decls += list(zip(_declarations(a), _declarations(b), strict=True))
-        self.twin_syms = ca.vertcat(*[a.sym for a, _ in self.decls])
-        self.member_syms = ca.vertcat(*[b.sym for _, b in self.decls])
+
+    @functools.cached_property
+    def twin_syms(self) -> ca.SX:
+        """Member 0's declared symbols, stacked."""
+        return ca.vertcat(*[a.sym for a, _ in self.decls])
+
+    @functools.cached_property
+    def member_syms(self) -> ca.SX:
+        """Member k's declared symbols, stacked in the same order."""
+        return ca.vertcat(*[b.sym for _, b in self.decls])
 
     def same(self, a: Any, b: Any) -> bool:
         """Whether attribute values ``a`` (member 0) and ``b`` (member k) correspond."""
@@ -158,6 +167,7 @@ class MemberEquations:
         self._derivatives: dict[int, set[int]] = {}
         self._instantiated: dict[int, dict[int, list[ca.SX]]] = {}
         self._stacked: dict[int, ca.SX | None] = {}
+        self._old: dict[tuple[int, tuple[int, ...]], ca.SX] = {}
         self.instantiated = 0
         """How many components got their equations by substitution."""
 
@@ -209,11 +219,15 @@ class MemberEquations:
             return None
         for b in created:
             b.derivative_symbol()
-        derivs = [(a.derivative.sym, b.derivative.sym) for a, b in corr.decls
-                  if isinstance(a, Variable) and a.derivative is not None
-                  and b.derivative is not None]
-        old = ca.vertcat(corr.twin_syms, *[a for a, _ in derivs])
-        new = ca.vertcat(corr.member_syms, *[b for _, b in derivs])
+        derivs = tuple(i for i, (a, b) in enumerate(corr.decls)
+                       if isinstance(a, Variable) and a.derivative is not None
+                       and b.derivative is not None)
+        if (id(twin), derivs) not in self._old:  # member 0's side, the same for most members
+            self._old[(id(twin), derivs)] = ca.vertcat(
+                *[a.sym for a, _ in corr.decls], *[corr.decls[i][0].derivative.sym for i in derivs])
+        old = self._old[(id(twin), derivs)]
+        new = ca.vertcat(*[b.sym for _, b in corr.decls],
+                         *[corr.decls[i][1].derivative.sym for i in derivs])
         values = ca.vertsplit(ca.substitute(stacked, old, new))
         out, pos = {}, 0
         for a, b in pairs:
