@@ -98,6 +98,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="comma-separated section labels to re-run into the existing report")
     parser.add_argument("--max-assemble-s", type=float, default=150.0,
                         help="skip chain sizes whose extrapolated assemble time exceeds this")
+    parser.add_argument("--large-chain", action="store_true",
+                        help="assembler scaling also at N = 3000 and 10 000 (a few minutes)")
     args = parser.parse_args(argv)
     out: Path = args.out
     img_dir = out.parent / "img"
@@ -107,7 +109,8 @@ def main(argv: list[str] | None = None) -> int:
     sections = []
     steps = [
         ("assembler scaling",
-         lambda: assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s)),
+         lambda: assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s,
+                                       large=args.large_chain)),
         ("work-precision", lambda: work_precision.run(args.quick, img_dir, out)),
         ("double-layer steady state", lambda: double_layer_steady.run(args.quick, img_dir, out)),
         ("evaluation backends", lambda: backends.run(args.quick, img_dir, out)),

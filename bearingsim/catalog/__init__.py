@@ -26,9 +26,10 @@ import csv
 from functools import lru_cache
 from importlib import resources
 
+from bearingsim.catalog.datasheet import read_datasheet
 from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
+from bearingsim.catalog.table_rows import row_to_geometry
 from bearingsim.errors import CatalogError
-from bearingsim.units import deg, mm, rpm_to_rad_s
 
 __all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings", "load_datasheet",
            "register_bearing", "resolve_bearing", "unregister_bearing"]
@@ -37,45 +38,11 @@ _USER: dict[str, BearingGeometry] = {}
 """Bearings registered by the user (:func:`register_bearing`, :func:`load_datasheet`)."""
 
 
-def _optional(text: str, scale: float) -> float | None:
-    return float(text) * scale if text.strip() else None
-
-
-def _row_to_geometry(row: dict[str, str]) -> BearingGeometry:
-    preload = None
-    if row["preload_light_N"].strip():
-        preload = PreloadClasses(
-            float(row["preload_light_N"]),
-            float(row["preload_medium_N"]),
-            float(row["preload_heavy_N"]),
-        )
-    return BearingGeometry(
-        designation=row["designation"],
-        bore=mm(float(row["d_mm"])),
-        outside_diameter=mm(float(row["D_mm"])),
-        width=mm(float(row["B_mm"])),
-        ball_count=int(row["Z"]),
-        ball_diameter=mm(float(row["Dw_mm"])),
-        pitch_diameter=mm(float(row["dm_mm"])),
-        fi=float(row["fi"]),
-        fo=float(row["fo"]),
-        contact_angle=deg(float(row["alpha_deg"])),
-        diametral_clearance=float(row["Pd_um"]) * 1e-6,
-        dynamic_load_rating=_optional(row["C_kN"], 1e3),
-        static_load_rating=_optional(row["C0_kN"], 1e3),
-        reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),
-        limiting_speed=_optional(row["lim_speed_rpm"], rpm_to_rad_s(1.0)),
-        preload=preload,
-        estimated=tuple(f for f in row["estimated"].split(";") if f),
-        source=row["source"],
-    )
-
-
 @lru_cache(maxsize=1)
 def _catalogue() -> dict[str, BearingGeometry]:
     text = resources.files(__name__).joinpath("bearings.csv").read_text(encoding="utf-8")
     lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
-    return {row["designation"]: _row_to_geometry(row) for row in csv.DictReader(lines)}
+    return {row["designation"]: row_to_geometry(row) for row in csv.DictReader(lines)}
 
 
 def list_bearings() -> list[str]:
@@ -116,8 +83,6 @@ def unregister_bearing(designation: str) -> None:
 def load_datasheet(path, *, replace: bool = False) -> list[str]:
     """Read a datasheet file (:func:`~bearingsim.catalog.datasheet.read_datasheet`, CSV or TOML
     in catalogue units) and register its bearings; returns their designations."""
-    from bearingsim.catalog.datasheet import read_datasheet
-
     bearings = read_datasheet(path)
     for g in bearings:
         register_bearing(g, replace=replace)
