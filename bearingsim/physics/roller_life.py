@@ -43,6 +43,7 @@ import numpy as np
 from scipy.integrate import quad
 
 from bearingsim import symbolic as op
+from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
 from bearingsim.validation import check_count, check_range
 
@@ -314,3 +315,7 @@ def roller_reference_rating_life(slice_loads_inner: Sequence[Sequence[Any]],
     if not op.is_symbolic(total) and float(total) == 0.0:
         return math.inf
     return op.power(total, -8.0 / 9.0)
+
+
+# no NaN in or out (bearingsim.checks); an unloaded bearing's life is infinite
+guard_public_functions(globals(), infinite_results=True)
