@@ -51,13 +51,13 @@ from bearingsim.components.rolling_element import (
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.friction import palmgren_m0
 from bearingsim.physics.hertz import combined_load_deflection_constant, contact_load
+from bearingsim.physics.life import (
+    roller_reference_rating_life,
+)
 from bearingsim.physics.line_contact import (
     palmgren_deflection,
     palmgren_load,
     slice_loads,
-)
-from bearingsim.physics.roller_life import (
-    roller_reference_rating_life,
 )
 from bearingsim.simulation import simulate
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from bearingsim.errors import ParameterError
-from bearingsim.physics.roller_life import (
+from bearingsim.physics.life import (
     roller_dynamic_load_rating,
     roller_reference_rating_life,
     roller_static_load_rating,

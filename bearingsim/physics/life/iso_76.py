@@ -1,5 +1,6 @@
-"""ISO 76:2006 static load ratings of ball bearings: the factor f0, the basic static radial load
-rating C0, the static factors X0, Y0 and the static equivalent load P0.
+"""ISO 76:2006 static load ratings: of ball bearings the factor f0, the basic static radial load
+rating C0, the static factors X0, Y0 and the static equivalent load P0; of cylindrical roller
+bearings ``C0r = 44 (1 - Dwe cos a / Dpw) i Z Lwe Dwe cos a`` [N, mm].
 
 SI units at the interface (m, N, rad); the ISO formulas are evaluated in their own units (mm, N)
 inside. Functions take floats, numpy arrays or CasADi SX; table look-ups are piecewise linear.
@@ -15,8 +16,14 @@ import numpy as np
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
 from bearingsim.physics.geometry import pitch_ratio
-from bearingsim.physics.life.tables import MM_PER_M, check_ball_set, interp, within_table
-from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_range
+from bearingsim.physics.life.tables import (
+    MM_PER_M,
+    check_ball_set,
+    check_roller_set,
+    interp,
+    within_table,
+)
+from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry
@@ -26,6 +33,7 @@ __all__ = [
     "static_load_rating",
     "static_load_factors",
     "static_equivalent_load",
+    "roller_static_load_rating",
 ]
 
 # Verification (tests/physics/test_published_examples.py; docs/physics.md, "Verification"):
@@ -150,6 +158,36 @@ def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
     check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
     x0, y0 = static_load_factors(geometry)
     return Fr + op.smooth_max0((x0 - 1.0) * Fr + y0 * Fa, 1.0)
+
+
+def roller_static_load_rating(roller_diameter: float, pitch_diameter: float, roller_count: int,
+                              length: float, rows: int = 1) -> float:
+    """ISO 76 basic static radial load rating of a cylindrical roller bearing [N].
+
+    ``C0r = 44 (1 - Dwe/Dpw) i Z Lwe Dwe`` (contact angle 0), in mm and N.
+
+    Parameters
+    ----------
+    roller_diameter, pitch_diameter : float
+        Dwe and Dpw [m].
+    roller_count : int
+        Z.
+    length : float
+        Lwe [m].
+    rows : int
+        i.
+
+    Returns
+    -------
+    float
+        C0r [N].
+    """
+    where = "roller_static_load_rating"
+    check_roller_set(roller_diameter, pitch_diameter, roller_count, length, where)
+    check_count(rows, "rows", 1, where=where)
+    gamma = roller_diameter / pitch_diameter
+    return float(44.0 * (1.0 - gamma) * rows * roller_count * length * 1e3
+                 * roller_diameter * 1e3)
 
 
 # no NaN in or out (bearingsim.checks); an unloaded contact's life is infinite

@@ -1,7 +1,8 @@
 """Lundberg-Palmgren lives of each ball-raceway contact (Harris & Kotzalas, *Rolling Bearing
 Analysis*, 5th ed., *Essential Concepts of Bearing Technology*, chapter "Fatigue life: basic
 theory and rating standards"), combined as docs/studies.md, section C prescribes, and the
-raceway equivalent loads and bearing life they give.
+raceway equivalent loads and bearing life they give; Sjovall's load integrals of a line contact
+row (:func:`line_load_integrals`), which relate a roller bearing's C to its raceway ratings.
 
 SI units at the interface (m, N, rad); the capacity formula is evaluated in mm and N inside.
 Lives are in millions of revolutions. Functions take floats, numpy arrays or CasADi SX.
@@ -9,7 +10,11 @@ Lives are in millions of revolutions. Functions take floats, numpy arrays or Cas
 
 from __future__ import annotations
 
+import math
+from functools import lru_cache
+
 import numpy as np
+from scipy.integrate import quad
 
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
@@ -25,6 +30,7 @@ __all__ = [
     "combined_contact_life",
     "raceway_equivalent_load",
     "bearing_life",
+    "line_load_integrals",
 ]
 
 # Harris & Kotzalas: Lundberg-Palmgren constant of the raceway contact capacity, N and mm.
@@ -245,6 +251,39 @@ def bearing_life(life_inner, life_outer):
     _check_life(life_outer, "life_outer", "bearing_life")
     return _life_from_inverse_power(_inverse_life_power(life_inner)
                                     + _inverse_life_power(life_outer))
+
+
+@lru_cache(maxsize=16)
+def line_load_integrals(epsilon: float = 0.5) -> tuple[float, float, float]:
+    """Sjovall's load integrals of a line contact row, ``(Jr, J1, J2)`` [-].
+
+    With ``Q(psi) = Q_max (1 - (1 - cos psi) / (2 epsilon))^(10/9)`` (0 outside the load zone):
+    ``Jr = 1/(2 pi) int (Q/Q_max) cos psi``, ``J1 = (1/(2 pi) int (Q/Q_max)^4)^(1/4)`` (rotating
+    ring), ``J2 = (1/(2 pi) int (Q/Q_max)^(9/2))^(2/9)`` (stationary ring); ``Fr = Z Jr Q_max``.
+
+    Parameters
+    ----------
+    epsilon : float
+        Load zone parameter, in (0, 1] (0.5: zero clearance).
+
+    Returns
+    -------
+    (Jr, J1, J2) : tuple of float
+    """
+    check_range(epsilon, "epsilon", "-", 0.0, 1.0, low_inclusive=False,
+                where="line_load_integrals")
+    edge = math.acos(max(1.0 - 2.0 * epsilon, -1.0))
+
+    def share(psi):
+        return max(1.0 - (1.0 - math.cos(psi)) / (2.0 * epsilon), 0.0) ** (10.0 / 9.0)
+
+    def mean(fn):
+        return quad(fn, -edge, edge, limit=200)[0] / (2.0 * math.pi)
+
+    jr = mean(lambda s: share(s) * math.cos(s))
+    j1 = mean(lambda s: share(s) ** 4) ** 0.25
+    j2 = mean(lambda s: share(s) ** 4.5) ** (2.0 / 9.0)
+    return jr, j1, j2
 
 
 # no NaN in or out (bearingsim.checks); an unloaded contact's life is infinite

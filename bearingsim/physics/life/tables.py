@@ -1,6 +1,6 @@
-"""What the ball bearing formulas of ISO 281, ISO 76 and Lundberg-Palmgren share: the
-piecewise-linear table look-up, the check of a ball set's dimensions and the millimetre scale
-the standards' formulas are written in.
+"""What the bearing formulas of ISO 281, ISO 76, Lundberg-Palmgren and ISO/TS 16281 share: the
+piecewise-linear table look-up, the checks of a ball or roller set's dimensions and the
+millimetre scale the standards' formulas are written in.
 """
 
 from __future__ import annotations
@@ -18,6 +18,9 @@ MM_PER_M = 1e3
 DW_LARGE_MM = 25.4
 """Ball diameter [mm] above which ISO 281 and Lundberg-Palmgren use ``3.647 Dw^1.4`` for
 ``Dw^1.8``."""
+LINE_CAPACITY_RATIO_EXPONENT = 143.0 / 108.0
+"""Exponent of ``(1 - gamma)/(1 + gamma)`` in the ratio of the inner to the outer line-contact
+capacity (Lundberg-Palmgren; ISO 281's roller fc) [-]."""
 
 
 def interp(x, xs: Sequence[float], ys: Sequence[float]):
@@ -57,3 +60,18 @@ def ball_entries(values) -> list:
     if hasattr(values, "shape"):
         return [values[j] for j in range(values.shape[0])]
     return list(values)
+
+
+def check_roller_gamma(gamma, where: str):
+    """Check a roller set's ``gamma = Dwe cos(a)/Dpw`` [-], in (0, 1)."""
+    return check_range(gamma, "gamma", "-", 0.0, 1.0, low_inclusive=False, high_inclusive=False,
+                       where=where)
+
+
+def check_roller_set(roller_diameter, pitch_diameter, roller_count, length, where):
+    """Check a roller set: Dwe, Dpw > Dwe, Lwe [m] and Z >= 3."""
+    check_range(roller_diameter, "roller_diameter", "m", 0.0, low_inclusive=False, where=where)
+    check_range(pitch_diameter, "pitch_diameter", "m", roller_diameter, low_inclusive=False,
+                where=where)
+    check_count(roller_count, "roller_count", 3, where=where)
+    check_range(length, "length", "m", 0.0, low_inclusive=False, where=where)
