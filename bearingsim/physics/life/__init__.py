@@ -9,7 +9,10 @@ standard:
   ball-raceway contact (Harris & Kotzalas), combined as docs/studies.md, section C prescribes,
   and Sjovall's line-contact load integrals;
 * :mod:`~bearingsim.physics.life.iso_ts_16281`: a basic reference rating life from the internal
-  load distribution in the manner of ISO/TS 16281:2008 (ball and sliced roller form).
+  load distribution in the manner of ISO/TS 16281:2008 (ball and sliced roller form);
+* :mod:`~bearingsim.physics.life.modified_life`: ISO 281:2007, clause 9: the reliability factor
+  a1, the viscosity ratio kappa and the life modification factor a_ISO, applied to L10 and to
+  the reference rating life L_10r (``L_nrm = a1 a_ISO L_10r``).
 
 Every public name of these modules is importable from this package too
 (``from bearingsim.physics.life import rating_life``).
@@ -56,6 +59,16 @@ from bearingsim.physics.life.lundberg_palmgren import (
     raceway_contact_capacity,
     raceway_equivalent_load,
 )
+from bearingsim.physics.life.modified_life import (
+    A_ISO_MAX,
+    KAPPA_RANGE,
+    RELIABILITY_FACTORS,
+    life_modification_factor,
+    modified_rating_life,
+    rated_viscosity,
+    reliability_factor,
+    viscosity_ratio,
+)
 
 __all__ = [
     "dynamic_load_rating",
@@ -85,4 +98,12 @@ __all__ = [
     "roller_raceway_ratings",
     "slice_equivalent_load",
     "roller_reference_rating_life",
+    "A_ISO_MAX",
+    "KAPPA_RANGE",
+    "RELIABILITY_FACTORS",
+    "reliability_factor",
+    "rated_viscosity",
+    "viscosity_ratio",
+    "life_modification_factor",
+    "modified_rating_life",
 ]

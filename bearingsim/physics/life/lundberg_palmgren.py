@@ -20,7 +20,13 @@ from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
 from bearingsim.physics.geometry import ball_pass_ratio, pitch_ratio
-from bearingsim.physics.life.tables import DW_LARGE_MM, MM_PER_M, ball_entries, check_ball_set
+from bearingsim.physics.life.tables import (
+    DW_LARGE_MM,
+    MM_PER_M,
+    ball_entries,
+    check_ball_set,
+    check_life,
+)
 from bearingsim.validation import check_choice, check_range
 
 __all__ = [
@@ -137,15 +143,6 @@ def _per_ball(value, z: int, name: str, where: str) -> list:
     return [value] * z
 
 
-def _check_life(value, name: str, where: str) -> None:
-    """Lives must be > 0; unlike check_range, an infinite life (an unloaded contact) is allowed."""
-    if op.is_symbolic(value):
-        return
-    arr = np.asarray(value, dtype=float)
-    if np.any(np.isnan(arr)) or np.any(arr <= 0.0):
-        raise ParameterError(f"{where}: {name} must be > 0 (inf allowed) [1e6 rev], got {value}")
-
-
 def _inverse_life_power(life):
     """``L^(-10/9)``; zero for an infinite life."""
     return op.power(life, -10.0 / 9.0)
@@ -193,7 +190,7 @@ def combined_contact_life(life_outer, life_inner, life_ball_outer, life_ball_inn
     for name, values in (("life_outer", outer), ("life_inner", inner),
                          ("life_ball_outer", ball_outer), ("life_ball_inner", ball_inner)):
         for value in values:
-            _check_life(value, name, where)
+            check_life(value, name, where)
     for value in n:
         check_range(value, "ball_revolutions", "-", 0.0, low_inclusive=False, where=where)
     total = sum(_inverse_life_power(lo) + _inverse_life_power(li)
@@ -247,8 +244,8 @@ def bearing_life(life_inner, life_outer):
     life_inner, life_outer : float or array or SX
         Raceway lives [10^6 revolutions], > 0.
     """
-    _check_life(life_inner, "life_inner", "bearing_life")
-    _check_life(life_outer, "life_outer", "bearing_life")
+    check_life(life_inner, "life_inner", "bearing_life")
+    check_life(life_outer, "life_outer", "bearing_life")
     return _life_from_inverse_power(_inverse_life_power(life_inner)
                                     + _inverse_life_power(life_outer))
 

@@ -10,6 +10,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from bearingsim import symbolic as op
+from bearingsim.errors import ParameterError
 from bearingsim.physics.geometry import pitch_ratio
 from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
 
@@ -75,3 +76,12 @@ def check_roller_set(roller_diameter, pitch_diameter, roller_count, length, wher
                 where=where)
     check_count(roller_count, "roller_count", 3, where=where)
     check_range(length, "length", "m", 0.0, low_inclusive=False, where=where)
+
+
+def check_life(value, name: str, where: str) -> None:
+    """Lives must be > 0; unlike check_range, an infinite life (an unloaded contact) is allowed."""
+    if op.is_symbolic(value):
+        return
+    arr = np.asarray(value, dtype=float)
+    if np.any(np.isnan(arr)) or np.any(arr <= 0.0):
+        raise ParameterError(f"{where}: {name} must be > 0 (inf allowed) [1e6 rev], got {value}")
