@@ -1,8 +1,11 @@
 """Lubricants as swappable objects with one interface: :class:`Oil`, :class:`Grease`, :class:`Dry`.
 
-Lubricants are plug-ins: a name in the registry (:func:`register_lubricant`) or any object of a
-:class:`Lubricant` subclass is accepted wherever a lubricant is asked for (assemblies, scenes,
-``bearingsim list``), through the one converter :func:`as_lubricant`.
+Lubricants are plug-ins: a name in the registry :data:`LUBRICANTS` (built in, the
+``bearingsim.lubricants`` entry-point group, :func:`register_lubricant`, a scene's
+``[lubricants]`` table) or any object of a :class:`Lubricant` subclass is accepted wherever a
+lubricant is asked for (assemblies, scenes, ``bearingsim list``), through the one converter
+:func:`as_lubricant`. Every lubricant is checked against the contract
+(:func:`check_lubricant_contract`) where it is defined.
 
 Every property method takes an optional temperature ``T`` [K] (float, array or CasADi symbol);
 ``None`` means the lubricant's operating temperature. Values are SI (Pa s, m^2/s, kg/m^3, 1/Pa).
@@ -21,11 +24,16 @@ import numpy as np
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.lubrication import LUBRICATION_METHODS, palmgren_f0
 from bearingsim.physics.traction import EHL_TRACTION_DEFAULT, ehl_traction, regularized_coulomb
+from bearingsim.registry import Registry
 from bearingsim.symbolic import is_symbolic, log, power
 from bearingsim.units import celsius_to_kelvin, cst_to_m2_s
 from bearingsim.validation import check_range
 
 __all__ = [
+    "ENTRY_POINT_GROUP",
+    "LUBRICANTS",
+    "LUBRICANT_CONTRACT",
+    "check_lubricant_contract",
     "Lubricant",
     "Oil",
     "Grease",
@@ -39,6 +47,10 @@ __all__ = [
     "register_lubricant",
     "unregister_lubricant",
 ]
+
+ENTRY_POINT_GROUP = "bearingsim.lubricants"
+"""Entry-point group of lubricant plug-ins: each entry point loads a factory (keyword
+arguments -> :class:`Lubricant`), registered under the entry point's name."""
 
 KINEMATIC_VISCOSITY_RANGE = (1e-7, 1e-2)
 """Plausible kinematic viscosity [m^2/s] of a bearing lubricant at its operating temperature:
@@ -426,8 +438,62 @@ class Dry(Lubricant):
         return f"Dry {self.name}: Coulomb mu = {self.mu:g}"
 
 
+LUBRICANT_CONTRACT: tuple[tuple[str, str, float, float, str], ...] = (
+    ("temperature", "K", 200.0, 600.0, "operating temperature, the default of every property"),
+    ("mu_bl", "-", 0.0, 2.0, "boundary sliding friction coefficient of the SKF friction model"),
+    ("mu_ehl", "-", 0.0, 2.0, "full-film sliding friction coefficient of the SKF friction model"),
+    ("contact_friction", "-", 0.0, 2.0, "sliding friction of the cage pockets and lands"),
+)
+"""The numeric properties every lubricant must have: (attribute, unit, low, high, what it is
+for). :func:`check_lubricant_contract` checks them (and ``name`` and ``method``) when a lubricant
+is defined, so that a missing one is named there and not deep inside a friction model."""
+
+
+def check_lubricant_contract(lubricant: Any, where: str = "lubricant") -> Lubricant:
+    """Check that ``lubricant`` keeps the :class:`Lubricant` contract; returns it.
+
+    Parameters
+    ----------
+    lubricant : Lubricant
+        The object to check.
+    where : str
+        Who defines it, named in the error (``register_lubricant``, a scene key, ...).
+
+    Returns
+    -------
+    Lubricant
+
+    Raises
+    ------
+    ParameterError
+        For an object that is no :class:`Lubricant`, a missing or non-text ``name``, a
+        ``method`` that is not a lubrication method, or a property of
+        :data:`LUBRICANT_CONTRACT` that is missing or outside its range; the message names the
+        lubricant, the property, its unit and its range.
+    """
+    if not isinstance(lubricant, Lubricant):
+        raise ParameterError(f"{where}: a lubricant must be a Lubricant (Oil, Grease, Dry, ...), "
+                             f"got {type(lubricant).__name__}")
+    name = getattr(lubricant, "name", None)
+    if not isinstance(name, str) or not name.strip():
+        raise ParameterError(f"{where}: a {type(lubricant).__name__} lubricant needs a name "
+                             f"(non-empty text), got {name!r}")
+    label = f"{where}: lubricant {name!r}"
+    method = getattr(lubricant, "method", None)
+    if method not in (*LUBRICATION_METHODS, "dry"):
+        raise ParameterError(f"{label}: method = {method!r} is not a lubrication method; give "
+                             f"one of {', '.join((*LUBRICATION_METHODS, 'dry'))}")
+    for attribute, unit, low, high, purpose in LUBRICANT_CONTRACT:
+        if not hasattr(lubricant, attribute):
+            raise ParameterError(f"{label} has no {attribute} [{unit}] ({purpose}); give it a "
+                                 f"value in [{low:g}, {high:g}] {unit}")
+        check_range(getattr(lubricant, attribute), attribute, unit, low, high, where=label)
+    return lubricant
+
+
 def _normalize(name: str) -> str:
-    return "".join(ch for ch in str(name).lower() if ch.isalnum())
+    """Names match ignoring case, spaces, hyphens, underscores and a leading "ISO"."""
+    return "".join(ch for ch in str(name).lower() if ch.isalnum()).removeprefix("iso")
 
 
 def _lithium_grease(**kwargs: Any) -> Grease:
@@ -435,16 +501,42 @@ def _lithium_grease(**kwargs: Any) -> Grease:
                   **{"name": "lithium grease", **kwargs})
 
 
-_REGISTRY: dict[str, Callable[..., Lubricant]] = {
-    **{f"ISO VG {g}": (lambda g=g, **kw: Oil.from_iso_vg(g, **kw)) for g in ISO_VG_NU100},
-    "lithium grease": _lithium_grease,
-}
-"""Lubricant name -> factory (keyword arguments override its defaults)."""
+def _builtin_lubricants() -> dict[str, Callable[..., Lubricant]]:
+    return {**{f"ISO VG {g}": (lambda g=g, **kw: Oil.from_iso_vg(g, **kw)) for g in ISO_VG_NU100},
+            "lithium grease": _lithium_grease}
+
+
+def _checked_factory(factory: Any, name: str, where: str) -> Callable[..., Lubricant]:
+    """``factory`` once it is callable and its lubricant (default arguments) keeps the
+    contract."""
+    if not callable(factory):
+        raise ParameterError(f"{where}: factory for {name!r} must be callable "
+                             f"(keyword arguments -> Lubricant), got {type(factory).__name__}")
+    check_lubricant_contract(factory(), f"{where} ({name!r})")
+    return factory
+
+
+def _plugin_factory(obj: Any, entry_name: str) -> tuple[str, Callable[..., Lubricant]]:
+    """An entry point's factory under the entry point's name (TypeError: skipped, with why)."""
+    try:
+        return entry_name, _checked_factory(obj, entry_name, "lubricant plug-in")
+    except ParameterError as exc:
+        raise TypeError(str(exc)) from None
+
+
+LUBRICANTS = Registry("lubricant", _builtin_lubricants, group=ENTRY_POINT_GROUP,
+                      convert=_plugin_factory, normalize=_normalize)
+"""Lubricant name -> factory (keyword arguments override its defaults): the built-in oils and
+grease, the plug-ins of :data:`ENTRY_POINT_GROUP` and the registered ones."""
 
 
 def register_lubricant(name: str, factory: Callable[..., Lubricant], *,
                        replace: bool = False) -> None:
     """Make a lubricant known by name to assemblies, scenes and ``bearingsim list``.
+
+    The factory is called once without arguments and its lubricant checked against the contract
+    (:func:`check_lubricant_contract`), so that a lubricant missing, e.g., ``mu_bl`` is refused
+    here.
 
     Parameters
     ----------
@@ -459,8 +551,9 @@ def register_lubricant(name: str, factory: Callable[..., Lubricant], *,
     Raises
     ------
     ParameterError
-        For an empty name, a factory that is not callable, or a name already registered (without
-        ``replace``).
+        For an empty name, a factory that is not callable or whose lubricant breaks the
+        contract, or a name already registered (without ``replace``; a
+        :class:`~bearingsim.registry.NameTakenError`).
 
     Examples
     --------
@@ -473,16 +566,8 @@ def register_lubricant(name: str, factory: Callable[..., Lubricant], *,
     """
     if not isinstance(name, str) or not _normalize(name):
         raise ParameterError(f"register_lubricant: name must be a non-empty string, got {name!r}")
-    if not callable(factory):
-        raise ParameterError(f"register_lubricant: factory for {name!r} must be callable "
-                             f"(keyword arguments -> Lubricant), got {type(factory).__name__}")
-    taken = _find(name)
-    if taken is not None and not replace:
-        raise ParameterError(f"register_lubricant: {name!r} is already registered (as "
-                             f"{taken!r}); give replace=True to replace it")
-    if taken is not None:
-        del _REGISTRY[taken]
-    _REGISTRY[name] = factory
+    LUBRICANTS.register(name, _checked_factory(factory, name, "register_lubricant"),
+                        replace=replace)
 
 
 def unregister_lubricant(name: str) -> None:
@@ -493,31 +578,19 @@ def unregister_lubricant(name: str) -> None:
     CatalogError
         For a name that is not registered.
     """
-    taken = _find(name)
-    if taken is None:
-        raise CatalogError(f"unknown lubricant {name!r}; known: {', '.join(known_lubricants())}")
-    del _REGISTRY[taken]
-
-
-def _find(name: str) -> str | None:
-    """The registered name that ``name`` stands for, or None."""
-    key = _normalize(name)
-    for known in _REGISTRY:
-        canonical = _normalize(known)
-        if key in (canonical, canonical.removeprefix("iso")):
-            return known
-    return None
+    del LUBRICANTS[name]
 
 
 def known_lubricants() -> list[str]:
-    """Names accepted by :func:`get_lubricant` (the registry, in registration order)."""
-    return list(_REGISTRY)
+    """Names accepted by :func:`get_lubricant` (built in, plug-ins, registered)."""
+    return list(LUBRICANTS)
 
 
 def get_lubricant(name: str, **kwargs: Any) -> Lubricant:
     """A named lubricant from the registry: built in are ``"ISO VG 10"`` ... ``"ISO VG 460"``
     (mineral oils, oil bath) and ``"lithium grease"`` (ISO VG 100 base oil, one-third fill,
-    thickener factor 2); more with :func:`register_lubricant`.
+    thickener factor 2); more with :func:`register_lubricant`, the ``bearingsim.lubricants``
+    entry-point group or a scene's ``[lubricants]`` table.
 
     Case, spaces, hyphens and underscores are ignored (``"iso_vg_68"``, ``"VG68"`` work).
 
@@ -538,21 +611,20 @@ def get_lubricant(name: str, **kwargs: Any) -> Lubricant:
     Raises
     ------
     CatalogError
-        For an unknown name; the message lists the known ones.
+        For an unknown name; the message lists the known ones and the close matches.
+    ParameterError
+        When the registered factory returns something that breaks the contract.
     """
-    known = _find(name)
-    if known is None:
-        raise CatalogError(f"unknown lubricant {name!r}; known: {', '.join(known_lubricants())}")
-    lubricant = _REGISTRY[known](**kwargs)
+    lubricant = LUBRICANTS[name](**kwargs)
     if not isinstance(lubricant, Lubricant):
-        raise ParameterError(f"lubricant {known!r}: its registered factory returned "
-                             f"{type(lubricant).__name__}, not a Lubricant")
-    return lubricant
+        raise ParameterError(f"lubricant {LUBRICANTS.find(name)!r}: its registered factory "
+                             f"returned {type(lubricant).__name__}, not a Lubricant")
+    return check_lubricant_contract(lubricant, f"lubricant {LUBRICANTS.find(name)!r}")
 
 
 def as_lubricant(value: Lubricant | str, where: str = "lubricant") -> Lubricant:
-    """The lubricant ``value`` stands for: a :class:`Lubricant` object as it is, a name through
-    :func:`get_lubricant`.
+    """The lubricant ``value`` stands for: a :class:`Lubricant` object (checked against the
+    contract), a name through :func:`get_lubricant`.
 
     Parameters
     ----------
@@ -570,10 +642,10 @@ def as_lubricant(value: Lubricant | str, where: str = "lubricant") -> Lubricant:
     CatalogError
         For an unknown name (listing the known ones).
     ParameterError
-        For anything else.
+        For anything else, or an object that breaks the contract.
     """
     if isinstance(value, Lubricant):
-        return value
+        return check_lubricant_contract(value, where)
     if isinstance(value, str):
         return get_lubricant(value)
     raise ParameterError(f"{where}: a lubricant must be a Lubricant object (Oil, Grease, Dry, "
