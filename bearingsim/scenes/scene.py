@@ -34,6 +34,7 @@ from bearingsim.files import (
 )
 from bearingsim.scenes.expressions import ExpressionError, compile_expression, constant_value
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
+from bearingsim.scenes.lubricant_table import load_lubricants_table
 from bearingsim.scenes.registry import REGISTRY
 from bearingsim.scenes.tables import (
     SceneFileError,
@@ -66,7 +67,8 @@ __all__ = [
     "line_of",
 ]
 
-TOP_KEYS = ("title", "description", "analysis", "outputs", "tolerance", "bearings", "assembly",
+TOP_KEYS = ("title", "description", "analysis", "outputs", "tolerance", "bearings", "lubricants",
+            "assembly",
             "inputs", "parameters", "initial", "grid", "cases", "settling",
             "transient_on_purpose", "statics", "simulation", "output")
 ANALYSES = ("transient", "steady", "modes", "statics")
@@ -683,6 +685,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         on_purpose = False
     allowed = tuple(str(a) for a in allow_paths)
     for problem in load_bearings_files(d.get("bearings"), scene_folder(path), allowed):
+        c.add(problem.key, problem.reason, problem.allowed)
+    for problem in load_lubricants_table(d.get("lubricants")):
         c.add(problem.key, problem.reason, problem.allowed)
     # assembly
     asm = d.get("assembly")

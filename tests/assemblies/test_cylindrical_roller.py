@@ -52,13 +52,13 @@ from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.friction import palmgren_m0
 from bearingsim.physics.hertz import combined_load_deflection_constant
+from bearingsim.physics.life import (
+    roller_reference_rating_life,
+)
 from bearingsim.physics.line_contact import (
     palmgren_deflection,
     palmgren_load,
     slice_loads,
-)
-from bearingsim.physics.roller_life import (
-    roller_reference_rating_life,
 )
 from bearingsim.simulation import simulate
 
