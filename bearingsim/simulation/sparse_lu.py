@@ -26,7 +26,7 @@ FLAGS = ("-O2", f"-I{C_DIR}")
 class _BsmLu(ctypes.Structure):
     """``BsmLu`` of ``c/bsm_lu.h``."""
 
-    _fields_ = [("n", ctypes.c_int), ("a_start", ctypes.c_void_p),
+    _fields_ = [("n", ctypes.c_int), ("keep_order", ctypes.c_int), ("a_start", ctypes.c_void_p),
                 ("a_index", ctypes.c_void_p), ("pivoted", ctypes.c_int),
                 ("pivotings", ctypes.c_long),
                 *[(name, ctypes.c_void_p) for name in (
@@ -57,6 +57,11 @@ class SparseLu:
     start, index : array_like of int
         The pattern of ``A`` (``n x n``): column starts (``n + 1``) and the rows of each
         column's nonzeros (distinct, the diagonal included).
+    keep_order : bool
+        Keep the pivot order while every pivot is at least ``BSM_LU_TOL`` times the largest
+        candidate of its column (the compiled BDF integrator's choice); otherwise only while
+        the pivoting rule would choose it, so that the factors depend on the matrix only
+        (the FMU stepper's).
     cache_dir : path, optional
         Library cache (default: the kernels').
 
@@ -66,7 +71,8 @@ class SparseLu:
         If no C compiler is found.
     """
 
-    def __init__(self, start, index, cache_dir: str | Path | None = None):
+    def __init__(self, start, index, keep_order: bool = False,
+                 cache_dir: str | Path | None = None):
         self.start = np.ascontiguousarray(start, dtype=np.int32)
         self.index = np.ascontiguousarray(index, dtype=np.int32)
         n = self.n = self.start.size - 1
@@ -80,13 +86,14 @@ class SparseLu:
                         "l_index": ints(half), "l_val": np.zeros(half),
                         "u_start": ints(n + 1), "u_index": ints(half), "u_val": np.zeros(half),
                         "inv_diag": np.zeros(n), "x": np.zeros(n), "work": ints(3 * n)}
-        self._c = _BsmLu(n, self.start.ctypes.data, self.index.ctypes.data, 0, 0,
+        self._c = _BsmLu(n, int(keep_order), self.start.ctypes.data, self.index.ctypes.data, 0, 0,
                          *[a.ctypes.data for a in self._arrays.values()])
         self._work = np.zeros(n)
         self._identity = np.arange(n, dtype=np.int32)
 
-    def factor(self, values: np.ndarray) -> int:
-        """Factorise the matrix with nonzeros ``values`` (in the pattern's order).
+    def factor(self, values: np.ndarray, fresh: bool = False) -> int:
+        """Factorise the matrix with nonzeros ``values`` (in the pattern's order); with
+        ``fresh``, with a new pivot order and pattern whatever the last ones.
 
         Returns
         -------
@@ -97,6 +104,8 @@ class SparseLu:
         if values.size != self.index.size:
             raise ValueError(f"SparseLu.factor: {values.size} values for a pattern of "
                              f"{self.index.size} nonzeros")
+        if fresh:
+            self._c.pivoted = 0
         return self._dll.bsm_lu_factor(ctypes.byref(self._c), values.ctypes.data)
 
     def solve(self, b: np.ndarray) -> np.ndarray:

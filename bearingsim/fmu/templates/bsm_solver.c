@@ -152,10 +152,13 @@ static int new_jacobian(BsmInstance *m, double t, const double *x) {
     return 1;
 }
 
-/* The sparse LU factors of the instance (its pivot order kept in lu_c between calls). */
+/* The sparse LU factors of the instance (its pivot order kept in lu_c between calls, changed
+ * when the pivoting rule would choose other pivots: the factors depend on W only, so a
+ * restored state continues bit for bit). */
 static BsmLu *lu_factors(BsmInstance *m) {
     BsmLu *c = &m->lu_c;
     c->n = NX;
+    c->keep_order = 0;
     c->a_start = bsm_lu_start;
     c->a_index = bsm_lu_index;
     c->row_of = m->lu_row_of;

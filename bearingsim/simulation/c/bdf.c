@@ -225,7 +225,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->lu_order = calloc(n, sizeof(int));
   BsmLu *c = &b->factors;
   size_t half = nn / 2 + 1; /* strictly lower or upper triangle */
-  c->n = n; c->a_start = a_start; c->a_index = a_index;
+  c->n = n; c->keep_order = 1; c->a_start = a_start; c->a_index = a_index;
   c->row_of = calloc(n + 1, sizeof(int));
   c->step_of = calloc(n + 1, sizeof(int));
   c->work = calloc(3 * (size_t)n + 1, sizeof(int));

@@ -101,7 +101,7 @@ static int factor_fresh(BsmLu *c, const double *a_val) {
 
 /* The factorisation in the kept pivot order and pattern: the same operations as
  * factor_fresh's in the same order, on the nonzeros only. Returns 0, 1 + the singular step,
- * or -1 if at some step the pivoting rule chooses another row. */
+ * or -1 if at some step the pivot order must change (bsm_lu.h: keep_order). */
 static int factor_again(BsmLu *c, const double *a_val) {
     int n = c->n;
     double *x = c->x;
@@ -133,9 +133,13 @@ static int factor_again(BsmLu *c, const double *a_val) {
             }
         }
         if (big == 0.0) return k + 1;
-        int diag = c->step_of[k]; /* where row k of A is */
-        if (diag >= k && fabs(x[diag]) >= BSM_LU_TOL * big) pivot = diag;
-        if (pivot != k) return -1;
+        if (c->keep_order) {
+            if (!(fabs(x[k]) >= BSM_LU_TOL * big)) return -1;
+        } else {
+            int diag = c->step_of[k]; /* where row k of A is */
+            if (diag >= k && fabs(x[diag]) >= BSM_LU_TOL * big) pivot = diag;
+            if (pivot != k) return -1;
+        }
         double inv = 1.0 / x[k];
         c->inv_diag[k] = inv;
         for (int q = l0; q < l1; ++q) c->l_val[q] = x[c->l_index[q]] * inv;

@@ -3,9 +3,13 @@
  * as in Davis' CSparse cs_lu, "Direct Methods for Sparse Linear Systems", SIAM 2006, ch. 6)
  * with threshold partial pivoting that prefers the diagonal. The first factorisation finds
  * the pivot order and the fill pattern of L and U; later ones reuse both and touch the
- * nonzeros only (as KLU's refactor), until the pivoting rule would choose another pivot, when
- * it factorises afresh. A factorisation's result depends on the matrix only, not on the
- * factorisations before it (the reused order is kept only while the rule would choose it).
+ * nonzeros only (as KLU's refactor) until the pivot order must change, when it factorises
+ * afresh. When it must change is the caller's choice (keep_order):
+ * - 1: when a kept pivot falls below BSM_LU_TOL times the largest candidate of its column
+ *   (the new order is then kept in turn): fewest fresh factorisations;
+ * - 0: when the pivoting rule would choose another pivot, so that a factorisation's result
+ *   depends on the matrix only, not on the factorisations before it (an FMU state restored
+ *   continues bit for bit).
  *
  * Shared by the compiled BDF integrator (bdf.c) and the FMU's co-simulation stepper
  * (fmu/templates/bsm_solver.c), which both factorise I - c J of a model Jacobian with the
@@ -14,11 +18,17 @@
 #ifndef BSM_LU_H
 #define BSM_LU_H
 
-/* Pivots are kept while |pivot| >= BSM_LU_TOL times the largest candidate of its column. */
-#define BSM_LU_TOL 0.1
+/* The diagonal is the pivot while |diagonal| >= BSM_LU_TOL times the largest candidate of its
+ * column (KLU's default: Davis and Palamadai Natarajan, ACM TOMS 37(3), 2010, art. 36). On the
+ * ball-level Newton matrices I - c J the diagonal then stays the pivot for c up to ~1e-4 s
+ * (0.1 let the angle states' columns change pivots near the step sizes the runs take, each
+ * change a fresh factorisation); the solves' residuals stay at rounding level. */
+#ifndef BSM_LU_TOL
+#define BSM_LU_TOL 1e-3
+#endif
 
 /* A matrix pattern and its LU factors P A = L U.
- * Caller's: n; a_start (n + 1) and a_index (a_start[n]): the pattern of A in compressed
+ * Caller's: n; keep_order (above); a_start (n + 1) and a_index (a_start[n]): the pattern of A in compressed
  * columns (rows of each column distinct, the diagonal included); the arrays below, of the
  * sizes given; pivoted = 0 before the first factorisation (and to force a fresh one).
  * The factorisation's: row_of[k]: the row of A pivoted at step k, step_of its inverse;
@@ -30,6 +40,7 @@
  * u_index and u_val n (n - 1) / 2 (the worst case); work 3 n ints. */
 typedef struct {
     int n;
+    int keep_order;
     const int *a_start;
     const int *a_index;
     int pivoted;
