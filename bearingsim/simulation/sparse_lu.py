@@ -31,7 +31,8 @@ class _BsmLu(ctypes.Structure):
                 ("pivotings", ctypes.c_long),
                 *[(name, ctypes.c_void_p) for name in (
                     "row_of", "step_of", "l_start", "l_index", "l_val", "u_start", "u_index",
-                    "u_val", "inv_diag", "x", "work")]]
+                    "u_pos", "u_val", "ur_start", "ur_index", "ur_val", "inv_diag", "x",
+                    "work")]]
 
 
 @cache
@@ -84,7 +85,9 @@ class SparseLu:
         ints = lambda size: np.zeros(size, dtype=np.int32)  # noqa: E731
         self._arrays = {"row_of": ints(n), "step_of": ints(n), "l_start": ints(n + 1),
                         "l_index": ints(half), "l_val": np.zeros(half),
-                        "u_start": ints(n + 1), "u_index": ints(half), "u_val": np.zeros(half),
+                        "u_start": ints(n + 1), "u_index": ints(half), "u_pos": ints(half),
+                        "u_val": np.zeros(half), "ur_start": ints(n + 1),
+                        "ur_index": ints(half), "ur_val": np.zeros(half),
                         "inv_diag": np.zeros(n), "x": np.zeros(n), "work": ints(3 * n)}
         self._c = _BsmLu(n, int(keep_order), self.start.ctypes.data, self.index.ctypes.data, 0, 0,
                          *[a.ctypes.data for a in self._arrays.values()])
@@ -114,6 +117,24 @@ class SparseLu:
         self._dll.bsm_lu_solve(ctypes.byref(self._c), self._identity.ctypes.data,
                                self._work.ctypes.data, x.ctypes.data)
         return x
+
+    def bound_calls(self, values: np.ndarray, b: np.ndarray):
+        """The C calls with their arguments bound, for timing them without numpy's share:
+        ``(factor, solve)``, zero-argument callables that factorise the nonzeros ``values``
+        (kept order, as :meth:`factor`) and solve for ``b`` in place."""
+        values = np.ascontiguousarray(values, dtype=float)
+        x = np.array(b, dtype=float)
+        self._bound = (values, x)  # alive while the pointers are in use
+        dll, c = self._dll, ctypes.byref(self._c)
+        value_pointer = values.ctypes.data
+        pointers = [a.ctypes.data for a in (self._identity, self._work, x)]
+
+        def factor() -> int:
+            return dll.bsm_lu_factor(c, value_pointer)
+
+        def solve() -> None:
+            dll.bsm_lu_solve(c, *pointers)
+        return factor, solve
 
     @property
     def pivotings(self) -> int:

@@ -129,7 +129,11 @@ typedef struct {
     double lu_l_val[BSM_DIM(NX * NX / 2)];
     int lu_u_start[BSM_DIM(NX) + 1];
     int lu_u_index[BSM_DIM(NX * NX / 2)];
+    int lu_u_pos[BSM_DIM(NX * NX / 2)];
     double lu_u_val[BSM_DIM(NX * NX / 2)];
+    int lu_ur_start[BSM_DIM(NX) + 1];
+    int lu_ur_index[BSM_DIM(NX * NX / 2)];
+    double lu_ur_val[BSM_DIM(NX * NX / 2)];
     double lu_inv_diag[BSM_DIM(NX)];
     double lu_x[BSM_DIM(NX)];
     int lu_work[BSM_DIM(3 * NX)];

@@ -168,7 +168,11 @@ static BsmLu *lu_factors(BsmInstance *m) {
     c->l_val = m->lu_l_val;
     c->u_start = m->lu_u_start;
     c->u_index = m->lu_u_index;
+    c->u_pos = m->lu_u_pos;
     c->u_val = m->lu_u_val;
+    c->ur_start = m->lu_ur_start;
+    c->ur_index = m->lu_ur_index;
+    c->ur_val = m->lu_ur_val;
     c->inv_diag = m->lu_inv_diag;
     c->x = m->lu_x;
     c->work = m->lu_work;

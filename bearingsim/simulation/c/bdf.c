@@ -186,8 +186,8 @@ void bsm_bdf_free(bsm_bdf *b) {
   free(b->lu_order);
   BsmLu *c = &b->factors;
   free(c->row_of); free(c->step_of); free(c->l_start); free(c->l_index); free(c->l_val);
-  free(c->u_start); free(c->u_index); free(c->u_val); free(c->inv_diag); free(c->x);
-  free(c->work);
+  free(c->u_start); free(c->u_index); free(c->u_pos); free(c->u_val); free(c->ur_start);
+  free(c->ur_index); free(c->ur_val); free(c->inv_diag); free(c->x); free(c->work);
   free(b->y_predict); free(b->psi); free(b->d); free(b->y); free(b->f); free(b->dy);
   free(b->scale); free(b->tmp);
   free(b);
@@ -234,14 +234,18 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   c->l_val = calloc(half, sizeof(double));
   c->u_start = calloc(n + 1, sizeof(int));
   c->u_index = calloc(half, sizeof(int));
+  c->u_pos = calloc(half, sizeof(int));
   c->u_val = calloc(half, sizeof(double));
+  c->ur_start = calloc(n + 1, sizeof(int));
+  c->ur_index = calloc(half, sizeof(int));
+  c->ur_val = calloc(half, sizeof(double));
   c->inv_diag = calloc(n, sizeof(double));
   double **vectors[] = {&b->y_predict, &b->psi, &b->d, &b->y, &b->f, &b->dy, &b->scale,
                         &b->tmp, &b->permuted, &c->x};
   int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
            b->a_val && b->D && b->lu_order && c->row_of && c->step_of && c->work &&
-           c->l_start && c->l_index && c->l_val && c->u_start && c->u_index && c->u_val &&
-           c->inv_diag;
+           c->l_start && c->l_index && c->l_val && c->u_start && c->u_index && c->u_pos &&
+           c->u_val && c->ur_start && c->ur_index && c->ur_val && c->inv_diag;
   for (size_t k = 0; k < sizeof(vectors) / sizeof(vectors[0]); ++k) {
     *vectors[k] = calloc(n, sizeof(double));
     ok = ok && *vectors[k];

@@ -95,6 +95,19 @@ static int factor_fresh(BsmLu *c, const double *a_val) {
     c->l_start[n] = nl;
     c->u_start[n] = nu;
     for (int q = 0; q < nl; ++q) c->l_index[q] = c->step_of[c->l_index[q]];
+    /* U by rows: counted, then filled column by column (so each row's columns increase) */
+    int *next = c->work;
+    for (int i = 0; i <= n; ++i) c->ur_start[i] = 0;
+    for (int q = 0; q < nu; ++q) c->ur_start[c->u_index[q] + 1]++;
+    for (int i = 0; i < n; ++i) c->ur_start[i + 1] += c->ur_start[i];
+    for (int i = 0; i < n; ++i) next[i] = c->ur_start[i];
+    for (int k = 0; k < n; ++k)
+        for (int q = c->u_start[k]; q < c->u_start[k + 1]; ++q) {
+            int p = next[c->u_index[q]]++;
+            c->ur_index[p] = k;
+            c->ur_val[p] = c->u_val[q];
+            c->u_pos[q] = p;
+        }
     c->pivoted = 1;
     return 0;
 }
@@ -116,7 +129,7 @@ static int factor_again(BsmLu *c, const double *a_val) {
         for (int q = u0; q < u1; ++q) {
             int s = c->u_index[q];
             double xj = x[s];
-            c->u_val[q] = xj;
+            c->ur_val[c->u_pos[q]] = xj;
             for (int r = c->l_start[s]; r < c->l_start[s + 1]; ++r)
                 x[c->l_index[r]] -= c->l_val[r] * xj;
         }
@@ -170,11 +183,20 @@ void bsm_lu_solve(const BsmLu *c, const int *order, double *work, double *x) {
         for (int q = c->l_start[k]; q < c->l_start[k + 1]; ++q)
             b[c->l_index[q]] -= c->l_val[q] * bk;
     }
-    for (int k = n - 1; k >= 0; --k) {
-        double bk = b[k] * c->inv_diag[k];
-        b[k] = bk;
-        for (int q = c->u_start[k]; q < c->u_start[k + 1]; ++q)
-            b[c->u_index[q]] -= c->u_val[q] * bk;
+    /* four partial sums: a single one would wait on each product's addition */
+    const int *index = c->ur_index;
+    const double *val = c->ur_val;
+    for (int i = n - 1; i >= 0; --i) {
+        double s0 = b[i], s1 = 0.0, s2 = 0.0, s3 = 0.0;
+        int q = c->ur_start[i], end = c->ur_start[i + 1];
+        for (; q + 4 <= end; q += 4) {
+            s0 -= val[q] * b[index[q]];
+            s1 -= val[q + 1] * b[index[q + 1]];
+            s2 -= val[q + 2] * b[index[q + 2]];
+            s3 -= val[q + 3] * b[index[q + 3]];
+        }
+        for (; q < end; ++q) s0 -= val[q] * b[index[q]];
+        b[i] = ((s0 + s1) + (s2 + s3)) * c->inv_diag[i];
     }
     for (int k = 0; k < n; ++k) x[order[k]] = b[k];
 }

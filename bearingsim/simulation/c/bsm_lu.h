@@ -33,11 +33,15 @@
  * sizes given; pivoted = 0 before the first factorisation (and to force a fresh one).
  * The factorisation's: row_of[k]: the row of A pivoted at step k, step_of its inverse;
  * entries l_start[k] .. l_start[k+1]-1 of l_index/l_val: column k of L below its unit
- * diagonal (rows numbered by step); u_start[k] .. u_start[k+1]-1 of u_index/u_val: column k
- * of U above the diagonal (rows by step, in the order of elimination); inv_diag[k]: the
- * inverse of U's diagonal; pivotings: the fresh factorisations so far.
- * Sizes: row_of, step_of, inv_diag and x n; l_start and u_start n + 1; l_index, l_val,
- * u_index and u_val n (n - 1) / 2 (the worst case); work 3 n ints. */
+ * diagonal (rows numbered by step); u_start[k] .. u_start[k+1]-1 of u_index: the pattern of
+ * column k of U above the diagonal (rows by step, in the order of elimination), u_pos: where
+ * each of those entries is in U's rows; ur_start[i] .. ur_start[i+1]-1 of ur_index/ur_val:
+ * row i of U right of the diagonal (columns increasing; the solves run on rows); u_val:
+ * the fresh factorisation's work; inv_diag[k]: the inverse of U's diagonal; pivotings: the
+ * fresh factorisations so far.
+ * Sizes: row_of, step_of, inv_diag and x n; l_start, u_start and ur_start n + 1; l_index,
+ * l_val, u_index, u_pos, u_val, ur_index and ur_val n (n - 1) / 2 (the worst case); work 3 n
+ * ints. */
 typedef struct {
     int n;
     int keep_order;
@@ -52,7 +56,11 @@ typedef struct {
     double *l_val;
     int *u_start;
     int *u_index;
+    int *u_pos;
     double *u_val;
+    int *ur_start;
+    int *ur_index;
+    double *ur_val;
     double *inv_diag;
     double *x;
     int *work;
