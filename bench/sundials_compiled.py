@@ -524,7 +524,7 @@ def run_rows(case: Case, data: dict) -> list[list]:
                      fmt(limit / span), fmt(cpu / limit),
                      fmt(limit_la / span), fmt(cpu / limit_la),
                      fmt(limit_all / span), fmt(cpu / limit_all),
-                     *[fmt(st[key] / cpu, 2) if key in st else "-"
+                     *[fmt(st[key] / st["wall_time"], 2) if key in st else "-"
                        for key in ("rhs_time", "jac_time")],
                      f"{st['npivotings']} / {st['nlinsetups']}" if "npivotings" in st else "-"])
     return rows
@@ -543,7 +543,8 @@ RUN_HEADER = ["backend", "phase", "sim [s]", "CPU / sim s", "spread (max/min)",
               "steps / sim s", "rhs / sim s", "jac / sim s", "solves / step",
               "limit / sim s (kernels)", "CPU / limit", "limit / sim s (+LU per set-up)",
               "CPU / limit (+LU per set-up)", "limit / sim s (+every solve)",
-              "CPU / limit (+every solve)", "rhs share", "jac share", "fresh LU / set-ups"]
+              "CPU / limit (+every solve)", "rhs share of wall", "jac share of wall",
+              "fresh LU / set-ups"]
 
 
 # ------------------------------------------------------------------------------ linsol
