@@ -28,9 +28,10 @@
 #endif
 
 /* A matrix pattern and its LU factors P A = L U.
- * Caller's: n; keep_order (above); a_start (n + 1) and a_index (a_start[n]): the pattern of A in compressed
- * columns (rows of each column distinct, the diagonal included); the arrays below, of the
- * sizes given; pivoted = 0 before the first factorisation (and to force a fresh one).
+ * Caller's: n; keep_order (above); a_start (n + 1) and a_index (a_start[n]): the pattern
+ * of A in compressed columns (rows of each column distinct, the diagonal included); the
+ * arrays below, of the sizes given; pivoted = 0 before the first factorisation (and to force
+ * a fresh one).
  * The factorisation's: row_of[k]: the row of A pivoted at step k, step_of its inverse;
  * entries l_start[k] .. l_start[k+1]-1 of l_index/l_val: column k of L below its unit
  * diagonal (rows numbered by step); u_start[k] .. u_start[k+1]-1 of u_index: the pattern of
