@@ -27,10 +27,10 @@
  * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
  * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
  * set), so df/dt includes jac_u * du. The LU factorisation (bsm_lu.c, shared with the
- * compiled BDF integrator) is a dense one with partial pivoting that skips structural zeros,
- * on W permuted by the fill-reducing order bsm_lu_order
- * (a minimum-degree order of the Jacobian's sparsity, computed at export), eliminating and
- * solving on the nonzeros only.
+ * compiled BDF integrator) is a sparse one on W permuted by the fill-reducing order
+ * bsm_lu_order (a minimum-degree order of the Jacobian's sparsity, computed at export with
+ * W's pattern bsm_lu_start/bsm_lu_index): its pivot order and fill pattern are found once
+ * and reused while the pivots stay acceptable, eliminating and solving on the nonzeros only.
  */
 #include <math.h>
 #include <string.h>
@@ -152,28 +152,47 @@ static int new_jacobian(BsmInstance *m, double t, const double *x) {
     return 1;
 }
 
-/* The compressed LU factors of the instance. */
-static BsmLu lu_factors(BsmInstance *m) {
-    BsmLu c = {m->lu_piv, m->lu_l_start, m->lu_l_index, m->lu_l_val, m->lu_u_start,
-               m->lu_u_index, m->lu_u_val, m->lu_inv_diag};
+/* The sparse LU factors of the instance (its pivot order kept in lu_c between calls, changed
+ * when the pivoting rule would choose other pivots: the factors depend on W only, so a
+ * restored state continues bit for bit). */
+static BsmLu *lu_factors(BsmInstance *m) {
+    BsmLu *c = &m->lu_c;
+    c->n = NX;
+    c->keep_order = 0;
+    c->a_start = bsm_lu_start;
+    c->a_index = bsm_lu_index;
+    c->row_of = m->lu_row_of;
+    c->step_of = m->lu_step_of;
+    c->l_start = m->lu_l_start;
+    c->l_index = m->lu_l_index;
+    c->l_val = m->lu_l_val;
+    c->u_start = m->lu_u_start;
+    c->u_index = m->lu_u_index;
+    c->u_pos = m->lu_u_pos;
+    c->u_val = m->lu_u_val;
+    c->ur_start = m->lu_ur_start;
+    c->ur_index = m->lu_ur_index;
+    c->ur_val = m->lu_ur_val;
+    c->inv_diag = m->lu_inv_diag;
+    c->x = m->lu_x;
+    c->work = m->lu_work;
     return c;
 }
 
 /* Factorise W = I/(h gamma) - J in the order bsm_lu_order. Returns 1 if not singular. */
 static int factorise(BsmInstance *m, double h) {
-    int i, j;
+    int i, j, q;
     const int *o = bsm_lu_order;
     m->w_h = 0.0;
     m->s.jac_h = 0.0;
     m->s.n_lu++;
-    for (i = 0; i < NX; ++i) {
-        const double *row = m->w_jx + o[i] * NX;
-        double *lu = m->lu + i * NX;
-        for (j = 0; j < NX; ++j) lu[j] = -row[o[j]];
-        lu[i] += 1.0 / (h * ros_gamma_diag);
-    }
-    BsmLu c = lu_factors(m);
-    if (bsm_lu_factor(m->lu, NX, &c, m->lu_work) != 0) return 0;
+    for (j = 0; j < NX; ++j)
+        for (q = bsm_lu_start[j]; q < bsm_lu_start[j + 1]; ++q) {
+            i = bsm_lu_index[q];
+            m->lu_a[q] = -m->w_jx[o[i] * NX + o[j]];
+            if (i == j) m->lu_a[q] += 1.0 / (h * ros_gamma_diag);
+        }
+    if (bsm_lu_factor(lu_factors(m), m->lu_a) != 0) return 0;
     m->w_h = h;
     m->s.jac_h = h;
     return 1;
@@ -197,8 +216,7 @@ static int restore_jacobian(BsmInstance *m) {
 
 /* Solve W k = b in place (b in the model's state order). */
 static void solve(BsmInstance *m, double *b) {
-    BsmLu c = lu_factors(m);
-    bsm_lu_solve(&c, NX, bsm_lu_order, m->xs, b);
+    bsm_lu_solve(lu_factors(m), bsm_lu_order, m->xs, b);
 }
 
 /* One step of size h from (t, x) with the current factorisation (built for a step size near

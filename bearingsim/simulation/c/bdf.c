@@ -19,10 +19,12 @@
  *
  * The model functions are CasADi-generated C, called through pointers: ode(t, x, u, p) ->
  * xdot, jac(t, x, u, p, out) -> (d/dt, d/dx, d/du, d/dp) of which d/dx (compressed columns) is
- * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's, on the
- * unknowns in a fill-reducing order (bearingsim.simulation.ordering, passed in): partial
- * pivoting that eliminates the structural nonzeros only and solves on the factors' nonzeros
- * (on the ball-level models a dense LU, LAPACK's, cost more than the right-hand side).
+ * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's sparse one,
+ * on the unknowns in a fill-reducing order: the matrix in compressed columns on the pattern
+ * of J and the diagonal in that order (bearingsim.simulation.ordering.newton_pattern, passed
+ * in), the pivot order and fill pattern found once and reused while the pivots stay
+ * acceptable (on the ball-level models a dense LU, LAPACK's, cost more than the right-hand
+ * side).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -47,22 +49,22 @@ typedef int (*bsm_fn)(const double **arg, double **res, bsm_int *iw, double *w, 
 enum { BSM_OK = 0, BSM_STEP_TOO_SMALL = 1, BSM_SINGULAR = 2, BSM_NOT_FINITE = 3,
        BSM_MODEL_FAILED = 4 };
 
-enum { ST_STEPS, ST_FEVALS, ST_JEVALS, ST_LUS, ST_ERROR_FAILS, ST_NEWTON_FAILS, ST_N };
+enum { ST_STEPS, ST_FEVALS, ST_JEVALS, ST_LUS, ST_ERROR_FAILS, ST_NEWTON_FAILS, ST_PIVOTINGS,
+       ST_N };
 
 typedef struct {
   int n, n_u, n_p, n_q;
   bsm_fn ode, jac, signal;
-  const bsm_int *jac_colind, *jac_row;
   bsm_int jac_nnz;
-  int *lu_order, *lu_position; /* unknown lu_order[i] is row i of the LU; and inverse */
+  const int *jac_slot, *diag_slot; /* nonzero of J / of the diagonal in a_val */
+  int *lu_order; /* unknown lu_order[i] is row and column i of the LU */
   double *p, *q, *u;
   double rtol, atol, max_step, t_bound;
   const double **arg;
   double **res;
   bsm_int *iw;
   double *w;
-  double *jac_nz, *LU, *D, *permuted;
-  int *lu_work;
+  double *jac_nz, *a_val, *D, *permuted;
   BsmLu factors;
   double *y_predict, *psi, *d, *y, *f, *dy, *scale, *tmp;
   double t, h_abs, c_lu, crate, safety, h_last;
@@ -126,18 +128,14 @@ static int eval_jac(bsm_bdf *b, double t, const double *x) {
   return all_finite(b->jac_nz, (int)b->jac_nnz) ? BSM_OK : BSM_NOT_FINITE;
 }
 
-/* The LU factors of I - c J with the unknowns in the LU order (row major). */
+/* The LU factors of I - c J with the unknowns in the LU order. */
 static int factorize(bsm_bdf *b, double c) {
-  int n = b->n;
-  memset(b->LU, 0, sizeof(double) * (size_t)n * n);
-  for (int i = 0; i < n; ++i) b->LU[(size_t)i * n + i] = 1.0;
-  for (int col = 0; col < n; ++col) {
-    size_t j = (size_t)b->lu_position[col];
-    for (bsm_int k = b->jac_colind[col]; k < b->jac_colind[col + 1]; ++k)
-      b->LU[(size_t)b->lu_position[b->jac_row[k]] * n + j] -= c * b->jac_nz[k];
-  }
-  int singular = bsm_lu_factor(b->LU, n, &b->factors, b->lu_work);
+  memset(b->a_val, 0, sizeof(double) * (size_t)b->factors.a_start[b->n]);
+  for (int i = 0; i < b->n; ++i) b->a_val[b->diag_slot[i]] = 1.0;
+  for (bsm_int k = 0; k < b->jac_nnz; ++k) b->a_val[b->jac_slot[k]] -= c * b->jac_nz[k];
+  int singular = bsm_lu_factor(&b->factors, b->a_val);
   b->stats[ST_LUS]++;
+  b->stats[ST_PIVOTINGS] = b->factors.pivotings;
   b->c_lu = c;
   b->crate = 1.0;
   b->lu_valid = !singular;
@@ -146,7 +144,7 @@ static int factorize(bsm_bdf *b, double c) {
 
 /* rhs = (I - c J)^-1 rhs */
 static void solve(bsm_bdf *b, double *rhs) {
-  bsm_lu_solve(&b->factors, b->n, b->lu_order, b->permuted, rhs);
+  bsm_lu_solve(&b->factors, b->lu_order, b->permuted, rhs);
 }
 
 /* D[0..order] = (R U)^T D[0..order]: the differences for the step size h * factor. */
@@ -184,11 +182,12 @@ void bsm_bdf_free(bsm_bdf *b) {
   if (!b) return;
   free(b->p); free(b->q); free(b->u);
   free(b->arg); free(b->res); free(b->iw); free(b->w);
-  free(b->jac_nz); free(b->LU); free(b->D); free(b->permuted);
-  free(b->lu_order); free(b->lu_position); free(b->lu_work);
+  free(b->jac_nz); free(b->a_val); free(b->D); free(b->permuted);
+  free(b->lu_order);
   BsmLu *c = &b->factors;
-  free(c->piv); free(c->l_start); free(c->l_index); free(c->l_val);
-  free(c->u_start); free(c->u_index); free(c->u_val); free(c->inv_diag);
+  free(c->row_of); free(c->step_of); free(c->l_start); free(c->l_index); free(c->l_val);
+  free(c->u_start); free(c->u_index); free(c->u_pos); free(c->u_val); free(c->ur_start);
+  free(c->ur_index); free(c->ur_val); free(c->inv_diag); free(c->x); free(c->work);
   free(b->y_predict); free(b->psi); free(b->d); free(b->y); free(b->f); free(b->dy);
   free(b->scale); free(b->tmp);
   free(b);
@@ -196,10 +195,12 @@ void bsm_bdf_free(bsm_bdf *b) {
 
 /* A solver at (t0, x0) integrating towards t_bound; NULL if out of memory. sz_*: the largest
  * work sizes of the three functions; order: the unknowns in the order of the LU (a
- * permutation of 0 .. n-1). */
+ * permutation of 0 .. n-1); a_start, a_index: the pattern of I - c J in that order
+ * (compressed columns); jac_slot, diag_slot: where J's nnz nonzeros and the diagonal are in
+ * it (the pattern and slots are kept by the caller for the solver's life). */
 bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, bsm_fn signal,
-                     const bsm_int *jac_colind, const bsm_int *jac_row, bsm_int nnz,
-                     const int *order, const double *p, const double *q,
+                     bsm_int nnz, const int *order, const int *a_start, const int *a_index,
+                     const int *jac_slot, const int *diag_slot, const double *p, const double *q,
                      bsm_int sz_arg, bsm_int sz_res, bsm_int sz_iw, bsm_int sz_w,
                      double rtol, double atol, double max_step, double t0, double t_bound,
                      const double *x0) {
@@ -207,8 +208,8 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   if (!b) return 0;
   b->n = n; b->n_u = n_u; b->n_p = n_p; b->n_q = n_q;
   b->ode = ode; b->jac = jac; b->signal = signal;
-  b->jac_colind = jac_colind; b->jac_row = jac_row;
   b->jac_nnz = nnz;
+  b->jac_slot = jac_slot; b->diag_slot = diag_slot;
   b->rtol = rtol; b->atol = atol; b->max_step = max_step; b->t_bound = t_bound;
   size_t nn = (size_t)n * n;
   b->p = malloc(sizeof(double) * (n_p + 1));
@@ -219,27 +220,32 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->iw = calloc(sz_iw + 1, sizeof(bsm_int));
   b->w = calloc(sz_w + 1, sizeof(double));
   b->jac_nz = calloc(nnz + 1, sizeof(double));
-  b->LU = calloc(nn, sizeof(double));
+  b->a_val = calloc(a_start[n] + 1, sizeof(double));
   b->D = calloc((size_t)(MAX_ORDER + 3) * n, sizeof(double));
   b->lu_order = calloc(n, sizeof(int));
-  b->lu_position = calloc(n, sizeof(int));
-  b->lu_work = calloc(2 * (size_t)n, sizeof(int));
   BsmLu *c = &b->factors;
   size_t half = nn / 2 + 1; /* strictly lower or upper triangle */
-  c->piv = calloc(n, sizeof(int));
+  c->n = n; c->keep_order = 1; c->a_start = a_start; c->a_index = a_index;
+  c->row_of = calloc(n + 1, sizeof(int));
+  c->step_of = calloc(n + 1, sizeof(int));
+  c->work = calloc(3 * (size_t)n + 1, sizeof(int));
   c->l_start = calloc(n + 1, sizeof(int));
   c->l_index = calloc(half, sizeof(int));
   c->l_val = calloc(half, sizeof(double));
   c->u_start = calloc(n + 1, sizeof(int));
   c->u_index = calloc(half, sizeof(int));
+  c->u_pos = calloc(half, sizeof(int));
   c->u_val = calloc(half, sizeof(double));
+  c->ur_start = calloc(n + 1, sizeof(int));
+  c->ur_index = calloc(half, sizeof(int));
+  c->ur_val = calloc(half, sizeof(double));
   c->inv_diag = calloc(n, sizeof(double));
   double **vectors[] = {&b->y_predict, &b->psi, &b->d, &b->y, &b->f, &b->dy, &b->scale,
-                        &b->tmp, &b->permuted};
+                        &b->tmp, &b->permuted, &c->x};
   int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
-           b->LU && b->D && b->lu_order && b->lu_position && b->lu_work && c->piv &&
-           c->l_start && c->l_index && c->l_val && c->u_start && c->u_index && c->u_val &&
-           c->inv_diag;
+           b->a_val && b->D && b->lu_order && c->row_of && c->step_of && c->work &&
+           c->l_start && c->l_index && c->l_val && c->u_start && c->u_index && c->u_pos &&
+           c->u_val && c->ur_start && c->ur_index && c->ur_val && c->inv_diag;
   for (size_t k = 0; k < sizeof(vectors) / sizeof(vectors[0]); ++k) {
     *vectors[k] = calloc(n, sizeof(double));
     ok = ok && *vectors[k];
@@ -250,10 +256,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   }
   memcpy(b->p, p, sizeof(double) * n_p);
   memcpy(b->q, q, sizeof(double) * n_q);
-  for (int i = 0; i < n; ++i) {
-    b->lu_order[i] = order[i];
-    b->lu_position[order[i]] = i;
-  }
+  memcpy(b->lu_order, order, sizeof(int) * n);
   /* NDF coefficients (scipy.integrate.BDF) */
   const double kappa[MAX_ORDER + 2] = {0.0, -0.1850, -1.0 / 9.0, -0.0823, -0.0415, 0.0, 0.0};
   b->gamma[0] = 0.0;
