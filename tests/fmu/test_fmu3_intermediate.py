@@ -17,9 +17,14 @@ from fmpy.validation import validate_fmu
 
 from bearingsim.assembler import assemble
 from bearingsim.fmu import export_fmu
+from tests.fmu.cosim_masters import (
+    REF_OUTPUTS,
+    derivative_run,
+    intermediate_update_run,
+    value_reference,
+)
 from tests.fmu.fmu_models import SpeedDrivenLoad
 from tests.fmu.helpers import open_fmu3, reference, rel_err
-from tests.fmu.test_fmu_cosim import REF_OUTPUTS, T_END, derivative_run
 
 H = 0.05
 """Communication step of the single-FMU runs [s] (a tenth of the input's period)."""
@@ -63,8 +68,11 @@ def drive_load(path, tmp_path, w_in, through_callback: bool, calls: list | None 
                           can_return_early))
         state["fmu"].setFloat64([state["vr"]], [w_in(t)])
 
-    fmu, _, vr = open_fmu3(path, tmp_path, intermediate_update=callback if through_callback
-                           else None, required=[_vr(path, "w_in")] if through_callback else ())
+    if through_callback:
+        fmu, _, vr = open_fmu3(path, tmp_path, intermediate_update=callback,
+                               required=[value_reference(path, "w_in")])
+    else:
+        fmu, _, vr = open_fmu3(path, tmp_path)
     state.update(fmu=fmu, vr=vr["w_in"])
     fmu.enterInitializationMode(tolerance=1e-8)
     fmu.exitInitializationMode()
@@ -78,13 +86,6 @@ def drive_load(path, tmp_path, w_in, through_callback: bool, calls: list | None 
     fmu.terminate()
     fmu.freeInstance()
     return np.array(out)
-
-
-def _vr(path, name: str) -> int:
-    from fmpy import read_model_description
-
-    return next(v.valueReference for v in read_model_description(str(path)).modelVariables
-                if v.name == name)
 
 
 @pytest.mark.parametrize("signal", sorted(INPUTS))
@@ -119,7 +120,7 @@ def test_only_required_inputs_are_set_and_only_in_the_callback(load3, tmp_path):
     """requiredIntermediateVariables must be inputs; a callback without inputs refused at
     instantiation; inside the callback only those inputs may be set and nothing read."""
     messages = []
-    tau = _vr(load3, "sensor.tau")
+    tau = value_reference(load3, "sensor.tau")
     with pytest.raises(Exception, match="Failed to instantiate"):
         open_fmu3(load3, tmp_path, messages=messages, intermediate_update=lambda *a: None,
                   required=[tau])
@@ -138,7 +139,7 @@ def test_only_required_inputs_are_set_and_only_in_the_callback(load3, tmp_path):
                 seen[name] = "refused"
         fmu.setFloat64([w_in], [2.0])
 
-    w_in = _vr(load3, "w_in")
+    w_in = value_reference(load3, "w_in")
     fmu, _, vr = open_fmu3(load3, tmp_path, messages=messages, intermediate_update=callback,
                            required=[w_in])
     fmu.enterInitializationMode()
@@ -147,55 +148,6 @@ def test_only_required_inputs_are_set_and_only_in_the_callback(load3, tmp_path):
     assert seen == {"set output": "refused", "get": "refused"}
     assert fmu.getFloat64([vr["w_in"]]) == [2.0]  # the value set at the end of the step
     fmu.freeInstance()
-
-
-def intermediate_update_run(paths, h, tmp_path):
-    """The Jacobi master of ``test_fmu_cosim.derivative_run`` in FMI 3.0: at each
-    communication point it reads every coupled output y and its total time derivative (the
-    output derivative plus the directional derivative along the partner's rate, as FMI 3.0
-    has no input derivatives) and, through the intermediate-update callback, gives the other
-    FMU y + dy/dt (t - t0) at every time it asks for inside the step."""
-    ramps = {}
-    fmus = {}
-
-    def callback_for(name, input_name):
-        def callback(env, t, *_):
-            y, dy, t0 = ramps[name]
-            fmu, vr = fmus[name]
-            fmu.setFloat64([vr[input_name]], [y + dy * (t - t0)])
-        return callback
-
-    for name, path, input_name in (("motor", paths["motor"], "M_bearing"),
-                                   ("bearing", paths["bearing"], "shaft_speed")):
-        callback = callback_for(name, input_name)
-        fmu, _, vr = open_fmu3(path, tmp_path, intermediate_update=callback,
-                               required=[_vr(path, input_name)])
-        fmu._keep = callback  # fmpy keeps the ctypes wrapper; the closure must outlive it too
-        fmus[name] = (fmu, vr)
-    (motor, mv), (bearing, bv) = fmus["motor"], fmus["bearing"]
-    for fmu, _ in fmus.values():
-        fmu.enterInitializationMode(tolerance=1e-8)
-        fmu.exitInitializationMode()
-    n = int(round(T_END / h))
-    values = np.empty((n, 3))
-    for k in range(n):
-        t0 = k * h
-        w = motor.getFloat64([mv["w_shaft"]])[0]
-        dw = motor.getOutputDerivatives([mv["w_shaft"]], [1])[0]
-        bearing.setFloat64([bv["shaft_speed"]], [w])
-        m = bearing.getFloat64([bv["M_shaft"]])[0]
-        dm = (bearing.getOutputDerivatives([bv["M_shaft"]], [1])[0]
-              + bearing.getDirectionalDerivative([bv["M_shaft"]], [bv["shaft_speed"]], [dw])[0])
-        motor.setFloat64([mv["M_bearing"]], [m])
-        ramps["bearing"], ramps["motor"] = (w, dw, t0), (m, dm, t0)
-        motor.doStep(t0, h)
-        bearing.doStep(t0, h)
-        values[k] = [*motor.getFloat64([mv["w_shaft"]]),
-                     *bearing.getFloat64([bv["M_shaft"], bv["w_middle"]])]
-    for fmu, _ in fmus.values():
-        fmu.terminate()
-        fmu.freeInstance()
-    return h * np.arange(1, n + 1), {name: values[:, j] for j, name in enumerate(REF_OUTPUTS)}
 
 
 @pytest.mark.slow
