@@ -21,9 +21,15 @@ import argparse
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
 from bench.common import Section, markdown_table
 
 __all__ = ["run", "section"]
+
+OMEGA_REG = 0.1
+"""Regularization speed of the bearing's friction sign [rad/s] (the default of
+:class:`bearingsim.components.bearing_torque.PalmgrenBearing`)."""
 
 STEPS = (1e-3, 5e-4, 2.5e-4, 1.25e-4)
 """Communication steps of the input-derivative coupling [s]."""
@@ -48,13 +54,17 @@ def run(quick: bool = False, log=print) -> tuple[str, list[dict]]:
         monolithic_reference,
     )
 
-    rows = []
+    rows, starts = [], []
     with tempfile.TemporaryDirectory(prefix="bench_cosim_coupling_") as tmp:
         work = Path(tmp)
         for motor in ("dc",) if quick else ("dc", "pmsm"):
             log(f"  {motor}: export, reference")
             fmi2, fmi3 = _pair(work, motor, "2.0"), _pair(work, motor, "3.0")
             ref = monolithic_reference(motor)
+            w = np.asarray(ref["shaft.w"])
+            starts.append(f"{motor.upper()}: {np.interp(1e-3, ref.t, w):.2e} rad/s at 1 ms, "
+                          f"{np.interp(2e-3, ref.t, w):.2e} at 2 ms, above {OMEGA_REG:g} rad/s "
+                          f"from {ref.t[np.argmax(w > OMEGA_REG)] * 1e3:g} ms")
             runs = [("held", 1e-3, derivative_run, fmi2, {"derivatives": False}),
                     *(("input derivatives", h, derivative_run, fmi2, {})
                       for h in (STEPS[:1] if quick else STEPS)),
@@ -78,6 +88,10 @@ def run(quick: bool = False, log=print) -> tuple[str, list[dict]]:
         "or the same ramp given through the intermediate-update callback (FMI 3.0). Largest "
         "error against `simulate` of the monolithic drive (rtol 1e-10), relative to the "
         "signal's largest value; shaft and middle-ring speed over the whole run.",
+        "",
+        "Shaft speed of the monolithic run at the start (the breakaway: the friction torque "
+        "rises while the slip is below the regularization speed omega_reg): "
+        + "; ".join(starts) + ".",
         "",
         "Command: `python -m bench.cosim_coupling`",
         "",
