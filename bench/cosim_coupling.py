@@ -69,9 +69,10 @@ def run(quick: bool = False, log=print) -> tuple[str, list[dict]]:
                     *(("input derivatives", h, derivative_run, fmi2, {})
                       for h in (STEPS[:1] if quick else STEPS)),
                     ("intermediate update", 1e-3, intermediate_update_run, fmi3, {})]
+            unzip = work / f"{motor}_unzipped"  # the FMUs of both motors share file names
             for coupling, h, master, paths, options in runs:
                 log(f"  {motor}: {coupling}, {h * 1e3:g} ms")
-                e = errors(ref, *master(paths, h, work, **options))
+                e = errors(ref, *master(paths, h, unzip, **options))
                 rows.append({"motor": motor, "coupling": coupling, "H": h,
                              **{name: e[name] for name in REF_OUTPUTS}})
     names = list(REF_OUTPUTS)
