@@ -25,6 +25,7 @@ from bench import (
     backends,
     ball_level_assembly,
     cosim,
+    cosim_coupling,
     dgbb,
     dgbb_long,
     double_layer_steady,
@@ -135,6 +136,7 @@ def main(argv: list[str] | None = None) -> int:
         ("first runs", lambda: first_run.section(args.quick)),
         ("sweep scaling", sweep_scaling.section),
         ("FMU export time", fmu_bench.export_section),
+        ("co-simulation coupling accuracy", lambda: cosim_coupling.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

@@ -192,7 +192,7 @@ def export_fmu(
     ParameterError
         For an unknown FMI version, kind, stepper, output, input or parameter, or a value out
         of range.
-    FmuBuildError
+    CompileError
         If the C compiler is missing or fails, or the binary would need a glibc newer than
         2.17.
     """

@@ -66,6 +66,11 @@ typedef enum { BSM_OK = 0, BSM_WARNING = 1, BSM_DISCARD = 2, BSM_ERROR = 3 } Bsm
 typedef void (*bsm_logger)(void *host, BsmStatus status, const char *category,
                            const char *message);
 
+/* Inputs inside a co-simulation step from the API layer (FMI 3.0 intermediate update): the
+ * stepper calls it with a time t in the step; it writes the inputs at t into u and returns 1,
+ * or returns 0 to leave them to u0 + du (t - t0). */
+typedef int (*bsm_inputs_fn)(void *host, double t, double *u);
+
 /* Everything that defines where an instance is: saved and restored as one block
  * (FMU state get/set/serialize). */
 typedef struct {
@@ -149,6 +154,7 @@ typedef struct {
     void *host;
     bsm_logger logger;
     int debug_logging;
+    bsm_inputs_fn inputs_between; /* NULL: inputs follow u0 + du (t - t0) */
 } BsmInstance;
 
 /* Outcome of a shared API operation: done; refused without harm (bad arguments or a call in

@@ -26,8 +26,9 @@
  * stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
  * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
  * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
- * set), so df/dt includes jac_u * du. The LU factorisation (bsm_lu.c, shared with the
- * compiled BDF integrator) is a sparse one on W permuted by the fill-reducing order
+ * set), so df/dt includes jac_u * du; an FMI 3.0 importer may instead give the inputs at every
+ * stage time (intermediate update, BsmInstance.inputs_between). The LU factorisation (bsm_lu.c,
+ * shared with the compiled BDF integrator) is a sparse one on W permuted by the fill-reducing order
  * bsm_lu_order (a minimum-degree order of the Jacobian's sparsity, computed at export with
  * W's pattern bsm_lu_start/bsm_lu_index): its pivot order and fill pattern are found once
  * and reused while the pivots stay acceptable, eliminating and solving on the nonzeros only.
@@ -87,8 +88,11 @@ static const double ros_gamma[ROS_STAGES] = {4.3586652150845900e-01, -4.35866521
 static const int ros_reuse = 1;
 #endif
 
+/* Inputs at time t of the step into m->ut: from the API layer where it gives them (FMI 3.0
+ * intermediate update), else u0 + du (t - t0). */
 static void inputs_at(BsmInstance *m, double t) {
     int i;
+    if (m->inputs_between != NULL && m->inputs_between(m->host, t, m->ut)) return;
     for (i = 0; i < NU; ++i) m->ut[i] = m->saved.u[i] + m->saved.du[i] * (t - m->saved.time);
 }
 
