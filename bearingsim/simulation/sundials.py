@@ -311,13 +311,11 @@ def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int,
         ode, alg = fn(t, x, u, p), ca.MX(0, 1)
     if order is not None:
         ode = ode[[int(i) for i in order]]
-    rate = span * ode
+    rate = ca.densify(span * ode)  # a structurally zero derivative is a stored 0 for SUNDIALS
     if observed:
         rate = rate - _CLOCK(tau)
-    # SUNDIALS needs dense outputs: a state whose rate is structurally zero (a free
-    # flywheel's speed) leaves a structural zero in ``rate``
     return ca.Function("dae", [tau, x_int, z, pp, ca.MX(0, 1)],
-                       [ca.densify(rate), ca.densify(alg), ca.MX(0, 1), ca.MX(0, 1)],
+                       [rate, ca.densify(alg), ca.MX(0, 1), ca.MX(0, 1)],
                        ["t", "x", "z", "p", "u"], ["ode", "alg", "quad", "zero"],
                        {"max_num_dir": MAX_NUM_DIR})
 

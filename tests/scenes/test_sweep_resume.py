@@ -38,6 +38,7 @@ Fr = 100.0
 [simulation]
 t_end = 0.05
 n_points = 3
+method = "BDF"   # stopped at its next step when over a point's time budget (SUNDIALS: per call)
 """
 GRID = ["inputs.shaft_speed=100,150,200,250,300,350,400,450,500,550,600,650",
         "inputs.Fr=100,400"]
