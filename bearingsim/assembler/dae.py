@@ -181,7 +181,7 @@ class DAE:
         eq : Eq
             The equation.
         lookup : dict of str to Var, optional
-            Variables by symbol name (None: :attr:`by_name`).
+            Variables by symbol name (None: :meth:`by_name`).
 
         Returns
         -------
