@@ -89,7 +89,7 @@ __all__ = [
 ]
 
 @dataclass
-class Scene:
+class Scene:  # numpydoc ignore=PR02
     """A simulation scene (the same content as a scene TOML file).
 
     Parameters
@@ -170,11 +170,23 @@ class Scene:
 
     @property
     def spec(self) -> AssemblySpec:
-        """The registry entry of the assembly."""
+        """The registry entry of the assembly.
+
+        Returns
+        -------
+        AssemblySpec
+            The scene's assembly.
+        """
         return REGISTRY[self.assembly]
 
     def to_dict(self) -> dict[str, Any]:
-        """The scene as the nested dict of its TOML form."""
+        """The scene as the nested dict of its TOML form.
+
+        Returns
+        -------
+        dict
+            Sections and keys as in a scene file.
+        """
         inputs = {}
         for k, v in self.inputs.items():
             inputs[k] = {"times": list(v.times), "values": list(v.values)} if isinstance(
@@ -202,7 +214,18 @@ class Scene:
         }
 
     def replace(self, **changes) -> Scene:
-        """A validated copy with some fields changed."""
+        """A validated copy with some fields changed.
+
+        Parameters
+        ----------
+        **changes
+            Fields of :class:`Scene` and their new values.
+
+        Returns
+        -------
+        Scene
+            The changed scene, checked as a scene file is.
+        """
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         d.update(changes)
         return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None,
@@ -215,6 +238,22 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
 
     Files it names (tables, ``bearings``, ``output.folder``) must be inside the folder of
     ``path`` (the current folder without one) or of ``allow_paths``.
+
+    Parameters
+    ----------
+    d : dict
+        The scene's sections and keys, as a TOML file gives them.
+    path : str, optional
+        The scene file (for messages and the folder files are read from).
+    text : str, optional
+        The file's text (for the line numbers in messages).
+    allow_paths : sequence of path
+        Folders outside the scene's folder that its files may be in.
+
+    Returns
+    -------
+    Scene
+        The checked scene.
 
     Raises
     ------
@@ -395,8 +434,22 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
 
 def parse_scene(text: str, path: str | None = None,
                 allow_paths: Sequence[str | Path] = ()) -> Scene:
-    """Parse and validate scene TOML text (without assembling the model); ``allow_paths`` as
-    :func:`scene_from_dict` takes it."""
+    """Parse and validate scene TOML text (without assembling the model).
+
+    Parameters
+    ----------
+    text : str
+        The scene in TOML.
+    path : str, optional
+        Its file (for messages and the folder files are read from).
+    allow_paths : sequence of path
+        As :func:`scene_from_dict` takes it.
+
+    Returns
+    -------
+    Scene
+        The checked scene.
+    """
     try:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -418,6 +471,11 @@ def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scen
     allow_paths : sequence of path
         Folders outside the scene file's folder that its tables, datasheets and output folder
         may be in (none by default: everything inside the scene file's folder).
+
+    Returns
+    -------
+    Scene
+        The checked scene.
 
     Raises
     ------

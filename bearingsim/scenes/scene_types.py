@@ -37,6 +37,21 @@ larger tables belong in CSV files)."""
 class SceneError(ParameterError):
     """A scene file or scene object is invalid.
 
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    key : str
+        Dotted key (``simulation.rtol``).
+    line : int or None
+        1-based line in the scene file, when known.
+    allowed : str
+        The allowed values.
+    path : str or None
+        The scene file.
+    problems : list of SceneError, optional
+        All problems found.
+
     Attributes
     ----------
     key : str
@@ -78,7 +93,13 @@ class TableInput:
     source: str = ""
 
     def as_tuple(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(times, values)`` as accepted by ``simulate(inputs=...)``."""
+        """``(times, values)`` as accepted by ``simulate(inputs=...)``.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            Times [s] and values (the input's SI unit).
+        """
         return np.asarray(self.times, dtype=float), np.asarray(self.values, dtype=float)
 
 
@@ -142,6 +163,18 @@ def line_of(text: str | None, key: tuple[str, ...] | str) -> int | None:
     Keys may be written as table headers (``[simulation]``), plain or dotted keys
     (``rtol = ...``, ``"inner_layer.nu" = ...``) or inside inline tables (the line of the
     enclosing key is returned).
+
+    Parameters
+    ----------
+    text : str or None
+        The TOML text (None: no line).
+    key : tuple of str or str
+        The key, dotted or as parts.
+
+    Returns
+    -------
+    int or None
+        The line, or None when the key is not found.
     """
     if not text:
         return None
