@@ -53,7 +53,13 @@ def _csv(text: str) -> list[str]:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``export-fmu``."""
+    """The argument parser of ``export-fmu``.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser of its command line.
+    """
     parser = argparse.ArgumentParser(
         prog="bearingsim export-fmu",
         description="Export an assembly as an FMU (FMI 2.0 or 3.0, Linux x86_64).",

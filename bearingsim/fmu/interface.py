@@ -95,31 +95,72 @@ class FmuInterface:
 
     @property
     def vr_x(self) -> int:
-        """First value reference of the states."""
+        """First value reference of the states.
+
+        Returns
+        -------
+        int
+            Always 0: the states come first.
+        """
         return 0
 
     @property
     def vr_dx(self) -> int:
-        """First value reference of the derivatives."""
+        """First value reference of the derivatives.
+
+        Returns
+        -------
+        int
+            ``nx``, after the states.
+        """
         return self.nx
 
     @property
     def vr_u(self) -> int:
-        """First value reference of the inputs."""
+        """First value reference of the inputs.
+
+        Returns
+        -------
+        int
+            ``2 nx``, after the derivatives.
+        """
         return 2 * self.nx
 
     @property
     def vr_y(self) -> int:
-        """First value reference of the outputs."""
+        """First value reference of the outputs.
+
+        Returns
+        -------
+        int
+            ``2 nx + nu``, after the inputs.
+        """
         return 2 * self.nx + self.nu
 
     @property
     def vr_p(self) -> int:
-        """First value reference of the parameters."""
+        """First value reference of the parameters.
+
+        Returns
+        -------
+        int
+            ``2 nx + nu + ny``, after the outputs.
+        """
         return 2 * self.nx + self.nu + self.ny
 
     def by_kind(self, kind: str) -> list[FmuVariable]:
-        """Declared variables of one kind, in value-reference order."""
+        """Declared variables of one kind, in value-reference order.
+
+        Parameters
+        ----------
+        kind : {"state", "derivative", "input", "output", "parameter"}
+            The kind wanted.
+
+        Returns
+        -------
+        list of FmuVariable
+            Those of ``variables`` with that kind.
+        """
         return [v for v in self.variables if v.kind == kind]
 
 

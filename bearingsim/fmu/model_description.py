@@ -76,7 +76,18 @@ def _fmt(v: float) -> str:
 
 
 def time_value_reference(iface: FmuInterface) -> int:
-    """Value reference of the FMI 3.0 independent variable ``time`` (after the parameters)."""
+    """Value reference of the FMI 3.0 independent variable ``time`` (after the parameters).
+
+    Parameters
+    ----------
+    iface : FmuInterface
+        The FMU's variable layout.
+
+    Returns
+    -------
+    int
+        ``vr_p + np``, the first reference after the parameters.
+    """
     return iface.vr_p + iface.np
 
 

@@ -61,6 +61,13 @@ class RunBudget:
     def step(self, t_reached: float, n: int = 1) -> None:
         """Count ``n`` steps taken up to ``t_reached`` [s]; raise when the budget is spent.
 
+        Parameters
+        ----------
+        t_reached : float
+            Simulation time reached by these steps [s].
+        n : int, default 1
+            Steps taken (>= 0).
+
         Raises
         ------
         BudgetExceededError

@@ -43,7 +43,20 @@ _SIGNATURE = ("(const casadi_real** arg, casadi_real** res, casadi_int* iw, casa
 
 
 def generate_source(functions: Sequence[ca.Function], name: str = "bsm") -> str:
-    """C source of ``functions`` in one file (``casadi.CodeGenerator``, no header)."""
+    """C source of ``functions`` in one file (``casadi.CodeGenerator``, no header).
+
+    Parameters
+    ----------
+    functions : sequence of casadi.Function
+        The functions to generate.
+    name : str, default "bsm"
+        Base name of the generated file (``<name>.c``).
+
+    Returns
+    -------
+    str
+        The C source.
+    """
     gen = ca.CodeGenerator(f"{name}.c", {"with_header": False})
     for fn in functions:
         gen.add(fn)

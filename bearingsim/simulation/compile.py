@@ -88,7 +88,21 @@ def _record_rate(cache: Path, rate: float) -> None:
 
 def compile_estimate(source_bytes: int, cache_dir: str | Path | None = None) -> float:
     """Expected wall time [s] of building a library from ``source_bytes`` of C: at the speed
-    of the last build recorded in the cache folder, else :data:`DEFAULT_COMPILE_RATE`."""
+    of the last build recorded in the cache folder, else :data:`DEFAULT_COMPILE_RATE`.
+
+    Parameters
+    ----------
+    source_bytes : int
+        Size of the C source [bytes] (>= 0).
+    cache_dir : str or Path, optional
+        Cache folder holding the recorded build speed (default
+        :func:`default_cache_dir`).
+
+    Returns
+    -------
+    float
+        Expected build time [s].
+    """
     rate = DEFAULT_COMPILE_RATE
     path = Path(cache_dir or default_cache_dir()) / _RATE_FILE
     with contextlib.suppress(OSError, ValueError):
@@ -98,7 +112,13 @@ def compile_estimate(source_bytes: int, cache_dir: str | Path | None = None) -> 
 
 def stop_builds(grace: float = EXIT_GRACE) -> None:
     """Give running builds ``grace`` seconds [s] to finish, then stop the rest (run at
-    interpreter exit: no compiler outlives the program)."""
+    interpreter exit: no compiler outlives the program).
+
+    Parameters
+    ----------
+    grace : float, default EXIT_GRACE
+        Time the running builds get to finish [s] (>= 0).
+    """
     deadline = time.perf_counter() + grace
     with _LOCK:
         running = list(_RUNNING)
@@ -121,7 +141,13 @@ class CompileError(BearingsimError):
 def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root shared with the assembled
     systems (:func:`bearingsim.assembler.cache.cache_root`; found once per value of the
-    variables it depends on: every run's kernel look-up asks for it)."""
+    variables it depends on: every run's kernel look-up asks for it).
+
+    Returns
+    -------
+    Path
+        The cache folder.
+    """
     return _cache_dir(os.environ.get("BEARINGSIM_CACHE"), os.environ.get("HOME"))
 
 
@@ -133,7 +159,13 @@ def _cache_dir(setting: str | None, home: str | None) -> Path:
 
 def c_compiler() -> str | None:
     """Path of the C compiler (``$CC``, else ``gcc``, else ``cc``), or None if there is none
-    (looked up once per ``$CC`` and ``$PATH``)."""
+    (looked up once per ``$CC`` and ``$PATH``).
+
+    Returns
+    -------
+    str or None
+        The compiler's path, None without one.
+    """
     return _find_compiler(os.environ.get("CC", "gcc"), os.environ.get("PATH"))
 
 
@@ -222,7 +254,13 @@ def compile_units(units: Sequence[tuple[Path, Sequence[str]]], output: Path, *,
 
 
 def compilations() -> int:
-    """How many times this process has run the C compiler (cache hits do not count)."""
+    """How many times this process has run the C compiler (cache hits do not count).
+
+    Returns
+    -------
+    int
+        Compiler runs so far.
+    """
     return _COMPILATIONS[0]
 
 
@@ -232,6 +270,24 @@ def library_path(identity: str, *, flags: Sequence[str] = DEFAULT_FLAGS,
     """Where the library determined by ``identity`` (its C source, or a string that
     determines the source) is kept: ``<cache>/<prefix>_<hash>.so``, the hash also over the
     casadi version, the compiler, ``flags`` and ``split_flags`` (None: ``flags``).
+
+    Parameters
+    ----------
+    identity : str
+        The C source, or a string that determines it.
+    flags : sequence of str, default DEFAULT_FLAGS
+        Compiler flags (of the first translation unit).
+    cache_dir : str or Path, optional
+        Cache folder (default :func:`default_cache_dir`).
+    prefix : str, default "bsm"
+        Start of the library's file name.
+    split_flags : sequence of str, optional
+        Flags of the translation units after the first (default ``flags``).
+
+    Returns
+    -------
+    Path
+        ``<cache>/<prefix>_<hash>.so`` (not necessarily built yet).
 
     Raises
     ------
@@ -311,7 +367,13 @@ class Build:
             _RUNNING.add(self)
 
     def done(self) -> bool:
-        """Whether the compiler has finished (successfully or not)."""
+        """Whether the compiler has finished (successfully or not).
+
+        Returns
+        -------
+        bool
+            True once the compiler process has exited.
+        """
         finished = self._proc.poll() is not None
         if finished:
             self._finished()
@@ -340,6 +402,11 @@ class Build:
     def wait(self) -> Path:
         """Wait for the library.
 
+        Returns
+        -------
+        Path
+            The built shared library.
+
         Raises
         ------
         CompileError
@@ -359,6 +426,22 @@ def compile_source(source: str | Sequence[str], lib: Path, *,
                    split_flags: Sequence[str] | None = None) -> Path:
     """Compile ``source`` (or its translation units) into the shared library ``lib`` and wait
     for it (:class:`Build`; ``split_flags`` for the units after the first, default ``flags``).
+
+    Parameters
+    ----------
+    source : str or sequence of str
+        The C source, or its translation units.
+    lib : Path
+        Path of the shared library to write.
+    flags : sequence of str, default DEFAULT_FLAGS
+        Compiler flags.
+    split_flags : sequence of str, optional
+        Flags of the units after the first (default ``flags``).
+
+    Returns
+    -------
+    Path
+        ``lib``, built.
 
     Raises
     ------

@@ -26,7 +26,20 @@ MAPPED_LIMIT = 256
 
 
 def mapped_function(fn: ca.Function, n: int) -> ca.Function:
-    """``fn.map(n)`` (``n`` evaluations in one call), built once per function and ``n``."""
+    """``fn.map(n)`` (``n`` evaluations in one call), built once per function and ``n``.
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        The function to map.
+    n : int
+        Evaluations per call (>= 1).
+
+    Returns
+    -------
+    casadi.Function
+        ``fn.map(n)``: its inputs and outputs have ``n`` columns.
+    """
     key = (id(fn), n)
     found = _MAPPED.get(key)
     if found is not None and found[0] is fn:
@@ -70,7 +83,22 @@ class BufferedFunction:
         return self._out
 
     def vector(self, t: float, x, p) -> np.ndarray:
-        """Dense column output as a new 1-D array."""
+        """Dense column output as a new 1-D array.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : array_like
+            State vector.
+        p : array_like
+            Parameter vector.
+
+        Returns
+        -------
+        numpy.ndarray
+            The output, zeros filled in where it is structurally zero.
+        """
         out = self._run(t, x, p)
         if self._dense:
             return out.copy()
@@ -79,7 +107,22 @@ class BufferedFunction:
         return full
 
     def sparse(self, t: float, x, p) -> scipy.sparse.csc_matrix:
-        """Matrix output as a new scipy CSC matrix."""
+        """Matrix output as a new scipy CSC matrix.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : array_like
+            State vector.
+        p : array_like
+            Parameter vector.
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix
+            The output in its sparsity pattern.
+        """
         data = self._run(t, x, p).copy()
         return scipy.sparse.csc_matrix((data, self._indices, self._indptr), shape=self._shape)
 
@@ -91,7 +134,18 @@ BUFFERED_PER_THREAD = 64
 
 def buffered_function(fn: ca.Function) -> BufferedFunction:
     """This thread's :class:`BufferedFunction` of ``fn``, made on first use (making one costs
-    more than a short run's right-hand sides: repeated runs on one closed model reuse it)."""
+    more than a short run's right-hand sides: repeated runs on one closed model reuse it).
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        The function to evaluate.
+
+    Returns
+    -------
+    BufferedFunction
+        The thread's evaluator of ``fn``.
+    """
     cache = getattr(_LOCAL, "cache", None)
     if cache is None:
         cache = _LOCAL.cache = {}
@@ -108,5 +162,18 @@ def buffered_function(fn: ca.Function) -> BufferedFunction:
 def evaluate(fn: ca.Function, *args: np.ndarray | float) -> list[np.ndarray]:
     """``fn(*args)`` through this thread's buffer of ``fn``
     (:func:`~bearingsim.assembler.numeric.buffered`): every output as a dense numpy array of
-    its shape."""
+    its shape.
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        The function to evaluate.
+    *args : numpy.ndarray or float
+        Its inputs, in order.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        Its outputs, in order.
+    """
     return buffered(fn)(*args)

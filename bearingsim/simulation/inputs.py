@@ -53,6 +53,20 @@ def table_expression(t: ca.SX, times: ca.SX, values: ca.SX) -> ca.SX:
 
     Each segment contributes its line where ``t`` is in it and an exact zero elsewhere, so the
     value at a row is that row's value (no summation error).
+
+    Parameters
+    ----------
+    t : casadi.SX
+        Time [s] (scalar).
+    times : casadi.SX
+        The table's times [s], ``n`` increasing values (n >= 2).
+    values : casadi.SX
+        The table's values, ``n`` of them (in the input's unit).
+
+    Returns
+    -------
+    casadi.SX
+        The interpolated value at ``t``.
     """
     n = times.numel()
     held = ca.fmin(ca.fmax(t, times[0]), times[n - 1])
@@ -87,13 +101,30 @@ class InputSignal:
     lifted: tuple[tuple[int, int] | None, ...] = ()
 
     def of_time(self) -> ca.Function:
-        """``u(t)`` with this run's numbers substituted."""
+        """``u(t)`` with this run's numbers substituted.
+
+        Returns
+        -------
+        casadi.Function
+            ``u(t)`` -> the input vector.
+        """
         t = ca.SX.sym("t")
         return ca.Function("u", [t], [self.u(t, ca.DM(self.q))], ["t"], ["u"])
 
     def at(self, times: np.ndarray) -> np.ndarray:
         """Every input at ``times`` [s]: shape ``(n_inputs, len(times))`` (one mapped call of
-        ``u``, the mapped function built once per structure and number of times)."""
+        ``u``, the mapped function built once per structure and number of times).
+
+        Parameters
+        ----------
+        times : array_like
+            Times [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            The inputs, one row per input and one column per time.
+        """
         times = np.atleast_1d(np.asarray(times, dtype=float))
         n = times.size
         mapped = mapped_function(self.u, n)
@@ -264,7 +295,23 @@ def _signal_function(exprs: list[ca.SX | None], slices: list[tuple[int, int] | N
 
 def input_expression(system: System, inputs: dict[str, Any] | None, t: ca.SX) -> ca.SX:
     """Vector of input expressions of ``t`` in the system's input order (numbers inlined; see
-    :func:`input_signal` for the arguments and errors)."""
+    :func:`input_signal` for the arguments and errors).
+
+    Parameters
+    ----------
+    system : System
+        The closed system.
+    inputs : dict, optional
+        Input name -> constant, table or function of time, as
+        :func:`input_signal` takes them.
+    t : casadi.SX
+        Time [s] (scalar).
+
+    Returns
+    -------
+    casadi.SX
+        The input vector as expressions of ``t``.
+    """
     signal = input_signal(system, inputs)
     return signal.u(t, ca.DM(signal.q))
 
@@ -283,6 +330,15 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
     and, by interval arithmetic (:mod:`~bearingsim.simulation.intervals`), between them. A
     signal found valid is remembered (by system, structure, numbers and time span), so
     repeated runs check it once.
+
+    Parameters
+    ----------
+    system : System
+        The closed system declaring the inputs' ranges.
+    signal : InputSignal
+        The run's inputs.
+    times : numpy.ndarray
+        The run's output times [s], increasing.
 
     Raises
     ------

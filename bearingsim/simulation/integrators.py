@@ -113,7 +113,18 @@ class Integrator(ABC):
 
     @abstractmethod
     def run(self, problem: IntegrationProblem) -> Trajectory:
-        """Integrate ``problem`` and return the trajectory at its output times."""
+        """Integrate ``problem`` and return the trajectory at its output times.
+
+        Parameters
+        ----------
+        problem : IntegrationProblem
+            The closed system, its start state, time span, output times and options.
+
+        Returns
+        -------
+        Trajectory
+            States (and algebraic variables) at the output times, with the run's statistics.
+        """
 
 
 NEWTON_STAGNATION = 1.0
@@ -134,6 +145,33 @@ def bdf_newton(fun, t_new, y_predict, c, psi, LU, solve_lu, scale, tol):
     tolerance, 13 000 steps in 30 s). Here corrections that stagnate below
     :data:`NEWTON_STAGNATION` times the tolerance count as converged: the iterate is as
     accurate as the arithmetic allows, and the step's error test still decides on it.
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(t, y)``: the right-hand side.
+    t_new : float
+        Time at the end of the step [s].
+    y_predict : numpy.ndarray
+        The predictor (the iteration's start).
+    c : float
+        Step size over the BDF order's coefficient [s].
+    psi : numpy.ndarray
+        The BDF history term.
+    LU : object
+        Factorization of the iteration matrix, as ``solve_lu`` takes it.
+    solve_lu : callable
+        ``solve_lu(LU, b)``: solves with the iteration matrix.
+    scale : numpy.ndarray
+        Error weights (``atol + rtol |y|``).
+    tol : float
+        Newton tolerance on the scaled correction (> 0).
+
+    Returns
+    -------
+    tuple of (bool, int, numpy.ndarray, numpy.ndarray)
+        Whether it converged, the iterations used, the corrected state and the sum of the
+        corrections.
     """
     y = y_predict.copy()
     d = np.zeros_like(y)
@@ -172,7 +210,18 @@ def budgeted(solver: type) -> type:
     """A subclass of the scipy ``OdeSolver`` class ``solver`` that counts every step against
     the run's budget, given as the solver option ``budget`` (a
     :class:`~bearingsim.simulation.budget.RunBudget`; raising
-    :class:`~bearingsim.errors.BudgetExceededError` when it is spent)."""
+    :class:`~bearingsim.errors.BudgetExceededError` when it is spent).
+
+    Parameters
+    ----------
+    solver : type
+        A subclass of ``scipy.integrate.OdeSolver``.
+
+    Returns
+    -------
+    type
+        The budgeted subclass (keyword ``budget`` required).
+    """
 
     def __init__(self, *args, budget: RunBudget, **kwargs):
         self.budget = budget
@@ -220,7 +269,18 @@ class ScipyIntegrator(Integrator):
         self.implicit = implicit
 
     def run(self, problem: IntegrationProblem) -> Trajectory:
-        """Integrate with ``solve_ivp`` (see :class:`Integrator`)."""
+        """Integrate with ``solve_ivp`` (see :class:`Integrator`).
+
+        Parameters
+        ----------
+        problem : IntegrationProblem
+            The closed system, its start state, time span, output times and options.
+
+        Returns
+        -------
+        Trajectory
+            States (and algebraic variables) at the output times, with the run's statistics.
+        """
         pb, system = problem, problem.system
         f, jac = buffered_function(pb.closed.f), buffered_function(pb.closed.jac)
         n_f = [0]
@@ -302,7 +362,18 @@ class SundialsIntegrator(Integrator):
         self.name = name
 
     def run(self, problem: IntegrationProblem) -> Trajectory:
-        """Integrate with CVODES or IDAS (see :class:`Integrator`)."""
+        """Integrate with CVODES or IDAS (see :class:`Integrator`).
+
+        Parameters
+        ----------
+        problem : IntegrationProblem
+            The closed system, its start state, time span, output times and options.
+
+        Returns
+        -------
+        Trajectory
+            States (and algebraic variables) at the output times, with the run's statistics.
+        """
         pb, system = problem, problem.system
         form = "dae" if self.name == "idas" and "dae_ode" in system.functions else "ode"
         start = time.perf_counter()
@@ -331,7 +402,18 @@ class CompiledIntegrator(Integrator):
     name = "compiled_bdf"
 
     def run(self, problem: IntegrationProblem) -> Trajectory:
-        """Integrate with the compiled BDF (see :class:`Integrator`)."""
+        """Integrate with the compiled BDF (see :class:`Integrator`).
+
+        Parameters
+        ----------
+        problem : IntegrationProblem
+            The closed system, its start state, time span, output times and options.
+
+        Returns
+        -------
+        Trajectory
+            States (and algebraic variables) at the output times, with the run's statistics.
+        """
         pb, system = problem, problem.system
         if pb.compiled is False:
             raise ParameterError(
@@ -370,5 +452,16 @@ BACKENDS: dict[str, str] = {"scipy": "BDF", "casadi": "cvodes", "compiled": "com
 
 
 def methods_of(backend: str) -> tuple[str, ...]:
-    """Names of the methods of one backend, in :data:`METHODS` order."""
+    """Names of the methods of one backend, in :data:`METHODS` order.
+
+    Parameters
+    ----------
+    backend : {"scipy", "casadi", "compiled"}
+        The integrator family (a key of :data:`BACKENDS`).
+
+    Returns
+    -------
+    tuple of str
+        Its method names.
+    """
     return tuple(name for name, m in METHODS.items() if m.backend == backend)

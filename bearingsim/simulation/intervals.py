@@ -224,6 +224,18 @@ def _apply(op: int, args: list[Interval]) -> Interval:  # noqa: C901 - one case 
 def evaluate(fn: ca.Function, span: Interval) -> Interval:
     """Bounds of the scalar SX function ``fn(t)`` for ``t`` in ``span``.
 
+    Parameters
+    ----------
+    fn : casadi.Function
+        Scalar SX function of one scalar, time [s].
+    span : Interval
+        The times [s].
+
+    Returns
+    -------
+    Interval
+        Enclosure of ``fn(t)`` over ``span``.
+
     Raises
     ------
     ArithmeticError
@@ -280,6 +292,20 @@ def locate_problem(fn: ca.Function, t0: float, t1: float, low: float | None = No
     without interval rules, which the sampled checks then cover).
 
     The span is located to :data:`RESOLUTION` of ``t1 - t0`` by depth-first bisection.
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        Scalar SX function of time [s].
+    t0, t1 : float
+        The time span [s], ``t0 <= t1``.
+    low, high : float, optional
+        The valid range of ``fn`` (None: unbounded on that side).
+
+    Returns
+    -------
+    IntervalProblem or None
+        The reason and the span, or None.
     """
     width = RESOLUTION * (t1 - t0)
     boxes = [(t0, t1)]

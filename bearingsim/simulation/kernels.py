@@ -118,7 +118,14 @@ class Kernel:
     mapped: str = ""
 
     def describe(self) -> dict[str, Any]:
-        """The kernel's entries of ``Result.stats``."""
+        """The kernel's entries of ``Result.stats``.
+
+        Returns
+        -------
+        dict
+            Backend, the reason for it, the ball mapping, and the library's path if there
+            is one.
+        """
         out: dict[str, Any] = {"backend": self.backend, "backend_reason": self.reason,
                                "mapped": self.mapped}
         if self.library is not None:
@@ -258,7 +265,28 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
 def cache_key(form: str, compiled: bool | str, flags: tuple[str, ...] = DEFAULT_FLAGS,
               cache_dir: str | Path | None = None, mapped: bool = True,
               split_flags: tuple[str, ...] | None = DEFAULT_SPLIT_FLAGS) -> tuple:
-    """The key of a :func:`kernel` request in a system's kernel cache (same arguments)."""
+    """The key of a :func:`kernel` request in a system's kernel cache (same arguments).
+
+    Parameters
+    ----------
+    form : {"ode", "dae"}
+        As :func:`kernel` takes it.
+    compiled : bool or "auto"
+        As :func:`kernel` takes it.
+    flags : tuple of str
+        Compiler flags (of the main translation unit).
+    cache_dir : path, optional
+        Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+    mapped : bool
+        Whether the mapped-ball functions are used.
+    split_flags : tuple of str or None
+        Compiler flags of the split-off translation units; None: ``flags``.
+
+    Returns
+    -------
+    tuple
+        Hashable key; equal keys mean the same kernel.
+    """
     return (form, compiled, tuple(flags), str(cache_dir or default_cache_dir()), bool(mapped),
             None if split_flags is None else tuple(split_flags))
 
@@ -401,7 +429,22 @@ def _with_jacobian(fn: ca.Function, jac: ca.Function) -> ca.Function:
 def pending_build(system: System, form: str = "ode",
                   cache_dir: str | Path | None = None) -> Build | None:
     """The background build of ``system``'s ``compiled="auto"`` kernel library still running
-    in this process, if any (started by :func:`kernel`)."""
+    in this process, if any (started by :func:`kernel`).
+
+    Parameters
+    ----------
+    system : System
+        An assembled system.
+    form : {"ode", "dae"}
+        The kernel's form.
+    cache_dir : path, optional
+        Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+
+    Returns
+    -------
+    Build or None
+        The running build, or None when there is none or it has finished.
+    """
     lib = _system_cache(system).get(("library", *cache_key(form, "auto", cache_dir=cache_dir)))
     if lib is None:
         return None

@@ -48,7 +48,13 @@ class LinearModel:
 
     @property
     def angular_frequencies(self) -> np.ndarray:
-        """Undamped natural angular frequencies [rad/s]."""
+        """Undamped natural angular frequencies [rad/s].
+
+        Returns
+        -------
+        numpy.ndarray
+            ``2 pi`` times :attr:`natural_frequencies` [rad/s].
+        """
         return 2.0 * np.pi * self.natural_frequencies
 
 

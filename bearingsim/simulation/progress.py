@@ -18,7 +18,18 @@ DELAY = 2.0
 
 def shows_progress(progress: bool | None) -> bool:
     """Whether a run with this ``progress`` setting gets a bar: ``progress`` itself, or for
-    ``None`` whether standard error is a terminal (tqdm's ``disable=None`` rule)."""
+    ``None`` whether standard error is a terminal (tqdm's ``disable=None`` rule).
+
+    Parameters
+    ----------
+    progress : bool or None
+        The run's ``progress`` option.
+
+    Returns
+    -------
+    bool
+        Whether to show a bar.
+    """
     if progress is not None:
         return bool(progress)
     isatty = getattr(sys.stderr, "isatty", None)

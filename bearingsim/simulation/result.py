@@ -131,19 +131,54 @@ class Result:
 
     @checked
     def final(self, name: str) -> float:
-        """Value at the last time point."""
+        """Value at the last time point.
+
+        Parameters
+        ----------
+        name : str
+            A variable's dotted name.
+
+        Returns
+        -------
+        float
+            Its last value, in SI.
+        """
         if not isinstance(name, str):
             raise ParameterError(f"Result.final: expected a variable name, got {name!r:.60}")
         return float(self[name][-1])
 
     def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
         """Write ``time`` and the chosen variables (default all) as CSV in SI, one header row
-        ``time [s], name [unit], ...`` (:func:`~bearingsim.files.write_series_csv`)."""
+        ``time [s], name [unit], ...`` (:func:`~bearingsim.files.write_series_csv`).
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write.
+        names : list of str, optional
+            These variables, in this order (default all).
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         names = self._names(names, "Result.to_csv") if names is not None else self.names
         return write_series_csv(path, self.t, {n: self[n] for n in names}, self.units)
 
     def to_npz(self, path: str | Path) -> Path:
-        """Write all series to a compressed NumPy archive."""
+        """Write all series to a compressed NumPy archive.
+
+        Parameters
+        ----------
+        path : str or Path
+            File to write (``.npz`` appended if missing).
+
+        Returns
+        -------
+        Path
+            The file written.
+        """
         path = Path(path)
         if path.suffix != ".npz":  # numpy appends it; return the file actually written
             path = path.with_name(path.name + ".npz")
@@ -166,7 +201,18 @@ class Result:
 
     def label(self, name: str) -> str:
         """The axis label of a variable: its description (else its name) and its display
-        unit, ``"middle ring speed [r/min]"``."""
+        unit, ``"middle ring speed [r/min]"``.
+
+        Parameters
+        ----------
+        name : str
+            A variable's dotted name.
+
+        Returns
+        -------
+        str
+            The label.
+        """
         return describe(name, self.descriptions.get(name, ""), self.units.get(name, "1"))
 
     def plot(self, names: str | Sequence[str] | None = None, path: str | Path | None = None,
@@ -273,6 +319,14 @@ class Result:
         Returns
         -------
         xarray.Dataset
+
+        Parameters
+        ----------
+        internal : bool
+            Also the variables inside the components (default: the requested outputs only,
+            :meth:`columns`).
+        names : list of str, optional
+            These variables, in this order, instead.
         """
         try:
             import xarray as xr

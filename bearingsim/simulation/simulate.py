@@ -42,6 +42,26 @@ def initial_state(
 
     ``signal`` is the run's inputs; ``steady`` is False for none, else the run's input
     specification (``None`` or a dict) that the steady state is solved with.
+
+    Parameters
+    ----------
+    system : System
+        The closed system.
+    signal : InputSignal
+        The run's inputs.
+    p : numpy.ndarray
+        Parameter vector (SI).
+    x0 : numpy.ndarray
+        Start values of the states (SI).
+    t0 : float
+        Start time [s].
+    steady : dict or None or bool
+        False: no steady state; else the input specification it is solved with.
+
+    Returns
+    -------
+    numpy.ndarray
+        The initial states (SI).
     """
     x = x0.copy()
     if system.init_residual is not None:

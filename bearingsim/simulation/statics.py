@@ -63,7 +63,28 @@ def static_compliance(system: System, x: np.ndarray, displacements: Sequence[str
 def static_stiffness(system: System, x: np.ndarray, displacements: Sequence[str],
                      loads: Sequence[str], inputs: dict[str, float] | None = None,
                      parameters: dict[str, float] | None = None, t: float = 0.0) -> np.ndarray:
-    """Static stiffness matrix ``K = C^-1`` (see :func:`static_compliance`); square only."""
+    """Static stiffness matrix ``K = C^-1`` (see :func:`static_compliance`); square only.
+
+    Parameters
+    ----------
+    system : System
+        The closed system.
+    x : array
+        Steady state (e.g. from :func:`bearingsim.simulation.steady_state`).
+    displacements : sequence of str
+        State names of the displacements (rows).
+    loads : sequence of str
+        Input names of the loads (columns), as many as ``displacements``.
+    inputs, parameters : dict, optional
+        Input values and parameter overrides at the operating point.
+    t : float
+        Time [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Stiffness matrix, shape (len(loads), len(displacements)).
+    """
     if len(displacements) != len(loads):
         raise ParameterError("static_stiffness needs as many displacements as loads")
     return np.linalg.inv(static_compliance(system, x, displacements, loads, inputs, parameters,

@@ -26,7 +26,18 @@ __all__ = ["steady_state", "integrator_states"]
 
 
 def integrator_states(system: System) -> list[int]:
-    """States no derivative depends on (angles of free rotors): they have no steady value."""
+    """States no derivative depends on (angles of free rotors): they have no steady value.
+
+    Parameters
+    ----------
+    system : System
+        The closed system.
+
+    Returns
+    -------
+    list of int
+        Indices of those states.
+    """
     sp = system.functions["ode"].jac_sparsity(0, 1)  # d ode / d x, without building it
     cols = set(sp.get_col())
     return [k for k in range(system.n_states) if k not in cols]

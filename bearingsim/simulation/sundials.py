@@ -100,6 +100,20 @@ def choose_linear_solver(n: int, nnz: int, form: str = "ode") -> str:
     never chosen, nor CSparse in the system's own order: the rows and columns of the rings and
     cages couple every ball, and their fill-in makes them slower than dense LU from 100
     unknowns on (``bench/sundials_compiled.py``, ``linsol``).
+
+    Parameters
+    ----------
+    n : int
+        Unknowns of the Newton matrix (>= 0).
+    nnz : int
+        Its structural non-zeros (0 to ``n**2``).
+    form : {"ode", "dae"}
+        The integrator's form (CVODES or IDAS).
+
+    Returns
+    -------
+    str
+        ``"lapacklu"``, ``"csparse"`` or ``"mumps"`` (one of :data:`LINEAR_SOLVERS`).
     """
     if n <= DENSE_LIMIT or nnz > 0.3 * n * n:
         return "lapacklu"
@@ -156,12 +170,35 @@ class IntegratorCache:
         self._lock = threading.Lock()
 
     def get(self, system: System, key: tuple) -> _Built | None:
-        """The integrator built for ``key``, if any."""
+        """The integrator built for ``key``, if any.
+
+        Parameters
+        ----------
+        system : System
+            The closed system.
+        key : tuple
+            The integrator's settings.
+
+        Returns
+        -------
+        _Built or None
+            The kept integrator, None if there is none.
+        """
         with self._lock:
             return self._by_system.get(id(system), {}).get(key)
 
     def put(self, system: System, key: tuple, built: _Built) -> None:
-        """Keep ``built`` for later runs with ``key``."""
+        """Keep ``built`` for later runs with ``key``.
+
+        Parameters
+        ----------
+        system : System
+            The closed system (its integrators are dropped with it).
+        key : tuple
+            The integrator's settings.
+        built : _Built
+            The integrator.
+        """
         with self._lock:
             per = self._by_system.get(id(system))
             if per is None:
@@ -559,7 +596,28 @@ def _interrupts() -> Iterator[_Interrupted]:
 
 def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,
                xs: np.ndarray, zs: np.ndarray | None) -> np.ndarray:
-    """Every observed variable at the output times (the kernel's backend, one mapped call)."""
+    """Every observed variable at the output times (the kernel's backend, one mapped call).
+
+    Parameters
+    ----------
+    kernel : Kernel
+        The run's kernel (its ``observe`` function).
+    signal : InputSignal
+        The run's inputs.
+    p : numpy.ndarray
+        Parameter vector (SI).
+    ts : numpy.ndarray
+        Output times [s].
+    xs : numpy.ndarray
+        States, one column per time.
+    zs : numpy.ndarray or None
+        Algebraic states, one column per time (DAE form), else None.
+
+    Returns
+    -------
+    numpy.ndarray
+        Observed variables, one column per time.
+    """
     n = ts.size
     us = signal.at(ts)
     ps = np.repeat(p[:, None], n, axis=1)
