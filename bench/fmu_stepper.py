@@ -1,21 +1,28 @@
 """Benchmark: the FMU's co-simulation stepper, cost per ``fmi2DoStep`` measured from a C host.
 
 The 6304 deep-groove bearing with massive balls (``dynamic_massive_balls``, no slices; 75
-states) is exported twice as an FMI 2.0 co-simulation FMU, once per stepper of the C runtime
+states) is exported as an FMI 2.0 co-simulation FMU once per stepper of the C runtime
 (``export_fmu(stepper=...)``):
 
 * **rodas3**: Rodas3 (the stepper of earlier versions): exact Jacobian and a new LU
   factorisation at every internal step;
 * **ros34pw2**: the Rosenbrock-W method ROS34PW2, which keeps the Jacobian and its LU
-  factorisation over many steps.
+  factorisation over many steps;
+* **bdf**: the BDF stepping core of ``method="compiled_bdf"`` (``bsm_bdf.c``), its history kept
+  across doSteps, equal steps to each communication point.
+
+Beside them, ``simulate(method="compiled_bdf")`` on the same model with the FMU's error
+weights (rtol, atol = rtol / 100), its CPU time (``integrate_cpu_time``, the C loop) spread
+over the same communication steps.
 
 A small C program (``bench/fmu_stepper_host.c``, compiled with gcc) dlopens each FMU's binary,
 sets the loads of duty condition 1 (1730 r/min, radial load 938 N), ramps the shaft speed from
 0 over 5 ms (through ``fmi2SetRealInputDerivatives``, so the ramp is exact), calls
 ``fmi2DoStep`` with a fixed communication step and prints the mean wall time of one call (no
 Python or ctypes in the timed loop): wall time and the CPU time of the thread (the latter is
-what counts on a shared machine). Runs alternate between the two FMUs; the best of the repeats
-is reported. Accuracy: largest deviation of the outputs from ``simulate`` (CVODES,
+what counts on a shared machine). Each FMU runs at two communication steps (0.1 ms and 1 ms)
+over the same simulated time; runs alternate between the FMUs; the best of the repeats is
+reported, with the real-time factor (simulated time / CPU time). Accuracy: largest deviation of the outputs from ``simulate`` (CVODES,
 rtol 1e-10) at the communication points, relative to each output's largest magnitude. Usage::
 
     python -m bench.fmu_stepper [--quick]
@@ -42,11 +49,14 @@ __all__ = ["HOST_SOURCE", "run", "section"]
 HOST_SOURCE = Path(__file__).with_name("fmu_stepper_host.c")
 """The C timing host."""
 
-COMM_STEP = 1e-4
-"""Communication step [s]."""
+COMM_STEPS = (1e-4, 1e-3)
+"""Communication steps [s]."""
+
+T_END = 0.1
+"""Simulated time [s] (``--quick``: a fifth)."""
 
 RAMP = 5e-3
-"""Duration of the shaft-speed ramp from rest [s] (a multiple of :data:`COMM_STEP`)."""
+"""Duration of the shaft-speed ramp from rest [s] (a multiple of the communication steps)."""
 
 TOLERANCE = 1e-6
 """Relative tolerance given to both FMUs (``fmi2SetupExperiment``)."""
@@ -54,7 +64,7 @@ TOLERANCE = 1e-6
 OUTPUTS = ["w_cage", *[f"inner[{j}].Q" for j in range(7)], "ring.x_um", "ring.y_um"]
 """Compared outputs: cage speed [rad/s], inner contact loads [N], ring displacement [um]."""
 
-STEPPERS = ("rodas3", "ros34pw2")
+STEPPERS = ("rodas3", "ros34pw2", "bdf")
 
 
 def _system():
@@ -78,7 +88,7 @@ def _host(folder: Path) -> Path:
     return exe
 
 
-def _run_host(exe: Path, fmu: Path, folder: Path, n: int, w: float, load: float):
+def _run_host(exe: Path, fmu: Path, folder: Path, h: float, n: int, w: float, load: float):
     """Wall and CPU time per doStep [ns], the output rows (t, y...) and the stepper's
     counters."""
     from fmpy import read_model_description
@@ -90,7 +100,7 @@ def _run_host(exe: Path, fmu: Path, folder: Path, n: int, w: float, load: float)
     md = read_model_description(str(fmu))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     lib = unzip / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
-    args = [str(exe), str(lib), md.guid, repr(TOLERANCE), repr(COMM_STEP), str(n),
+    args = [str(exe), str(lib), md.guid, repr(TOLERANCE), repr(h), str(n),
             str(vr["shaft_speed"]), repr(w), repr(RAMP), ",".join(str(vr[o]) for o in OUTPUTS),
             f"{vr['load.Fx']}={load!r}"]
     proc = subprocess.run(args, capture_output=True, text=True, env={}, check=False)
@@ -106,14 +116,15 @@ def _run_host(exe: Path, fmu: Path, folder: Path, n: int, w: float, load: float)
     return ns, rows, counts
 
 
-def _reference(system, n: int, w: float, load: float) -> np.ndarray:
+def _simulate(system, t_end: float, n: int, w: float, load: float, **options):
+    """``simulate`` over ``t_end`` with ``n`` communication points; (rows, stats)."""
     from bearingsim.simulation import simulate
 
-    t_end = n * COMM_STEP
-    res = simulate(system, t_end, n_points=n + 1, method="cvodes", rtol=1e-10, atol=1e-12,
+    res = simulate(system, t_end, n_points=n + 1,
                    inputs={"shaft_speed": ([0.0, RAMP], [0.0, w]), "load.Fx": load},
-                   progress=False)
-    return np.column_stack([res.t[1:], *[np.asarray(res[o])[1:] for o in OUTPUTS]])
+                   progress=False, **options)
+    return (np.column_stack([res.t[1:], *[np.asarray(res[o])[1:] for o in OUTPUTS]]),
+            res.stats)
 
 
 def _error(rows: np.ndarray, ref: np.ndarray) -> float:
@@ -125,17 +136,19 @@ def _error(rows: np.ndarray, ref: np.ndarray) -> float:
 
 
 def run(quick: bool, log=print) -> str:
-    """Export both FMUs, time them from the C host and compare them with ``simulate``.
+    """Export the FMUs, time them from the C host, run ``compiled_bdf`` and compare all with
+    ``simulate`` (CVODES, rtol 1e-10).
 
     Returns the Markdown section (title line first).
     """
     from bearingsim.fmu import export_fmu
 
-    n = 200 if quick else 1000
+    t_end = T_END / 5 if quick else T_END
     repeats = 2 if quick else 3
     n_rpm, load = DUTY_CYCLE[0]
     w = rpm_to_rad_s(n_rpm)
     system = _system()
+    table = []
     with tempfile.TemporaryDirectory(prefix="bench_fmu_stepper_") as tmp:
         folder = Path(tmp)
         exe = _host(folder)
@@ -145,37 +158,53 @@ def run(quick: bool, log=print) -> str:
             fmus[stepper] = export_fmu(system, folder / f"dgbb_{stepper}.fmu", kinds=("CS",),
                                        inputs={"load.Fx": load}, stepper=stepper,
                                        model_name=f"dgbb_{stepper}")
-        best = {s: (np.inf, np.inf) for s in STEPPERS}
-        results = {}
-        for r in range(repeats):
+        for h in COMM_STEPS:
+            n = int(round(t_end / h))
+            log(f"reference (CVODES, rtol 1e-10), {n} points")
+            ref, _ = _simulate(system, t_end, n, w, load, method="cvodes", rtol=1e-10,
+                               atol=1e-12)
+            best = {s: (np.inf, np.inf) for s in STEPPERS}
+            results = {}
+            for r in range(repeats):
+                for stepper in STEPPERS:
+                    ns, rows, counts = _run_host(exe, fmus[stepper], folder, h, n, w, load)
+                    log(f"h {h:g}, run {r + 1}/{repeats} {stepper}: {ns[0] / 1e3:.1f} us wall, "
+                        f"{ns[1] / 1e3:.1f} us CPU per doStep, {counts}")
+                    best[stepper] = min(best[stepper], ns, key=lambda v: v[1])
+                    results[stepper] = (rows, counts)
             for stepper in STEPPERS:
-                ns, rows, counts = _run_host(exe, fmus[stepper], folder, n, w, load)
-                log(f"run {r + 1}/{repeats} {stepper}: {ns[0] / 1e3:.1f} us wall, "
-                    f"{ns[1] / 1e3:.1f} us CPU per doStep, {counts}")
-                best[stepper] = min(best[stepper], ns, key=lambda v: v[1])
-                results[stepper] = (rows, counts)
-    log("reference (CVODES, rtol 1e-10)")
-    ref = _reference(system, n, w, load)
-    table = []
-    for stepper in STEPPERS:
-        rows, c = results[stepper]
-        np.testing.assert_allclose(rows[:, 0], ref[:, 0], rtol=1e-12)
-        table.append([stepper, f"{best[stepper][1] / 1e3:.1f}", f"{best[stepper][0] / 1e3:.1f}",
-                      f"{best[STEPPERS[0]][1] / best[stepper][1]:.2f}", f"{_error(rows, ref):.2e}",
-                      c["steps"], c["rejected"], c["jacobians"], c["lu"]])
-    header = ["stepper", "CPU µs per doStep", "wall µs per doStep", "speed-up (CPU)",
-              "error vs CVODES", "internal steps",
-              "rejected", "Jacobians", "LU factorisations"]
+                rows, c = results[stepper]
+                np.testing.assert_allclose(rows[:, 0], ref[:, 0], rtol=1e-12)
+                cpu_us = best[stepper][1] / 1e3
+                table.append([f"FMU {stepper}", f"{h * 1e3:g}", f"{cpu_us:.1f}",
+                              f"{best[stepper][0] / 1e3:.1f}", f"{h * 1e6 / cpu_us:.2f}",
+                              f"{_error(rows, ref):.2e}", c["steps"], c["rejected"],
+                              c["jacobians"], c["lu"]])
+            cpu = np.inf
+            for _ in range(repeats):
+                rows, stats = _simulate(system, t_end, n, w, load, method="compiled_bdf",
+                                        rtol=TOLERANCE, atol=TOLERANCE / 100)
+                cpu = min(cpu, stats["integrate_cpu_time"])
+            table.append(["compiled_bdf", f"{h * 1e3:g}", f"{cpu / n * 1e6:.1f}", "-",
+                          f"{t_end / cpu:.2f}", f"{_error(rows, ref):.2e}", stats["nsteps"],
+                          stats["netfails"] + stats["nncfails"], stats["njevals"],
+                          stats["nlinsetups"]])
+    header = ["stepper", "communication step [ms]", "CPU µs per doStep", "wall µs per doStep",
+              "real-time factor (CPU)", "error vs CVODES", "internal steps", "rejected",
+              "Jacobians", "LU factorisations"]
     return (
         "## FMU stepper: cost per doStep from a C host\n\n"
         f"6304 bearing, massive balls ({system.n_states} states), duty condition 1 "
-        f"({n_rpm:g} r/min after a {RAMP * 1e3:g} ms ramp, Fx = {load:g} N); FMI 2.0 CS, "
-        f"{n} doSteps of {COMM_STEP:g} s, FMU tolerance {TOLERANCE:g}; the wall time of the "
-        f"fmi2DoStep calls in a C host (dlopen), the run of least CPU time of {repeats}. "
-        "Error: largest deviation "
-        "of w_cage, the inner contact loads and the ring displacement from `simulate` "
-        "(CVODES, rtol 1e-10) at the communication points, relative to each output's largest "
-        "magnitude.\n\n" + markdown_table(header, table) + "\n"
+        f"({n_rpm:g} r/min after a {RAMP * 1e3:g} ms ramp from rest, Fx = {load:g} N); FMI 2.0 "
+        f"CS, {t_end:g} s simulated at each communication step, FMU tolerance {TOLERANCE:g} "
+        "(error weights rtol |x| + rtol / 100); the CPU and wall time of the fmi2DoStep calls "
+        f"in a C host (dlopen), the run of least CPU time of {repeats}. *compiled_bdf*: "
+        "`simulate(method=\"compiled_bdf\")` with the same error weights, its C loop's CPU time "
+        "per communication step (output points at the communication points). Real-time "
+        "factor: simulated time / CPU time. Error: largest deviation of w_cage, the inner "
+        "contact loads and the ring displacement from `simulate` (CVODES, rtol 1e-10) at the "
+        "communication points, relative to each output's largest magnitude. Shared machine: "
+        "compare rows of one run.\n\n" + markdown_table(header, table) + "\n"
     )
 
 
@@ -188,7 +217,7 @@ def section(quick: bool, log=print) -> Section:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="200 instead of 1000 doSteps")
+    parser.add_argument("--quick", action="store_true", help="a fifth of the simulated time")
     args = parser.parse_args(argv)
     print(run(args.quick))
     return 0

@@ -14,7 +14,7 @@ from bearingsim.fmu.interface import FmuInterface
 
 __all__ = ["STEPPERS", "write_model_c"]
 
-STEPPERS = ("ros34pw2", "rodas3")
+STEPPERS = ("bdf", "ros34pw2", "rodas3")
 """Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default."""
 
 _LOW, _LOW_INCL, _HIGH, _HIGH_INCL = 1, 2, 4, 8
@@ -68,8 +68,8 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         ``"ME"`` and/or ``"CS"``.
     casadi_header : str
         Header of the generated CasADi code.
-    stepper : {"ros34pw2", "rodas3"}
-        Co-simulation stepper compiled in (``BSM_STEPPER_RODAS3``).
+    stepper : {"bdf", "ros34pw2", "rodas3"}
+        Co-simulation stepper compiled in (``BSM_STEPPER_BDF``, ``BSM_STEPPER_RODAS3``).
     lu_order : list of int, optional
         Elimination order of the states in the stepper's LU factorisation (see
         :func:`~bearingsim.simulation.ordering.fill_reducing_order`); default: the state order.
@@ -88,6 +88,7 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
 #define MODEL_GUID "{guid}"
 #define MODEL_HAS_ME {int("ME" in kinds)}
 #define MODEL_HAS_CS {int("CS" in kinds)}
+#define BSM_STEPPER_BDF {int(stepper == "bdf")}
 #define BSM_STEPPER_RODAS3 {int(stepper == "rodas3")}
 
 #define NX {nx}

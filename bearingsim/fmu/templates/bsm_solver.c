@@ -54,6 +54,189 @@
 #define BSM_INPUT_JUMP 1e-2  /* relative input change at a doStep start that renews J */
 #endif
 
+static void inputs_at(BsmInstance *m, double t) {
+    int i;
+    for (i = 0; i < NU; ++i) m->ut[i] = m->saved.u[i] + m->saved.du[i] * (t - m->saved.time);
+}
+
+static int all_finite(const double *v, int n) {
+    int i;
+    for (i = 0; i < n; ++i)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
+/* The compressed LU factors of the instance. */
+static BsmLu lu_factors(BsmInstance *m) {
+    BsmLu c = {m->lu_piv, m->lu_l_start, m->lu_l_index, m->lu_l_val, m->lu_u_start,
+               m->lu_u_index, m->lu_u_val, m->lu_inv_diag};
+    return c;
+}
+
+/* Solve W k = b in place (b in the model's state order). */
+static void solve(BsmInstance *m, double *b) {
+    BsmLu c = lu_factors(m);
+    bsm_lu_solve(&c, NX, bsm_lu_order, m->xs, b);
+}
+
+/* The instance at the end t_end of a communication step: the inputs there, no slopes. */
+static void end_step(BsmInstance *m, double t_end) {
+    m->s.time = t_end;
+    inputs_at(m, t_end);
+    memcpy(m->s.u, m->ut, sizeof(m->s.u));
+    memset(m->s.du, 0, sizeof(m->s.du));
+    bsm_invalidate(m);
+}
+
+static BsmStatus step_failed(BsmInstance *m, const char *reason, double t, double hs) {
+    double t0 = m->saved.time;
+    m->s = m->saved;
+    bsm_invalidate(m);
+    bsm_log(m, BSM_DISCARD, "logStatusDiscard",
+            "doStep from t = %g s: %s at t = %g s (internal step %g s); state restored to t = %g s",
+            t0, reason, t, hs, t0);
+    return BSM_DISCARD;
+}
+
+#if BSM_STEPPER_BDF
+/* ------------------------------------------------------------------ BDF stepper */
+/* The model of the BDF core (bsm_bdf.h): der(x) with the inputs of the communication step,
+ * the Jacobian d der(x)/dx (recorded in the state: where it was evaluated) and the LU of
+ * I - c J in the order bsm_lu_order. */
+static int bdf_rhs(void *model, double t, const double *x, double *f) {
+    BsmInstance *m = (BsmInstance *)model;
+    inputs_at(m, t);
+    return bsm_eval_dense(m, FN_ODE, t, x, m->ut, f) ? BSM_BDF_MODEL_FAILED : BSM_BDF_OK;
+}
+
+/* J at (t, x, u) into the instance's cache. Returns a status code. */
+static int bdf_eval_jacobian(BsmInstance *m, double t, const double *x, const double *u) {
+    m->w_valid = 0;
+    m->w_h = 0.0;
+    if (bsm_eval_dense(m, FN_JAC_X, t, x, u, m->w_jx) != 0) return BSM_BDF_MODEL_FAILED;
+    if (!all_finite(m->w_jx, NX * NX)) return BSM_BDF_NOT_FINITE;
+    m->w_t = t;
+    memcpy(m->w_x, x, sizeof(m->w_x));
+    memcpy(m->w_u, u, sizeof(m->w_u));
+    memcpy(m->w_p, m->s.p, sizeof(m->w_p));
+    m->w_valid = 1;
+    return BSM_BDF_OK;
+}
+
+static int bdf_jacobian(void *model, double t, const double *x) {
+    BsmInstance *m = (BsmInstance *)model;
+    inputs_at(m, t);
+    m->s.jac_set = 0;
+    m->s.jac_t = t;
+    memcpy(m->s.jac_x, x, sizeof(m->s.jac_x));
+    memcpy(m->s.jac_u, m->ut, sizeof(m->s.jac_u));
+    int status = bdf_eval_jacobian(m, t, x, m->ut);
+    m->s.jac_set = status == BSM_BDF_OK;
+    return status;
+}
+
+static int bdf_factor(void *model, double c) {
+    BsmInstance *m = (BsmInstance *)model;
+    int i, j;
+    const int *o = bsm_lu_order;
+    m->w_h = 0.0;
+    for (i = 0; i < NX; ++i) {
+        const double *row = m->w_jx + o[i] * NX;
+        double *lu = m->lu + i * NX;
+        for (j = 0; j < NX; ++j) lu[j] = -c * row[o[j]];
+        lu[i] += 1.0;
+    }
+    BsmLu f = lu_factors(m);
+    if (bsm_lu_factor(m->lu, NX, &f, m->lu_work) != 0) return 1;
+    m->w_h = c;
+    return 0;
+}
+
+static void bdf_solve(void *model, double *x) { solve((BsmInstance *)model, x); }
+
+static const BsmBdfOps bdf_ops = {bdf_rhs, bdf_jacobian, bdf_factor, bdf_solve};
+
+/* The core on the instance's state (its history) and work. */
+static BsmBdf bdf_core(BsmInstance *m) {
+    BsmBdf b;
+    b.n = NX;
+    b.rtol = m->s.rtol;
+    b.atol = 0.01 * m->s.rtol; /* as the Rosenbrock steppers' error weights */
+    b.max_step = HUGE_VAL;
+    b.ops = &bdf_ops;
+    b.model = m;
+    b.h = &m->s.bdf;
+    b.D = m->s.bdf_D;
+    b.work = m->bdf_work;
+    bsm_bdf_init(&b);
+    return b;
+}
+
+/* Whether the history continues at the start of this doStep: it ends at s.time (within the
+ * API's tolerance) at the states s.x, no state or parameter was set since, and the inputs are
+ * within BSM_INPUT_JUMP of those it ended with. If so, the instance's J and LU are made those
+ * the history names (evaluated and factorised again only if the cached ones belong
+ * elsewhere). */
+static int bdf_history_continues(BsmInstance *m) {
+    int i;
+    BsmBdfHistory *h = &m->s.bdf;
+    if (!m->s.jac_set || fabs(h->t - m->s.time) > 1e-9 * fmax(1.0, fabs(m->s.time)) ||
+        memcmp(m->s.bdf_D, m->s.x, sizeof(double) * NX) != 0)
+        return 0;
+    for (i = 0; i < NU; ++i)
+        if (fabs(m->s.u[i] - m->s.bdf_u[i]) > BSM_INPUT_JUMP * fabs(m->s.bdf_u[i])) return 0;
+    h->t = m->s.time;
+    if (!(m->w_valid && m->w_t == m->s.jac_t &&
+          memcmp(m->w_x, m->s.jac_x, sizeof(m->w_x)) == 0 &&
+          memcmp(m->w_u, m->s.jac_u, sizeof(m->w_u)) == 0 &&
+          memcmp(m->w_p, m->s.p, sizeof(m->w_p)) == 0) &&
+        bdf_eval_jacobian(m, m->s.jac_t, m->s.jac_x, m->s.jac_u) != BSM_BDF_OK)
+        return 0;
+    if (h->lu_valid && m->w_h != h->c_lu && bdf_factor(m, h->c_lu) != 0) h->lu_valid = 0;
+    return 1;
+}
+
+static const char *bdf_reason(int status) {
+    switch (status) {
+    case BSM_BDF_STEP_TOO_SMALL: return "the step size became too small";
+    case BSM_BDF_SINGULAR: return "the Newton matrix is singular";
+    case BSM_BDF_NOT_FINITE: return "the Jacobian is not finite";
+    default: return "the model equations could not be evaluated";
+    }
+}
+
+/* One communication step h with the BDF core: steps of equal size to t + h (BSM_BDF_EVEN),
+ * the history kept across doSteps. */
+static BsmStatus bdf_do_step(BsmInstance *m, double h) {
+    BsmBdf b = bdf_core(m);
+    double t = m->s.time, t_end = t + h;
+    long n = 0;
+    int status = BSM_BDF_OK;
+    BsmStatus st;
+    m->saved = m->s;
+    st = bsm_derivatives(m, t, m->s.x, m->s.u, m->dx);
+    if (st != BSM_OK) return st;
+    if (NX > 0 && !bdf_history_continues(m))
+        status = bsm_bdf_first_step(&b, t, m->s.x, t_end);
+    while (NX > 0 && status == BSM_BDF_OK && m->s.bdf.t < t_end) {
+        if (++n > ROS_MAX_STEPS)
+            return step_failed(m, "too many internal steps", m->s.bdf.t, m->s.bdf.h_abs);
+        status = bsm_bdf_step(&b, t_end, BSM_BDF_EVEN);
+    }
+    if (status != BSM_BDF_OK)
+        return step_failed(m, bdf_reason(status), m->s.bdf.t, m->s.bdf.h_abs);
+    memcpy(m->s.x, m->s.bdf_D, sizeof(double) * NX);
+    end_step(m, t_end);
+    memcpy(m->s.bdf_u, m->s.u, sizeof(m->s.bdf_u));
+    m->s.n_steps = (long)m->s.bdf.stats[BSM_BDF_STEPS];
+    m->s.n_rejected = (long)(m->s.bdf.stats[BSM_BDF_ERROR_FAILS] +
+                             m->s.bdf.stats[BSM_BDF_NEWTON_FAILS]);
+    m->s.n_jac = (long)m->s.bdf.stats[BSM_BDF_JEVALS];
+    m->s.n_lu = (long)m->s.bdf.stats[BSM_BDF_LUS];
+    return BSM_OK;
+}
+
+#else /* the Rosenbrock steppers */
 #if BSM_STEPPER_RODAS3
 /* Rodas3 in the transformed form (a, c lower triangular, row by row). */
 static const double ros_gamma_diag = 0.5;
@@ -86,18 +269,6 @@ static const double ros_gamma[ROS_STAGES] = {4.3586652150845900e-01, -4.35866521
                                              -4.1333337623388650e-01, 0.0};
 static const int ros_reuse = 1;
 #endif
-
-static void inputs_at(BsmInstance *m, double t) {
-    int i;
-    for (i = 0; i < NU; ++i) m->ut[i] = m->saved.u[i] + m->saved.du[i] * (t - m->saved.time);
-}
-
-static int all_finite(const double *v, int n) {
-    int i;
-    for (i = 0; i < n; ++i)
-        if (!isfinite(v[i])) return 0;
-    return 1;
-}
 
 /* Right-hand side at (t, y) with interpolated inputs, without logging: the stepper treats a
  * non-finite value as a rejected step. Returns 1 if finite. */
@@ -152,13 +323,6 @@ static int new_jacobian(BsmInstance *m, double t, const double *x) {
     return 1;
 }
 
-/* The compressed LU factors of the instance. */
-static BsmLu lu_factors(BsmInstance *m) {
-    BsmLu c = {m->lu_piv, m->lu_l_start, m->lu_l_index, m->lu_l_val, m->lu_u_start,
-               m->lu_u_index, m->lu_u_val, m->lu_inv_diag};
-    return c;
-}
-
 /* Factorise W = I/(h gamma) - J in the order bsm_lu_order. Returns 1 if not singular. */
 static int factorise(BsmInstance *m, double h) {
     int i, j;
@@ -193,12 +357,6 @@ static int restore_jacobian(BsmInstance *m) {
     if (h > 0.0 && m->w_h != h) return factorise(m, h);
     m->s.jac_h = m->w_h;
     return 1;
-}
-
-/* Solve W k = b in place (b in the model's state order). */
-static void solve(BsmInstance *m, double *b) {
-    BsmLu c = lu_factors(m);
-    bsm_lu_solve(&c, NX, bsm_lu_order, m->xs, b);
 }
 
 /* One step of size h from (t, x) with the current factorisation (built for a step size near
@@ -237,16 +395,6 @@ static double ros_step(BsmInstance *m, double t, const double *x, double h) {
     return (isfinite(err) && all_finite(m->x_new, NX)) ? err : -1.0;
 }
 
-static BsmStatus step_failed(BsmInstance *m, const char *reason, double t, double hs) {
-    double t0 = m->saved.time;
-    m->s = m->saved;
-    bsm_invalidate(m);
-    bsm_log(m, BSM_DISCARD, "logStatusDiscard",
-            "doStep from t = %g s: %s at t = %g s (internal step %g s); state restored to t = %g s",
-            t0, reason, t, hs, t0);
-    return BSM_DISCARD;
-}
-
 /* Whether the W-method can go on with the Jacobian the state names: there is one, no state
  * or parameter was set since, and the inputs are within BSM_INPUT_JUMP of those of J. Makes
  * the instance's cached J and LU those of the state. */
@@ -271,10 +419,8 @@ static double next_step(double h_prop, double remaining, double h_lu) {
     return remaining / fmax(1.0, ceil(remaining / h - 1e-6));
 }
 
-/* Integrate from s.time over one communication step h. If the right-hand side is not finite at
- * the start, BSM_ERROR is returned; if the stepper fails later (step size too small, too many
- * steps), the instance is restored to the start of the step and BSM_DISCARD is returned. */
-BsmStatus bsm_do_step(BsmInstance *m, double h) {
+/* One communication step h with the Rosenbrock stepper. */
+static BsmStatus ros_do_step(BsmInstance *m, double h) {
     double t, t_end, h_prop, err;
     long n = 0;
     int rejected = 0, need_jac;
@@ -321,10 +467,18 @@ BsmStatus bsm_do_step(BsmInstance *m, double h) {
         }
     }
     m->s.h_next = h_prop;
-    m->s.time = t_end;
-    inputs_at(m, t_end);
-    memcpy(m->s.u, m->ut, sizeof(m->s.u));
-    memset(m->s.du, 0, sizeof(m->s.du));
-    bsm_invalidate(m);
+    end_step(m, t_end);
     return BSM_OK;
+}
+#endif
+
+/* Integrate from s.time over one communication step h. If the right-hand side is not finite at
+ * the start, BSM_ERROR is returned; if the stepper fails later (step size too small, too many
+ * steps), the instance is restored to the start of the step and BSM_DISCARD is returned. */
+BsmStatus bsm_do_step(BsmInstance *m, double h) {
+#if BSM_STEPPER_BDF
+    return bdf_do_step(m, h);
+#else
+    return ros_do_step(m, h);
+#endif
 }
