@@ -22,8 +22,9 @@ sets the loads of duty condition 1 (1730 r/min, radial load 938 N), ramps the sh
 Python or ctypes in the timed loop): wall time and the CPU time of the thread (the latter is
 what counts on a shared machine). Each FMU runs at two communication steps (0.1 ms and 1 ms)
 over the same simulated time; runs alternate between the FMUs; the best of the repeats is
-reported, with the real-time factor (simulated time / CPU time). Accuracy: largest deviation of the outputs from ``simulate`` (CVODES,
-rtol 1e-10) at the communication points, relative to each output's largest magnitude. Usage::
+reported, with the real-time factor (simulated time / CPU time). Accuracy: largest deviation
+of the outputs from ``simulate`` (CVODES, rtol 1e-10) at the communication points, relative
+to each output's largest magnitude. Usage::
 
     python -m bench.fmu_stepper [--quick]
 """

@@ -12,10 +12,25 @@ from pathlib import Path
 from bearingsim.fmu.codegen import FUNCTION_NAMES, PREFIX
 from bearingsim.fmu.interface import FmuInterface
 
-__all__ = ["STEPPERS", "write_model_c"]
+__all__ = ["BDF_MIN_STATES", "STEPPERS", "resolve_stepper", "write_model_c"]
 
-STEPPERS = ("bdf", "ros34pw2", "rodas3")
-"""Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default."""
+STEPPERS = ("auto", "bdf", "ros34pw2", "rodas3")
+"""Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default:
+:func:`resolve_stepper`."""
+
+BDF_MIN_STATES = 40
+"""``stepper="auto"`` takes the BDF stepper from this many states on (the ball-level models:
+many stiff states, where its steps are fewest and cheapest; ``docs/fmu.md``), ROS34PW2 below
+(the torque-level and drive models, whose accuracy per tolerance it keeps)."""
+
+
+def resolve_stepper(stepper: str, n_states: int) -> str:
+    """The stepper compiled in for ``stepper`` (one of :data:`STEPPERS`) on a model of
+    ``n_states`` states: ``"auto"`` is ``"bdf"`` from :data:`BDF_MIN_STATES` states on, else
+    ``"ros34pw2"``; the others are themselves."""
+    if stepper != "auto":
+        return stepper
+    return "bdf" if n_states >= BDF_MIN_STATES else "ros34pw2"
 
 _LOW, _LOW_INCL, _HIGH, _HIGH_INCL = 1, 2, 4, 8
 
