@@ -40,6 +40,7 @@
 #define KEEP_BELOW 1.5
 #define JAC_AGE 50
 #define FIT_RESET 0.2
+#define CHANGE_BLOCK 8
 
 /* the work vectors */
 enum { W_Y_PREDICT, W_PSI, W_D, W_Y, W_F, W_DY, W_SCALE, W_TMP };
@@ -119,13 +120,17 @@ static void change_D(BsmBdf *b, double factor) {
             for (int m = 0; m <= k; ++m) s += R[i][m] * U[m][j];
             RU[i][j] = s;
         }
-    for (int col = 0; col < n; ++col) {
-        double old[BSM_BDF_MAX_ORDER + 1];
-        for (int i = 0; i <= k; ++i) old[i] = b->D[(size_t)i * n + col];
+    /* in blocks of CHANGE_BLOCK columns (contiguous, so the compiler vectorises) */
+    for (int c0 = 0; c0 < n; c0 += CHANGE_BLOCK) {
+        int w = n - c0 < CHANGE_BLOCK ? n - c0 : CHANGE_BLOCK;
+        double old[BSM_BDF_MAX_ORDER + 1][CHANGE_BLOCK];
+        for (int i = 0; i <= k; ++i)
+            for (int c = 0; c < w; ++c) old[i][c] = b->D[(size_t)i * n + c0 + c];
         for (int j = 0; j <= k; ++j) {
-            double s = 0.0;
-            for (int i = 0; i <= k; ++i) s += RU[i][j] * old[i];
-            b->D[(size_t)j * n + col] = s;
+            double s[CHANGE_BLOCK] = {0.0};
+            for (int i = 0; i <= k; ++i)
+                for (int c = 0; c < w; ++c) s[c] += RU[i][j] * old[i][c];
+            for (int c = 0; c < w; ++c) b->D[(size_t)j * n + c0 + c] = s[c];
         }
     }
 }
@@ -206,6 +211,16 @@ static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int
     return 0;
 }
 
+/* The step size h_abs (the spacing of D) times factor: D rescaled at once (BSM_BDF_CLIP), or
+ * only the controller's step size h_want set, the spacing left to fit_step, which rescales D
+ * once for it and the stop (BSM_BDF_EVEN). Returns the spacing of D. */
+static double resize(BsmBdf *b, double h_abs, double factor, int mode) {
+    b->h->h_want = h_abs * factor;
+    if (mode == BSM_BDF_EVEN) return h_abs;
+    change_D(b, factor);
+    return h_abs * factor;
+}
+
 /* The error weights of the last step (kept in D's last row). */
 static double *last_scale(const BsmBdf *b) {
     return b->D + (size_t)(BSM_BDF_D_ROWS - 1) * b->n;
@@ -213,7 +228,7 @@ static double *last_scale(const BsmBdf *b) {
 
 /* Order and step size for the next step, from the last one's error estimates (its
  * correction d is D[order + 1]). */
-static void adapt(BsmBdf *b) {
+static void adapt(BsmBdf *b, int mode) {
     int n = b->n;
     BsmBdfHistory *h = b->h;
     int order = h->order;
@@ -245,9 +260,7 @@ static void adapt(BsmBdf *b) {
     double factor = fmin(MAX_FACTOR, h->safety * factors[best]);
     if (factor >= 1.0 && factor < KEEP_BELOW) return; /* not worth a new LU (CVODES) */
     h->order = order + best - 1;
-    h->h_abs *= factor;
-    h->h_want = h->h_abs;
-    change_D(b, factor);
+    h->h_abs = resize(b, h->h_abs, factor, mode);
     h->n_equal_steps = 0;
 }
 
@@ -282,7 +295,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     BsmBdfHistory *h = b->h;
     double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI), *d = work(b, W_D);
     double *y = work(b, W_Y), *scale = work(b, W_SCALE), *tmp = work(b, W_TMP);
-    if (h->adapt_pending) adapt(b);
+    if (h->adapt_pending) adapt(b, mode);
     h->adapt_pending = 0;
     double t = h->t;
     double min_step = 10.0 * fabs(nextafter(t, INFINITY) - t);
@@ -326,9 +339,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
         }
         if (!converged) {
             h->stats[BSM_BDF_NEWTON_FAILS]++;
-            h_abs *= 0.5;
-            h->h_want = h_abs;
-            change_D(b, 0.5);
+            h_abs = resize(b, h_abs, 0.5, mode);
             h->n_equal_steps = 0;
             h->lu_valid = 0;
             continue;
@@ -345,9 +356,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
             double factor = isfinite(error_norm)
                                 ? fmax(MIN_FACTOR, h->safety * pow(error_norm, -1.0 / (order + 1)))
                                 : MIN_FACTOR;
-            h_abs *= factor;
-            h->h_want = h_abs;
-            change_D(b, factor);
+            h_abs = resize(b, h_abs, factor, mode);
             h->n_equal_steps = 0;
             continue;
         }
