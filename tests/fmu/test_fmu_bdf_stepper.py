@@ -51,6 +51,19 @@ def test_history_survives_the_communication_points(stiff_bdf_fmu, stiff_system, 
     assert c_fine["lu"] < c_fine["steps"] / 5, c_fine
 
 
+def test_steps_as_few_as_compiled_bdf(stiff_bdf_fmu, stiff_system, tmp_path):
+    """The FMU's BDF takes about the steps of ``compiled_bdf`` (the same core) at the same
+    error weights (rtol, atol = rtol / 100), although it stops at every communication
+    point."""
+    from bearingsim.simulation import simulate
+
+    rtol = 1e-8
+    _, c = run_cs(stiff_bdf_fmu, tmp_path, 0.01, 1.0, STIFF_OUTPUTS, rtol)
+    res = simulate(stiff_system, 1.0, method="compiled_bdf", rtol=rtol, atol=rtol / 100,
+                   n_points=101, progress=False)
+    assert 0.5 < c["steps"] / res.stats["nsteps"] < 1.5, (c, res.stats)
+
+
 def test_restored_state_continues_bit_for_bit(stiff_bdf_fmu, tmp_path):
     """The history and where its Jacobian and factorisation were made are in the FMU state:
     a run from a restored state repeats the first exactly, although the instance's cached

@@ -1,9 +1,21 @@
-/* bearingsim FMU runtime: the co-simulation stepper.
+/* bearingsim FMU runtime: the co-simulation stepper, selected at export (BSM_STEPPER_BDF,
+ * BSM_STEPPER_RODAS3 in model_config.h).
  *
- * Two linearly implicit one-step methods with an embedded order-2 solution for step-size
- * control, selected at export (BSM_STEPPER_RODAS3 in model_config.h):
+ * - BDF: the variable-order BDF stepping core of the compiled BDF integrator (bsm_bdf.c, the
+ *   same source), its history (bsm_bdf.h: order, step sizes, differences, the LU's c) in the
+ *   FMU state and kept across doSteps. Each communication step is divided into equal internal
+ *   steps no longer than the controller's step size (BSM_BDF_EVEN), so the last one ends on
+ *   the communication point and the next doStep goes on with the same step size and order.
+ *   It starts again (order 1, a new first step) when states or parameters were set, the
+ *   history does not end at the instance's time and states, or an input moved by more than
+ *   BSM_INPUT_JUMP from the value the history ended with. Where its Jacobian was evaluated is
+ *   recorded in the state (jac_t, jac_x, jac_u), so a restored state re-creates J and the LU
+ *   of I - c J and continues bit for bit.
  *
- * - ROS34PW2 (default; Rang and Angermann, BIT 45 (2005) 761-787): a 4-stage, order-3,
+ * Or one of two linearly implicit one-step methods with an embedded order-2 solution for
+ * step-size control:
+ *
+ * - ROS34PW2 (Rang and Angermann, BIT 45 (2005) 761-787): a 4-stage, order-3,
  *   stiffly accurate Rosenbrock-W method, L-stable for the exact Jacobian. It keeps its order
  *   with any matrix in place of the Jacobian (W-method), so the Jacobian and the LU
  *   factorisation of W = I/(h gamma) - J are reused over many steps and communication steps:
@@ -22,11 +34,12 @@
  *   method (the stepper of earlier versions). Its order needs the exact Jacobian, so J is
  *   evaluated and W factorised at every step.
  *
- * Both use the exact Jacobian d der(x)/dx of the generated code when they evaluate one. The
- * stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
+ * All use the exact Jacobian d der(x)/dx of the generated code when they evaluate one. The
+ * Rosenbrock stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
  * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
  * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
- * set), so df/dt includes jac_u * du. The LU factorisation (bsm_lu.c, shared with the
+ * set), so df/dt includes jac_u * du (and the BDF's right-hand side sees u(t)). The LU
+ * factorisation (bsm_lu.c, shared with the
  * compiled BDF integrator) is a dense one with partial pivoting that skips structural zeros,
  * on W permuted by the fill-reducing order bsm_lu_order
  * (a minimum-degree order of the Jacobian's sparsity, computed at export), eliminating and
