@@ -38,16 +38,16 @@ def _steps(fmu, refs, t, n):
 
 
 def test_history_survives_the_communication_points(stiff_bdf_fmu, stiff_system, tmp_path):
-    """Stopping every 1 ms instead of every 50 ms costs few extra steps (a restart at each
-    point would start again at order 1 and a small step: over 1000 of them), and both runs
-    agree with simulate."""
+    """Stopping every 1 ms instead of every 50 ms costs at most one extra step per
+    communication point (a restart at each point would start again at order 1 and a small
+    step: several steps each), and both runs agree with simulate."""
     ref = reference(stiff_system, 1.0, 0.05)
     coarse, c_coarse = run_cs(stiff_bdf_fmu, tmp_path / "coarse", 0.05, 1.0, STIFF_OUTPUTS, 1e-8)
     fine, c_fine = run_cs(stiff_bdf_fmu, tmp_path / "fine", 0.001, 1.0, STIFF_OUTPUTS, 1e-8)
     for k, name in enumerate(STIFF_OUTPUTS):
         assert rel_err(coarse[:, k], ref[name][1:]) < 1e-4, name
         assert rel_err(fine[49::50, k], ref[name][1:]) < 1e-4, name
-    assert c_fine["steps"] < 1.5 * c_coarse["steps"] + 100, (c_fine, c_coarse)
+    assert c_fine["steps"] < c_coarse["steps"] + 1000, (c_fine, c_coarse)
     assert c_fine["lu"] < c_fine["steps"] / 5, c_fine
 
 
