@@ -15,11 +15,12 @@
  * carried over from earlier steps (CVODES's test; scipy: 0.3 % at rtol 1e-5, and two
  * iterations at least); and a step size that would grow by less than 1.5x is kept. The
  * step-size safety factor is 0.8 (scipy: 0.9), times scipy's (2 k_max + 1) / (2 k_max +
- * iterations): with 10 % and 0.9 a fifth more steps failed the error test; 0.8 keeps them as
- * few as before (3 % and 0.9) at 1.25 Newton iterations per step instead of 1.6 (CVODES:
- * 1.15-1.2), for about 5 % more steps and the same or a smaller error. Measured on the 6304
- * massive-ball level's start-up and steady running (bench/sundials_compiled.py, and the FMU's
- * BDF in bench/fmu_stepper.py).
+ * iterations): with 10 % and 0.9 a third more steps failed the error test than with the
+ * earlier 3 % and 0.9; with 0.8 fewer fail, at 1.26 Newton iterations per step instead of 1.6
+ * (CVODES: 1.15-1.2), 10-15 % more steps and 9 % fewer right-hand sides, the error within
+ * 1.6x of before (smaller at rtol 1e-6, larger at 1e-5). Measured on the 6304 massive-ball
+ * level's start-up and steady running (bench/sundials_compiled.py, and against CVODES in
+ * bench/fmu_stepper.py).
  *
  * Stopping at a time t_stop: BSM_BDF_CLIP cuts the one step that would pass it (scipy's
  * t_bound); BSM_BDF_EVEN divides what is left into equal steps no longer than the controller's
