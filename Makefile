@@ -22,8 +22,12 @@ $(STAMP): $(BASE)
 demo: $(BASE)
 	$(PY) -m bearingsim.cli demo --out demo_output --overwrite
 
+# (components' Variables and Connectors sections are not numpydoc's: its warnings about them are muted)
+DOCSTRINGS = $(PY) -W ignore::UserWarning -m numpydoc lint $$(find bearingsim -name '*.py' | sort)
+
 test: $(STAMP)
 	$(PY) -m ruff check bearingsim tests bench examples tools
+	$(DOCSTRINGS)
 	$(PY) -m pytest -q -n 2 tests
 
 bench: $(STAMP)
@@ -37,6 +41,7 @@ docs: $(STAMP)
 
 lint: $(STAMP)
 	$(PY) -m ruff check bearingsim tests bench examples tools
+	$(DOCSTRINGS)
 
 clean:
 	rm -rf $(VENV) demo_output build *.egg-info

@@ -184,8 +184,8 @@ def checked(func: Callable | None = None, *, skip: tuple[str, ...] = ()) -> Call
 
 
 def _numbers(value: Any) -> np.ndarray | None:
-    """The value as a float array if it is numeric (a number, array or sequence of numbers),
-    else None (text, objects, CasADi symbols)."""
+    """The value as a float array if it is numeric (a number, array, sequence of numbers or
+    sequence of such sequences, flattened), else None (text, objects, CasADi symbols)."""
     if isinstance(value, (bool, str, bytes)) or is_symbolic(value):
         return None
     if isinstance(value, numbers.Number) or isinstance(value, np.ndarray):
@@ -196,6 +196,11 @@ def _numbers(value: Any) -> np.ndarray | None:
     if isinstance(value, (list, tuple)) and value and all(
             isinstance(v, numbers.Real) and not isinstance(v, bool) for v in value):
         return np.asarray(value, dtype=float)
+    if isinstance(value, (list, tuple)) and value and all(isinstance(v, (list, tuple))
+                                                          for v in value):
+        rows = [_numbers(v) for v in value]  # e.g. the slice loads of every roller
+        if all(r is not None for r in rows):
+            return np.concatenate([r.ravel() for r in rows])
     return None
 
 

@@ -46,7 +46,18 @@ _CONTROLS = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f\u200b-\u200f\u202a-\u202e\
 def printable(text: object) -> str:
     """``text`` without terminal escape sequences and control characters (newlines and tabs
     kept): user text (a scene title, a file name, an error quoting them) cannot move the
-    cursor, recolour or retitle the terminal."""
+    cursor, recolour or retitle the terminal.
+
+    Parameters
+    ----------
+    text : object
+        Anything; its ``str``.
+
+    Returns
+    -------
+    str
+        The text without escape sequences and control characters.
+    """
     return _CONTROLS.sub("", _TERMINAL_CODES.sub("", str(text)))
 
 
@@ -318,7 +329,18 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``bearingsim`` command; returns the exit status."""
+    """Entry point of the ``bearingsim`` command.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments without the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status (0 on success).
+    """
     from bearingsim.errors import BearingsimError, SimulationError
 
     argv = sys.argv[1:] if argv is None else list(argv)

@@ -53,6 +53,15 @@ class ConnectionError_(ModelError):
 class StructuralError(ModelError):
     """The flattened equations cannot be solved for the unknowns.
 
+    Parameters
+    ----------
+    message : str
+        What is wrong, in words.
+    equations : list of str
+        Descriptions of the equations involved.
+    unknowns : list of str
+        Names of the unknowns involved.
+
     Attributes
     ----------
     equations : list of str
@@ -94,6 +103,17 @@ class SimulationError(BearingsimError, RuntimeError):
 
 class BudgetExceededError(SimulationError):
     """A run used up its step or wall-time budget (``max_steps``, ``timeout``).
+
+    Parameters
+    ----------
+    message : str
+        What was exceeded, in words.
+    t_reached : float
+        Time the run reached [s].
+    steps : int
+        Integrator steps taken.
+    wall_time : float
+        Wall time spent [s].
 
     Attributes
     ----------

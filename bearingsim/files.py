@@ -54,7 +54,18 @@ class PathOutsideError(FileAccessError):
 
 
 def os_reason(exc: OSError) -> str:
-    """The reason of an operating-system error in words, without the path or content."""
+    """The reason of an operating-system error in words, without the path or content.
+
+    Parameters
+    ----------
+    exc : OSError
+        The error.
+
+    Returns
+    -------
+    str
+        Its reason ("permission denied", ...).
+    """
     reasons = {errno.ENOENT: "the folder or file does not exist",
                errno.EACCES: "permission denied", errno.EPERM: "permission denied",
                errno.EROFS: "the file system is read-only",
@@ -99,7 +110,20 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
 
 def atomic_write_text(path: str | Path, text: str) -> Path:
-    """Write ``text`` (UTF-8) to ``path`` atomically (:func:`atomic_path`); returns the path."""
+    """Write ``text`` (UTF-8) to ``path`` atomically (:func:`atomic_path`).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    text : str
+        Its content.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(path)
@@ -200,7 +224,20 @@ def open_regular(path: str | Path, what: str = "file", max_bytes: int | None = N
 
 
 def column_name(name: str, unit: str) -> str:
-    """The CSV header of a series: ``"name [unit]"``, ``[-]`` for a dimensionless one."""
+    """The CSV header of a series: ``"name [unit]"``, ``[-]`` for a dimensionless one.
+
+    Parameters
+    ----------
+    name : str
+        Series name.
+    unit : str
+        Its SI unit (``"1"`` or ``""`` for dimensionless).
+
+    Returns
+    -------
+    str
+        The header.
+    """
     return f"{name} [{unit_label(unit)}]"
 
 

@@ -99,7 +99,20 @@ class FigureSpec:
 
 
 def axis_label(name: str, unit: str) -> str:
-    """``"name [unit]"`` with the unit as shown to users (``-`` for dimensionless)."""
+    """``"name [unit]"`` with the unit as shown to users (``-`` for dimensionless).
+
+    Parameters
+    ----------
+    name : str
+        Quantity name or description.
+    unit : str
+        Its unit.
+
+    Returns
+    -------
+    str
+        The axis label.
+    """
     return f"{name} [{unit_label(unit)}]"
 
 

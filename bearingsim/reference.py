@@ -6,7 +6,7 @@ Regenerate after changing a component::
 
     python -m bearingsim.reference docs/components.md
 
-``tests/test_component_docs.py`` checks that every component class has an example here, a
+``tests/language/test_component_docs.py`` checks that every component class has an example here, a
 docstring listing its constructor arguments, a unit and description for every declaration, and
 that the file is current.
 """
@@ -28,8 +28,8 @@ from bearingsim.assemblies import (
     motor_drive,
     spindle,
 )
+from bearingsim.assemblies.double_layer.quasi_static import NestedQuasiStatic
 from bearingsim.assemblies.motor_drive import MotorShaft
-from bearingsim.assemblies.nested_static import NestedQuasiStatic
 from bearingsim.components.aligned_body import AlignedBody
 from bearingsim.components.rings import ConstantLoad
 from bearingsim.components.rotational import (
@@ -50,7 +50,13 @@ __all__ = ["component_classes", "is_base_class", "example_components", "referenc
 
 def component_classes() -> list[type[Component]]:
     """Every public :class:`Component` subclass defined in the components and assemblies
-    packages, by module and name."""
+    packages, by module and name.
+
+    Returns
+    -------
+    list of type
+        The classes, sorted by module and name.
+    """
     for package in (bearingsim.components, bearingsim.assemblies):
         for info in pkgutil.walk_packages(package.__path__, package.__name__ + "."):
             importlib.import_module(info.name)
@@ -68,14 +74,31 @@ def component_classes() -> list[type[Component]]:
 def is_base_class(cls: type[Component]) -> bool:
     """True for the partial classes that concrete components extend (no instance of their own):
     ``Partial*`` and the interface :class:`~bearingsim.components.bearing_torque.
-    BearingTorqueElement`."""
+    BearingTorqueElement`.
+
+    Parameters
+    ----------
+    cls : type
+        A component class.
+
+    Returns
+    -------
+    bool
+        Whether it is a base class.
+    """
     return cls.__name__.startswith("Partial") or cls.__name__ == "BearingTorqueElement" \
         or cls is Assembly
 
 
 def example_components() -> dict[type[Component], Component]:
     """One instance of every concrete component class: the first found in the shipped
-    assemblies at each fidelity, then the components no shipped assembly uses."""
+    assemblies at each fidelity, then the components no shipped assembly uses.
+
+    Returns
+    -------
+    dict
+        Component class -> an instance of it.
+    """
     roots = [
         deep_groove_ball_bearing("6304", "dynamic", n_slices=0),
         deep_groove_ball_bearing("6304", "quasi-static"),
@@ -108,7 +131,13 @@ def example_components() -> dict[type[Component], Component]:
 
 
 def reference_text() -> str:
-    """The Markdown of ``docs/components.md``."""
+    """The Markdown of ``docs/components.md``.
+
+    Returns
+    -------
+    str
+        The reference, Markdown.
+    """
     examples = example_components()
     lines = [
         "# Component reference",
@@ -133,7 +162,18 @@ def reference_text() -> str:
 
 
 def write_reference(path: str | Path) -> Path:
-    """Write :func:`reference_text` to ``path``; returns the path."""
+    """Write :func:`reference_text` to ``path`` atomically.
+
+    Parameters
+    ----------
+    path : str or Path
+        The Markdown file.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
     path = Path(path)
     with atomic_path(path) as tmp:
         Path(tmp).write_text(reference_text(), encoding="utf-8")

@@ -44,7 +44,18 @@ _CASADI_TYPES = (ca.SX, ca.MX, ca.DM)
 
 
 def is_symbolic(*values: Any) -> bool:
-    """Return True if any value is a CasADi object (SX, MX or DM)."""
+    """Return True if any value is a CasADi object (SX, MX or DM).
+
+    Parameters
+    ----------
+    *values : object
+        Anything.
+
+    Returns
+    -------
+    bool
+        Whether one of them is SX, MX or DM.
+    """
     return any(isinstance(v, _CASADI_TYPES) for v in values)
 
 
@@ -71,22 +82,66 @@ sign = _unary(np.sign, ca.sign)
 
 
 def atan2(y, x):
-    """Four-quadrant arc tangent for floats, arrays and CasADi symbols."""
+    """Four-quadrant arc tangent for floats, arrays and CasADi symbols.
+
+    Parameters
+    ----------
+    y, x : float, array or CasADi symbol
+        Coordinates (same unit).
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        The angle [rad] in (-pi, pi].
+    """
     return ca.atan2(y, x) if is_symbolic(y, x) else np.arctan2(y, x)
 
 
 def fmax(a, b):
-    """Element-wise maximum."""
+    """Element-wise maximum.
+
+    Parameters
+    ----------
+    a, b : float, array or CasADi symbol
+        Operands.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        The larger of each pair.
+    """
     return ca.fmax(a, b) if is_symbolic(a, b) else np.maximum(a, b)
 
 
 def fmin(a, b):
-    """Element-wise minimum."""
+    """Element-wise minimum.
+
+    Parameters
+    ----------
+    a, b : float, array or CasADi symbol
+        Operands.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        The smaller of each pair.
+    """
     return ca.fmin(a, b) if is_symbolic(a, b) else np.minimum(a, b)
 
 
 def power(a, b):
-    """Element-wise ``a ** b``."""
+    """Element-wise ``a ** b``.
+
+    Parameters
+    ----------
+    a, b : float, array or CasADi symbol
+        Base and exponent.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        ``a ** b``.
+    """
     return ca.power(a, b) if is_symbolic(a, b) else np.power(a, b)
 
 
@@ -117,7 +172,20 @@ def sqrt_power(x, k: int):
 
 
 def if_else(cond, a, b):
-    """``a`` where ``cond`` holds, else ``b`` (both branches are evaluated)."""
+    """``a`` where ``cond`` holds, else ``b`` (both branches are evaluated).
+
+    Parameters
+    ----------
+    cond : bool, array or CasADi symbol
+        The condition.
+    a, b : float, array or CasADi symbol
+        Values where it holds and where not.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        The selected values.
+    """
     if is_symbolic(cond, a, b):
         return ca.if_else(cond, a, b)
     return np.where(cond, a, b)
@@ -127,12 +195,37 @@ def smooth_max0(x, eps):
     """Smooth approximation of ``max(x, 0)``: ``(x + sqrt(x^2 + eps^2)) / 2``.
 
     Differentiable everywhere (no events in the integrator); the error is at most ``eps / 2``.
+
+    Parameters
+    ----------
+    x : float, array or CasADi symbol
+        The argument (any unit).
+    eps : float
+        Smoothing width (same unit), > 0.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        ``(x + sqrt(x^2 + eps^2)) / 2``.
     """
     return 0.5 * (x + sqrt(x * x + eps * eps))
 
 
 def smooth_abs(x, eps):
-    """Smooth approximation of ``|x|``: ``sqrt(x^2 + eps^2)``."""
+    """Smooth approximation of ``|x|``: ``sqrt(x^2 + eps^2)``.
+
+    Parameters
+    ----------
+    x : float, array or CasADi symbol
+        The argument (any unit).
+    eps : float
+        Smoothing width (same unit), > 0.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        ``sqrt(x^2 + eps^2)``.
+    """
     return sqrt(x * x + eps * eps)
 
 
@@ -141,6 +234,16 @@ def ellipk(m):
 
     Numeric inputs use :func:`scipy.special.ellipk`; symbolic inputs use the arithmetic-geometric
     mean (8 iterations, converged to machine precision for ``0 <= m < 1 - 1e-12``).
+
+    Parameters
+    ----------
+    m : float, array or CasADi symbol
+        Parameter ``m = k^2``, 0 <= m < 1.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        K(m).
     """
     if not is_symbolic(m):
         from scipy.special import ellipk as _ellipk
@@ -157,6 +260,16 @@ def ellipe(m):
 
     Numeric inputs use :func:`scipy.special.ellipe`; symbolic inputs use the arithmetic-geometric
     mean with the Gauss-Legendre sum (8 iterations).
+
+    Parameters
+    ----------
+    m : float, array or CasADi symbol
+        Parameter ``m = k^2``, 0 <= m <= 1.
+
+    Returns
+    -------
+    float, array or CasADi symbol
+        E(m).
     """
     if not is_symbolic(m):
         from scipy.special import ellipe as _ellipe

@@ -6,7 +6,6 @@ metres, contact radii and keyword options. Each raises
 from __future__ import annotations
 
 import difflib
-import functools
 import inspect
 import math
 import numbers
@@ -16,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim import symbolic as op
+from bearingsim.entry_points import entry_point
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.symbolic import is_symbolic
 
@@ -94,6 +94,8 @@ def check_range(
     ParameterError
         If the value is not a number, is NaN or infinite, or lies outside the range.
     """
+    if _plain_in_range(value, low, high, low_inclusive, high_inclusive):
+        return value  # the common case, without numpy (a failure takes the path below)
     if is_symbolic(value):
         return value
     label = f"{where}: {name}" if where else name
@@ -128,6 +130,29 @@ def check_range(
     if arr.ndim == 0 and not math.isfinite(float(arr)):
         raise ParameterError(f"{label} must be finite [{unit}]")
     return value
+
+
+_PLAIN_INT_LIMIT = 2**53
+"""Largest magnitude of a Python ``int`` the fast path of :func:`check_range` takes (exact as a
+float; larger ones, up to those beyond the float range, go through numpy)."""
+_PLAIN = (float, int)
+
+
+def _plain_in_range(value: Any, low: float | None, high: float | None, low_inclusive: bool,
+                    high_inclusive: bool) -> bool:
+    """Whether ``value`` is a Python ``float`` or ``int`` (not ``bool``), finite and within the
+    bounds: :func:`check_range`'s answer for plain numbers without building an array."""
+    if not (low is None or type(low) in _PLAIN) or not (high is None or type(high) in _PLAIN):
+        return False
+    kind = type(value)
+    if kind is float:
+        if not math.isfinite(value):
+            return False
+    elif kind is not int or not -_PLAIN_INT_LIMIT <= value <= _PLAIN_INT_LIMIT:
+        return False
+    if low is not None and not (value >= low if low_inclusive else value > low):
+        return False
+    return high is None or (value <= high if high_inclusive else value < high)
 
 
 def check_choice(value: Any, name: str, allowed: tuple, where: str = "") -> Any:
@@ -188,6 +213,8 @@ def check_count(value, name: str, low: int = 1, where: str = ""):
     ParameterError
         ``"<where>: <name> must be a whole number >= <low> [-], got <value>"``.
     """
+    if type(value) is int and low <= value <= _PLAIN_INT_LIMIT:
+        return value  # the common case, without numpy
     if is_symbolic(value):
         return value
     label = f"{where}: {name}" if where else name
@@ -395,32 +422,6 @@ def check_vector(value: Any, size: int, name: str, unit: str, where: str) -> np.
                              f"{vec.size}")
     check_range(vec, name, unit, where=where)
     return vec
-
-
-def entry_point(func: Callable) -> Callable:
-    """Decorator of public entry points: a call with unknown or missing arguments raises
-    :class:`~bearingsim.errors.ParameterError` naming the function, the argument (with a
-    did-you-mean hint) and the accepted ones, instead of Python's bare ``TypeError``."""
-    signature = inspect.signature(func)
-    accepted = [n for n, p in signature.parameters.items()
-                if p.kind not in (inspect.Parameter.VAR_POSITIONAL,
-                                  inspect.Parameter.VAR_KEYWORD)]
-
-    @functools.wraps(func)
-    def wrapper(*args, **kwargs):
-        try:
-            signature.bind(*args, **kwargs)
-        except TypeError as exc:
-            hint = ""
-            unknown = [k for k in kwargs if k not in signature.parameters]
-            if unknown:
-                close = difflib.get_close_matches(unknown[0], accepted, n=1)
-                hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise ParameterError(f"{func.__name__}: {exc}{hint}; its arguments are "
-                                 f"{', '.join(accepted)}") from None
-        return func(*args, **kwargs)
-
-    return wrapper
 
 
 MIN_REGULARIZATION = 1e-100

@@ -2,7 +2,8 @@
 
 The motor FMU (DC motor on its shaft, speed reference 0 -> 100 rad/s in 0.1 s built in) and the
 61905/61907 double-layer bearing FMU at the torque level (imposed shaft speed, 500 N radial),
-coupled speed -> bearing and friction torque -> motor (:mod:`bearingsim.fmu.cosim_models`),
+coupled speed -> bearing and friction torque -> motor
+(:mod:`bearingsim.studies.motor_bearing_cosim`),
 one SSP file, fixed communication step, Jacobi coupling (both FMUs step on the values exchanged
 at the start of the step), run by:
 
@@ -318,7 +319,7 @@ def _fmpy(ssp: Path, t_end: float) -> dict[str, float]:
 
 def run(quick: bool = False) -> tuple[str, dict]:
     """Export the pair, run the three masters; return the Markdown body and the numbers."""
-    from bearingsim.fmu.cosim_models import export_motor_bearing
+    from bearingsim.studies.motor_bearing_cosim import export_motor_bearing
 
     t_end = 0.3 if quick else T_END
     with tempfile.TemporaryDirectory() as tmp:

@@ -25,6 +25,7 @@ from bench import (
     backends,
     ball_level_assembly,
     cosim,
+    cosim_coupling,
     dgbb,
     dgbb_long,
     double_layer_steady,
@@ -98,6 +99,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="comma-separated section labels to re-run into the existing report")
     parser.add_argument("--max-assemble-s", type=float, default=150.0,
                         help="skip chain sizes whose extrapolated assemble time exceeds this")
+    parser.add_argument("--large-chain", action="store_true",
+                        help="assembler scaling also at N = 3000 and 10 000 (a few minutes)")
     args = parser.parse_args(argv)
     out: Path = args.out
     img_dir = out.parent / "img"
@@ -107,7 +110,8 @@ def main(argv: list[str] | None = None) -> int:
     sections = []
     steps = [
         ("assembler scaling",
-         lambda: assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s)),
+         lambda: assembler_scaling.run(args.quick, img_dir, out, args.max_assemble_s,
+                                       large=args.large_chain)),
         ("work-precision", lambda: work_precision.run(args.quick, img_dir, out)),
         ("double-layer steady state", lambda: double_layer_steady.run(args.quick, img_dir, out)),
         ("evaluation backends", lambda: backends.run(args.quick, img_dir, out)),
@@ -132,6 +136,7 @@ def main(argv: list[str] | None = None) -> int:
         ("first runs", lambda: first_run.section(args.quick)),
         ("sweep scaling", sweep_scaling.section),
         ("FMU export time", fmu_bench.export_section),
+        ("co-simulation coupling accuracy", lambda: cosim_coupling.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

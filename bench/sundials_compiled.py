@@ -20,11 +20,14 @@ Sections (``python -m bench.sundials_compiled SECTION [--cases a,b]``):
 
 * ``calls``: cost of one call [us] of the kernel (right-hand side or DAE residual) and of its
   exact Jacobian, VM and C, measured inside CasADi (``Function.map(n, "serial")``, no Python
-  per call), and of a dense LU factorization and solve of the Newton matrix;
+  per call), and of a dense LU factorization and solve of the Newton matrix; on ODE-form
+  cases also of the compiled integrators' sparse LU (``c/bsm_lu.c``) and of its dense-storage
+  predecessor (commit ``SPARSE_LU_BEFORE``, compiled from git);
 * ``compile``: generate-and-compile time of the kernel library at -O0, -O1, -O2 (empty cache)
   and the run time of the ``runs`` start-up with each;
 * ``runs``: start-up and steady running, VM and C (and on ODE-form cases the BDF loop in C,
-  ``method="compiled_bdf"``, on the C kernels): wall seconds per simulated second, steps,
+  ``method="compiled_bdf"``, on the C kernels): CPU seconds of the integration per simulated
+  second, steps,
   right-hand-side and Jacobian evaluations per simulated second, the physical limit (compiled
   per-call costs times the calls the run took) and the distance to it; VM = C check;
 * ``linsol``: every SUNDIALS linear solver on the start-up run (compiled kernels);
@@ -39,12 +42,15 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import ctypes
 import io
 import statistics
+import subprocess
 import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import casadi as ca
@@ -53,9 +59,11 @@ import numpy as np
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System
 from bearingsim.simulation import simulate
+from bearingsim.simulation.compile import compile_source
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
-from bearingsim.simulation.ordering import fill_reducing_order
+from bearingsim.simulation.ordering import fill_reducing_order, newton_pattern
+from bearingsim.simulation.sparse_lu import SparseLu
 from bearingsim.simulation.sundials import (
     LINEAR_SOLVERS,
     choose_linear_solver,
@@ -156,9 +164,9 @@ CASES: dict[str, Case] = {
 
 
 # ------------------------------------------------------------------------------ per call
-def per_call_us(fn: ca.Function, args: list, n: int = 5000, repeats: int = 5) -> float:
-    """Median time of one call of ``fn`` [us]: zero-copy ``Function.buffer`` calls in a
-    Python loop, less the loop's own cost (a trivial function called the same way).
+def per_call_us(fn: ca.Function, args: list, n: int = 5000, repeats: int = 7) -> float:
+    """CPU time of one call of ``fn`` [us] (:func:`_call_us`): zero-copy ``Function.buffer``
+    calls in a Python loop, less the loop's own cost (a trivial function called the same way).
     (``Function.map(n, "serial")`` is no substitute: it adds ~10 us per call of an external.)
     """
     return max(_loop_us(fn, args, n, repeats) - _loop_us(_trivial(fn), args, n, repeats), 0.0)
@@ -182,13 +190,7 @@ def _loop_us(fn: ca.Function, args: list, n: int, repeats: int) -> float:
         keep.append(arr)
         buf.set_res(i, memoryview(arr))
     evaluate()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        for _ in range(n):
-            evaluate()
-        times.append((time.perf_counter() - t0) / n * 1e6)
-    return statistics.median(times)
+    return _call_us(evaluate, n, repeats)
 
 
 def _operating_point(case: Case, form: str) -> list:
@@ -244,8 +246,113 @@ def calls(case: Case) -> dict[str, float]:
         out["lu fact+solve"] = dense_lu_us(n)
         out["lu solve"] = lu_solve_us(np.eye(n) + 0.01 * np.random.default_rng(0)
                                       .standard_normal((n, n)))
+    if form == "ode":
+        jac_nz = np.asarray(jac(*args, *value)[1].nonzeros(), dtype=float)
+        own = bsm_lu_us(jac.sparsity_out(1), jac_nz)
+        before = dense_storage_lu_us(jac.sparsity_out(1), jac_nz)
+        out.update(own)
+        out.update(before)
+        out["bsm_lu factor / rhs"] = own["bsm_lu factor"] / out["rhs C"]
+        if before:
+            out["dense-storage factor / rhs"] = before["dense-storage factor"] / out["rhs C"]
     out["n"] = n
     return out
+
+
+SPARSE_LU_BEFORE = "29a6fd4"
+"""The last commit whose ``c/bsm_lu.c`` factorised ``I - c J`` in dense storage (partial
+pivoting that skips structural zeros): the "before" of the sparse LU."""
+
+
+def _call_us(call: Callable[[], Any], n: int, repeats: int = 7) -> float:
+    """CPU time of one ``call()`` [us], the least of ``repeats`` loops of ``n`` (thread CPU
+    time: on the shared machine the wall clock also counts the time others hold the core)."""
+    times = []
+    for _ in range(repeats):
+        t0 = time.thread_time()
+        for _ in range(n):
+            call()
+        times.append((time.thread_time() - t0) / n * 1e6)
+    return min(times)
+
+
+def _net_us(call: Callable[[], Any], empty_call: Callable[[], Any], n: int) -> float:
+    """Cost of ``call`` [us] less that of the same call on an empty matrix (Python, ctypes)."""
+    return max(_call_us(call, n) - _call_us(empty_call, n), 0.0)
+
+
+def bsm_lu_us(pattern: ca.Sparsity, jac_nonzeros: np.ndarray, c: float = 1e-3,
+              n: int = 2000) -> dict[str, float]:
+    """Costs [us] of the compiled integrators' sparse LU (``c/bsm_lu.c`` as the BDF
+    integrator runs it) on the Newton matrix ``I - c J`` in the fill-reducing order: a
+    factorisation in the kept pivot order and pattern, a fresh one, a solve; and the nonzeros
+    of ``L`` and ``U``."""
+    newton = newton_pattern(pattern)
+    values, none = newton.values(jac_nonzeros, c), np.zeros(0)
+    lu = SparseLu(newton.start, newton.index, keep_order=True)
+    empty = SparseLu([0], [], keep_order=True)
+    lu.factor(values)
+    factor, solve = lu.bound_calls(values, np.ones(newton.order.size))
+    empty_factor, empty_solve = empty.bound_calls(none, none)
+    return {"bsm_lu factor": _net_us(factor, empty_factor, n),
+            "bsm_lu fresh": _net_us(lambda: lu.factor(values, fresh=True),
+                                    lambda: empty.factor(none, fresh=True), max(n // 5, 1)),
+            "bsm_lu solve": _net_us(solve, empty_solve, 4 * n),
+            "L+U nonzeros": sum(lu.nnz)}
+
+
+def dense_storage_lu_us(pattern: ca.Sparsity, jac_nonzeros: np.ndarray, c: float = 1e-3,
+                        n: int = 1000) -> dict[str, float]:
+    """The same for the LU of commit ``SPARSE_LU_BEFORE`` (compiled from git; empty without
+    the history): a factorisation (with the copy of the dense matrix into its storage, as the
+    integrator filled it) and a solve [us], and the nonzeros of its factors."""
+    here = Path(__file__).parent
+    try:
+        source = {name: subprocess.run(
+            ["git", "show", f"{SPARSE_LU_BEFORE}:bearingsim/simulation/c/{name}"], cwd=here,
+            capture_output=True, text=True, check=True).stdout
+            for name in ("bsm_lu.c", "bsm_lu.h")}
+    except (OSError, subprocess.CalledProcessError):
+        return {}
+    newton = newton_pattern(pattern)
+    size = newton.order.size
+    import scipy.sparse
+
+    dense = scipy.sparse.csc_matrix((newton.values(jac_nonzeros, c), newton.index,
+                                     newton.start), shape=(size, size)).toarray()
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, text in source.items():
+            (Path(tmp) / name).write_text(text)
+        dll = ctypes.CDLL(str(compile_source(source["bsm_lu.c"], Path(tmp) / "dense_lu.so",
+                                             flags=("-O2", f"-I{tmp}"))))
+        v = ctypes.c_void_p
+        dll.bsm_lu_factor.argtypes = [v, ctypes.c_int, v, v]
+        dll.bsm_lu_solve.argtypes = [v, ctypes.c_int, v, v, v]
+
+        def storage(m: int):
+            half = max(m * m // 2, 1)
+            arrays = [np.zeros(m, np.int32), np.zeros(m + 1, np.int32),
+                      np.zeros(half, np.int32), np.zeros(half), np.zeros(m + 1, np.int32),
+                      np.zeros(half, np.int32), np.zeros(half), np.zeros(m)]
+            factors = (v * 8)(*[a.ctypes.data for a in arrays])
+            work, order = np.zeros(2 * m, np.int32), np.arange(m, dtype=np.int32)
+            matrix = dense if m else np.zeros((0, 0))
+            a, x, xw = np.empty((m, m)), np.ones(m), np.zeros(m)
+
+            def factor():
+                np.copyto(a, matrix)
+                return dll.bsm_lu_factor(a.ctypes.data, m, factors, work.ctypes.data)
+
+            def solve():
+                dll.bsm_lu_solve(factors, m, order.ctypes.data, xw.ctypes.data, x.ctypes.data)
+            return factor, solve, arrays
+
+        factor, solve, arrays = storage(size)
+        empty_factor, empty_solve, _ = storage(0)
+        factor()
+        return {"dense-storage factor": _net_us(factor, empty_factor, n),
+                "dense-storage solve": _net_us(solve, empty_solve, 4 * n),
+                "dense-storage L+U nonzeros": int(arrays[1][-1] + arrays[4][-1])}
 
 
 def lu_solve_us(newton: np.ndarray, fn: ca.Function | None = None, n: int = 2000) -> float:
@@ -361,7 +468,7 @@ COMPILED_BDF = "C, compiled_bdf"
 
 def runs(case: Case, per_call: dict[str, float], repeats: int = 3) -> dict[str, Any]:
     """Start-up and steady running on VM and C (and, for ODE-form cases, the compiled BDF
-    on C): walls, counts, limit."""
+    on C): integration CPU times (``integrate_cpu_time``), counts, limit."""
     system, common = case.system()
     out: dict[str, Any] = {}
     finals = {}
@@ -382,10 +489,10 @@ def runs(case: Case, per_call: dict[str, float], repeats: int = 3) -> dict[str, 
                             method=method, compiled=comp)
             for phase, res, span in (("start-up", res0, case.t_start_up),
                                      ("steady", res1, case.t_steady)):
-                if phase not in best or res.stats["wall_time"] < best[phase][0].stats[
-                        "wall_time"]:
+                cpu = res.stats["integrate_cpu_time"]
+                if phase not in best or cpu < best[phase][0].stats["integrate_cpu_time"]:
                     best[phase] = (res, span, [])
-                best[phase][2].append(res.stats["wall_time"])
+                best[phase][2].append(cpu)
         for phase, (res, span, walls) in best.items():
             out[(label, phase)] = (res, span, walls)
         finals[label] = best["steady"][0]
@@ -402,30 +509,42 @@ def run_rows(case: Case, data: dict) -> list[list]:
     """Table rows of :func:`runs`."""
     pc = data["per_call"]
     rows = []
-    for (label, phase), (res, span, walls) in ((k, v) for k, v in data.items()
+    for (label, phase), (res, span, cpus) in ((k, v) for k, v in data.items()
                                                 if isinstance(k, tuple)):
         st = res.stats
-        wall = min(walls)
+        cpu = min(cpus)
         limit = physical_limit_s(st, pc["rhs C"], pc["jac C"])
-        limit_la = physical_limit_s(st, pc["rhs C"], pc["jac C"], pc["lu fact+solve"])
+        set_up_us, solve_us = lu_costs(pc)
+        limit_la = physical_limit_s(st, pc["rhs C"], pc["jac C"], set_up_us)
         solves = newton_solves(st)
-        limit_all = limit_la + max(solves - st["nlinsetups"], 0) * pc["lu solve"] * 1e-6
-        rows.append([label, phase, fmt(span), fmt(wall / span), fmt(max(walls) / min(walls)),
+        limit_all = limit_la + max(solves - st["nlinsetups"], 0) * solve_us * 1e-6
+        rows.append([label, phase, fmt(span), fmt(cpu / span), fmt(max(cpus) / cpu),
                      fmt(st["nsteps"] / span), fmt(st["nfevals"] / span),
                      fmt(st["njevals"] / span), fmt(solves / st["nsteps"]),
-                     fmt(limit / span), fmt(wall / limit),
-                     fmt(limit_la / span), fmt(wall / limit_la),
-                     fmt(limit_all / span), fmt(wall / limit_all),
-                     *[fmt(st[key] / wall, 2) if key in st else "-"
-                       for key in ("rhs_time", "jac_time")]])
+                     fmt(limit / span), fmt(cpu / limit),
+                     fmt(limit_la / span), fmt(cpu / limit_la),
+                     fmt(limit_all / span), fmt(cpu / limit_all),
+                     *[fmt(st[key] / st["wall_time"], 2) if key in st else "-"
+                       for key in ("rhs_time", "jac_time")],
+                     f"{st['npivotings']} / {st['nlinsetups']}" if "npivotings" in st else "-"])
     return rows
 
 
-RUN_HEADER = ["backend", "phase", "sim [s]", "wall / sim s", "spread (max/min)",
+def lu_costs(per_call: dict[str, float]) -> tuple[float, float]:
+    """The LU costs of the limit [us]: a factorisation and solve, and a solve, each the cheaper
+    of the library LU (CSparse or LAPACK; SuperLU's or LAPACK's solve) and ``bsm_lu``."""
+    inf = float("inf")
+    own_set_up = per_call.get("bsm_lu factor", inf) + per_call.get("bsm_lu solve", inf)
+    return (min(per_call["lu fact+solve"], own_set_up),
+            min(per_call["lu solve"], per_call.get("bsm_lu solve", inf)))
+
+
+RUN_HEADER = ["backend", "phase", "sim [s]", "CPU / sim s", "spread (max/min)",
               "steps / sim s", "rhs / sim s", "jac / sim s", "solves / step",
-              "limit / sim s (kernels)", "wall / limit", "limit / sim s (+LU per set-up)",
-              "wall / limit (+LU per set-up)", "limit / sim s (+every solve)",
-              "wall / limit (+every solve)", "rhs share", "jac share"]
+              "limit / sim s (kernels)", "CPU / limit", "limit / sim s (+LU per set-up)",
+              "CPU / limit (+LU per set-up)", "limit / sim s (+every solve)",
+              "CPU / limit (+every solve)", "rhs share of wall", "jac share of wall",
+              "fresh LU / set-ups"]
 
 
 # ------------------------------------------------------------------------------ linsol
@@ -530,7 +649,7 @@ def report(sections: tuple[str, ...], cases: tuple[str, ...],
         per_call = None
         if "calls" in sections or "runs" in sections:
             per_call = calls(case)
-            out.append("Cost of one call [us], measured inside CasADi:\n")
+            out.append("Cost of one call [us] (CPU time, least of 7 loops):\n")
             out.append(markdown_table(list(per_call), [[fmt(v) if isinstance(v, float) else v
                                                         for v in per_call.values()]]) + "\n")
         if "compile" in sections:
@@ -566,16 +685,28 @@ def section(quick: bool = False) -> Section:
         "`casadi.external`), same integrator, same steps; *C, compiled_bdf*: "
         "`method=\"compiled_bdf\"`, a BDF whose step loop is C calling the same C kernels "
         "(`bearingsim.simulation.compiled_bdf`; its own steps, no time split by kernel). "
-        "*wall / sim s*: wall seconds per "
+        "Times are CPU times (the integration's thread, `Result.stats[\"integrate_cpu_time\"]`; "
+        "per call the least of 7 loops), so that the other jobs on this shared 2-core machine "
+        "count less; ratios come from one run, side by side. "
+        "*CPU / sim s*: CPU seconds per "
         "simulated second; *limit*: the compiled per-call costs times the calls the run took "
-        "(kernels only, and with the LU of the Newton matrix: dense, or the ordered sparse LU the "
-        "default picks above 200 states; one factorisation and solve per linear set-up; the "
-        "compiled_bdf rows use the same LU cost, not that of their own LU, which skips the "
-        "structural zeros), the physical limit of this "
-        "machine; *wall / limit*: the distance to it; *+every solve*: the limit counted "
+        "(kernels only, and with the LU of the Newton matrix: one factorisation and solve per "
+        "linear set-up, i.e. per Jacobian update or step-size change), the physical limit of "
+        "this machine; *CPU / limit*: the distance to it; *+every solve*: the limit counted "
         "with one LU solve per Newton iteration besides the set-ups' (CVODES' `nniters`, "
-        "compiled_bdf's right-hand sides), the solve's cost measured on the same Newton "
-        "matrix (scipy: LAPACK dense, SuperLU in the integrator's order); *solves / step*: "
+        "compiled_bdf's right-hand sides). The LU costs of the limits are the cheaper of a "
+        "library LU (dense LAPACK, or above 200 states CSparse's ordered sparse LU, the "
+        "default's; the solve LAPACK's or SuperLU's in the integrator's order) and the "
+        "compiled integrators' own sparse LU (`bsm_lu`, `c/bsm_lu.c`), all measured on the "
+        "run's Newton matrix I - 1e-3 J in the fill-reducing order. *bsm_lu factor*: a "
+        "factorisation in the kept pivot order and fill pattern (what the integrator does at "
+        "almost every set-up); *bsm_lu fresh*: one that finds a new pivot order and pattern "
+        "(the first, and when a pivot falls below 1e-3 of its column); *dense-storage*: the "
+        f"LU it replaced (commit `{SPARSE_LU_BEFORE}`'s, compiled from git: partial pivoting "
+        "in dense storage, skipping zeros, the dense matrix's copy counted as its fill); "
+        "*/ rhs*: in "
+        "right-hand-side calls; *fresh LU / set-ups*: compiled_bdf's fresh factorisations "
+        "(`npivotings`) of its linear set-ups. *solves / step*: "
         "Newton iterations per step. Goals: at most 1 s per "
         "simulated second for the 6304 massive-ball level, 10 s for the nested dynamic bearing. "
         "Set-up: a 1 ms run repeated, first call (kernel from the disk cache, integrator built) "

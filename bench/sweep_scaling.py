@@ -8,7 +8,9 @@ Two measurements:
   against the assembly it replaces.
 * **Sweep scaling.** The shipped ball-level scene ``deep_groove_duty1`` (6304, massive balls,
   75 states) over load x speed, ``t_end`` 100 ms, ``N_POINTS`` points on a LocalCluster of 1
-  worker, then of ``--workers``. Each worker times every point it runs
+  worker, then of ``--workers``, each in a new Python process as ``bearingsim sweep`` runs
+  (two sweeps there: the first starts the fork server of the workers, the second forks from
+  it). Each worker times every point it runs
   (:func:`bearingsim.scenes.sweep_worker.run_job`: the simulation and its outputs, what
   ``bearingsim run`` does for the point); the per-point overhead is the rest of the workers'
   time in the points phase (``workers x points phase - sum of point times``, per point),
@@ -30,6 +32,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -97,21 +100,49 @@ def _points(n: int) -> list[dict]:
 
 
 def _sweep(scene, points, workers: int) -> dict:
+    """One sweep in this process: wall, phases, the workers' busy fraction, the overhead per
+    point and the CPU time of this process (the client and, with a LocalCluster, the
+    scheduler)."""
     from bearingsim.scenes.sweep import run_sweep
 
     with tempfile.TemporaryDirectory() as out:
-        t0 = time.perf_counter()
+        cpu0, t0 = time.process_time(), time.perf_counter()
         res = run_sweep(scene, points, n_workers=workers, out=out, progress=False)
-        wall = time.perf_counter() - t0
+        wall, cpu = time.perf_counter() - t0, time.process_time() - cpu0
     if len(res.ok) != len(points):
         raise RuntimeError(res.failures[:3])
-    # the probe point ran on the client, in the probe phase; the others on the workers
-    on_workers = [r["wall_s"] for r in res.rows][1:]
+    on_workers = [r["wall_s"] for r in res.rows]
     busy = workers * res.phases["points"]
     return {"wall": wall, "chunk": res.chunk_size, "phases": res.phases, "workers": workers,
             "point_s": float(np.mean(on_workers)), "busy": sum(on_workers) / busy,
             "overhead_s": (busy - sum(on_workers)) / len(on_workers),
-            "fixed_s": wall - res.phases["points"] - res.phases["probe"]}
+            "fixed_s": wall - res.phases["points"], "client_cpu_s": cpu}
+
+
+def sweeps_in_a_fresh_process(workers: int, n_points: int = N_POINTS, repeats: int = 2
+                              ) -> list[dict]:
+    """``repeats`` sweeps of ``n_points`` on ``workers`` workers in one new Python process
+    (as ``bearingsim sweep`` runs): the first starts the fork server of the workers, a repeat
+    forks from it. Each sweep also notes the load average after it."""
+    from bearingsim.scenes import load_scene
+    from bearingsim.scenes.library import builtin_scene_path
+
+    scene = load_scene(builtin_scene_path("deep_groove_duty1"))
+    out = []
+    for _ in range(repeats):
+        out.append(_sweep(scene, _points(n_points), workers))
+        out[-1]["load_after"] = os.getloadavg()[0]
+    return out
+
+
+def _child(workers: int) -> list[dict]:
+    """:func:`sweeps_in_a_fresh_process` run by ``python -m bench.sweep_scaling --child``."""
+    root = Path(__file__).resolve().parent.parent
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(root), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    out = subprocess.run([sys.executable, "-m", "bench.sweep_scaling", "--child", str(workers)],
+                         capture_output=True, text=True, check=True, env=env, cwd=root)
+    return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def amdahl_serial_fraction(speedup: float, workers: int) -> float:
@@ -123,44 +154,91 @@ def run(workers: int = 2) -> dict:
     """Measure everything; returns the raw numbers (seconds)."""
     from bearingsim.scenes import load_scene
     from bearingsim.scenes.library import builtin_scene_path
+    from bearingsim.scenes.sweep import _plan
 
     load_before = os.getloadavg()
     nested = warm_load()
-    from bearingsim.scenes.sweep import _plan
-
     scene = load_scene(builtin_scene_path("deep_groove_duty1"))
     _plan(scene, _points(1))  # the model into the cache: every sweep below loads it
-    one = _sweep(scene, _points(N_POINTS), 1)
-    many = _sweep(scene, _points(N_POINTS), workers)
+    one = _child(1)
+    many = _child(workers)
     return {"nested": nested, "one": one, "many": many, "workers": workers,
             "load_before": load_before,
             "load_after": os.getloadavg(), "cores": len(os.sched_getaffinity(0))}
 
 
+def _scaling_row(label: str, sweep: dict) -> list[str]:
+    ph = sweep["phases"]
+    return ([label, f"{sweep['wall']:.2f}", str(sweep["chunk"]), f"{sweep['point_s'] * 1e3:.0f}",
+             f"{sweep['busy']:.1%}", f"{sweep['overhead_s'] * 1e3:.1f}",
+             f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}"]
+            + [f"{ph.get(k, float('nan')):.2f}" for k in
+               ("plan", "cluster", "ship", "points", "close", "write")]
+            + [f"{sweep['load_after']:.1f}"])
+
+
+def _scaling_text(r: dict) -> list[str]:
+    """The sweep scaling part of the section."""
+    p = r["workers"]
+    first = (r["one"][0], r["many"][0])
+    again = (r["one"][-1], r["many"][-1])
+    speedup = first[0]["wall"] / first[1]["wall"]
+    speedup_again = again[0]["wall"] / again[1]["wall"]
+    points_speedup = first[0]["phases"]["points"] / first[1]["phases"]["points"]
+    slowdown = first[1]["point_s"] / first[0]["point_s"]
+    # Amdahl from the 1-worker sweep's own split: what does not run in the points phase
+    # (plan, cluster, ship, finish) is serial; the points phase is parallel
+    s = first[0]["fixed_s"] / first[0]["wall"]
+    predict = {q: 1.0 / (s + (1.0 - s) / q) for q in (2, 4, 16)}
+    rows = [_scaling_row("1 worker, fresh process", first[0]),
+            _scaling_row(f"{p} workers, fresh process", first[1]),
+            _scaling_row("1 worker, again in that process", again[0]),
+            _scaling_row(f"{p} workers, again in that process", again[1])]
+    busy = min(first[1]["busy"], again[1]["busy"])
+    return [
+        f"**Sweep scaling**: scene `deep_groove_duty1` (6304, massive balls, 75 states), "
+        f"t_end {T_END * 1e3:.0f} ms, {N_POINTS} points over load x speed. Each worker count "
+        "runs in a new Python process, as `bearingsim sweep` does: its first sweep starts the "
+        "fork server of the workers (one import of bearingsim), a second sweep in the same "
+        "process forks its workers from the running server. Point: mean wall of a point on a "
+        "worker; workers busy: the points' share of the workers' time in the points phase; "
+        "overhead: the rest, per point (target <= 5 ms); fixed: wall outside the points phase "
+        "(target <= 2 s + assembly; the model is loaded from the cache here, in `plan`); "
+        "client CPU: CPU time of the client's process (client and scheduler) per point over "
+        "the whole sweep. Phases in seconds.",
+        "",
+        markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "workers busy",
+                        "overhead [ms]", "fixed [s]", "client CPU [ms/point]", "plan",
+                        "cluster", "ship", "points", "close", "write", "load after"], rows),
+        "",
+        f"Speed-up of the whole sweep, {p} workers against 1: {speedup:.2f}x in a fresh "
+        f"process, {speedup_again:.2f}x for the second sweep (target >= 1.8x for 2; implied "
+        f"serial fractions {fmt(amdahl_serial_fraction(speedup, p))} and "
+        f"{fmt(amdahl_serial_fraction(speedup_again, p))}). The points phase alone: "
+        f"{points_speedup:.2f}x, with the workers busy {busy:.1%} of it or more; a point took "
+        f"{slowdown:.2f}x as long with {p} workers as with 1"
+        + (f": {p} workers, the client and the scheduler (and any other process) share "
+           f"{r['cores']} cores, so a point runs slower when the workers run side by side; "
+           "that limits the speed-up of this machine, not the sweep's feeding, which the "
+           "busy fraction measures." if slowdown > 1.05 else ".")
+        + f" Amdahl's law with the serial fraction of the fresh 1-worker sweep (its fixed "
+        f"time over its wall: s = {fmt(s)}) predicts "
+        + ", ".join(f"{v:.1f}x on {q}" for q, v in predict.items())
+        + f" workers for these {N_POINTS} points; the 16-worker target >= 12x needs s <= "
+        "0.022, i.e. sweeps of about ten times the work (more or longer points) for the same "
+        "fixed cost. Rerun with `python -m bench.sweep_scaling --workers 16` on a machine "
+        "with 16 free cores.",
+        "",
+    ]
+
+
 def _body(r: dict) -> str:
     plain, cold, warm = r["nested"]["plain"], r["nested"]["cold"], r["nested"]["warm"]
-    one, many, p = r["one"], r["many"], r["workers"]
-    speedup = one["wall"] / many["wall"]
-    # Amdahl from the 1-worker sweep's own split: what does not run in the points phase
-    # (plan, cluster, ship, the probe point, finish) is serial; the points phase is parallel
-    s = 1.0 - one["phases"]["points"] / one["wall"]
-    predict = {q: 1.0 / (s + (1.0 - s) / q) for q in (2, 4, 16)}
-    slowdown = many["point_s"] / one["point_s"]
-    rows = []
-    for label, run_ in ((f"1 worker, {N_POINTS} points", one),
-                        (f"{p} workers, {N_POINTS} points", many)):
-        ph = run_["phases"]
-        rows.append([label, f"{run_['wall']:.2f}", str(run_["chunk"]),
-                     f"{run_['point_s'] * 1e3:.0f}", f"{run_['busy']:.1%}",
-                     f"{run_['overhead_s'] * 1e3:.1f}",
-                     f"{run_['fixed_s']:.2f}"]
-                    + [f"{ph.get(k, float('nan')):.2f}" for k in
-                       ("plan", "cluster", "ship", "probe", "points", "finish")])
     lines = [
         f"Machine load average {r['load_before'][0]:.1f} before and {r['load_after'][0]:.1f} "
-        f"after the run on {r['cores']} usable cores: other processes shared them, so the "
-        "absolute times are not those of a quiet machine; overheads are measured side by side "
-        "with the work in the same sweep.",
+        f"after the run on {r['cores']} usable cores (and after each sweep in the table): "
+        "other processes shared them, so the absolute times are not those of a quiet "
+        "machine; overheads are measured side by side with the work in the same sweep.",
         "",
         "**Warm load of the nested ball-level double-layer bearing** (61905/61907 `dynamic`, "
         f"{cold['states']} states; a fresh process each, the cache entry "
@@ -180,30 +258,7 @@ def _body(r: dict) -> str:
         f"first run {cold['call'] - plain['call']:.1f} s (the right-hand side, observed and "
         "output functions and the mapped kernels are built to be stored).",
         "",
-        f"**Sweep scaling**: scene `deep_groove_duty1` (6304, massive balls, 75 states), "
-        f"t_end {T_END * 1e3:.0f} ms, {N_POINTS} points over load x speed. Point: mean wall of a "
-        "point on a worker; overhead: workers' time in the points phase not spent in points, "
-        "per point (target <= 5 ms); fixed: wall outside the points (target <= 2 s + "
-        "assembly; the model is loaded from the cache here). Phases in seconds.",
-        "",
-        markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "workers busy",
-                        "overhead [ms]",
-                        "fixed [s]", "plan", "cluster", "ship", "probe", "points", "finish"],
-                       rows),
-        "",
-        f"Speed-up of the whole sweep, {p} workers against 1: {speedup:.2f}x (target >= 1.8x "
-        f"for 2; implied serial fraction {fmt(amdahl_serial_fraction(speedup, p))}). A point "
-        f"took {slowdown:.2f}x as long with {p} workers as with 1"
-        + (": the cores were not free (other processes), so this speed-up measures the "
-           "machine, not the sweep; the workers' busy fraction is the sweep's share."
-           if slowdown > 1.2 else ".")
-        + f" Amdahl's law with the serial fraction of the 1-worker sweep (the time outside "
-        f"its points phase: s = {fmt(s)}) predicts "
-        + ", ".join(f"{v:.1f}x on {q}" for q, v in predict.items())
-        + f" workers for these {N_POINTS} points (the 16-worker target >= 12x needs s <= "
-        "0.022: more or longer points per sweep). Rerun with "
-        "`python -m bench.sweep_scaling --workers 16` on a machine with 16 free cores.",
-        "",
+        *_scaling_text(r),
     ]
     return "\n".join(lines)
 
@@ -218,5 +273,10 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--workers", type=int, default=2,
                         help="workers of the scaling run (default 2)")
+    parser.add_argument("--child", type=int, metavar="WORKERS",
+                        help=argparse.SUPPRESS)  # the sweeps of one worker count, as JSON
     args = parser.parse_args()
-    print(section(args.workers).body)
+    if args.child:
+        print(json.dumps(sweeps_in_a_fresh_process(args.child)))
+    else:
+        print(section(args.workers).body)

@@ -1,8 +1,12 @@
 """The layering of the package (docs/architecture.md): no module imports a layer above its own,
 models never import the runtime, and there are no import cycles between modules.
 
-Every ``import`` statement counts, including those inside functions (a deferred import is still
-a dependency), except those under ``if TYPE_CHECKING:`` (annotations only).
+Every ``import`` statement counts: those inside functions (a deferred import is still a
+dependency), those under ``if TYPE_CHECKING:`` (a type-only circle is still a circle of
+concerns) and those of package ``__init__`` files. ``from package import name`` depends on the
+submodule ``package.name`` when there is one, else on the package itself (its ``__init__``):
+a submodule that takes a name from its own package's ``__init__`` while the ``__init__`` imports
+the submodule is a cycle.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ PACKAGE = Path(bearingsim.__file__).parent
 
 LAYERS: dict[str, int] = {
     "symbolic": 0, "units": 1, "files": 1, "errors": 1, "validation": 2, "checks": 2, "vectors": 1,
-    "plotting": 1,
+    "entry_points": 1,
+    "plotting": 1, "registry": 2,
     "catalog": 3, "physics": 4,
     "language": 3,
     "components": 5,
@@ -37,43 +42,51 @@ MODELS = ("physics", "components", "assemblies", "catalog", "language")
 RUNTIME = ("assembler", "simulation", "studies", "fmu", "scenes", "cli")
 
 
-def _module_name(path: Path) -> str:
-    rel = path.relative_to(PACKAGE.parent).with_suffix("")
+def _module_name(path: Path, package: Path = PACKAGE) -> str:
+    rel = path.relative_to(package.parent).with_suffix("")
     parts = list(rel.parts)
     if parts[-1] == "__init__":
         parts.pop()
     return ".".join(parts)
 
 
-def _imports(path: Path) -> set[str]:
-    """bearingsim modules imported by a file (``from x import y`` counts y when it is a module)."""
+def _is_module(name: str, package: Path) -> bool:
+    """Whether the dotted ``name`` is a module or package under ``package``'s parent folder."""
+    path = package.parent / name.replace(".", "/")
+    return path.with_suffix(".py").is_file() or (path / "__init__.py").is_file()
+
+
+def _imports(path: Path, package: Path = PACKAGE) -> set[str]:
+    """Modules of ``package`` that a file imports, wherever the import statement stands."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
-    for node in ast.walk(tree):  # drop the annotation-only imports
-        if isinstance(node, ast.If) and isinstance(node.test, ast.Name) \
-                and node.test.id == "TYPE_CHECKING":
-            node.body = []
+    here = _module_name(path, package)
+    own_package = here if path.name == "__init__.py" else here.rpartition(".")[0]
+    root = package.name
     found: set[str] = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
-            found.update(a.name for a in node.names if a.name.startswith("bearingsim"))
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            if node.module.startswith("bearingsim"):
-                found.add(node.module)
-                for alias in node.names:
-                    candidate = f"{node.module}.{alias.name}"
-                    if (PACKAGE.parent / candidate.replace(".", "/")).with_suffix(".py").exists() \
-                            or (PACKAGE.parent / candidate.replace(".", "/")).is_dir():
-                        found.add(candidate)
+            found.update(a.name for a in node.names if a.name.split(".")[0] == root)
+        elif isinstance(node, ast.ImportFrom):
+            base = own_package.rsplit(".", node.level - 1)[0] if node.level else ""
+            module = ".".join(p for p in (base, node.module) if p)
+            if module.split(".")[0] != root:
+                continue
+            submodules = {f"{module}.{a.name}" for a in node.names
+                          if _is_module(f"{module}.{a.name}", package)}
+            found |= submodules
+            if len(submodules) < len(node.names):
+                found.add(module)
     return found
 
 
-def _graph() -> nx.DiGraph:
+def _graph(package: Path = PACKAGE) -> nx.DiGraph:
+    """Import graph of every module of ``package`` (``__init__`` files as their packages)."""
     g = nx.DiGraph()
-    for path in PACKAGE.rglob("*.py"):
-        src = _module_name(path)
+    for path in package.rglob("*.py"):
+        src = _module_name(path, package)
         g.add_node(src)
-        for dst in _imports(path):
-            if dst != src and dst != "bearingsim":
+        for dst in _imports(path, package):
+            if dst != src:
                 g.add_edge(src, dst)
     return g
 
@@ -112,9 +125,45 @@ def test_physics_never_imports_components():
     assert not bad, "\n".join(sorted(bad))
 
 
+def _cycles(g: nx.DiGraph) -> list[list[str]]:
+    return [c for c in nx.simple_cycles(g) if len(c) > 1]
+
+
 def test_no_import_cycles():
-    g = _graph()
-    # a package's __init__ importing its own submodules is not a cycle of concerns
-    g.remove_edges_from([(s, d) for s, d in list(g.edges) if d.startswith(s + ".")])
-    cycles = [c for c in nx.simple_cycles(g) if len(c) > 1]
+    cycles = _cycles(_graph())
     assert not cycles, "import cycles:\n" + "\n".join(" -> ".join(c) for c in cycles[:10])
+
+
+def _write(root: Path, files: dict[str, str]) -> Path:
+    for name, text in files.items():
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    return root / "toy"
+
+
+@pytest.mark.parametrize("files, cycle", [
+    ({"toy/__init__.py": "", "toy/a.py": "from toy.b import B\n",
+      "toy/b.py": "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from toy.a import A\n"},
+     {"toy.a", "toy.b"}),
+    ({"toy/__init__.py": "", "toy/a.py": "import toy.b\n",
+      "toy/b.py": "def f():\n    from toy import a\n    return a\n"},
+     {"toy.a", "toy.b"}),
+    ({"toy/__init__.py": "", "toy/sub/__init__.py": "from toy.sub.rows import read\n",
+      "toy/sub/rows.py": "def read():\n    from toy.sub import _private\n"},
+     {"toy.sub", "toy.sub.rows"}),
+    ({"toy/__init__.py": "", "toy/a.py": "from . import b\n", "toy/b.py": "from .a import x\n"},
+     {"toy.a", "toy.b"}),
+])
+def test_the_cycle_check_sees_type_only_deferred_init_and_relative_imports(tmp_path, files,
+                                                                             cycle):
+    cycles = _cycles(_graph(_write(tmp_path, files)))
+    assert [set(c) for c in cycles] == [cycle]
+
+
+def test_a_submodule_imported_by_name_from_its_package_is_no_cycle(tmp_path):
+    package = _write(tmp_path, {"toy/__init__.py": "from toy.sub import rows\n",
+                                "toy/sub/__init__.py": "from toy.sub.rows import read\n",
+                                "toy/sub/rows.py": "from toy.sub import table\n",
+                                "toy/sub/table.py": "X = 1\n"})
+    assert _cycles(_graph(package)) == []

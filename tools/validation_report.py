@@ -43,7 +43,7 @@ TEST_FILES = (
     "tests/physics/test_published_roller_checks.py",
     "tests/physics/test_published_tables.py",
     "tests/physics/test_published_textbook_examples.py",
-    "tests/test_fidelity_errors.py",
+    "tests/studies/test_fidelity_errors.py",
 )
 """Test files whose cases compare the models with published values or measured references."""
 
@@ -215,7 +215,7 @@ UNVERIFIED = (
     "editions, no printed values), so the ball drag is the Schlichting form.",
     "ISO 281: the reading of the 15 deg abscissa for pairs (the pair's C0).",
     "ISO/TS 16281: checked against the standard's equations computed by hand "
-    "(tests/test_deep_groove_statics.py); no worked example of the standard itself.",
+    "(tests/studies/test_deep_groove_statics.py); no worked example of the standard itself.",
     "Double-layer bearing: no measured speed ratio of the study is available as numbers (it states "
     "the trends only, [studies, section A](studies.md#a-double-layer-bearings)); the torque level "
     "is checked against the study's closed-form laws and the ball level against the torque level.",

@@ -63,6 +63,16 @@ class Eq:
     derivative_of: Eq | None = None
     differentiated: Eq | None = None
     text: str = ""
+    _symbols: tuple[ca.SX, tuple[str, ...]] | None = field(default=None, init=False,
+                                                          repr=False, compare=False)
+    """The residual the names below were read from, and the names of its symbols."""
+
+    def symbol_names(self) -> tuple[str, ...]:
+        """Names of the symbols in the residual, in ``casadi.symvar`` order; read once per
+        residual (a pass that replaces the residual gets the new one's)."""
+        if self._symbols is None or self._symbols[0] is not self.residual:
+            self._symbols = (self.residual, tuple(s.name() for s in ca.symvar(self.residual)))
+        return self._symbols[1]
 
     def describe(self) -> str:
         """Origin and readable text, for messages."""
@@ -136,12 +146,7 @@ class DAE:
     def incidence(self, eq: Eq, lookup: dict[str, Var] | None = None) -> list[Var]:
         """Variables (not parameters, not time) that appear in an equation."""
         lookup = lookup if lookup is not None else self.by_name()
-        out = []
-        for s in ca.symvar(eq.residual):
-            v = lookup.get(s.name())
-            if v is not None:
-                out.append(v)
-        return out
+        return [lookup[n] for n in eq.symbol_names() if n in lookup]
 
     @property
     def inputs(self) -> list[Var]:

@@ -34,13 +34,11 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import DAE, Var
+from bearingsim.assembler.function_options import CSE, rootfinder_options
+from bearingsim.assembler.ir import Causal, Repeats
 from bearingsim.assembler.passes.ball_sets import function_identity
-from bearingsim.assembler.passes.repeated import Repeats
-from bearingsim.assembler.passes.tearing import Causal, rootfinder_options
 
 __all__ = ["NotMappable", "MappedKernel", "MappedForms", "mapped_kernel"]
-
-CSE = {"cse": True}
 
 
 class NotMappable(Exception):

@@ -23,6 +23,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
+from bearingsim.assembler.function_options import ROOTFINDERS
 from bearingsim.assembler.passes import (
     alias_elimination,
     blt,
@@ -152,7 +153,7 @@ def assemble(
     if rootfinder is None:
         rootfinder = ("newton" if any(c.needs_line_search for c in assembly.walk())
                       else "fast_newton")
-    check_choice(rootfinder, "rootfinder", codegen.ROOTFINDERS, "assemble")
+    check_choice(rootfinder, "rootfinder", ROOTFINDERS, "assemble")
     stages = _with_extra_passes(extra_passes)
     state = AssemblyState(assembly, list(outputs) if outputs else None, newton_tol, rootfinder)
     timings = []

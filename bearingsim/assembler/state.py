@@ -13,9 +13,7 @@ from dataclasses import dataclass, field, fields
 from typing import Any
 
 from bearingsim.assembler.dae import DAE, Eq, Var
-from bearingsim.assembler.passes.blt import Block
-from bearingsim.assembler.passes.repeated import Repeats
-from bearingsim.assembler.passes.tearing import Causal
+from bearingsim.assembler.ir import Block, Causal, Repeats
 from bearingsim.assembler.system import System
 from bearingsim.errors import PassOrderError
 from bearingsim.language.component import Component
@@ -39,7 +37,7 @@ class AssemblyState:
     newton_tol: float = _set_by("assemble", default=1e-12)
     """Absolute residual tolerance of the Newton iterations of nonlinear loops."""
     rootfinder: str = _set_by("assemble", default="fast_newton")
-    """CasADi rootfinder plugin of the nonlinear loops (see ``codegen.ROOTFINDERS``)."""
+    """CasADi rootfinder plugin of the nonlinear loops (see ``function_options.ROOTFINDERS``)."""
     dae: DAE | None = _set_by("flatten", default=None)
     """The flat DAE; alias elimination, index reduction and pruning transform it in place."""
     matching: dict[Eq, Var] | None = _set_by("matching", default=None)

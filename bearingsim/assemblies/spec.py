@@ -208,6 +208,10 @@ class AssemblySpec:
     plots: Callable[[dict[str, Any], str], list[AssemblyPlot]] = _no_plots
     """``plots(args, fidelity)`` -> the figures that answer the assembly's question at that
     level (:class:`AssemblyPlot`; their ``needs`` must be variables of that level's model)."""
+    mode_names: dict[str, str] = field(default_factory=dict)
+    """State name -> mode name ("radial x", ...) of the modes named after their dominant degree
+    of freedom in a ``modes`` scene; other modes are named after the description of that
+    state."""
 
     def is_optional_input(self, name: str) -> bool:
         """Whether a scene may leave the input ``name`` out."""

@@ -26,61 +26,51 @@ import csv
 from functools import lru_cache
 from importlib import resources
 
+from bearingsim.catalog.datasheet import read_datasheet
 from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
+from bearingsim.catalog.table_rows import row_to_geometry
 from bearingsim.errors import CatalogError
-from bearingsim.units import deg, mm, rpm_to_rad_s
+from bearingsim.registry import Registry
 
-__all__ = ["BearingGeometry", "PreloadClasses", "get_bearing", "list_bearings", "load_datasheet",
-           "register_bearing", "resolve_bearing", "unregister_bearing"]
+__all__ = ["BEARINGS", "ENTRY_POINT_GROUP", "BearingGeometry", "PreloadClasses", "get_bearing",
+           "list_bearings", "load_datasheet", "register_bearing", "resolve_bearing",
+           "unregister_bearing"]
 
-_USER: dict[str, BearingGeometry] = {}
-"""Bearings registered by the user (:func:`register_bearing`, :func:`load_datasheet`)."""
-
-
-def _optional(text: str, scale: float) -> float | None:
-    return float(text) * scale if text.strip() else None
-
-
-def _row_to_geometry(row: dict[str, str]) -> BearingGeometry:
-    preload = None
-    if row["preload_light_N"].strip():
-        preload = PreloadClasses(
-            float(row["preload_light_N"]),
-            float(row["preload_medium_N"]),
-            float(row["preload_heavy_N"]),
-        )
-    return BearingGeometry(
-        designation=row["designation"],
-        bore=mm(float(row["d_mm"])),
-        outside_diameter=mm(float(row["D_mm"])),
-        width=mm(float(row["B_mm"])),
-        ball_count=int(row["Z"]),
-        ball_diameter=mm(float(row["Dw_mm"])),
-        pitch_diameter=mm(float(row["dm_mm"])),
-        fi=float(row["fi"]),
-        fo=float(row["fo"]),
-        contact_angle=deg(float(row["alpha_deg"])),
-        diametral_clearance=float(row["Pd_um"]) * 1e-6,
-        dynamic_load_rating=_optional(row["C_kN"], 1e3),
-        static_load_rating=_optional(row["C0_kN"], 1e3),
-        reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),
-        limiting_speed=_optional(row["lim_speed_rpm"], rpm_to_rad_s(1.0)),
-        preload=preload,
-        estimated=tuple(f for f in row["estimated"].split(";") if f),
-        source=row["source"],
-    )
+ENTRY_POINT_GROUP = "bearingsim.bearings"
+"""Entry-point group of bearing plug-ins: each entry point loads a :class:`BearingGeometry`,
+known by its designation."""
 
 
 @lru_cache(maxsize=1)
 def _catalogue() -> dict[str, BearingGeometry]:
     text = resources.files(__name__).joinpath("bearings.csv").read_text(encoding="utf-8")
     lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
-    return {row["designation"]: _row_to_geometry(row) for row in csv.DictReader(lines)}
+    return {row["designation"]: row_to_geometry(row) for row in csv.DictReader(lines)}
+
+
+def _designation(name: str) -> str:
+    return str(name).strip().upper()
+
+
+def _plugin_bearing(obj: object, entry_name: str) -> tuple[str, BearingGeometry]:
+    """An entry point's geometry under its designation (TypeError: skipped, with why)."""
+    if not isinstance(obj, BearingGeometry):
+        raise TypeError(f"it loads {type(obj).__name__} {obj!r:.80}, not a BearingGeometry")
+    return _designation(obj.designation), obj
+
+
+BEARINGS = Registry("bearing", _catalogue, group=ENTRY_POINT_GROUP, convert=_plugin_bearing,
+                    normalize=_designation, builtin_label="catalogue bearing",
+                    replace_builtin=False)
+"""Designation -> geometry: the catalogue (``bearings.csv``), the plug-ins of
+:data:`ENTRY_POINT_GROUP` and the registered bearings (:func:`register_bearing`,
+:func:`load_datasheet`, a scene's ``bearings`` key)."""
 
 
 def list_bearings() -> list[str]:
-    """Designations of all catalogued bearings, in table order, then the registered ones."""
-    return list(_catalogue()) + [d for d in _USER if d not in _catalogue()]
+    """Designations of all catalogued bearings, in table order, then the plug-ins' and the
+    registered ones."""
+    return list(BEARINGS)
 
 
 def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> BearingGeometry:
@@ -90,34 +80,28 @@ def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> Bea
     Raises
     ------
     CatalogError
-        For a designation already known (built in, or registered without ``replace``).
+        For a designation already known (a catalogue bearing, or registered without
+        ``replace``: :class:`~bearingsim.registry.NameTakenError`).
     """
     if not isinstance(geometry, BearingGeometry):
         raise CatalogError(f"register_bearing: expected a BearingGeometry, got "
                            f"{type(geometry).__name__}")
-    key = geometry.designation.strip().upper()
-    if key in _catalogue():
-        raise CatalogError(f"register_bearing: {key} is a catalogue bearing; give yours "
-                           f"another designation")
-    if key in _USER and not replace:
-        raise CatalogError(f"register_bearing: {key} is already registered; give replace=True")
-    _USER[key] = geometry
+    BEARINGS.register(_designation(geometry.designation), geometry, replace=replace)
     return geometry
 
 
 def unregister_bearing(designation: str) -> None:
-    """Forget a registered bearing (CatalogError for one that is not registered)."""
-    key = str(designation).strip().upper()
-    if key not in _USER:
+    """Forget a registered bearing (CatalogError for one that is not registered: unknown, or a
+    catalogue bearing)."""
+    key = _designation(designation)
+    if key in _catalogue() or BEARINGS.find(key) is None:
         raise CatalogError(f"unregister_bearing: {designation!r} is not registered")
-    del _USER[key]
+    del BEARINGS[key]
 
 
 def load_datasheet(path, *, replace: bool = False) -> list[str]:
     """Read a datasheet file (:func:`~bearingsim.catalog.datasheet.read_datasheet`, CSV or TOML
     in catalogue units) and register its bearings; returns their designations."""
-    from bearingsim.catalog.datasheet import read_datasheet
-
     bearings = read_datasheet(path)
     for g in bearings:
         register_bearing(g, replace=replace)
@@ -125,7 +109,7 @@ def load_datasheet(path, *, replace: bool = False) -> list[str]:
 
 
 def get_bearing(designation: str) -> BearingGeometry:
-    """Geometry of a catalogued bearing, in SI units.
+    """Geometry of a catalogued (or plug-in, or registered) bearing, in SI units.
 
     Parameters
     ----------
@@ -139,16 +123,10 @@ def get_bearing(designation: str) -> BearingGeometry:
     Raises
     ------
     CatalogError
-        If the designation is unknown; the message lists the known designations.
+        If the designation is unknown; the message lists the known designations and the close
+        matches.
     """
-    table = {**_USER, **_catalogue()}
-    key = str(designation).strip().upper()
-    if key not in table:
-        raise CatalogError(
-            f"unknown bearing designation {designation!r}; known designations: "
-            + ", ".join(table)
-        )
-    return table[key]
+    return BEARINGS[designation]
 
 
 def resolve_bearing(bearing: str | BearingGeometry) -> BearingGeometry:

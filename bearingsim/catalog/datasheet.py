@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from bearingsim.catalog.geometry import BearingGeometry
+from bearingsim.catalog.table_rows import row_to_geometry
 from bearingsim.errors import BearingsimError, CatalogError
 from bearingsim.files import FileAccessError, open_regular
 
@@ -107,8 +108,6 @@ def read_datasheet(path: str | Path) -> list[BearingGeometry]:
         For a missing or unreadable file, a missing or unknown key, or a bearing the geometry
         checks refuse, naming the file, the bearing and the key.
     """
-    from bearingsim.catalog import _row_to_geometry
-
     path = Path(path)
     if not path.is_file():
         raise CatalogError(f"bearing datasheet {str(path)!r} not found")
@@ -143,7 +142,7 @@ def read_datasheet(path: str | Path) -> list[BearingGeometry]:
         row = _complete(dict(entry), where)
         row["source"] = row["source"] or f"datasheet {path.name}"
         try:
-            out.append(_row_to_geometry(row))
+            out.append(row_to_geometry(row))
         except BearingsimError as exc:
             raise CatalogError(f"{where}: {exc}") from None
         except ValueError:

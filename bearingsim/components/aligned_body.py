@@ -31,6 +31,8 @@ class AlignedBody(Component):
         Free translations among "x", "y", "z".
     damping : float
         Numerical damping [N s/m], > 0.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------

@@ -39,7 +39,18 @@ __all__ = [
 
 def friction_bearing_type(geometry: BearingGeometry) -> str:
     """Key of the friction tables for a geometry ("deep_groove_ball", "cylindrical_roller",
-    ...; :func:`~bearingsim.components.rolling_element.friction_key`)."""
+    ...; :func:`~bearingsim.components.rolling_element.friction_key`).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing.
+
+    Returns
+    -------
+    str
+        The friction tables' key.
+    """
     return friction_key(geometry)
 
 
@@ -58,6 +69,11 @@ class BearingTorqueElement(Component):
     Connectors
     ----------
     inner, outer : Flange
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, name=None):
@@ -83,7 +99,13 @@ class BearingTorqueElement(Component):
 
 
 class _LubricatedBearing(BearingTorqueElement):
-    """Shared parameters of the lubricated friction models."""
+    """Shared parameters of the lubricated friction models.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+    """
 
     def __init__(self, bearing, lubricant, omega_reg: float, name=None):
         super().__init__(name)
@@ -126,6 +148,8 @@ class PalmgrenBearing(_LubricatedBearing):
         Smooth blend of the two M0 branches (default) or the exact piecewise form.
     omega_reg : float
         Regularization speed of the friction sign [rad/s].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Parameters (model)
     ------------------
@@ -184,6 +208,8 @@ class SkfBearing(_LubricatedBearing):
         Regularization speed of the friction sign [rad/s].
     **options
         Passed to ``skf_friction_components`` (seals, oil level, ...).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, bearing, lubricant="ISO VG 32", *, series: str | None = None,
@@ -235,6 +261,8 @@ class PureRollingLayer(BearingTorqueElement):
         Drag coefficient per unit race speed [N s/m] (equal for both layers).
     exact : bool
         Keep the contact-angle term ``g^2``.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, bearing, k: float = 1.0, *, exact: bool = True, name=None):

@@ -19,6 +19,8 @@ class PIController(Component):
     unit_e, unit_y : str
         Units of the error (reference and measurement) and of the output, e.g. ``"rad/s"`` and
         ``"V"`` (default ``"1"``, dimensionless).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------

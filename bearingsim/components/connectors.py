@@ -64,11 +64,23 @@ class RingFrame(Connector):
     My = Flow(unit="N.m", description="moment about y on the body")
 
     def displacement(self):
-        """(x, y, z, tx, ty) symbols."""
+        """(x, y, z, tx, ty) symbols.
+
+        Returns
+        -------
+        list
+            The frame's potentials x, y, z [m], tx, ty [rad].
+        """
         return [getattr(self, k) for k in FRAME_POTENTIALS]
 
     def loads(self):
-        """(Fx, Fy, Fz, Mx, My) symbols."""
+        """(Fx, Fy, Fz, Mx, My) symbols.
+
+        Returns
+        -------
+        list
+            The frame's flows Fx, Fy, Fz [N], Mx, My [N m].
+        """
         return [getattr(self, k) for k in FRAME_FLOWS]
 
 

@@ -141,6 +141,8 @@ class MiddleRing(Assembly):
         (:func:`middle_ring_bodies`).
     w0 : float
         Start speed [rad/s].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

@@ -22,6 +22,8 @@ class MisalignmentGuide(Component):
     tx, ty : float
         Tilt of the frame about x and y [rad], in [-0.01, 0.01] (model parameters: changeable
         without recompiling).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Parameters (model)
     ------------------

@@ -60,6 +60,8 @@ class DCMotor(_Machine):
         Rotor inertia [kg m^2].
     w0 : float
         Start speed of the rotor [rad/s].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------
@@ -107,6 +109,8 @@ class PMSM(_Machine):
         Permanent-magnet flux linkage [Wb].
     J, w0 : float
         Rotor inertia [kg m^2] and its start speed [rad/s].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------
@@ -153,6 +157,8 @@ class DCMotorDrive(Assembly):
         Speed controller gains [V s/rad], [V/rad].
     **motor
         Passed to :class:`DCMotor`.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -187,6 +193,8 @@ class PMSMDrive(Assembly):
         Current controller gains [V/A], [V/(A s)].
     **motor
         Passed to :class:`PMSM`.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, speed_ref: SpeedReference = None, kp_w=0.5, ki_w=10.0, kp_i=2.0,
@@ -231,6 +239,11 @@ def speed_controlled_motor(motor: str, speed_ref: Callable | float | None,
         Keyword arguments of the drive (gains, motor constants).
     where : str
         Caller's name, used in the message.
+
+    Returns
+    -------
+    DCMotorDrive or PMSMDrive
+        The drive.
 
     Raises
     ------

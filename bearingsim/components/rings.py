@@ -28,7 +28,20 @@ _EZ = (0.0, 0.0, 1.0)
 
 
 def frame_lever_moment(lever, frame: RingFrame):
-    """(x, y) components of ``lever x F`` for the force ``F`` of ``frame`` [N m]."""
+    """(x, y) components of ``lever x F`` for the force ``F`` of ``frame`` [N m].
+
+    Parameters
+    ----------
+    lever : sequence of 3 entries
+        Lever from the frame's point [m].
+    frame : RingFrame
+        The frame whose force acts at the lever's end.
+
+    Returns
+    -------
+    tuple
+        The moment's x and y components [N m].
+    """
     m = cross(lever, [frame.Fx, frame.Fy, frame.Fz])
     return m[0], m[1]
 
@@ -45,6 +58,8 @@ class PartialRigidLink(Component):
     ----------
     exact : bool
         Exact rotation (default) or the small-angle form.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -58,7 +73,20 @@ class PartialRigidLink(Component):
         self._exact = exact
 
     def link_equations(self, length, shift):
-        """The ten kinematic and load-balance equations for a link of ``length`` and ``shift``."""
+        """The ten kinematic and load-balance equations for a link of ``length`` and ``shift``.
+
+        Parameters
+        ----------
+        length : float or SX
+            Distance of ``frame_b``'s point along the body axis [m].
+        shift : float or SX
+            Mounting offset along the axis [m].
+
+        Returns
+        -------
+        list
+            The ten equations.
+        """
         a, b = self.frame_a, self.frame_b
         r = rotation(a.tx, a.ty, self._exact)
         lever = rotate(r, [0.0, 0.0, length + shift])
@@ -79,7 +107,13 @@ class PartialRigidLink(Component):
 
 
 class _Ring(PartialRigidLink):
-    """A rigid ring: seat frame, raceway frame at ``groove_offset``, rotational speed."""
+    """A rigid ring: seat frame, raceway frame at ``groove_offset``, rotational speed.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+    """
 
     _which = "ring"
 
@@ -93,7 +127,7 @@ class _Ring(PartialRigidLink):
         return self.link_equations(self.groove_offset, 0.0)
 
 
-class InnerRing(_Ring):
+class InnerRing(_Ring):  # numpydoc ignore=PR02
     """Rigid inner ring: seat on the shaft (``frame_a``) and raceway frame (``frame_b``).
 
     The ring's mass belongs to the shaft it is mounted on (the assembly adds it there).
@@ -116,7 +150,7 @@ class InnerRing(_Ring):
     _which = "inner"
 
 
-class OuterRing(_Ring):
+class OuterRing(_Ring):  # numpydoc ignore=PR02
     """Rigid outer ring: seat in the housing (``frame_a``) and raceway frame (``frame_b``).
 
     Parameters
@@ -153,6 +187,8 @@ class Spacer(PartialRigidLink):
         Axial mounting offset of ``frame_b`` [m].
     exact : bool
         Exact kinematics (default) or the small-angle form.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------
@@ -208,6 +244,8 @@ class Shaft(Component):
         the bearings, adding ``-c_i q_i'`` to the loads. It exerts no load at rest, so
         equilibria and stiffness do not change. ``None`` (default): no damping and no
         parameters ``c_x`` ... ``c_ty``.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------
@@ -297,6 +335,8 @@ class Housing(Component):
         > 0; ``None`` makes the housing rigid.
     damping : sequence of 5 float, optional
         Support damping in the same order [N s/m, N m s/rad], >= 0 (default 0).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -349,6 +389,8 @@ class ConstantLoad(Component):
         Force on the body [N].
     Mx, My : float
         Moment on the body [N m].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

@@ -221,6 +221,8 @@ class RollerRow(Component):
     smooth : float
         Contact regularization length [m].
     roller, ring : Material
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Parameters (model)
     ------------------
@@ -264,11 +266,28 @@ class RollerRow(Component):
                                for j in range(self.n_rollers)] for key, unit, text in labels}
 
     def output_names(self, key: str) -> list[str]:
-        """Dotted names of the per-roller variable ``key`` ("Q", "delta", "p_max")."""
+        """Dotted names of the per-roller variable ``key`` ("Q", "delta", "p_max").
+
+        Parameters
+        ----------
+        key : str
+            A per-roller variable ("Q", "delta", "p_max").
+
+        Returns
+        -------
+        list of str
+            Its dotted names, one per roller.
+        """
         return [f"{self.path}.{key}[{j}]" for j in range(self.n_rollers)]
 
     def loads(self) -> RollerContacts:
-        """:func:`roller_row_loads` on this row's symbols."""
+        """:func:`roller_row_loads` on this row's symbols.
+
+        Returns
+        -------
+        RollerContacts
+            Slice and roller loads of every roller (symbols).
+        """
         return roller_row_loads(self, self.inner.displacement(), self.outer.displacement(),
                                 self.n_rollers, self.n_slices)
 

@@ -9,7 +9,7 @@ floor:
   and the roller :class:`~bearingsim.catalog.rollers.RollerBearingGeometry`.
 * **Contact law** (:class:`ContactLaw`): the load of one element between both raceways at its
   total elastic approach. Implementations: :class:`PointContact` (Hertz, ``Q = K delta^1.5``,
-  the ball's :func:`~bearingsim.physics.hertz.contact_load`) and :class:`LineContact`
+  the ball's :func:`~bearingsim.physics.contact_law.contact_load`) and :class:`LineContact`
   (Palmgren, two line contacts in series, sliced: :mod:`bearingsim.physics.line_contact`).
 * **Row** (:class:`ElementRow`): a component with an inner and an outer
   :class:`~bearingsim.components.connectors.RingFrame` that puts the elements' loads on them.
@@ -31,7 +31,7 @@ from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.catalog.rollers import RollerBearingGeometry, get_roller_bearing
 from bearingsim.errors import CatalogError
 from bearingsim.physics import line_contact
-from bearingsim.physics.hertz import contact_load
+from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.life import static_equivalent_load as ball_static_equivalent_load
 from bearingsim.validation import check_count, check_range
 
@@ -66,7 +66,15 @@ class ElementGeometry(Protocol):
         """Type name, e.g. "deep_groove" (ball) or "cylindrical_roller"."""
 
     def check_speed(self, speed: float, where: str) -> None:
-        """Warn above the catalogue limiting speed."""
+        """Warn above the catalogue limiting speed.
+
+        Parameters
+        ----------
+        speed : float
+            Speed of the rotating ring [rad/s].
+        where : str
+            Who checks, for messages.
+        """
 
 
 @runtime_checkable
@@ -77,10 +85,34 @@ class ContactLaw(Protocol):
     """"point" or "line"."""
 
     def load(self, approach: Any, smooth: float | None = None) -> Any:
-        """Element load [N] at the total approach [m] (negative: a gap, no load)."""
+        """Element load [N] at the total approach [m] (negative: a gap, no load).
+
+        Parameters
+        ----------
+        approach : float, array or CasADi symbol
+            Total elastic approach of the element [m] (negative: a gap, no load).
+        smooth : float, optional
+            Smoothing length of ``max(approach, 0)`` [m], > 0 (None: exact).
+
+        Returns
+        -------
+        float, array or CasADi symbol
+            Element load [N].
+        """
 
     def approach(self, load: float) -> float:
-        """Total approach [m] at the element load [N] (the inverse of :meth:`load`)."""
+        """Total approach [m] at the element load [N] (the inverse of :meth:`load`).
+
+        Parameters
+        ----------
+        load : float
+            Element load [N], >= 0.
+
+        Returns
+        -------
+        float
+            Total approach [m].
+        """
 
 
 @runtime_checkable
@@ -91,7 +123,18 @@ class ElementRow(Protocol):
     outer: Any
 
     def output_names(self, key: str) -> list[str]:
-        """Dotted names of a per-element variable, in element order."""
+        """Dotted names of a per-element variable, in element order.
+
+        Parameters
+        ----------
+        key : str
+            A per-element variable.
+
+        Returns
+        -------
+        list of str
+            Its dotted names, in element order.
+        """
 
 
 @dataclass(frozen=True)
@@ -113,11 +156,35 @@ class PointContact:
                     where="PointContact")
 
     def load(self, approach: Any, smooth: float | None = None) -> Any:
-        """Ball load [N] (:func:`~bearingsim.physics.hertz.contact_load`)."""
+        """Ball load [N] (:func:`~bearingsim.physics.contact_law.contact_load`).
+
+        Parameters
+        ----------
+        approach : float, array or CasADi symbol
+            Total elastic approach of the element [m] (negative: a gap, no load).
+        smooth : float, optional
+            Smoothing length of ``max(approach, 0)`` [m], > 0 (None: exact).
+
+        Returns
+        -------
+        float, array or CasADi symbol
+            Ball load [N].
+        """
         return contact_load(self.stiffness, approach, smooth)
 
     def approach(self, load: float) -> float:
-        """Total approach [m], ``(Q/K)^(2/3)``."""
+        """Total approach [m], ``(Q/K)^(2/3)``.
+
+        Parameters
+        ----------
+        load : float
+            Element load [N], >= 0.
+
+        Returns
+        -------
+        float
+            Total approach [m].
+        """
         check_range(load, "load", "N", 0.0, where="PointContact.approach")
         return (load / self.stiffness) ** (2.0 / 3.0)
 
@@ -146,15 +213,52 @@ class LineContact:
         check_count(self.n_slices, "n_slices", 1, where="LineContact")
 
     def slice_loads(self, approaches, smooth: float | None = None) -> list:
-        """Loads of the slices [N] at their total approaches [m] (one entry per slice)."""
+        """Loads of the slices [N] at their total approaches [m] (one entry per slice).
+
+        Parameters
+        ----------
+        approaches : sequence
+            Total approach of each slice [m].
+        smooth : float, optional
+            Smoothing length of ``max(approach, 0)`` [m], > 0 (None: exact).
+
+        Returns
+        -------
+        list
+            Slice loads [N].
+        """
         return line_contact.slice_loads([0.5 * a for a in approaches], self.length, smooth)
 
     def load(self, approach: Any, smooth: float | None = None) -> Any:
-        """Roller load [N] at a uniform total approach [m]."""
+        """Roller load [N] at a uniform total approach [m].
+
+        Parameters
+        ----------
+        approach : float, array or CasADi symbol
+            Total elastic approach of the element [m] (negative: a gap, no load).
+        smooth : float, optional
+            Smoothing length of ``max(approach, 0)`` [m], > 0 (None: exact).
+
+        Returns
+        -------
+        float, array or CasADi symbol
+            Roller load [N].
+        """
         return line_contact.palmgren_load(0.5 * approach, self.length, smooth)
 
     def approach(self, load: float) -> float:
-        """Total approach [m] of both contacts, ``2 c Q^0.9 / l^0.8``."""
+        """Total approach [m] of both contacts, ``2 c Q^0.9 / l^0.8``.
+
+        Parameters
+        ----------
+        load : float
+            Element load [N], >= 0.
+
+        Returns
+        -------
+        float
+            Total approach [m].
+        """
         return 2.0 * float(line_contact.palmgren_deflection(load, self.length))
 
 

@@ -47,6 +47,8 @@ class Inertia(Component):
         Moment of inertia [kg m^2], > 0.
     phi0, w0 : float
         Initial angle [rad] and angular speed [rad/s].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------
@@ -81,6 +83,11 @@ class PartialCompliant(Component):
     ---------
     phi_rel [rad] : flange_b.phi - flange_a.phi
     tau [N m] : torque acting on the element at flange_b (at flange_a: -tau)
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, name=None):
@@ -91,7 +98,13 @@ class PartialCompliant(Component):
         self.tau = Variable(unit="N.m", description="transmitted torque")
 
     def compliant_equations(self):
-        """The two-flange relations every subclass includes."""
+        """The two-flange relations every subclass includes.
+
+        Returns
+        -------
+        list
+            The relations of the relative angle and the flange torques.
+        """
         return [
             self.phi_rel == self.flange_b.phi - self.flange_a.phi,
             self.flange_b.tau == self.tau,
@@ -108,6 +121,8 @@ class Spring(PartialCompliant):
         Stiffness [N m/rad], > 0.
     phi_rel0 : float
         Unstretched relative angle [rad].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, c: float = 1.0, phi_rel0: float = 0.0, name=None):
@@ -128,6 +143,8 @@ class Damper(PartialCompliant):
     ----------
     d : float
         Damping constant [N m s/rad], >= 0.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, d: float = 1.0, name=None):
@@ -153,6 +170,8 @@ class SpringDamper(PartialCompliant):
         Damping [N m s/rad], >= 0.
     phi_rel0 : float
         Unstretched relative angle [rad].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, c: float = 1.0, d: float = 0.0, phi_rel0: float = 0.0, name=None):
@@ -176,6 +195,8 @@ class Fixed(Component):
     ----------
     phi0 : float
         Fixed angle [rad].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, phi0: float = 0.0, name=None):
@@ -195,6 +216,8 @@ class TorqueSource(Component):
     torque : callable or float or None
         ``torque(t)`` built from CasADi/`bearingsim.symbolic` math (kept symbolic), a constant, or
         ``None`` for an input ``tau_in`` [N m].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, torque: TimeFunction | float | None = None, name=None):
@@ -218,6 +241,8 @@ class SpeedSource(Component):
         ``speed(t)`` [rad/s] (symbolic), a constant, or ``None`` for an input ``w_in``.
     phi0 : float
         Initial angle [rad].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, speed: TimeFunction | float | None = None, phi0: float = 0.0, name=None):
@@ -244,6 +269,8 @@ class IdealGear(Component):
     ----------
     ratio : float
         Transmission ratio flange_a/flange_b [1], non-zero.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, ratio: float = 1.0, name=None):
@@ -264,7 +291,13 @@ class IdealGear(Component):
 
 
 class SpeedSensor(Component):
-    """Measures the absolute angular speed ``w`` [rad/s] of its flange."""
+    """Measures the absolute angular speed ``w`` [rad/s] of its flange.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+    """
 
     def __init__(self, name=None):
         super().__init__(name)
@@ -276,7 +309,13 @@ class SpeedSensor(Component):
 
 
 class TorqueSensor(Component):
-    """Measures the torque ``tau`` [N m] passed from flange_a to flange_b."""
+    """Measures the torque ``tau`` [N m] passed from flange_a to flange_b.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+    """
 
     def __init__(self, name=None):
         super().__init__(name)

@@ -1,21 +1,25 @@
-"""Compiling the FMU's C sources with the system C compiler (a binary that loads on glibc 2.17
-and later), describing how to rebuild them, and zipping the archive."""
+"""Compiling the FMU's C sources (a Linux binary that loads on glibc 2.17 and later, and opt-in
+cross-built binaries), describing how to rebuild them, and zipping the archive.
+
+The compiler runs through bearingsim's one driver,
+:func:`bearingsim.simulation.compile.compile_units`; what is particular to an FMU is passed to it
+as flags (the forced include that pins glibc symbols, hidden visibility, C99) or as the compiler
+(zig's for a cross target). Failures raise :class:`~bearingsim.simulation.compile.CompileError`.
+"""
 
 from __future__ import annotations
 
-import os
 import shutil
 import struct
-import subprocess
 import xml.etree.ElementTree as ET
 import zipfile
 from importlib import resources
 from pathlib import Path
 
-from bearingsim.errors import BearingsimError
 from bearingsim.files import atomic_path
+from bearingsim.simulation.compile import CompileError, compile_units
 
-__all__ = ["BINARY_PLATFORMS", "CROSS_PLATFORMS", "FmuBuildError", "GLIBC_BASELINE",
+__all__ = ["BINARY_PLATFORMS", "CROSS_PLATFORMS", "GLIBC_BASELINE",
            "TEMPLATE_OPTIMISATION",
            "LU_FILES", "RUNTIME_FILES", "TEMPLATE_FILES", "build_description_xml",
            "compile_shared_library", "copy_templates", "cross_compile_shared_library",
@@ -43,10 +47,6 @@ FMI_HEADERS = {
 
 BINARY_PLATFORMS = {"2.0": "linux64", "3.0": "x86_64-linux"}
 """Folder of the shared library under ``binaries/`` per FMI version."""
-
-
-class FmuBuildError(BearingsimError):
-    """The C compiler is missing or failed."""
 
 
 def fmi_header_dir() -> Path:
@@ -118,18 +118,20 @@ def cross_compile_shared_library(sources: list[tuple[Path, str]], output: Path, 
 
     Raises
     ------
-    FmuBuildError
+    CompileError
         If the ``ziglang`` package is missing or the compiler fails.
     """
     import importlib.util
     import sys
 
     if importlib.util.find_spec("ziglang") is None:
-        raise FmuBuildError(f"cross-building for {platform_name} needs zig's C compiler: "
-                            "pip install ziglang (or bearingsim[fmu-cross])")
+        raise CompileError(f"cross-building for {platform_name} needs zig's C compiler: "
+                           "pip install ziglang (or bearingsim[fmu-cross])")
     target = CROSS_PLATFORMS[platform_name][0]
-    _compile_and_link([sys.executable, "-m", "ziglang", "cc", "-target", target], sources,
-                      output, include, pic=not target.startswith("x86_64-windows"))
+    compile_units([(source, [optimisation]) for source, optimisation in sources], output,
+                  compiler=[sys.executable, "-m", "ziglang", "cc", "-target", target],
+                  flags=_fmu_flags(include), pic=not target.startswith("x86_64-windows"),
+                  what=f"the FMU for {platform_name}")
 
 
 def compile_shared_library(sources: list[tuple[Path, str]], output: Path, include: Path) -> None:
@@ -147,48 +149,28 @@ def compile_shared_library(sources: list[tuple[Path, str]], output: Path, includ
 
     Raises
     ------
-    FmuBuildError
-        With the compiler's messages, or if the library needs a glibc symbol version newer
-        than :data:`GLIBC_BASELINE`.
+    CompileError
+        If no C compiler is found, with the compiler's messages, or if the library needs a
+        glibc symbol version newer than :data:`GLIBC_BASELINE`.
     """
-    cc = os.environ.get("CC", "gcc")
-    if shutil.which(cc) is None:
-        raise FmuBuildError(f"C compiler {cc!r} not found; install gcc or set CC")
     pin = resources.files("bearingsim.fmu") / "templates" / GLIBC_PIN_HEADER
-    _compile_and_link([cc], sources, output, include, extra=("-include", str(pin)),
-                      link_extra=("-Wl,-Bsymbolic",))
+    compile_units([(source, [optimisation]) for source, optimisation in sources], output,
+                  flags=[*_fmu_flags(include), "-include", str(pin)],
+                  link_flags=["-Wl,-Bsymbolic"], what="the FMU")
     too_new = {sym: v for sym, v in glibc_versions(output).items() if v > GLIBC_BASELINE}
     if too_new:
         found = ", ".join(f"{sym}@GLIBC_{'.'.join(map(str, v))}"
                           for sym, v in sorted(too_new.items()))
-        raise FmuBuildError(
+        raise CompileError(
             f"the FMU binary needs glibc symbols newer than "
             f"{'.'.join(map(str, GLIBC_BASELINE))}: {found}; pin them in "
             f"bearingsim/fmu/templates/{GLIBC_PIN_HEADER}")
 
 
-def _compile_and_link(cc: list[str], sources: list[tuple[Path, str]], output: Path,
-                      include: Path, extra: tuple[str, ...] = (),
-                      link_extra: tuple[str, ...] = (), pic: bool = True) -> None:
-    """Compile each source with its optimisation, all in parallel, and link them."""
-    base = [*cc, "-c", *(["-fPIC"] if pic else []), "-std=c99", "-fvisibility=hidden",
-            "-DCASADI_SYMBOL_EXPORT=", f"-I{include}", *extra]
-    jobs = []
-    for source, optimisation in sources:
-        obj = output.parent / f"{output.stem}_{source.stem}.o"
-        cmd = [*base, optimisation, str(source), "-o", str(obj)]
-        jobs.append((cmd, obj, subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
-                                                stderr=subprocess.PIPE, text=True)))
-    errors = [(cmd, proc.communicate()[1], proc.returncode) for cmd, _, proc in jobs]
-    failed = [(cmd, err) for cmd, err, code in errors if code != 0]
-    if failed:
-        cmd, err = failed[0]
-        raise FmuBuildError(f"compiling the FMU failed ({' '.join(cmd)}):\n{err[-4000:]}")
-    link = [*cc, "-shared", *link_extra, *[str(obj) for _, obj, _ in jobs],
-            "-o", str(output), "-lm"]
-    proc = subprocess.run(link, capture_output=True, text=True, check=False)
-    if proc.returncode != 0:
-        raise FmuBuildError(f"linking the FMU failed ({' '.join(link)}):\n{proc.stderr[-4000:]}")
+def _fmu_flags(include: Path) -> list[str]:
+    """Flags of every file of an FMU binary: C99, only the FMI functions exported (the model
+    functions stay inside the library), the headers in ``include``."""
+    return ["-std=c99", "-fvisibility=hidden", "-DCASADI_SYMBOL_EXPORT=", f"-I{include}"]
 
 
 def glibc_versions(library: Path) -> dict[str, tuple[int, ...]]:
@@ -209,7 +191,7 @@ def glibc_versions(library: Path) -> dict[str, tuple[int, ...]]:
     """
     data = Path(library).read_bytes()
     if data[:4] != b"\x7fELF" or data[4] != 2 or data[5] != 1:
-        raise FmuBuildError(f"{library} is not an ELF64 little-endian file")
+        raise CompileError(f"{library} is not an ELF64 little-endian file")
     shoff, = struct.unpack_from("<Q", data, 0x28)
     shentsize, shnum = struct.unpack_from("<HH", data, 0x3A)
     sections = [struct.unpack_from("<IIQQQQIIQQ", data, shoff + k * shentsize)

@@ -32,7 +32,7 @@ from bearingsim.fmu.model_c import STEPPERS, resolve_stepper, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
 from bearingsim.fmu.nominal import state_nominals
 from bearingsim.language import Component
-from bearingsim.simulation.ordering import fill_reducing_order
+from bearingsim.simulation.ordering import newton_pattern
 
 __all__ = ["FMI_VERSIONS", "export_fmu"]
 
@@ -194,7 +194,7 @@ def export_fmu(
     ParameterError
         For an unknown FMI version, kind, stepper, output, input or parameter, or a value out
         of range.
-    FmuBuildError
+    CompileError
         If the C compiler is missing or fails, or the binary would need a glibc newer than
         2.17.
     """
@@ -236,10 +236,9 @@ def export_fmu(
         src = Path(tmp) / "sources"
         src.mkdir()
         work, generated = generate_c(functions, src)
-        order = fill_reducing_order(functions["jac_x"].sparsity_out(0))
         written = write_model_c(src, iface, system, guid, work, kinds,
                                 stepper=resolve_stepper(stepper, system.n_states),
-                                lu_order=[int(k) for k in order])
+                                lu_pattern=newton_pattern(functions["jac_x"].sparsity_out(0)))
         template = copy_templates(src, fmi_version)
         flags = {g.name: g.optimisation for g in generated}
         c_files = sorted(n for n in [*flags, *written, *template] if n.endswith(".c"))

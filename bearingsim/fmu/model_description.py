@@ -6,8 +6,10 @@ variables and value references come from :mod:`bearingsim.fmu.interface` and are
 both; FMI 3.0 adds the independent variable ``time`` after the parameters (value reference
 ``VR_END`` of the C template). What differs is spelled out in :data:`_VERSIONS`: the root's
 identity attribute (``guid`` / ``instantiationToken``), capability flags, the variable element
-(``ScalarVariable`` with a ``Real`` child / ``Float64``) and how the model structure refers to
-variables (1-based indices into ``ModelVariables`` / value references).
+(``ScalarVariable`` with a ``Real`` child / ``Float64``), how the model structure refers to
+variables (1-based indices into ``ModelVariables`` / value references) and how co-simulation
+inputs are given between communication points (FMI 2.0: ``canInterpolateInputs``, input
+derivatives; FMI 3.0: intermediate update, inputs marked ``intermediateUpdate="true"``).
 """
 
 from __future__ import annotations
@@ -63,7 +65,7 @@ _VERSIONS = {
         model_exchange={"needsCompletedIntegratorStep": "false"},
         co_simulation={"canHandleVariableCommunicationStepSize": "true",
                        "maxOutputDerivativeOrder": "1", "hasEventMode": "false",
-                       "providesIntermediateUpdate": "false",
+                       "providesIntermediateUpdate": "true",
                        "canReturnEarlyAfterIntermediateUpdate": "false"},
     ),
 }
@@ -276,9 +278,11 @@ def model_description_xml(iface: FmuInterface, fmi_version: str, model_name: str
             "causality": "independent", "variability": "continuous", "unit": "s",
             "description": "simulation time",
         })
+        between = {"intermediateUpdate": "true"} if "CS" in kinds else {}
         for v in iface.variables:
             der_of = iface.vr_x + v.index if v.kind == "derivative" else None
             ET.SubElement(mv, "Float64", {**_variable_attributes(v),
+                                          **(between if v.causality == "input" else {}),
                                           **_value_attributes(v, der_of)})
         _model_structure_3(root, iface)
     ET.indent(root)

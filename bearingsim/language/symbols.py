@@ -3,7 +3,8 @@
 Every declared variable, parameter and connector field is one scalar ``casadi.SX`` symbol with a
 unique name ``<attr>__<id>``. The registry maps those names back to their declarations so the
 assembler can find owners, units and start values, and so that ``der`` can create derivative
-symbols.
+symbols. It sees a declaration through the :class:`Declared` protocol only, so this module sits
+below :mod:`~bearingsim.language.declarations` and does not import it.
 """
 
 from __future__ import annotations
@@ -11,33 +12,46 @@ from __future__ import annotations
 import itertools
 import re
 import weakref
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import casadi as ca
 
 from bearingsim.errors import ModelError
 
-if TYPE_CHECKING:
-    from bearingsim.language.declarations import Declaration
+__all__ = ["Declared", "time", "der", "symbol_declaration", "new_symbol", "readable"]
 
-__all__ = ["time", "der", "symbol_declaration", "new_symbol", "readable"]
+
+class Declared(Protocol):
+    """What the symbol registry needs of a declaration
+    (:class:`~bearingsim.language.declarations.Declaration`)."""
+
+    is_constant_in_time: bool
+    """Whether ``der`` of it is zero (parameters)."""
+
+    @property
+    def path(self) -> str:
+        """Dotted name relative to the root of the instance tree."""
+
+    def derivative_symbol(self) -> ca.SX:
+        """The symbol of its time derivative, created on first use."""
+
 
 _counter = itertools.count()
-_registry: weakref.WeakValueDictionary[str, Declaration] = weakref.WeakValueDictionary()
+_registry: weakref.WeakValueDictionary[str, Declared] = weakref.WeakValueDictionary()
 _NAME = re.compile(r"\b([A-Za-z_][A-Za-z0-9_]*?)__(\d+)\b")
 
 time = ca.SX.sym("time")
 """The independent variable t [s], shared by every model."""
 
 
-def new_symbol(attr: str, declaration: Declaration) -> ca.SX:
+def new_symbol(attr: str, declaration: Declared) -> ca.SX:
     """Create the unique SX symbol of a declaration and register it."""
     name = f"{attr}__{next(_counter)}"
     _registry[name] = declaration
     return ca.SX.sym(name)
 
 
-def symbol_declaration(sym: ca.SX) -> Declaration | None:
+def symbol_declaration(sym: ca.SX) -> Declared | None:
     """The declaration behind a scalar symbol, or None for foreign symbols."""
     return _registry.get(sym.name())
 

@@ -19,8 +19,8 @@ import scipy.optimize
 
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.physics.bearing_design import POSITION_REGULARIZATION, BearingDesign
+from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.groove_contact import groove_contact
-from bearingsim.physics.hertz import contact_load
 
 __all__ = ["StaticState", "static_state"]
 

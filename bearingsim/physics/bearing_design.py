@@ -133,18 +133,36 @@ class BearingDesign:
 
     @property
     def ball_radius(self) -> float:
-        """Dw / 2 [m]."""
+        """Dw / 2 [m].
+
+        Returns
+        -------
+        float
+            Ball radius [m].
+        """
         return 0.5 * self.geometry.ball_diameter
 
     @property
     def gamma(self) -> float:
-        """Dw cos(a0) / dm [-] at the free contact angle."""
+        """Dw cos(a0) / dm [-] at the free contact angle.
+
+        Returns
+        -------
+        float
+            Pitch ratio [-].
+        """
         g = self.geometry
         return g.ball_diameter * math.cos(self.free_contact_angle) / g.pitch_diameter
 
     @property
     def epicyclic_ratio(self) -> float:
-        """Cage speed over inner-ring speed in pure rolling, ``(1 - gamma) / 2`` [-]."""
+        """Cage speed over inner-ring speed in pure rolling, ``(1 - gamma) / 2`` [-].
+
+        Returns
+        -------
+        float
+            Cage over inner-ring speed [-].
+        """
         return 0.5 * (1.0 - self.gamma)
 
 

@@ -23,6 +23,18 @@ def speed_ratio_pure_rolling(inner, outer, exact: bool = True) -> float:
 
     ``g_k = (Dw_k cos a_k / Dp_k)^2``; with ``exact=False`` the approximation
     ``Dp1 / (Dp1 + Dp2)``.
+
+    Parameters
+    ----------
+    inner, outer : str or BearingGeometry
+        Inner and outer layer's bearing.
+    exact : bool
+        With the contact angles' terms (default) or the pitch-diameter approximation.
+
+    Returns
+    -------
+    float
+        Rs [1].
     """
     g1, g2 = resolve_bearing(inner), resolve_bearing(outer)
     k1 = (1 - g1.gamma**2) if exact else 1.0
@@ -32,7 +44,18 @@ def speed_ratio_pure_rolling(inner, outer, exact: bool = True) -> float:
 
 
 def speed_ratio_palmgren(inner, outer) -> float:
-    """Palmgren M0 speed ratio ``Rs = Dp1^4.5 / (Dp1^4.5 + Dp2^4.5)`` [1] (equal f0 and nu)."""
+    """Palmgren M0 speed ratio ``Rs = Dp1^4.5 / (Dp1^4.5 + Dp2^4.5)`` [1] (equal f0 and nu).
+
+    Parameters
+    ----------
+    inner, outer : str or BearingGeometry
+        Inner and outer layer's bearing.
+
+    Returns
+    -------
+    float
+        Rs [1].
+    """
     g1, g2 = resolve_bearing(inner), resolve_bearing(outer)
     a, b = g1.pitch_diameter**4.5, g2.pitch_diameter**4.5
     return a / (a + b)
@@ -46,7 +69,18 @@ def _limit(g: BearingGeometry) -> float:
 
 
 def optimal_speed_ratio(inner, outer) -> float:
-    """``Rs_opt = n_o,max / (n_i,max + n_o,max)`` [1] from the catalogue limiting speeds."""
+    """``Rs_opt = n_o,max / (n_i,max + n_o,max)`` [1] from the catalogue limiting speeds.
+
+    Parameters
+    ----------
+    inner, outer : str or BearingGeometry
+        Inner and outer layer's bearing.
+
+    Returns
+    -------
+    float
+        Rs_opt [1].
+    """
     ni, no = _limit(resolve_bearing(inner)), _limit(resolve_bearing(outer))
     return no / (ni + no)
 
@@ -68,7 +102,13 @@ class PairingReport:
 
     @property
     def speed_utilisation(self) -> float:
-        """``max_shaft_speed / max_shaft_speed_optimal`` [1] (1 = optimal pairing)."""
+        """``max_shaft_speed / max_shaft_speed_optimal`` [1] (1 = optimal pairing).
+
+        Returns
+        -------
+        float
+            The utilisation [1].
+        """
         return self.max_shaft_speed / self.max_shaft_speed_optimal
 
 
@@ -80,6 +120,11 @@ def design_report(inner, outer, rs: float | None = None) -> PairingReport:
     inner, outer : str or BearingGeometry
     rs : float, optional
         Speed ratio to assess (default: the Palmgren ratio).
+
+    Returns
+    -------
+    PairingReport
+        The pairing's speed ratios and limiting shaft speeds.
     """
     gi, go = resolve_bearing(inner), resolve_bearing(outer)
     ni, no = _limit(gi), _limit(go)

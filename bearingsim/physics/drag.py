@@ -269,6 +269,11 @@ def taylor_number(omega: Any, radius: float, gap: float, nu: float) -> Any:
         R1 and the gap d [m], > 0.
     nu : float
         Kinematic viscosity [m^2/s], > 0.
+
+    Returns
+    -------
+    float, array or casadi.SX
+        Ta [-].
     """
     where = "taylor_number"
     check_range(omega, "omega", "rad/s", where=where)

@@ -108,7 +108,13 @@ class Fit:
 
     @property
     def mean(self) -> float:
-        """Mean interference [m]."""
+        """Mean interference [m].
+
+        Returns
+        -------
+        float
+            Mean interference [m].
+        """
         return 0.5 * (self.smallest + self.largest)
 
 
@@ -153,7 +159,22 @@ def fit(diameter: float, zone: str, seat: str) -> Fit:
 def effective_interference(interference: float, diameter: float, ground: bool = True) -> float:
     """Interference left after the seat surfaces are smoothed by pressing [m]: ``d / (d + 2)``
     of it for ground seats, ``d / (d + 3)`` for turned ones (d in mm; NSK E1102e eq. 9.4, 9.5).
-    Clearance (a negative value) is returned unchanged."""
+    Clearance (a negative value) is returned unchanged.
+
+    Parameters
+    ----------
+    interference : float
+        Measured interference [m] (negative: clearance).
+    diameter : float
+        Fit diameter [m].
+    ground : bool
+        Ground (default) or turned seat surfaces.
+
+    Returns
+    -------
+    float
+        Effective interference [m].
+    """
     check_range(interference, "interference", "m", -1e-3, 1e-3, where="effective_interference")
     check_range(diameter, "diameter", "m", 0.0, 6.0, low_inclusive=False,
                 where="effective_interference")
@@ -175,6 +196,11 @@ def raceway_factor_inner(bore: float, raceway: float, shaft_bore: float = 0.0) -
         Ring bore d and raceway diameter Di [m], ``d < Di``.
     shaft_bore : float
         Bore of the hollow shaft d0 [m], ``0 <= d0 < d``.
+
+    Returns
+    -------
+    float
+        Raceway diameter change per unit interference [-].
     """
     check_range(bore, "bore", "m", 0.0, 6.0, low_inclusive=False, where="raceway_factor_inner")
     check_range(raceway, "raceway", "m", bore, None, low_inclusive=False,
@@ -198,6 +224,11 @@ def raceway_factor_outer(outside: float, raceway: float, housing_outside: float 
         Ring outside diameter D and raceway diameter De [m], ``De < D``.
     housing_outside : float
         Housing (or sleeve) outside diameter D0 [m], > D.
+
+    Returns
+    -------
+    float
+        Raceway diameter change per unit interference [-].
     """
     check_range(outside, "outside", "m", 0.0, 6.0, low_inclusive=False,
                 where="raceway_factor_outer")
@@ -213,7 +244,20 @@ def raceway_factor_outer(outside: float, raceway: float, housing_outside: float 
 def initial_clearance(geometry: BearingGeometry, clearance_class: str = "CN") -> tuple[float,
                                                                                        float]:
     """Radial internal clearance before mounting, (min, max) [m], of a deep groove ball bearing
-    (:data:`CLEARANCE_CLASSES`, NSK E1102e Table 9.9)."""
+    (:data:`CLEARANCE_CLASSES`, NSK E1102e Table 9.9).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        A deep groove ball bearing.
+    clearance_class : str
+        "C2", "CN", "C3", "C4" or "C5".
+
+    Returns
+    -------
+    tuple of float
+        Smallest and largest clearance [m].
+    """
     check_choice(clearance_class, "clearance_class", tuple(CLEARANCE_CLASSES),
                  "initial_clearance")
     if not isinstance(geometry, BearingGeometry):
@@ -241,7 +285,13 @@ class OperatingClearance:
 
     @property
     def operating(self) -> float:
-        """Mounted diametral clearance [m]."""
+        """Mounted diametral clearance [m].
+
+        Returns
+        -------
+        float
+            Operating clearance [m].
+        """
         return self.initial - self.inner_reduction - self.outer_reduction
 
 

@@ -67,6 +67,11 @@ def cage_speed(omega_inner, omega_outer, gamma):
         Inner- and outer-ring speeds [rad/s].
     gamma : float or array or SX
         Pitch ratio Dw cos(alpha) / dm [-], see :func:`pitch_ratio`.
+
+    Returns
+    -------
+    float or array or SX
+        Cage speed [rad/s].
     """
     check_range(gamma, "gamma", "-", 0.0, 1.0, high_inclusive=False, where="cage_speed")
     check_finite("cage_speed", "rad/s", omega_inner=omega_inner, omega_outer=omega_outer)
@@ -80,6 +85,20 @@ def ball_revolutions_per_revolution(ball_diameter, pitch_diameter, contact_angle
     docs/studies.md, section C).
 
     Parameters are those of :func:`pitch_ratio`.
+
+    Parameters
+    ----------
+    ball_diameter : float
+        Dw [m].
+    pitch_diameter : float
+        dm [m].
+    contact_angle : float
+        alpha [rad].
+
+    Returns
+    -------
+    float
+        N [-].
     """
     gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
     return pitch_diameter * op.cos(contact_angle) * (1.0 - gamma * gamma) / (2.0 * ball_diameter)
@@ -95,6 +114,11 @@ def ball_rotation_speed(omega_inner, omega_outer, ball_diameter, pitch_diameter,
         Ring speeds [rad/s].
     ball_diameter, pitch_diameter, contact_angle
         As in :func:`pitch_ratio`.
+
+    Returns
+    -------
+    float or array or SX
+        Ball spin speed relative to the cage [rad/s].
     """
     n = ball_revolutions_per_revolution(ball_diameter, pitch_diameter, contact_angle)
     return n * (omega_inner - omega_outer)
@@ -114,6 +138,11 @@ def ball_pass_ratio(ball_count, gamma, race: str):
     gamma : float or array or SX
         Pitch ratio [-].
     race : {"inner", "outer"}
+
+    Returns
+    -------
+    float or array or SX
+        Ball passes per relative revolution [-].
     """
     check_range(ball_count, "ball_count", "-", 3, where="ball_pass_ratio")
     check_range(gamma, "gamma", "-", 0.0, 1.0, high_inclusive=False, where="ball_pass_ratio")

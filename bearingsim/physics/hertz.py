@@ -56,8 +56,6 @@ __all__ = [
     "bearing_load_deflection_constants",
     "orthogonal_shear_stress",
     "hertz_contact",
-    "contact_load",
-    "contact_stiffness",
 ]
 
 METHODS = ("exact", "hamrock_brewe")
@@ -206,13 +204,35 @@ def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, r
 
 
 def curvature_sum(rx, ry):
-    """Curvature sum ``1/Rx + 1/Ry`` [1/m] (Harris's sum rho)."""
+    """Curvature sum ``1/Rx + 1/Ry`` [1/m] (Harris's sum rho).
+
+    Parameters
+    ----------
+    rx, ry : float or array
+        Effective radii of curvature in the rolling and transverse directions [m], > 0.
+
+    Returns
+    -------
+    float or array
+        Curvature sum [1/m].
+    """
     check_radii(rx, ry, "curvature_sum")
     return 1.0 / rx + 1.0 / ry
 
 
 def curvature_difference(rx, ry):
-    """Curvature difference ``F(rho) = (1/Rx - 1/Ry) / (1/Rx + 1/Ry)`` [-] (Harris)."""
+    """Curvature difference ``F(rho) = (1/Rx - 1/Ry) / (1/Rx + 1/Ry)`` [-] (Harris).
+
+    Parameters
+    ----------
+    rx, ry : float or array
+        Effective radii of curvature in the rolling and transverse directions [m], > 0.
+
+    Returns
+    -------
+    float or array
+        Curvature difference [-].
+    """
     check_radii(rx, ry, "curvature_difference")
     return (ry - rx) / (ry + rx)
 
@@ -293,7 +313,20 @@ def elliptic_parameters(rx, ry, method: str = "exact") -> EllipticParameters:
 
 
 def ellipticity(rx, ry, method: str = "exact"):
-    """Ellipticity ``k = a/b`` [-] of a Hertz point contact; see :func:`elliptic_parameters`."""
+    """Ellipticity ``k = a/b`` [-] of a Hertz point contact; see :func:`elliptic_parameters`.
+
+    Parameters
+    ----------
+    rx, ry : float or array
+        Effective radii of curvature in the rolling and transverse directions [m], > 0.
+    method : {"exact", "hamrock_brewe"}
+        Elliptic parameters exact or by Hamrock and Brewe's fit.
+
+    Returns
+    -------
+    float or array
+        k = a/b [-].
+    """
     return elliptic_parameters(rx, ry, method).k
 
 
@@ -369,6 +402,22 @@ def approach(load, rx, ry, e_eff, method: str = "exact"):
     """Elastic approach ``delta = (Q / K)^(2/3)`` of the two bodies [m] (Hamrock).
 
     Parameters are those of :func:`semi_axes`. Returns delta [m].
+
+    Parameters
+    ----------
+    load : float or array
+        Contact load [N], >= 0.
+    rx, ry : float or array
+        Effective radii of curvature in the rolling and transverse directions [m], > 0.
+    e_eff : float
+        Effective modulus [Pa], > 0 (:func:`effective_modulus`).
+    method : {"exact", "hamrock_brewe"}
+        Elliptic parameters exact or by Hamrock and Brewe's fit.
+
+    Returns
+    -------
+    float or array
+        Approach delta [m].
     """
     params = _check_contact(load, rx, ry, e_eff, method, "approach")
     return op.power(load / _load_deflection(rx, ry, e_eff, params), 2.0 / 3.0)
@@ -378,6 +427,22 @@ def max_pressure(load, rx, ry, e_eff, method: str = "exact"):
     """Maximum Hertz pressure ``p_max = 3 Q / (2 pi a b)`` [Pa] (zero at zero load).
 
     Parameters are those of :func:`semi_axes`. Returns p_max [Pa].
+
+    Parameters
+    ----------
+    load : float or array
+        Contact load [N], >= 0.
+    rx, ry : float or array
+        Effective radii of curvature in the rolling and transverse directions [m], > 0.
+    e_eff : float
+        Effective modulus [Pa], > 0 (:func:`effective_modulus`).
+    method : {"exact", "hamrock_brewe"}
+        Elliptic parameters exact or by Hamrock and Brewe's fit.
+
+    Returns
+    -------
+    float or array
+        p_max [Pa].
     """
     params = _check_contact(load, rx, ry, e_eff, method, "max_pressure")
     a1, b1 = _unit_load_semi_axes(rx, ry, e_eff, params)
@@ -394,6 +459,11 @@ def combined_load_deflection_constant(k_inner, k_outer):
     ----------
     k_inner, k_outer : float or array or SX
         Constants of the inner and outer contacts [N/m^1.5], > 0.
+
+    Returns
+    -------
+    float or array
+        K [N/m^1.5].
     """
     where = "combined_load_deflection_constant"
     check_range(k_inner, "k_inner", "N/m^1.5", 0.0, low_inclusive=False, where=where)
@@ -472,9 +542,21 @@ def orthogonal_shear_stress(p_max, b, k):
 def hertz_contact(load, rx, ry, e_eff, method: str = "exact") -> HertzContact:
     """All Hertz quantities of one contact at once; see :func:`semi_axes` for the parameters.
 
+    Parameters
+    ----------
+    load : float or array
+        Contact load [N], >= 0.
+    rx, ry : float or array
+        Effective radii of curvature in the rolling and transverse directions [m], > 0.
+    e_eff : float
+        Effective modulus [Pa], > 0 (:func:`effective_modulus`).
+    method : {"exact", "hamrock_brewe"}
+        Elliptic parameters exact or by Hamrock and Brewe's fit.
+
     Returns
     -------
     HertzContact
+        All quantities of the contact.
     """
     params = _check_contact(load, rx, ry, e_eff, method, "hertz_contact")
     a1, b1 = _unit_load_semi_axes(rx, ry, e_eff, params)
@@ -493,58 +575,6 @@ def hertz_contact(load, rx, ry, e_eff, method: str = "exact") -> HertzContact:
         tau0=tau0,
         z0=z0,
     )
-
-
-def _compression(delta, smooth):
-    if smooth is None:
-        return op.fmax(delta, 0.0)
-    check_range(smooth, "smooth", "m", 0.0, low_inclusive=False, where="contact_load")
-    return op.smooth_max0(delta, smooth)
-
-
-def contact_load(k_const, delta, smooth=None):
-    """Hertz contact load ``Q = K max(delta, 0)^1.5`` [N].
-
-    Parameters
-    ----------
-    k_const : float or array or SX
-        Load-deflection constant K [N/m^1.5], >= 0.
-    delta : float or array or SX
-        Approach (overlap, positive in compression) [m], finite (any sign: a negative value
-        is a gap and gives no load).
-    smooth : float, optional
-        If given, ``max(delta, 0)`` is replaced by the smooth
-        ``(delta + sqrt(delta^2 + smooth^2)) / 2`` [m], differentiable everywhere for use in
-        equations (error at most smooth/2 in delta).
-
-    Returns
-    -------
-    Q [N], non-negative and non-decreasing in delta.
-
-    Raises
-    ------
-    ParameterError
-        For a negative or non-finite ``k_const``, a NaN or infinite ``delta`` or a
-        non-positive ``smooth`` (symbolic values are passed through unchecked).
-    """
-    check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_load")
-    check_range(delta, "delta", "m", where="contact_load")
-    return k_const * op.sqrt_power(_compression(delta, smooth), 1)
-
-
-def contact_stiffness(k_const, delta, smooth=None):
-    """Tangent contact stiffness ``dQ/d delta`` of :func:`contact_load` [N/m].
-
-    ``1.5 K max(delta, 0)^0.5``, or with ``smooth`` the exact derivative of the smooth form,
-    ``1.5 K s^0.5 (1 + delta / sqrt(delta^2 + smooth^2)) / 2``. Parameters are those of
-    :func:`contact_load`.
-    """
-    check_range(k_const, "k_const", "N/m^1.5", 0.0, where="contact_stiffness")
-    check_range(delta, "delta", "m", where="contact_stiffness")
-    stiffness = 1.5 * k_const * op.sqrt(_compression(delta, smooth))
-    if smooth is None:
-        return stiffness
-    return stiffness * 0.5 * (1.0 + delta / op.smooth_abs(delta, smooth))
 
 
 guard_public_functions(globals())  # no NaN in, no NaN or inf out (bearingsim.checks)

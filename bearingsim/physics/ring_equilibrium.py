@@ -30,7 +30,7 @@ __all__ = ["EquilibriumProblem"]
 
 
 @dataclass
-class EquilibriumProblem:
+class EquilibriumProblem:  # numpydoc ignore=PR02
     """One equilibrium problem.
 
     Parameters
@@ -80,11 +80,35 @@ class EquilibriumProblem:
         return out
 
     def value(self, v: np.ndarray, f_ext: np.ndarray) -> np.ndarray:
-        """The residual ``r(v)`` with the external load added to the ring entries."""
+        """The residual ``r(v)`` with the external load added to the ring entries.
+
+        Parameters
+        ----------
+        v : numpy.ndarray
+            The unknowns (ring displacements first) [m, rad].
+        f_ext : numpy.ndarray
+            External ring load [N, N m].
+
+        Returns
+        -------
+        numpy.ndarray
+            The residual.
+        """
         return np.asarray(self.residual(v), dtype=float).ravel() + self._padded(f_ext)
 
     def jacobian(self, v: np.ndarray) -> np.ndarray:
-        """Exact Jacobian ``dr/dv``."""
+        """Exact Jacobian ``dr/dv``.
+
+        Parameters
+        ----------
+        v : numpy.ndarray
+            The unknowns [m, rad].
+
+        Returns
+        -------
+        numpy.ndarray
+            dr/dv.
+        """
         return np.asarray(self._jac(v), dtype=float)
 
     def _force_scale(self, f_ext: np.ndarray) -> float:
@@ -92,13 +116,41 @@ class EquilibriumProblem:
 
     def converged(self, v: np.ndarray, f_ext: np.ndarray, tol: float = 1e-9) -> bool:
         """Every weighted residual below ``tol`` times the largest weighted load (at least
-        1 N)."""
+        1 N).
+
+        Parameters
+        ----------
+        v : numpy.ndarray
+            The unknowns [m, rad].
+        f_ext : numpy.ndarray
+            External ring load [N, N m].
+        tol : float
+            Relative tolerance [-].
+
+        Returns
+        -------
+        bool
+            Whether ``v`` is an equilibrium.
+        """
         r = self.value(v, f_ext) * self._weight / self._force_scale(f_ext)
         return bool(np.all(np.isfinite(v)) and np.max(np.abs(r)) <= tol)
 
     def iterate(self, f_ext: np.ndarray, v0: np.ndarray) -> np.ndarray:
         """Levenberg-Marquardt on the scaled unknowns with the exact Jacobian (NaN where the
-        residual is not finite at ``v0``)."""
+        residual is not finite at ``v0``).
+
+        Parameters
+        ----------
+        f_ext : numpy.ndarray
+            External ring load [N, N m].
+        v0 : numpy.ndarray
+            Start [m, rad].
+
+        Returns
+        -------
+        numpy.ndarray
+            The unknowns reached.
+        """
         force, weight, scale = self._force_scale(f_ext), self._weight, self._scale
 
         def fun(u):
@@ -120,7 +172,18 @@ class EquilibriumProblem:
         return np.concatenate([ring, extra])
 
     def seated(self, f_ext: np.ndarray) -> np.ndarray:
-        """Each loaded ring direction alone brought to balance (1-D roots), summed."""
+        """Each loaded ring direction alone brought to balance (1-D roots), summed.
+
+        Parameters
+        ----------
+        f_ext : numpy.ndarray
+            External ring load [N, N m].
+
+        Returns
+        -------
+        numpy.ndarray
+            A start for the unknowns [m, rad].
+        """
         ring = np.zeros(self.n_ring)
         for k in np.flatnonzero(f_ext):
             unit = np.zeros(self.n_ring)
@@ -163,6 +226,18 @@ class EquilibriumProblem:
         ------
         SimulationError
             If no equilibrium is found, naming the load reached on the load path.
+
+        Parameters
+        ----------
+        f_ext : sequence of float
+            External ring load [N, N m].
+        guess : numpy.ndarray, optional
+            Start for the unknowns [m, rad].
+
+        Returns
+        -------
+        numpy.ndarray
+            The unknowns at equilibrium [m, rad].
         """
         f_ext = np.asarray(f_ext, dtype=float)
         if guess is not None:

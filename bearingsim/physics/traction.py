@@ -134,6 +134,11 @@ def ehl_traction_peak(
     ``(B/C) exp(-C s*) + D``; the bound is the largest of that, ``|A + D|`` (zero slip) and
     ``|D|`` (infinite slip).
 
+    Parameters
+    ----------
+    A, B, C, D : float
+        Coefficients of :func:`ehl_traction` ([-], [s/m], [s/m], [-]).
+
     Returns
     -------
     float

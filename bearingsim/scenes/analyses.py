@@ -34,7 +34,6 @@ from bearingsim.scenes.scene import Scene, SceneError, Settling, line_of
 from bearingsim.scenes.statics_table import statics_of
 
 __all__ = [
-    "MODE_NAMES",
     "NotSettledWarning",
     "name_modes",
     "operating_points",
@@ -50,19 +49,6 @@ __all__ = [
 
 class NotSettledWarning(UserWarning):
     """A transient scene reports final values of outputs that had not settled."""
-
-
-def _duplex_mode_names() -> dict[str, str]:
-    from bearingsim.studies.duplex import DOFS
-    from bearingsim.studies.duplex import MODE_NAMES as NAMES
-
-    return {f"shaft.{dof}": name for dof, name in zip(DOFS, NAMES, strict=True)}
-
-
-MODE_NAMES: dict[str, Any] = {"duplex_pair": _duplex_mode_names}
-"""Assembly name -> function returning state name -> mode name ("radial x", ...) for the
-modes named after their dominant degree of freedom; other assemblies' modes are named after
-the description of that state."""
 
 
 # --------------------------------------------------------------------------- settling
@@ -427,8 +413,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     if scene.analysis == "steady":
         return {**row, **_observed_outputs(prep, x, inputs, parameters), "_state": x}
     linear = linearize(system, x, inputs=inputs, parameters=parameters)
-    make = MODE_NAMES.get(prep.spec.name)
-    known = make() if make else {}
+    known = prep.spec.mode_names
     names = name_modes(linear, known, {s.name: s.description for s in system.states})
     order = list(known.values())
     modes = sorted(zip(names, linear.natural_frequencies, strict=True),

@@ -19,11 +19,11 @@ from bearingsim.assembler import System, assemble_cached
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.scenes.expressions import compile_expression
-from bearingsim.scenes.plots import BUILTIN_PLOTS
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
-from bearingsim.simulation import Result, simulate
+from bearingsim.simulation import Result, simulate, steady_state
+from bearingsim.simulation.statics import static_stiffness
 
 __all__ = [
     "Prepared",
@@ -60,6 +60,32 @@ class Prepared:
     """The assembly's figures at the chosen level (when the scene writes plots)."""
     plot_outputs: list[str] = field(default_factory=list)
     """Variables kept by pruning only for those figures (not in the CSV)."""
+
+    def steady(self, inputs: dict[str, float], parameters: dict[str, float],
+               x_guess: np.ndarray, t: float = 0.0, residual_tol: float = 1e-9) -> np.ndarray:
+        """The steady state of the scene's system (:func:`~bearingsim.simulation.steady_state`)
+        under ``inputs`` and ``parameters`` from ``x_guess``, inputs evaluated at ``t`` [s];
+        raises :class:`~bearingsim.errors.BearingsimError` where none is found. For an
+        assembly's figures, which may not import the runtime."""
+        return steady_state(self.system, inputs=inputs, parameters=parameters, x_guess=x_guess,
+                            t=t, residual_tol=residual_tol)
+
+    def observe(self, t: float, x: np.ndarray, inputs: dict[str, float],
+                parameters: dict[str, float]) -> dict[str, float]:
+        """The observed variables of the scene's system at time ``t`` [s], states ``x`` and the
+        given ``inputs`` (the others at their defaults) and ``parameters``."""
+        system = self.system
+        u = system.u_default()
+        for name, value in inputs.items():
+            u[system.input_names.index(name)] = value
+        return system.observe(t, x, u, system.p0(parameters))
+
+    def static_stiffness(self, x: np.ndarray, displacements: tuple[str, ...],
+                         loads: tuple[str, ...], inputs: dict[str, float],
+                         parameters: dict[str, float]) -> np.ndarray:
+        """The exact static stiffness ``d loads / d displacements`` of the scene's system at the
+        equilibrium ``x`` (:func:`~bearingsim.simulation.statics.static_stiffness`)."""
+        return static_stiffness(self.system, x, displacements, loads, inputs, parameters)
 
     @property
     def outputs(self) -> list[str]:
@@ -221,10 +247,8 @@ def prepare(scene: Scene) -> Prepared:
 def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
                    ) -> list[AssemblyPlot]:
     """The figures of an assembly at a level: those its spec declares
-    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) and, for a built-in assembly,
-    those of :data:`bearingsim.scenes.plots.BUILTIN_PLOTS`."""
-    builtin = BUILTIN_PLOTS.get(spec.name)
-    return spec.plots(args, fidelity) + (builtin(args, fidelity) if builtin else [])
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`)."""
+    return spec.plots(args, fidelity)
 
 
 def _check_names(scene: Scene, system: System) -> None:

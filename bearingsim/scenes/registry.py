@@ -46,20 +46,17 @@ def register(spec: AssemblySpec) -> AssemblySpec:
 
 
 def unregister(name: str) -> AssemblySpec:
-    """Remove a registered assembly spec by name; returns it (``KeyError`` with the known names
-    for an unknown one)."""
+    """Remove a registered assembly spec by name; returns it (``CatalogError``, a ``KeyError``,
+    with the known names for an unknown one)."""
     spec = get_spec(name)
     del REGISTRY[name]
     return spec
 
 
 def get_spec(name: str) -> AssemblySpec:
-    """The spec of an assembly by name (raises ``KeyError`` with the known names, and the
-    reason when a plug-in of that name could not be loaded)."""
-    if name not in REGISTRY:
-        failed = [str(f) for f in REGISTRY.plugin_failures if f.name == name]
-        raise KeyError(f"unknown assembly {name!r}; known: {', '.join(REGISTRY)}"
-                       + "".join(f"; {text}" for text in failed))
+    """The spec of an assembly by name (raises :class:`~bearingsim.errors.CatalogError`, a
+    ``KeyError``, with the known names, close matches and the reason when a plug-in of that
+    name could not be loaded)."""
     return REGISTRY[name]
 
 

@@ -177,7 +177,7 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
         },
         "simulation": {"t_start": prep.scene.simulation.t_start,
                        "t_end": prep.scene.simulation.t_end,
-                       "method": prep.scene.simulation.method,
+                       "method": result.stats.get("method", prep.scene.simulation.method),
                        "rtol": prep.scene.simulation.rtol,
                        "atol": prep.scene.simulation.atol, "points": int(result.t.size),
                        "stats": {k: v for k, v in result.stats.items()

@@ -14,9 +14,11 @@ Every point is validated before anything runs. The model is prepared on the clie
 distinct structure (arguments that only change parameter values, such as the lubricant of a
 Palmgren friction model, become parameter overrides) through the on-disk cache of assembled
 systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
-process loads it once (:mod:`bearingsim.scenes.sweep_worker`), ahead of its first points.
-Points go out in chunks sized from the measured time of one point (run on the client while the
-workers load), so a task's scheduling cost is spread over ~0.25 s of work; each point runs what
+process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster's workers are
+forked from a process that imported bearingsim once, and points go out in chunks sized from
+the measured time of the points finished so far, as the workers finish them
+(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over ~0.25 s
+of work; each point runs what
 ``bearingsim run`` runs for one operating point of that scene
 (:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
 ``settled`` and ``time_constant``, a steady, modes or statics point's table row; an analysis
@@ -36,9 +38,10 @@ from __future__ import annotations
 import concurrent.futures
 import copy
 import dataclasses
+import functools
 import hashlib
+import importlib
 import json
-import logging
 import math
 import sys
 import time
@@ -66,18 +69,20 @@ from bearingsim.scenes.sampling import (
     sample_points,
 )
 from bearingsim.scenes.scene import Scene, SceneError, load_scene
+from bearingsim.scenes.sweep_cluster import (
+    CHUNK_SECONDS,
+    ChunkFeeder,
+    chunk_size,
+    connect,
+    distributed_module,
+)
 from bearingsim.scenes.sweep_table import SweepTable, cell, open_table
-from bearingsim.scenes.sweep_worker import Job, ModelPayload, run_chunk, run_point, warm
+from bearingsim.scenes.sweep_worker import Job, ModelPayload, run_point
 from bearingsim.units import display_unit
 from bearingsim.validation import check_count
 
 __all__ = ["SweepError", "SweepResult", "parse_grid", "parse_sample", "grid_points",
-           "sample_points", "run_sweep", "describe_failures", "chunk_size"]
-
-CHUNK_SECONDS = 0.25
-"""Target wall time of one task [s]: a chunk holds about this much integration."""
-CHUNKS_PER_WORKER = 4
-"""At least this many chunks per worker (load balance at the end of a sweep)."""
+           "sample_points", "run_sweep", "describe_failures", "chunk_size", "CHUNK_SECONDS"]
 
 
 @dataclass
@@ -93,14 +98,14 @@ class SweepResult:
     resumed: int = 0
     """Points taken from the table of an earlier run (``resume``)."""
     chunk_size: int = 1
-    """Points per task."""
+    """Most points in one task."""
     point_s: float = math.nan
-    """Wall time of the point measured on the client to size the chunks [s]."""
+    """Median wall time of a point, which sized the chunks [s]."""
     phases: dict[str, float] = field(default_factory=dict)
     """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
-    ``probe`` (the measured point), ``points`` (first chunk out to last row in), ``finish``
-    (close the cluster; sorted table, plot, summary)."""
+    ``points`` (first chunk out to last row in), ``close`` (close the cluster), ``write``
+    (sorted table, Parquet copy, plot, summary)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -295,7 +300,7 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
         _check_operating_points(scene, points)
     prepared: dict[tuple, Prepared] = {}
     payloads: dict[tuple, ModelPayload] = {}
-    jobs, structure, values = [], {}, []
+    jobs, structure, values, converted = [], {}, [], {}
     for k, (raw, sc) in enumerate(zip(points, scenes, strict=True)):
         pt = {key: _coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
@@ -314,52 +319,11 @@ def _plan(scene: Scene, points: list[dict[str, Any]]) -> _Plan:
                                  + ", ".join(prep.system.input_names))
         jobs.append(Job(k, sc, params))
         structure[k] = key
-        values.append(_si_values(pt))
+        values.append(_si_values(pt, converted))
     return _Plan(prepared, payloads, jobs, structure, values)
 
 
-# --------------------------------------------------------------------------- execution
-def _distributed():
-    """The ``distributed`` package, or a named error saying how to install it."""
-    try:
-        import distributed
-    except ImportError:
-        raise SweepError("sweeps run on dask.distributed, which is not installed: "
-                         "pip install 'bearingsim[dask]'") from None
-    return distributed
-
-
-def _client(scheduler: str | None, n_workers: int):
-    """A client of the scheduler, or of a new LocalCluster whose workers are still starting
-    (each imports bearingsim first): the sweep goes on as soon as one is up."""
-    distributed = _distributed()
-    Client, LocalCluster = distributed.Client, distributed.LocalCluster  # noqa: N806
-
-    if scheduler:
-        return Client(scheduler), None
-    cluster = LocalCluster(n_workers=0, threads_per_worker=1, processes=True,
-                           preload=["bearingsim.scenes.sweep_worker"],
-                           dashboard_address=None, silence_logs=logging.CRITICAL)
-    cluster.scale(n_workers)
-    return Client(cluster), cluster
-
-
-def chunk_size(point_s: float, n_points: int, n_workers: int) -> int:
-    """Points per task: about :data:`CHUNK_SECONDS` of work, and at least
-    :data:`CHUNKS_PER_WORKER` tasks per worker.
-
-    Parameters
-    ----------
-    point_s : float
-        Measured wall time of one point [s].
-    n_points, n_workers : int
-        Points to run and workers to run them.
-    """
-    by_time = CHUNK_SECONDS / max(point_s, 1e-4) if math.isfinite(point_s) else 1.0
-    by_balance = n_points / (CHUNKS_PER_WORKER * max(n_workers, 1))
-    return max(1, min(int(by_time), math.ceil(by_balance)))
-
-
+# --------------------------------------------------------------------------- results
 TRANSIENT_COLUMNS = ("settled", "time_constant", "unsettled")
 """The columns a transient point adds to its outputs' final values
 (:func:`~bearingsim.scenes.analyses.run_operating_point`)."""
@@ -471,6 +435,24 @@ def _sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     return [(f"{stem}.png", fig)]
 
 
+def _ready_to_write(units: dict[str, str], cluster_up) -> None:
+    """Import what writing the results takes (Parquet, the figure) and resolve the display
+    units of the columns, a step at a time until ``cluster_up()``: the client does it while it
+    would wait idle for the workers, instead of after the last point."""
+    steps = [SweepTable.ready,
+             *(functools.partial(importlib.import_module, name) for name in (
+                 "matplotlib.figure", "matplotlib.backends.backend_agg",
+                 "bearingsim.scenes.plots")),
+             *(functools.partial(display_unit, unit) for unit in set(units.values()))]
+    for step in steps:
+        if cluster_up():
+            return
+        try:
+            step()
+        except Exception:  # noqa: BLE001, S112 - writing the results reports it, if it recurs
+            continue
+
+
 def _earlier_files(folder: Path, stem: str) -> list[str]:
     """Names of an earlier sweep's files of this scene in ``folder``."""
     names = [f"{stem}.{ext}" for ext in ("json", "csv", "parquet", "png")]
@@ -511,7 +493,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         Time budget of one point [s]: a point still running after it is recorded as failed.
         Default: the scene's ``simulation.timeout`` (None there: no budget).
     chunk : int, optional
-        Points per task (default: :func:`chunk_size` of a point measured on the client).
+        Points per task (default: :func:`chunk_size` of the median time of the points
+        finished so far, one point a task until the first is back).
     overwrite : bool
         Replace an earlier sweep's files of this scene in ``out`` (without it, and without
         ``resume``, such files stop the sweep before anything runs).
@@ -558,7 +541,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
            scheduler: str | None, n_workers: int, progress: bool, client, resume: bool,
            timeout: float | None, chunk: int | None) -> SweepResult:
     """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
-    as_completed = _distributed().as_completed
+    distributed_module()  # a named error before anything starts when it is missing
     from tqdm import tqdm
 
     wall = time.perf_counter()
@@ -571,7 +554,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         clock[0] = now
 
     own = client is None
-    starting = (concurrent.futures.ThreadPoolExecutor(1).submit(_client, scheduler, n_workers)
+    starting = (concurrent.futures.ThreadPoolExecutor(1).submit(connect, scheduler, n_workers)
                 if own else None)  # the cluster starts while the client plans
     cluster = None
     try:
@@ -619,54 +602,36 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         lap("plan")
 
         if own:
+            if table is not None:
+                _ready_to_write(units, starting.done)
             client, cluster = starting.result()
         client.wait_for_workers(1)
         lap("cluster")
-        addresses = list(client.nthreads())  # every worker (scheduler_info may list a few)
-        # workers still starting get the model from a peer with their first chunk
-        n_live = max(len(addresses), n_workers if cluster is not None else 1)
-        shipped = {}
-        for key, payload in plan.payloads.items():
-            if any(plan.structure[j.index] == key for j in todo):
-                shipped[key] = client.scatter(payload, broadcast=True)
-        warming = [client.submit(warm, fut, workers=[addr], pure=False,
-                                 allow_other_workers=False)
-                   for addr in addresses for fut in shipped.values()]
+        # every worker (scheduler_info may list a few); a LocalCluster's are all up
+        n_threads = sum(client.nthreads().values())
+        models = {key: client.scatter(payload, broadcast=True)
+                  for key, payload in plan.payloads.items()
+                  if any(plan.structure[j.index] == key for j in todo)}
         lap("ship")
-        if todo and chunk is None and math.isnan(point_s):
-            job = todo.pop(0)  # measured here while the workers load the model
-            r = run_point(plan.prepared[plan.structure[job.index]], job, timeout)
-            point_s = r["wall_s"]
-            record(r)
-        lap("probe")
-        size = chunk or chunk_size(point_s, len(todo), n_live)
-        futures = {}
-        for key, fut in shipped.items():
-            mine = [j for j in todo if plan.structure[j.index] == key]
-            for k in range(0, len(mine), size):
-                part = mine[k:k + size]
-                task = client.submit(run_chunk, fut, part, timeout, pure=False,
-                                     key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
-                futures[task] = part
+        feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in todo],
+                             n_threads, timeout, chunk, point_s)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
                    leave=False)
         try:
-            for fut in as_completed(futures):
-                try:
-                    chunk_rows = fut.result()
-                except Exception as exc:  # noqa: BLE001 - a chunk lost for good fails its points
+            for part, chunk_rows in feeder:
+                if isinstance(chunk_rows, BaseException):  # a chunk lost for good
                     chunk_rows = [{"index": j.index, "status": "failed", "final": {},
-                                   "error": f"{type(exc).__name__}: {exc}",
-                                   "wall_s": float("nan")} for j in futures[fut]]
+                                   "error": f"{type(chunk_rows).__name__}: {chunk_rows}",
+                                   "wall_s": float("nan")} for j in part]
                 for r in chunk_rows:
                     record(r)
                 bar.update(len(chunk_rows))
         except KeyboardInterrupt:
-            client.cancel(list(futures) + warming)
+            feeder.cancel()
             raise
         finally:
             bar.close()
-        client.cancel(warming)
+        point_s, size = feeder.point_s, feeder.largest
         lap("points")
     finally:
         if own:
@@ -679,6 +644,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                 client.close()
             if cluster is not None:
                 cluster.close()
+    lap("close")
     ordered = [rows[k] for k in sorted(rows)]
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
                 for r in ordered if r["status"] != "ok"]
@@ -704,20 +670,28 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         }
         folder.write_summary(f"{stem}.json", json.loads(json.dumps(summary, default=str)))
         res.files = list(folder.files)
-    lap("finish")
+    lap("write")
     res.wall_s = time.perf_counter() - wall
     return res
 
 
-def _si_values(point: dict[str, Any]) -> dict[str, Any]:
+def _si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any]:
     """The swept values as the table stores them: SI numbers for inputs that are constant
-    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given."""
+    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given. ``memo``
+    keeps the converted values across the points of a sweep (a grid repeats each value)."""
     from bearingsim.scenes.expressions import constant_value
 
+    memo = {} if memo is None else memo
     out = {}
     for key, value in point.items():
-        si = constant_value(value, key) if key.startswith("inputs.") else None
-        out[key] = value if si is None else si
+        if not key.startswith("inputs."):
+            out[key] = value
+            continue
+        seen = (key, repr(value))
+        if seen not in memo:
+            si = constant_value(value, key)
+            memo[seen] = value if si is None else si
+        out[key] = memo[seen]
     return out
 
 

@@ -67,6 +67,16 @@ class SweepTable:
         finally:
             os.close(fd)
 
+    @staticmethod
+    def ready() -> None:
+        """Import what :meth:`finish` takes to write the Parquet copy (pyarrow, if installed),
+        ahead of the sweep's end."""
+        try:
+            import pyarrow.csv  # noqa: F401
+            import pyarrow.parquet  # noqa: F401
+        except ImportError:
+            pass
+
     def finish(self, rows: list[dict[str, Any]]) -> list[Path]:
         """Rewrite the table with ``rows`` (in the given order) atomically; add the Parquet copy
         when pyarrow is installed. Returns the files."""

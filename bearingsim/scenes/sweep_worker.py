@@ -33,7 +33,7 @@ from bearingsim.scenes.preparation import Prepared
 from bearingsim.scenes.scene import Scene
 
 __all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",
-           "run_job", "run_point", "warm"]
+           "run_job", "run_point"]
 
 
 @dataclass
@@ -148,8 +148,3 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
         rows.append(row)
     return rows
 
-
-def warm(payload: ModelPayload) -> int:
-    """Load the model ahead of the first chunk (a task per worker); returns the process id."""
-    load_model(payload)
-    return os.getpid()

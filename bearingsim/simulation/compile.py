@@ -5,10 +5,15 @@ compiler into a shared library and loaded with ``casadi.external``. Libraries ar
 by the hash of their source, the compiler and its flags, so a library is compiled once per
 machine; parameters are function arguments, so a parameter change never recompiles.
 
-:func:`build_library` is the one place that runs the compiler; :func:`compile_system` gives a
-copy of a system whose functions run as C (for scipy's integrators, ``steady_state`` and
-``linearize``), :mod:`~bearingsim.simulation.kernels` the right-hand sides and exact Jacobians
-that CVODES and IDAS evaluate.
+This module is bearingsim's one C compiler driver: it finds the compiler (:func:`c_compiler`),
+builds the compile and link commands, runs them and reports failures as :class:`CompileError`.
+:class:`Build` compiles a cached library in the background (:func:`build_library`,
+:func:`compile_source`); :func:`compile_units` compiles files on disk, each with its own flags,
+and waits (the FMU export, which passes its own compiler, e.g. zig's for a cross target, and
+flags, e.g. the glibc 2.17 pin). :func:`compile_system` gives a copy of a system whose functions
+run as C (for scipy's integrators, ``steady_state`` and ``linearize``),
+:mod:`~bearingsim.simulation.kernels` the right-hand sides and exact Jacobians that CVODES and
+IDAS evaluate.
 
 A generated function named ``jac_<name>`` with the signature of ``Function.jacobian()``
 (inputs: all inputs, then all outputs; outputs: ``jac_<out>_<in>`` for every output and
@@ -44,8 +49,8 @@ from bearingsim.errors import BearingsimError
 from bearingsim.simulation.c_units import generate_source, generate_units
 
 __all__ = ["Build", "CompileError", "build_library", "c_compiler", "compilations", "compile_source",
-           "compile_estimate", "compile_system", "default_cache_dir", "generate_source",
-           "generate_units", "library_path", "stop_builds", "DEFAULT_FLAGS",
+           "compile_estimate", "compile_system", "compile_units", "default_cache_dir",
+           "generate_source", "generate_units", "library_path", "stop_builds", "DEFAULT_FLAGS",
            "DEFAULT_SPLIT_FLAGS"]
 
 DEFAULT_FLAGS: tuple[str, ...] = ("-O1",)
@@ -109,12 +114,20 @@ atexit.register(stop_builds)
 
 
 class CompileError(BearingsimError):
-    """The C compiler is missing or failed."""
+    """The C compiler is missing or failed, or what it built is unusable (e.g. an FMU binary
+    that needs a newer glibc than its baseline)."""
 
 
 def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root shared with the assembled
-    systems (:func:`bearingsim.assembler.cache.cache_root`)."""
+    systems (:func:`bearingsim.assembler.cache.cache_root`; found once per value of the
+    variables it depends on: every run's kernel look-up asks for it)."""
+    return _cache_dir(os.environ.get("BEARINGSIM_CACHE"), os.environ.get("HOME"))
+
+
+@functools.lru_cache(maxsize=8)
+def _cache_dir(setting: str | None, home: str | None) -> Path:
+    """:func:`cache_root` for these values of ``$BEARINGSIM_CACHE`` and ``$HOME``."""
     return cache_root()
 
 
@@ -128,6 +141,84 @@ def c_compiler() -> str | None:
 def _find_compiler(cc: str, path: str | None) -> str | None:
     """The compiler ``cc`` (else ``cc``) found on ``path``."""
     return shutil.which(cc, path=path) or shutil.which("cc", path=path)
+
+
+def _require_compiler() -> str:
+    """:func:`c_compiler`, or :class:`CompileError` if there is none."""
+    cc = c_compiler()
+    if cc is None:
+        raise CompileError("no C compiler (gcc or cc) on PATH; install gcc or set CC")
+    return cc
+
+
+def _compile_command(cc: Sequence[str], source: Path, obj: Path, flags: Sequence[str],
+                     pic: bool = True) -> list[str]:
+    """The command compiling ``source`` into the object file ``obj``."""
+    return [*cc, "-c", *(["-fPIC"] if pic else []), *flags, str(source), "-o", str(obj)]
+
+
+def _link_command(cc: Sequence[str], objects: Sequence[str], output: Path,
+                  flags: Sequence[str] = ()) -> list[str]:
+    """The command linking ``objects`` (and libm) into the shared library ``output``."""
+    return [*cc, "-shared", *flags, *objects, "-o", str(output), "-lm"]
+
+
+def compile_units(units: Sequence[tuple[Path, Sequence[str]]], output: Path, *,
+                  compiler: Sequence[str] | None = None, flags: Sequence[str] = (),
+                  link_flags: Sequence[str] = (), pic: bool = True,
+                  what: str = "the library") -> Path:
+    """Compile C files, each with its own flags and all in parallel, link them into a shared
+    library and wait (no cache: the caller owns ``output``).
+
+    Parameters
+    ----------
+    units : sequence of (pathlib.Path, sequence of str)
+        The ``.c`` files and the flags of each (e.g. its optimisation).
+        Their object files go next to ``output``.
+    output : pathlib.Path
+        The shared library to write.
+    compiler : sequence of str, optional
+        The compiler command (e.g. ``[python, "-m", "ziglang", "cc", "-target", ...]`` for a
+        cross target); default :func:`c_compiler`.
+    flags : sequence of str
+        Flags of every file (include folders, definitions, forced includes).
+    link_flags : sequence of str
+        Flags of the link.
+    pic : bool
+        Compile position-independent code (``-fPIC``; not for Windows targets).
+    what : str
+        What is built, for the error message.
+
+    Returns
+    -------
+    pathlib.Path
+        ``output``.
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found, or with the compiler's or linker's messages.
+    """
+    cc = list(compiler) if compiler is not None else [_require_compiler()]
+    jobs = []
+    for source, unit_flags in units:
+        obj = output.parent / f"{output.stem}_{source.stem}.o"
+        cmd = _compile_command(cc, source, obj, [*flags, *unit_flags], pic)
+        jobs.append((cmd, str(obj), subprocess.Popen(cmd, stdout=subprocess.DEVNULL,
+                                                     stderr=subprocess.PIPE, text=True)))
+    with _LOCK:
+        _COMPILATIONS[0] += 1
+    results = [(cmd, proc.communicate()[1], proc.returncode) for cmd, _, proc in jobs]
+    failed = [(cmd, err) for cmd, err, code in results if code != 0]
+    if failed:
+        cmd, err = failed[0]
+        raise CompileError(f"compiling {what} failed ({shlex.join(cmd)}):\n{err[-4000:]}")
+    link = _link_command(cc, [obj for _, obj, _ in jobs], output, link_flags)
+    proc = subprocess.run(link, capture_output=True, text=True, check=False)
+    if proc.returncode != 0:
+        raise CompileError(f"linking {what} failed ({shlex.join(link)}):\n"
+                           f"{proc.stderr[-4000:]}")
+    return output
 
 
 def compilations() -> int:
@@ -147,9 +238,7 @@ def library_path(identity: str, *, flags: Sequence[str] = DEFAULT_FLAGS,
     CompileError
         If no C compiler is found.
     """
-    cc = c_compiler()
-    if cc is None:
-        raise CompileError("no C compiler (gcc or cc) on PATH")
+    cc = _require_compiler()
     split = flags if split_flags is None else split_flags
     key = "\n".join([identity, ca.__version__, cc, *flags, "split:", *split])
     digest = hashlib.sha256(key.encode()).hexdigest()[:16]
@@ -183,9 +272,7 @@ class Build:
 
     def __init__(self, sources: str | Sequence[str], lib: Path, flags: Sequence[str],
                  split_flags: Sequence[str] | None = None):
-        cc = c_compiler()
-        if cc is None:
-            raise CompileError("no C compiler (gcc or cc) on PATH")
+        cc = _require_compiler()
         units = [sources] if isinstance(sources, str) else list(sources)
         lib.parent.mkdir(parents=True, exist_ok=True)
         self.lib = lib
@@ -202,10 +289,10 @@ class Build:
             obj = self._dir / f"{lib.stem}_{k}.o"
             objects.append(str(obj))
             unit_flags = flags if k == 0 or split_flags is None else split_flags
-            command = [cc, "-c", "-fPIC", *unit_flags, str(source_path), "-o", str(obj)]
+            command = _compile_command([cc], source_path, obj, unit_flags)
             log = shlex.quote(str(self._dir / f"cc_{k}.log"))
             compile_lines.append(f"{shlex.join(command)} 2> {log} & p{k}=$!")
-        link = [cc, "-shared", *objects, "-o", str(tmp_lib), "-lm"]
+        link = _link_command([cc], objects, tmp_lib)
         split = "" if split_flags is None else f" (split units: {' '.join(split_flags)})"
         self.command = (f"{cc} -c -fPIC {' '.join(flags)}{split} on {len(units)} unit(s) in "
                         f"{self._dir}, then {shlex.join(link)}")

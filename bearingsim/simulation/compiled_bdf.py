@@ -7,10 +7,12 @@ section "SUNDIALS on compiled kernels"). This integrator is the step loop in C
 scipy's variable-order BDF (numerical differentiation formulas, orders 1-5) with
 CVODES' reuse of the Newton matrix's LU while the step size changes little, calling the kernel
 library's ``ode`` and ``jac_ode`` through function pointers. The Newton matrix is factorised
-by ``c/bsm_lu.c`` (shared with the FMU's stepper) with the states in a fill-reducing order
-(:func:`~bearingsim.simulation.ordering.fill_reducing_order`): partial pivoting that skips
-structural zeros, solves on the factors' nonzeros. The inputs ``u(t, q)`` are generated C in
-the integrator's library (compiled once per input structure and cached like the kernels).
+by the sparse LU ``c/bsm_lu.c`` (shared with the FMU's stepper) with the states in a
+fill-reducing order, on the pattern of the Jacobian and the diagonal in that order
+(:func:`~bearingsim.simulation.ordering.newton_pattern`): the pivot order and the factors'
+pattern are found once and reused while the pivots stay acceptable. The inputs ``u(t, q)``
+are generated C in the integrator's library (compiled once per input structure and cached
+like the kernels).
 
 It needs a C compiler; without one it raises
 :class:`~bearingsim.simulation.compile.CompileError` (``method="cvodes"`` falls back to
@@ -40,7 +42,7 @@ from bearingsim.simulation.compile import (
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import COMPILED, Kernel
-from bearingsim.simulation.ordering import fill_reducing_order
+from bearingsim.simulation.ordering import NewtonPattern, newton_pattern
 from bearingsim.simulation.progress import progress_bar
 
 __all__ = ["DRIVER_SOURCE", "CompiledRun", "compiled_bdf_run"]
@@ -68,8 +70,10 @@ STATUS = {
 }
 """Failure codes of ``bsm_bdf_advance`` (``c/bdf.c``)."""
 
-STAT_NAMES = ("nsteps", "nfevals", "njevals", "nlinsetups", "netfails", "nncfails")
-"""The integrator's counts, in the order of ``bsm_bdf_stats``."""
+STAT_NAMES = ("nsteps", "nfevals", "njevals", "nlinsetups", "netfails", "nncfails",
+              "npivotings")
+"""The integrator's counts, in the order of ``bsm_bdf_stats`` (``npivotings``: the LU
+factorisations that chose a new pivot order and fill pattern, of ``nlinsetups``)."""
 
 STEPS_PER_CALL = 1000
 """Steps per call of the C loop (about 30 ms on the 6304 massive-ball level): between calls
@@ -108,8 +112,8 @@ def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
     p, i, ll, d = ctypes.c_void_p, ctypes.c_int, ctypes.c_longlong, ctypes.c_double
     dp = ctypes.POINTER(ctypes.c_double)
     dll.bsm_bdf_new.restype = p
-    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, p, p, ll, p, dp, dp, ll, ll, ll, ll,
-                                d, d, d, d, d, dp]
+    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, ll, p, p, p, p, p, dp, dp, ll, ll, ll,
+                                ll, d, d, d, d, d, dp]
     dll.bsm_bdf_start.argtypes = [p]
     dll.bsm_bdf_advance.argtypes = [p, i, dp, dp, i, ctypes.POINTER(i)]
     dll.bsm_bdf_free.argtypes = [p]
@@ -131,8 +135,8 @@ def _pointer(a: np.ndarray):
 @dataclass(frozen=True)
 class _Prepared:
     """What a run needs of a kernel library and an input structure, found once: the
-    integrator library, the functions' addresses, the Jacobian's pattern, the LU order of the
-    states and the work sizes."""
+    integrator library, the functions' addresses, the Newton matrix's pattern in the LU order
+    of the states and the work sizes."""
 
     dll: ctypes.CDLL
     kernel_dll: ctypes.CDLL
@@ -140,9 +144,8 @@ class _Prepared:
     jac: int
     signal: int | None
     n_u: int
-    colind: np.ndarray
-    row: np.ndarray
-    order: np.ndarray
+    jac_nnz: int
+    newton: NewtonPattern
     sizes: tuple[int, int, int, int]
 
 
@@ -170,9 +173,7 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
             dll, kernel_dll, _address(kernel_dll, function.name()),
             _address(kernel_dll, jacobian.name()),
             _address(dll, "bsm_signal") if n_u else None, n_u,
-            np.asarray(sparsity.colind(), dtype=np.int64),
-            np.asarray(sparsity.row(), dtype=np.int64),
-            np.asarray(fill_reducing_order(sparsity), dtype=np.int32),
+            sparsity.nnz(), newton_pattern(sparsity),
             tuple(max(int(getattr(f, name)()) for f in fns)
                   for name in ("sz_arg", "sz_res", "sz_iw", "sz_w")))
         return found
@@ -233,9 +234,11 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
     p = np.ascontiguousarray(p, dtype=float)
     q = np.ascontiguousarray(signal.q, dtype=float)
     x0 = np.ascontiguousarray(x0, dtype=float)
+    newton = prep.newton
     solver = dll.bsm_bdf_new(
-        n, prep.n_u, p.size, q.size, prep.ode, prep.jac, prep.signal, prep.colind.ctypes.data,
-        prep.row.ctypes.data, prep.row.size, prep.order.ctypes.data,
+        n, prep.n_u, p.size, q.size, prep.ode, prep.jac, prep.signal, prep.jac_nnz,
+        *[a.ctypes.data for a in (newton.order, newton.start, newton.index, newton.jac_slot,
+                                  newton.diag_slot)],
         _pointer(p), _pointer(q), *prep.sizes, float(rtol), float(atol),
         float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0), float(t1),
         _pointer(x0))

@@ -9,13 +9,15 @@ integrators pay per right-hand-side evaluation. :func:`mapped_function` keeps th
 
 from __future__ import annotations
 
+import threading
+
 import casadi as ca
 import numpy as np
 import scipy.sparse
 
 from bearingsim.assembler.numeric import buffered
 
-__all__ = ["BufferedFunction", "evaluate", "mapped_function"]
+__all__ = ["BufferedFunction", "buffered_function", "evaluate", "mapped_function"]
 
 _MAPPED: dict[tuple[int, int], tuple[ca.Function, ca.Function]] = {}
 """``fn.map(n)`` by ``(id(fn), n)``, with ``fn`` kept so that its id stays unique."""
@@ -80,6 +82,27 @@ class BufferedFunction:
         """Matrix output as a new scipy CSC matrix."""
         data = self._run(t, x, p).copy()
         return scipy.sparse.csc_matrix((data, self._indices, self._indptr), shape=self._shape)
+
+
+_LOCAL = threading.local()
+BUFFERED_PER_THREAD = 64
+"""Most :class:`BufferedFunction` a thread keeps (the oldest are forgotten first)."""
+
+
+def buffered_function(fn: ca.Function) -> BufferedFunction:
+    """This thread's :class:`BufferedFunction` of ``fn``, made on first use (making one costs
+    more than a short run's right-hand sides: repeated runs on one closed model reuse it)."""
+    cache = getattr(_LOCAL, "cache", None)
+    if cache is None:
+        cache = _LOCAL.cache = {}
+    found = cache.get(id(fn))
+    if found is not None and found[0] is fn:
+        return found[1]
+    if len(cache) >= BUFFERED_PER_THREAD:
+        del cache[next(iter(cache))]
+    made = BufferedFunction(fn)
+    cache[id(fn)] = (fn, made)
+    return made
 
 
 def evaluate(fn: ca.Function, *args: np.ndarray | float) -> list[np.ndarray]:

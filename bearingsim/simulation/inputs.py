@@ -111,6 +111,9 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
     ``lifted`` (a constant: one number; a table: its times, then its values), and its
     structure key. A number with a unit (text or :class:`pint.Quantity`) is converted to
     ``unit`` first."""
+    if type(spec) is float and abs(spec) <= sys.float_info.max:  # the common case, at once
+        lifted.append(spec)
+        return None, "const"
     spec = to_si(spec, unit, f"input {name}")
     if isinstance(spec, str):
         raise ParameterError(
@@ -137,19 +140,45 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
         lifted.extend(vals.tolist())
         return None, f"table[{times.size}]"
     if callable(spec):
-        try:
-            out = spec(t)
-        except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
-            raise ParameterError(
-                f"input {name}: the function could not be evaluated symbolically ({exc}); "
-                "write it with casadi or bearingsim.symbolic math"
-            ) from None
-        expr = ca.SX(out)
-        return expr, f"f:{expr}"
+        return _function_of_time(name, spec, t)
     raise ParameterError(
         f"input {name}: expected a number, a function of time or a (times, values) table, "
         f"got {type(spec).__name__}"
     )
+
+
+_EXPRESSIONS: dict[str, tuple[ca.SX, str]] = {}
+"""Expressions of time and their structure keys by the text of a scene expression."""
+_EXPRESSIONS_LIMIT = 256
+
+
+def _function_of_time(name: str, spec: Any, t: ca.SX) -> tuple[ca.SX, str]:
+    """An input given as a function of time: its expression in ``t`` and structure key.
+
+    A function that carries its text as ``expression`` (a scene expression,
+    :func:`~bearingsim.scenes.expressions.compile_expression`) is a pure function of that
+    text: it is evaluated once per text, not per run. Any other function is evaluated on
+    every call (it may read values that change between runs).
+    """
+    text = getattr(spec, "expression", None)
+    text = text if isinstance(text, str) and t is _T else None
+    found = None if text is None else _EXPRESSIONS.get(text)
+    if found is not None:
+        return found
+    try:
+        out = spec(t)
+    except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
+        raise ParameterError(
+            f"input {name}: the function could not be evaluated symbolically ({exc}); "
+            "write it with casadi or bearingsim.symbolic math"
+        ) from None
+    expr = ca.SX(out)
+    found = (expr, f"f:{expr}")
+    if text is not None:
+        if len(_EXPRESSIONS) >= _EXPRESSIONS_LIMIT:
+            del _EXPRESSIONS[next(iter(_EXPRESSIONS))]
+        _EXPRESSIONS[text] = found
+    return found
 
 
 def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:

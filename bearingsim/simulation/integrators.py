@@ -34,7 +34,7 @@ from bearingsim.simulation.budget import RunBudget
 from bearingsim.simulation.closed import ClosedModel
 from bearingsim.simulation.compiled_bdf import compiled_bdf_run
 from bearingsim.simulation.diagnostics import diverged
-from bearingsim.simulation.fastcall import BufferedFunction
+from bearingsim.simulation.fastcall import buffered_function
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.progress import progress_bar
@@ -168,26 +168,36 @@ class StagnationTolerantBDF(scipy_bdf.BDF):
         scipy_bdf.BDF._step_impl.__closure__)
 
 
-def budgeted(solver: type, budget: RunBudget) -> type:
+def budgeted(solver: type) -> type:
     """A subclass of the scipy ``OdeSolver`` class ``solver`` that counts every step against
-    ``budget`` (raising :class:`~bearingsim.errors.BudgetExceededError` when it is spent)."""
+    the run's budget, given as the solver option ``budget`` (a
+    :class:`~bearingsim.simulation.budget.RunBudget`; raising
+    :class:`~bearingsim.errors.BudgetExceededError` when it is spent)."""
+
+    def __init__(self, *args, budget: RunBudget, **kwargs):
+        self.budget = budget
+        solver.__init__(self, *args, **kwargs)
 
     def _step_impl(self):
-        budget.step(self.t)
+        self.budget.step(self.t)
         return solver._step_impl(self)
 
-    return type(f"Budgeted{solver.__name__}", (solver,), {"_step_impl": _step_impl})
+    return type(f"Budgeted{solver.__name__}", (solver,),
+                {"__init__": __init__, "_step_impl": _step_impl})
 
 
 SCIPY_SOLVERS: dict[str, type] = {
-    "BDF": StagnationTolerantBDF,
-    "Radau": scipy.integrate.Radau,
-    "LSODA": scipy.integrate.LSODA,
-    "RK45": scipy.integrate.RK45,
-    "DOP853": scipy.integrate.DOP853,
-    "RK23": scipy.integrate.RK23,
+    name: budgeted(solver) for name, solver in (
+        ("BDF", StagnationTolerantBDF),
+        ("Radau", scipy.integrate.Radau),
+        ("LSODA", scipy.integrate.LSODA),
+        ("RK45", scipy.integrate.RK45),
+        ("DOP853", scipy.integrate.DOP853),
+        ("RK23", scipy.integrate.RK23),
+    )
 }
-"""The ``solve_ivp`` solver class of each scipy method name."""
+"""The ``solve_ivp`` solver class of each scipy method name (made once: each counts its steps
+against the budget passed as the option ``budget``)."""
 
 
 class ScipyIntegrator(Integrator):
@@ -212,7 +222,7 @@ class ScipyIntegrator(Integrator):
     def run(self, problem: IntegrationProblem) -> Trajectory:
         """Integrate with ``solve_ivp`` (see :class:`Integrator`)."""
         pb, system = problem, problem.system
-        f, jac = BufferedFunction(pb.closed.f), BufferedFunction(pb.closed.jac)
+        f, jac = buffered_function(pb.closed.f), buffered_function(pb.closed.jac)
         n_f = [0]
         bar = progress_bar(pb.t0, pb.t1, pb.progress)
         last = [pb.t0, pb.x0]
@@ -242,11 +252,10 @@ class ScipyIntegrator(Integrator):
             kwargs["jac"] = jacobian
         called = time.thread_time()
         budget = pb.budget or RunBudget(method=self.name, t_end=pb.t1)
-        solver = budgeted(SCIPY_SOLVERS[self.name], budget)
         try:
             sol = scipy.integrate.solve_ivp(
-                fun, (pb.t0, pb.t1), pb.x0, method=solver, t_eval=pb.t_eval, rtol=pb.rtol,
-                atol=pb.atol, max_step=pb.max_step, **kwargs,
+                fun, (pb.t0, pb.t1), pb.x0, method=SCIPY_SOLVERS[self.name], t_eval=pb.t_eval,
+                rtol=pb.rtol, atol=pb.atol, max_step=pb.max_step, budget=budget, **kwargs,
             )
         except (ArithmeticError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
             if isinstance(exc, SimulationError):

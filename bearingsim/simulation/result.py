@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import html
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -63,8 +64,11 @@ class Result:
     descriptions: dict[str, str] = field(default_factory=dict)
     outputs: list[str] = field(default_factory=list)
 
-    def __post_init__(self) -> None:
-        self._index = {n: k for k, n in enumerate(self.names)}
+    @functools.cached_property
+    def _index(self) -> dict[str, int]:
+        """Row of each variable by name (built on first use: a run that is only looked at
+        once, or not at all, as a sweep point, does not pay for it)."""
+        return {name: k for k, name in enumerate(self.names)}
 
     def _series(self, name: str) -> np.ndarray:
         if name in ("t", "time"):

@@ -247,11 +247,15 @@ def simulate(
 
 def _shown_outputs(system: System) -> list[str]:
     """The variables a result shows first: the outputs the system was assembled for, else the
-    assembly's own variables (undotted names: ``Rs``, ``w_shaft``, not connector torques)."""
-    requested = getattr(system, "requested_outputs", None)
-    if requested:
-        return [n for n in requested if n in system.observed_units]
-    return [n for n in system.observed_names if "." not in n and not n.startswith("der(")]
+    assembly's own variables (undotted names: ``Rs``, ``w_shaft``, not connector torques);
+    found once per system (a new list each call)."""
+    shown = system.__dict__.get("_shown_outputs")
+    if shown is None:
+        requested = getattr(system, "requested_outputs", None)
+        shown = system.__dict__["_shown_outputs"] = (
+            [n for n in requested if n in system.observed_units] if requested else
+            [n for n in system.observed_names if "." not in n and not n.startswith("der(")])
+    return list(shown)
 
 
 def _method_backend(method: str | None, backend: str | None
@@ -265,19 +269,25 @@ def _method_backend(method: str | None, backend: str | None
         check_choice(backend, "backend", tuple(BACKENDS), "simulate")
     if method is None:
         return (None, None) if backend is None else (BACKENDS[backend], backend)
-    valid = "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
     if not isinstance(method, str):
-        raise ParameterError(f"simulate: method must be a string ({valid}), got {method!r}")
+        raise ParameterError(f"simulate: method must be a string ({_valid_methods()}), got "
+                             f"{method!r}")
     name = method.lower() if method.lower() in methods_of("casadi") else method
     if name not in METHODS:
-        raise ParameterError(f"simulate: unknown method {method!r}; valid methods are {valid}")
+        raise ParameterError(f"simulate: unknown method {method!r}; valid methods are "
+                             f"{_valid_methods()}")
     owner = METHODS[name].backend
     if backend is not None and backend != owner:
         raise ParameterError(
             f"simulate: method {method!r} belongs to backend {owner!r}, not backend "
-            f"{backend!r}; valid methods are {valid}"
+            f"{backend!r}; valid methods are {_valid_methods()}"
         )
     return name, owner
+
+
+def _valid_methods() -> str:
+    """Every backend with its methods, for messages."""
+    return "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
 
 
 MAX_OUTPUT_BYTES = 2 * 1024**3
@@ -293,24 +303,24 @@ def _check_work(system: System, t_start: float, t_end: float, n_out: int,
     """Refuse (above the MAX_ limits) or warn about runs whose size alone makes them minutes or
     gigabytes long, with the estimate."""
     size = n_out * (len(system.observed_names) + 1) * 8
-    shape = f"{n_out} output points x {len(system.observed_names)} variables"
-    _bound(size, MAX_OUTPUT_BYTES, WARN_OUTPUT_BYTES,
-           f"{shape} would take {size / 1024**3:.1f} GiB",
-           f"(limit {MAX_OUTPUT_BYTES / 1024**3:.0f} GiB); ask for fewer n_points or prune the "
-           f"model to the outputs you need (assemble(outputs=...))")
+    if size > WARN_OUTPUT_BYTES:
+        shape = f"{n_out} output points x {len(system.observed_names)} variables"
+        _bound(size, MAX_OUTPUT_BYTES, f"{shape} would take {size / 1024**3:.1f} GiB",
+               f"(limit {MAX_OUTPUT_BYTES / 1024**3:.0f} GiB); ask for fewer n_points or "
+               f"prune the model to the outputs you need (assemble(outputs=...))")
     steps = (t_end - t_start) / max_step
-    _bound(steps, MAX_STEPS, WARN_STEPS,
-           f"max_step = {max_step:g} s over {t_end - t_start:g} s forces at least {steps:.3g} "
-           f"steps", f"(limit {MAX_STEPS:.0e}); give a larger max_step [s] or a shorter run")
+    if steps > WARN_STEPS:
+        _bound(steps, MAX_STEPS, f"max_step = {max_step:g} s over {t_end - t_start:g} s "
+               f"forces at least {steps:.3g} steps",
+               f"(limit {MAX_STEPS:.0e}); give a larger max_step [s] or a shorter run")
 
 
-def _bound(amount: float, limit: float, warn_above: float, what: str, remedy: str) -> None:
-    """Raise ParameterError when ``amount`` exceeds ``limit``, warn (LongRunWarning) above
-    ``warn_above``."""
+def _bound(amount: float, limit: float, what: str, remedy: str) -> None:
+    """Raise ParameterError when ``amount`` exceeds ``limit``, else warn (LongRunWarning; called
+    for amounts above the warning threshold)."""
     if amount > limit:
         raise ParameterError(f"simulate: {what} {remedy}")
-    if amount > warn_above:
-        warnings.warn(f"simulate: {what}", LongRunWarning, stacklevel=4)
+    warnings.warn(f"simulate: {what}", LongRunWarning, stacklevel=4)
 
 
 def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> np.ndarray:

@@ -37,14 +37,17 @@ subtracts the output of :class:`_Clock` from the right-hand side: a CasADi callb
 records the normalized time of each evaluation, moves the bar now and then, and returns exactly
 ``0.0``. ``x - 0.0 == x`` for every float (``-0.0`` included), so the run with a bar takes the
 same steps and gives the same numbers bit for bit as the run without, on a terminal or piped, on
-a fast or a slow machine (``tests/test_progress.py``). The callback costs a Python call per
+a fast or a slow machine (``tests/simulation/test_progress.py``). The callback costs a Python
+call per
 evaluation (``python -m bench.sundials_compiled progress``).
 """
 
 from __future__ import annotations
 
+import _signal
 import atexit
 import contextlib
+import functools
 import os
 import signal
 import sys
@@ -228,10 +231,18 @@ def _normalized_grid(t0: float, t1: float, t_out: np.ndarray) -> tuple[np.ndarra
     the bytes of ``tau``."""
     tau = (t_out - t0) / (t1 - t0)
     n = tau.size
-    even = np.linspace(0.0, 1.0, n + 1)[1:]
+    even = _even_grid(n)
     if np.max(np.abs(tau - even)) <= 1e-12:
         return even, ("linspace", n)
     return tau, ("grid", tau.tobytes())
+
+
+@functools.lru_cache(maxsize=64)
+def _even_grid(n: int) -> np.ndarray:
+    """``linspace(0, 1, n + 1)[1:]``, made once per ``n`` (read-only)."""
+    even = np.linspace(0.0, 1.0, n + 1)[1:]
+    even.flags.writeable = False
+    return even
 
 
 class _Clock(ca.Callback):
@@ -300,17 +311,33 @@ def _oracle(kernel: Kernel, signal: InputSignal, n_x: int, n_p: int,
         ode, alg = fn(t, x, u, p), ca.MX(0, 1)
     if order is not None:
         ode = ode[[int(i) for i in order]]
-    rate = span * ode
+    rate = ca.densify(span * ode)  # a structurally zero derivative is a stored 0 for SUNDIALS
     if observed:
         rate = rate - _CLOCK(tau)
     return ca.Function("dae", [tau, x_int, z, pp, ca.MX(0, 1)],
-                       [rate, alg, ca.MX(0, 1), ca.MX(0, 1)],
+                       [rate, ca.densify(alg), ca.MX(0, 1), ca.MX(0, 1)],
                        ["t", "x", "z", "p", "u"], ["ode", "alg", "quad", "zero"],
                        {"max_num_dir": MAX_NUM_DIR})
 
 
+_SIZES: dict[int, tuple[Kernel, tuple[int, int]]] = {}
+""":func:`_jacobian_size` by ``id(kernel)``, the kernel kept so that its id stays unique."""
+
+
 def _jacobian_size(kernel: Kernel, n_x: int) -> tuple[int, int]:
-    """(unknowns, structural non-zeros) of the Newton matrix ``I - gamma J``."""
+    """(unknowns, structural non-zeros) of the Newton matrix ``I - gamma J`` (found once per
+    kernel)."""
+    found = _SIZES.get(id(kernel))
+    if found is not None and found[0] is kernel:
+        return found[1]
+    if len(_SIZES) >= 256:
+        del _SIZES[next(iter(_SIZES))]
+    size = _SIZES[id(kernel)] = (kernel, _count_jacobian(kernel, n_x))
+    return size[1]
+
+
+def _count_jacobian(kernel: Kernel, n_x: int) -> tuple[int, int]:
+    """:func:`_jacobian_size` without the memory."""
     jac = kernel.function.jacobian()
     names = jac.name_out()
     blocks = ["jac_ode_x"] + (["jac_ode_z", "jac_alg_x", "jac_alg_z"]
@@ -443,7 +470,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
 
     called = time.thread_time()
     try:
-        with _interrupts() as interrupted, _CLOCK.observing(observe):
+        with _interrupts() as interrupted, (_CLOCK.observing(observe) if observed
+                                            else contextlib.nullcontext()):
             out = built.integrator(**args)
         integrate_cpu_time = time.thread_time() - called
         observe(1.0)
@@ -455,14 +483,13 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     finally:
         if bar is not None:
             bar.close()
-    xs = built.from_integrator(np.asarray(out["xf"], dtype=float).reshape(n_x, tau.size))
+    xs = built.from_integrator(_dense(out["xf"], n_x, tau.size))
     if not np.all(np.isfinite(xs)):
         k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
         raise SimulationError(
             f"{method.upper()} produced non-finite states by t = {t_out[k]:.6g} s; "
             f"{diverged(system, xs[:, k], x0)}")
-    zs = (np.asarray(out["zf"], dtype=float).reshape(z0.size, tau.size)
-          if kernel.form == "dae" else None)
+    zs = _dense(out["zf"], z0.size, tau.size) if kernel.form == "dae" else None
     ts = t_out
     if t_eval[0] <= t0:
         ts = np.concatenate([[t0], t_out])
@@ -480,29 +507,52 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     return SundialsRun(ts, xs, zs, values, stats)
 
 
+def _dense(matrix: ca.DM, rows: int, cols: int) -> np.ndarray:
+    """A dense integrator output as a ``rows x cols`` array, from its nonzeros (column-major;
+    half the cost of ``DM.full``)."""
+    return np.array(matrix.nonzeros(), dtype=float).reshape(rows, cols, order="F")
+
+
+class _Interrupted:
+    """Whether Ctrl-C came during a run (set from the SIGINT handler, in the main thread)."""
+
+    __slots__ = ("value",)
+
+    def __init__(self) -> None:
+        self.value = False
+
+    def is_set(self) -> bool:
+        return self.value
+
+
 @contextlib.contextmanager
-def _interrupts() -> Iterator[threading.Event]:
+def _interrupts() -> Iterator[_Interrupted]:
     """Record Ctrl-C (SIGINT) during a SUNDIALS run: CasADi checks for it between evaluations
-    and turns it into a failed evaluation (a RuntimeError); the event tells the two apart, so
+    and turns it into a failed evaluation (a RuntimeError); the flag tells the two apart, so
     an interrupted run raises KeyboardInterrupt instead of being diagnosed as a failure.
-    Outside the main thread (where Python delivers signals) the event stays clear."""
-    event = threading.Event()
+    Outside the main thread (where Python delivers signals) the flag stays clear.
+
+    The handler is swapped with ``_signal.signal``, the C function under ``signal.signal``:
+    the latter's conversion of the previous handler to an enum costs tens of microseconds per
+    call (a failed enum lookup for a function), a tenth of a short run's fixed cost. The
+    values are the same (SIG_DFL and SIG_IGN as plain ints, which are not callable either).
+    """
+    flag = _Interrupted()
     if threading.current_thread() is not threading.main_thread():
-        yield event
+        yield flag
         return
-    previous = signal.getsignal(signal.SIGINT)
 
     def handler(signum, frame):
-        event.set()
+        flag.value = True
         if callable(previous):
             previous(signum, frame)
         raise KeyboardInterrupt
 
-    signal.signal(signal.SIGINT, handler)
+    previous = _signal.signal(signal.SIGINT, handler)
     try:
-        yield event
+        yield flag
     finally:
-        signal.signal(signal.SIGINT, previous)
+        _signal.signal(signal.SIGINT, previous)
 
 
 def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,

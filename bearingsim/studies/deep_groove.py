@@ -87,7 +87,18 @@ class RunSummary:
 
 def outputs_for(n_balls: int) -> list[str]:
     """Outputs a study needs: slip, speeds, contact loads, entrainment speeds, pocket forces,
-    cage centre and ball speeds (states, so they cost nothing)."""
+    cage centre and ball speeds (states, so they cost nothing).
+
+    Parameters
+    ----------
+    n_balls : int
+        Number of balls Z.
+
+    Returns
+    -------
+    list of str
+        The output names.
+    """
     names = ["slip", "w_cage", "w_inner", "w_epicyclic", "cage.x", "cage.y"]
     for j in range(n_balls):
         names += [f"inner[{j}].Q", f"outer[{j}].Q", f"inner[{j}].u_entrain",
@@ -132,7 +143,20 @@ def run_bearing(speed, load: float, t_end: float, *, designation: str = "6304",
 
 def validation_case(t_end: float = 0.1, **kwargs) -> tuple[Result, BearingDesign]:
     """Validation case of docs/studies.md, section C: 6304 geometry, 500 N, spin-up at 500 rad/s^2,
-    dry mu = 0.02."""
+    dry mu = 0.02.
+
+    Parameters
+    ----------
+    t_end : float
+        Run length [s].
+    **kwargs
+        Keywords of :func:`run_bearing`.
+
+    Returns
+    -------
+    tuple
+        The :class:`~bearingsim.simulation.Result` and the bearing's design.
+    """
     acc = VALIDATION["acceleration"]
     kwargs.setdefault("lubricant", Dry(VALIDATION["mu"]))
     return run_bearing(lambda t: acc * t, VALIDATION["load"], t_end, **kwargs)
@@ -140,7 +164,24 @@ def validation_case(t_end: float = 0.1, **kwargs) -> tuple[Result, BearingDesign
 
 def duty_condition(k: int, t_end: float = 0.1, ramp: float = 0.02,
                    **kwargs) -> tuple[Result, BearingDesign]:
-    """Duty-cycle condition ``k`` (1..4): speed ramped from rest over ``ramp`` seconds."""
+    """Duty-cycle condition ``k`` (1..4): speed ramped from rest over ``ramp`` seconds.
+
+    Parameters
+    ----------
+    k : int
+        Duty condition, 1..4.
+    t_end : float
+        Run length [s].
+    ramp : float
+        Duration of the speed ramp [s].
+    **kwargs
+        Keywords of :func:`run_bearing`.
+
+    Returns
+    -------
+    tuple
+        The :class:`~bearingsim.simulation.Result` and the bearing's design.
+    """
     n_rpm, load = DUTY_CYCLE[k - 1]
     w = rpm_to_rad_s(n_rpm)
     return run_bearing(lambda t: w * ca.fmin(t / ramp, 1.0), load, t_end, **kwargs)
@@ -150,6 +191,22 @@ def settling_time(t: np.ndarray, signal: np.ndarray, band: float, t_min: float =
     """Earliest time after which ``signal`` stays within ``band`` of its final mean [s].
 
     The final mean is taken over the last fifth of the run; ``t_min`` excludes the start.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s].
+    signal : numpy.ndarray
+        Values at those times.
+    band : float
+        Half-width of the band (the signal's unit).
+    t_min : float
+        Earliest time considered [s].
+
+    Returns
+    -------
+    float
+        The settling time [s].
     """
     tail = signal[int(0.8 * len(signal)):]
     outside = np.nonzero((np.abs(signal - tail.mean()) > band) & (t >= t_min))[0]
@@ -157,7 +214,20 @@ def settling_time(t: np.ndarray, signal: np.ndarray, band: float, t_min: float =
 
 
 def largest_pocket_force(res: Result, n_balls: int) -> np.ndarray:
-    """Largest ball-pocket (collision) force among the balls at every save point [N]."""
+    """Largest ball-pocket (collision) force among the balls at every save point [N].
+
+    Parameters
+    ----------
+    res : Result
+        A run with the outputs of :func:`outputs_for`.
+    n_balls : int
+        Number of balls Z.
+
+    Returns
+    -------
+    numpy.ndarray
+        The largest pocket force at each save point [N].
+    """
     return np.max(np.abs([res[f"pocket[{j}].F"] for j in range(n_balls)]), axis=0)
 
 
@@ -237,6 +307,24 @@ def post_process(res: Result, design: BearingDesign, lubricant: Lubricant | str,
     contact lives combined by :func:`~bearingsim.physics.life.combined_contact_life`; ISO 281
     ``(C/P)^3`` with C from the geometry and ``P = Fr``; ISO/TS 16281
     (:func:`~bearingsim.physics.life.reference_rating_life`).
+
+    Parameters
+    ----------
+    res : Result
+        A run with the outputs of :func:`outputs_for`.
+    design : BearingDesign
+        The bearing's design.
+    lubricant : Lubricant or str
+        The lubricant of the run.
+    load : float
+        Radial load [N].
+    window : float
+        Fraction of the run at its end that is evaluated, in (0, 1].
+
+    Returns
+    -------
+    RunSummary
+        Film thickness and lives.
     """
     lub = as_lubricant(lubricant, "deep_groove")
     g = design.geometry

@@ -42,6 +42,20 @@ def steady_branches(system: System, inputs: dict[str, float], p: np.ndarray
     ``[-|w|, 2|w|]`` (``w`` the shaft speed; friction alone cannot drive the middle ring
     outside ``[0, w]``, the margin catches sign slips) and every sign change refined with
     Brent's method.
+
+    Parameters
+    ----------
+    system : System
+        The assembled torque-level bearing (one state).
+    inputs : dict of str to float
+        Its inputs (SI).
+    p : numpy.ndarray
+        Its parameter vector.
+
+    Returns
+    -------
+    list of SteadyBranch
+        The steady states, in increasing middle-ring speed.
     """
     u = system.u_default()
     for name, value in inputs.items():
@@ -258,7 +272,13 @@ class SpeedRatioEstimate:
 
     @property
     def bracketed(self) -> bool:
-        """Whether the middle ring speeds up below and slows down above the bracket."""
+        """Whether the middle ring speeds up below and slows down above the bracket.
+
+        Returns
+        -------
+        bool
+            Whether the bracket holds the steady ratio.
+        """
         return self.torques[0] > 0.0 > self.torques[1]
 
 

@@ -21,30 +21,29 @@ overrides only what it is given.
 from __future__ import annotations
 
 import functools
-import inspect
 import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import scipy.linalg
-import scipy.optimize
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.duplex import (
     ARRANGEMENTS,
-    DuplexPair,
+    DuplexOptions,
+    duplex_pair,
     offset_preload,
     preload_force,
     preload_offset,
 )
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
-from bearingsim.errors import BearingsimError, ParameterError, SimulationError
+from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.physics.shaft_modes import DOFS, LOSS_FACTOR, MODE_NAMES, Modes, modal_analysis
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 from bearingsim.units import engineering, to_deg
-from bearingsim.validation import check_mapping
+from bearingsim.validation import check_mapping, keyword_names
 
 __all__ = [
     "MODE_NAMES",
@@ -60,11 +59,6 @@ __all__ = [
     "plot_sweep",
 ]
 
-DOFS = ("x", "y", "z", "tx", "ty")
-MODE_NAMES = ("radial x", "radial y", "axial", "tilt about x", "tilt about y")
-"""Mode names, one per dominant degree of freedom (x, y, z, tx, ty)."""
-LOSS_FACTOR = 0.005
-"""Loss factor eta of the duplex-pair study (docs/studies.md, section B) [-]."""
 SWEEP_PARAMETERS = {
     "preload": ("N", 1.0),
     "contact_angle": ("deg", to_deg(1.0)),
@@ -74,9 +68,8 @@ SWEEP_PARAMETERS = {
 """Sweepable configuration parameters: (display unit, factor from SI to it)."""
 _LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))
 _POSITIONS = tuple(f"shaft.{k}" for k in DOFS)
-_PAIR_OPTIONS = frozenset(inspect.signature(DuplexPair).parameters) - {"bearing", "arrangement"}
+_PAIR_OPTIONS = frozenset(keyword_names(DuplexOptions, ("bearing", "arrangement"))) | {"name"}
 _UNLOADED = 1e-3  # N: a row whose largest ball load is below this is reported as unloaded
-_DEGENERATE = 1e-6  # relative gap of eigenvalues treated as one (repeated) frequency
 _ACCEL_TOL = 1e-7  # m/s^2, rad/s^2: equilibrium residual (displacement error ~ m a / k < 1e-13)
 
 
@@ -133,127 +126,6 @@ class Equilibrium:
                 f"{engineering(float(self.spacer_force), 'N')}>")
 
 
-@dataclass
-class Modes:
-    """Natural frequencies and mode shapes of the shaft on its bearings.
-
-    Attributes
-    ----------
-    frequencies : ndarray (5,)
-        Undamped natural frequencies [Hz], ascending.
-    names : list of str
-        Name of each mode (:data:`MODE_NAMES`).
-    shapes : ndarray (5, 5)
-        Columns: mass-normalised mode shapes in (x, y, z, tx, ty).
-    damping_ratios : ndarray (5,)
-        Modal damping ratios [-].
-    damped_frequencies : ndarray (5,)
-        ``f sqrt(1 - zeta^2)`` [Hz].
-    stiffness, mass : ndarray (5, 5)
-        K [N/m, N/rad, N m/rad] and M [kg, kg m^2].
-    """
-
-    frequencies: np.ndarray
-    names: list[str]
-    shapes: np.ndarray
-    damping_ratios: np.ndarray
-    damped_frequencies: np.ndarray
-    stiffness: np.ndarray
-    mass: np.ndarray
-
-    def frequency(self, name: str) -> float:
-        """Natural frequency of the mode called ``name`` [Hz]."""
-        if name not in self.names:
-            raise ParameterError(f"no mode named {name!r}; modes: {', '.join(self.names)}")
-        return float(self.frequencies[self.names.index(name)])
-
-    def by_name(self) -> dict[str, float]:
-        """Frequencies [Hz] keyed by mode name, in :data:`MODE_NAMES` order."""
-        return {n: self.frequency(n) for n in MODE_NAMES}
-
-    def __repr__(self) -> str:
-        modes = ", ".join(f"{n} {f:.5g} Hz" for n, f in zip(self.names, self.frequencies,
-                                                            strict=True))
-        zeta = np.unique(np.round(self.damping_ratios, 12))
-        damping = (f"{zeta[0]:.3g} [-]" if zeta.size == 1
-                   else ", ".join(f"{z:.3g}" for z in self.damping_ratios) + " [-]")
-        return f"<Modes: {modes}; damping ratio {damping}>"
-
-    def damping_matrix(self) -> np.ndarray:
-        """Viscous damping matrix of the modal damping ratios, ``M Phi diag(2 zeta w) Phi^T M``."""
-        w = 2.0 * np.pi * self.frequencies
-        mp = self.mass @ self.shapes
-        return mp @ np.diag(2.0 * self.damping_ratios * w) @ mp.T
-
-
-def _name_modes(shapes: np.ndarray, mass: np.ndarray) -> list[str]:
-    """Assign each mode the degree of freedom that holds most of its kinetic energy."""
-    energy = shapes * (mass @ shapes)  # energy[i, k]: share of DOF i in mode k (M diagonal)
-    rows, cols = scipy.optimize.linear_sum_assignment(-np.abs(energy.T))
-    names = [""] * shapes.shape[1]
-    for k, i in zip(rows, cols, strict=True):
-        names[k] = MODE_NAMES[i]
-    return names
-
-
-def _align_repeated(w2: np.ndarray, shapes: np.ndarray, mass: np.ndarray) -> np.ndarray:
-    """Within each group of repeated eigenvalues, rotate the modes onto the DOF axes."""
-    shapes = shapes.copy()
-    k = 0
-    while k < w2.size:
-        end = k + 1
-        while end < w2.size and w2[end] - w2[k] <= _DEGENERATE * abs(w2[k]):
-            end += 1
-        if end - k > 1:
-            v = shapes[:, k:end]
-            share = np.sum(np.abs(v * (mass @ v)), axis=1)
-            axes = np.eye(w2.size)[:, np.sort(np.argsort(share)[-(end - k):])]
-            proj = v @ (v.T @ mass @ axes)
-            for j in range(end - k):  # mass-orthonormalise (Gram-Schmidt)
-                for i in range(j):
-                    proj[:, j] -= (proj[:, i] @ mass @ proj[:, j]) * proj[:, i]
-                proj[:, j] /= np.sqrt(proj[:, j] @ mass @ proj[:, j])
-            shapes[:, k:end] = proj
-        k = end
-    return shapes
-
-
-def modal_analysis(stiffness: np.ndarray, mass: np.ndarray,
-                   loss_factor: float = LOSS_FACTOR) -> Modes:
-    """Natural frequencies, named mode shapes and modal damping from K and M.
-
-    Parameters
-    ----------
-    stiffness : array (5, 5)
-        Stiffness matrix; its symmetric part is used.
-    mass : array (5, 5)
-        Mass matrix, symmetric positive definite.
-    loss_factor : float
-        Loss factor eta [-], >= 0; the modal damping ratio is eta / 2.
-
-    Returns
-    -------
-    Modes
-
-    Raises
-    ------
-    BearingsimError
-        If K is not positive definite (a direction without stiffness, e.g. unloaded rows).
-    """
-    k_sym = 0.5 * (stiffness + stiffness.T)
-    w2, shapes = scipy.linalg.eigh(k_sym, mass)
-    if w2[0] <= 0.0:
-        raise BearingsimError(
-            "the stiffness matrix is not positive definite (smallest eigenvalue "
-            f"{w2[0]:.3g}): the shaft has a direction without stiffness; are the rows preloaded?"
-        )
-    shapes = _align_repeated(w2, shapes, mass)
-    freqs = np.sqrt(w2) / (2.0 * np.pi)
-    zeta = np.full(freqs.size, 0.5 * loss_factor)
-    return Modes(freqs, _name_modes(shapes, mass), shapes, zeta, freqs * np.sqrt(1 - zeta**2),
-                 np.asarray(stiffness, dtype=float), np.asarray(mass, dtype=float))
-
-
 @functools.lru_cache(maxsize=256)
 def _spacer_offset(geometry: BearingGeometry, force: float, arrangement: str,
                    contact_angle: float) -> float:
@@ -274,7 +146,7 @@ class DuplexModel:
         (7020C, 7020A5, 7020A) share one model: pass them to :meth:`parameters`.
     arrangement : {"DF", "DB", "DT"}
     pair_options : dict
-        Further keyword arguments of :class:`~bearingsim.assemblies.duplex.DuplexPair`
+        Further fields of :class:`~bearingsim.assemblies.duplex.DuplexOptions` and ``name``
         (shaft, speed_effects, housing_stiffness, exact, smooth, ...). The configuration
         options ``preload`` [N or class], ``speed`` [rad/s], ``contact_angle`` [rad],
         ``ball_position_angle`` [rad] and ``spacer_offset`` [m] become the model's default
@@ -311,7 +183,7 @@ class DuplexModel:
                 "radial/tilt loads, 5x5 stiffness and modes would be wrong; build the pair with "
                 "duplex_pair(..., axisymmetric=True) for pure axial loads"
             )
-        self.pair = DuplexPair(self.bearing, self.arrangement, **options)
+        self.pair = duplex_pair(self.bearing, self.arrangement, **options)
         self.geometry = self.pair.geometry
         self.system = assemble(self.pair)
         spec = self.pair.shaft_spec
@@ -367,7 +239,8 @@ class DuplexModel:
         """Parameter overrides of one configuration.
 
         Every argument left at None takes the value the pair was built with (the
-        configuration options of ``pair_options``, else :class:`DuplexPair`'s defaults).
+        configuration options of ``pair_options``, else the defaults of
+        :class:`~bearingsim.assemblies.duplex.DuplexOptions`).
 
         Parameters
         ----------

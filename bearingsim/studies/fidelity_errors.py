@@ -6,7 +6,8 @@ The file is written by this module from the models themselves, never by hand::
 
     python -m bearingsim.studies.fidelity_errors
 
-and ``tests/test_fidelity_errors.py`` re-measures every entry. Each declared error is the largest
+and ``tests/studies/test_fidelity_errors.py`` re-measures every entry. Each declared error is the
+largest
 relative deviation ``|q_level - q_reference| / |q_reference|`` over the operating points of
 :data:`DOUBLE_LAYER_POINTS`, rounded up to two significant digits.
 """
@@ -42,7 +43,20 @@ state of each level (Palmgren friction at the torque level, the scene default)."
 
 
 def round_up(value: float, digits: int = 2) -> float:
-    """``value`` >= 0 rounded up to ``digits`` significant digits (0 stays 0)."""
+    """``value`` >= 0 rounded up to ``digits`` significant digits (0 stays 0).
+
+    Parameters
+    ----------
+    value : float
+        A non-negative number.
+    digits : int
+        Significant digits kept.
+
+    Returns
+    -------
+    float
+        The rounded value.
+    """
     if value <= 0.0:
         return 0.0
     scale = 10.0 ** (digits - 1 - math.floor(math.log10(value)))
@@ -52,6 +66,11 @@ def round_up(value: float, digits: int = 2) -> float:
 def double_layer_errors(points: dict[str, Any] | None = None) -> dict[str, dict[str, float]]:
     """Largest relative error of the kinematic levels' steady ``Rs`` (and so of the middle-ring
     speed) and shaft speed against the torque level over the operating points.
+
+    Parameters
+    ----------
+    points : dict, optional
+        Operating points like :data:`DOUBLE_LAYER_POINTS` (default).
 
     Returns
     -------
@@ -77,7 +96,13 @@ def double_layer_errors(points: dict[str, Any] | None = None) -> dict[str, dict[
 
 
 def measure_all() -> dict[str, Any]:
-    """Every assembly's declared errors as stored in the file (rounded up)."""
+    """Every assembly's declared errors as stored in the file (rounded up).
+
+    Returns
+    -------
+    dict
+        The contents of the fidelity errors file.
+    """
     return {
         "double_layer_bearing": {
             "reference": "torque",
@@ -90,7 +115,18 @@ def measure_all() -> dict[str, Any]:
 
 
 def write_fidelity_errors(path: str | Path = FIDELITY_ERRORS_FILE) -> Path:
-    """Measure and write the file; returns its path."""
+    """Measure and write the file; returns its path.
+
+    Parameters
+    ----------
+    path : str or Path
+        The JSON file (default: the package's).
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
     path = Path(path)
     with atomic_path(path) as tmp:
         Path(tmp).write_text(json.dumps(measure_all(), indent=2) + "\n", encoding="utf-8")

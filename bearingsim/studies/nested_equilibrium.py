@@ -1,6 +1,6 @@
 """Load sharing of a quasi-static double-layer bearing: equilibrium and stiffness of the shaft
 and the middle ring under a shaft load (docs/studies.md, section A; the assembly is
-:class:`~bearingsim.assemblies.nested_static.NestedQuasiStatic`)."""
+:class:`~bearingsim.assemblies.double_layer.quasi_static.NestedQuasiStatic`)."""
 
 from __future__ import annotations
 

@@ -73,47 +73,146 @@ for such an input is taken as SI and echoed in both units (docs/units.md)."""
 
 
 def mm(value):
-    """Millimetres to metres."""
+    """Millimetres to metres.
+
+    Parameters
+    ----------
+    value : float or array
+        Length [mm].
+
+    Returns
+    -------
+    float or array
+        Length [m].
+    """
     return value * 1e-3
 
 
 def rpm_to_rad_s(n):
-    """Speed in revolutions per minute to angular speed in rad/s."""
+    """Speed in revolutions per minute to angular speed in rad/s.
+
+    Parameters
+    ----------
+    n : float or array
+        Speed [r/min].
+
+    Returns
+    -------
+    float or array
+        Angular speed [rad/s].
+    """
     return n * RPM
 
 
 def rad_s_to_rpm(w):
-    """Angular speed in rad/s to revolutions per minute."""
+    """Angular speed in rad/s to revolutions per minute.
+
+    Parameters
+    ----------
+    w : float or array
+        Angular speed [rad/s].
+
+    Returns
+    -------
+    float or array
+        Speed [r/min].
+    """
     return w / RPM
 
 
 def deg(angle_deg):
-    """Degrees to radians."""
+    """Degrees to radians.
+
+    Parameters
+    ----------
+    angle_deg : float or array
+        Angle [deg].
+
+    Returns
+    -------
+    float or array
+        Angle [rad].
+    """
     return angle_deg * math.pi / 180.0
 
 
 def to_deg(angle_rad):
-    """Radians to degrees."""
+    """Radians to degrees.
+
+    Parameters
+    ----------
+    angle_rad : float or array
+        Angle [rad].
+
+    Returns
+    -------
+    float or array
+        Angle [deg].
+    """
     return angle_rad * 180.0 / math.pi
 
 
 def cst_to_m2_s(nu_cst):
-    """Kinematic viscosity in mm^2/s (cSt) to m^2/s."""
+    """Kinematic viscosity in mm^2/s (cSt) to m^2/s.
+
+    Parameters
+    ----------
+    nu_cst : float or array
+        Kinematic viscosity [mm^2/s].
+
+    Returns
+    -------
+    float or array
+        Kinematic viscosity [m^2/s].
+    """
     return nu_cst * 1e-6
 
 
 def m2_s_to_cst(nu):
-    """Kinematic viscosity in m^2/s to mm^2/s (cSt)."""
+    """Kinematic viscosity in m^2/s to mm^2/s (cSt).
+
+    Parameters
+    ----------
+    nu : float or array
+        Kinematic viscosity [m^2/s].
+
+    Returns
+    -------
+    float or array
+        Kinematic viscosity [mm^2/s].
+    """
     return nu * 1e6
 
 
 def celsius_to_kelvin(t_c):
-    """Temperature in degrees Celsius to kelvin."""
+    """Temperature in degrees Celsius to kelvin.
+
+    Parameters
+    ----------
+    t_c : float or array
+        Temperature [°C].
+
+    Returns
+    -------
+    float or array
+        Temperature [K].
+    """
     return t_c + 273.15
 
 
 def N_mm_to_N_m(m_nmm):  # noqa: N802 - unit names
-    """Torque in N mm to N m."""
+    """Torque in N mm to N m.
+
+    Parameters
+    ----------
+    m_nmm : float or array
+        Torque [N mm].
+
+    Returns
+    -------
+    float or array
+        Torque [N m].
+    """
     return m_nmm * 1e-3
 
 

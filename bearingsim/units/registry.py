@@ -122,6 +122,18 @@ def base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, flo
 def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
     """Factor and offset from ``unit`` to ``si_unit`` (``si = factor * x + offset``).
 
+    Parameters
+    ----------
+    unit : str
+        The unit of the value.
+    si_unit : str
+        The SI unit to convert to.
+
+    Returns
+    -------
+    tuple of float
+        ``(factor, offset)``.
+
     Raises
     ------
     UnitError
@@ -144,7 +156,18 @@ def _dimension_text(unit: str) -> str:
 
 
 def si_label(unit: str) -> str:
-    """``-`` for a dimensionless unit, else the unit itself."""
+    """``-`` for a dimensionless unit, else the unit itself.
+
+    Parameters
+    ----------
+    unit : str
+        An SI unit.
+
+    Returns
+    -------
+    str
+        The label shown to users.
+    """
     return "-" if unit in ("", "1") else unit
 
 
@@ -180,7 +203,18 @@ def split_quantity(text: str) -> tuple[float, str] | None:
 
 
 def is_quantity(value: Any) -> bool:
-    """Whether ``value`` is a :class:`pint.Quantity` (without importing pint for others)."""
+    """Whether ``value`` is a :class:`pint.Quantity` (without importing pint for others).
+
+    Parameters
+    ----------
+    value : object
+        Anything.
+
+    Returns
+    -------
+    bool
+        Whether it is a pint quantity.
+    """
     return type(value).__module__.startswith("pint") and hasattr(value, "magnitude")
 
 

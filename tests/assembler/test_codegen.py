@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from bearingsim.assembler.dae import Alias, Eq
+from bearingsim.assembler.ir import Causal, NonlinearBlock
 from bearingsim.assembler.passes import codegen
-from bearingsim.assembler.passes.tearing import Causal, NonlinearBlock
 from bearingsim.errors import StructuralError
 from tests.assembler.hand_dae import dae, eq, param, state_of, state_var, var
 

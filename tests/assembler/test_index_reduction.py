@@ -12,7 +12,10 @@ import math
 import sys
 
 import casadi as ca
+import numpy as np
 import pytest
+import scipy.linalg
+import scipy.sparse
 
 from bearingsim.assembler.passes import index_reduction
 from bearingsim.errors import ModelError
@@ -116,3 +119,66 @@ def test_a_failed_search_colours_what_it_visited():
                         colored_v)
     assert assign == {"x": "b", "y": "c"}
     assert colored_e == {"a", "b", "c"} and colored_v == {"x", "y"}
+
+
+def _pendulum_named(prefix: str, angle: float):
+    x, dx = state_var(f"{prefix}x", math.sin(angle))
+    y, dy = state_var(f"{prefix}y", -math.cos(angle), fixed=False)
+    vx, dvx = state_var(f"{prefix}vx", 0.0)
+    vy, dvy = state_var(f"{prefix}vy", 0.0, fixed=False)
+    force = var(f"{prefix}F", G)
+    return [x, dx, y, dy, vx, dvx, vy, dvy, force], [
+        eq(dx.sym - vx.sym, f"der({prefix}x) = {prefix}vx"),
+        eq(dy.sym - vy.sym, f"der({prefix}y) = {prefix}vy"),
+        eq(dvx.sym + force.sym * x.sym, f"der({prefix}vx) = -F x"),
+        eq(dvy.sym + force.sym * y.sym + G, f"der({prefix}vy) = -F y - g"),
+        eq(x.sym**2 + y.sym**2 - 1.0, f"{prefix}x^2 + {prefix}y^2 = 1"),
+    ]
+
+
+def _dummies(model) -> set[str]:
+    return {v.name for v in model.vars if v.dummy}
+
+
+def test_independent_constraints_are_selected_block_by_block(monkeypatch):
+    """Two pendulums in one model (one at 0.5 rad, one at 1.2 rad, where x is the better
+    pivot): the dummy derivatives are chosen on each pendulum's own block of the Jacobian,
+    never on a dense matrix of both (the memory of the selection is that of the largest
+    block), and each pendulum gets the dummies it gets alone."""
+    shapes = []
+    select = index_reduction._select_columns
+
+    def recording(h, m):
+        shapes.append(h.shape)
+        return select(h, m)
+
+    alone = []
+    for prefix, angle in (("a.", 0.5), ("b.", 1.2)):
+        model = dae(*_pendulum_named(prefix, angle))
+        index_reduction.run(state_of(model))
+        alone.append(_dummies(model))
+    monkeypatch.setattr(index_reduction, "_select_columns", recording)
+    (va, ea), (vb, eb) = _pendulum_named("a.", 0.5), _pendulum_named("b.", 1.2)
+    both = dae(va + vb, ea + eb)
+    index_reduction.run(state_of(both))
+    assert _dummies(both) == alone[0] | alone[1]
+    assert alone[0] == {"der(a.y)", "der(a.vy)", "der(der(a.x))", "der(der(a.y))"}
+    assert alone[1] == {"der(b.x)", "der(b.vx)", "der(der(b.x))", "der(der(b.y))"}
+    assert shapes and max(rows for rows, _ in shapes) == 3  # one pendulum's level: 3 rows
+    both.check_balance("index reduction")
+
+
+def test_block_by_block_selection_agrees_with_pivoted_qr_of_the_whole_matrix():
+    """A Jacobian of three independent blocks, rows and columns shuffled: the columns chosen
+    block by block are those pivoted QR chooses on the whole dense matrix."""
+    rng = np.random.default_rng(3)
+    blocks = [rng.standard_normal((2, 3)), rng.standard_normal((3, 5)),
+              rng.standard_normal((1, 2))]
+    whole = scipy.linalg.block_diag(*blocks)
+    rows, cols = rng.permutation(whole.shape[0]), rng.permutation(whole.shape[1])
+    whole = whole[rows][:, cols]
+    p = ca.SX.sym("p")
+    jac_f = ca.Function("h", [p], [ca.SX(ca.DM(scipy.sparse.csc_matrix(whole)))])
+    chosen = index_reduction._select_sparse(jac_f, np.zeros(1), np.random.default_rng(0))
+    assert chosen == sorted(index_reduction._select_columns(whole, whole.shape[0]))
+    assert len(index_reduction._blocks(jac_f.sparsity_out(0))) == 3

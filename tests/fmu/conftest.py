@@ -68,7 +68,7 @@ COSIM_FR = 500.0
 def cosim_pair(fmu_dir):
     """``cosim_pair(motor, fmi_version="2.0")``: motor FMU, bearing FMU (and SSP for FMI 2.0)
     with the ramp reference, exported once per session."""
-    from bearingsim.fmu.cosim_models import export_motor_bearing
+    from bearingsim.studies.motor_bearing_cosim import export_motor_bearing
 
     cache = {}
 

@@ -17,6 +17,7 @@ from fmpy.fmi2 import (
     fmi2CallbackLoggerTYPE,
     free,
 )
+from fmpy.fmi3 import FMU3Model, FMU3Slave
 
 from bearingsim.simulation import simulate
 
@@ -33,6 +34,38 @@ def run_fmu(path, kind, t_end, dt, outputs, start_values=None, tol=1e-9):
         str(path), fmi_type=kind, stop_time=t_end, output_interval=dt, step_size=dt,
         output=outputs, start_values=start_values or {}, relative_tolerance=tol,
     )
+
+
+def open_fmu3(path, tmp_path, kind="CS", messages=None, intermediate_update=None,
+              required=()):
+    """Extract and instantiate an FMI 3.0 FMU with fmpy's low-level classes; log messages go to
+    ``messages`` (a list) if given. ``intermediate_update``: the importer's callback
+    ``f(env, time, set_requested, get_allowed, step_finished, can_return_early,
+    early_return_requested, early_return_time)`` for the value references ``required``
+    (co-simulation only).
+
+    Returns (instance, model description, value-reference lookup by name).
+    """
+    unzip = Path(tmp_path) / f"{Path(path).stem}_{kind}3"
+    if not unzip.exists():
+        with zipfile.ZipFile(path) as z:
+            z.extractall(unzip)
+    md = read_model_description(str(path))
+    cls = FMU3Slave if kind == "CS" else FMU3Model
+    ident = (md.coSimulation if kind == "CS" else md.modelExchange).modelIdentifier
+    fmu = cls(guid=md.instantiationToken, unzipDirectory=str(unzip), modelIdentifier=ident,
+              instanceName="t")
+
+    def log(env, status, category, message):
+        if messages is not None:
+            messages.append(message.decode())
+
+    if kind == "CS":
+        fmu.instantiate(logMessage=log, intermediateUpdate=intermediate_update,
+                        requiredIntermediateVariables=list(required) or None)
+    else:
+        fmu.instantiate(logMessage=log)
+    return fmu, md, {v.name: v.valueReference for v in md.modelVariables}
 
 
 def reference(system, t_end, dt, **kwargs):

@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi3 import FMU3Model, FMU3Slave
 from fmpy.validation import validate_fmu
 
 from bearingsim.assembler import assemble
@@ -22,6 +21,7 @@ from bearingsim.assemblies.motor_drive import motor_drive
 from bearingsim.fmu import export_fmu
 from bearingsim.fmu.build import fmi_header_dir
 from tests.fmu.conftest import DRIVE_OUTPUTS, DRIVEN_OUTPUTS
+from tests.fmu.helpers import open_fmu3 as open3
 from tests.fmu.helpers import reference, rel_err, run_fmu
 
 
@@ -33,25 +33,6 @@ def drive3(fmu_dir, drive_system):
 @pytest.fixture(scope="module")
 def driven3(fmu_dir, driven_system):
     return export_fmu(driven_system, fmu_dir / "driven3.fmu", fmi_version="3.0")
-
-
-def open3(path, tmp_path, kind="CS", messages=None):
-    unzip = tmp_path / f"{path.stem}_{kind}"
-    if not unzip.exists():
-        with zipfile.ZipFile(path) as z:
-            z.extractall(unzip)
-    md = read_model_description(str(path))
-    cls = FMU3Slave if kind == "CS" else FMU3Model
-    ident = (md.coSimulation if kind == "CS" else md.modelExchange).modelIdentifier
-    fmu = cls(guid=md.instantiationToken, unzipDirectory=str(unzip), modelIdentifier=ident,
-              instanceName="t")
-
-    def log(env, status, category, message):
-        if messages is not None:
-            messages.append(message.decode())
-
-    fmu.instantiate(logMessage=log)
-    return fmu, md, {v.name: v.valueReference for v in md.modelVariables}
 
 
 def test_model_description(drive3):

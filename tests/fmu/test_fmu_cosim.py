@@ -10,43 +10,22 @@ from fmpy import read_model_description
 from fmpy.ssp.simulation import simulate_ssp
 
 from bearingsim.assembler import assemble
-from bearingsim.assemblies.motor_drive import MotorShaft, motor_drive
-from bearingsim.fmu.cosim_models import BEARING_OUTPUTS, MOTOR_OUTPUTS
-from bearingsim.simulation import simulate
-from tests.fmu.conftest import COSIM_FR, cosim_ramp
+from bearingsim.assemblies.motor_drive import MotorShaft
+from bearingsim.studies.motor_bearing_cosim import BEARING_OUTPUTS, MOTOR_OUTPUTS
+from tests.fmu.cosim_masters import (
+    REF_OUTPUTS,
+    T_END,
+    derivative_run,
+    errors,
+    monolithic_reference,
+)
 from tests.fmu.helpers import open_fmu
-
-T_END = 0.3
-BREAKAWAY = 0.01
-"""The first 10 ms: the shaft leaves standstill and the friction torque jumps to half its
-running value within the first rad/s; a sampled coupling sees that jump one step late."""
-
-REF_OUTPUTS = {"motor.w_shaft": "shaft.w", "bearing.M_shaft": "bearing.M_shaft",
-               "bearing.w_middle": "bearing.w_middle"}
 
 
 @pytest.fixture(scope="module", params=["dc", "pmsm"])
 def pair(request, cosim_pair):
     motor = request.param
-    paths = cosim_pair(motor)
-    system = assemble(motor_drive(motor=motor, speed_ref=cosim_ramp),
-                      outputs=list(REF_OUTPUTS.values()))
-    ref = simulate(system, T_END, n_points=int(round(T_END / 5e-4)) + 1,
-                   inputs={"bearing.Fr": COSIM_FR}, rtol=1e-10, atol=1e-12, progress=False)
-    return motor, paths, ref
-
-
-def errors(ref, t, values: dict[str, np.ndarray]) -> dict[str, tuple[float, float]]:
-    """Per signal: largest error relative to the largest reference value, over the whole run
-    and after the breakaway."""
-    out = {}
-    late = ref.t >= BREAKAWAY
-    for name, ref_name in REF_OUTPUTS.items():
-        r = ref[ref_name]
-        v = np.interp(ref.t, t, values[name], left=0.0)
-        e = np.abs(v - r) / np.max(np.abs(r))
-        out[name] = (float(e.max()), float(e[late].max()))
-    return out
+    return motor, cosim_pair(motor), monolithic_reference(motor)
 
 
 def fmpy_run(paths, h):
@@ -124,39 +103,6 @@ def test_cosimulation_matches_the_monolithic_drive(master, pair):
         assert e1[name][0] / e2[name][0] > 1.8, (name, e1, e2)
 
 
-def derivative_run(paths, h, tmp_path, derivatives=True):
-    """A Jacobi master that passes derivatives (fmpy's low-level API): at each communication
-    point it reads every coupled output and its time derivative
-    (``fmi2GetRealOutputDerivatives``) and gives them to the other FMU as input and input
-    slope (``fmi2SetRealInputDerivatives``), so each FMU ramps its input through the step
-    instead of holding it."""
-    motor, _, mv = open_fmu(paths["motor"], tmp_path, "CS")
-    bearing, _, bv = open_fmu(paths["bearing"], tmp_path, "CS")
-    fmus = (motor, bearing)
-    links = ((motor, mv["w_shaft"], bearing, bv["shaft_speed"]),
-             (bearing, bv["M_shaft"], motor, mv["M_bearing"]))
-    for fmu in fmus:
-        fmu.setupExperiment(tolerance=1e-8, startTime=0.0)
-        fmu.enterInitializationMode()
-        fmu.exitInitializationMode()
-    n = int(round(T_END / h))
-    values = np.empty((n, 3))
-    for k in range(n):
-        for source, out, target, inp in links:  # motor first: the bearing's dM/dt needs dw/dt
-            target.setReal([inp], source.getReal([out]))
-            if derivatives:
-                target.setRealInputDerivatives([inp], [1],
-                                               source.getRealOutputDerivatives([out], [1]))
-        for fmu in fmus:
-            fmu.doStep(k * h, h)
-        values[k] = [*motor.getReal([mv["w_shaft"]]),
-                     *bearing.getReal([bv["M_shaft"], bv["w_middle"]])]
-    for fmu in fmus:
-        fmu.terminate()
-        fmu.freeInstance()
-    return h * np.arange(1, n + 1), {name: values[:, j] for j, name in enumerate(REF_OUTPUTS)}
-
-
 def test_output_derivatives_equal_the_slope_of_the_trajectory(cosim_pair, tmp_path):
     """dM_shaft/dt and dw_middle/dt from fmi2GetRealOutputDerivatives (dy/dx der(x) + dy/du du
     + partial dy/dt) against the forward difference of the outputs over a 1 us doStep along
@@ -181,12 +127,27 @@ def test_output_derivatives_equal_the_slope_of_the_trajectory(cosim_pair, tmp_pa
 
 def test_master_passing_derivatives_matches_within_0_1_percent(pair, tmp_path):
     """With output derivatives passed on as input slopes, the 1 ms co-simulation of the speed
-    ramp is within 0.1 % of the monolithic drive on shaft speed, middle-ring speed and (after
-    the breakaway) friction torque; holding the inputs (the same master without derivatives)
-    is several times further off."""
+    ramp is within 0.1 % of the monolithic drive on shaft speed and middle-ring speed over the
+    whole run and on friction torque after the breakaway; holding the inputs (the same master
+    without derivatives) is further off on each.
+
+    The friction torque in the breakaway is not within 0.1 % at 1 ms (4.4e-2 DC, 4.0e-2 PMSM):
+    the shaft starts from rest with zero acceleration (its speed grows like t^3 under the PI
+    control of the ramp), so every extrapolation from the communication points gives the
+    bearing zero speed over the first step, and the torque, proportional to the slip while
+    it is below omega_reg = 0.1 rad/s (the first 4 ms), lags through that band. It is not an
+    event (the regularized sign is smooth and the speed never crosses zero inside a step):
+    the error is a sampling error of a fast smooth transient and falls with the square of
+    the step (0.5 ms: 3.5x smaller; it is below 0.1 % at 0.125 ms, docs/fmu.md)."""
     _, paths, ref = pair
     with_slopes = errors(ref, *derivative_run(paths, 1e-3, tmp_path))
     held = errors(ref, *derivative_run(paths, 1e-3, tmp_path, derivatives=False))
+    half = errors(ref, *derivative_run(paths, 5e-4, tmp_path))
     for name in REF_OUTPUTS:
         assert with_slopes[name][1] < 1e-3, (name, with_slopes)
         assert with_slopes[name][1] < held[name][1], (name, with_slopes, held)
+    for name in ("motor.w_shaft", "bearing.w_middle"):  # the whole run
+        assert with_slopes[name][0] < 1e-3, (name, with_slopes)
+    breakaway, breakaway_half = with_slopes["bearing.M_shaft"][0], half["bearing.M_shaft"][0]
+    assert breakaway < 5e-2, with_slopes
+    assert breakaway / breakaway_half > 3.0, (with_slopes, half)

@@ -131,7 +131,7 @@ def test_factorisation_reused_on_a_stiff_nonlinear_chain(stiff_fmu, stiff_system
 @pytest.fixture(scope="module")
 def bearing(fmu_dir):
     """The double-layer bearing 61905/61907 (torque level) with both steppers."""
-    from bearingsim.fmu.cosim_models import bearing_model
+    from bearingsim.studies.motor_bearing_cosim import bearing_model
 
     outputs = ["M_shaft", "w_middle", "Rs"]
     system = assemble(bearing_model(), outputs=outputs)

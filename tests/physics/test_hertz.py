@@ -9,6 +9,7 @@ from scipy.special import ellipe, ellipk
 
 from bearingsim.catalog import get_bearing
 from bearingsim.errors import ParameterError
+from bearingsim.physics import contact_law as law
 from bearingsim.physics import geometry as kin
 from bearingsim.physics import hertz as h
 
@@ -114,8 +115,8 @@ def test_load_deflection_consistent_with_approach():
                                "outer")
     q = 800.0
     total = h.approach(q, rxi, ryi, E_STEEL) + h.approach(q, rxo, ryo, E_STEEL)
-    assert h.contact_load(k, total) == pytest.approx(q, rel=1e-12)
-    assert h.contact_load(k_i, h.approach(q, rxi, ryi, E_STEEL)) == pytest.approx(q, rel=1e-12)
+    assert law.contact_load(k, total) == pytest.approx(q, rel=1e-12)
+    assert law.contact_load(k_i, h.approach(q, rxi, ryi, E_STEEL)) == pytest.approx(q, rel=1e-12)
     assert h.combined_load_deflection_constant(2.0, 2.0) == pytest.approx(2.0 * 2**-1.5)
 
 
@@ -144,8 +145,8 @@ def test_float_array_sx_agree():
     for smooth in (None, 1e-7):
         d = np.array([-1e-6, 0.0, 1e-6, 2e-5])
         np.testing.assert_allclose(
-            _casadi_eval(lambda x, s=smooth: h.contact_load(1e10, x, s), 2e-5),
-            h.contact_load(1e10, d, smooth)[-1:], rtol=1e-12)
+            _casadi_eval(lambda x, s=smooth: law.contact_load(1e10, x, s), 2e-5),
+            law.contact_load(1e10, d, smooth)[-1:], rtol=1e-12)
 
 
 def test_sx_ellipticity_has_finite_jacobian_at_circular_contact():
@@ -158,17 +159,17 @@ def test_sx_ellipticity_has_finite_jacobian_at_circular_contact():
 @given(st.floats(1e6, 1e12), st.floats(-1e-4, 1e-4), st.floats(0.0, 1e-4),
        st.one_of(st.none(), st.floats(1e-9, 1e-6)))
 def test_contact_load_monotone_non_negative(k_const, delta, step, smooth):
-    q0 = h.contact_load(k_const, delta, smooth)
-    q1 = h.contact_load(k_const, delta + step, smooth)
+    q0 = law.contact_load(k_const, delta, smooth)
+    q1 = law.contact_load(k_const, delta + step, smooth)
     assert q0 >= 0.0 and q1 >= q0
     if smooth is None and abs(delta) < 1e-12:
         return  # at the kink of max(delta, 0): no derivative to compare with
     # central difference on the scale of the curvature (|delta| or smooth): truncation error
     # about 0.04 (eps/scale)^2, here 4e-8 relative
     eps = 1e-3 * (abs(delta) if smooth is None else smooth)
-    fd = (h.contact_load(k_const, delta + eps, smooth) - h.contact_load(k_const, delta - eps,
+    fd = (law.contact_load(k_const, delta + eps, smooth) - law.contact_load(k_const, delta - eps,
                                                                         smooth)) / (2 * eps)
-    assert h.contact_stiffness(k_const, delta, smooth) == pytest.approx(fd, rel=1e-4, abs=1e-3)
+    assert law.contact_stiffness(k_const, delta, smooth) == pytest.approx(fd, rel=1e-4, abs=1e-3)
 
 
 @settings(max_examples=60, deadline=None)
@@ -191,8 +192,8 @@ def test_no_nan_for_valid_input(load, rx, ratio, method):
     (lambda: h.raceway_radii(8e-3, 33e-3, 0.5, 0.0, "inner"), "groove_factor"),
     (lambda: h.raceway_radii(8e-3, 33e-3, 0.52, 0.0, "middle"), "race"),
     (lambda: h.raceway_radii(8e-3, 6e-3, 0.52, 0.0, "inner"), "Dw cos(alpha)/dm"),
-    (lambda: h.contact_load(-1.0, 1e-6), "k_const"),
-    (lambda: h.contact_load(1.0, 1e-6, smooth=0.0), "smooth"),
+    (lambda: law.contact_load(-1.0, 1e-6), "k_const"),
+    (lambda: law.contact_load(1.0, 1e-6, smooth=0.0), "smooth"),
     (lambda: h.orthogonal_shear_stress(1.0, 1.0, 0.5), "k"),
     (lambda: h.combined_load_deflection_constant(0.0, 1.0), "k_inner"),
     (lambda: h.hertz_contact(float("nan"), 1e-3, 2e-3, E_STEEL), "finite"),

@@ -31,17 +31,17 @@ from bearingsim.components.roller_row import (
 from bearingsim.components.rolling_element import (
     LineContact,
 )
+from bearingsim.physics.life import (
+    line_load_integrals,
+    roller_dynamic_load_rating,
+    roller_fc,
+    roller_static_load_rating,
+)
 from bearingsim.physics.line_contact import (
     half_width,
     line_contact_radius,
     max_pressure,
     palmgren_deflection,
-)
-from bearingsim.physics.roller_life import (
-    line_load_integrals,
-    roller_dynamic_load_rating,
-    roller_fc,
-    roller_static_load_rating,
 )
 
 NU206 = get_roller_bearing("NU206")

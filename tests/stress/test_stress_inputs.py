@@ -64,8 +64,8 @@ def test_unknown_input_lists_the_inputs():
 
 
 @pytest.mark.parametrize(("kwargs", "match"), [
-    ({"inner": "6099"}, r"unknown bearing designation '6099'; known designations: 6204"),
-    ({"outer": "61907X"}, r"unknown bearing designation '61907X'"),
+    ({"inner": "6099"}, r"unknown bearing '6099'; known: 6204"),
+    ({"outer": "61907X"}, r"unknown bearing '61907X'"),
     ({"lubrication": "olive oil"}, r"unknown lubricant 'olive oil'; known: ISO VG 10"),
     ({"fidelity": "fast"}, r"fidelity must be one of kinematic"),
     ({"structure": "I", "outer": "61907"}, r"I-type middle ring needs"),

@@ -23,6 +23,7 @@ that these checks then fail.
 
 from __future__ import annotations
 
+import importlib
 import math
 import warnings
 from functools import cache
@@ -399,8 +400,12 @@ def test_mutation_wrong_or_raising_physics_fails_the_checks(monkeypatch, module,
     def raising(*args, **kwargs):
         raise ParameterError("mutant")
 
+    # the package that re-exports the function and the module that defines it (whose other
+    # functions call it by that module's global)
+    homes = {module, importlib.import_module(getattr(module, name).__module__)}
     for replacement in ([raising] if mutant is None else [raising, mutant]):
-        monkeypatch.setattr(module, name, replacement)
+        for home in homes:
+            monkeypatch.setattr(home, name, replacement)
         with pytest.raises((AssertionError, BearingsimError)):
             check(rng(3), 50)
 

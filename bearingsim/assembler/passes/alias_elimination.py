@@ -51,7 +51,7 @@ def _classify_all(dae: DAE) -> list[tuple]:
     entries: dict[int, list[tuple[int, ca.SX]]] = {}
     for k, (i, j) in enumerate(zip(jrows, jcols, strict=True)):
         entries.setdefault(i, []).append((j, jnz[k]))
-    rest_nz = [rest[i] for i in range(len(cand))]
+    rest_nz = ca.vertsplit(rest)
     out = []
     for i, row in entries.items():
         eq = dae.eqs[cand[i]]
@@ -158,35 +158,41 @@ def _one_round(dae: DAE) -> bool:
     used_ids = {id(e) for e in used}
     remaining = [e for e in dae.eqs if id(e) not in used_ids] + extra_eqs
     removed = [v for v in dae.vars if v in parent or v in const_val]
-    syms, repl = [], []
+    const_syms, const_values = [], []  # removed variable -> a constant
+    alias_syms, scales, representatives = [], [], []  # removed variable -> scale * representative
     for v in removed:
         if v in const_val:
             val = const_val[v]
-            syms.append(v.sym)
-            repl.append(ca.SX(val))
+            const_syms.append(v.sym)
+            const_values.append(val)
             dae.aliases[v.name] = Alias(v.name, 0.0, None, val, v.unit, v.description)
             continue
         r, s = find(v)
         if r in const_val:
-            syms.append(v.sym)
-            repl.append(ca.SX(s * const_val[r]))
+            const_syms.append(v.sym)
+            const_values.append(s * const_val[r])
             dae.aliases[v.name] = Alias(v.name, 0.0, None, s * const_val[r], v.unit,
                                         v.description)
         else:
-            syms.append(v.sym)
-            repl.append(s * r.sym)
+            alias_syms.append(v.sym)
+            scales.append(s)
+            representatives.append(r.sym)
             dae.aliases[v.name] = Alias(v.name, s, r, 0.0, v.unit, v.description)
             if r.start is None and v.start is not None:
                 r.start, r.fixed = s * v.start, v.fixed
             if v.is_input:
                 r.is_input = True
     targets = remaining + dae.initial_eqs
-    if targets and syms:
-        res = ca.substitute(
-            ca.vertcat(*[e.residual for e in targets]), ca.vertcat(*syms), ca.vertcat(*repl)
-        )
-        for i, e in enumerate(targets):
-            e.residual = res[i]
+    if targets and removed:
+        # one vector operation for all replacements (an SX operation per variable from Python
+        # costs more than the substitution itself)
+        repl = ca.vertcat(ca.DM(const_values),
+                          ca.DM(scales) * ca.vertcat(*representatives) if representatives
+                          else ca.SX(0, 1))
+        res = ca.substitute(ca.vertcat(*[e.residual for e in targets]),
+                            ca.vertcat(*const_syms, *alias_syms), repl)
+        for e, r in zip(targets, ca.vertsplit(res), strict=True):
+            e.residual = r
     removed_ids = {id(v) for v in removed}
     dae.vars = [v for v in dae.vars if id(v) not in removed_ids]
     # derivative pointers that referred to removed derivative vars

@@ -19,36 +19,19 @@ from __future__ import annotations
 import re
 from collections import defaultdict
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import casadi as ca
 
-from bearingsim.assembler.dae import DAE, Param, Var
+from bearingsim.assembler.dae import DAE
+from bearingsim.assembler.ir import BallSet
 
-__all__ = ["MIN_MEMBERS", "BallSet", "find_ball_sets", "function_identity", "owners"]
+__all__ = ["MIN_MEMBERS", "find_ball_sets", "function_identity", "owners"]
 
 _INDEXED = re.compile(r"^(?P<head>(?:der\()?)(?P<path>[^\[]*)\[(?P<k>\d+)\](?P<rest>.*)$")
 """A flat name with an array index: ``ball[3].w`` or ``der(inner[3].delta)``."""
 
 MIN_MEMBERS = 2
 """Ball sets of fewer members are inlined."""
-
-
-@dataclass
-class BallSet:
-    """One row of identical members (balls with their contacts, pockets and drag)."""
-
-    name: str
-    """The parent of the arrays (``""`` at the root, ``"inner_layer"`` in a nested bearing)."""
-    count: int
-    """Number of members (balls)."""
-    patterns: list[str]
-    """The members' variable names with the index as ``*``, in one order for all members."""
-    variables: list[list[Var]]
-    """``variables[k][j]``: member ``k``'s variable of ``patterns[j]``."""
-    param_patterns: list[str]
-    parameters: list[list[Param]]
-    """``parameters[k][j]``: member ``k``'s parameter of ``param_patterns[j]``."""
 
 
 def _split(name: str) -> tuple[str, str, int] | None:

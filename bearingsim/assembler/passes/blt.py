@@ -8,19 +8,16 @@ import networkx as nx
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.graph import incidence_map
+from bearingsim.assembler.ir import Block
 from bearingsim.assembler.passes.ball_sets import find_ball_sets, owners
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["NAME", "Block", "run", "blt_blocks"]
+__all__ = ["NAME", "run", "blt_blocks"]
 
 NAME = "BLT sorting"
 """The pass name in timings, logs and ``extra_passes``."""
-
-Block = list[tuple[Eq, Var]]
-"""One block of the BLT form: (equation, the unknown it determines) pairs solved together."""
-
 
 def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[Block]:
     """Block lower triangular order: strongly connected components in topological order; among

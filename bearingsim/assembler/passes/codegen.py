@@ -16,34 +16,28 @@ from typing import TYPE_CHECKING
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE
+from bearingsim.assembler.function_options import CSE, rootfinder_options
+from bearingsim.assembler.ir import Causal
 from bearingsim.assembler.mapped import MappedForms
-from bearingsim.assembler.passes.tearing import Causal, rootfinder_options
 from bearingsim.assembler.system import FunctionTable, Signal, System
 from bearingsim.errors import StructuralError
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["GRAPH_KEYS", "JACOBIANS", "NAME", "ROOTFINDERS", "run", "build_functions",
+__all__ = ["GRAPH_KEYS", "JACOBIANS", "NAME", "run", "build_functions",
            "initial_problem", "mapped_ode_functions"]
 
 NAME = "code generation"
 """The pass name in timings, logs and ``extra_passes``."""
-
-ROOTFINDERS = ("fast_newton", "newton")
-"""CasADi rootfinder plugins the assembler can put in nonlinear blocks."""
-
-CSE = {"cse": True}
-"""Function options: common subexpression elimination (CasADi), e.g. 3x fewer instructions
-for the duplex pair's right-hand side."""
-
 
 def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_tol: float,
                     rootfinder: str = "fast_newton"):
     """Return (function table, observed names, output names); the right-hand side, observed and
     output functions and their Jacobians are built on first access.
 
-    ``rootfinder`` is one of :data:`ROOTFINDERS` (the plugin of the nonlinear blocks).
+    ``rootfinder`` is one of :data:`~bearingsim.assembler.function_options.ROOTFINDERS` (the
+    plugin of the nonlinear blocks).
     """
     states = dae.states
     inputs = dae.inputs

@@ -132,13 +132,12 @@ def flatten(root: Component, members: MemberEquations | None = None) -> DAE:
                 eqs.append(Eq(p_ref.sym - p.sym, scope_path, text=f"{p_ref.path} = {p.path}"))
                 eq_owner.append(None)
         for f_ref in ref.flows:
-            total = 0
-            terms = []
-            for c, sign in members:
-                f = c.fields[f_ref.attr]
-                total = total + sign * f.sym
-                terms.append(("+" if sign > 0 else "-") + f.path)
-            eqs.append(Eq(total, scope_path, text=" ".join(terms) + " = 0"))
+            terms = [(c.fields[f_ref.attr], sign) for c, sign in members]
+            total = terms[0][0].sym if terms[0][1] > 0 else -terms[0][0].sym
+            for f, sign in terms[1:]:
+                total = total + f.sym if sign > 0 else total - f.sym
+            text = " ".join(("+" if sign > 0 else "-") + f.path for f, sign in terms)
+            eqs.append(Eq(total, scope_path, text=text + " = 0"))
             eq_owner.append(None)
 
     # declarations (after equations: der() creates derivative declarations)
@@ -247,8 +246,8 @@ def _substitute_bindings(eqs, init_eqs, bound_syms, bound_exprs, params) -> None
             )
     all_eqs = eqs + init_eqs
     res = ca.substitute(ca.vertcat(*[e.residual for e in all_eqs]), bound, exprs)
-    for i, e in enumerate(all_eqs):
-        e.residual = res[i]
+    for e, r in zip(all_eqs, ca.vertsplit(res), strict=True):
+        e.residual = r
 
 
 def run(state: AssemblyState) -> None:

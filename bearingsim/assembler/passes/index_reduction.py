@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING
 import casadi as ca
 import numpy as np
 import scipy.linalg
+import scipy.sparse
+import scipy.sparse.csgraph
 
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.graph import incidence_map, maximum_matching
@@ -171,6 +173,8 @@ def _start_point(dae: DAE) -> tuple[ca.SX, np.ndarray]:
 
 
 def _select_columns(h: np.ndarray, m: int) -> list[int]:
+    """``m`` independent columns of the dense ``m x n`` block ``h`` (n >= m), by QR with column
+    pivoting; all of them when ``h`` is square."""
     if h.shape[1] == m:
         return list(range(m))
     _, r, piv = scipy.linalg.qr(h, pivoting=True, mode="economic")
@@ -178,6 +182,56 @@ def _select_columns(h: np.ndarray, m: int) -> list[int]:
     if diag.size == m and diag.min() > 1e-10 * max(diag.max(), 1.0):
         return list(piv[:m])
     raise np.linalg.LinAlgError
+
+
+def _blocks(pattern: ca.Sparsity) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The independent blocks of an ``m x n`` sparsity pattern: the rows and columns of each
+    connected component of its bipartite graph that has rows."""
+    m, n = pattern.shape
+    rows, cols = (np.asarray(a, dtype=int) for a in pattern.get_triplet())
+    graph = scipy.sparse.coo_matrix((np.ones(rows.size), (rows, m + cols)), shape=(m + n, m + n))
+    count, label = scipy.sparse.csgraph.connected_components(graph, directed=False)
+    order = np.argsort(label, kind="stable")
+    bounds = np.searchsorted(label[order], np.arange(count + 1))
+    out = []
+    for k in range(count):
+        members = order[bounds[k]:bounds[k + 1]]
+        block_rows = members[members < m]
+        if block_rows.size:
+            out.append((block_rows, members[members >= m] - m))
+    return out
+
+
+def _select_sparse(jac_f: ca.Function, vals: np.ndarray, rng: np.random.Generator,
+                   ) -> list[int] | None:
+    """Independent columns of the sparse ``m x n`` Jacobian ``jac_f``, one per row.
+
+    Each independent block of the Jacobian (:func:`_blocks`) is selected on its own with
+    :func:`_select_columns`, which picks what pivoted QR of the whole matrix picks, in the memory
+    of the largest block instead of the whole ``m x n`` matrix. A block that is singular at the
+    start values ``vals`` is retried at up to three random points near them.
+
+    Returns
+    -------
+    list of int or None
+        The selected columns in ascending order; None if a block stayed singular.
+    """
+    blocks = _blocks(jac_f.sparsity_out(0))
+    chosen: dict[int, list[int]] = {}
+    for attempt in range(4):
+        noise = rng.normal(0.0, 0.1, vals.size) * (1 + abs(vals))
+        point = vals if attempt == 0 else vals + noise
+        h = jac_f(point).sparse().tocsr()
+        for k, (rows, cols) in enumerate(blocks):
+            if k not in chosen:
+                try:
+                    sel = _select_columns(h[rows][:, cols].toarray(), rows.size)
+                except np.linalg.LinAlgError:
+                    continue
+                chosen[k] = [int(cols[j]) for j in sel]
+        if len(chosen) == len(blocks):
+            return sorted(c for sel in chosen.values() for c in sel)
+    return None
 
 
 def dummy_derivatives(dae: DAE) -> list[str]:
@@ -198,37 +252,30 @@ def dummy_derivatives(dae: DAE) -> list[str]:
     chosen_names: list[str] = []
     while g:
         lookup = {v.sym.name(): v for v in z}
-        present = []
+        present: dict[Var, None] = {}  # insertion-ordered set
         for e in g:
-            for v in dae.incidence(e, lookup):
-                if v not in present:
-                    present.append(v)
-        if len(present) < len(g):
+            present.update(dict.fromkeys(dae.incidence(e, lookup)))
+        candidates = list(present)
+        if len(candidates) < len(g):
             raise SingularBlockError(
                 "dummy derivative selection failed: too few candidate derivatives",
                 equations=[e.describe() for e in g],
-                unknowns=[v.name for v in present],
+                unknowns=[v.name for v in candidates],
             )
-        residuals = ca.vertcat(*[e.residual for e in g])
-        jac = ca.jacobian(residuals, ca.vertcat(*[v.sym for v in present]))
-        jac_f = ca.Function("h", [syms], [jac])
-        sel = None
-        for attempt in range(4):
-            noise = rng.normal(0.0, 0.1, vals.size) * (1 + abs(vals))
-            point = vals if attempt == 0 else vals + noise
-            h = np.array(jac_f(point), dtype=float)
-            try:
-                sel = _select_columns(h, len(g))
-                break
-            except np.linalg.LinAlgError:
-                continue
-        if sel is None:
-            raise SingularBlockError(
-                "dummy derivative selection failed: the differentiated constraints are singular",
-                equations=[e.describe() for e in g],
-                unknowns=[v.name for v in present],
-            )
-        chosen = [present[k] for k in sel]
+        if len(candidates) == len(g):
+            chosen = candidates
+        else:
+            jac = ca.jacobian(ca.vertcat(*[e.residual for e in g]),
+                              ca.vertcat(*[v.sym for v in candidates]))
+            sel = _select_sparse(ca.Function("h", [syms], [jac]), vals, rng)
+            if sel is None:
+                raise SingularBlockError(
+                    "dummy derivative selection failed: the differentiated constraints are "
+                    "singular",
+                    equations=[e.describe() for e in g],
+                    unknowns=[v.name for v in candidates],
+                )
+            chosen = [candidates[k] for k in sel]
         for v in chosen:
             if v in integral_of:
                 v.dummy = True

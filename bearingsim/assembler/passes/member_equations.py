@@ -27,6 +27,7 @@ Member ``k``'s derivative declarations are created for the variables whose deriv
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator
 from typing import Any
 
@@ -98,8 +99,16 @@ class _Correspondence:
             for key, conn in a._connectors.items():
                 self.objects[id(conn)] = b._connectors[key]
             self.decls += list(zip(_declarations(a), _declarations(b), strict=True))
-        self.twin_syms = ca.vertcat(*[a.sym for a, _ in self.decls])
-        self.member_syms = ca.vertcat(*[b.sym for _, b in self.decls])
+
+    @functools.cached_property
+    def twin_syms(self) -> ca.SX:
+        """Member 0's declared symbols, stacked."""
+        return ca.vertcat(*[a.sym for a, _ in self.decls])
+
+    @functools.cached_property
+    def member_syms(self) -> ca.SX:
+        """Member k's declared symbols, stacked in the same order."""
+        return ca.vertcat(*[b.sym for _, b in self.decls])
 
     def same(self, a: Any, b: Any) -> bool:
         """Whether attribute values ``a`` (member 0) and ``b`` (member k) correspond."""
@@ -157,6 +166,8 @@ class MemberEquations:
         self._residuals: dict[int, list[ca.SX]] = {}
         self._derivatives: dict[int, set[int]] = {}
         self._instantiated: dict[int, dict[int, list[ca.SX]]] = {}
+        self._stacked: dict[int, ca.SX | None] = {}
+        self._old: dict[tuple[int, tuple[int, ...]], ca.SX] = {}
         self.instantiated = 0
         """How many components got their equations by substitution."""
 
@@ -203,27 +214,39 @@ class MemberEquations:
         created = [b for a, b in corr.decls
                    if isinstance(a, Variable) and a.derivative is not None
                    and id(a) not in before]
-        own = {a.sym.name() for a, _ in corr.decls}
-        own |= {a.derivative.sym.name() for a, _ in corr.decls
-                if isinstance(a, Variable) and a.derivative is not None}
-        own.add(time.name())
-        residuals = [r for a, _ in pairs for r in self._residuals[id(a)]]
-        if not residuals:
-            return None
-        stacked = ca.vertcat(*residuals)
-        if any(s.name() not in own for s in ca.symvar(stacked)):
+        stacked = self._stacked_residuals(twin, corr)
+        if stacked is None:
             return None
         for b in created:
             b.derivative_symbol()
-        derivs = [(a.derivative.sym, b.derivative.sym) for a, b in corr.decls
-                  if isinstance(a, Variable) and a.derivative is not None
-                  and b.derivative is not None]
-        old = ca.vertcat(corr.twin_syms, *[a for a, _ in derivs])
-        new = ca.vertcat(corr.member_syms, *[b for _, b in derivs])
-        values = ca.substitute(stacked, old, new)
+        derivs = tuple(i for i, (a, b) in enumerate(corr.decls)
+                       if isinstance(a, Variable) and a.derivative is not None
+                       and b.derivative is not None)
+        if (id(twin), derivs) not in self._old:  # member 0's side, the same for most members
+            self._old[(id(twin), derivs)] = ca.vertcat(
+                *[a.sym for a, _ in corr.decls], *[corr.decls[i][0].derivative.sym for i in derivs])
+        old = self._old[(id(twin), derivs)]
+        new = ca.vertcat(*[b.sym for _, b in corr.decls],
+                         *[corr.decls[i][1].derivative.sym for i in derivs])
+        values = ca.vertsplit(ca.substitute(stacked, old, new))
         out, pos = {}, 0
         for a, b in pairs:
             n = len(self._residuals[id(a)])
-            out[id(b)] = [values[pos + i] for i in range(n)]
+            out[id(b)] = values[pos:pos + n]
             pos += n
         return out
+
+    def _stacked_residuals(self, twin: Component, corr: _Correspondence) -> ca.SX | None:
+        """Member 0's residuals stacked, or None when there are none or they use a symbol from
+        outside member 0's subtree (and time); worked out once per array."""
+        if id(twin) not in self._stacked:
+            own = {a.sym.name() for a, _ in corr.decls}
+            own |= {a.derivative.sym.name() for a, _ in corr.decls
+                    if isinstance(a, Variable) and a.derivative is not None}
+            own.add(time.name())
+            residuals = [r for a, _ in _pairs(twin, twin) for r in self._residuals[id(a)]]
+            stacked = ca.vertcat(*residuals) if residuals else None
+            if stacked is not None and any(s.name() not in own for s in ca.symvar(stacked)):
+                stacked = None
+            self._stacked[id(twin)] = stacked
+        return self._stacked[id(twin)]

@@ -16,39 +16,20 @@ to the inlined functions otherwise.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-import casadi as ca
-
-from bearingsim.assembler.dae import DAE, Var
-from bearingsim.assembler.passes.ball_sets import BallSet, find_ball_sets, owners
-from bearingsim.assembler.passes.blt import Block
+from bearingsim.assembler.dae import DAE
+from bearingsim.assembler.ir import Block, Repeats
+from bearingsim.assembler.passes.ball_sets import find_ball_sets, owners
 from bearingsim.assembler.passes.tearing import causalize
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["NAME", "BallSet", "Repeats", "find_repeats", "run"]
+__all__ = ["NAME", "find_repeats", "run"]
 
 NAME = "repeated structure"
 """The pass name in timings, logs and ``extra_passes``."""
-
-
-@dataclass
-class Repeats:
-    """The ball sets of a model and its shared unknowns solved around them."""
-
-    sets: list[BallSet] = field(default_factory=list)
-    owner: dict[int, tuple[int, int]] = field(default_factory=dict)
-    """``id(var or param)`` -> (set, member) for the members' variables and parameters."""
-    shared_expr: dict[Var, ca.SX] = field(default_factory=dict)
-    """Each shared unknown through the base symbols and the members' variables' own
-    symbols."""
-    shared_nonlinear: list = field(default_factory=list)
-    """Nonlinear blocks among the shared unknowns, as :func:`causalize` returns them."""
-    reason: str = ""
-    """Why the model has no ball sets to map (empty when it has)."""
 
 
 def find_repeats(dae: DAE, blocks: list[Block]) -> Repeats:

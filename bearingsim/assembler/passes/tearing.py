@@ -19,53 +19,21 @@ solved block by block.
 from __future__ import annotations
 
 from collections import defaultdict
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import casadi as ca
 
 from bearingsim.assembler.dae import DAE, Eq, Var
-from bearingsim.assembler.passes.ball_sets import BallSet, find_ball_sets, function_identity
-from bearingsim.assembler.passes.blt import Block
+from bearingsim.assembler.ir import BallSet, Block, Causal, NonlinearBlock
+from bearingsim.assembler.passes.ball_sets import find_ball_sets, function_identity
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
 
-__all__ = ["NAME", "run", "NonlinearBlock", "Causal", "causalize", "rootfinder_options"]
+__all__ = ["NAME", "run", "causalize"]
 
 NAME = "tearing and block solving"
 """The pass name in timings, logs and ``extra_passes``."""
-
-
-@dataclass
-class NonlinearBlock:
-    """Residuals ``g(z) = 0`` in the tearing variables ``z`` (their own symbols)."""
-
-    tears: list[Var]
-    residuals: ca.SX
-    guess: list[float]
-    equations: list[Eq]
-
-
-@dataclass
-class Causal:
-    """Every unknown as an expression of base symbols and nonlinear-block tearing variables."""
-
-    expr: dict[Var, ca.SX] = field(default_factory=dict)
-    nonlinear: list[NonlinearBlock] = field(default_factory=list)
-    n_blocks: int = 0
-    n_linear_loops: int = 0
-    largest_block: int = 0
-    copied_members: int = 0
-    """Members of ball sets whose solutions were copied from member 0's."""
-    copied: set[tuple[str, int, int]] = field(default_factory=set)
-    """(set name, set size, member) of the members all of whose blocks were copied: their
-    solutions are member 0's with their own symbols, by construction."""
-
-    def value(self, v: Var) -> ca.SX:
-        """``v`` through the base symbols: its own symbol for a state or input, else its
-        solution."""
-        return v.sym if v.is_state or v.is_input else self.expr[v]
 
 
 def _vanishes(coef: ca.SX) -> bool:
@@ -151,7 +119,7 @@ class _Mirrors:
             for k in range(1, bs.count if reference is not None else 0):
                 mine = per_member.get((s, k), {})
                 if set(mine) != set(base) or \
-                        self._identity(bs, k, [mine[q] for q in keys]) != reference:
+                        self._identity(bs, k, [mine[q] for q in keys], reference) != reference:
                     continue
                 for q in keys:
                     self.counterpart[id(mine[q])] = base[q]
@@ -164,22 +132,29 @@ class _Mirrors:
         return ca.vertcat(*[v.sym for v in bs.variables[k]],
                           *[q.sym for q in bs.parameters[k]])
 
-    def _identity(self, bs: BallSet, k: int, blocks: list[Block]) -> tuple | None:
+    def _identity(self, bs: BallSet, k: int, blocks: list[Block],
+                  reference: tuple | None = None) -> tuple | None:
         """Member ``k``'s equations (each block's in the order of the model's equations, which
         does not depend on the matching) as a function of its symbols (pattern order) and the
-        shared symbols they read (by name), with fresh symbols; None if it cannot be built."""
+        shared symbols they read (by name), with fresh symbols; None if it cannot be built, or
+        if the names of the shared symbols already differ from those of ``reference`` (read
+        from the equations' cached symbol names, before any function is built)."""
+        own_names = {v.sym.name() for v in bs.variables[k]} | {
+            q.sym.name() for q in bs.parameters[k]}
+        names = tuple(sorted({n for block in blocks for e, _ in block
+                              for n in e.symbol_names()} - own_names))
+        if reference is not None and names != reference[0]:
+            return None
         rows = [e.residual for block in blocks
                 for e in sorted((e for e, _ in block), key=lambda e: self.position[id(e)])]
         residuals = ca.vertcat(*rows)
-        own = self._symbols(bs, k)
-        own_names = {own[i].name() for i in range(own.numel())}
         shared = sorted((sym for sym in ca.symvar(residuals) if sym.name() not in own_names),
                         key=lambda sym: sym.name())
         try:
-            fn = ca.Function("member", [own, ca.vertcat(*shared)], [residuals])
+            fn = ca.Function("member", [self._symbols(bs, k), ca.vertcat(*shared)], [residuals])
         except RuntimeError:
             return None
-        return tuple(sym.name() for sym in shared), function_identity(fn)
+        return names, function_identity(fn)
 
 
 def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) -> Causal:
@@ -245,9 +220,11 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
                                                 [e for e, _ in block]))
             offset += n
 
-    def resolved(expr: ca.SX) -> ca.SX:
-        """``expr`` with the unknowns of earlier blocks replaced by their solutions."""
-        names = [s.name() for s in ca.symvar(expr)]
+    def resolved(expr: ca.SX, names: tuple[str, ...] | None = None) -> ca.SX:
+        """``expr`` with the unknowns of earlier blocks replaced by their solutions; ``names``:
+        the names of its symbols or more (those of the equation it came from), if known."""
+        if names is None:
+            names = [s.name() for s in ca.symvar(expr)]
         for member in {pending[n] for n in names if n in pending}:
             flush(member)
         prev = [solved_by_name[n] for n in names if n in solved_by_name]
@@ -273,11 +250,13 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
             # linearity and the coefficient are those of the resolved equation.
             e, v = block[0]
             coef = _linear_coefficient(e.residual, v)
-            if coef is not None and not _vanishes(resolved(coef)):
-                out.expr[v] = resolved(_solve_linear_scalar(e.residual, v, coef))
+            names = e.symbol_names()
+            if coef is not None and (coef.is_constant() or not _vanishes(resolved(coef, names))):
+                out.expr[v] = resolved(_solve_linear_scalar(e.residual, v, coef), names)
             else:
                 out.expr[v] = v.sym
-                out.nonlinear.append(NonlinearBlock([v], resolved(e.residual), [_guess(v)], [e]))
+                out.nonlinear.append(NonlinearBlock([v], resolved(e.residual, names), [_guess(v)],
+                                                    [e]))
                 nonlinear_of[id(v)] = out.nonlinear[-1]  # member 0's, for its copies
             solved_by_name[v.sym.name()] = v
             continue
@@ -328,15 +307,6 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
     for member in mirrors.blocks_of if mirrors is not None else ():
         flush(member)
     return out
-
-
-def rootfinder_options(rootfinder: str, newton_tol: float) -> dict:
-    """CasADi options of a nonlinear block's rootfinder: ``fast_newton`` (plain Newton steps,
-    C generation) or ``newton`` (with a line search), to ``newton_tol`` on the residual."""
-    if rootfinder == "fast_newton":
-        return {"abstol": newton_tol, "max_iter": 50}
-    return {"abstol": newton_tol, "max_iter": 100, "line_search": True,
-            "show_eval_warnings": False}
 
 
 def _guess(v: Var) -> float:

@@ -15,7 +15,7 @@ from bearingsim.assemblies.cylindrical_roller.options import FIDELITIES, FRICTIO
 from bearingsim.assemblies.spec import ArgSpec, AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.catalog.rollers import list_roller_bearings, resolve_roller_bearing
 from bearingsim.components.roller_row import roller_row_loads, roller_row_parameters
-from bearingsim.physics.roller_life import line_load_integrals, roller_reference_rating_life
+from bearingsim.physics.life import line_load_integrals, roller_reference_rating_life
 from bearingsim.plotting import Curve, FigureSpec, Panel
 
 __all__ = ["SCENE_SPEC", "N_SLICES", "roller_loads_figure", "reference_life"]

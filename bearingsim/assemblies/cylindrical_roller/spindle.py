@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from bearingsim.assemblies.duplex import ARRANGEMENTS, PRELOAD_CLASSES, DuplexPair, ShaftSpec
+from bearingsim.assemblies.duplex import ARRANGEMENTS, PRELOAD_CLASSES, ShaftSpec, duplex_pair
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.catalog.rollers import list_roller_bearings
 from bearingsim.components.dynamic import FixedFrame
@@ -49,7 +49,8 @@ class Spindle(Assembly):
     shaft : ShaftSpec or dict, optional
         Default :data:`DEFAULT_SHAFT`.
     **pair_options
-        Further keywords of :class:`DuplexPair` (``damping_ratio``, ``speed``, ...).
+        Further keywords of :func:`~bearingsim.assemblies.duplex.duplex_pair`
+        (``damping_ratio``, ``speed``, ...).
     """
 
     def __init__(self, bearing: str = "7014C", roller_bearing: str = "NU210",
@@ -59,9 +60,9 @@ class Spindle(Assembly):
         super().__init__(name)
         check_range(roller_distance, "roller_distance", "m", 0.0, low_inclusive=False,
                     where="spindle")
-        self.pair = DuplexPair(bearing, arrangement, preload,
-                               shaft=DEFAULT_SHAFT if shaft is None else shaft, name="pair",
-                               **pair_options)
+        self.pair = duplex_pair(bearing, arrangement, preload,
+                                shaft=DEFAULT_SHAFT if shaft is None else shaft, name="pair",
+                                **pair_options)
         self.roller_distance = float(roller_distance)
         self.nu_ring = InnerRing(groove_offset=-self.roller_distance)
         self.nu = RollerRow(roller_bearing, n_slices)

@@ -71,6 +71,8 @@ class Ball(Component):
         Initial angular velocity (wr, wt, wz) [rad/s].
     massive : bool
         Radial and axial motion with inertia (True) or quasi-static (False).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

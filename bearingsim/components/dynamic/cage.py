@@ -39,6 +39,8 @@ class Cage(Component):
         Polar moment of inertia [kg m^2], > 0.
     w0 : float
         Initial angular speed [rad/s].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -108,6 +110,8 @@ class PocketContact(Component):
     damping : float
         Hunt-Crossley coefficient of the Hertz part [s/m], >= 0: the contact force grows by
         ``c_d`` times the approach speed times the Hertz force (dissipation of dry impacts).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -205,6 +209,8 @@ class LandGuidance(Component):
         Land friction coefficient [-].
     damping : float
         Hunt-Crossley coefficient of the land contact [s/m].
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

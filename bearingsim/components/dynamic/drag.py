@@ -25,6 +25,8 @@ class BallDrag(Component):
         dm, Dw [m].
     rho, eta : float
         Mixture density [kg/m^3] and viscosity [Pa s], > 0.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

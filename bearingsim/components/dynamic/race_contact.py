@@ -9,8 +9,8 @@ from bearingsim import symbolic as op
 from bearingsim.components.connectors import BallFrame, Flange, RingFrame
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Parameter, Variable, der
+from bearingsim.physics.contact_law import contact_load, contact_stiffness
 from bearingsim.physics.groove_contact import groove_contact
-from bearingsim.physics.hertz import contact_load, contact_stiffness
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
 from bearingsim.physics.rolling import rolling_resistance
 from bearingsim.physics.traction import slice_traction
@@ -44,10 +44,10 @@ class RaceContact(Component):
     (the groove centre moves with the ring's 5-DOF displacement).
 
     Normal load: ``Q = < K <delta>^1.5 (1 + c_d d(delta)/dt) + beta k(delta) d(delta)/dt >``:
-    Hertz with the smooth ramp of :func:`~bearingsim.physics.hertz.contact_load`, Hunt and
+    Hertz with the smooth ramp of :func:`~bearingsim.physics.contact_law.contact_load`, Hunt and
     Crossley (1975) material damping ``c_d`` and the squeeze damping of the lubricant film,
     proportional to the tangent contact stiffness ``k = dQ/d delta``
-    (:func:`~bearingsim.physics.hertz.contact_stiffness`) with the time constant ``beta``; the
+    (:func:`~bearingsim.physics.contact_law.contact_stiffness`) with the time constant ``beta``; the
     sum is kept non-negative (a contact cannot pull). Hunt-Crossley damping alone is
     proportional to the load, so the lightly loaded contacts of the balls outside the load zone
     (centrifugal force only, below 1 N) would ring at 5-10 kHz with damping ratios near 0.001
@@ -112,6 +112,8 @@ class RaceContact(Component):
         Reduced radii of the contact along and across rolling [m] (rolling resistance).
     e_eff : float, optional
         Effective modulus ``E'`` [Pa] (rolling resistance).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

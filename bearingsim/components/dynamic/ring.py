@@ -26,7 +26,18 @@ _LOAD_HINTS = {
 
 
 def load_unit(key: str) -> str:
-    """Unit of the ring-load component ``key``: ``"N"`` for forces, ``"N.m"`` for moments."""
+    """Unit of the ring-load component ``key``: ``"N"`` for forces, ``"N.m"`` for moments.
+
+    Parameters
+    ----------
+    key : str
+        "Fx", "Fy", "Fz", "Mx" or "My".
+
+    Returns
+    -------
+    str
+        Its unit.
+    """
     return "N" if key.startswith("F") else "N.m"
 
 
@@ -96,6 +107,8 @@ class RingBody(Component):
     free_tilt : bool
         Whether the ring tilts; if False the shaft holds ``tx = ty = 0`` and the moments of the
         connected elements are reactions.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -147,7 +160,13 @@ class RingBody(Component):
 
 
 class FixedFrame(Component):
-    """A ring frame fixed at zero displacement (the housing side); the reactions are free."""
+    """A ring frame fixed at zero displacement (the housing side); the reactions are free.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+    """
 
     def __init__(self, name=None):
         super().__init__(name)
@@ -169,6 +188,8 @@ class RingLoad(Component):
         ``{"Fx": ..., "Fy": ..., "Fz": ..., "Mx": ..., "My": ...}``; missing keys are inputs
         with default 0. Other keys and constants that are not finite numbers raise
         :class:`~bearingsim.errors.ParameterError` (see :func:`check_loads`).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------
@@ -191,7 +212,13 @@ class RingLoad(Component):
 
 class TiltGuide(Component):
     """Holds a ring frame straight (``tx = ty = 0``): the shaft's other supports take the
-    moments, no force."""
+    moments, no force.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+    """
 
     def __init__(self, name=None):
         super().__init__(name)

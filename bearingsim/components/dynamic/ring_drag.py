@@ -52,6 +52,8 @@ class RingDrag(Component):
     series : str, optional
         Catalogue series (e.g. ``"63"``) for f0 by series
         (:data:`~bearingsim.physics.lubrication.PALMGREN_F0_BY_SERIES`).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Connectors
     ----------

@@ -59,14 +59,22 @@ extern const char *const bsm_y_names[BSM_DIM(NY)];
 extern const char *const bsm_p_names[BSM_DIM(NP)];
 extern const char *const bsm_p_units[BSM_DIM(NP)];
 /* Fill-reducing order of the states for the LU factorisation of the stepper (a permutation of
- * 0 .. NX-1, computed at export from the sparsity of d der(x)/dx). */
+ * 0 .. NX-1, computed at export from the sparsity of d der(x)/dx), and the pattern of
+ * W = I/(h gamma) - J in that order (compressed columns: the pattern of J and the diagonal). */
 extern const int bsm_lu_order[BSM_DIM(NX)];
+extern const int bsm_lu_start[BSM_DIM(NX + 1)];
+extern const int bsm_lu_index[BSM_DIM(BSM_LU_NNZ)];
 
 /* Same numbering as fmi2Status / fmi3Status. */
 typedef enum { BSM_OK = 0, BSM_WARNING = 1, BSM_DISCARD = 2, BSM_ERROR = 3 } BsmStatus;
 
 typedef void (*bsm_logger)(void *host, BsmStatus status, const char *category,
                            const char *message);
+
+/* Inputs inside a co-simulation step from the API layer (FMI 3.0 intermediate update): the
+ * stepper calls it with a time t in the step; it writes the inputs at t into u and returns 1,
+ * or returns 0 to leave them to u0 + du (t - t0). */
+typedef int (*bsm_inputs_fn)(void *host, double t, double *u);
 
 /* Everything that defines where an instance is: saved and restored as one block
  * (FMU state get/set/serialize). */
@@ -127,20 +135,27 @@ typedef struct {
     double w_x[BSM_DIM(NX)];
     double w_u[BSM_DIM(NU)];
     double w_p[BSM_DIM(NP)];
-    double w_h;                    /* step size of the factorisation in lu [s] (0: none); BDF:
-                                    * its c [s] */
-    double lu[BSM_DIM(NX * NX)];   /* I/(h gamma) - J (BDF: I - c J) in the order bsm_lu_order
-                                    * (factorised) */
-    /* its factors, compressed for the solves (BsmLu, bsm_lu.h) */
-    int lu_piv[BSM_DIM(NX)];
+    double w_h;                    /* step size of the factorisation in lu_a [s] (0: none);
+                                    * BDF: its c [s] */
+    double lu_a[BSM_DIM(BSM_LU_NNZ)]; /* W's (BDF: I - c J's) nonzeros on
+                                       * bsm_lu_start/bsm_lu_index */
+    /* its sparse factors (bsm_lu.h; lu_c's pointers are set to the arrays before each use) */
+    BsmLu lu_c;
+    int lu_row_of[BSM_DIM(NX)];
+    int lu_step_of[BSM_DIM(NX)];
     int lu_l_start[BSM_DIM(NX) + 1];
     int lu_l_index[BSM_DIM(NX * NX / 2)];
     double lu_l_val[BSM_DIM(NX * NX / 2)];
     int lu_u_start[BSM_DIM(NX) + 1];
     int lu_u_index[BSM_DIM(NX * NX / 2)];
+    int lu_u_pos[BSM_DIM(NX * NX / 2)];
     double lu_u_val[BSM_DIM(NX * NX / 2)];
+    int lu_ur_start[BSM_DIM(NX) + 1];
+    int lu_ur_index[BSM_DIM(NX * NX / 2)];
+    double lu_ur_val[BSM_DIM(NX * NX / 2)];
     double lu_inv_diag[BSM_DIM(NX)];
-    int lu_work[BSM_DIM(2 * NX)];
+    double lu_x[BSM_DIM(NX)];
+    int lu_work[BSM_DIM(3 * NX)];
 #if BSM_STEPPER_BDF
     double bdf_work[BSM_BDF_WORK_VECTORS * BSM_DIM(NX)];
 #endif
@@ -156,6 +171,7 @@ typedef struct {
     void *host;
     bsm_logger logger;
     int debug_logging;
+    bsm_inputs_fn inputs_between; /* NULL: inputs follow u0 + du (t - t0) */
 } BsmInstance;
 
 /* Outcome of a shared API operation: done; refused without harm (bad arguments or a call in

@@ -38,12 +38,14 @@
  * Rosenbrock stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
  * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
  * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
- * set), so df/dt includes jac_u * du (and the BDF's right-hand side sees u(t)). The LU
- * factorisation (bsm_lu.c, shared with the
- * compiled BDF integrator) is a dense one with partial pivoting that skips structural zeros,
- * on W permuted by the fill-reducing order bsm_lu_order
- * (a minimum-degree order of the Jacobian's sparsity, computed at export), eliminating and
- * solving on the nonzeros only.
+ * set), so df/dt includes jac_u * du (and the BDF's right-hand side sees u(t)); an FMI 3.0
+ * importer may instead give the inputs at every stage or right-hand-side time (intermediate
+ * update, BsmInstance.inputs_between), for every stepper. The LU factorisation (bsm_lu.c,
+ * shared with the compiled BDF integrator) is a sparse one on W (BDF: I - c J) permuted by
+ * the fill-reducing order bsm_lu_order (a minimum-degree order of the Jacobian's sparsity,
+ * computed at export with W's pattern bsm_lu_start/bsm_lu_index): its pivot order and fill
+ * pattern are found once and reused while the pivoting rule would choose the same pivots,
+ * eliminating and solving on the nonzeros only.
  */
 #include <math.h>
 #include <string.h>
@@ -67,8 +69,11 @@
 #define BSM_INPUT_JUMP 1e-2  /* relative input change at a doStep start that renews J */
 #endif
 
+/* Inputs at time t of the step into m->ut: from the API layer where it gives them (FMI 3.0
+ * intermediate update), else u0 + du (t - t0). */
 static void inputs_at(BsmInstance *m, double t) {
     int i;
+    if (m->inputs_between != NULL && m->inputs_between(m->host, t, m->ut)) return;
     for (i = 0; i < NU; ++i) m->ut[i] = m->saved.u[i] + m->saved.du[i] * (t - m->saved.time);
 }
 
@@ -79,17 +84,50 @@ static int all_finite(const double *v, int n) {
     return 1;
 }
 
-/* The compressed LU factors of the instance. */
-static BsmLu lu_factors(BsmInstance *m) {
-    BsmLu c = {m->lu_piv, m->lu_l_start, m->lu_l_index, m->lu_l_val, m->lu_u_start,
-               m->lu_u_index, m->lu_u_val, m->lu_inv_diag};
+/* The sparse LU factors of the instance (its pivot order kept in lu_c between calls, changed
+ * when the pivoting rule would choose other pivots: the factors depend on W only, so a
+ * restored state continues bit for bit). */
+static BsmLu *lu_factors(BsmInstance *m) {
+    BsmLu *c = &m->lu_c;
+    c->n = NX;
+    c->keep_order = 0;
+    c->a_start = bsm_lu_start;
+    c->a_index = bsm_lu_index;
+    c->row_of = m->lu_row_of;
+    c->step_of = m->lu_step_of;
+    c->l_start = m->lu_l_start;
+    c->l_index = m->lu_l_index;
+    c->l_val = m->lu_l_val;
+    c->u_start = m->lu_u_start;
+    c->u_index = m->lu_u_index;
+    c->u_pos = m->lu_u_pos;
+    c->u_val = m->lu_u_val;
+    c->ur_start = m->lu_ur_start;
+    c->ur_index = m->lu_ur_index;
+    c->ur_val = m->lu_ur_val;
+    c->inv_diag = m->lu_inv_diag;
+    c->x = m->lu_x;
+    c->work = m->lu_work;
     return c;
+}
+
+/* Factorise diag I - scale J (W = I/(h gamma) - J, or the BDF's I - c J) on W's pattern in
+ * the order bsm_lu_order. Returns 0, or nonzero if singular. */
+static int factor_w(BsmInstance *m, double diag, double scale) {
+    int i, j, q;
+    const int *o = bsm_lu_order;
+    for (j = 0; j < NX; ++j)
+        for (q = bsm_lu_start[j]; q < bsm_lu_start[j + 1]; ++q) {
+            i = bsm_lu_index[q];
+            m->lu_a[q] = -scale * m->w_jx[o[i] * NX + o[j]];
+            if (i == j) m->lu_a[q] += diag;
+        }
+    return bsm_lu_factor(lu_factors(m), m->lu_a);
 }
 
 /* Solve W k = b in place (b in the model's state order). */
 static void solve(BsmInstance *m, double *b) {
-    BsmLu c = lu_factors(m);
-    bsm_lu_solve(&c, NX, bsm_lu_order, m->xs, b);
+    bsm_lu_solve(lu_factors(m), bsm_lu_order, m->xs, b);
 }
 
 /* The instance at the end t_end of a communication step: the inputs there, no slopes. */
@@ -150,17 +188,8 @@ static int bdf_jacobian(void *model, double t, const double *x) {
 
 static int bdf_factor(void *model, double c) {
     BsmInstance *m = (BsmInstance *)model;
-    int i, j;
-    const int *o = bsm_lu_order;
     m->w_h = 0.0;
-    for (i = 0; i < NX; ++i) {
-        const double *row = m->w_jx + o[i] * NX;
-        double *lu = m->lu + i * NX;
-        for (j = 0; j < NX; ++j) lu[j] = -c * row[o[j]];
-        lu[i] += 1.0;
-    }
-    BsmLu f = lu_factors(m);
-    if (bsm_lu_factor(m->lu, NX, &f, m->lu_work) != 0) return 1;
+    if (factor_w(m, 1.0, c) != 0) return 1;
     m->w_h = c;
     return 0;
 }
@@ -338,19 +367,10 @@ static int new_jacobian(BsmInstance *m, double t, const double *x) {
 
 /* Factorise W = I/(h gamma) - J in the order bsm_lu_order. Returns 1 if not singular. */
 static int factorise(BsmInstance *m, double h) {
-    int i, j;
-    const int *o = bsm_lu_order;
     m->w_h = 0.0;
     m->s.jac_h = 0.0;
     m->s.n_lu++;
-    for (i = 0; i < NX; ++i) {
-        const double *row = m->w_jx + o[i] * NX;
-        double *lu = m->lu + i * NX;
-        for (j = 0; j < NX; ++j) lu[j] = -row[o[j]];
-        lu[i] += 1.0 / (h * ros_gamma_diag);
-    }
-    BsmLu c = lu_factors(m);
-    if (bsm_lu_factor(m->lu, NX, &c, m->lu_work) != 0) return 0;
+    if (factor_w(m, 1.0 / (h * ros_gamma_diag), 1.0) != 0) return 0;
     m->w_h = h;
     m->s.jac_h = h;
     return 1;

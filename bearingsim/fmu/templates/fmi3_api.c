@@ -4,7 +4,12 @@
  *
  * Variables are float64 scalars in the value-reference blocks of model_config.h; the independent
  * variable `time` has the value reference VR_END. Co-simulation holds inputs constant over a
- * step (no event mode, no intermediate update); Model Exchange has no events. */
+ * step unless the importer gives them between communication points by intermediate update: it
+ * names the inputs in requiredIntermediateVariables and passes an intermediateUpdate callback;
+ * the stepper then calls back at every time it evaluates the model inside fmi3DoStep (stage
+ * times of tentative internal steps, so times may repeat or go back after a rejected step:
+ * intermediateStepFinished = false) and the importer sets those inputs there. No event mode,
+ * no early return, no intermediate outputs; Model Exchange has no events. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +24,8 @@ typedef enum {
     MODE_CONTINUOUS = 8,
     MODE_STEP = 16,
     MODE_TERMINATED = 32,
-    MODE_ERROR = 64
+    MODE_ERROR = 64,
+    MODE_INTERMEDIATE = 128 /* inside the importer's intermediateUpdate callback */
 } Mode;
 
 #define ANY_MODE 0x7f
@@ -34,6 +40,12 @@ typedef struct {
     BsmInstance m;
     fmi3InstanceEnvironment env;
     fmi3LogMessageCallback log_message;
+    /* intermediate update: the importer's callback, the inputs it sets inside a step
+     * (requiredIntermediateVariables) and their values set last */
+    fmi3IntermediateUpdateCallback intermediate_update;
+    int n_between;
+    unsigned char between[BSM_DIM(NU)];
+    double u_between[BSM_DIM(NU)];
 } Fmi3Instance;
 
 static void fmi3_logger(void *host, BsmStatus status, const char *category,
@@ -128,6 +140,51 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String in
                        logMessage);
 }
 
+/* Inputs the importer sets between communication points (FMI 3.0 intermediate update): the
+ * stepper asks for the inputs at each time t it evaluates the model; the importer sets those
+ * in requiredIntermediateVariables in its callback; the others stay at their values of the
+ * doStep start. Returns 1 (the inputs at t are in u). */
+static int intermediate_inputs(void *host, double t, double *u) {
+    Fmi3Instance *c = (Fmi3Instance *)host;
+    fmi3Boolean early = fmi3False;
+    fmi3Float64 early_time = t;
+    int k, mode = c->m.s.mode;
+    c->m.s.mode = MODE_INTERMEDIATE;
+    c->intermediate_update(c->env, t, fmi3True, fmi3False, fmi3False, fmi3False, &early,
+                           &early_time);
+    c->m.s.mode = mode;
+    for (k = 0; k < NU; ++k) u[k] = c->between[k] ? c->u_between[k] : c->m.saved.u[k];
+    return 1;
+}
+
+/* Check and register requiredIntermediateVariables (inputs only: the FMU offers no
+ * intermediate outputs). Returns 1 if usable. */
+static int register_intermediate(Fmi3Instance *c, const fmi3ValueReference vrs[], size_t n,
+                                 fmi3IntermediateUpdateCallback callback) {
+    size_t i;
+    if (n == 0) return 1;
+    if (callback == NULL) {
+        bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                "fmi3InstantiateCoSimulation: %u requiredIntermediateVariables but no "
+                "intermediateUpdate callback", (unsigned)n);
+        return 0;
+    }
+    for (i = 0; i < n; ++i) {
+        if (vrs[i] < VR_U || vrs[i] >= VR_Y) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "fmi3InstantiateCoSimulation: requiredIntermediateVariables: value reference "
+                    "%u is not an input (only inputs have intermediateUpdate=\"true\")",
+                    (unsigned)vrs[i]);
+            return 0;
+        }
+        if (!c->between[vrs[i] - VR_U]) c->n_between++;
+        c->between[vrs[i] - VR_U] = 1;
+    }
+    c->intermediate_update = callback;
+    c->m.inputs_between = intermediate_inputs;
+    return 1;
+}
+
 fmi3Instance fmi3InstantiateCoSimulation(
     fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
     fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
@@ -136,18 +193,22 @@ fmi3Instance fmi3InstantiateCoSimulation(
     fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate) {
     (void)resourcePath;
     (void)visible;
+    Fmi3Instance *c;
     (void)earlyReturnAllowed;
-    (void)requiredIntermediateVariables;
-    (void)nRequiredIntermediateVariables;
-    (void)intermediateUpdate;
     if (eventModeUsed) {
         if (logMessage != NULL)
             logMessage(instanceEnvironment, fmi3Error, "logStatusError",
                        "this FMU has no event mode in co-simulation (hasEventMode=false)");
         return NULL;
     }
-    return instantiate(instanceName, instantiationToken, 1, loggingOn, instanceEnvironment,
-                       logMessage);
+    c = instantiate(instanceName, instantiationToken, 1, loggingOn, instanceEnvironment,
+                    logMessage);
+    if (c != NULL && !register_intermediate(c, requiredIntermediateVariables,
+                                            nRequiredIntermediateVariables, intermediateUpdate)) {
+        fmi3FreeInstance(c);
+        return NULL;
+    }
+    return c;
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(
@@ -272,12 +333,33 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
     return fmi3OK;
 }
 
+/* fmi3SetFloat64 in intermediate update mode: inputs of requiredIntermediateVariables only,
+ * each finite; a refused value leaves the instance as it was. */
+static fmi3Status set_intermediate(Fmi3Instance *c, const fmi3ValueReference vrs[], size_t n,
+                                   const fmi3Float64 values[]) {
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        unsigned int r = vrs[i];
+        if (r < VR_U || r >= VR_Y || !c->between[r - VR_U]) {
+            bsm_log(&c->m, BSM_ERROR, "logStatusError",
+                    "fmi3SetFloat64 in intermediate update mode: value reference %u is not an "
+                    "input named in requiredIntermediateVariables", r);
+            return fmi3Error;
+        }
+        if (bsm_check_input(&c->m, (int)(r - VR_U), values[i]) != BSM_OK) return fmi3Error;
+    }
+    for (i = 0; i < n; ++i) c->u_between[vrs[i] - VR_U] = values[i];
+    return fmi3OK;
+}
+
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, const fmi3Float64 values[], size_t nValues) {
     size_t i;
-    INSTANCE("fmi3SetFloat64", RUN_MODES | MODE_INSTANTIATED)
+    INSTANCE("fmi3SetFloat64", RUN_MODES | MODE_INSTANTIATED | MODE_INTERMEDIATE)
     if (nValues != nValueReferences)
         return count_mismatch(c, "fmi3SetFloat64", nValues, nValueReferences);
+    if (c->m.s.mode == MODE_INTERMEDIATE)
+        return set_intermediate(c, valueReferences, nValueReferences, values);
     for (i = 0; i < nValueReferences; ++i) {
         BsmCall call = bsm_set_real(&c->m, valueReferences[i], values[i],
                                     (c->m.s.mode & SETUP_MODES) != 0,
@@ -730,6 +812,19 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance,
                                              values, "fmi3GetOutputDerivatives"));
 }
 
+/* Before a step with intermediate inputs: their mean slope over the step, from the values the
+ * importer gives at its end, for the stepper's df/dt (the stage values come from the importer
+ * at each stage time). */
+static void intermediate_slopes(Fmi3Instance *c, double h) {
+    int k;
+    double u_end[BSM_DIM(NU)];
+    c->m.saved = c->m.s; /* inputs not set in the callback stay at those of the step start */
+    memcpy(c->u_between, c->m.s.u, sizeof(c->u_between));
+    intermediate_inputs(c, c->m.s.time + h, u_end);
+    for (k = 0; k < NU; ++k)
+        if (c->between[k]) c->m.s.du[k] = (u_end[k] - c->m.s.u[k]) / h;
+}
+
 fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
                       fmi3Float64 communicationStepSize,
                       fmi3Boolean noSetFMUStatePriorToCurrentPoint,
@@ -752,6 +847,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
         return fmi3Error;
     }
     c->m.s.time = currentCommunicationPoint;
+    if (c->n_between > 0) intermediate_slopes(c, communicationStepSize);
     st = bsm_do_step(&c->m, communicationStepSize);
     *lastSuccessfulTime = c->m.s.time;
     if (st != BSM_OK) return fail(c, st);

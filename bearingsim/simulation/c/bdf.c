@@ -4,10 +4,12 @@
  *
  * The model functions are CasADi-generated C, called through pointers: ode(t, x, u, p) ->
  * xdot, jac(t, x, u, p, out) -> (d/dt, d/dx, d/du, d/dp) of which d/dx (compressed columns) is
- * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's, on the
- * unknowns in a fill-reducing order (bearingsim.simulation.ordering, passed in): partial
- * pivoting that eliminates the structural nonzeros only and solves on the factors' nonzeros
- * (on the ball-level models a dense LU, LAPACK's, cost more than the right-hand side).
+ * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's sparse one,
+ * on the unknowns in a fill-reducing order: the matrix in compressed columns on the pattern
+ * of J and the diagonal in that order (bearingsim.simulation.ordering.newton_pattern, passed
+ * in), the pivot order and fill pattern found once and reused while the pivots stay
+ * acceptable (on the ball-level models a dense LU, LAPACK's, cost more than the right-hand
+ * side).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -24,17 +26,16 @@ typedef struct {
   BsmBdfHistory history;
   int n, n_u, n_p, n_q;
   bsm_fn ode, jac, signal;
-  const bsm_int *jac_colind, *jac_row;
   bsm_int jac_nnz;
-  int *lu_order, *lu_position; /* unknown lu_order[i] is row i of the LU; and inverse */
+  const int *jac_slot, *diag_slot; /* nonzero of J / of the diagonal in a_val */
+  int *lu_order; /* unknown lu_order[i] is row and column i of the LU */
   double *p, *q, *u;
   double t_bound;
   const double **arg;
   double **res;
   bsm_int *iw;
   double *w;
-  double *jac_nz, *LU, *permuted, *x0;
-  int *lu_work;
+  double *jac_nz, *a_val, *permuted, *x0;
   BsmLu factors;
 } bsm_bdf;
 
@@ -82,25 +83,19 @@ static int eval_jac(void *model, double t, const double *x) {
   return all_finite(b->jac_nz, b->jac_nnz) ? BSM_BDF_OK : BSM_BDF_NOT_FINITE;
 }
 
-/* The LU factors of I - c J with the unknowns in the LU order (row major); nonzero if
- * singular. */
+/* The LU factors of I - c J with the unknowns in the LU order; nonzero if singular. */
 static int factorize(void *model, double c) {
   bsm_bdf *b = model;
-  int n = b->n;
-  memset(b->LU, 0, sizeof(double) * (size_t)n * n);
-  for (int i = 0; i < n; ++i) b->LU[(size_t)i * n + i] = 1.0;
-  for (int col = 0; col < n; ++col) {
-    size_t j = (size_t)b->lu_position[col];
-    for (bsm_int k = b->jac_colind[col]; k < b->jac_colind[col + 1]; ++k)
-      b->LU[(size_t)b->lu_position[b->jac_row[k]] * n + j] -= c * b->jac_nz[k];
-  }
-  return bsm_lu_factor(b->LU, n, &b->factors, b->lu_work);
+  memset(b->a_val, 0, sizeof(double) * (size_t)b->factors.a_start[b->n]);
+  for (int i = 0; i < b->n; ++i) b->a_val[b->diag_slot[i]] = 1.0;
+  for (bsm_int k = 0; k < b->jac_nnz; ++k) b->a_val[b->jac_slot[k]] -= c * b->jac_nz[k];
+  return bsm_lu_factor(&b->factors, b->a_val);
 }
 
 /* rhs = (I - c J)^-1 rhs */
 static void solve(void *model, double *rhs) {
   bsm_bdf *b = model;
-  bsm_lu_solve(&b->factors, b->n, b->lu_order, b->permuted, rhs);
+  bsm_lu_solve(&b->factors, b->lu_order, b->permuted, rhs);
 }
 
 static const BsmBdfOps KERNEL_OPS = {eval_f, eval_jac, factorize, solve};
@@ -109,21 +104,24 @@ void bsm_bdf_free(bsm_bdf *b) {
   if (!b) return;
   free(b->p); free(b->q); free(b->u);
   free(b->arg); free(b->res); free(b->iw); free(b->w);
-  free(b->jac_nz); free(b->LU); free(b->permuted); free(b->x0);
-  free(b->lu_order); free(b->lu_position); free(b->lu_work);
+  free(b->jac_nz); free(b->a_val); free(b->permuted); free(b->x0);
+  free(b->lu_order);
   BsmLu *c = &b->factors;
-  free(c->piv); free(c->l_start); free(c->l_index); free(c->l_val);
-  free(c->u_start); free(c->u_index); free(c->u_val); free(c->inv_diag);
+  free(c->row_of); free(c->step_of); free(c->l_start); free(c->l_index); free(c->l_val);
+  free(c->u_start); free(c->u_index); free(c->u_pos); free(c->u_val); free(c->ur_start);
+  free(c->ur_index); free(c->ur_val); free(c->inv_diag); free(c->x); free(c->work);
   free(b->core.D); free(b->core.work);
   free(b);
 }
 
 /* A solver at (t0, x0) integrating towards t_bound; NULL if out of memory. sz_*: the largest
  * work sizes of the three functions; order: the unknowns in the order of the LU (a
- * permutation of 0 .. n-1). */
+ * permutation of 0 .. n-1); a_start, a_index: the pattern of I - c J in that order
+ * (compressed columns); jac_slot, diag_slot: where J's nnz nonzeros and the diagonal are in
+ * it (the pattern and slots are kept by the caller for the solver's life). */
 bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, bsm_fn signal,
-                     const bsm_int *jac_colind, const bsm_int *jac_row, bsm_int nnz,
-                     const int *order, const double *p, const double *q,
+                     bsm_int nnz, const int *order, const int *a_start, const int *a_index,
+                     const int *jac_slot, const int *diag_slot, const double *p, const double *q,
                      bsm_int sz_arg, bsm_int sz_res, bsm_int sz_iw, bsm_int sz_w,
                      double rtol, double atol, double max_step, double t0, double t_bound,
                      const double *x0) {
@@ -131,8 +129,8 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   if (!b) return 0;
   b->n = n; b->n_u = n_u; b->n_p = n_p; b->n_q = n_q;
   b->ode = ode; b->jac = jac; b->signal = signal;
-  b->jac_colind = jac_colind; b->jac_row = jac_row;
   b->jac_nnz = nnz;
+  b->jac_slot = jac_slot; b->diag_slot = diag_slot;
   b->t_bound = t_bound;
   size_t nn = (size_t)n * n;
   b->p = malloc(sizeof(double) * (n_p + 1));
@@ -143,29 +141,36 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->iw = calloc(sz_iw + 1, sizeof(bsm_int));
   b->w = calloc(sz_w + 1, sizeof(double));
   b->jac_nz = calloc(nnz + 1, sizeof(double));
-  b->LU = calloc(nn, sizeof(double));
+  b->a_val = calloc(a_start[n] + 1, sizeof(double));
   b->permuted = calloc(n, sizeof(double));
   b->x0 = calloc(n, sizeof(double));
   b->lu_order = calloc(n, sizeof(int));
-  b->lu_position = calloc(n, sizeof(int));
-  b->lu_work = calloc(2 * (size_t)n, sizeof(int));
   BsmLu *c = &b->factors;
   size_t half = nn / 2 + 1; /* strictly lower or upper triangle */
-  c->piv = calloc(n, sizeof(int));
+  c->n = n; c->keep_order = 1; c->a_start = a_start; c->a_index = a_index;
+  c->row_of = calloc(n + 1, sizeof(int));
+  c->step_of = calloc(n + 1, sizeof(int));
+  c->work = calloc(3 * (size_t)n + 1, sizeof(int));
   c->l_start = calloc(n + 1, sizeof(int));
   c->l_index = calloc(half, sizeof(int));
   c->l_val = calloc(half, sizeof(double));
   c->u_start = calloc(n + 1, sizeof(int));
   c->u_index = calloc(half, sizeof(int));
+  c->u_pos = calloc(half, sizeof(int));
   c->u_val = calloc(half, sizeof(double));
+  c->ur_start = calloc(n + 1, sizeof(int));
+  c->ur_index = calloc(half, sizeof(int));
+  c->ur_val = calloc(half, sizeof(double));
   c->inv_diag = calloc(n, sizeof(double));
+  c->x = calloc(n, sizeof(double));
   BsmBdf *core = &b->core;
   core->D = calloc((size_t)BSM_BDF_D_ROWS * n, sizeof(double));
   core->work = calloc((size_t)BSM_BDF_WORK_VECTORS * n, sizeof(double));
   int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
-           b->LU && b->permuted && b->x0 && b->lu_order && b->lu_position && b->lu_work &&
-           c->piv && c->l_start && c->l_index && c->l_val && c->u_start && c->u_index &&
-           c->u_val && c->inv_diag && core->D && core->work;
+           b->a_val && b->permuted && b->x0 && b->lu_order && c->row_of && c->step_of &&
+           c->work && c->l_start && c->l_index && c->l_val && c->u_start && c->u_index &&
+           c->u_pos && c->u_val && c->ur_start && c->ur_index && c->ur_val && c->inv_diag &&
+           c->x && core->D && core->work;
   if (!ok) {
     bsm_bdf_free(b);
     return 0;
@@ -173,10 +178,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   memcpy(b->p, p, sizeof(double) * n_p);
   memcpy(b->q, q, sizeof(double) * n_q);
   memcpy(b->x0, x0, sizeof(double) * n);
-  for (int i = 0; i < n; ++i) {
-    b->lu_order[i] = order[i];
-    b->lu_position[order[i]] = i;
-  }
+  memcpy(b->lu_order, order, sizeof(int) * n);
   core->n = n;
   core->rtol = rtol;
   core->atol = atol;
@@ -214,6 +216,9 @@ int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, i
 
 double bsm_bdf_time(const bsm_bdf *b) { return b->history.t; }
 void bsm_bdf_state(const bsm_bdf *b, double *x) { memcpy(x, b->core.D, sizeof(double) * b->n); }
+/* The core's counters, then the LU's fresh factorisations (pivot order and fill pattern found
+ * anew) */
 void bsm_bdf_stats(const bsm_bdf *b, long long *out) {
   memcpy(out, b->history.stats, sizeof(long long) * BSM_BDF_N_STATS);
+  out[BSM_BDF_N_STATS] = b->factors.pivotings;
 }

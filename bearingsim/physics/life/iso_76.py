@@ -1,0 +1,194 @@
+"""ISO 76:2006 static load ratings: of ball bearings the factor f0, the basic static radial load
+rating C0, the static factors X0, Y0 and the static equivalent load P0; of cylindrical roller
+bearings ``C0r = 44 (1 - Dwe cos a / Dpw) i Z Lwe Dwe cos a`` [N, mm].
+
+SI units at the interface (m, N, rad); the ISO formulas are evaluated in their own units (mm, N)
+inside. Functions take floats, numpy arrays or CasADi SX; table look-ups are piecewise linear.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from bearingsim import symbolic as op
+from bearingsim.checks import guard_public_functions
+from bearingsim.physics.geometry import pitch_ratio
+from bearingsim.physics.life.tables import (
+    MM_PER_M,
+    check_ball_set,
+    check_roller_set,
+    interp,
+    within_table,
+)
+from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
+
+if TYPE_CHECKING:
+    from bearingsim.catalog import BearingGeometry
+
+__all__ = [
+    "static_factor",
+    "static_load_rating",
+    "static_load_factors",
+    "static_equivalent_load",
+    "roller_static_load_rating",
+]
+
+# Verification (tests/physics/test_published_examples.py; docs/physics.md, "Verification"):
+# * f0: the ISO 76 f0 at the Dw/dm of those four rows equals the f0 NSK prints within 0.05, and
+#   f0 Z Dw^2 reproduces NSK's C0r within 0.5 %; elsewhere corroborated by the same public
+#   implementations and by the 4 200 MPa Hertz basis of ISO 76 (tests/physics/test_life.py).
+# ISO 76:2006, Table 2: f0 for radial contact and angular contact groove ball bearings.
+_F0_GAMMA = tuple(round(0.01 * j, 2) for j in range(41))
+_F0 = (14.7, 14.9, 15.1, 15.3, 15.5, 15.7, 15.9, 16.1, 16.3, 16.5, 16.4, 16.1, 15.9, 15.6, 15.4,
+       15.2, 14.9, 14.7, 14.4, 14.2, 14.0, 13.7, 13.5, 13.2, 13.0, 12.8, 12.5, 12.3, 12.1, 11.8,
+       11.6, 11.4, 11.2, 10.9, 10.7, 10.5, 10.3, 10.0, 9.8, 9.6, 9.4)
+
+
+def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
+    """ISO 76:2006 factor f0 of radial and angular contact groove ball bearings [N/mm^2].
+
+    Table 2 of ISO 76 (based on 4 200 MPa Hertz pressure at the most heavily loaded contact),
+    interpolated linearly in ``gamma = Dw cos(a) / dm`` from 0 to 0.40. It is also the f0 of the
+    relative axial load ``f0 Fa / C0`` in :func:`xy_factors`.
+
+    Parameters are those of :func:`dynamic_load_rating` (contact angle [rad] in [0, 45] deg,
+    the range of the ISO 76 / ISO 281 ball bearing tables used here). Returns f0 [N/mm^2].
+    """
+    check_diameter(ball_diameter, "ball_diameter", "static_factor", MAX_BALL_DIAMETER)
+    check_diameter(pitch_diameter, "pitch_diameter", "static_factor")
+    check_range(contact_angle, "contact_angle", "rad", 0.0, np.pi / 4, where="static_factor")
+    gamma = pitch_ratio(ball_diameter, pitch_diameter, contact_angle)
+    return interp(within_table(gamma, _F0_GAMMA, "static_factor"), _F0_GAMMA, _F0)
+
+
+def static_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=0.0, rows=1):
+    """ISO 76:2006 basic static radial load rating ``C0 = f0 i Z Dw^2 cos(a)`` [N] (Dw in mm).
+
+    Parameters are those of :func:`dynamic_load_rating`. Returns C0 [N].
+    """
+    check_ball_set(ball_diameter, pitch_diameter, ball_count, contact_angle, rows,
+                   "static_load_rating")
+    f0 = static_factor(ball_diameter, pitch_diameter, contact_angle)
+    dw_mm = ball_diameter * MM_PER_M
+    return f0 * rows * ball_count * dw_mm * dw_mm * op.cos(contact_angle)
+
+
+# ISO 76:2006, Table 1: static factors of single-row radial ball bearings. Deep groove:
+# X0 = 0.6, Y0 = 0.5. Single-row angular contact: X0 = 0.5 and Y0 by nominal contact angle below,
+# interpolated linearly in the angle between the rows (our choice; ISO 76 lists the rows only).
+# The standard's text was not retrievable; checked against published catalogue values
+# (tests/physics/test_published_tables.py, test_static_factors_*):
+# * Deep groove 0.6, 0.5: NSK CAT. No. E1102e, deep-groove tables pp. B8-B11 (e.g. B9: "P0 =
+#   0.6 Fr + 0.5 Fa" for Fa/Fr > 0.8, "P0 = Fr" for Fa/Fr <= 0.8, i.e. the maximum).
+# * 15, 25, 30, 40 deg (0.46, 0.38, 0.33, 0.26; X0 0.5): NSK E1102e prints them ("Single, DT")
+#   with every angular contact table, pp. B50-B61 (e.g. B55, B57), and "DB or DF" X0 1, Y0 0.92,
+#   0.76, 0.66, 0.52 beside them: exactly twice the single-row Y0 at every angle.
+# * 40 deg also: SKF General Catalogue 6000 (Russian ed., 2006 data), p. 415, series 72 B/73 B
+#   (40 deg, p. 410): single and tandem P0 = 0.5 Fr + 0.26 Fa (P0 = Fr if larger); DB/DF
+#   P0 = Fr + 0.52 Fa.
+# * 30, 45 deg through double-row bearings (Y0 twice the single-row one, as NSK shows): SKF
+#   p. 440, Table 3, P0 = Fr + Y0 Fa with Y0 0.66 (32 A/33 A, 30 deg), 0.52 (33 DNRCBM, 40 deg),
+#   0.44 (33 D, 45 deg), so 45 deg single row = 0.22.
+# * 35 deg: SKF p. 455, four-point contact QJ 2/QJ 3 (35 deg, p. 452; rated as a double row):
+#   P0 = Fr + 0.58 Fa, so single row 0.29.
+# * 20 deg (0.42), and every single-row (0.46 ... 0.22 at 15 ... 45 deg) and double-row (0.92
+#   ... 0.44) Y0: GOST 18854-94 (ISO 76-87), Table 2, p. 5; the 20 deg row also in NSK's super
+#   precision catalogue, Table 2.1 p. 146, labelled 18 deg (X0 0.5, Y0 0.42; DB/DF 1, 0.84).
+_Y0_ANGLE_DEG = (15.0, 20.0, 25.0, 30.0, 35.0, 40.0, 45.0)
+_Y0_ANGULAR = (0.46, 0.42, 0.38, 0.33, 0.29, 0.26, 0.22)
+_X0_ANGULAR = 0.5
+_X0_DEEP_GROOVE, _Y0_DEEP_GROOVE = 0.6, 0.5
+
+
+def static_load_factors(geometry: BearingGeometry) -> tuple[float, float]:
+    """ISO 76:2006 static radial and axial load factors ``(X0, Y0)`` [-] of a single-row bearing.
+
+    Deep groove: ``(0.6, 0.5)``. Angular contact: ``X0 = 0.5`` and ``Y0`` 0.46, 0.42, 0.38,
+    0.33, 0.29, 0.26, 0.22 at 15, 20, 25, 30, 35, 40, 45 deg (ISO 76 Table 1), linear in the
+    contact angle between these rows. Checked against NSK CAT. No. E1102e pp. B8-B11 and
+    B50-B61 and SKF General Catalogue 6000 pp. 415, 440, 455; the 20 deg row is unverified
+    (see the comment above :data:`_Y0_ANGULAR` in the source).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing; its nominal contact angle [rad] selects the row.
+
+    Returns
+    -------
+    (X0, Y0) : tuple of float [-]
+
+    Raises
+    ------
+    ParameterError
+        For an angular contact bearing whose contact angle lies outside the ISO 76 rows,
+        [15, 45] deg.
+    """
+    if geometry.bearing_type == "deep_groove":
+        return _X0_DEEP_GROOVE, _Y0_DEEP_GROOVE
+    alpha_deg = round(math.degrees(geometry.contact_angle), 9)
+    check_range(alpha_deg, "contact_angle", "deg", _Y0_ANGLE_DEG[0], _Y0_ANGLE_DEG[-1],
+                where=f"static_load_factors ({geometry.designation}, ISO 76 angular contact)")
+    return _X0_ANGULAR, float(np.interp(alpha_deg, _Y0_ANGLE_DEG, _Y0_ANGULAR))
+
+
+def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
+    """ISO 76 static equivalent load ``P0 = max(Fr, X0 Fr + Y0 Fa)`` [N] (smooth maximum).
+
+    ``X0, Y0`` from :func:`static_load_factors` (deep groove 0.6, 0.5; angular contact 0.5 and
+    Y0 from 0.46 at 15 deg to 0.22 at 45 deg, ISO 76:2006 Table 1). The maximum is smoothed
+    with a width of 1 N (:func:`bearingsim.symbolic.smooth_max0`) so that it can enter equations.
+
+    Parameters
+    ----------
+    Fr, Fa : float, array or casadi.SX
+        Radial and axial load [N], >= 0.
+    geometry : BearingGeometry
+        The bearing (single row).
+
+    Returns
+    -------
+    float, array or casadi.SX
+        ``P0`` [N].
+    """
+    check_range(Fr, "Fr", "N", 0.0, where="static_equivalent_load")
+    check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
+    x0, y0 = static_load_factors(geometry)
+    return Fr + op.smooth_max0((x0 - 1.0) * Fr + y0 * Fa, 1.0)
+
+
+def roller_static_load_rating(roller_diameter: float, pitch_diameter: float, roller_count: int,
+                              length: float, rows: int = 1) -> float:
+    """ISO 76 basic static radial load rating of a cylindrical roller bearing [N].
+
+    ``C0r = 44 (1 - Dwe/Dpw) i Z Lwe Dwe`` (contact angle 0), in mm and N.
+
+    Parameters
+    ----------
+    roller_diameter, pitch_diameter : float
+        Dwe and Dpw [m].
+    roller_count : int
+        Z.
+    length : float
+        Lwe [m].
+    rows : int
+        i.
+
+    Returns
+    -------
+    float
+        C0r [N].
+    """
+    where = "roller_static_load_rating"
+    check_roller_set(roller_diameter, pitch_diameter, roller_count, length, where)
+    check_count(rows, "rows", 1, where=where)
+    gamma = roller_diameter / pitch_diameter
+    return float(44.0 * (1.0 - gamma) * rows * roller_count * length * 1e3
+                 * roller_diameter * 1e3)
+
+
+# no NaN in or out (bearingsim.checks); an unloaded contact's life is infinite
+guard_public_functions(globals(), infinite_results=True)

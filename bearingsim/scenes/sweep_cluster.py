@@ -1,0 +1,197 @@
+"""Where a sweep's points run, and how they are fed to the workers.
+
+**The cluster.** Given a scheduler address, a sweep connects to it (``dask scheduler`` and
+``dask worker`` processes started elsewhere). Otherwise it starts a LocalCluster whose worker
+processes are forked from one server process that imported bearingsim once
+(:mod:`multiprocessing`'s ``forkserver`` with ``bearingsim.scenes.sweep_worker`` preloaded):
+N workers cost one import of bearingsim instead of N (on a machine with few cores the client
+plans meanwhile, and the imports would compete with it), a later sweep in the same Python
+process forks its workers from the running server in a fraction of a second, and a forked
+worker exits without the teardown of a spawned interpreter. One thread per worker (the
+solvers hold the GIL), no dashboard.
+
+**Feeding.** Chunks of points go out as the workers finish them, a few tasks per worker in
+flight (one running and the next queued on the worker, so a worker never waits for the
+client). Each chunk is sized from the median wall time of the points finished so far
+(:func:`chunk_size`: about :data:`CHUNK_SECONDS` of work per task, smaller towards the end of
+the sweep so the workers finish together); until the first point is back, chunks hold one
+point. The client does nothing heavy while the workers run: it records rows and submits the
+next chunk.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import statistics
+import time
+from collections.abc import Iterator
+from typing import Any
+
+from bearingsim.scenes.sampling import SweepError
+from bearingsim.scenes.sweep_worker import Job, run_chunk
+
+__all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "distributed_module",
+           "connect", "chunk_size", "ChunkFeeder"]
+
+CHUNK_SECONDS = 0.25
+"""Target wall time of one task [s]: a chunk holds about this much integration."""
+CHUNKS_PER_WORKER = 4
+"""At least this many chunks per worker of the points still to go (balance at the end)."""
+TASKS_PER_WORKER = 2
+"""Tasks in flight per worker thread: one running, one queued on the worker."""
+WORKERS_RECOUNT_S = 2.0
+"""How often the worker threads are counted again during a sweep [s] (on a cluster, workers
+join and leave)."""
+WORKER_MODULE = "bearingsim.scenes.sweep_worker"
+"""Imported by the fork server (and preloaded by every worker)."""
+
+
+def distributed_module():
+    """The ``distributed`` package, or a named error saying how to install it."""
+    try:
+        import distributed
+    except ImportError:
+        raise SweepError("sweeps run on dask.distributed, which is not installed: "
+                         "pip install 'bearingsim[dask]'") from None
+    return distributed
+
+
+def _forked_local_cluster(n_workers: int):
+    """A LocalCluster of ``n_workers`` single-thread worker processes forked from a server
+    that imported bearingsim (started on first use, kept for the life of this process);
+    returns when every worker is up."""
+    import multiprocessing
+
+    import dask
+    import distributed.utils
+    from distributed import LocalCluster
+
+    # distributed's first forkserver context would import its optional packages (pandas, ...)
+    # into this process to preload them in the server (while the client plans); the workers
+    # need bearingsim's modules instead
+    distributed.utils._forkserver_preload_set = True
+    multiprocessing.get_context("forkserver").set_forkserver_preload(
+        ["distributed", WORKER_MODULE])
+    # the variables bearingsim reads at run time go to every worker as they are now (the
+    # fork server keeps the environment it started with)
+    env = {k: v for k, v in os.environ.items() if k.startswith("BEARINGSIM_")}
+    with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver"}):
+        return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                            preload=[WORKER_MODULE], env=env, dashboard_address=None,
+                            # no dashboard; the scheduler's HTTP server on a free port
+                            scheduler_kwargs={"dashboard_address": ":0"},
+                            silence_logs=logging.CRITICAL)
+
+
+def connect(scheduler: str | None, n_workers: int) -> tuple[Any, Any]:
+    """``(client, cluster)``: a client of the scheduler at ``scheduler`` (cluster None), or of
+    a new LocalCluster of ``n_workers`` forked workers (see the module's docstring)."""
+    distributed = distributed_module()
+    if scheduler:
+        return distributed.Client(scheduler), None
+    cluster = _forked_local_cluster(n_workers)
+    return distributed.Client(cluster), cluster
+
+
+def chunk_size(point_s: float, n_points: int, n_workers: int) -> int:
+    """Points per task: about :data:`CHUNK_SECONDS` of work, and at least
+    :data:`CHUNKS_PER_WORKER` tasks per worker.
+
+    Parameters
+    ----------
+    point_s : float
+        Measured wall time of one point [s] (NaN: not known yet, one point a task).
+    n_points, n_workers : int
+        Points still to run and workers to run them.
+    """
+    by_time = CHUNK_SECONDS / max(point_s, 1e-4) if math.isfinite(point_s) else 1.0
+    by_balance = n_points / (CHUNKS_PER_WORKER * max(n_workers, 1))
+    return max(1, min(int(by_time), math.ceil(by_balance)))
+
+
+class ChunkFeeder:
+    """Chunks of points submitted as the workers finish them; iterate for the results.
+
+    Parameters
+    ----------
+    client : distributed.Client
+    models : dict
+        Structure key -> future of the model's :class:`~bearingsim.scenes.sweep_worker.
+        ModelPayload` on the workers.
+    jobs : list of (structure key, Job)
+        The points to run, in order.
+    n_workers : int
+        Worker threads to keep busy.
+    timeout : float, optional
+        Time budget of one point [s].
+    chunk : int, optional
+        Fixed points per task (None: sized from the measured point times).
+    point_s : float
+        A point's wall time measured beforehand [s] (NaN: none).
+    """
+
+    def __init__(self, client, models: dict[tuple, Any], jobs: list[tuple[tuple, Job]],
+                 n_workers: int, timeout: float | None, chunk: int | None = None,
+                 point_s: float = math.nan):
+        self.client = client
+        self.models = models
+        self.todo = list(jobs)
+        self.n_workers = max(1, n_workers)
+        self.timeout = timeout
+        self.chunk = chunk
+        self.times: list[float] = [] if math.isnan(point_s) else [point_s]
+        self.largest = 0
+        """Most points in one task so far."""
+        self.running: dict[Any, list[Job]] = {}
+        self._counted = time.monotonic()
+        # results come with the futures (fetched by the client's event loop, not one
+        # round trip per chunk after it is reported done)
+        self.done = distributed_module().as_completed(with_results=True, raise_errors=False)
+
+    @property
+    def point_s(self) -> float:
+        """Median wall time of the points finished so far [s] (NaN: none yet)."""
+        return statistics.median(self.times) if self.times else math.nan
+
+    def _size(self) -> int:
+        if self.chunk is not None:
+            return self.chunk
+        return chunk_size(self.point_s, len(self.todo), self.n_workers)
+
+    def _fill(self) -> None:
+        """Submit chunks until :data:`TASKS_PER_WORKER` per worker are in flight."""
+        if time.monotonic() - self._counted > WORKERS_RECOUNT_S:  # workers joined or left
+            self.n_workers = max(1, sum(self.client.nthreads().values()))
+            self._counted = time.monotonic()
+        while self.todo and len(self.running) < TASKS_PER_WORKER * self.n_workers:
+            key = self.todo[0][0]
+            size = self._size()
+            part = []
+            while self.todo and len(part) < size and self.todo[0][0] == key:
+                part.append(self.todo.pop(0)[1])
+            task = self.client.submit(run_chunk, self.models[key], part, self.timeout,
+                                      pure=False,
+                                      key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
+            self.running[task] = part
+            self.done.add(task)
+            self.largest = max(self.largest, len(part))
+
+    def __iter__(self) -> Iterator[tuple[list[Job], list[dict[str, Any]] | BaseException]]:
+        """``(jobs, rows)`` of each finished chunk, or ``(jobs, exception)`` of a chunk lost
+        for good."""
+        self._fill()
+        for task, result in self.done:
+            part = self.running.pop(task)
+            # an error comes as (type, exception, traceback), a cancelled task as its error
+            rows = result[1] if task.status == "error" else result
+            if not isinstance(rows, BaseException):
+                self.times += [r["wall_s"] for r in rows if r["status"] == "ok"]
+            self._fill()
+            yield part, rows
+
+    def cancel(self) -> None:
+        """Cancel the chunks in flight; submit no more."""
+        self.todo.clear()
+        self.client.cancel(list(self.running))

@@ -1,0 +1,95 @@
+"""Where a sweep's points run: the LocalCluster's workers forked from a server that imported
+bearingsim, each with the environment of the sweep that started it; chunks fed as the workers
+finish them, one point a task until a point's time is known, then sized from it."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import pytest
+
+from bearingsim.scenes import load_scene
+from bearingsim.scenes.sweep import _plan, grid_points, parse_grid
+from bearingsim.scenes.sweep_cluster import TASKS_PER_WORKER, ChunkFeeder, chunk_size, connect
+
+distributed = pytest.importorskip("distributed")
+
+SCENE = """outputs = ["Rs"]
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+[inputs]
+shaft_speed = 300.0
+[simulation]
+t_end = 0.02
+n_points = 3
+"""
+
+
+def _worker_view() -> tuple[int, str | None, bool]:
+    """(parent process id, BEARINGSIM_SWEEP_MARK, sweep worker module imported) in a worker."""
+    return (os.getppid(), os.environ.get("BEARINGSIM_SWEEP_MARK"),
+            "bearingsim.scenes.sweep_worker" in sys.modules)
+
+
+def test_forked_workers_see_the_environment_of_their_sweep(monkeypatch):
+    """The fork server keeps the environment it started with; a later sweep's workers still
+    see the BEARINGSIM_ variables as they are when that sweep starts."""
+    seen = []
+    for mark in ("first", "second"):
+        monkeypatch.setenv("BEARINGSIM_SWEEP_MARK", mark)
+        client, cluster = connect(None, 1)
+        try:
+            [view] = client.run(_worker_view).values()
+        finally:
+            client.close()
+            cluster.close()
+        seen.append(view)
+    assert [v[1] for v in seen] == ["first", "second"]
+    # forked from the server (not spawned by this process), bearingsim already imported
+    assert all(v[0] != os.getpid() and v[2] for v in seen)
+    assert seen[0][0] == seen[1][0]  # one server for both sweeps
+
+
+def _feed(tmp_path, n_points: int, **kwargs) -> tuple[list[int], list[int]]:
+    """(points per task in submission order, point numbers returned) of a ChunkFeeder on one
+    in-process worker."""
+    path = tmp_path / "bearing.toml"
+    path.write_text(SCENE)
+    points = grid_points(parse_grid(
+        [f"inputs.shaft_speed={','.join(str(100 + 10 * k) for k in range(n_points))}"]))
+    plan = _plan(load_scene(path), points)
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=":0") as client:
+        models = {key: client.scatter(p, broadcast=True) for key, p in plan.payloads.items()}
+        feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in plan.jobs],
+                             1, None, **kwargs)
+        sizes, returned = [], []
+        for part, rows in feeder:
+            sizes.append(len(part))
+            assert [r["index"] for r in rows] == [j.index for j in part]
+            assert all(r["status"] == "ok" for r in rows), rows
+            returned += [r["index"] for r in rows]
+    return sizes, returned
+
+
+def test_chunks_hold_one_point_until_a_point_time_is_known(tmp_path):
+    sizes, returned = _feed(tmp_path, 6)
+    assert sorted(returned) == list(range(6))  # every point once
+    assert sizes[:TASKS_PER_WORKER] == [1] * TASKS_PER_WORKER
+
+
+def test_chunks_are_sized_from_a_measured_point_time(tmp_path):
+    """A point of 1 ms: the first tasks take a quarter of what is left (the balance bound of
+    chunk_size for one worker); together they hold every point once."""
+    sizes, returned = _feed(tmp_path, 24, point_s=0.001)
+    assert sorted(returned) == list(range(24))
+    assert sizes[0] == chunk_size(0.001, 24, 1) == 6
+    assert sizes[1] == chunk_size(0.001, 18, 1) == 5
+    assert sum(sizes) == 24
+
+
+def test_a_fixed_chunk_size_is_kept(tmp_path):
+    sizes, _ = _feed(tmp_path, 7, chunk=3)
+    assert sizes == [3, 3, 1]

@@ -1,0 +1,122 @@
+"""A sweep on a real dask deployment: ``dask scheduler`` and two ``dask worker`` processes
+started from the command line, talking TCP on 127.0.0.1 as on a cluster; the sweep reaches them
+with ``--scheduler tcp://...``. A worker killed mid-sweep loses nothing: the scheduler re-runs
+its chunks on the other worker."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from bearingsim.scenes import load_scene, run_scene
+from bearingsim.scenes.sweep import grid_points, parse_grid, run_sweep
+
+distributed = pytest.importorskip("distributed")
+
+WORKTREE = Path(__file__).resolve().parents[2]
+DASK = Path(sys.executable).parent / "dask"
+SCENE = """outputs = ["Rs", "M_shaft"]
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+[inputs]
+shaft_speed = 300.0
+[simulation]
+t_end = 0.05
+n_points = 3
+"""
+
+
+def _start(args: list[str]) -> subprocess.Popen:
+    env = {**os.environ, "PYTHONPATH": str(WORKTREE)}
+    return subprocess.Popen([str(DASK), *args], env=env, start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def _stop(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+
+
+@pytest.fixture()
+def deployment(tmp_path):
+    """(scheduler address, worker processes): one scheduler and two single-thread workers,
+    each its own ``dask`` command, preloading bearingsim's sweep worker module."""
+    if not DASK.is_file():
+        pytest.skip("the dask command line is not installed")
+    info = tmp_path / "scheduler.json"
+    procs = [_start(["scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
+                     "--scheduler-file", str(info)])]
+    try:
+        deadline = time.monotonic() + 90
+        while not info.is_file() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        address = json.loads(info.read_text())["address"]
+        workers = [_start(["worker", address, "--nthreads", "1", "--nworkers", "1",
+                           "--no-dashboard", "--host", "127.0.0.1",
+                           "--preload", "bearingsim.scenes.sweep_worker"]) for _ in range(2)]
+        procs += workers
+        with distributed.Client(address) as client:
+            client.wait_for_workers(2, timeout=120)
+        yield address, workers
+    finally:
+        for proc in reversed(procs):
+            _stop(proc)
+
+
+def test_sweep_through_the_command_line_on_a_tcp_scheduler(deployment, tmp_path):
+    address, _ = deployment
+    path = tmp_path / "bearing.toml"
+    path.write_text(SCENE)
+    out = tmp_path / "out"
+    done = subprocess.run(
+        [sys.executable, "-m", "bearingsim.cli", "sweep", str(path), "--grid",
+         "inputs.shaft_speed=100,200,300,400", "--scheduler", address, "--out", str(out),
+         "--no-progress"], env={**os.environ, "PYTHONPATH": str(WORKTREE)},
+        capture_output=True, text=True, timeout=240)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "4 point(s): 4 ok, 0 failed" in done.stdout
+    rows = list(csv.DictReader((out / "bearing.sweep.csv").open()))
+    assert [r["status"] for r in rows] == ["ok"] * 4
+    summary = json.loads((out / "bearing.sweep.json").read_text())
+    assert summary["scheduler"] == address
+    single = run_scene(load_scene(path).replace(inputs={"shaft_speed": 400.0}), write=False)
+    assert float(rows[3]["Rs [-]"]) == pytest.approx(float(single.series["Rs"][-1]),
+                                                     rel=1e-12)
+
+
+def test_a_worker_killed_mid_sweep_loses_nothing(deployment, tmp_path):
+    address, workers = deployment
+    path = tmp_path / "bearing.toml"
+    path.write_text(SCENE)
+    points = grid_points(parse_grid(["inputs.shaft_speed=" + ",".join(
+        str(100 + 25 * k) for k in range(24))]))
+    out = tmp_path / "out"
+    box: dict = {}
+    sweep = threading.Thread(target=lambda: box.update(res=run_sweep(
+        path, points, scheduler=address, out=out, progress=False, chunk=1)))
+    sweep.start()
+    table = out / "bearing.sweep.csv"
+    deadline = time.monotonic() + 180
+    while time.monotonic() < deadline and sweep.is_alive():
+        if table.is_file() and table.read_text().count("\n") >= 3:
+            break
+        time.sleep(0.05)
+    before = table.read_text().count("\n") - 1
+    _stop(workers[0])  # SIGKILL to the worker and its nanny: gone for good
+    sweep.join(300)
+    assert not sweep.is_alive()
+    res = box["res"]
+    assert before < len(points), "the worker must be killed mid-sweep"
+    assert len(res.rows) == len(points) and len(res.ok) == len(points), res.failures
+    assert [r["point"] for r in res.rows] == list(range(len(points)))

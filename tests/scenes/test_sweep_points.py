@@ -1,0 +1,123 @@
+"""Sweeps give, at every point, what a single run of the same point gives: every shipped scene
+over two points (post-processed quantities included), and the crash of issue 32
+(``bearingsim sweep scenes/double_layer_friction.toml --grid assembly.outer=61907,61909``:
+``TypeError: _total_loss() takes 1 positional argument but 2 were given``, no table)."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import json
+from pathlib import Path
+
+import pytest
+
+from bearingsim.scenes import load_scene, run_scene
+from bearingsim.scenes.analyses import operating_points, point_label
+from bearingsim.scenes.sweep import SweepError, grid_points, parse_grid, run_sweep
+
+distributed = pytest.importorskip("distributed")
+
+SCENES = sorted((Path(__file__).resolve().parents[2] / "scenes").glob("*.toml"))
+T_SHORT = 0.04
+"""Simulated time of the points [s] (short: the test compares, it does not study)."""
+
+
+@pytest.fixture(scope="module")
+def client():
+    """One in-process dask worker (threads): the sweep machinery without process start-up."""
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=":0") as c:
+        yield c
+
+
+def _single(scene, t_end, **args):
+    sim = dataclasses.replace(scene.simulation, t_end=t_end)
+    changed = scene.replace(simulation=sim, args={**scene.args, **args}) if args else \
+        scene.replace(simulation=sim)
+    return run_scene(changed, write=False).series
+
+
+def _single_point(scene, point):
+    """The table row of a single run of an analysis scene at one operating point."""
+    one = scene.replace(grid={k: [v] for k, v in point.items()}, cases=[])
+    [row] = run_scene(one, write=False).rows
+    return row
+
+
+@pytest.mark.parametrize("path", SCENES, ids=[p.stem for p in SCENES])
+def test_every_shipped_scene_sweeps_as_it_runs(path, client, tmp_path):
+    """Each row equals the single run of its point, with the same result columns: a
+    transient's final values with ``settled`` and its time constant, an analysis's table row
+    (steady outputs, natural frequencies by mode, statics columns)."""
+    scene = load_scene(path)
+    if scene.analysis == "transient":
+        t_end = min(scene.simulation.t_end, T_SHORT)
+        times = [t_end / 2, t_end]
+        points = grid_points(parse_grid([f"simulation.t_end={times[0]!r},{times[1]!r}"]))
+    else:  # two operating points: the scene's first, and its first key 25 % higher
+        first = {k: v for k, v in operating_points(scene)[0].items() if k != "name"}
+        key = next(iter(first))
+        points = [first, {**first, key: first[key] * 1.25}]
+    res = run_sweep(scene, points, client=client, out=tmp_path, progress=False)
+    assert [r["status"] for r in res.rows] == ["ok", "ok"], res.failures
+    results = [k for k in res.rows[0] if k not in ("point", *points[0], "status",
+                                                   "wall_s", "error")]
+    assert results
+    for k, row in enumerate(res.rows):
+        if scene.analysis == "transient":
+            single = {n: float(y[-1]) for n, y in _single(scene, times[k]).items()}
+            assert set(results) == set(single) | {"settled", "time_constant", "unsettled"}
+            assert isinstance(row["settled"], bool)
+        else:
+            labels = {point_label(key) for key in points[k]} | {"name"}
+            single = {n: v for n, v in _single_point(scene, points[k]).items()
+                      if n not in labels}
+            assert set(results) == set(single)
+        for name, value in single.items():
+            assert row[name] == pytest.approx(value, rel=1e-12, abs=0.0, nan_ok=True), name
+    table = list(csv.DictReader((tmp_path / f"{path.stem}.sweep.csv").open()))
+    assert [r["point"] for r in table] == ["0", "1"]
+    assert (tmp_path / f"{path.stem}.sweep.json").is_file()
+
+
+def test_issue_32_structural_grid_with_post_processed_quantities(client, tmp_path):
+    """The issue's command: two bearings (two models), five outputs of which three are computed
+    after the integration (total friction power, two ISO 281 lives); each row equals the single
+    run of its point and the table is written."""
+    scene = load_scene(SCENES[0].parent / "double_layer_friction.toml")
+    points = grid_points(parse_grid(["assembly.outer=61907,61909",
+                                     f"simulation.t_end={T_SHORT!r}"]))
+    res = run_sweep(scene, points, client=client, out=tmp_path, progress=False)
+    assert res.models_built == 2 and len(res.ok) == 2, res.failures
+    for row, outer in zip(res.rows, ("61907", "61909"), strict=True):
+        single = _single(scene, T_SHORT, outer=outer)
+        for name in ("Rs", "M_shaft", "P_loss_total", "inner_layer.L10h", "outer_layer.L10h"):
+            assert row[name] == pytest.approx(float(single[name][-1]), rel=1e-12), name
+        assert row["P_loss_total"] > 0
+    assert res.rows[0]["outer_layer.L10h"] != res.rows[1]["outer_layer.L10h"]
+    assert (tmp_path / "double_layer_friction.sweep.csv").is_file()
+
+
+def test_analysis_sweep_names_a_grid_input_left_without_value(client):
+    """A sweep replaces an analysis scene's grid: an input only the grid gave is named."""
+    scene = load_scene(SCENES[0].parent / "double_layer_rs.toml")
+    with pytest.raises(SweepError, match=r"inputs\.shaft_speed then has no value"):
+        run_sweep(scene, grid_points(parse_grid(["inputs.Fr=0,100"])), client=client,
+                  progress=False)
+
+
+def test_modes_sweep_plots_one_curve_per_value_of_the_second_key(client, tmp_path):
+    """A modes sweep over preload and speed: the mode frequencies as columns, and a figure
+    with one curve per speed (natural frequencies in one panel)."""
+    scene = load_scene(SCENES[0].parent / "duplex_modes.toml")
+    points = grid_points(parse_grid(["assembly.preload_force=500,1000",
+                                     "assembly.speed=0,200"]))
+    res = run_sweep(scene, points, client=client, out=tmp_path, progress=False)
+    assert len(res.ok) == 4, res.failures
+    assert "shaft.x" not in res.rows[0] and "radial x" in res.rows[0]
+    png = tmp_path / "duplex_modes.sweep.png"
+    assert png.is_file()
+    summary = json.loads((tmp_path / "duplex_modes.sweep.json").read_text())
+    assert summary["analysis"] == "modes"
+    assert {f["name"] for f in summary["files"]} >= {"duplex_modes.sweep.csv", png.name}
