@@ -99,6 +99,20 @@ def check_identifier(value: Any, name: str, where: str) -> str:
     """A name usable in dotted variable paths: a Python identifier (letters, digits and ``_``,
     not starting with a digit, no dots).
 
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    name : str
+        Argument name, for the message.
+    where : str
+        The component or function, for the message.
+
+    Returns
+    -------
+    str
+        ``value``, checked.
+
     Raises
     ------
     ParameterError
@@ -129,6 +143,21 @@ def check_arguments(func: Callable, args: tuple, kwargs: dict[str, Any], where: 
     """Check a call's arguments against ``func``'s signature and type hints (see
     :func:`checked`); ``label`` formats an argument's name in messages (e.g.
     ``"layer_options[{name!r}]"``).
+
+    Parameters
+    ----------
+    func : callable
+        The function or class whose signature and hints apply.
+    args : tuple
+        The call's positional arguments.
+    kwargs : dict
+        The call's keyword arguments.
+    where : str
+        The function, for the messages.
+    label : str
+        Format of an argument's name in messages, with a ``{name}`` field.
+    skip : tuple of str
+        Arguments whose type is not checked here.
 
     Raises
     ------
@@ -164,6 +193,18 @@ def checked(func: Callable | None = None, *, skip: tuple[str, ...] = ()) -> Call
     Hints that cannot be resolved (classes imported only for type checking) and ``Any`` are
     not checked; integers beyond the float range (``10**400``) are refused whatever the hint.
     ``skip`` names arguments whose type the function checks itself (with a better message).
+
+    Parameters
+    ----------
+    func : callable, optional
+        The function or class (None: ``checked(skip=...)`` returns the decorator).
+    skip : tuple of str
+        Arguments whose type the function checks itself.
+
+    Returns
+    -------
+    callable
+        The wrapped function, or the decorator when ``func`` is None.
 
     Raises
     ------
@@ -236,6 +277,18 @@ def finite_io(func: Callable, infinite_results: bool = False) -> Callable:
     (a housing of infinite outside diameter). Calls with a CasADi symbol among the arguments
     are passed through.
 
+    Parameters
+    ----------
+    func : callable
+        The physics function.
+    infinite_results : bool
+        Accept an infinite result where an argument is 0 or infinite.
+
+    Returns
+    -------
+    callable
+        The wrapped function.
+
     Raises
     ------
     ParameterError
@@ -296,7 +349,15 @@ def finite_io(func: Callable, infinite_results: bool = False) -> Callable:
 def guard_public_functions(namespace: dict[str, Any], infinite_results: bool = False) -> None:
     """Wrap every function named in ``namespace["__all__"]`` (a module's globals) with
     :func:`finite_io` (``infinite_results`` passed on); classes, constants and already
-    wrapped functions are left alone."""
+    wrapped functions are left alone.
+
+    Parameters
+    ----------
+    namespace : dict
+        A module's globals, with ``__all__``; changed in place.
+    infinite_results : bool
+        Passed on to :func:`finite_io`.
+    """
     for name in namespace.get("__all__", ()):
         obj = namespace.get(name)
         if inspect.isfunction(obj) and not getattr(obj, "__wrapped_finite__", False):
@@ -318,6 +379,17 @@ def check_output_size(count: float, bytes_each: float, what: str, where: str) ->
     ``count`` may be a product far beyond any integer a list could hold (a grid of 10^12
     points): it is compared as a float.
 
+    Parameters
+    ----------
+    count : float
+        Number of items, >= 0.
+    bytes_each : float
+        Size of one item [bytes], >= 0.
+    what : str
+        What is counted, for the message.
+    where : str
+        The component or function, for the message.
+
     Raises
     ------
     ParameterError
@@ -335,6 +407,22 @@ def check_output_size(count: float, bytes_each: float, what: str, where: str) ->
 def check_output_file(path: Any, suffix: str, name: str, where: str) -> Path:
     """A path to write one file to: text or path-like, not an existing folder, ending in
     ``suffix``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path to check.
+    suffix : str
+        Required file suffix, lower case with the dot (e.g. ``".csv"``).
+    name : str
+        Argument name, for the message.
+    where : str
+        The component or function, for the message.
+
+    Returns
+    -------
+    Path
+        The path.
 
     Raises
     ------

@@ -60,7 +60,18 @@ class PluginFailure:
 
 
 def describe_entry_point(entry: EntryPoint) -> str:
-    """``entry point NAME = VALUE (distribution DIST VERSION)`` for messages."""
+    """``entry point NAME = VALUE (distribution DIST VERSION)`` for messages.
+
+    Parameters
+    ----------
+    entry : EntryPoint
+        The entry point.
+
+    Returns
+    -------
+    str
+        The description.
+    """
     dist = getattr(entry, "dist", None)
     owner = "an unknown distribution" if dist is None else (
         f"distribution {dist.metadata['Name']} {dist.version}")
@@ -186,7 +197,18 @@ class Registry(MutableMapping):
 
     # ---- names -------------------------------------------------------------------------------
     def find(self, name: Any) -> str | None:
-        """The registered name that ``name`` stands for (through ``normalize``), or None."""
+        """The registered name that ``name`` stands for (through ``normalize``), or None.
+
+        Parameters
+        ----------
+        name : object
+            A name (one the registry's ``normalize`` cannot read stands for none).
+
+        Returns
+        -------
+        str or None
+            The registered name, or None.
+        """
         self._load()
         try:
             key = self._normalize(name)
@@ -196,7 +218,18 @@ class Registry(MutableMapping):
 
     def unknown(self, name: Any) -> CatalogError:
         """The error for an unknown name: kind, name, known names, close matches and the
-        reason a plug-in of that name was skipped."""
+        reason a plug-in of that name was skipped.
+
+        Parameters
+        ----------
+        name : object
+            The name asked for.
+
+        Returns
+        -------
+        CatalogError
+            The error (returned, not raised).
+        """
         self._load()
         known = list(self._entries)
         by_key = {self._normalize(k): k for k in known}
@@ -211,6 +244,15 @@ class Registry(MutableMapping):
 
     def register(self, name: str, entry: Any, *, replace: bool = False) -> None:
         """Add an entry under ``name`` (replacing the one it stands for with ``replace``).
+
+        Parameters
+        ----------
+        name : str
+            Name of the entry, not empty.
+        entry : object
+            The entry (converted by the registry's ``convert``).
+        replace : bool
+            Replace the entry the name stands for.
 
         Raises
         ------

@@ -230,6 +230,19 @@ def check_count(value, name: str, low: int = 1, where: str = ""):
 def check_number(value: Any, name: str, unit: str, high: float | None, where: str) -> None:
     """Check a real number (not a bool or string) in ``[0, high]``.
 
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    name : str
+        Argument name, for the message.
+    unit : str
+        Unit of the value, for the message.
+    high : float or None
+        Upper bound (None: none).
+    where : str
+        The component or function, for the message.
+
     Raises
     ------
     ParameterError
@@ -390,6 +403,22 @@ def check_mapping(value: Any, name: str, where: str, what: str = "names") -> dic
 def check_flag(value: Any, name: str, where: str, allow_none: bool = False) -> Any:
     """``True`` or ``False`` (or ``None`` when allowed), else a named error.
 
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    name : str
+        Argument name, for the message.
+    where : str
+        The component or function, for the message.
+    allow_none : bool
+        Accept None.
+
+    Returns
+    -------
+    bool or None
+        ``value``, checked.
+
     Raises
     ------
     ParameterError
@@ -403,6 +432,24 @@ def check_flag(value: Any, name: str, where: str, allow_none: bool = False) -> A
 
 def check_vector(value: Any, size: int, name: str, unit: str, where: str) -> np.ndarray:
     """A finite real vector of ``size`` entries.
+
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    size : int
+        Required number of entries, >= 1.
+    name : str
+        Argument name, for the message.
+    unit : str
+        Unit of the value, for the message.
+    where : str
+        The component or function, for the message.
+
+    Returns
+    -------
+    ndarray
+        The vector, flattened, as floats [``unit``].
 
     Raises
     ------
@@ -433,6 +480,22 @@ def check_regularization(value: Any, name: str, unit: str, where: str) -> Any:
     """A regularization width (of ``|x|``, a sign, an eccentricity): finite and at least
     :data:`MIN_REGULARIZATION`.
 
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    name : str
+        Argument name, for the message.
+    unit : str
+        Unit of the value, for the message.
+    where : str
+        The component or function, for the message.
+
+    Returns
+    -------
+    float or array or SX
+        ``value``, checked.
+
     Raises
     ------
     ParameterError
@@ -443,6 +506,15 @@ def check_regularization(value: Any, name: str, unit: str, where: str) -> Any:
 
 def check_finite(where: str, unit: str, **values: Any) -> None:
     """Each of ``values`` (name -> number, array or SX) is a finite number [``unit``].
+
+    Parameters
+    ----------
+    where : str
+        The component or function, for the message.
+    unit : str
+        Unit of the values, for the message.
+    **values
+        Name -> number, array or SX (symbols pass unchecked).
 
     Raises
     ------
@@ -455,6 +527,20 @@ def check_finite(where: str, unit: str, **values: Any) -> None:
 
 def check_modulus(value: Any, name: str, where: str) -> Any:
     """A Young's or effective modulus [Pa] within :data:`MODULUS_RANGE`.
+
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    name : str
+        Argument name, for the message.
+    where : str
+        The component or function, for the message.
+
+    Returns
+    -------
+    float or array or SX
+        ``value`` [Pa], checked.
 
     Raises
     ------

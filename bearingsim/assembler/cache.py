@@ -68,20 +68,43 @@ SUFFIX = ".bsys"
 def cache_root() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root of every cache of bearingsim
     (assembled systems here, compiled kernel libraries by
-    :func:`~bearingsim.simulation.compile.default_cache_dir`)."""
+    :func:`~bearingsim.simulation.compile.default_cache_dir`).
+
+    Returns
+    -------
+    Path
+        The cache root folder.
+    """
     root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
     return Path(root)
 
 
 def systems_dir(root: str | Path | None = None) -> Path:
-    """The folder of the assembled systems: ``<root>/systems``."""
+    """The folder of the assembled systems: ``<root>/systems``.
+
+    Parameters
+    ----------
+    root : str or os.PathLike, optional
+        Cache root (None: :func:`cache_root`).
+
+    Returns
+    -------
+    Path
+        The systems folder.
+    """
     return Path(root if root is not None else cache_root()) / "systems"
 
 
 @functools.cache
 def code_version() -> str:
     """Hash of bearingsim's source files (paths and contents) and the CasADi, NumPy and Python
-    versions: entries written by other code are never loaded."""
+    versions: entries written by other code are never loaded.
+
+    Returns
+    -------
+    str
+        The hash (hex).
+    """
     package = Path(__file__).resolve().parents[1]
     digest = hashlib.sha256()
     for path in sorted(package.rglob("*.py")):
@@ -231,7 +254,22 @@ class _Fingerprint:
 def structure_key(component: Component, outputs: list[str] | None = None,
                   **options: Any) -> str:
     """The cache key of assembling ``component``: its structure without parameter values,
-    the outputs, the assembler options and :func:`code_version` (SHA-256, hex)."""
+    the outputs, the assembler options and :func:`code_version` (SHA-256, hex).
+
+    Parameters
+    ----------
+    component : Component
+        The root component to assemble.
+    outputs : list of str, optional
+        Requested outputs (None: every variable).
+    **options
+        The assembler options.
+
+    Returns
+    -------
+    str
+        SHA-256 hex digest.
+    """
     fp = _Fingerprint()
     fp.text("outputs", None if outputs is None else list(outputs))
     fp.text("options", sorted(options.items()))
@@ -258,6 +296,16 @@ def dumps_system(system: System) -> bytes:
     Builds what a loaded system cannot rebuild by itself: the right-hand side, observed and
     output functions (one shared common subexpression elimination) and the mapped per-ball
     kernels of both forms. The Jacobians are left to be built on first use.
+
+    Parameters
+    ----------
+    system : System
+        An assembled system.
+
+    Returns
+    -------
+    bytes
+        The serialized system.
     """
     data: dict[str, Any] = {}
     skip = {"functions", "params", "mapped", "init_residual", "symbolic_functions"}
@@ -317,6 +365,11 @@ def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = No
     parameters : mapping, optional
         Parameter declarations by dotted path (of the component the system is loaded for):
         their values and range checks replace the stored ones.
+
+    Returns
+    -------
+    System
+        The loaded system.
     """
     data = pickle.loads(payload)  # noqa: S301 - checksummed entries of the user's own cache
     pending = {k: partial(ca.Function.deserialize, v) for k, v in data.pop("functions").items()}
@@ -394,7 +447,20 @@ def _read_entry(path: Path, key: str, values: dict[str, float]) -> bytes | None:
 
 def read_payload(path: str | Path, key: str) -> bytes | None:
     """The system bytes (:func:`dumps_system`) of a valid entry, or None (see
-    :data:`LAST` for the path and key of the last lookup)."""
+    :data:`LAST` for the path and key of the last lookup).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The entry's file.
+    key : str
+        Expected cache key (:func:`structure_key`).
+
+    Returns
+    -------
+    bytes or None
+        The payload, or None for a missing, stale or damaged entry.
+    """
     return _read_entry(Path(path), key, {})
 
 
@@ -495,7 +561,18 @@ def _size(path: Path) -> int:
 
 
 def cache_info(root: str | Path | None = None) -> CacheInfo:
-    """Count and size [bytes] of the cached systems and libraries under ``root``."""
+    """Count and size [bytes] of the cached systems and libraries under ``root``.
+
+    Parameters
+    ----------
+    root : str or os.PathLike, optional
+        Cache root (None: :func:`cache_root`).
+
+    Returns
+    -------
+    CacheInfo
+        Counts and sizes [bytes].
+    """
     root = Path(root) if root is not None else cache_root()
     systems = sorted(systems_dir(root).glob(f"*{SUFFIX}")) if systems_dir(root).is_dir() else []
     libs = _libraries(root)
@@ -505,7 +582,18 @@ def cache_info(root: str | Path | None = None) -> CacheInfo:
 
 def clear_cache(root: str | Path | None = None) -> CacheInfo:
     """Remove every cached system and compiled library under ``root``; returns what was
-    there. Other files in the folder are left alone."""
+    there. Other files in the folder are left alone.
+
+    Parameters
+    ----------
+    root : str or os.PathLike, optional
+        Cache root (None: :func:`cache_root`).
+
+    Returns
+    -------
+    CacheInfo
+        What was there before.
+    """
     root = Path(root) if root is not None else cache_root()
     before = cache_info(root)
     if systems_dir(root).is_dir():

@@ -43,7 +43,13 @@ class Var:
 
     @property
     def is_state(self) -> bool:
-        """Differentiated with a true (non-dummy) derivative."""
+        """Differentiated with a true (non-dummy) derivative.
+
+        Returns
+        -------
+        bool
+            Whether the variable is a state.
+        """
         return self.derivative is not None and not self.derivative.dummy
 
     def __hash__(self) -> int:
@@ -69,19 +75,37 @@ class Eq:
 
     def symbol_names(self) -> tuple[str, ...]:
         """Names of the symbols in the residual, in ``casadi.symvar`` order; read once per
-        residual (a pass that replaces the residual gets the new one's)."""
+        residual (a pass that replaces the residual gets the new one's).
+
+        Returns
+        -------
+        tuple of str
+            The symbol names.
+        """
         if self._symbols is None or self._symbols[0] is not self.residual:
             self._symbols = (self.residual, tuple(s.name() for s in ca.symvar(self.residual)))
         return self._symbols[1]
 
     def describe(self) -> str:
-        """Origin and readable text, for messages."""
+        """Origin and readable text, for messages.
+
+        Returns
+        -------
+        str
+            The description.
+        """
         body = self.text or readable(self.residual) + " = 0"
         return f"{self.origin or '<root>'}: {body}"
 
     @property
     def order(self) -> int:
-        """How many times this equation was differentiated by index reduction."""
+        """How many times this equation was differentiated by index reduction.
+
+        Returns
+        -------
+        int
+            Differentiation order, >= 0.
+        """
         n, e = 0, self
         while e.derivative_of is not None:
             n, e = n + 1, e.derivative_of
@@ -140,30 +164,73 @@ class DAE:
 
     # ---------------------------------------------------------------- lookups
     def by_name(self) -> dict[str, Var]:
-        """Variables by symbol name."""
+        """Variables by symbol name.
+
+        Returns
+        -------
+        dict of str to Var
+            The variables.
+        """
         return {v.sym.name(): v for v in self.vars}
 
     def incidence(self, eq: Eq, lookup: dict[str, Var] | None = None) -> list[Var]:
-        """Variables (not parameters, not time) that appear in an equation."""
+        """Variables (not parameters, not time) that appear in an equation.
+
+        Parameters
+        ----------
+        eq : Eq
+            The equation.
+        lookup : dict of str to Var, optional
+            Variables by symbol name (None: :meth:`by_name`).
+
+        Returns
+        -------
+        list of Var
+            The variables in the equation.
+        """
         lookup = lookup if lookup is not None else self.by_name()
         return [lookup[n] for n in eq.symbol_names() if n in lookup]
 
     @property
     def inputs(self) -> list[Var]:
-        """System inputs."""
+        """System inputs.
+
+        Returns
+        -------
+        list of Var
+            The inputs.
+        """
         return [v for v in self.vars if v.is_input]
 
     @property
     def states(self) -> list[Var]:
-        """Variables integrated by the ODE solver."""
+        """Variables integrated by the ODE solver.
+
+        Returns
+        -------
+        list of Var
+            The states.
+        """
         return [v for v in self.vars if v.is_state and not v.is_input]
 
     def unknowns(self) -> list[Var]:
-        """Variables the equations must determine: everything but states and inputs."""
+        """Variables the equations must determine: everything but states and inputs.
+
+        Returns
+        -------
+        list of Var
+            The unknowns.
+        """
         return [v for v in self.vars if not v.is_state and not v.is_input]
 
     def check_balance(self, stage: str) -> None:
-        """Raise if the number of equations differs from the number of unknowns."""
+        """Raise if the number of equations differs from the number of unknowns.
+
+        Parameters
+        ----------
+        stage : str
+            The assembly stage, for the message.
+        """
         n_eq, n_unk = len(self.eqs), len(self.unknowns())
         if n_eq != n_unk:
             raise StructuralError(

@@ -11,13 +11,41 @@ __all__ = ["incidence_map", "maximum_matching"]
 
 
 def incidence_map(dae: DAE, eqs: list[Eq], unknowns: list[Var]) -> dict[Eq, list[Var]]:
-    """For each equation, the unknowns (from ``unknowns``) that occur in it."""
+    """For each equation, the unknowns (from ``unknowns``) that occur in it.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    eqs : list of Eq
+        The equations.
+    unknowns : list of Var
+        The unknowns to look for.
+
+    Returns
+    -------
+    dict of Eq to list of Var
+        The unknowns of each equation.
+    """
     lookup = {v.sym.name(): v for v in unknowns}
     return {e: dae.incidence(e, lookup) for e in eqs}
 
 
 def maximum_matching(inc: dict[Eq, list[Var]], unknowns: list[Var]) -> dict[Eq, Var]:
-    """Maximum bipartite matching of equations to unknowns (Hopcroft-Karp)."""
+    """Maximum bipartite matching of equations to unknowns (Hopcroft-Karp).
+
+    Parameters
+    ----------
+    inc : dict of Eq to list of Var
+        Incidence (:func:`incidence_map`).
+    unknowns : list of Var
+        The unknowns.
+
+    Returns
+    -------
+    dict of Eq to Var
+        The matched pairs.
+    """
     g = nx.Graph()
     eq_nodes = [("e", id(e)) for e in inc]
     g.add_nodes_from(eq_nodes, bipartite=0)

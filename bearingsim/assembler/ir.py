@@ -64,7 +64,18 @@ class Causal:
 
     def value(self, v: Var) -> ca.SX:
         """``v`` through the base symbols: its own symbol for a state or input, else its
-        solution."""
+        solution.
+
+        Parameters
+        ----------
+        v : Var
+            A variable of the DAE.
+
+        Returns
+        -------
+        casadi.SX
+            Its expression in the base symbols.
+        """
         return v.sym if v.is_state or v.is_input else self.expr[v]
 
 

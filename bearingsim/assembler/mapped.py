@@ -59,7 +59,24 @@ class MappedKernel:
     def ode_with_jacobians(self, t: ca.MX, x: ca.MX, u: ca.MX, p: ca.MX
                            ) -> tuple[ca.MX, ca.MX, ca.MX, ca.MX]:
         """The ``ode`` form's right-hand side and its Jacobians by ``t``, ``x`` and ``u`` at
-        symbolic arguments: ``(xdot, d xdot/dt, d xdot/dx, d xdot/du)``."""
+        symbolic arguments: ``(xdot, d xdot/dt, d xdot/dx, d xdot/du)``.
+
+        Parameters
+        ----------
+        t : casadi.MX
+            Time [s].
+        x : casadi.MX
+            States.
+        u : casadi.MX
+            Inputs.
+        p : casadi.MX
+            Parameters.
+
+        Returns
+        -------
+        tuple of casadi.MX
+            ``(xdot, d xdot/dt, d xdot/dx, d xdot/du)``.
+        """
         xdot = self.function(t, x, u, p)
         jac_t, jac_x, jac_u, _ = self.jacobian(t, x, u, p, ca.MX(ca.Sparsity(xdot.size1(), 1)))
         return xdot, jac_t, jac_x, jac_u
@@ -387,6 +404,22 @@ def mapped_kernel(dae: DAE, causal: Causal, rep: Repeats, form: str) -> MappedKe
     """The kernel of ``form`` (``"ode"``: ``ode(t, x, u, p)``; ``"dae"``:
     ``dae(t, x, z, u, p) -> (ode, alg)``) with mapped balls, its Jacobian and observe function.
 
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    causal : Causal
+        The causalized system.
+    rep : Repeats
+        The ball sets and shared unknowns.
+    form : {"ode", "dae"}
+        Kernel form.
+
+    Returns
+    -------
+    MappedKernel
+        The kernel.
+
     Raises
     ------
     NotMappable
@@ -503,6 +536,11 @@ def through_newton(dae_kernel: MappedKernel, guess: list[float], rootfinder: str
         CasADi rootfinder plugin (``fast_newton`` generates C).
     newton_tol : float
         Absolute tolerance of the residual.
+
+    Returns
+    -------
+    MappedKernel
+        The ODE form.
     """
     F, JF, obs = dae_kernel.function, dae_kernel.jacobian, dae_kernel.observe
     sizes = [F.size1_in(i) for i in range(F.n_in())]  # t, x, z, u, p
@@ -569,6 +607,16 @@ class MappedForms:
     def get(self, form: str) -> MappedKernel:
         """The mapped kernel of ``form`` (``"ode"`` or ``"dae"``).
 
+        Parameters
+        ----------
+        form : {"ode", "dae"}
+            Kernel form.
+
+        Returns
+        -------
+        MappedKernel
+            The kernel (built on first use).
+
         Raises
         ------
         NotMappable
@@ -593,14 +641,31 @@ class MappedForms:
         return found
 
     def find(self, form: str) -> MappedKernel | None:
-        """The mapped kernel of ``form``, or None when it cannot be mapped."""
+        """The mapped kernel of ``form``, or None when it cannot be mapped.
+
+        Parameters
+        ----------
+        form : {"ode", "dae"}
+            Kernel form.
+
+        Returns
+        -------
+        MappedKernel or None
+            The kernel, or None.
+        """
         try:
             return self.get(form)
         except NotMappable:
             return None
 
     def to_data(self) -> dict:
-        """Plain data (every form built, functions serialized) for another process."""
+        """Plain data (every form built, functions serialized) for another process.
+
+        Returns
+        -------
+        dict
+            Picklable plain data.
+        """
         forms = {}
         for form in self.FORMS:
             try:
@@ -614,7 +679,18 @@ class MappedForms:
 
     @classmethod
     def from_data(cls, data: dict) -> MappedForms:
-        """The forms of :meth:`to_data`."""
+        """The forms of :meth:`to_data`.
+
+        Parameters
+        ----------
+        data : dict
+            From :meth:`to_data`.
+
+        Returns
+        -------
+        MappedForms
+            The forms.
+        """
         out = cls(None, None, None)
         out.summary = data["summary"]
         for form, value in data["forms"].items():

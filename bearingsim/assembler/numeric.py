@@ -83,7 +83,18 @@ BUFFERS_PER_THREAD = 256
 
 
 def buffered(fn: ca.Function) -> Buffered:
-    """This thread's :class:`Buffered` of ``fn``, made on first use."""
+    """This thread's :class:`Buffered` of ``fn``, made on first use.
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        The function.
+
+    Returns
+    -------
+    Buffered
+        This thread's buffered evaluator of ``fn``.
+    """
     cache = getattr(_LOCAL, "cache", None)
     if cache is None:
         cache = _LOCAL.cache = {}

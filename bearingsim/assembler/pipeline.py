@@ -55,7 +55,13 @@ class Pass(Protocol):
     """Its name in timings, logs and the keys of ``extra_passes``."""
 
     def run(self, state: AssemblyState) -> None:
-        """Read and update ``state`` (in place)."""
+        """Read and update ``state`` (in place).
+
+        Parameters
+        ----------
+        state : AssemblyState
+            The assembly state the pass reads and updates.
+        """
 
 
 @dataclass(frozen=True)

@@ -56,6 +56,13 @@ class AssemblyState:
     def require(self, by: str, *names: str) -> None:
         """Check that the fields ``names`` that pass ``by`` reads are set.
 
+        Parameters
+        ----------
+        by : str
+            Name of the pass.
+        *names
+            Names of the fields the pass reads.
+
         Raises
         ------
         PassOrderError

@@ -57,7 +57,18 @@ class FunctionTable(Mapping):
         return key in self._ready or key in self._pending  # without building it
 
     def built(self, key: str) -> bool:
-        """Whether ``key`` has been built (every key is available either way)."""
+        """Whether ``key`` has been built (every key is available either way).
+
+        Parameters
+        ----------
+        key : str
+            Function name.
+
+        Returns
+        -------
+        bool
+            Whether it is built.
+        """
         return key in self._ready
 
 
@@ -122,32 +133,73 @@ class System:
     # ---------------------------------------------------------------- names
     @property
     def state_names(self) -> list[str]:
-        """Dotted names of the states, in vector order."""
+        """Dotted names of the states, in vector order.
+
+        Returns
+        -------
+        list of str
+            The names.
+        """
         return [s.name for s in self.states]
 
     @property
     def input_names(self) -> list[str]:
-        """Dotted names of the inputs, in vector order."""
+        """Dotted names of the inputs, in vector order.
+
+        Returns
+        -------
+        list of str
+            The names.
+        """
         return [s.name for s in self.inputs]
 
     @property
     def output_names(self) -> list[str]:
-        """Dotted names of the requested outputs, in vector order."""
+        """Dotted names of the requested outputs, in vector order.
+
+        Returns
+        -------
+        list of str
+            The names.
+        """
         return [s.name for s in self.outputs]
 
     @property
     def parameter_names(self) -> list[str]:
-        """Dotted names of the free parameters, in vector order."""
+        """Dotted names of the free parameters, in vector order.
+
+        Returns
+        -------
+        list of str
+            The names.
+        """
         return [q.name for q in self.params]
 
     @property
     def n_states(self) -> int:
-        """Number of states."""
+        """Number of states.
+
+        Returns
+        -------
+        int
+            The number of states.
+        """
         return len(self.states)
 
     # ---------------------------------------------------------------- vectors
     def x0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
-        """Start values of the states, with optional overrides by name."""
+        """Start values of the states, with optional overrides by name.
+
+        Parameters
+        ----------
+        overrides : dict of str to float, optional
+            Start values by state name (SI units).
+
+        Returns
+        -------
+        ndarray
+            The start values.
+        """
         x = np.array([s.start for s in self.states], dtype=float)
         overrides = check_mapping(overrides, "x0", self.name, "state names")
         if not overrides:
@@ -170,7 +222,18 @@ class System:
 
     def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:
         """Parameter vector: defaults, then validated overrides by dotted name (a number in
-        the parameter's SI unit, or with a unit: ``"25 µm"``, a :class:`pint.Quantity`)."""
+        the parameter's SI unit, or with a unit: ``"25 µm"``, a :class:`pint.Quantity`).
+
+        Parameters
+        ----------
+        overrides : dict, optional
+            Parameter values by dotted name.
+
+        Returns
+        -------
+        ndarray
+            The parameter vector (SI units).
+        """
         p = np.array([q.value for q in self.params], dtype=float)
         names = self.parameter_names
         for name, val in check_mapping(overrides, "parameters", self.name,
@@ -188,18 +251,58 @@ class System:
         return p
 
     def u_default(self) -> np.ndarray:
-        """Default input values."""
+        """Default input values.
+
+        Returns
+        -------
+        ndarray
+            The input vector (SI units).
+        """
         return np.array([s.start for s in self.inputs], dtype=float)
 
     # ---------------------------------------------------------------- evaluation
     def rhs(self, t: float, x, u=None, p=None) -> np.ndarray:
-        """State derivatives at one point (numbers)."""
+        """State derivatives at one point (numbers).
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : array_like
+            State vector, in :attr:`state_names` order (SI units).
+        u : array_like, optional
+            Input vector, in :attr:`input_names` order (None: :meth:`u_default`).
+        p : array_like, optional
+            Parameter vector, in :attr:`parameter_names` order (None: :meth:`p0`).
+
+        Returns
+        -------
+        ndarray
+            d x/dt (SI units per second).
+        """
         u = self.u_default() if u is None else u
         p = self.p0() if p is None else p
         return np.asarray(self.functions["ode"](t, x, u, p), dtype=float).ravel()
 
     def observe(self, t: float, x, u=None, p=None) -> dict[str, float]:
-        """Every variable of the model at one point, by dotted name."""
+        """Every variable of the model at one point, by dotted name.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : array_like
+            State vector, in :attr:`state_names` order (SI units).
+        u : array_like, optional
+            Input vector, in :attr:`input_names` order (None: :meth:`u_default`).
+        p : array_like, optional
+            Parameter vector, in :attr:`parameter_names` order (None: :meth:`p0`).
+
+        Returns
+        -------
+        dict of str to float
+            Values (SI units) by dotted name.
+        """
         u = self.u_default() if u is None else u
         p = self.p0() if p is None else p
         vals = buffered(self.functions["observe"])(t, x, u, p)[0].ravel()
@@ -208,7 +311,13 @@ class System:
     @property
     def variable_units(self) -> dict[str, str]:
         """Unit of every observed variable, state, input and output, by dotted name (a new
-        dict, copied from one built on first use)."""
+        dict, copied from one built on first use).
+
+        Returns
+        -------
+        dict of str to str
+            Unit by dotted name.
+        """
         units = self.__dict__.get("_variable_units")
         if units is None:
             units = dict(self.observed_units)
@@ -225,7 +334,13 @@ class System:
                 f".describe() for the details>")
 
     def describe(self) -> str:
-        """A short text summary: sizes, pass timings and skipped parts."""
+        """A short text summary: sizes, pass timings and skipped parts.
+
+        Returns
+        -------
+        str
+            The summary.
+        """
         lines = [
             f"system {self.name}: {self.n_states} states, {len(self.inputs)} inputs, "
             f"{len(self.outputs)} outputs, {len(self.params)} parameters"
@@ -251,6 +366,18 @@ def _plain_float(value: Any) -> float:
 def as_system(value: Any, where: str) -> System:
     """An assembled :class:`System`, else a named error (a component that still needs
     assembling says so).
+
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    where : str
+        The function, for the message.
+
+    Returns
+    -------
+    System
+        ``value``.
 
     Raises
     ------

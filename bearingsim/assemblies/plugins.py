@@ -34,7 +34,18 @@ ENTRY_POINT_GROUP = "bearingsim.assemblies"
 
 def spec_of(obj: Any) -> AssemblySpec | None:
     """The spec an entry point's object stands for: the object itself when it is an
-    :class:`AssemblySpec`, else its ``SCENE_SPEC`` attribute when that is one (None otherwise)."""
+    :class:`AssemblySpec`, else its ``SCENE_SPEC`` attribute when that is one (None otherwise).
+
+    Parameters
+    ----------
+    obj : object
+        The object an entry point loaded (a spec or a module).
+
+    Returns
+    -------
+    AssemblySpec or None
+        The spec, or None when the object stands for none.
+    """
     if isinstance(obj, AssemblySpec):
         return obj
     spec = getattr(obj, "SCENE_SPEC", None)
@@ -43,6 +54,18 @@ def spec_of(obj: Any) -> AssemblySpec | None:
 
 def entry_spec(obj: Any, entry_name: str) -> tuple[str, AssemblySpec]:
     """``(spec.name, spec)`` of an entry point's loaded object (:func:`spec_of`).
+
+    Parameters
+    ----------
+    obj : object
+        The object the entry point loaded.
+    entry_name : str
+        The entry point's name (for the error message).
+
+    Returns
+    -------
+    tuple of (str, AssemblySpec)
+        The spec's name and the spec.
 
     Raises
     ------
@@ -57,5 +80,16 @@ def entry_spec(obj: Any, entry_name: str) -> tuple[str, AssemblySpec]:
 
 
 def spec_origin(spec: AssemblySpec) -> str:
-    """The module that builds an assembly (named when a plug-in takes its name)."""
+    """The module that builds an assembly (named when a plug-in takes its name).
+
+    Parameters
+    ----------
+    spec : AssemblySpec
+        The assembly's spec.
+
+    Returns
+    -------
+    str
+        The module name of the spec's build function.
+    """
     return getattr(spec.build, "__module__", None) or "unknown module"

@@ -19,7 +19,13 @@ __all__ = ["REGISTRY", "AssemblyRegistry"]
 
 class AssemblyRegistry(Registry):
     """Assembly name -> spec: the built-in specs, then the plug-ins' (loaded on first use),
-    then the registered ones (:class:`bearingsim.registry.Registry`)."""
+    then the registered ones (:class:`bearingsim.registry.Registry`).
+
+    Parameters
+    ----------
+    builtin : tuple of AssemblySpec
+        The built-in specs.
+    """
 
     def __init__(self, builtin: tuple[AssemblySpec, ...]):
         super().__init__("assembly", lambda: {spec.name: spec for spec in builtin},

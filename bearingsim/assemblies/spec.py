@@ -52,7 +52,18 @@ FIDELITY_ERRORS_FILE = Path(__file__).resolve().parent / "fidelity_errors.json"
 def declared_errors(assembly: str) -> tuple[str | None, dict[str, dict[str, float]]]:
     """The reference level and the measured errors (level -> quantity pattern -> relative
     error [-]) of an assembly from :data:`FIDELITY_ERRORS_FILE`; ``(None, {})`` when it has
-    none."""
+    none.
+
+    Parameters
+    ----------
+    assembly : str
+        The assembly's name.
+
+    Returns
+    -------
+    tuple of (str or None, dict)
+        Reference level and level -> quantity pattern -> relative error [-].
+    """
     entry = json.loads(FIDELITY_ERRORS_FILE.read_text(encoding="utf-8")).get(assembly)
     if entry is None:
         return None, {}
@@ -63,7 +74,7 @@ ARG_KINDS = ("bearing", "lubricant", "choice", "float", "bool", "table", "floats
 
 
 @dataclass(frozen=True)
-class ArgSpec:
+class ArgSpec:  # numpydoc ignore=PR02
     """One argument a scene may give to an assembly.
 
     Parameters
@@ -214,7 +225,18 @@ class AssemblySpec:
     state."""
 
     def is_optional_input(self, name: str) -> bool:
-        """Whether a scene may leave the input ``name`` out."""
+        """Whether a scene may leave the input ``name`` out.
+
+        Parameters
+        ----------
+        name : str
+            Input name.
+
+        Returns
+        -------
+        bool
+            True when the input is optional.
+        """
         return any(fnmatch.fnmatchcase(name, p) for p in self.optional_inputs)
 
     def __post_init__(self) -> None:
@@ -224,19 +246,54 @@ class AssemblySpec:
             check_choice(level, "fidelity level", self.fidelities, where)
 
     def with_defaults(self, args: dict[str, Any]) -> dict[str, Any]:
-        """The arguments with the defaults of the ones not given (nested tables too)."""
+        """The arguments with the defaults of the ones not given (nested tables too).
+
+        Parameters
+        ----------
+        args : dict
+            The arguments a scene gives, by name.
+
+        Returns
+        -------
+        dict
+            Every argument of the spec, by name.
+        """
         return _defaults(self.args, args)
 
     def level_error(self, level: str, name: str) -> float | None:
         """Declared relative error [-] of ``name`` at ``level`` against the reference level
-        (None: not declared, i.e. the level is the only one or the reference for it)."""
+        (None: not declared, i.e. the level is the only one or the reference for it).
+
+        Parameters
+        ----------
+        level : str
+            Fidelity level.
+        name : str
+            Output name.
+
+        Returns
+        -------
+        float or None
+            Relative error [-], >= 0, or None.
+        """
         for pattern, error in self.level_errors.get(level, {}).items():
             if fnmatch.fnmatchcase(name, pattern):
                 return float(error)
         return None
 
     def min_fidelity(self, name: str) -> str:
-        """Lowest fidelity that provides ``name`` (an output, input or parameter name)."""
+        """Lowest fidelity that provides ``name`` (an output, input or parameter name).
+
+        Parameters
+        ----------
+        name : str
+            Output, input or parameter name.
+
+        Returns
+        -------
+        str
+            The fidelity level.
+        """
         for pattern, fid in self.output_fidelity:
             if fnmatch.fnmatchcase(name, pattern):
                 return fid
@@ -262,6 +319,18 @@ def factory_default(factory: Callable, name: str) -> Any:
     """The default value of the parameter ``name`` in the signature of ``factory``.
 
     Lets a spec take its defaults from the factory instead of repeating them.
+
+    Parameters
+    ----------
+    factory : callable
+        The factory function or class.
+    name : str
+        Name of one of its parameters.
+
+    Returns
+    -------
+    object
+        The parameter's default value.
 
     Raises
     ------

@@ -69,13 +69,31 @@ BEARINGS = Registry("bearing", _catalogue, group=ENTRY_POINT_GROUP, convert=_plu
 
 def list_bearings() -> list[str]:
     """Designations of all catalogued bearings, in table order, then the plug-ins' and the
-    registered ones."""
+    registered ones.
+
+    Returns
+    -------
+    list of str
+        The designations.
+    """
     return list(BEARINGS)
 
 
 def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> BearingGeometry:
     """Make a bearing known by its designation to every assembly, scene and ``bearingsim
     list``; returns it.
+
+    Parameters
+    ----------
+    geometry : BearingGeometry or RollerBearingGeometry
+        The bearing, known by its ``designation``.
+    replace : bool
+        Replace a bearing registered before under the same designation.
+
+    Returns
+    -------
+    BearingGeometry or RollerBearingGeometry
+        The registered geometry.
 
     Raises
     ------
@@ -92,7 +110,13 @@ def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> Bea
 
 def unregister_bearing(designation: str) -> None:
     """Forget a registered bearing (CatalogError for one that is not registered: unknown, or a
-    catalogue bearing)."""
+    catalogue bearing).
+
+    Parameters
+    ----------
+    designation : str
+        Designation of a registered bearing.
+    """
     key = _designation(designation)
     if key in _catalogue() or BEARINGS.find(key) is None:
         raise CatalogError(f"unregister_bearing: {designation!r} is not registered")
@@ -101,7 +125,20 @@ def unregister_bearing(designation: str) -> None:
 
 def load_datasheet(path, *, replace: bool = False) -> list[str]:
     """Read a datasheet file (:func:`~bearingsim.catalog.datasheet.read_datasheet`, CSV or TOML
-    in catalogue units) and register its bearings; returns their designations."""
+    in catalogue units) and register its bearings; returns their designations.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The datasheet file (``.csv`` or ``.toml``).
+    replace : bool
+        Replace bearings registered before under the same designations.
+
+    Returns
+    -------
+    list of str
+        Designations of the registered bearings, in file order.
+    """
     bearings = read_datasheet(path)
     for g in bearings:
         register_bearing(g, replace=replace)
@@ -131,6 +168,16 @@ def get_bearing(designation: str) -> BearingGeometry:
 
 def resolve_bearing(bearing: str | BearingGeometry) -> BearingGeometry:
     """A catalogue designation or a user geometry, as a :class:`BearingGeometry`.
+
+    Parameters
+    ----------
+    bearing : str or BearingGeometry
+        Catalogue (or registered) designation, or a geometry (returned as it is).
+
+    Returns
+    -------
+    BearingGeometry
+        The bearing's geometry.
 
     Raises
     ------

@@ -267,6 +267,13 @@ class BearingGeometry:
         lubricant); above it the models still compute, but the catalogue no longer vouches for
         the bearing. Nothing is checked without a catalogue limiting speed.
 
+        Parameters
+        ----------
+        speed : float
+            Constant ring speed [rad/s] (its magnitude is checked).
+        where : str
+            What is checked, for the messages (component or assembly and parameter).
+
         Raises
         ------
         ParameterError
@@ -282,7 +289,13 @@ class BearingGeometry:
     def series(self) -> str | None:
         """The catalogue series of the designation (``"619"`` for 61905, ``"63"`` for 6304,
         ``"160"`` for 16004, ``"70"`` for 7014C), or None when the designation does not follow
-        the ISO numbering (a user geometry)."""
+        the ISO numbering (a user geometry).
+
+        Returns
+        -------
+        str or None
+            The series, or None.
+        """
         digits = re.match(r"\d+", self.designation.strip())
         if digits is None or len(digits.group()) < 4:
             return None
@@ -293,27 +306,57 @@ class BearingGeometry:
 
     @property
     def bearing_type(self) -> str:
-        """"deep_groove" for a zero nominal contact angle, else "angular_contact"."""
+        """"deep_groove" for a zero nominal contact angle, else "angular_contact".
+
+        Returns
+        -------
+        str
+            ``"deep_groove"`` or ``"angular_contact"``.
+        """
         return "deep_groove" if self.contact_angle == 0.0 else "angular_contact"
 
     @property
     def inner_groove_radius(self) -> float:
-        """Inner raceway groove radius ri = fi Dw [m]."""
+        """Inner raceway groove radius ri = fi Dw [m].
+
+        Returns
+        -------
+        float
+            Inner groove radius [m].
+        """
         return self.fi * self.ball_diameter
 
     @property
     def outer_groove_radius(self) -> float:
-        """Outer raceway groove radius ro = fo Dw [m]."""
+        """Outer raceway groove radius ro = fo Dw [m].
+
+        Returns
+        -------
+        float
+            Outer groove radius [m].
+        """
         return self.fo * self.ball_diameter
 
     @property
     def total_curvature(self) -> float:
-        """Total curvature B = fi + fo - 1 [-] (Harris & Kotzalas)."""
+        """Total curvature B = fi + fo - 1 [-] (Harris & Kotzalas).
+
+        Returns
+        -------
+        float
+            Total curvature [-].
+        """
         return self.fi + self.fo - 1.0
 
     @property
     def groove_centre_distance(self) -> float:
-        """Distance between the groove curvature centres A = B Dw [m] (Harris & Kotzalas)."""
+        """Distance between the groove curvature centres A = B Dw [m] (Harris & Kotzalas).
+
+        Returns
+        -------
+        float
+            Groove centre distance [m].
+        """
         return self.total_curvature * self.ball_diameter
 
     @property
@@ -323,6 +366,11 @@ class BearingGeometry:
         For a deep-groove bearing, from the radial clearance: cos a0 = 1 - Pd / (2 A)
         (Harris & Kotzalas), 0 without clearance or with a preload (Pd <= 0). For an angular
         contact bearing, the nominal contact angle.
+
+        Returns
+        -------
+        float
+            Free contact angle [rad], in [0, pi/2).
         """
         if self.bearing_type == "angular_contact":
             return self.contact_angle
@@ -337,6 +385,11 @@ class BearingGeometry:
         ``dm/2 + (fi - 0.5) Dw cos a0`` with the ball centre on the pitch circle and the free
         contact angle a0 (Harris & Kotzalas): the inner groove centre lies beyond the ball centre,
         outside the pitch circle.
+
+        Returns
+        -------
+        float
+            Radius [m].
         """
         return 0.5 * self.pitch_diameter + (self.fi - 0.5) * self.ball_diameter * math.cos(
             self.free_contact_angle
@@ -347,6 +400,11 @@ class BearingGeometry:
         """Radius of the locus of the outer groove curvature centre [m].
 
         ``dm/2 - (fo - 0.5) Dw cos a0`` (Harris & Kotzalas): inside the pitch circle.
+
+        Returns
+        -------
+        float
+            Radius [m].
         """
         return 0.5 * self.pitch_diameter - (self.fo - 0.5) * self.ball_diameter * math.cos(
             self.free_contact_angle
@@ -354,5 +412,11 @@ class BearingGeometry:
 
     @property
     def gamma(self) -> float:
-        """Dimensionless ball size gamma = Dw cos(a) / dm [-] at the nominal contact angle."""
+        """Dimensionless ball size gamma = Dw cos(a) / dm [-] at the nominal contact angle.
+
+        Returns
+        -------
+        float
+            gamma [-].
+        """
         return self.ball_diameter * math.cos(self.contact_angle) / self.pitch_diameter

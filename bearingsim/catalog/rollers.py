@@ -137,23 +137,47 @@ class RollerBearingGeometry:
 
     @property
     def gamma(self) -> float:
-        """``Dw / dm`` [-]."""
+        """``Dw / dm`` [-].
+
+        Returns
+        -------
+        float
+            gamma [-].
+        """
         return self.roller_diameter / self.pitch_diameter
 
     @property
     def element_count(self) -> int:
-        """Number of rolling elements (the seam's name for Z)."""
+        """Number of rolling elements (the seam's name for Z).
+
+        Returns
+        -------
+        int
+            Z.
+        """
         return self.roller_count
 
     @property
     def element_diameter(self) -> float:
-        """Rolling element diameter [m] (the seam's name for Dw)."""
+        """Rolling element diameter [m] (the seam's name for Dw).
+
+        Returns
+        -------
+        float
+            Dw [m].
+        """
         return self.roller_diameter
 
     @property
     def series(self) -> str | None:
         """Dimension series of the designation ("2" for NU206, "3" for NU306, "22" for
-        NU2206), or None for a designation that does not follow it."""
+        NU2206), or None for a designation that does not follow it.
+
+        Returns
+        -------
+        str or None
+            The dimension series, or None.
+        """
         digits = re.search(r"\d+", self.designation)
         if digits is None or len(digits.group()) < 3:
             return None
@@ -164,6 +188,13 @@ class RollerBearingGeometry:
         """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed, refuse
         it above the shared multiple (:func:`~bearingsim.catalog.geometry.check_speed_limit`,
         the rule of the ball geometries too).
+
+        Parameters
+        ----------
+        speed : float
+            Constant ring speed [rad/s] (its magnitude is checked).
+        where : str
+            What is checked, for the messages (component or assembly and parameter).
 
         Warns
         -----

@@ -124,7 +124,20 @@ class Component:
         self._children[key] = child
 
     def add(self, name: str, element: Any) -> Any:
-        """Add a declaration, sub-component or connector under a computed name; return it."""
+        """Add a declaration, sub-component or connector under a computed name; return it.
+
+        Parameters
+        ----------
+        name : str
+            Attribute name (an identifier), e.g. ``f"ball_{j}"``.
+        element : Declaration or Component or Connector
+            The element to add.
+
+        Returns
+        -------
+        object
+            The element as the attribute reads (a declaration reads as its CasADi symbol).
+        """
         setattr(self, name, element)
         return getattr(self, name)
 
@@ -134,7 +147,13 @@ class Component:
     # ------------------------------------------------------------------ structure
     @property
     def path(self) -> str:
-        """Dotted name relative to the root ('' for the root)."""
+        """Dotted name relative to the root ('' for the root).
+
+        Returns
+        -------
+        str
+            The path.
+        """
         if self.parent is None:
             return ""
         prefix = self.parent.path
@@ -142,26 +161,66 @@ class Component:
 
     @property
     def display_name(self) -> str:
-        """Path, or the class name for the root."""
+        """Path, or the class name for the root.
+
+        Returns
+        -------
+        str
+            The display name.
+        """
         return self.path or (self.name or type(self).__name__)
 
     @property
     def children(self) -> dict[str, Component]:
-        """Direct sub-components by name."""
+        """Direct sub-components by name.
+
+        Returns
+        -------
+        dict of str to Component
+            A copy of the sub-components.
+        """
         return dict(self._children)
 
     @property
     def connectors(self) -> dict[str, Connector]:
-        """Own connectors by name."""
+        """Own connectors by name.
+
+        Returns
+        -------
+        dict of str to Connector
+            A copy of the connectors.
+        """
         return dict(self._connectors)
 
     @property
     def declarations(self) -> dict[str, Declaration]:
-        """Own parameters, variables and inputs by name."""
+        """Own parameters, variables and inputs by name.
+
+        Returns
+        -------
+        dict of str to Declaration
+            A copy of the declarations.
+        """
         return dict(self._declarations)
 
     def parameter(self, name: str) -> Parameter:
-        """The parameter declaration ``name`` of this component."""
+        """The parameter declaration ``name`` of this component.
+
+        Parameters
+        ----------
+        name : str
+            Attribute name of the parameter.
+
+        Returns
+        -------
+        Parameter
+            The declaration.
+
+        Raises
+        ------
+        KeyError
+            When the component has no parameter ``name``.
+        """
         decl = self._declarations.get(name)
         if not isinstance(decl, Parameter):
             raise KeyError(f"{self.display_name} has no parameter {name!r}")
@@ -175,7 +234,13 @@ class Component:
 
     @property
     def time(self) -> ca.SX:
-        """The time symbol t [s]."""
+        """The time symbol t [s].
+
+        Returns
+        -------
+        casadi.SX
+            The shared time symbol.
+        """
         return time
 
     # ------------------------------------------------------------------ equations
@@ -184,15 +249,33 @@ class Component:
         return ()
 
     def initial_equations(self) -> Iterable[Any]:
-        """Equations that hold at the start time only (override)."""
+        """Equations that hold at the start time only (override).
+
+        Returns
+        -------
+        iterable
+            Initial equations (none by default).
+        """
         return ()
 
     def add_equation(self, *equations: Any) -> None:
-        """Append equations to an ad-hoc component or assembly."""
+        """Append equations to an ad-hoc component or assembly.
+
+        Parameters
+        ----------
+        *equations
+            Equations (``lhs == rhs`` expressions or connect statements).
+        """
         self._extra_equations.extend(equations)
 
     def all_equations(self) -> list[Any]:
-        """Declared plus added equations."""
+        """Declared plus added equations.
+
+        Returns
+        -------
+        list
+            The equations of :meth:`equations` then those added.
+        """
         return list(self.equations()) + list(self._extra_equations)
 
     def __repr__(self) -> str:
@@ -293,5 +376,18 @@ def connect(*connectors: Connector) -> None:
 
 
 def flow_sign(connector: Connector, scope: Component) -> float:
-    """+1 for a connector of a sub-component (inside), -1 for the scope's own (outside)."""
+    """+1 for a connector of a sub-component (inside), -1 for the scope's own (outside).
+
+    Parameters
+    ----------
+    connector : Connector
+        A connector in a connect statement.
+    scope : Component
+        The component whose equations hold the statement.
+
+    Returns
+    -------
+    float
+        +1.0 or -1.0.
+    """
     return -1.0 if connector.owner is scope else 1.0

@@ -17,6 +17,11 @@ class Connector:
     :class:`Flow`. Each connector instance owns its own symbols; after it is assigned to a component
     attribute its fields read as CasADi symbols (``flange.phi``).
 
+    Parameters
+    ----------
+    description : str
+        What the connector stands for, for the documentation.
+
     Examples
     --------
     >>> from bearingsim import Connector, Potential, Flow
@@ -44,7 +49,20 @@ class Connector:
         self.fields: dict[str, Declaration] = {}
 
     def bind(self, owner: Any, name: str) -> None:
-        """Attach to a component under ``name`` and create the field symbols."""
+        """Attach to a component under ``name`` and create the field symbols.
+
+        Parameters
+        ----------
+        owner : Component
+            The component.
+        name : str
+            Attribute name of the connector.
+
+        Raises
+        ------
+        ModelError
+            When the connector already belongs to a component.
+        """
         if self.owner is not None:
             raise ModelError(f"connector {self.path} is already part of a component")
         self.owner = owner
@@ -81,18 +99,36 @@ class Connector:
 
     @property
     def path(self) -> str:
-        """Dotted name relative to the root."""
+        """Dotted name relative to the root.
+
+        Returns
+        -------
+        str
+            The path.
+        """
         prefix = self.owner.path if self.owner is not None else ""
         return f"{prefix}.{self.name}" if prefix else str(self.name)
 
     @property
     def potentials(self) -> list[Declaration]:
-        """Potential fields in declaration order."""
+        """Potential fields in declaration order.
+
+        Returns
+        -------
+        list of Declaration
+            The potential fields.
+        """
         return [d for d in self.fields.values() if isinstance(d, Potential)]
 
     @property
     def flows(self) -> list[Declaration]:
-        """Flow fields in declaration order."""
+        """Flow fields in declaration order.
+
+        Returns
+        -------
+        list of Declaration
+            The flow fields.
+        """
         return [d for d in self.fields.values() if isinstance(d, Flow)]
 
     def __repr__(self) -> str:

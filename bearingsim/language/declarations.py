@@ -46,7 +46,25 @@ class Declaration:
         self.sym: ca.SX | None = None
 
     def bind(self, owner: Any, attr: str) -> ca.SX:
-        """Attach to ``owner`` under ``attr`` and create the symbol."""
+        """Attach to ``owner`` under ``attr`` and create the symbol.
+
+        Parameters
+        ----------
+        owner : Component or Connector
+            The owner.
+        attr : str
+            Attribute name of the declaration.
+
+        Returns
+        -------
+        casadi.SX
+            The new symbol.
+
+        Raises
+        ------
+        ModelError
+            When the declaration is already bound.
+        """
         if self.owner is not None:
             raise ModelError(
                 f"{type(self).__name__} {self.path} is already declared; create a new one for "
@@ -59,12 +77,24 @@ class Declaration:
 
     @property
     def path(self) -> str:
-        """Dotted name relative to the root of the instance tree."""
+        """Dotted name relative to the root of the instance tree.
+
+        Returns
+        -------
+        str
+            The path.
+        """
         prefix = self.owner.path if self.owner is not None else ""
         return f"{prefix}.{self.attr}" if prefix else str(self.attr)
 
     def clone(self) -> Declaration:
-        """An unbound copy with the same attributes (used for connector instances)."""
+        """An unbound copy with the same attributes (used for connector instances).
+
+        Returns
+        -------
+        Declaration
+            The copy.
+        """
         new = object.__new__(type(self))
         new.__dict__.update(self.__dict__)
         new.owner = None
@@ -110,7 +140,18 @@ class Variable(Declaration):
         self.integral: Variable | None = None
 
     def derivative_symbol(self) -> ca.SX:
-        """The symbol of ``der(self)``, created on first use."""
+        """The symbol of ``der(self)``, created on first use.
+
+        Returns
+        -------
+        casadi.SX
+            The derivative's symbol [unit/s].
+
+        Raises
+        ------
+        ModelError
+            For a variable that is not declared yet.
+        """
         if self.sym is None:
             raise ModelError(f"der() of an undeclared variable {self.attr!r}")
         if self._derivative is None:
@@ -124,7 +165,13 @@ class Variable(Declaration):
 
     @property
     def derivative(self) -> Variable | None:
-        """The derivative declaration, if ``der`` was taken."""
+        """The derivative declaration, if ``der`` was taken.
+
+        Returns
+        -------
+        Variable or None
+            The derivative, or None.
+        """
         return self._derivative
 
     @property
@@ -213,7 +260,13 @@ class Parameter(Declaration):
 
     @property
     def value(self) -> float:
-        """Current value [unit]."""
+        """Current value [unit].
+
+        Returns
+        -------
+        float or None
+            The value [unit], None when bound to a symbol.
+        """
         return self._value
 
     @value.setter

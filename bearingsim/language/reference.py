@@ -20,7 +20,18 @@ __all__ = ["component_reference", "constructor_arguments", "documented_arguments
 
 
 def constructor_arguments(cls: type[Component]) -> list[str]:
-    """Names of the constructor's arguments a user gives (without ``self`` and ``name``)."""
+    """Names of the constructor's arguments a user gives (without ``self`` and ``name``).
+
+    Parameters
+    ----------
+    cls : type
+        A component class.
+
+    Returns
+    -------
+    list of str
+        The argument names, in signature order.
+    """
     init = getattr(cls.__init__, "__wrapped__", cls.__init__)
     params = inspect.signature(init).parameters.values()
     return [p.name for p in params if p.name not in ("self", "name")
@@ -29,7 +40,18 @@ def constructor_arguments(cls: type[Component]) -> list[str]:
 
 def documented_arguments(cls: type[Component]) -> list[str]:
     """Argument names listed in the numpydoc ``Parameters`` section of the class docstring
-    (``a : type`` and ``a, b : type`` lines)."""
+    (``a : type`` and ``a, b : type`` lines).
+
+    Parameters
+    ----------
+    cls : type
+        A component class.
+
+    Returns
+    -------
+    list of str
+        The documented names, in docstring order.
+    """
     doc = inspect.cleandoc(cls.__doc__ or "")
     match = re.search(r"^Parameters\n-+\n(.*?)(?=^\S[^\n]*\n-+\n|\Z)", doc, re.S | re.M)
     if match is None:

@@ -45,14 +45,38 @@ time = ca.SX.sym("time")
 
 
 def new_symbol(attr: str, declaration: Declared) -> ca.SX:
-    """Create the unique SX symbol of a declaration and register it."""
+    """Create the unique SX symbol of a declaration and register it.
+
+    Parameters
+    ----------
+    attr : str
+        Attribute name (the symbol's name before its counter).
+    declaration : Declaration
+        The declaration the symbol stands for.
+
+    Returns
+    -------
+    casadi.SX
+        The new scalar symbol.
+    """
     name = f"{attr}__{next(_counter)}"
     _registry[name] = declaration
     return ca.SX.sym(name)
 
 
 def symbol_declaration(sym: ca.SX) -> Declared | None:
-    """The declaration behind a scalar symbol, or None for foreign symbols."""
+    """The declaration behind a scalar symbol, or None for foreign symbols.
+
+    Parameters
+    ----------
+    sym : casadi.SX
+        A scalar symbol.
+
+    Returns
+    -------
+    Declaration or None
+        The declaration, or None.
+    """
     return _registry.get(sym.name())
 
 
@@ -101,7 +125,18 @@ def der(expr: Any) -> Any:
 
 
 def readable(expr: Any) -> str:
-    """Render an expression with the dotted names of its variables instead of symbol names."""
+    """Render an expression with the dotted names of its variables instead of symbol names.
+
+    Parameters
+    ----------
+    expr : object
+        A CasADi expression (or anything with a ``str``).
+
+    Returns
+    -------
+    str
+        The rendered expression.
+    """
 
     def repl(match: re.Match) -> str:
         decl = _registry.get(match.group(0))

@@ -94,7 +94,18 @@ def contact_spring_constant(geometry: BearingGeometry, ball: Material = STEEL,
 
 def inner_groove_centre_radius(geometry: BearingGeometry) -> float:
     """``R_i = Dpw/2 + (r_i - Dw/2) cos(alpha0)`` [m], the standard's lever of the
-    misalignment (``alpha0`` the free contact angle of the clearance)."""
+    misalignment (``alpha0`` the free contact angle of the clearance).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing (Dpw, Dw, fi and its clearance).
+
+    Returns
+    -------
+    float
+        R_i [m], > 0.
+    """
     return (0.5 * geometry.pitch_diameter
             + (geometry.fi - 0.5) * geometry.ball_diameter * np.cos(geometry.free_contact_angle))
 

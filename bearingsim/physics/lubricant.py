@@ -193,6 +193,11 @@ def register_lubricant(name: str, factory: Callable[..., Lubricant], *,
 def unregister_lubricant(name: str) -> None:
     """Remove a registered lubricant.
 
+    Parameters
+    ----------
+    name : str
+        Name of a registered lubricant.
+
     Raises
     ------
     CatalogError
@@ -202,7 +207,13 @@ def unregister_lubricant(name: str) -> None:
 
 
 def known_lubricants() -> list[str]:
-    """Names accepted by :func:`get_lubricant` (built in, plug-ins, registered)."""
+    """Names accepted by :func:`get_lubricant` (built in, plug-ins, registered).
+
+    Returns
+    -------
+    list of str
+        The names.
+    """
     return list(LUBRICANTS)
 
 

@@ -44,6 +44,20 @@ def check_kinematic_viscosity(nu: Any, name: str = "nu", where: str = "") -> Any
     """A kinematic viscosity [m^2/s] within :data:`KINEMATIC_VISCOSITY_RANGE`, or 0 (a dry
     contact, :class:`Dry`); CasADi symbols pass unchecked.
 
+    Parameters
+    ----------
+    nu : float or array or SX
+        Kinematic viscosity [m^2/s].
+    name : str
+        Parameter name, for the message.
+    where : str
+        The model, for the message.
+
+    Returns
+    -------
+    float or array or SX
+        ``nu``, checked.
+
     Raises
     ------
     ParameterError
@@ -109,7 +123,13 @@ class Lubricant(ABC):
     @property
     def is_viscous(self) -> bool:
         """True when the lubricant has a viscosity at its operating temperature (oil, grease):
-        it forms an EHL film, drags the balls and churns; False for :class:`Dry`."""
+        it forms an EHL film, drags the balls and churns; False for :class:`Dry`.
+
+        Returns
+        -------
+        bool
+            Whether the lubricant is viscous.
+        """
         return float(self.kinematic_viscosity()) > 0.0
 
     def _t(self, T: Any) -> Any:  # noqa: N803
@@ -118,19 +138,63 @@ class Lubricant(ABC):
 
     @abstractmethod
     def kinematic_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Kinematic viscosity [m^2/s] at temperature ``T`` [K]."""
+        """Kinematic viscosity [m^2/s] at temperature ``T`` [K].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Kinematic viscosity [m^2/s], >= 0.
+        """
 
     @abstractmethod
     def density(self, T: Any = None) -> Any:  # noqa: N803
-        """Density [kg/m^3] at temperature ``T`` [K]."""
+        """Density [kg/m^3] at temperature ``T`` [K].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Density [kg/m^3], >= 0.
+        """
 
     @abstractmethod
     def pressure_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Barus pressure-viscosity coefficient alpha [1/Pa] at temperature ``T`` [K]."""
+        """Barus pressure-viscosity coefficient alpha [1/Pa] at temperature ``T`` [K].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            alpha [1/Pa], >= 0.
+        """
 
     @abstractmethod
     def traction_coefficient(self, slip_speed: Any) -> Any:
-        """Odd, smooth traction coefficient [-] at a sliding speed [m/s]."""
+        """Odd, smooth traction coefficient [-] at a sliding speed [m/s].
+
+        Parameters
+        ----------
+        slip_speed : float or array or SX
+            Sliding speed [m/s], either sign.
+
+        Returns
+        -------
+        float or array or SX
+            Traction coefficient [-], of the sign of ``slip_speed``.
+        """
 
     @abstractmethod
     def churning_factor(self) -> float:
@@ -141,13 +205,37 @@ class Lubricant(ABC):
         """One-line human-readable description."""
 
     def dynamic_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Dynamic viscosity ``eta = nu rho`` [Pa s] at temperature ``T`` [K]."""
+        """Dynamic viscosity ``eta = nu rho`` [Pa s] at temperature ``T`` [K].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Dynamic viscosity [Pa s], >= 0.
+        """
         return self.kinematic_viscosity(T) * self.density(T)
 
     def palmgren_f0(self, bearing_type: str, series: str | None = None) -> float:
         """Palmgren factor f0 [-] for this lubricant's method (and the bearing's catalogue
         ``series`` where the catalogue table has it), times :meth:`churning_factor`
-        (:func:`~bearingsim.physics.lubrication.palmgren_f0`)."""
+        (:func:`~bearingsim.physics.lubrication.palmgren_f0`).
+
+        Parameters
+        ----------
+        bearing_type : str
+            Bearing type, e.g. ``"deep_groove"`` or ``"angular_contact"``.
+        series : str, optional
+            Catalogue series of the bearing (None: the type's default row).
+
+        Returns
+        -------
+        float
+            f0 [-], >= 0.
+        """
         if self.churning_factor() == 0.0:
             return 0.0
         return palmgren_f0(bearing_type, self.method, series) * self.churning_factor()
@@ -254,7 +342,20 @@ class Oil(Lubricant):
     @classmethod
     def from_iso_vg(cls, grade: int, **kwargs: Any) -> Oil:
         """Mineral oil of an ISO VG grade (nu at 40 degC = grade, at 100 degC from
-        :data:`ISO_VG_NU100`). Keyword arguments go to the constructor."""
+        :data:`ISO_VG_NU100`). Keyword arguments go to the constructor.
+
+        Parameters
+        ----------
+        grade : int
+            ISO VG grade, a key of :data:`ISO_VG_NU100` (nu at 40 degC [mm^2/s]).
+        **kwargs
+            Further keywords of :class:`Oil`.
+
+        Returns
+        -------
+        Oil
+            The oil.
+        """
         if grade not in ISO_VG_NU100:
             raise CatalogError(
                 f"unknown ISO VG grade {grade!r}; known: {', '.join(map(str, ISO_VG_NU100))}")
@@ -262,27 +363,77 @@ class Oil(Lubricant):
         return cls(float(grade), 40.0, ISO_VG_NU100[grade], 100.0, **kwargs)
 
     def kinematic_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Kinematic viscosity [m^2/s] by ASTM D341 (Walther) at ``T`` [K]."""
+        """Kinematic viscosity [m^2/s] by ASTM D341 (Walther) at ``T`` [K].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Kinematic viscosity [m^2/s], > 0.
+        """
         z = self.walther_a - self.walther_b * _log10(self._t(T))
         return cst_to_m2_s(power(10.0, power(10.0, z)) - 0.7)
 
     def density(self, T: Any = None) -> Any:  # noqa: N803
-        """Density [kg/m^3] at ``T`` [K] (linear thermal expansion from 15 degC)."""
+        """Density [kg/m^3] at ``T`` [K] (linear thermal expansion from 15 degC).
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Density [kg/m^3], > 0.
+        """
         return self.rho15 * (1.0 - self.beta * (self._t(T) - 288.15))
 
     def pressure_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Pressure-viscosity coefficient [1/Pa]: given, or Gold et al. (2001) at ``T`` [K]."""
+        """Pressure-viscosity coefficient [1/Pa]: given, or Gold et al. (2001) at ``T`` [K].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            alpha [1/Pa], > 0.
+        """
         if self.alpha is not None:
             return self.alpha + 0.0 * self._t(T)
         nu_cst = self.kinematic_viscosity(T) * 1e6
         return 9.904e-9 * power(nu_cst, 0.139)
 
     def traction_coefficient(self, slip_speed: Any) -> Any:
-        """EHL traction curve (:func:`~bearingsim.physics.traction.ehl_traction`) [-]."""
+        """EHL traction curve (:func:`~bearingsim.physics.traction.ehl_traction`) [-].
+
+        Parameters
+        ----------
+        slip_speed : float or array or SX
+            Sliding speed [m/s], either sign.
+
+        Returns
+        -------
+        float or array or SX
+            Traction coefficient [-].
+        """
         return ehl_traction(slip_speed, **self.traction)
 
     def churning_factor(self) -> float:
-        """1: the f0 table already refers to the oil lubrication method."""
+        """1: the f0 table already refers to the oil lubrication method.
+
+        Returns
+        -------
+        float
+            1 [-].
+        """
         return 1.0
 
     def describe(self) -> str:
@@ -343,23 +494,73 @@ class Grease(Lubricant):
         self.mu_bl, self.mu_ehl = base_oil.mu_bl, base_oil.mu_ehl
 
     def kinematic_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Base-oil kinematic viscosity [m^2/s]."""
+        """Base-oil kinematic viscosity [m^2/s].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Kinematic viscosity [m^2/s], > 0.
+        """
         return self.base_oil.kinematic_viscosity(T)
 
     def density(self, T: Any = None) -> Any:  # noqa: N803
-        """Base-oil density [kg/m^3]."""
+        """Base-oil density [kg/m^3].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            Density [kg/m^3], > 0.
+        """
         return self.base_oil.density(T)
 
     def pressure_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """Base-oil pressure-viscosity coefficient [1/Pa]."""
+        """Base-oil pressure-viscosity coefficient [1/Pa].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float or SX
+            alpha [1/Pa], > 0.
+        """
         return self.base_oil.pressure_viscosity(T)
 
     def traction_coefficient(self, slip_speed: Any) -> Any:
-        """Base-oil traction curve [-]."""
+        """Base-oil traction curve [-].
+
+        Parameters
+        ----------
+        slip_speed : float or array or SX
+            Sliding speed [m/s], either sign.
+
+        Returns
+        -------
+        float or array or SX
+            Traction coefficient [-].
+        """
         return self.base_oil.traction_coefficient(slip_speed)
 
     def churning_factor(self) -> float:
-        """``(1 + k_t phi) / (1 + k_t/3)`` [-], increasing with the fill fraction ``phi``."""
+        """``(1 + k_t phi) / (1 + k_t/3)`` [-], increasing with the fill fraction ``phi``.
+
+        Returns
+        -------
+        float
+            Churning factor [-], > 0.
+        """
         k = self.thickener_factor
         return (1.0 + k * self.fill_fraction) / (1.0 + k / 3.0)
 
@@ -397,23 +598,73 @@ class Dry(Lubricant):
         self.mu_bl = self.mu_ehl = self.contact_friction = self.mu
 
     def kinematic_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """0 [m^2/s]."""
+        """0 [m^2/s].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float
+            0 [m^2/s].
+        """
         return 0.0 * self._t(T)
 
     def density(self, T: Any = None) -> Any:  # noqa: N803
-        """0 [kg/m^3]."""
+        """0 [kg/m^3].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float
+            0 [kg/m^3].
+        """
         return 0.0 * self._t(T)
 
     def pressure_viscosity(self, T: Any = None) -> Any:  # noqa: N803
-        """0 [1/Pa]."""
+        """0 [1/Pa].
+
+        Parameters
+        ----------
+        T : float or SX, optional
+            Temperature [K], in [200, 600]; None: the operating ``temperature``.
+
+        Returns
+        -------
+        float
+            0 [1/Pa].
+        """
         return 0.0 * self._t(T)
 
     def traction_coefficient(self, slip_speed: Any) -> Any:
-        """Regularized Coulomb coefficient [-]."""
+        """Regularized Coulomb coefficient [-].
+
+        Parameters
+        ----------
+        slip_speed : float or array or SX
+            Sliding speed [m/s], either sign.
+
+        Returns
+        -------
+        float or array or SX
+            Traction coefficient [-], of the sign of ``slip_speed``.
+        """
         return regularized_coulomb(slip_speed, self.mu, self.v_reg)
 
     def churning_factor(self) -> float:
-        """0: no viscous friction."""
+        """0: no viscous friction.
+
+        Returns
+        -------
+        float
+            0 [-].
+        """
         return 0.0
 
     def describe(self) -> str:

@@ -128,7 +128,26 @@ def steady_values(prep: Any, inputs: dict[str, float], parameters: dict[str, flo
                   ) -> dict[str, float] | None:
     """The requested outputs at the steady state under constant ``inputs`` and the assembly's
     own signals at time ``t`` [s] (None when no unique steady state is found from
-    ``x_guess``)."""
+    ``x_guess``).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    inputs : dict of str to float
+        Input values by name (SI units).
+    parameters : dict of str to float
+        Parameter values by dotted name (SI units).
+    x_guess : ndarray, optional
+        Start of the steady-state solve (None: the model's start values).
+    t : float
+        Time [s] at which the assembly's signals are evaluated.
+
+    Returns
+    -------
+    dict of str to float or None
+        Output values (SI units) by name, or None.
+    """
     from bearingsim.simulation import steady_state
 
     try:
@@ -160,7 +179,18 @@ def _observed_outputs(prep: Any, x: np.ndarray, inputs: dict[str, float],
 # --------------------------------------------------------------------------- points
 def operating_points(scene: Scene) -> list[dict[str, Any]]:
     """The operating points of a scene: every combination of its ``grid`` (the first key
-    varying fastest), its ``cases`` in order, or one point of its ``inputs`` alone."""
+    varying fastest), its ``cases`` in order, or one point of its ``inputs`` alone.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    list of dict
+        One ``{key: value}`` per operating point.
+    """
     if scene.cases:
         return [dict(c) for c in scene.cases]
     if not scene.grid:
@@ -171,14 +201,40 @@ def operating_points(scene: Scene) -> list[dict[str, Any]]:
 
 
 def point_label(key: str) -> str:
-    """The table column of a point key: ``inputs.shaft_speed`` -> ``shaft_speed``."""
+    """The table column of a point key: ``inputs.shaft_speed`` -> ``shaft_speed``.
+
+    Parameters
+    ----------
+    key : str
+        A point key (``inputs.X``, ``parameters.X`` or an assembly argument).
+
+    Returns
+    -------
+    str
+        The column name.
+    """
     return key.split(".", 1)[1] if key.split(".", 1)[0] in ("inputs", "parameters",
                                                               "assembly") else key
 
 
 def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
     """SI unit of each point key's column (inputs and parameters from the model, assembly
-    arguments from the ``[unit]`` of their description)."""
+    arguments from the ``[unit]`` of their description).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    scene : Scene
+        The loaded scene.
+    keys : list of str
+        The point keys.
+
+    Returns
+    -------
+    dict of str to str
+        SI unit by column name.
+    """
     units = {}
     system = prep.system if prep is not None else None
     for key in keys:
@@ -201,7 +257,20 @@ def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
 def split_point(scene: Scene, point: dict[str, Any]
                 ) -> tuple[dict[str, float], dict[str, float], dict[str, Any]]:
     """The inputs, parameter values and assembly arguments of an operating point (the scene's
-    own merged with the point's)."""
+    own merged with the point's).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    point : dict
+        An operating point, ``{key: value}``.
+
+    Returns
+    -------
+    tuple of (dict, dict, dict)
+        Inputs [SI], parameter values [SI] and assembly arguments.
+    """
     inputs = {k: v for k, v in scene.inputs.items()}
     parameters = dict(scene.parameters)
     args = dict(scene.args)
@@ -238,6 +307,18 @@ def point_model(prep: Any, args: dict[str, Any]) -> tuple[Any, dict[str, float]]
     preload) become parameter overrides of the assembled model of ``prep``; any other changed
     argument (an arrangement, a bearing) assembles the model for those arguments, once per
     distinct set (cached on ``prep``).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    args : dict
+        The point's assembly arguments.
+
+    Returns
+    -------
+    tuple of (Prepared, dict of str to float)
+        The prepared model and its parameter overrides (SI units).
 
     Raises
     ------
@@ -426,6 +507,13 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """:func:`run_operating_point` for each point in order, each solve started from the
     solution of the previous point (continuation along the grid; a new curve starts from the
     first point of the previous curve).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    points : list of dict
+        Operating points in run order.
 
     Returns
     -------

@@ -69,7 +69,18 @@ def _alive(pid: int) -> bool:
 
 
 def file_record(path: Path) -> dict[str, Any]:
-    """``{"name", "bytes", "sha256"}`` of a written file (for the summary)."""
+    """``{"name", "bytes", "sha256"}`` of a written file (for the summary).
+
+    Parameters
+    ----------
+    path : Path
+        A written file.
+
+    Returns
+    -------
+    dict
+        Its name, size [bytes] and SHA-256 (hex).
+    """
     digest = hashlib.sha256()
     with path.open("rb") as fh:
         for block in iter(lambda: fh.read(1 << 20), b""):
@@ -174,7 +185,13 @@ class OutputFolder:
     # ------------------------------------------------------------------ writing
     def retire(self, summary_name: str) -> None:
         """Remove an earlier run's summary and the files it names, before anything of that
-        run is replaced: a run that then fails half-way leaves none of them behind."""
+        run is replaced: a run that then fails half-way leaves none of them behind.
+
+        Parameters
+        ----------
+        summary_name : str
+            File name of the earlier run's summary in the folder.
+        """
         path = self.folder / summary_name
         try:
             named = json.loads(path.read_text(encoding="utf-8")).get("files", [])
@@ -192,7 +209,18 @@ class OutputFolder:
                                   f"{reason}") from None
 
     def add(self, path: Path) -> Path:
-        """Record a file written (atomically) by another writer."""
+        """Record a file written (atomically) by another writer.
+
+        Parameters
+        ----------
+        path : Path
+            The written file.
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
         self.files.append(Path(path))
         return Path(path)
 
@@ -200,7 +228,13 @@ class OutputFolder:
         """Make the figures (``make()`` -> (file name, Figure) pairs) and save each as PNG;
         a figure that fails to be made or saved is recorded in :attr:`plot_failures`. File
         errors (folder gone, disk full) still raise :class:`FileAccessError`, and a scene
-        error (``output.plot_groups`` naming no output) its ``ParameterError``."""
+        error (``output.plot_groups`` naming no output) its ``ParameterError``.
+
+        Parameters
+        ----------
+        make : callable
+            ``make()`` -> iterable of (file name, Figure).
+        """
         try:
             figures = list(make())
         except (FileAccessError, ParameterError):  # a file error; a plot the scene misnames
@@ -222,7 +256,20 @@ class OutputFolder:
 
     def write_summary(self, name: str, data: dict[str, Any]) -> Path:
         """Write the JSON summary last: ``data`` with ``files`` (name, bytes, SHA-256 of each
-        file of this run) and ``plot_failures``."""
+        file of this run) and ``plot_failures``.
+
+        Parameters
+        ----------
+        name : str
+            File name of the summary.
+        data : dict
+            The summary's content (JSON-serializable).
+
+        Returns
+        -------
+        Path
+            The summary file.
+        """
         path = self.folder / name
         data = {**data, "files": [file_record(p) for p in self.files],
                 "plot_failures": list(self.plot_failures)}
@@ -237,5 +284,11 @@ def _one_line(exc: BaseException) -> str:
 
 
 def command_line() -> str:
-    """This process's command line, for the lock (``bearingsim run scene.toml``)."""
+    """This process's command line, for the lock (``bearingsim run scene.toml``).
+
+    Returns
+    -------
+    str
+        The command line.
+    """
     return " ".join(Path(a).name if k == 0 else a for k, a in enumerate(sys.argv))[:300]

@@ -27,6 +27,13 @@ def display(values, unit: str) -> tuple[np.ndarray, str]:
     """SI ``values`` of ``unit`` in the unit an engineer reads them in (r/min, µm, N mm, kN,
     MPa, °C, h, ``-``; :func:`bearingsim.units.to_display`, the one display-unit table).
 
+    Parameters
+    ----------
+    values : array_like
+        Values in SI units.
+    unit : str
+        Their SI unit.
+
     Returns
     -------
     (numpy.ndarray, str)
@@ -39,7 +46,20 @@ def display(values, unit: str) -> tuple[np.ndarray, str]:
 
 
 def display_text(value: float, unit: str) -> str:
-    """One SI value as text in its display unit (:func:`display`), e.g. ``"10000 r/min"``."""
+    """One SI value as text in its display unit (:func:`display`), e.g. ``"10000 r/min"``.
+
+    Parameters
+    ----------
+    value : float
+        Value in SI units.
+    unit : str
+        Its SI unit.
+
+    Returns
+    -------
+    str
+        Value and display unit.
+    """
     if value is None or not math.isfinite(value):
         return f"{value}"
     shown, label = display(np.array([value]), unit)
@@ -48,7 +68,20 @@ def display_text(value: float, unit: str) -> str:
 
 def describe(name: str, prep: Any = None) -> str:
     """The description of a variable, input, state, post-processed quantity or analysis
-    column, for axis labels (the name itself when it has none)."""
+    column, for axis labels (the name itself when it has none).
+
+    Parameters
+    ----------
+    name : str
+        A dotted name or column.
+    prep : Prepared, optional
+        The prepared scene whose model describes it (None: the name itself).
+
+    Returns
+    -------
+    str
+        The description.
+    """
     if prep is not None and prep.scene.analysis == "statics":
         statics = STATICS.get(prep.spec.name)
         if statics is not None and name in statics.columns:
@@ -70,7 +103,22 @@ def describe(name: str, prep: Any = None) -> str:
 
 def axis_text(name: str, prep: Any, unit: str) -> str:
     """An axis label: the description and the display unit, ``"middle ring speed [r/min]"``,
-    wrapped to about 40 characters."""
+    wrapped to about 40 characters.
+
+    Parameters
+    ----------
+    name : str
+        A dotted name or column.
+    prep : Prepared or None
+        The prepared scene (for the description).
+    unit : str
+        The display unit.
+
+    Returns
+    -------
+    str
+        The label.
+    """
     import textwrap
 
     lines = textwrap.wrap(describe(name, prep), 32) or [""]
@@ -88,7 +136,22 @@ frequencies, powers, stiffnesses): a load on a log axis down to 1e-10 N reads as
 
 def include_zero(ax, values: np.ndarray, unit: str) -> bool:
     """A linear value axis that shows 0 for the display units of :data:`_FROM_ZERO`; returns
-    whether the unit is one of them."""
+    whether the unit is one of them.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes (changed in place).
+    values : ndarray
+        The plotted values (display units).
+    unit : str
+        Their display unit.
+
+    Returns
+    -------
+    bool
+        Whether ``unit`` is one of them (the axis then shows 0).
+    """
     if unit not in _FROM_ZERO:
         return False
     finite = values[np.isfinite(values)]
@@ -123,6 +186,21 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     """Steady characteristics: each output against the grid's first key, one curve per value
     of the other keys (the ``steady`` and ``modes`` figures); a series equal to the x axis
     (the variable against itself) is left out.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    rows : list of dict
+        The analysis table's rows, one per operating point.
+    keys : list of str
+        The grid keys (the first is the x axis).
+    units : dict of str to str
+        SI unit of each column or series by name.
+    names : list of str
+        The columns to draw.
+    what : {"steady", "modes"}
+        The analysis (figure name).
 
     Returns
     -------
@@ -183,7 +261,22 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
     """The assembly's statics columns (:attr:`~bearingsim.scenes.statics_table.Statics.figure`:
     life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
     bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
-    drawn on a pressure panel."""
+    drawn on a pressure panel.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    rows : list of dict
+        The analysis table's rows, one per operating point.
+    units : dict of str to str
+        SI unit of each column or series by name.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        File name and figure of each.
+    """
     from matplotlib.figure import Figure
 
     if not rows:
@@ -229,6 +322,17 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
     against the first grid key (one curve per value of the second), natural frequency against
     the first key per mode, or life, ball load and pressure per load case.
 
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    rows : list of dict
+        The analysis table's rows, one per operating point.
+    keys : list of str
+        The grid or case keys.
+    units : dict of str to str
+        SI unit of each column or series by name.
+
     Returns
     -------
     list of (str, matplotlib.figure.Figure)
@@ -245,7 +349,20 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
 def render_report(spec: FigureSpec, title: str = ""):
     """:func:`bearingsim.plotting.render` of an assembly's figure in the scene display units
     (:func:`display`: kN for every force, N mm for every torque, µm, r/min), loads and
-    torques on linear axes that show 0."""
+    torques on linear axes that show 0.
+
+    Parameters
+    ----------
+    spec : FigureSpec
+        The assembly's figure (SI units).
+    title : str
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
+    """
     from dataclasses import replace
 
     from bearingsim.plotting import render

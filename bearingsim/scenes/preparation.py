@@ -66,14 +66,50 @@ class Prepared:
         """The steady state of the scene's system (:func:`~bearingsim.simulation.steady_state`)
         under ``inputs`` and ``parameters`` from ``x_guess``, inputs evaluated at ``t`` [s];
         raises :class:`~bearingsim.errors.BearingsimError` where none is found. For an
-        assembly's figures, which may not import the runtime."""
+        assembly's figures, which may not import the runtime.
+
+        Parameters
+        ----------
+        inputs : dict of str to float
+            Input values by name (SI units).
+        parameters : dict of str to float
+            Parameter values by dotted name (SI units).
+        x_guess : ndarray
+            Start of the solve (states, SI units).
+        t : float
+            Time [s] at which inputs are evaluated.
+        residual_tol : float
+            Residual tolerance of the steady state, > 0.
+
+        Returns
+        -------
+        ndarray
+            The steady states (SI units).
+        """
         return steady_state(self.system, inputs=inputs, parameters=parameters, x_guess=x_guess,
                             t=t, residual_tol=residual_tol)
 
     def observe(self, t: float, x: np.ndarray, inputs: dict[str, float],
                 parameters: dict[str, float]) -> dict[str, float]:
         """The observed variables of the scene's system at time ``t`` [s], states ``x`` and the
-        given ``inputs`` (the others at their defaults) and ``parameters``."""
+        given ``inputs`` (the others at their defaults) and ``parameters``.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : ndarray
+            States (SI units).
+        inputs : dict of str to float
+            Input values by name (SI units).
+        parameters : dict of str to float
+            Parameter values by dotted name (SI units).
+
+        Returns
+        -------
+        dict of str to float
+            Observed values (SI units) by name.
+        """
         system = self.system
         u = system.u_default()
         for name, value in inputs.items():
@@ -84,13 +120,38 @@ class Prepared:
                          loads: tuple[str, ...], inputs: dict[str, float],
                          parameters: dict[str, float]) -> np.ndarray:
         """The exact static stiffness ``d loads / d displacements`` of the scene's system at the
-        equilibrium ``x`` (:func:`~bearingsim.simulation.statics.static_stiffness`)."""
+        equilibrium ``x`` (:func:`~bearingsim.simulation.statics.static_stiffness`).
+
+        Parameters
+        ----------
+        x : ndarray
+            The equilibrium states (SI units).
+        displacements : tuple of str
+            Names of the displacement states.
+        loads : tuple of str
+            Names of the load inputs.
+        inputs : dict of str to float
+            Input values by name (SI units).
+        parameters : dict of str to float
+            Parameter values by dotted name (SI units).
+
+        Returns
+        -------
+        ndarray
+            Stiffness matrix, loads by displacements (SI units).
+        """
         return static_stiffness(self.system, x, displacements, loads, inputs, parameters)
 
     @property
     def outputs(self) -> list[str]:
         """The requested outputs in order (model and post-processed); for a statics scene the
-        columns of its assembly's statics solution."""
+        columns of its assembly's statics solution.
+
+        Returns
+        -------
+        list of str
+            The output names.
+        """
         if self.scene.analysis == "statics":
             return list(statics_of(self).columns)
         return self.scene.outputs or [n for n in self.spec.default_outputs
@@ -114,6 +175,20 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     whose measured error (:meth:`~bearingsim.assemblies.spec.AssemblySpec.level_error`) on each
     requested output is within ``scene.tolerance``; a level that is too inaccurate for one
     output is rejected for the whole scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    spec : AssemblySpec
+        The assembly's spec.
+    post : dict of str to PostQuantity
+        The post-processed quantities the scene requests.
+
+    Returns
+    -------
+    tuple of (str, str, list of str)
+        The level, the reason and the rejected levels.
     """
     if spec.fidelity_arg is None:
         return spec.fidelities[0], "the assembly has a single fidelity level", []
@@ -166,7 +241,18 @@ def _point_keys(scene: Scene) -> list[str]:
 
 def scene_inputs(scene: Scene) -> dict[str, Any]:
     """The inputs a scene sets: its ``inputs`` and those of its grid or cases (the text
-    ``"varies"`` for one that is not 0 at every point)."""
+    ``"varies"`` for one that is not 0 at every point).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    dict
+        Input values by name (SI units, or ``"varies"``).
+    """
     inputs = dict(scene.inputs)
     values: dict[str, list[Any]] = {}
     for key, vals in scene.grid.items():
@@ -183,6 +269,16 @@ def scene_inputs(scene: Scene) -> dict[str, Any]:
 
 def prepare(scene: Scene) -> Prepared:
     """Validate a scene, choose its fidelity and assemble the pruned model.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    Prepared
+        The prepared scene.
 
     Raises
     ------
@@ -247,7 +343,22 @@ def prepare(scene: Scene) -> Prepared:
 def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
                    ) -> list[AssemblyPlot]:
     """The figures of an assembly at a level: those its spec declares
-    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`)."""
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`).
+
+    Parameters
+    ----------
+    spec : AssemblySpec
+        The assembly's spec.
+    args : dict
+        The assembly arguments (defaults filled in).
+    fidelity : str
+        The fidelity level.
+
+    Returns
+    -------
+    list of AssemblyPlot
+        The figures.
+    """
     return spec.plots(args, fidelity)
 
 
@@ -298,7 +409,18 @@ def _check_names(scene: Scene, system: System) -> None:
 
 
 def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
-    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays."""
+    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays.
+
+    Parameters
+    ----------
+    inputs : dict
+        Scene inputs by name (numbers, expressions or tables).
+
+    Returns
+    -------
+    dict
+        The inputs for ``simulate``.
+    """
     out = {}
     for k, v in inputs.items():
         if isinstance(v, str):
@@ -314,7 +436,22 @@ def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,
                    allow_paths: list[str | Path] | tuple = ()) -> Prepared | Scene:
     """Check a scene without running it: the file, and (by default) its names against the
     assembled model. Returns the :class:`Prepared` scene (or the :class:`Scene`);
-    ``allow_paths`` as :func:`~bearingsim.scenes.scene.load_scene` takes it."""
+    ``allow_paths`` as :func:`~bearingsim.scenes.scene.load_scene` takes it.
+
+    Parameters
+    ----------
+    scene : Scene or str or Path
+        The scene or its file.
+    assemble_model : bool
+        Also assemble the model and check the names against it.
+    allow_paths : sequence of str or Path
+        Further folders the scene may name files in.
+
+    Returns
+    -------
+    Prepared or Scene
+        The prepared scene, or the scene without ``assemble_model``.
+    """
     from bearingsim.scenes.scene import load_scene
 
     if not isinstance(scene, Scene):
@@ -327,7 +464,26 @@ def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
                    inputs: dict[str, Any] | None = None, progress: bool | None = False,
                    **overrides) -> Result:
     """Simulate a prepared scene (optionally with other parameters, inputs or settings;
-    ``progress`` as :func:`~bearingsim.simulation.simulate` takes it)."""
+    ``progress`` as :func:`~bearingsim.simulation.simulate` takes it).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    parameters : dict of str to float, optional
+        Parameter values over the scene's (SI units).
+    inputs : dict, optional
+        Inputs over the scene's.
+    progress : bool or None
+        Progress bar, as ``simulate`` takes it.
+    **overrides
+        Settings over the scene's ``simulation`` table (``t_end``, ``rtol``, ...).
+
+    Returns
+    -------
+    Result
+        The simulation result.
+    """
     s = prep.scene.simulation
     opts = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
             "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial,
@@ -341,7 +497,20 @@ def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
 
 
 def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
-    """The requested outputs: model series from the result, post-processed ones computed."""
+    """The requested outputs: model series from the result, post-processed ones computed.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    result : Result
+        The run's result.
+
+    Returns
+    -------
+    dict of str to ndarray
+        Series (SI units) by output name.
+    """
     series = {n: np.asarray(result[n]) for n in prep.model_outputs}
     out = {}
     for n in prep.outputs:

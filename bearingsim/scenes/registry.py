@@ -33,6 +33,16 @@ __all__ = [
 def register(spec: AssemblySpec) -> AssemblySpec:
     """Add (or replace) an assembly spec, so that scenes can name it; returns it.
 
+    Parameters
+    ----------
+    spec : AssemblySpec
+        The spec.
+
+    Returns
+    -------
+    AssemblySpec
+        ``spec``.
+
     Raises
     ------
     ParameterError
@@ -47,7 +57,18 @@ def register(spec: AssemblySpec) -> AssemblySpec:
 
 def unregister(name: str) -> AssemblySpec:
     """Remove a registered assembly spec by name; returns it (``CatalogError``, a ``KeyError``,
-    with the known names for an unknown one)."""
+    with the known names for an unknown one).
+
+    Parameters
+    ----------
+    name : str
+        Assembly name.
+
+    Returns
+    -------
+    AssemblySpec
+        The removed spec.
+    """
     spec = get_spec(name)
     del REGISTRY[name]
     return spec
@@ -56,7 +77,18 @@ def unregister(name: str) -> AssemblySpec:
 def get_spec(name: str) -> AssemblySpec:
     """The spec of an assembly by name (raises :class:`~bearingsim.errors.CatalogError`, a
     ``KeyError``, with the known names, close matches and the reason when a plug-in of that
-    name could not be loaded)."""
+    name could not be loaded).
+
+    Parameters
+    ----------
+    name : str
+        Assembly name.
+
+    Returns
+    -------
+    AssemblySpec
+        The spec.
+    """
     return REGISTRY[name]
 
 

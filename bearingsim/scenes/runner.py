@@ -94,7 +94,22 @@ def settling(prep: Prepared, result: Result, series: dict[str, np.ndarray]
     settling_check`, the scene's criterion), with the steady values of the outputs under the
     final inputs where a steady state is found (started from the final state); warns
     (:class:`~bearingsim.scenes.analyses.NotSettledWarning`) naming the outputs that had not
-    settled, unless the scene reports a transient on purpose."""
+    settled, unless the scene reports a transient on purpose.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    result : Result
+        The run's result.
+    series : dict of str to ndarray
+        The requested outputs' series by name (SI units).
+
+    Returns
+    -------
+    dict
+        The settling check and the steady values.
+    """
     scene = prep.scene
     if scene.transient_on_purpose:
         return {"transient_on_purpose": True, "settled": None, "time_constant": None,
@@ -135,7 +150,26 @@ def _units(prep: Prepared, result: Result) -> dict[str, str]:
 def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
             files: list[Path] | None = None, settled: dict[str, Any] | None = None
             ) -> dict[str, Any]:
-    """The JSON summary of a run: sizes, timings, final values, settling and every skip."""
+    """The JSON summary of a run: sizes, timings, final values, settling and every skip.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    result : Result
+        The run's result.
+    series : dict of str to ndarray
+        The requested outputs' series by name (SI units).
+    files : list of Path, optional
+        The run's files.
+    settled : dict, optional
+        The settling check (:func:`settling`).
+
+    Returns
+    -------
+    dict
+        The summary (JSON-serializable).
+    """
     system = prep.system
     units = _units(prep, result)
     outs = {}
@@ -227,6 +261,30 @@ def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
     descriptions (``prep``) and display units (r/min, µm, N mm, kN, ...,
     :func:`bearingsim.scenes.plots.display`); loads, torques and powers on linear axes that
     show 0.
+
+    Parameters
+    ----------
+    stem : str
+        File name stem of the run's files.
+    t : ndarray
+        Times [s].
+    series : dict of str to ndarray
+        The requested outputs' series by name (SI units).
+    units : dict of str to str
+        SI unit of each column or series by name.
+    groups : list of list of str
+        Series drawn together in one panel.
+    title : str
+        Figure title.
+    inputs : dict of str to ndarray, optional
+        Input series (SI units) at ``t``.
+    prep : Prepared, optional
+        The prepared scene (for descriptions).
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        File name and figure of each.
     """
     from matplotlib.figure import Figure
 
@@ -271,7 +329,24 @@ def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
 def assembly_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray],
                      stem: str) -> list[tuple[str, Any]]:
     """(file name ``<stem>.<plot>.png``, Figure) of the assembly's own plots
-    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) for this run."""
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) for this run.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    result : Result
+        The run's result.
+    series : dict of str to ndarray
+        The requested outputs' series by name (SI units).
+    stem : str
+        File name stem of the run's files.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        File name and figure of each.
+    """
     data = {**{n: np.asarray(result[n]) for n in prep.model_outputs + prep.plot_outputs},
             **series}
     figures = []
@@ -286,6 +361,24 @@ def assembly_figures(prep: Prepared, result: Result, series: dict[str, np.ndarra
 def scene_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray], stem: str,
                   units: dict[str, str]) -> list[tuple[str, Any]]:
     """Every figure of a run: the assembly's plots first, then the time traces.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    result : Result
+        The run's result.
+    series : dict of str to ndarray
+        The requested outputs' series by name (SI units).
+    stem : str
+        File name stem of the run's files.
+    units : dict of str to str
+        SI unit of each column or series by name.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        File name and figure of each.
 
     Raises
     ------
@@ -391,7 +484,20 @@ def _run_and_write(scene: Scene, folder: Path, stem: str, lock: OutputFolder | N
 
 
 def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]:
-    """SI unit of each column of an analysis table."""
+    """SI unit of each column of an analysis table.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    rows : list of dict
+        The analysis table's rows, one per operating point.
+
+    Returns
+    -------
+    dict of str to str
+        SI unit by column name.
+    """
     scene = prep.scene
     units = point_units(prep, scene, _point_keys(scene))
     if scene.analysis == "steady":
@@ -408,7 +514,22 @@ def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]
 
 def write_table(path: Path, rows: list[dict[str, Any]], units: dict[str, str]) -> Path:
     """An analysis table as CSV: one row per operating point, ``name [unit]`` headers (SI),
-    written atomically."""
+    written atomically.
+
+    Parameters
+    ----------
+    path : Path
+        The CSV file.
+    rows : list of dict
+        The analysis table's rows, one per operating point.
+    units : dict of str to str
+        SI unit of each column or series by name.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     import csv
 
     names = [n for n in (rows[0] if rows else {}) if not n.startswith("_")]
@@ -467,7 +588,18 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
 
 def console_lines(summary_data: dict[str, Any]) -> list[str]:
     """What ``bearingsim run`` prints of a run's results: a transient's final values with
-    whether they settled, or an analysis's table in engineering units."""
+    whether they settled, or an analysis's table in engineering units.
+
+    Parameters
+    ----------
+    summary_data : dict
+        The run's summary (:func:`summary`).
+
+    Returns
+    -------
+    list of str
+        The lines.
+    """
     from bearingsim.scenes.plots import display_text
 
     s = summary_data

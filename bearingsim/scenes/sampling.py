@@ -36,7 +36,13 @@ class SweepError(ParameterError):
 
 
 def check_key(key: str) -> None:
-    """Raise :class:`SweepError` for a key a sweep point cannot set (naming the allowed ones)."""
+    """Raise :class:`SweepError` for a key a sweep point cannot set (naming the allowed ones).
+
+    Parameters
+    ----------
+    key : str
+        A sweep key (``inputs.X``, ``parameters.X`` or an assembly argument).
+    """
     head = key.split(".", 1)[0]
     if head not in ("inputs", "parameters", "initial", "simulation", "assembly") or "." not in key:
         raise SweepError(
@@ -56,6 +62,11 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
     items : list of str
         ``key=low:high`` each, low and high in the key's SI unit or with a unit
         (``inputs.shaft_speed=500rpm:1000rpm``; SI values returned).
+
+    Returns
+    -------
+    dict of str to tuple of (float, float)
+        The range (SI units) by key.
 
     Raises
     ------
@@ -82,7 +93,18 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
 
 
 def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
-    """The Cartesian product of a grid, as a list of ``{key: value}`` (last key fastest)."""
+    """The Cartesian product of a grid, as a list of ``{key: value}`` (last key fastest).
+
+    Parameters
+    ----------
+    grid : dict of str to list
+        Values by key.
+
+    Returns
+    -------
+    list of dict
+        The points.
+    """
     keys = list(grid)
     check_output_size(math.prod(len(v) for v in grid.values()), 300 + 100 * len(keys),
                       "the number of grid points", "grid_points")

@@ -114,6 +114,16 @@ reference life in revolutions into hours."""
 def statics_of(prep: Any) -> Statics:
     """The :class:`Statics` of a prepared scene's assembly and level.
 
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+
+    Returns
+    -------
+    Statics
+        The statics solution.
+
     Raises
     ------
     SceneError

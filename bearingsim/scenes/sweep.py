@@ -109,7 +109,13 @@ class SweepResult:
 
     @property
     def ok(self) -> list[dict[str, Any]]:
-        """The rows of the points that succeeded."""
+        """The rows of the points that succeeded.
+
+        Returns
+        -------
+        list of dict
+            The rows.
+        """
         return [r for r in self.rows if r["status"] == "ok"]
 
 
@@ -163,6 +169,16 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
 
     Values stay text here; they are converted by the type the key expects when a point is
     applied to a scene (numbers for parameters, designations stay text).
+
+    Parameters
+    ----------
+    items : list of str
+        ``key=v1,v2,...`` each.
+
+    Returns
+    -------
+    dict of str to list of str
+        The values by key.
     """
     grid: dict[str, list[Any]] = {}
     for item in items:
@@ -499,6 +515,11 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         Replace an earlier sweep's files of this scene in ``out`` (without it, and without
         ``resume``, such files stop the sweep before anything runs).
 
+    Returns
+    -------
+    SweepResult
+        The rows of every point, with status and timings.
+
     Raises
     ------
     SweepError
@@ -696,7 +717,18 @@ def _si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any
 
 
 def describe_failures(res: SweepResult) -> str:
-    """One line per failed point: its values and the error."""
+    """One line per failed point: its values and the error.
+
+    Parameters
+    ----------
+    res : SweepResult
+        A sweep's result.
+
+    Returns
+    -------
+    str
+        The lines (empty without failures).
+    """
     lines = []
     for f in res.failures:
         values = ", ".join(f"{k}={v!r}" for k, v in f["values"].items())

@@ -49,7 +49,13 @@ WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 
 
 def distributed_module():
-    """The ``distributed`` package, or a named error saying how to install it."""
+    """The ``distributed`` package, or a named error saying how to install it.
+
+    Returns
+    -------
+    module
+        The ``distributed`` package.
+    """
     try:
         import distributed
     except ImportError:
@@ -87,7 +93,20 @@ def _forked_local_cluster(n_workers: int):
 
 def connect(scheduler: str | None, n_workers: int) -> tuple[Any, Any]:
     """``(client, cluster)``: a client of the scheduler at ``scheduler`` (cluster None), or of
-    a new LocalCluster of ``n_workers`` forked workers (see the module's docstring)."""
+    a new LocalCluster of ``n_workers`` forked workers (see the module's docstring).
+
+    Parameters
+    ----------
+    scheduler : str or None
+        Scheduler address (None: a new LocalCluster).
+    n_workers : int
+        Workers of a new LocalCluster, >= 1.
+
+    Returns
+    -------
+    tuple
+        ``(client, cluster)``.
+    """
     distributed = distributed_module()
     if scheduler:
         return distributed.Client(scheduler), None
@@ -105,6 +124,11 @@ def chunk_size(point_s: float, n_points: int, n_workers: int) -> int:
         Measured wall time of one point [s] (NaN: not known yet, one point a task).
     n_points, n_workers : int
         Points still to run and workers to run them.
+
+    Returns
+    -------
+    int
+        Points per task, >= 1.
     """
     by_time = CHUNK_SECONDS / max(point_s, 1e-4) if math.isfinite(point_s) else 1.0
     by_balance = n_points / (CHUNKS_PER_WORKER * max(n_workers, 1))
@@ -152,7 +176,13 @@ class ChunkFeeder:
 
     @property
     def point_s(self) -> float:
-        """Median wall time of the points finished so far [s] (NaN: none yet)."""
+        """Median wall time of the points finished so far [s] (NaN: none yet).
+
+        Returns
+        -------
+        float
+            Median wall time [s] or NaN.
+        """
         return statistics.median(self.times) if self.times else math.nan
 
     def _size(self) -> int:

@@ -23,7 +23,18 @@ __all__ = ["SweepTable", "open_table", "cell"]
 
 
 def cell(value: Any) -> str:
-    """A value as the table writes it (floats round-trip exactly)."""
+    """A value as the table writes it (floats round-trip exactly).
+
+    Parameters
+    ----------
+    value : object
+        A table value.
+
+    Returns
+    -------
+    str
+        Its text.
+    """
     if isinstance(value, float):
         return repr(value)
     return str(value)
@@ -59,7 +70,13 @@ class SweepTable:
             tmp.write_bytes(self._line(self.header))
 
     def append(self, row: dict[str, Any]) -> None:
-        """Append one row, whole (one write, flushed to the operating system)."""
+        """Append one row, whole (one write, flushed to the operating system).
+
+        Parameters
+        ----------
+        row : dict
+            Values by column.
+        """
         line = self._line([cell(row.get(k, "")) for k in self.columns])
         fd = os.open(self.path, os.O_WRONLY | os.O_APPEND)
         try:
@@ -79,7 +96,18 @@ class SweepTable:
 
     def finish(self, rows: list[dict[str, Any]]) -> list[Path]:
         """Rewrite the table with ``rows`` (in the given order) atomically; add the Parquet copy
-        when pyarrow is installed. Returns the files."""
+        when pyarrow is installed. Returns the files.
+
+        Parameters
+        ----------
+        rows : list of dict
+            Every row of the sweep.
+
+        Returns
+        -------
+        list of Path
+            The table and, with pyarrow, the Parquet copy.
+        """
         with atomic_path(self.path) as tmp:
             tmp.write_bytes(self._line(self.header) + b"".join(
                 self._line([cell(r.get(k, "")) for k in self.columns]) for r in rows))

@@ -69,7 +69,18 @@ _LOCK = threading.Lock()
 
 
 def load_model(payload: ModelPayload) -> Prepared:
-    """The prepared model of ``payload``, loaded on first use in this process."""
+    """The prepared model of ``payload``, loaded on first use in this process.
+
+    Parameters
+    ----------
+    payload : ModelPayload
+        The model.
+
+    Returns
+    -------
+    Prepared
+        The prepared model.
+    """
     with _LOCK:
         prep = MODELS.get(payload.token)
         if prep is None:
@@ -83,7 +94,20 @@ def load_model(payload: ModelPayload) -> Prepared:
 def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     """Run one point; returns ``index``, ``status`` ("ok"/"failed"), ``final`` (the table
     row of :func:`~bearingsim.scenes.analyses.run_operating_point`, columns starting with
-    ``_`` left out), ``error``, ``wall_s``, ``pid``. Never raises for a failing point."""
+    ``_`` left out), ``error``, ``wall_s``, ``pid``. Never raises for a failing point.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared model.
+    job : Job
+        The point.
+
+    Returns
+    -------
+    dict
+        The point's row.
+    """
     t0 = time.perf_counter()
     row: dict[str, Any] = {"index": job.index, "pid": os.getpid()}
     try:
@@ -123,7 +147,22 @@ def _run_with_budget(prep: Prepared, job: Job, timeout: float) -> dict[str, Any]
 
 
 def run_point(prep: Prepared, job: Job, timeout: float | None = None) -> dict[str, Any]:
-    """:func:`run_job`, within a time budget of ``timeout`` seconds when given."""
+    """:func:`run_job`, within a time budget of ``timeout`` seconds when given.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared model.
+    job : Job
+        The point.
+    timeout : float, optional
+        Time budget [s], > 0 (None: none).
+
+    Returns
+    -------
+    dict
+        The point's row (:func:`run_job`).
+    """
     return run_job(prep, job) if timeout is None else _run_with_budget(prep, job, timeout)
 
 
@@ -139,6 +178,11 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
         The points.
     timeout : float, optional
         Time budget of each point [s] (None: none).
+
+    Returns
+    -------
+    list of dict
+        The rows (:func:`run_point`), in ``jobs`` order.
     """
     prep = load_model(payload)
     rows = []

@@ -35,13 +35,35 @@ row) and the interval check on it; measured: peak RSS of a double_layer_bearing 
 
 def scene_folder(path: str | None) -> Path:
     """The folder scene file names are relative to: the scene file's folder, or the current
-    folder for a scene without a file."""
+    folder for a scene without a file.
+
+    Parameters
+    ----------
+    path : str or None
+        The scene file.
+
+    Returns
+    -------
+    Path
+        The folder.
+    """
     return Path(path).resolve().parent if path else Path.cwd()
 
 
 def output_base(path: str | None) -> Path:
     """The folder ``output.folder`` is relative to: the scene file's folder, or the current
-    folder for a built-in scene or a scene without a file."""
+    folder for a built-in scene or a scene without a file.
+
+    Parameters
+    ----------
+    path : str or None
+        The scene file (None or a built-in scene: none).
+
+    Returns
+    -------
+    Path
+        The folder.
+    """
     from bearingsim.scenes.library import FOLDER
 
     if path is None or Path(path).resolve().parent == FOLDER.resolve():
@@ -51,6 +73,15 @@ def output_base(path: str | None) -> Path:
 
 class SceneFileError(ParameterError):
     """A file named by a scene cannot be used.
+
+    Parameters
+    ----------
+    key : str
+        The scene key that names the file.
+    reason : str
+        What is wrong.
+    allowed : str
+        What was expected (empty: not said).
 
     Attributes
     ----------
@@ -70,7 +101,18 @@ class SceneFileError(ParameterError):
 def column_label(text: str) -> str | None:
     """``text`` quoted if it looks like a column name (letters, digits, ``_ . -`` and spaces, an
     optional ``[unit]``, at most 40 characters), else None: a message may name a column but
-    must not quote a file's content."""
+    must not quote a file's content.
+
+    Parameters
+    ----------
+    text : str
+        Text read from a file.
+
+    Returns
+    -------
+    str or None
+        The quoted text, or None.
+    """
     return repr(text) if _COLUMN_NAME.fullmatch(text) else None
 
 
@@ -90,6 +132,16 @@ def column_unit(unit: str) -> tuple[float, str | None]:
     coherent SI unit as bearingsim writes it in its own CSV headers (``Pa.s``, ``m^2/s``:
     factor 1, itself). Units with an offset (``degC``) are refused: a column is scaled, never
     shifted.
+
+    Parameters
+    ----------
+    unit : str
+        The column's unit.
+
+    Returns
+    -------
+    tuple of (float, str or None)
+        Factor to SI and SI unit.
 
     Raises
     ------
@@ -123,7 +175,13 @@ def _is_float(text: str) -> bool:
 
 def available_memory() -> int | None:
     """Memory the operating system can give this process now [bytes] (Linux
-    ``MemAvailable``; None where unknown)."""
+    ``MemAvailable``; None where unknown).
+
+    Returns
+    -------
+    int or None
+        Available memory [bytes], or None.
+    """
     try:
         with open("/proc/meminfo", encoding="ascii") as fh:
             for line in fh:
@@ -137,6 +195,13 @@ def available_memory() -> int | None:
 def check_table_memory(rows: int, what: str) -> None:
     """Refuse a table whose rows the run could not hold in memory
     (:data:`BYTES_PER_ROW` each, against :func:`available_memory`).
+
+    Parameters
+    ----------
+    rows : int
+        Rows of the table.
+    what : str
+        What the table is, for the message.
 
     Raises
     ------
@@ -162,6 +227,22 @@ def read_table_file(key: str, v: dict[str, Any], base: Path, allowed: Sequence[P
     ``time [ms]``), or the first data row may be a unit row (every cell a unit); values are
     converted to SI and ``unit`` is the SI unit of the value column (None: not given or
     dimensionless). Read in one pass, in time and memory linear in its size.
+
+    Parameters
+    ----------
+    key : str
+        The input's scene key.
+    v : dict
+        The ``{ file, column, time_column }`` table.
+    base : Path
+        The scene folder.
+    allowed : sequence of Path
+        Further folders the user allowed.
+
+    Returns
+    -------
+    tuple of (list of float, list of float, str, str or None)
+        Times [s], values (SI units), source and SI unit.
 
     Raises
     ------
@@ -268,7 +349,18 @@ def _unit_row(row: list[str], line: int, fail) -> list[str]:
 
 def scene_output_folder(scene) -> Path:
     """The real path of a scene's ``output.folder``: relative to :func:`output_base`, inside
-    it or an allowed folder (:func:`~bearingsim.files.confined_path`)."""
+    it or an allowed folder (:func:`~bearingsim.files.confined_path`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    Path
+        The folder.
+    """
     return confined_path(scene.output.folder, output_base(scene.path), scene.allow_paths,
                          "output folder")
 
@@ -277,7 +369,22 @@ def load_bearings_files(files: Any, base: Path, allowed: Sequence[Path] = ()
                         ) -> list[SceneFileError]:
     """Register the bearings of the scene's datasheet file(s) (key ``bearings``, relative to
     the scene folder ``base`` or in an ``allowed`` folder) before the assembly's bearing names
-    are checked; the problems found."""
+    are checked; the problems found.
+
+    Parameters
+    ----------
+    files : str or list of str
+        The ``bearings`` key: datasheet file name(s).
+    base : Path
+        The scene folder.
+    allowed : sequence of Path
+        Further folders the user allowed.
+
+    Returns
+    -------
+    list of SceneFileError
+        The problems found (empty: none).
+    """
     if files is None:
         return []
     from bearingsim.catalog import load_datasheet

@@ -63,6 +63,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.simulation.budget import RunBudget
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.inputs import InputSignal
@@ -478,7 +479,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     except RuntimeError as exc:
         if interrupted.is_set():  # CasADi reports Ctrl-C as a failed evaluation
             raise KeyboardInterrupt(f"{method.upper()} run interrupted") from None
-        _locate_failure(method, system, built, opts, p_ext, x0, z0, x0, t0, span, tau, exc)
+        _locate_failure(method, system, built, opts, p_ext, x0, z0, x0, t0, span, tau, exc,
+                        budget)
         raise
     finally:
         if bar is not None:
@@ -597,17 +599,21 @@ def _stats(method: str, kernel: Kernel, linear_solver: str, setup_time: float, c
 
 def _locate_failure(method: str, system: System, built: _Built, opts: dict, p_ext: np.ndarray,
                     x_start: np.ndarray, z_start: np.ndarray | None, x0: np.ndarray, t0: float,
-                    span: float, tau: np.ndarray, exc: RuntimeError) -> None:
+                    span: float, tau: np.ndarray, exc: RuntimeError,
+                    budget: RunBudget | None = None) -> None:
     """Integrate the failed call interval by interval, from ``x_start`` (and ``z_start``) at
     ``t0`` [s], to report where it failed; ``x0`` is the run's start state, which the states
-    reached are compared with (failure path only)."""
+    reached are compared with (failure path only). An interval that used up the step budget
+    (SUNDIALS' ``max_num_steps``, "TOO_MUCH_WORK") raises the ``budget``'s error."""
     with _quiet_stdout():
-        _locate(method, system, built, opts, p_ext, x_start, z_start, x0, t0, span, tau, exc)
+        _locate(method, system, built, opts, p_ext, x_start, z_start, x0, t0, span, tau, exc,
+                budget)
 
 
 def _locate(method: str, system: System, built: _Built, opts: dict, p_ext: np.ndarray,
             x_start: np.ndarray, z_start: np.ndarray | None, x0: np.ndarray, t0: float,
-            span: float, tau: np.ndarray, exc: RuntimeError) -> None:
+            span: float, tau: np.ndarray, exc: RuntimeError,
+            budget: RunBudget | None = None) -> None:
     x, z, tau_prev = np.asarray(x_start, dtype=float), z_start, 0.0
     for tau_next in tau:
         step = ca.integrator("locate", method, built.oracle, tau_prev, [float(tau_next)], opts)
@@ -616,7 +622,9 @@ def _locate(method: str, system: System, built: _Built, opts: dict, p_ext: np.nd
             out = step(**args)
             x_new = built.from_integrator(np.asarray(out["xf"], dtype=float).ravel())
             z = np.asarray(out["zf"], dtype=float).ravel() if z is not None else None
-        except RuntimeError:
+        except RuntimeError as failed:
+            if budget is not None and "TOO_MUCH_WORK" in str(failed):
+                budget.step(t0 + span * tau_prev, budget.max_steps + 1 - budget.steps)
             x_new = None
         if x_new is None or not np.all(np.isfinite(x_new)):
             a, b = t0 + span * tau_prev, t0 + span * tau_next

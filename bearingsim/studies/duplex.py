@@ -114,7 +114,13 @@ class Equilibrium:
 
     @property
     def row_axial_loads(self) -> np.ndarray:
-        """Axial load carried by each row, ``sum_j Q_ij sin(alpha_ij)`` [N]."""
+        """Axial load carried by each row, ``sum_j Q_ij sin(alpha_ij)`` [N].
+
+        Returns
+        -------
+        ndarray
+            Axial load of row 0 and row 1 [N].
+        """
         return np.sum(self.Q_i * np.sin(self.alpha_i), axis=1)
 
     def __repr__(self) -> str:
@@ -136,7 +142,7 @@ def _spacer_offset(geometry: BearingGeometry, force: float, arrangement: str,
 
 
 @dataclass
-class DuplexModel:
+class DuplexModel:  # numpydoc ignore=PR02
     """An assembled duplex pair and the parameter values of its configurations.
 
     Parameters
@@ -375,6 +381,16 @@ class DuplexModel:
         ``K = C^-1``, ``C = -(A^-1 B)`` restricted to the shaft displacements and the external
         loads, with ``A = d(dx/dt)/dx`` and ``B = d(dx/dt)/du`` from the system's compiled exact
         Jacobians (``jac_x``, ``jac_u``) at the equilibrium.
+
+        Parameters
+        ----------
+        eq : Equilibrium
+            An equilibrium of this model (:meth:`equilibrium`).
+
+        Returns
+        -------
+        ndarray
+            5x5 stiffness matrix (N/m, N, N m/rad) in the order of ``DOFS``.
         """
         return static_stiffness(self.system, eq.state, _POSITIONS, _LOADS, eq.inputs,
                                 eq.parameters)
@@ -391,6 +407,11 @@ class DuplexModel:
             Loss factor eta [-].
         **config
             Configuration, see :meth:`parameters`.
+
+        Returns
+        -------
+        Modes
+            Natural frequencies [Hz] and mode shapes.
         """
         eq = self.equilibrium(loads, **config)
         return modal_analysis(self.stiffness(eq), self.mass, loss_factor)
@@ -433,7 +454,13 @@ class Sweep:
     label: str = ""
 
     def relative_change(self) -> np.ndarray:
-        """Per mode: (max - min) / min of the frequency over the sweep [-]."""
+        """Per mode: (max - min) / min of the frequency over the sweep [-].
+
+        Returns
+        -------
+        ndarray
+            Relative change [-] of each mode's frequency.
+        """
         f = self.frequencies
         return (f.max(axis=0) - f.min(axis=0)) / f.min(axis=0)
 
@@ -453,6 +480,11 @@ def sweep(model: DuplexModel, parameter: str, values, label: str = "",
     **config
         The other configuration parameters (see :meth:`DuplexModel.parameters`); those not
         given keep the pair's own values (``pair_options``).
+
+    Returns
+    -------
+    Sweep
+        The frequencies [Hz] of each mode at each value.
     """
     if parameter not in SWEEP_PARAMETERS:
         raise ParameterError(f"sweep: parameter must be one of {', '.join(SWEEP_PARAMETERS)}, "

@@ -75,7 +75,15 @@ def _priority(v: Var) -> tuple:
 
 
 def eliminate_aliases(dae: DAE, max_rounds: int = 8) -> None:
-    """Remove alias and constant equations from ``dae`` in place."""
+    """Remove alias and constant equations from ``dae`` in place.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    max_rounds : int
+        Most rounds of elimination.
+    """
     for _ in range(max_rounds):
         if not _one_round(dae):
             break
@@ -247,7 +255,13 @@ def _deriv_placeholder(dae, v, d, r, s, const_val):
 
 
 def run(state: AssemblyState) -> None:
-    """Eliminate the aliases of ``state.dae`` in place; report how many variables went."""
+    """Eliminate the aliases of ``state.dae`` in place; report how many variables went.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae")
     n = len(state.dae.vars)
     eliminate_aliases(state.dae)

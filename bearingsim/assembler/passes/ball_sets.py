@@ -63,7 +63,18 @@ def _group(items: list, name_of: Callable[[object], str]) -> dict[tuple[str, int
 
 
 def find_ball_sets(dae: DAE) -> list[BallSet]:
-    """The ball sets of ``dae`` (of at least :data:`MIN_MEMBERS` members), by parent."""
+    """The ball sets of ``dae`` (of at least :data:`MIN_MEMBERS` members), by parent.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+
+    Returns
+    -------
+    list of BallSet
+        The ball sets.
+    """
     var_sets = _group(dae.vars, lambda v: v.name)
     par_sets = _group(dae.params, lambda q: q.name)
     out = []
@@ -80,7 +91,18 @@ def find_ball_sets(dae: DAE) -> list[BallSet]:
 
 
 def owners(sets: list[BallSet]) -> dict[int, tuple[int, int]]:
-    """``id(var or param)`` -> (set, member) for the members' variables and parameters."""
+    """``id(var or param)`` -> (set, member) for the members' variables and parameters.
+
+    Parameters
+    ----------
+    sets : list of BallSet
+        The ball sets.
+
+    Returns
+    -------
+    dict of int to tuple of (int, int)
+        Set and member index by object id.
+    """
     out = {}
     for s, bs in enumerate(sets):
         for k in range(bs.count):
@@ -92,6 +114,17 @@ def owners(sets: list[BallSet]) -> dict[int, tuple[int, int]]:
 def function_identity(f: ca.Function) -> str:
     """``f`` serialized with fresh input symbols: equal for two members' functions exactly when
     they compute the same (same operations in the same order, same constants), whatever their
-    symbols are called."""
+    symbols are called.
+
+    Parameters
+    ----------
+    f : casadi.Function
+        A member's function.
+
+    Returns
+    -------
+    str
+        The identity string.
+    """
     fresh = [ca.SX.sym(f"i{i}", f.sparsity_in(i)) for i in range(f.n_in())]
     return ca.Function("f", fresh, f.call(fresh)).serialize()

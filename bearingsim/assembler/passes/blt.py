@@ -22,7 +22,20 @@ NAME = "BLT sorting"
 def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[Block]:
     """Block lower triangular order: strongly connected components in topological order; among
     the valid orders, members' blocks of ball sets first and shared blocks that read members'
-    unknowns last, each by the position of the block's first equation in ``dae.eqs``."""
+    unknowns last, each by the position of the block's first equation in ``dae.eqs``.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    matching : dict of Eq to Var
+        Each equation -> the unknown it determines.
+
+    Returns
+    -------
+    list of Block
+        The blocks in solution order.
+    """
     var_eq = {v: e for e, v in matching.items()}
     unknowns = list(var_eq)
     inc = incidence_map(dae, list(matching), unknowns)
@@ -59,6 +72,12 @@ def blt_blocks(dae: DAE, matching: dict[Eq, Var]) -> list[Block]:
 
 
 def run(state: AssemblyState) -> None:
-    """Set ``state.blocks`` from ``state.dae`` and ``state.matching``."""
+    """Set ``state.blocks`` from ``state.dae`` and ``state.matching``.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae", "matching")
     state.blocks = blt_blocks(state.dae, state.matching)

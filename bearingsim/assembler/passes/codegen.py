@@ -38,6 +38,24 @@ def build_functions(dae: DAE, causal: Causal, outputs: list[str] | None, newton_
 
     ``rootfinder`` is one of :data:`~bearingsim.assembler.function_options.ROOTFINDERS` (the
     plugin of the nonlinear blocks).
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    causal : Causal
+        The causalized system.
+    outputs : list of str or None
+        Requested outputs (None: every variable).
+    newton_tol : float
+        Absolute residual tolerance of the nonlinear blocks, > 0.
+    rootfinder : str
+        CasADi rootfinder plugin.
+
+    Returns
+    -------
+    tuple
+        (function table, observed names, output names).
     """
     states = dae.states
     inputs = dae.inputs
@@ -154,6 +172,16 @@ def mapped_ode_functions(system: System) -> dict[str, ca.Function] | None:
     the outputs' Jacobians (``out_jac_x``, ``out_jac_u``; evaluated once per linearization):
     differentiated through the mapped observe function, with every variable an output (the
     default), they generate several times the C of all the others together.
+
+    Parameters
+    ----------
+    system : System
+        An assembled system.
+
+    Returns
+    -------
+    dict of str to casadi.Function or None
+        The mapped functions, or None.
     """
     per_ball = system.mapped.find("ode") if system.mapped is not None else None
     if per_ball is None:
@@ -204,7 +232,20 @@ def _semi_explicit_dae(t, x, u, p, z_sx, z_mx, margs, causal, xdot, obs) -> dict
 
 
 def initial_problem(dae: DAE, funcs: dict) -> tuple[ca.Function | None, list[int]]:
-    """Residual of the initial equations as a function of (t, x, u, p), and the free states."""
+    """Residual of the initial equations as a function of (t, x, u, p), and the free states.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    funcs : dict
+        The function table of :func:`build_functions`.
+
+    Returns
+    -------
+    tuple of (casadi.Function or None, list of int)
+        The residual (None without initial equations) and the indices of the free states.
+    """
     if not dae.initial_eqs:
         return None, []
     states = dae.states
@@ -231,7 +272,13 @@ def initial_problem(dae: DAE, funcs: dict) -> tuple[ca.Function | None, list[int
 
 def run(state: AssemblyState) -> None:
     """Set ``state.system``: the functions of ``state.dae`` solved as ``state.causal`` says,
-    with the names, units, descriptions and start values of states, inputs and outputs."""
+    with the names, units, descriptions and start values of states, inputs and outputs.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae", "causal")
     dae, causal = state.dae, state.causal
     funcs, observed, out_names = build_functions(dae, causal, state.outputs, state.newton_tol,

@@ -32,7 +32,20 @@ NAME = "flatten"
 
 
 def to_residuals(item: Any, origin: str) -> list[ca.SX]:
-    """Turn an equation item (``lhs == rhs``, residual expression or list) into scalar residuals."""
+    """Turn an equation item (``lhs == rhs``, residual expression or list) into scalar residuals.
+
+    Parameters
+    ----------
+    item : object
+        An equation item.
+    origin : str
+        Where it comes from, for messages.
+
+    Returns
+    -------
+    list of casadi.SX
+        Scalar residuals.
+    """
     if isinstance(item, (list, tuple)):
         return [r for sub in item for r in to_residuals(sub, origin)]
     if isinstance(item, (bool, int, float)) or item is None:
@@ -251,7 +264,13 @@ def _substitute_bindings(eqs, init_eqs, bound_syms, bound_exprs, params) -> None
 
 
 def run(state: AssemblyState) -> None:
-    """Flatten ``state.root`` into ``state.dae``."""
+    """Flatten ``state.root`` into ``state.dae``.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     members = MemberEquations()
     state.dae = flatten(state.root, members)
     state.report["flat"] = f"{len(state.dae.vars)} variables, {len(state.dae.eqs)} equations"

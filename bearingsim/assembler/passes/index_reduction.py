@@ -109,6 +109,13 @@ def _take_free(e: Eq, inc, eligible, assign: dict, colored_e: set) -> bool:
 def pantelides(dae: DAE, max_passes: int = 20) -> int:
     """Differentiate equations until each can be matched to a highest derivative.
 
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    max_passes : int
+        Most differentiation passes.
+
     Returns
     -------
     int
@@ -237,6 +244,11 @@ def _select_sparse(jac_f: ca.Function, vals: np.ndarray, rng: np.random.Generato
 def dummy_derivatives(dae: DAE) -> list[str]:
     """Select dummy derivatives (Mattsson-Söderlind) after :func:`pantelides`.
 
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+
     Returns
     -------
     list of str
@@ -286,14 +298,31 @@ def dummy_derivatives(dae: DAE) -> list[str]:
 
 
 def reduce_index(dae: DAE) -> dict:
-    """Run Pantelides and dummy derivatives; return a summary for the pass log."""
+    """Run Pantelides and dummy derivatives; return a summary for the pass log.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+
+    Returns
+    -------
+    dict
+        ``differentiated_equations`` and ``dummy_derivatives``.
+    """
     added = pantelides(dae)
     dummies = dummy_derivatives(dae) if added else []
     return {"differentiated_equations": added, "dummy_derivatives": dummies}
 
 
 def run(state: AssemblyState) -> None:
-    """Reduce ``state.dae`` to index 1 in place; report what was differentiated."""
+    """Reduce ``state.dae`` to index 1 in place; report what was differentiated.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae")
     info = reduce_index(state.dae)
     if info["differentiated_equations"]:

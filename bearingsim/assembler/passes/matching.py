@@ -18,7 +18,18 @@ NAME = "matching"
 
 
 def match(dae: DAE) -> dict[Eq, Var]:
-    """Perfect matching of the (index-1) equations to the unknowns, or a named error."""
+    """Perfect matching of the (index-1) equations to the unknowns, or a named error.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+
+    Returns
+    -------
+    dict of Eq to Var
+        Each equation -> the unknown it determines.
+    """
     unknowns = dae.unknowns()
     inc = incidence_map(dae, dae.eqs, unknowns)
     matching = maximum_matching(inc, unknowns)
@@ -36,6 +47,12 @@ def match(dae: DAE) -> dict[Eq, Var]:
 
 
 def run(state: AssemblyState) -> None:
-    """Set ``state.matching``: each equation of ``state.dae`` -> the unknown it determines."""
+    """Set ``state.matching``: each equation of ``state.dae`` -> the unknown it determines.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae")
     state.matching = match(state.dae)

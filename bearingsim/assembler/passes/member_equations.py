@@ -172,19 +172,44 @@ class MemberEquations:
         """How many components got their equations by substitution."""
 
     def begin(self, comp: Component) -> None:
-        """Note which derivatives exist before ``comp``'s (an array member 0's) equations."""
+        """Note which derivatives exist before ``comp``'s (an array member 0's) equations.
+
+        Parameters
+        ----------
+        comp : Component
+            An array's member 0.
+        """
         if comp.name is not None and str(comp.name).endswith("[0]"):
             self._derivatives[id(comp)] = {
                 id(d) for c, _ in _pairs(comp, comp) for d in _declarations(c)
                 if isinstance(d, Variable) and d.derivative is not None}
 
     def record(self, comp: Component, residuals: list[ca.SX]) -> None:
-        """Keep the residuals of a component built by its own code."""
+        """Keep the residuals of a component built by its own code.
+
+        Parameters
+        ----------
+        comp : Component
+            The component.
+        residuals : list of casadi.SX
+            Its residuals.
+        """
         self._residuals[id(comp)] = residuals
 
     def instantiate(self, comp: Component) -> list[ca.SX] | None:
         """``comp``'s residuals by substitution from its array's member 0, or None when it must
-        be built by its own code."""
+        be built by its own code.
+
+        Parameters
+        ----------
+        comp : Component
+            An array member.
+
+        Returns
+        -------
+        list of casadi.SX or None
+            The residuals, or None.
+        """
         if not self.enabled:
             return None
         found = self._instantiated.get(id(comp))

@@ -18,7 +18,20 @@ NAME = "pruning"
 
 
 def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
-    """Map dotted names (variables or eliminated aliases) to the variables that carry them."""
+    """Map dotted names (variables or eliminated aliases) to the variables that carry them.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    names : list of str
+        Dotted names.
+
+    Returns
+    -------
+    list of Var
+        The variables, in the order of ``names``.
+    """
     by_path = {v.name: v for v in dae.vars}
     out: list[Var] = []
     for name in names:
@@ -38,6 +51,15 @@ def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
 
 def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
     """Drop equations, unknowns and states that no requested output depends on.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    matching : dict of Eq to Var
+        Each equation -> the unknown it determines; pruned in place.
+    outputs : list of str
+        Requested outputs.
 
     Returns
     -------
@@ -77,7 +99,13 @@ def prune(dae: DAE, matching: dict[Eq, Var], outputs: list[str]) -> list[str]:
 
 
 def run(state: AssemblyState) -> None:
-    """With ``state.outputs``, prune ``state.dae`` and ``state.matching`` to what they need."""
+    """With ``state.outputs``, prune ``state.dae`` and ``state.matching`` to what they need.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae", "matching")
     if state.outputs:
         state.dae.skipped.extend(prune(state.dae, state.matching, state.outputs))

@@ -34,7 +34,20 @@ NAME = "repeated structure"
 
 def find_repeats(dae: DAE, blocks: list[Block]) -> Repeats:
     """The ball sets of ``dae`` and its shared unknowns solved around them (``reason`` says
-    why there are none)."""
+    why there are none).
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    blocks : list of Block
+        The BLT blocks.
+
+    Returns
+    -------
+    Repeats
+        The ball sets and shared unknowns.
+    """
     sets = find_ball_sets(dae)
     if not sets:
         return Repeats(reason="no arrays of identical components")
@@ -54,7 +67,13 @@ def find_repeats(dae: DAE, blocks: list[Block]) -> Repeats:
 
 
 def run(state: AssemblyState) -> None:
-    """Set ``state.repeats`` from ``state.dae`` and ``state.blocks``; report the ball sets."""
+    """Set ``state.repeats`` from ``state.dae`` and ``state.blocks``; report the ball sets.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae", "blocks")
     rep = state.repeats = find_repeats(state.dae, state.blocks)
     state.report["repeated structure"] = (

@@ -22,6 +22,11 @@ def check_structure(dae: DAE) -> None:
 
     Under-determined: the unknowns left unmatched by a maximum matching and the equations that
     contain them. Over-determined: the equations left unmatched.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
     """
     unknowns = dae.unknowns()
     inc = incidence_map(dae, dae.eqs, unknowns)
@@ -50,6 +55,12 @@ def check_structure(dae: DAE) -> None:
 
 
 def run(state: AssemblyState) -> None:
-    """Check that the equations and unknowns of ``state.dae`` balance."""
+    """Check that the equations and unknowns of ``state.dae`` balance.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae")
     check_structure(state.dae)

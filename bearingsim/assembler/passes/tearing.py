@@ -159,7 +159,22 @@ class _Mirrors:
 
 def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) -> Causal:
     """Express every unknown through base symbols, block by block; the members of ``sets``
-    (ball sets) that repeat member 0 by copying member 0's solutions."""
+    (ball sets) that repeat member 0 by copying member 0's solutions.
+
+    Parameters
+    ----------
+    dae : DAE
+        The flattened equation system.
+    blocks : list of Block
+        The BLT blocks, in order.
+    sets : list of BallSet, optional
+        Ball sets whose members copy member 0.
+
+    Returns
+    -------
+    Causal
+        The solutions and nonlinear residuals.
+    """
     out = Causal(n_blocks=len(blocks))
     solved_by_name: dict[str, Var] = {}
     mirrors = _Mirrors(dae, blocks, sets) if sets else None
@@ -178,13 +193,30 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
     """``id(var)`` of a tearing variable -> its nonlinear block."""
 
     def ready(block: Block) -> bool:
-        """Whether a repeating member's block can be copied: member 0's is solved."""
+        """Whether a repeating member's block can be copied: member 0's is solved.
+
+        Parameters
+        ----------
+        block : Block
+            A repeating member's block.
+
+        Returns
+        -------
+        bool
+            Whether it can be copied.
+        """
         return all(v in out.expr for _, v in mirrors.counterpart[id(block)])
 
     def flush(member: tuple[int, int]) -> None:
         """Copy every block of ``member`` whose member 0 block is solved (reached in BLT order
         or not: the copies are expressions of base symbols): member 0's solutions and
-        nonlinear residuals with the member's symbols, in one substitution."""
+        nonlinear residuals with the member's symbols, in one substitution.
+
+        Parameters
+        ----------
+        member : tuple of (int, int)
+            Set and member index.
+        """
         if member in flushed:
             return
         flushed.add(member)
@@ -222,7 +254,20 @@ def causalize(dae: DAE, blocks: list[Block], sets: list[BallSet] | None = None) 
 
     def resolved(expr: ca.SX, names: tuple[str, ...] | None = None) -> ca.SX:
         """``expr`` with the unknowns of earlier blocks replaced by their solutions; ``names``:
-        the names of its symbols or more (those of the equation it came from), if known."""
+        the names of its symbols or more (those of the equation it came from), if known.
+
+        Parameters
+        ----------
+        expr : casadi.SX
+            An expression.
+        names : tuple of str, optional
+            Names of its symbols, if known.
+
+        Returns
+        -------
+        casadi.SX
+            The resolved expression.
+        """
         if names is None:
             names = [s.name() for s in ca.symvar(expr)]
         for member in {pending[n] for n in names if n in pending}:
@@ -314,7 +359,13 @@ def _guess(v: Var) -> float:
 
 
 def run(state: AssemblyState) -> None:
-    """Set ``state.causal`` by solving ``state.blocks`` in order; report the loops."""
+    """Set ``state.causal`` by solving ``state.blocks`` in order; report the loops.
+
+    Parameters
+    ----------
+    state : AssemblyState
+        The assembly state the pass reads and updates.
+    """
     state.require(NAME, "dae", "blocks")
     c = state.causal = causalize(state.dae, state.blocks, find_ball_sets(state.dae))
     state.report["blocks"] = (

@@ -89,6 +89,12 @@ class CylindricalRollerOptions:
 
     @property
     def clearance_value(self) -> float:
-        """The diametral clearance used [m]."""
+        """The diametral clearance used [m].
+
+        Returns
+        -------
+        float
+            The given ``clearance`` [m], else the geometry's ``diametral_clearance`` [m].
+        """
         return self.geometry.diametral_clearance if self.clearance is None else \
             float(self.clearance)

@@ -32,6 +32,9 @@ class QuasiStaticCylindricalRoller(Assembly):
     Parameters
     ----------
     options : CylindricalRollerOptions
+        The bearing, its clearance, misalignment and loads (checked there).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Attributes
     ----------

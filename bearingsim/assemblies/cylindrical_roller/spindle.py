@@ -48,6 +48,8 @@ class Spindle(Assembly):
         Slices per roller.
     shaft : ShaftSpec or dict, optional
         Default :data:`DEFAULT_SHAFT`.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     **pair_options
         Further keywords of :func:`~bearingsim.assemblies.duplex.duplex_pair`
         (``damping_ratio``, ``speed``, ...).
@@ -75,6 +77,24 @@ class Spindle(Assembly):
 def spindle(bearing: str = "7014C", roller_bearing: str = "NU210", arrangement: str = "DB",
             preload: str | float | None = None, **options: Any) -> Spindle:
     """Build a spindle; see :class:`Spindle` for the parameters.
+
+    Parameters
+    ----------
+    bearing : str
+        Catalogue designation of the angular contact bearing of both duplex rows.
+    roller_bearing : str
+        Catalogue designation of the NU bearing.
+    arrangement : {"DF", "DB", "DT"}
+        Arrangement of the duplex pair.
+    preload : str or float, optional
+        Preload class ("light", "medium", "heavy") or axial preload [N], > 0, of the pair.
+    **options
+        Further keywords of :class:`Spindle`.
+
+    Returns
+    -------
+    Spindle
+        The spindle assembly.
 
     Examples
     --------

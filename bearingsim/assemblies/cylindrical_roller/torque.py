@@ -25,6 +25,8 @@ class CylindricalRollerTorque(Assembly):
     ----------
     options : CylindricalRollerOptions
         ``friction_model`` and ``lubricant`` are used.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Attributes
     ----------

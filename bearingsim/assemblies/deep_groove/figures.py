@@ -35,6 +35,20 @@ def ball_loads(prep: Any, result: Any, series: dict[str, np.ndarray]
 
     The azimuths are those of the model: ``row.psi0 + 2 pi j / Z`` at the quasi-static level,
     the balls' orbital angles ``ball[j].theta`` at the dynamic levels.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`bearingsim.scenes.preparation.Prepared`).
+    result : SimulationResult
+        The run's result (its inputs and parameters).
+    series : dict of str to ndarray
+        The run's saved series by variable name.
+
+    Returns
+    -------
+    tuple of (ndarray, ndarray, float) or None
+        Loads [N], azimuths [rad] and radial load [N]; None without a radial load.
     """
     z = resolve_bearing(prep.args["bearing"]).ball_count
     fx, fy = (float(result.inputs.get(f"load.{k}", 0.0)) for k in ("Fx", "Fy"))
@@ -73,7 +87,20 @@ def _ball_load_figure(prep, result, series) -> FigureSpec | None:
 
 def deep_groove_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
     """Ball contact load against azimuth (every ball's load and, at the dynamic levels, its
-    orbital angle)."""
+    orbital angle).
+
+    Parameters
+    ----------
+    args : dict
+        Every argument of the assembly's ``SCENE_SPEC.args`` (defaults filled in).
+    fidelity : str
+        Fidelity level of the scene, one of the spec's levels.
+
+    Returns
+    -------
+    list of AssemblyPlot
+        The ball-load figure and the series it needs.
+    """
     z = resolve_bearing(args["bearing"]).ball_count
     if fidelity == "quasi-static":
         needs = tuple(f"row.Q_i[{j}]" for j in range(z))

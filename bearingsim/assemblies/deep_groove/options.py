@@ -313,7 +313,18 @@ class DeepGrooveOptions:
 
     @staticmethod
     def constant_loads(loads: dict[str, Any]) -> dict[str, float]:
-        """The loads given as constants (the ones that set the start values)."""
+        """The loads given as constants (the ones that set the start values).
+
+        Parameters
+        ----------
+        loads : dict
+            Load name (``Fx``, ``Fy``, ``Fz``) -> constant [N], function of time or None.
+
+        Returns
+        -------
+        dict of str to float
+            The constant loads [N] by name.
+        """
         return {k: v for k, v in loads.items() if isinstance(v, (int, float))}
 
     @classmethod

@@ -46,6 +46,8 @@ class QuasiStaticDeepGroove(Assembly):
         the moments); other keys raise :class:`~bearingsim.errors.ParameterError`.
     speed : float
         Constant inner-ring speed [rad/s], >= 0.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Raises
     ------

@@ -144,7 +144,23 @@ class DynamicDoubleLayerBearing(Assembly):
         return {prefix + k: v for k, v in start.items() if prefix + k in states}
 
     def path_prefix(self, states: list[str]) -> str:
-        """Prefix of this assembly's state names in a system (empty when it is the root)."""
+        """Prefix of this assembly's state names in a system (empty when it is the root).
+
+        Parameters
+        ----------
+        states : list of str
+            The system's state names.
+
+        Returns
+        -------
+        str
+            The dotted prefix (``""`` at the root, else ending in ``"."``).
+
+        Raises
+        ------
+        ParameterError
+            When the system holds no state of this assembly.
+        """
         key = "inner_layer.cage.w"
         for s in states:
             if s.endswith(key):

@@ -32,7 +32,26 @@ def steady_speed_ratio(prep, result, speed_input: str, rs_name: str, speeds: np.
     """Steady speed ratio [-] at each of ``speeds`` [rad/s] of the input ``speed_input``, the
     other inputs and the assembly's signals at their values at the end of the run, solved
     directly (:func:`~bearingsim.simulation.steady_state`, each speed started from the
-    previous solution); NaN where no steady state is found."""
+    previous solution); NaN where no steady state is found.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`bearingsim.scenes.preparation.Prepared`).
+    result : SimulationResult
+        The run's result (final state, inputs and parameters).
+    speed_input : str
+        Name of the input that sets the shaft speed [rad/s].
+    rs_name : str
+        Name of the speed ratio output.
+    speeds : ndarray
+        Shaft speeds [rad/s] to solve at, in the order of continuation.
+
+    Returns
+    -------
+    ndarray
+        Steady speed ratio [-] at each speed (NaN where none is found).
+    """
     system = prep.system
     inputs = dict(result.inputs)
     t_end = float(result.t[-1])
@@ -51,7 +70,23 @@ def steady_speed_ratio(prep, result, speed_input: str, rs_name: str, speeds: np.
 def rs_figure(prefix: str, bearing_args: dict[str, Any], speed_input: str):
     """The figure maker of Rs against shaft speed for a double-layer bearing whose variables
     carry ``prefix`` (``""`` alone, ``"bearing."`` in the motor drive), its scene arguments
-    ``bearing_args`` and the input ``speed_input`` that sets the shaft speed."""
+    ``bearing_args`` and the input ``speed_input`` that sets the shaft speed.
+
+    Parameters
+    ----------
+    prefix : str
+        Prefix of the bearing's variable names (``""`` or ending in ``"."``).
+    bearing_args : dict
+        The bearing's scene arguments (``inner`` and ``outer`` are used).
+    speed_input : str
+        Name of the input that sets the shaft speed [rad/s].
+
+    Returns
+    -------
+    callable
+        ``make(prep, result, series)`` -> :class:`~bearingsim.plotting.FigureSpec` or None
+        (None when the run's shaft speed spans too little).
+    """
 
     def make(prep, result, series) -> FigureSpec | None:
         w, rs = series[prefix + "w_shaft"], series[prefix + "Rs"]
@@ -77,7 +112,20 @@ def rs_figure(prefix: str, bearing_args: dict[str, Any], speed_input: str):
 
 
 def double_layer_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
-    """Rs against shaft speed (none at the quasi-static level: load sharing, no speeds)."""
+    """Rs against shaft speed (none at the quasi-static level: load sharing, no speeds).
+
+    Parameters
+    ----------
+    args : dict
+        Every argument of the assembly's ``SCENE_SPEC.args`` (defaults filled in).
+    fidelity : str
+        Fidelity level of the scene, one of the spec's levels.
+
+    Returns
+    -------
+    list of AssemblyPlot
+        The Rs figure, or none at the quasi-static level.
+    """
     if fidelity == "quasi-static":
         return []
     return [AssemblyPlot("rs_speed", ("w_shaft", "Rs"), rs_figure("", args, "shaft_speed"))]

@@ -45,6 +45,8 @@ class NestedQuasiStatic(Assembly):
         clearance becomes its operating clearance
         (:func:`~bearingsim.components.middle_ring.mounted_geometries`); default False, the
         clearance before mounting (catalogue rows: the CN mean).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Inputs
     ------

@@ -51,6 +51,11 @@ def double_layer_from_scene(args: dict[str, Any], fidelity: str,
         levels.
     drive : {"speed", "flange"}
         Imposed shaft speed (input ``shaft_speed`` [rad/s]) or a free shaft flange.
+
+    Returns
+    -------
+    Assembly
+        The double-layer bearing at that level.
     """
     if fidelity in ("quasi-static", "dynamic"):
         extra = {"drive": drive} if fidelity == "dynamic" else {}

@@ -57,5 +57,17 @@ def speed_ratio(w_middle, w_shaft):
     gives 0, the limit of a spin-up from rest (the middle ring lags the shaft); a middle ring
     still turning when the shaft stops gives a large ratio there (``w_middle / w_shaft`` grows
     without bound) that falls back to 0 at rest.
+
+    Parameters
+    ----------
+    w_middle : float or array_like or casadi.SX
+        Middle ring speed [rad/s].
+    w_shaft : float or array_like or casadi.SX
+        Shaft speed [rad/s].
+
+    Returns
+    -------
+    float or array_like or casadi.SX
+        The speed ratio Rs [1], of the arguments' type.
     """
     return w_middle * w_shaft / (w_shaft**2 + RS_REGULARIZATION**2)

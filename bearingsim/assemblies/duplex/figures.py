@@ -37,7 +37,22 @@ def mode_frequencies(prep, result, samples: int = MODE_SAMPLES
     (Newton from the saved state), K the exact static stiffness of the model there
     (:func:`bearingsim.physics.shaft_modes.modal_analysis`). The equilibrium, not the saved state:
     after a load step the undamped shaft oscillates about it, and the stiffness at the
-    swinging states would show the oscillation rather than the pair."""
+    swinging states would show the oscillation rather than the pair.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`bearingsim.scenes.preparation.Prepared`).
+    result : SimulationResult
+        The run's result (inputs over time and parameters).
+    samples : int
+        Number of sample times spread over the run, >= 1.
+
+    Returns
+    -------
+    tuple of (ndarray, dict of str to ndarray)
+        Sample times [s] and natural frequencies [Hz] by mode name.
+    """
     system = prep.system
     m = result.parameters["shaft.mass"]
     jt = result.parameters["shaft.transverse_inertia"]
@@ -69,7 +84,20 @@ def _modes_figure(prep, result, series) -> FigureSpec:
 
 def duplex_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
     """Natural frequencies by mode name over the run; none for the axisymmetric reduction (one
-    ball per row has no radial or tilt stiffness)."""
+    ball per row has no radial or tilt stiffness).
+
+    Parameters
+    ----------
+    args : dict
+        Every argument of the assembly's ``SCENE_SPEC.args`` (defaults filled in).
+    fidelity : str
+        Fidelity level of the scene, one of the spec's levels.
+
+    Returns
+    -------
+    list of AssemblyPlot
+        The mode-frequency figure, or none for the axisymmetric reduction.
+    """
     if args.get("axisymmetric"):
         return []
     return [AssemblyPlot("modes", _POSITIONS, _modes_figure)]

@@ -50,6 +50,18 @@ def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
     :data:`PRELOAD_FRACTIONS` of C at the bearing's contact angle (e.g. 7014C, C = 48.5 kN:
     light 412 N, medium 970 N, heavy 1940 N).
 
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        The bearing of the pair.
+    preload : str or float
+        Preload class ("light", "medium", "heavy") or axial preload [N], > 0.
+
+    Returns
+    -------
+    float
+        Axial preload [N].
+
     Raises
     ------
     ParameterError

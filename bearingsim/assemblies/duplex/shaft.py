@@ -59,30 +59,60 @@ class ShaftSpec:
 
     @property
     def solid_mass(self) -> float:
-        """Mass of the solid cylinder [kg]."""
+        """Mass of the solid cylinder [kg].
+
+        Returns
+        -------
+        float
+            ``rho pi r^2 l`` [kg].
+        """
         return self.density * math.pi * self.diameter**2 / 4.0 * self.length
 
     @property
     def m(self) -> float:
-        """Shaft mass [kg]."""
+        """Shaft mass [kg].
+
+        Returns
+        -------
+        float
+            The given mass [kg], else the solid cylinder's.
+        """
         return self.solid_mass if self.mass is None else self.mass
 
     @property
     def jt(self) -> float:
-        """Transverse moment of inertia about the centre of mass, ``m (3 r^2 + l^2) / 12``."""
+        """Transverse moment of inertia about the centre of mass, ``m (3 r^2 + l^2) / 12``.
+
+        Returns
+        -------
+        float
+            Transverse moment of inertia [kg m^2].
+        """
         if self.transverse_inertia is not None:
             return self.transverse_inertia
         return self.m * (0.75 * self.diameter**2 + self.length**2) / 12.0
 
     @property
     def jp(self) -> float:
-        """Polar moment of inertia, ``m r^2 / 2`` [kg m^2]."""
+        """Polar moment of inertia, ``m r^2 / 2`` [kg m^2].
+
+        Returns
+        -------
+        float
+            Polar moment of inertia [kg m^2].
+        """
         return self.m * self.diameter**2 / 8.0 if self.polar_inertia is None else \
             self.polar_inertia
 
     @property
     def positions(self) -> tuple[float, float]:
-        """Axial positions (L1, -L2) of row 0 and row 1 from the centre of mass [m]."""
+        """Axial positions (L1, -L2) of row 0 and row 1 from the centre of mass [m].
+
+        Returns
+        -------
+        tuple of (float, float)
+            Axial positions of row 0 and row 1 [m].
+        """
         half = 0.5 * self.row_spacing
         return (self.centre_offset + half, self.centre_offset - half)
 

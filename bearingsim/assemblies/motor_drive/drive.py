@@ -33,6 +33,8 @@ class MotorDrive(Assembly):
         Shaft (and spindle) inertia [kg m^2].
     motor_options : dict, optional
         Passed to the motor drive (gains, motor constants).
+    name : str
+        Instance name (the prefix of its variables' dotted names).
     """
 
     def __init__(self, bearing: Component | None = None, motor: str = "dc",
@@ -68,7 +70,20 @@ def _limit_reference(motor: Component, speed_ref, bearing: Component) -> None:
 
 @checked
 def motor_drive(bearing: DoubleLayerBearing | None = None, **kwargs) -> MotorDrive:
-    """Build a :class:`MotorDrive`."""
+    """Build a :class:`MotorDrive`.
+
+    Parameters
+    ----------
+    bearing : DoubleLayerBearing, optional
+        The bearing (default: see :class:`MotorDrive`).
+    **kwargs
+        Further keywords of :class:`MotorDrive`.
+
+    Returns
+    -------
+    MotorDrive
+        The drive assembly.
+    """
     return MotorDrive(bearing, **kwargs)
 
 
@@ -86,6 +101,8 @@ class MotorShaft(Assembly):
         Shaft (and spindle) inertia [kg m^2], as in ``motor_drive``.
     motor_options : dict, optional
         Passed to the motor drive.
+    name : str
+        Instance name (the prefix of its variables' dotted names).
 
     Variables
     ---------

@@ -13,6 +13,19 @@ __all__ = ["motor_drive_plots"]
 
 
 def motor_drive_plots(args: dict[str, Any], fidelity: str) -> list[AssemblyPlot]:
-    """Rs of the bearing against shaft speed."""
+    """Rs of the bearing against shaft speed.
+
+    Parameters
+    ----------
+    args : dict
+        Every argument of the assembly's ``SCENE_SPEC.args`` (defaults filled in).
+    fidelity : str
+        Fidelity level of the scene, one of the spec's levels.
+
+    Returns
+    -------
+    list of AssemblyPlot
+        The bearing's Rs figure where its level has one.
+    """
     return [AssemblyPlot("rs_speed", ("bearing.w_shaft", "bearing.Rs"),
                          rs_figure("bearing.", args["bearing"], "motor.w_ref"))]

@@ -301,7 +301,22 @@ def equivalent_dynamic_load(radial_load, axial_load, c0, f0, contact_angle: floa
                             rows: int = 1):
     """ISO 281:2007 equivalent dynamic radial load ``P = X Fr + Y Fa`` [N].
 
-    Parameters are those of :func:`xy_factors`. Returns P [N].
+    Parameters
+    ----------
+    radial_load, axial_load : float or array or SX
+        Radial and axial load Fr, Fa [N], >= 0 (as in :func:`xy_factors`).
+    c0 : float or array or SX
+        Basic static radial load rating C0 [N] of the whole bearing, > 0.
+    f0 : float or array or SX
+        Factor f0 [-] of :func:`static_factor` (of one row).
+    contact_angle : float
+        Nominal contact angle [rad]: 0, or 15 to 45 deg.
+    rows : int
+        Number of rows i [-]: 1 or 2.
+
+    Returns
+    -------
+    P [N]
     """
     x, y, _ = xy_factors(radial_load, axial_load, c0, f0, contact_angle, rows)
     return x * radial_load + y * axial_load
@@ -318,6 +333,11 @@ def rating_life(c, p, exponent=3.0):
         Equivalent dynamic load P [N], > 0.
     exponent : float
         Life exponent [-], finite and > 0 (3 for ball bearings).
+
+    Returns
+    -------
+    L10 [10^6 revolutions]
+        Of the type of ``c`` and ``p``.
     """
     check_range(c, "c", "N", 0.0, low_inclusive=False, where="rating_life")
     check_range(p, "p", "N", 0.0, low_inclusive=False, where="rating_life")
@@ -334,6 +354,11 @@ def life_hours(life, speed):
         Life [10^6 revolutions], >= 0.
     speed : float or array or SX
         Relative ring speed [rad/s], > 0.
+
+    Returns
+    -------
+    float or array or SX
+        Life [h].
     """
     check_range(life, "life", "1e6 rev", 0.0, where="life_hours")
     check_range(speed, "speed", "rad/s", 0.0, low_inclusive=False, where="life_hours")

@@ -54,8 +54,19 @@ def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
     interpolated linearly in ``gamma = Dw cos(a) / dm`` from 0 to 0.40. It is also the f0 of the
     relative axial load ``f0 Fa / C0`` in :func:`xy_factors`.
 
-    Parameters are those of :func:`dynamic_load_rating` (contact angle [rad] in [0, 45] deg,
-    the range of the ISO 76 / ISO 281 ball bearing tables used here). Returns f0 [N/mm^2].
+    Parameters
+    ----------
+    ball_diameter : float or array or SX
+        Ball diameter Dw [m], in (0, 0.5] (as :func:`dynamic_load_rating`).
+    pitch_diameter : float or array or SX
+        Pitch diameter dm [m], in (0, 6].
+    contact_angle : float or array or SX
+        Nominal contact angle [rad] in [0, 45] deg, the range of the ISO 76 / ISO 281 ball
+        bearing tables used here.
+
+    Returns
+    -------
+    f0 [N/mm^2]
     """
     check_diameter(ball_diameter, "ball_diameter", "static_factor", MAX_BALL_DIAMETER)
     check_diameter(pitch_diameter, "pitch_diameter", "static_factor")
@@ -67,7 +78,22 @@ def static_factor(ball_diameter, pitch_diameter, contact_angle=0.0):
 def static_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle=0.0, rows=1):
     """ISO 76:2006 basic static radial load rating ``C0 = f0 i Z Dw^2 cos(a)`` [N] (Dw in mm).
 
-    Parameters are those of :func:`dynamic_load_rating`. Returns C0 [N].
+    Parameters
+    ----------
+    ball_diameter : float or array or SX
+        Ball diameter Dw [m], in (0, 0.5] (as :func:`dynamic_load_rating`).
+    pitch_diameter : float or array or SX
+        Pitch diameter dm [m], in (0, 6].
+    ball_count : int or float or SX
+        Balls per row Z [-], >= 3.
+    contact_angle : float or array or SX
+        Nominal contact angle [rad], 0 to 45 deg.
+    rows : int
+        Number of rows i [-], a whole number >= 1.
+
+    Returns
+    -------
+    C0 [N]
     """
     check_ball_set(ball_diameter, pitch_diameter, ball_count, contact_angle, rows,
                    "static_load_rating")

@@ -91,6 +91,11 @@ def raceway_dynamic_ratings(c, fi, fo, gamma, ball_count, contact_angle=0.0, row
         Nominal contact angle [rad].
     rows : int
         Number of rows i [-], a whole number >= 1.
+
+    Returns
+    -------
+    (Q_ci, Q_ce) : tuple [N]
+        Inner and outer raceway contact ratings.
     """
     where = "raceway_dynamic_ratings"
     check_range(c, "c", "N", 0.0, low_inclusive=False, where=where)

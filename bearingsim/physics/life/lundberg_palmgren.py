@@ -102,7 +102,22 @@ def ball_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_cou
     "Fatigue life: basic theory and rating standards"); the formula of docs/studies.md, section C
     needs such ball lives but does not define them.
 
-    Parameters are those of :func:`raceway_contact_capacity`. Returns Qcb [N].
+    Parameters
+    ----------
+    ball_diameter, pitch_diameter : float or array or SX
+        Dw in (0, 0.5], dm in (0, 6] [m] (as :func:`raceway_contact_capacity`).
+    groove_factor : float or array or SX
+        Groove curvature factor f of this raceway [-], > 0.5.
+    ball_count : int or float
+        Number of balls Z [-].
+    contact_angle : float or array or SX
+        Contact angle [rad].
+    race : {"inner", "outer"}
+        The raceway of the contact.
+
+    Returns
+    -------
+    Qcb [N]
     """
     qc = raceway_contact_capacity(ball_diameter, pitch_diameter, groove_factor, ball_count,
                                   contact_angle, race)
@@ -122,6 +137,11 @@ def contact_life(capacity, load):
         Contact capacity Qc [N], > 0.
     load : float or array or SX
         Contact load Q [N], >= 0.
+
+    Returns
+    -------
+    float or array or SX
+        Life [10^6 revolutions], inf at zero load.
     """
     check_range(capacity, "capacity", "N", 0.0, low_inclusive=False, where="contact_life")
     check_range(load, "load", "N", 0.0, where="contact_life")
@@ -243,6 +263,11 @@ def bearing_life(life_inner, life_outer):
     ----------
     life_inner, life_outer : float or array or SX
         Raceway lives [10^6 revolutions], > 0.
+
+    Returns
+    -------
+    float or array or SX
+        Bearing life [10^6 revolutions].
     """
     check_life(life_inner, "life_inner", "bearing_life")
     check_life(life_outer, "life_outer", "bearing_life")

@@ -20,12 +20,29 @@ a deep-groove ball bearing per duty condition; and a PMSM spin-up of the double-
 
 
 def builtin_scenes() -> list[str]:
-    """Names of the built-in scenes (file stems), sorted."""
+    """Names of the built-in scenes (file stems), sorted.
+
+    Returns
+    -------
+    list of str
+        The names.
+    """
     return sorted(p.stem for p in FOLDER.glob("*.toml"))
 
 
 def builtin_scene_path(name: str) -> Path | None:
-    """The file of the built-in scene ``name`` (a stem, with or without ``.toml``), or None."""
+    """The file of the built-in scene ``name`` (a stem, with or without ``.toml``), or None.
+
+    Parameters
+    ----------
+    name : str
+        Scene name.
+
+    Returns
+    -------
+    Path or None
+        The TOML file, or None for an unknown name.
+    """
     stem = name[:-5] if name.endswith(".toml") else name
     path = FOLDER / f"{stem}.toml"
     return path if "/" not in stem and path.is_file() else None
