@@ -29,8 +29,8 @@ __all__ = ["BINARY_PLATFORMS", "CROSS_PLATFORMS", "GLIBC_BASELINE",
 RUNTIME_FILES = ("bsm_model.h", "bsm_eval.c", "bsm_solver.c")
 """The FMI-independent runtime of the C template, shared by every exported FMU."""
 
-LU_FILES = ("bsm_lu.h", "bsm_lu.c")
-"""The runtime's sparse LU, shared with the compiled BDF integrator
+LU_FILES = ("bsm_lu.h", "bsm_lu.c", "bsm_bdf.h", "bsm_bdf.c")
+"""The runtime's sparse LU and BDF stepping core, shared with the compiled BDF integrator
 (``bearingsim/simulation/c``)."""
 
 API_FILES = {"2.0": "fmi2_api.c", "3.0": "fmi3_api.c"}

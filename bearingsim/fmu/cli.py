@@ -60,6 +60,8 @@ def build_parser() -> argparse.ArgumentParser:
     argparse.ArgumentParser
         The parser of its command line.
     """
+    from bearingsim.fmu.model_c import STEPPERS
+
     parser = argparse.ArgumentParser(
         prog="bearingsim export-fmu",
         description="Export an assembly as an FMU (FMI 2.0 or 3.0, Linux x86_64).",
@@ -87,9 +89,11 @@ def build_parser() -> argparse.ArgumentParser:
                         help="cross-built binaries besides Linux x86-64, UNTESTED: "
                         "linux-aarch64, darwin-x86_64, darwin-aarch64, windows-x86_64 (aarch64: "
                         "FMI 3.0 only; needs pip install ziglang)")
-    parser.add_argument("--stepper", default="ros34pw2", choices=["ros34pw2", "rodas3"],
-                        help="co-simulation stepper (default ros34pw2, a Rosenbrock-W method "
-                        "that reuses the Jacobian; rodas3 evaluates it at every step)")
+    parser.add_argument("--stepper", default=STEPPERS[0], choices=list(STEPPERS),
+                        help="co-simulation stepper (default auto: bdf, the BDF of "
+                        "compiled_bdf, for models of many states, else ros34pw2, a "
+                        "Rosenbrock-W method that reuses the Jacobian; rodas3 evaluates it at "
+                        "every step)")
     return parser
 
 

@@ -28,7 +28,7 @@ from bearingsim.fmu.build import (
 )
 from bearingsim.fmu.codegen import fmu_functions, generate_c
 from bearingsim.fmu.interface import build_interface
-from bearingsim.fmu.model_c import STEPPERS, write_model_c
+from bearingsim.fmu.model_c import STEPPERS, resolve_stepper, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
 from bearingsim.fmu.nominal import state_nominals
 from bearingsim.language import Component
@@ -171,11 +171,13 @@ def export_fmu(
         Model Exchange and/or Co-Simulation interfaces.
     model_name : str, optional
         ``modelName``; its C-identifier form names the library. Default: the system's name.
-    stepper : {"ros34pw2", "rodas3"}
-        Co-simulation stepper (``bsm_solver.c``): the Rosenbrock-W method ROS34PW2, which reuses
-        the Jacobian and its LU factorisation over many steps, or Rodas3, which evaluates the
-        Jacobian and factorises at every internal step. Both are order 3 with an embedded
-        order-2 error estimate.
+    stepper : {"auto", "bdf", "ros34pw2", "rodas3"}
+        Co-simulation stepper (``bsm_solver.c``): the variable-order BDF of
+        ``method="compiled_bdf"`` (its stepping core, history kept across doSteps); the
+        Rosenbrock-W method ROS34PW2, which reuses the Jacobian and its LU factorisation over
+        many steps; or Rodas3, which evaluates the Jacobian and factorises at every internal
+        step (both order 3 with an embedded order-2 error estimate). ``"auto"``: BDF from
+        :data:`~bearingsim.fmu.model_c.BDF_MIN_STATES` states on, ROS34PW2 below.
     platforms : sequence of str
         Cross-built binaries besides the Linux x86-64 one, from
         :data:`~bearingsim.fmu.build.CROSS_PLATFORMS` (``"linux-aarch64"``, ``"darwin-x86_64"``,
@@ -234,7 +236,8 @@ def export_fmu(
         src = Path(tmp) / "sources"
         src.mkdir()
         work, generated = generate_c(functions, src)
-        written = write_model_c(src, iface, system, guid, work, kinds, stepper=stepper,
+        written = write_model_c(src, iface, system, guid, work, kinds,
+                                stepper=resolve_stepper(stepper, system.n_states),
                                 lu_pattern=newton_pattern(functions["jac_x"].sparsity_out(0)))
         template = copy_templates(src, fmi_version)
         flags = {g.name: g.optimisation for g in generated}

@@ -16,10 +16,25 @@ from bearingsim.fmu.codegen import FUNCTION_NAMES, PREFIX
 from bearingsim.fmu.interface import FmuInterface
 from bearingsim.simulation.ordering import NewtonPattern, newton_pattern
 
-__all__ = ["STEPPERS", "write_model_c"]
+__all__ = ["BDF_MIN_STATES", "STEPPERS", "resolve_stepper", "write_model_c"]
 
-STEPPERS = ("ros34pw2", "rodas3")
-"""Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default."""
+STEPPERS = ("auto", "bdf", "ros34pw2", "rodas3")
+"""Co-simulation steppers of the C runtime (``bsm_solver.c``); the first is the default:
+:func:`resolve_stepper`."""
+
+BDF_MIN_STATES = 40
+"""``stepper="auto"`` takes the BDF stepper from this many states on (the ball-level models:
+many stiff states, where its steps are fewest and cheapest; ``docs/fmu.md``), ROS34PW2 below
+(the torque-level and drive models, whose accuracy per tolerance it keeps)."""
+
+
+def resolve_stepper(stepper: str, n_states: int) -> str:
+    """The stepper compiled in for ``stepper`` (one of :data:`STEPPERS`) on a model of
+    ``n_states`` states: ``"auto"`` is ``"bdf"`` from :data:`BDF_MIN_STATES` states on, else
+    ``"ros34pw2"``; the others are themselves."""
+    if stepper != "auto":
+        return stepper
+    return "bdf" if n_states >= BDF_MIN_STATES else "ros34pw2"
 
 _LOW, _LOW_INCL, _HIGH, _HIGH_INCL = 1, 2, 4, 8
 
@@ -72,8 +87,9 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         ``"ME"`` and/or ``"CS"``.
     casadi_header : str
         Header of the generated CasADi code.
-    stepper : {"ros34pw2", "rodas3"}
-        Co-simulation stepper compiled in (``BSM_STEPPER_RODAS3``).
+    stepper : {"auto", "bdf", "ros34pw2", "rodas3"}
+        Co-simulation stepper compiled in (``BSM_STEPPER_BDF``, ``BSM_STEPPER_RODAS3``;
+        ``"auto"`` here is ROS34PW2: :func:`resolve_stepper` chooses by the model's size).
     lu_pattern : NewtonPattern, optional
         The order of the states in the stepper's sparse LU factorisation and the pattern of
         its matrix in that order (:func:`~bearingsim.simulation.ordering.newton_pattern`);
@@ -95,6 +111,7 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
 #define MODEL_GUID "{guid}"
 #define MODEL_HAS_ME {int("ME" in kinds)}
 #define MODEL_HAS_CS {int("CS" in kinds)}
+#define BSM_STEPPER_BDF {int(stepper == "bdf")}
 #define BSM_STEPPER_RODAS3 {int(stepper == "rodas3")}
 
 #define NX {nx}

@@ -3,7 +3,8 @@
 CVODES and IDAS evaluate the compiled kernels through CasADi, whose integrator interface costs
 as much per step as the kernels themselves on the ball-level models (``docs/benchmarks.md``,
 section "SUNDIALS on compiled kernels"). This integrator is the step loop in C
-(``c/bdf.c``): scipy's variable-order BDF (numerical differentiation formulas, orders 1-5) with
+(``c/bdf.c`` on the stepping core ``c/bsm_bdf.c``, which the FMU's co-simulation stepper shares):
+scipy's variable-order BDF (numerical differentiation formulas, orders 1-5) with
 CVODES' reuse of the Newton matrix's LU while the step size changes little, calling the kernel
 library's ``ode`` and ``jac_ode`` through function pointers. The Newton matrix is factorised
 by the sparse LU ``c/bsm_lu.c`` (shared with the FMU's stepper) with the states in a
@@ -47,10 +48,16 @@ from bearingsim.simulation.progress import progress_bar
 __all__ = ["DRIVER_SOURCE", "CompiledRun", "compiled_bdf_run"]
 
 C_DIR = Path(__file__).with_name("c")
-"""The integrator's C sources: ``bdf.c`` and the LU ``bsm_lu.c`` with its header."""
+"""The integrator's C sources: the driver ``bdf.c``, the stepping core ``bsm_bdf.c`` and the LU
+``bsm_lu.c`` with their headers."""
 
 DRIVER_SOURCE = C_DIR / "bdf.c"
-"""The integrator's step loop."""
+"""The integrator's driver: the kernels, the LU and the output times."""
+
+CORE_SOURCES = ("bsm_bdf.c", "bsm_lu.c")
+"""The BDF stepping core and the LU, shared with the FMU's co-simulation stepper."""
+
+CORE_HEADERS = ("bsm_bdf.h", "bsm_lu.h")
 
 FLAGS = ("-O2", f"-I{C_DIR}")
 """Compiler flags of the integrator library (a small file: -O2 costs nothing to speak of)."""
@@ -94,9 +101,10 @@ def _signal_function(signal: InputSignal) -> ca.Function:
 def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
     """The integrator library with the input signal's C (compiled once per signal
     structure, cached on disk by its source)."""
-    units = [DRIVER_SOURCE.read_text(), (C_DIR / "bsm_lu.c").read_text(), signal_source]
-    header = (C_DIR / "bsm_lu.h").read_text()
-    lib = library_path("\n".join([*units, header]), flags=FLAGS, cache_dir=cache_dir,
+    units = [DRIVER_SOURCE.read_text(), *[(C_DIR / name).read_text() for name in CORE_SOURCES],
+             signal_source]
+    headers = [(C_DIR / name).read_text() for name in CORE_HEADERS]
+    lib = library_path("\n".join([*units, *headers]), flags=FLAGS, cache_dir=cache_dir,
                        prefix="bsm_bdf")
     if not lib.exists():
         compile_source(units, lib, flags=FLAGS)

@@ -102,6 +102,21 @@ def test_inputs_through_the_callback_match_simulate(signal, load3, tmp_path):
     assert held > 0.05 and held > 1e4 * between, (held, between)
 
 
+def test_bdf_stepper_takes_the_inputs_through_the_callback(fmu_dir, tmp_path):
+    """The BDF stepper (its right-hand side at every Newton iteration) asks the callback for
+    the inputs as the Rosenbrock steppers do: driven through it, the FMU follows ``simulate``
+    with the sine input; held over each step it is 5 % or more off."""
+    path = export_fmu(SpeedDrivenLoad(), fmu_dir / "load3_bdf.fmu", outputs=["sensor.tau"],
+                      kinds=("CS",), fmi_version="3.0", stepper="bdf")
+    numeric, symbolic = INPUTS["sine"]
+    system = assemble(SpeedDrivenLoad(), outputs=["sensor.tau"])
+    ref = reference(system, T_STOP, H, inputs={"w_in": symbolic})["sensor.tau"]
+    between = rel_err(drive_load(path, tmp_path, numeric, True), ref)
+    held = rel_err(drive_load(path, tmp_path, numeric, False), ref)
+    assert between < 1e-5, between
+    assert held > 0.05 and held > 1e3 * between, (held, between)
+
+
 def test_callback_times_and_flags(load3, tmp_path):
     """Every call back lies inside its doStep, asks for inputs, allows no reads and no early
     return (tentative stage times: intermediateStepFinished is false), and each step is

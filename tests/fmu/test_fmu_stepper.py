@@ -1,7 +1,9 @@
-"""The co-simulation steppers of the C runtime: ROS34PW2 (Rosenbrock-W, default, reuses the
+"""The co-simulation steppers of the C runtime: BDF (the stepping core of ``compiled_bdf``,
+default from ``BDF_MIN_STATES`` states on), ROS34PW2 (Rosenbrock-W, default below, reuses the
 Jacobian and its LU factorisation) and Rodas3 (``export_fmu(stepper="rodas3")``): order of
 convergence against an analytic solution, reuse of the factorisation, agreement with
-``simulate`` on a bearing model, FMI validation."""
+``simulate`` on a bearing model, FMI validation, the BDF history across doSteps and FMU
+states."""
 
 from __future__ import annotations
 
@@ -22,6 +24,8 @@ from tests.fmu.conftest import STIFF_OUTPUTS
 from tests.fmu.helpers import LogCapture, open_fmu, reference, rel_err
 
 STEPPERS = ("ros34pw2", "rodas3")
+"""The Rosenbrock steppers (order 3)."""
+ALL_STEPPERS = ("bdf", *STEPPERS)
 J, K, D, TAU = 1.0, 100.0, 2.0, 1.0
 """Oscillator: inertia [kg m^2], stiffness [N m/rad], damping [N m s/rad], torque [N m]."""
 
@@ -87,7 +91,7 @@ def run_cs(path, tmp_path, h, t_end, outputs, tol, inputs=None):
 def oscillator(fmu_dir):
     system = assemble(Oscillator(), outputs=["rotor.phi"])
     return {s: export_fmu(system, fmu_dir / f"oscillator_{s}.fmu", kinds=("CS",), stepper=s,
-                          model_name=f"oscillator_{s}") for s in STEPPERS}
+                          model_name=f"oscillator_{s}") for s in ALL_STEPPERS}
 
 
 @pytest.mark.parametrize("stepper", STEPPERS)
@@ -109,7 +113,7 @@ def test_order_three_on_the_oscillator(stepper, oscillator, tmp_path):
     assert np.all((orders > 2.7) & (orders < 3.5)), orders
 
 
-@pytest.mark.parametrize("stepper", STEPPERS)
+@pytest.mark.parametrize("stepper", ALL_STEPPERS)
 def test_tight_tolerance_matches_the_analytic_solution(stepper, oscillator, tmp_path):
     out, _ = run_cs(oscillator[stepper], tmp_path, 0.01, 1.0, ["rotor.phi"], 1e-9)
     t = 0.01 * np.arange(1, 101)
@@ -133,10 +137,10 @@ def bearing(fmu_dir):
     system = assemble(bearing_model(), outputs=outputs)
     return system, outputs, {s: export_fmu(system, fmu_dir / f"bearing_{s}.fmu", kinds=("CS",),
                                            stepper=s, model_name=f"bearing_{s}")
-                             for s in STEPPERS}
+                             for s in ALL_STEPPERS}
 
 
-@pytest.mark.parametrize("stepper", STEPPERS)
+@pytest.mark.parametrize("stepper", ALL_STEPPERS)
 def test_bearing_agrees_with_simulate(stepper, bearing, tmp_path):
     system, outputs, fmus = bearing
     assert validate_fmu(str(fmus[stepper])) == []
@@ -177,7 +181,8 @@ def test_restored_state_continues_bit_for_bit(stiff_fmu, tmp_path):
 
 
 def test_unknown_stepper_is_refused(tmp_path):
-    with pytest.raises(ParameterError, match="stepper must be one of ros34pw2, rodas3"):
+    with pytest.raises(ParameterError,
+                       match="stepper must be one of auto, bdf, ros34pw2, rodas3"):
         export_fmu(Oscillator(), tmp_path / "x.fmu", stepper="euler")
 
 

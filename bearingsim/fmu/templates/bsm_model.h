@@ -9,8 +9,13 @@
 
 #include <stddef.h>
 
+#include "bsm_bdf.h"
 #include "bsm_lu.h"
 #include "model_config.h"
+
+#ifndef BSM_STEPPER_BDF
+#define BSM_STEPPER_BDF 0 /* the co-simulation stepper: the BDF core (bsm_bdf.c) */
+#endif
 
 #define BSM_DIM(n) ((n) > 0 ? (n) : 1)
 
@@ -93,6 +98,13 @@ typedef struct {
     double jac_x[BSM_DIM(NX)];
     double jac_u[BSM_DIM(NU)];
     double jac_h;               /* step size of the LU factorisation of W [s] (0: none) */
+#if BSM_STEPPER_BDF
+    /* the BDF stepper's history (bsm_bdf.h): its scalars, the differences D and the inputs
+     * at its end (a jump from these restarts it) */
+    BsmBdfHistory bdf;
+    double bdf_D[BSM_BDF_D_ROWS * BSM_DIM(NX)];
+    double bdf_u[BSM_DIM(NU)];
+#endif
 } BsmState;
 
 typedef struct {
@@ -123,8 +135,10 @@ typedef struct {
     double w_x[BSM_DIM(NX)];
     double w_u[BSM_DIM(NU)];
     double w_p[BSM_DIM(NP)];
-    double w_h;                    /* step size of the factorisation in lu [s] (0: none) */
-    double lu_a[BSM_DIM(BSM_LU_NNZ)]; /* W's nonzeros on bsm_lu_start/bsm_lu_index */
+    double w_h;                    /* step size of the factorisation in lu_a [s] (0: none);
+                                    * BDF: its c [s] */
+    double lu_a[BSM_DIM(BSM_LU_NNZ)]; /* W's (BDF: I - c J's) nonzeros on
+                                       * bsm_lu_start/bsm_lu_index */
     /* its sparse factors (bsm_lu.h; lu_c's pointers are set to the arrays before each use) */
     BsmLu lu_c;
     int lu_row_of[BSM_DIM(NX)];
@@ -142,6 +156,9 @@ typedef struct {
     double lu_inv_diag[BSM_DIM(NX)];
     double lu_x[BSM_DIM(NX)];
     int lu_work[BSM_DIM(3 * NX)];
+#if BSM_STEPPER_BDF
+    double bdf_work[BSM_BDF_WORK_VECTORS * BSM_DIM(NX)];
+#endif
     double k[4][BSM_DIM(NX)];
     double f[BSM_DIM(NX)];
     double xs[BSM_DIM(NX)];
