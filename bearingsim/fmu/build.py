@@ -50,7 +50,13 @@ BINARY_PLATFORMS = {"2.0": "linux64", "3.0": "x86_64-linux"}
 
 
 def fmi_header_dir() -> Path:
-    """Folder of the FMI headers shipped with fmpy (``fmpy/c-code``)."""
+    """Folder of the FMI headers shipped with fmpy (``fmpy/c-code``).
+
+    Returns
+    -------
+    Path
+        The folder.
+    """
     import fmpy
 
     return Path(fmpy.__file__).parent / "c-code"
@@ -59,6 +65,13 @@ def fmi_header_dir() -> Path:
 def copy_templates(directory: Path, fmi_version: str = "2.0") -> list[str]:
     """Copy the generic C template (runtime, its LU and the API layer of ``fmi_version``) and
     the FMI headers into ``directory``.
+
+    Parameters
+    ----------
+    directory : Path
+        The FMU's ``sources`` folder.
+    fmi_version : {"2.0", "3.0"}
+        FMI version of the API layer.
 
     Returns
     -------

@@ -31,7 +31,20 @@ many stiff states, where its steps are fewest and cheapest; ``docs/fmu.md``), RO
 def resolve_stepper(stepper: str, n_states: int) -> str:
     """The stepper compiled in for ``stepper`` (one of :data:`STEPPERS`) on a model of
     ``n_states`` states: ``"auto"`` is ``"bdf"`` from :data:`BDF_MIN_STATES` states on, else
-    ``"ros34pw2"``; the others are themselves."""
+    ``"ros34pw2"``; the others are themselves.
+
+    Parameters
+    ----------
+    stepper : str
+        One of :data:`STEPPERS`.
+    n_states : int
+        States of the model.
+
+    Returns
+    -------
+    str
+        The stepper compiled in.
+    """
     if stepper != "auto":
         return stepper
     return "bdf" if n_states >= BDF_MIN_STATES else "ros34pw2"

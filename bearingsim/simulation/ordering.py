@@ -73,7 +73,20 @@ class NewtonPattern:
 
     def values(self, jacobian_nonzeros: np.ndarray, c: float) -> np.ndarray:
         """The nonzeros of the ordered ``I - c J`` from ``J``'s nonzeros (the same
-        arithmetic as the C callers: ``1`` on the diagonal, then ``- c J``)."""
+        arithmetic as the C callers: ``1`` on the diagonal, then ``- c J``).
+
+        Parameters
+        ----------
+        jacobian_nonzeros : numpy.ndarray
+            Nonzeros of the Jacobian J, in its own sparsity's order.
+        c : float
+            The factor of J [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            Nonzeros of ``I - c J`` in the pattern's order.
+        """
         out = np.zeros(self.index.size)
         out[self.diag_slot] = 1.0
         out[self.jac_slot] -= c * np.asarray(jacobian_nonzeros, dtype=float)

@@ -98,6 +98,13 @@ class SparseLu:
         """Factorise the matrix with nonzeros ``values`` (in the pattern's order); with
         ``fresh``, with a new pivot order and pattern whatever the last ones.
 
+        Parameters
+        ----------
+        values : numpy.ndarray
+            Nonzeros of the matrix, in the pattern's order.
+        fresh : bool
+            Find a new pivot order and fill pattern.
+
         Returns
         -------
         int
@@ -112,7 +119,18 @@ class SparseLu:
         return self._dll.bsm_lu_factor(ctypes.byref(self._c), values.ctypes.data)
 
     def solve(self, b: np.ndarray) -> np.ndarray:
-        """``A^-1 b`` with the last factors."""
+        """``A^-1 b`` with the last factors.
+
+        Parameters
+        ----------
+        b : numpy.ndarray
+            Right-hand side (n,).
+
+        Returns
+        -------
+        numpy.ndarray
+            The solution ``x`` of ``A x = b``.
+        """
         x = np.array(b, dtype=float)
         self._dll.bsm_lu_solve(ctypes.byref(self._c), self._identity.ctypes.data,
                                self._work.ctypes.data, x.ctypes.data)
@@ -121,7 +139,20 @@ class SparseLu:
     def bound_calls(self, values: np.ndarray, b: np.ndarray):
         """The C calls with their arguments bound, for timing them without numpy's share:
         ``(factor, solve)``, zero-argument callables that factorise the nonzeros ``values``
-        (kept order, as :meth:`factor`) and solve for ``b`` in place."""
+        (kept order, as :meth:`factor`) and solve for ``b`` in place.
+
+        Parameters
+        ----------
+        values : numpy.ndarray
+            Nonzeros of the matrix, in the pattern's order.
+        b : numpy.ndarray
+            Right-hand side (n,), solved in place.
+
+        Returns
+        -------
+        tuple of callable
+            ``(factor, solve)``.
+        """
         values = np.ascontiguousarray(values, dtype=float)
         x = np.array(b, dtype=float)
         self._bound = (values, x)  # alive while the pointers are in use
@@ -138,15 +169,33 @@ class SparseLu:
 
     @property
     def pivotings(self) -> int:
-        """Factorisations with a new pivot order and pattern so far."""
+        """Factorisations with a new pivot order and pattern so far.
+
+        Returns
+        -------
+        int
+            The count.
+        """
         return int(self._c.pivotings)
 
     @property
     def row_of(self) -> np.ndarray:
-        """The row of ``A`` pivoted at each elimination step."""
+        """The row of ``A`` pivoted at each elimination step.
+
+        Returns
+        -------
+        numpy.ndarray
+            Row index per step.
+        """
         return self._arrays["row_of"].copy()
 
     @property
     def nnz(self) -> tuple[int, int]:
-        """Nonzeros of ``L`` and ``U`` off their diagonals."""
+        """Nonzeros of ``L`` and ``U`` off their diagonals.
+
+        Returns
+        -------
+        tuple of int
+            Nonzeros of L and of U.
+        """
         return int(self._arrays["l_start"][-1]), int(self._arrays["u_start"][-1])
