@@ -100,7 +100,7 @@ def _ball_level():
 
 
 def _torque_level():
-    from bearingsim.fmu.cosim_models import bearing_model
+    from bearingsim.studies.motor_bearing_cosim import bearing_model
 
     return bearing_model()
 
