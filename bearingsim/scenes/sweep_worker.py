@@ -32,8 +32,8 @@ from bearingsim.scenes.analyses import run_operating_point
 from bearingsim.scenes.preparation import Prepared
 from bearingsim.scenes.scene import Scene
 
-__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "load_model", "run_chunk",
-           "run_job", "run_point"]
+__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "guard_time", "load_model",
+           "run_chunk", "run_job", "run_point"]
 
 
 @dataclass
@@ -127,22 +127,44 @@ class PointTimeout(Exception):
     """Raised inside a point's thread when it exceeds its time budget."""
 
 
+def guard_time(timeout: float) -> float:
+    """Wall time [s] after which a point's thread is given up for a point budget of
+    ``timeout`` seconds: the budget plus a quarter and a second.
+
+    The point's run has the budget itself (``simulation.timeout``: every integrator,
+    SUNDIALS included, stops in a :class:`~bearingsim.errors.BudgetExceededError` once its
+    integration used it up, and the point is recorded with that error); the guard, later by
+    the set-up's share, ends what does not integrate (a statics or steady point's solve, a
+    set-up that hangs).
+
+    Parameters
+    ----------
+    timeout : float
+        The point's time budget [s].
+
+    Returns
+    -------
+    float
+        The guard's wall time [s].
+    """
+    return 1.25 * timeout + 1.0
+
+
 def _run_with_budget(prep: Prepared, job: Job, timeout: float) -> dict[str, Any]:
-    """:func:`run_job` in a thread; a point still running after ``timeout`` seconds is
-    returned as failed, and :class:`PointTimeout` is raised in its thread, which stops the
-    solver at its next return to Python (between save points: a solver inside one C call
-    cannot be stopped from outside; the sweep goes on either way)."""
+    """:func:`run_job` in a thread; a point still running after :func:`guard_time` is
+    returned as failed, and :class:`PointTimeout` is raised in its thread, which stops it at
+    its next return to Python (the sweep goes on either way)."""
     box: dict[str, Any] = {}
     thread = threading.Thread(target=lambda: box.update(run_job(prep, job)), daemon=True,
                               name=f"sweep-point-{job.index}")
     thread.start()
-    thread.join(timeout)
+    thread.join(guard_time(timeout))
     if thread.is_alive():
         ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(thread.ident),
                                                    ctypes.py_object(PointTimeout))
         return {"index": job.index, "pid": os.getpid(), "status": "failed", "final": {},
                 "error": f"TimeoutError: the point exceeded its time budget of {timeout:g} s",
-                "wall_s": float(timeout)}
+                "wall_s": guard_time(timeout)}
     return box
 
 

@@ -76,14 +76,16 @@ class RunBudget:
         self.steps += n
         used = time.perf_counter() - self.started
         if self.steps > self.max_steps:
-            why = f"its step budget of {self.max_steps} steps (max_steps)"
+            why = (f"its step budget of {self.max_steps} steps (max_steps); a step size "
+                   f"collapsing to a tiny value points to a discontinuity or a tolerance "
+                   f"below the model's round-off (give a larger atol), else raise the budget")
         elif self.timeout is not None and used > self.timeout:
-            why = f"its wall-time budget of {self.timeout:g} s (timeout)"
+            why = (f"its wall-time budget of {self.timeout:g} s (timeout); raise it, or "
+                   f"shorten the run")
         else:
             return
+        taken = f"{self.steps} steps and " if self.steps else ""
         raise BudgetExceededError(
             f"{self.method or 'the integrator'} stopped at t = {t_reached:.6g} s of "
-            f"{self.t_end:g} s after {self.steps} steps and {used:.3g} s: the run used up "
-            f"{why}; a step size collapsing to a tiny value points to a discontinuity or a "
-            f"tolerance below the model's round-off (give a larger atol), else raise the budget",
+            f"{self.t_end:g} s after {taken}{used:.3g} s: the run used up {why}",
             t_reached=t_reached, steps=self.steps, wall_time=used)

@@ -48,9 +48,11 @@ import _signal
 import atexit
 import contextlib
 import functools
+import io
 import os
 import signal
 import sys
+import tempfile
 import threading
 import time
 import weakref
@@ -62,7 +64,7 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.system import System
-from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.errors import BudgetExceededError, ParameterError, SimulationError
 from bearingsim.simulation.budget import RunBudget
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.fastcall import evaluate, mapped_function
@@ -237,6 +239,51 @@ def _quiet_stdout() -> Iterator[None]:
         os.close(devnull)
 
 
+class _Stop(Exception):
+    """Raised by a run's clock observer to end the integrator call (the budget is spent)."""
+
+
+@contextlib.contextmanager
+def _held_stderr(hold: bool, drop: Any) -> Iterator[None]:
+    """With ``hold``, send the process's standard error (file descriptor 2, and Python's
+    ``sys.stderr``) aside while the context lasts, then copy it to standard error unless
+    ``drop()`` is true:
+    a run its budget stopped ends in a failed evaluation, which the Python layer, CasADi and
+    SUNDIALS each report on standard error; the budget's own error says what happened.
+
+    Parameters
+    ----------
+    hold : bool
+        Whether to hold standard error at all.
+    drop : callable
+        Called at the end: true discards what was held.
+    """
+    if not hold:
+        yield
+        return
+    try:
+        sys.stderr.flush()
+        saved = os.dup(2)
+    except (OSError, ValueError, AttributeError):  # no standard error to hold
+        yield
+        return
+    python_level = io.StringIO()  # Python's own reports go to sys.stderr, not always fd 2
+    with tempfile.TemporaryFile() as held, contextlib.redirect_stderr(python_level):
+        os.dup2(held.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            if not drop():
+                held.seek(0)
+                text = held.read()
+                if text:
+                    os.write(2, text)
+    if not drop() and python_level.getvalue():
+        sys.stderr.write(python_level.getvalue())
+
+
 _INTEGRATORS = IntegratorCache()
 _MUMPS_USED = threading.Event()
 
@@ -287,7 +334,8 @@ class _Clock(ca.Callback):
     """Observer of a run's progress inside the integrator's oracle: records the normalized time
     ``tau`` of every right-hand-side evaluation, passes it to the calling thread's
     :attr:`observer` every :data:`CLOCK_EVERY` evaluations, and returns exactly ``0.0`` (which
-    the oracle subtracts: the integration is unchanged bit for bit)."""
+    the oracle subtracts: the integration is unchanged bit for bit). An observer that raises
+    fails the evaluation, which ends the integrator call."""
 
     def __init__(self) -> None:
         ca.Callback.__init__(self)
@@ -314,7 +362,8 @@ class _Clock(ca.Callback):
 
     @contextlib.contextmanager
     def observing(self, observer: Any) -> Iterator[None]:
-        """Call ``observer(tau)`` from this thread's evaluations while the context lasts."""
+        """Call ``observer(tau)`` from this thread's evaluations while the context lasts (an
+        exception it raises stops the run)."""
         self._local.observer, self._local.calls = observer, 0
         try:
             yield
@@ -456,7 +505,10 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         same numbers bit for bit.
     budget : RunBudget, optional
         The run's budget (:mod:`~bearingsim.simulation.budget`): its ``max_steps`` is
-        ``max_num_steps`` of the integrator call (default 100000).
+        ``max_num_steps`` of the integrator call (default 100000); its ``timeout`` is
+        checked by the progress clock (:class:`_Clock`, which the oracle then has: about
+        5 us per right-hand side, 10-20 % of a compiled ball-level run), every
+        :data:`CLOCK_EVERY` evaluations, and stops the call.
 
     Returns
     -------
@@ -491,7 +543,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     opts = dict(base)
     if np.isfinite(max_step):
         opts["max_step_size"] = float(max_step) / span
-    observed = shows_progress(progress)
+    timed = budget is not None and budget.timeout is not None
+    observed = shows_progress(progress) or timed
     built, cached = _integrator(method, system, kernel, signal, p.size, tau, grid_key, opts,
                                 observed)
     p_ext = np.concatenate([p, signal.q, [t0, span]])
@@ -500,22 +553,34 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
         args["z0"] = z0
     bar = progress_bar(t0, t1, progress)
     reached = [0.0]
+    stopped: list[BudgetExceededError] = []
 
     def observe(tau_now: float) -> None:
         if bar is not None and tau_now > reached[0]:
             bar.update(span * (min(tau_now, 1.0) - reached[0]))
             reached[0] = min(tau_now, 1.0)
+        if timed:
+            try:  # the wall-time budget, checked as the clock ticks (no steps counted)
+                budget.step(t0 + span * min(tau_now, 1.0), 0)
+            except BudgetExceededError as exc:
+                stopped.append(exc)
+                raise _Stop from None  # fails the evaluation: the integrator call returns
 
     called = time.thread_time()
     try:
         with _interrupts() as interrupted, (_CLOCK.observing(observe) if observed
-                                            else contextlib.nullcontext()):
+                                            else contextlib.nullcontext()), \
+                _held_stderr(timed and bar is None, lambda: bool(stopped)):
             out = built.integrator(**args)
         integrate_cpu_time = time.thread_time() - called
         observe(1.0)
     except RuntimeError as exc:
         if interrupted.is_set():  # CasADi reports Ctrl-C as a failed evaluation
             raise KeyboardInterrupt(f"{method.upper()} run interrupted") from None
+        if stopped:  # the wall-time budget, reported by the clock as a failed evaluation
+            raise stopped[0] from None
+        if timed:  # a failure once the budget is spent is reported as such, not located
+            budget.step(t0 + span * reached[0], 0)
         _locate_failure(method, system, built, opts, p_ext, x0, z0, x0, t0, span, tau, exc,
                         budget)
         raise

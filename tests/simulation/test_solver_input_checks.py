@@ -355,6 +355,21 @@ def test_wall_time_budget_ends_the_run(torque_system):
                  max_steps=10**9, max_step=1e-3)
 
 
+@pytest.mark.parametrize("method", ["cvodes", "idas"])
+def test_wall_time_budget_stops_sundials_inside_its_call(torque_system, method, capfd):
+    """CVODES and IDAS integrate the whole run in one call; the progress clock in their
+    oracle checks the wall-time budget and ends the call, reporting the time reached, with
+    nothing from the failed evaluation on standard error."""
+    from bearingsim.errors import BudgetExceededError
+
+    with pytest.raises(BudgetExceededError, match=r"wall-time budget of 0.05 s \(timeout\)") \
+            as info:
+        simulate(torque_system, 50.0, inputs=SPEED, method=method, timeout=0.05,
+                 max_steps=10**9, max_step=1e-5, n_points=3)
+    assert 0.0 < info.value.t_reached < 50.0
+    assert capfd.readouterr().err == ""
+
+
 @pytest.mark.parametrize(("kwargs", "match"), [
     ({"max_steps": 0}, r"max_steps = 0 \[-\] is outside the valid range \[1, inf\)"),
     ({"max_steps": 2.5}, "max_steps must be a whole number >= 1"),
