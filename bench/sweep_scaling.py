@@ -135,6 +135,15 @@ def sweeps_in_a_fresh_process(workers: int, n_points: int = N_POINTS, repeats: i
     return out
 
 
+def _child_overhead(quiet: bool) -> dict:
+    """:func:`cluster_overhead` in a new Python process (dask's settings are read once)."""
+    root = Path(__file__).resolve().parent.parent
+    out = subprocess.run([sys.executable, "-m", "bench.sweep_scaling", "--overhead",
+                          "quiet" if quiet else "defaults"], check=True, capture_output=True,
+                         text=True, cwd=str(root)).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
 def _child(workers: int) -> list[dict]:
     """:func:`sweeps_in_a_fresh_process` run by ``python -m bench.sweep_scaling --child``."""
     root = Path(__file__).resolve().parent.parent
@@ -150,6 +159,40 @@ def amdahl_serial_fraction(speedup: float, workers: int) -> float:
     return (1.0 / speedup - 1.0 / workers) / (1.0 - 1.0 / workers)
 
 
+def _busy(seconds: float) -> tuple[float, float]:
+    """A task on a worker: ``seconds`` of this thread's CPU time in a Python loop; returns the
+    thread's and the worker process's CPU time over it [s]."""
+    t0, p0 = time.thread_time(), time.process_time()
+    x = 0.0
+    while time.thread_time() - t0 < seconds:
+        for i in range(1000):
+            x += 0.5 * i
+    return time.thread_time() - t0, time.process_time() - p0
+
+
+def cluster_overhead(quiet: bool, seconds: float = 8.0) -> dict:
+    """CPU time a one-worker LocalCluster of the sweep spends beside an 8 s task: in the worker
+    process's other threads and in this process (scheduler, nanny, client), each relative to
+    the task's CPU time; ``quiet``: with :data:`~bearingsim.scenes.sweep_cluster.
+    QUIET_CLUSTER`, else with dask's defaults."""
+    from unittest import mock
+
+    from bearingsim.scenes import sweep_cluster
+
+    settings = sweep_cluster.QUIET_CLUSTER if quiet else {}
+    with mock.patch.object(sweep_cluster, "QUIET_CLUSTER", settings):
+        client, cluster = sweep_cluster.connect(None, 1)
+    try:
+        client.submit(_busy, 0.5, pure=False).result()  # the worker warmed up
+        c0 = time.process_time()
+        task, worker = client.submit(_busy, seconds, pure=False).result()
+        here = time.process_time() - c0
+    finally:
+        client.close()
+        cluster.close()
+    return {"worker_other": (worker - task) / task, "client": here / task}
+
+
 def run(workers: int = 2) -> dict:
     """Measure everything; returns the raw numbers (seconds)."""
     from bearingsim.scenes import load_scene
@@ -162,7 +205,9 @@ def run(workers: int = 2) -> dict:
     _plan(scene, _points(1))  # the model into the cache: every sweep below loads it
     one = _child(1)
     many = _child(workers)
+    overhead = {"defaults": _child_overhead(False), "quiet": _child_overhead(True)}
     return {"nested": nested, "one": one, "many": many, "workers": workers,
+            "overhead": overhead,
             "load_before": load_before,
             "load_after": os.getloadavg(), "cores": len(os.sched_getaffinity(0))}
 
@@ -259,6 +304,18 @@ def _body(r: dict) -> str:
         "output functions and the mapped kernels are built to be stored).",
         "",
         *_scaling_text(r),
+        "",
+        "**The cluster's own CPU time** beside an 8 s task on a one-worker LocalCluster of "
+        "the sweep (each relative to the task's CPU time): dask's defaults serve its "
+        "dashboard (a profiler sampling the task thread every 10 ms, a 20 ms event-loop tick, "
+        "monitors every 0.1-0.5 s); the sweep's cluster turns them down "
+        "(`sweep_cluster.QUIET_CLUSTER`).",
+        "",
+        markdown_table(
+            ["settings", "worker process, other threads", "client process (scheduler, nanny)"],
+            [[name, f"{100 * r['overhead'][key]['worker_other']:.1f} %",
+              f"{100 * r['overhead'][key]['client']:.1f} %"]
+             for name, key in (("dask defaults", "defaults"), ("sweep cluster", "quiet"))]),
     ]
     return "\n".join(lines)
 
@@ -275,8 +332,12 @@ if __name__ == "__main__":
                         help="workers of the scaling run (default 2)")
     parser.add_argument("--child", type=int, metavar="WORKERS",
                         help=argparse.SUPPRESS)  # the sweeps of one worker count, as JSON
+    parser.add_argument("--overhead", choices=("defaults", "quiet"),
+                        help=argparse.SUPPRESS)  # the cluster's own CPU time, as JSON
     args = parser.parse_args()
-    if args.child:
+    if args.overhead:
+        print(json.dumps(cluster_overhead(args.overhead == "quiet")))
+    elif args.child:
         print(json.dumps(sweeps_in_a_fresh_process(args.child)))
     else:
         print(section(args.workers).body)

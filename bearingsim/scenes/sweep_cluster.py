@@ -32,7 +32,8 @@ from typing import Any
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.sweep_worker import Job, run_chunk
 
-__all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "distributed_module",
+__all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER",
+           "distributed_module",
            "connect", "chunk_size", "ChunkFeeder"]
 
 CHUNK_SECONDS = 0.25
@@ -46,6 +47,20 @@ WORKERS_RECOUNT_S = 2.0
 join and leave)."""
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """Imported by the fork server (and preloaded by every worker)."""
+QUIET_CLUSTER = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.admin.system-monitor.interval": "5s",
+    "distributed.worker.memory.monitor-interval": "1s",
+}
+"""dask settings of a sweep's LocalCluster (scheduler, nannies and workers). dask's defaults
+serve its dashboard: a statistical profiler sampling the task thread every 10 ms, an event-loop
+tick every 20 ms, a system monitor every 0.5 s and each nanny's memory monitor every 0.1 s.
+Measured beside an 8 s task, they cost the worker process 6-9 % of the task's CPU time in its
+other threads and the client's process (scheduler and nanny) 5-11 %; with these settings about
+1 % each (bench section 19, ``python -m bench.sweep_scaling``). On a machine whose cores all
+run workers, that CPU comes out of the points. A worker still ends at its memory limit (checked
+every second instead of every 0.1 s)."""
 
 
 def distributed_module():
@@ -83,7 +98,8 @@ def _forked_local_cluster(n_workers: int):
     # the variables bearingsim reads at run time go to every worker as they are now (the
     # fork server keeps the environment it started with)
     env = {k: v for k, v in os.environ.items() if k.startswith("BEARINGSIM_")}
-    with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver"}):
+    with dask.config.set({"distributed.worker.multiprocessing-method": "forkserver",
+                          **QUIET_CLUSTER}):
         return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
                             preload=[WORKER_MODULE], env=env, dashboard_address=None,
                             # no dashboard; the scheduler's HTTP server on a free port

@@ -11,7 +11,13 @@ import pytest
 
 from bearingsim.scenes import load_scene
 from bearingsim.scenes.sweep import _plan, grid_points, parse_grid
-from bearingsim.scenes.sweep_cluster import TASKS_PER_WORKER, ChunkFeeder, chunk_size, connect
+from bearingsim.scenes.sweep_cluster import (
+    QUIET_CLUSTER,
+    TASKS_PER_WORKER,
+    ChunkFeeder,
+    chunk_size,
+    connect,
+)
 
 distributed = pytest.importorskip("distributed")
 
@@ -50,6 +56,30 @@ def test_forked_workers_see_the_environment_of_their_sweep(monkeypatch):
     # forked from the server (not spawned by this process), bearingsim already imported
     assert all(v[0] != os.getpid() and v[2] for v in seen)
     assert seen[0][0] == seen[1][0]  # one server for both sweeps
+
+
+def _worker_settings() -> dict:
+    import dask
+
+    return {key: dask.config.get(key) for key in QUIET_CLUSTER}
+
+
+def test_the_sweep_cluster_runs_without_dasks_dashboard_machinery():
+    """A sweep's workers have no statistical profiler and slow monitors (dask's defaults, made
+    for its dashboard, cost them several % of each point's CPU time: bench section 19); the
+    settings reach the forked worker processes, and the client's own settings stay dask's."""
+    import dask
+
+    before = {key: dask.config.get(key) for key in QUIET_CLUSTER}
+    client, cluster = connect(None, 1)
+    try:
+        [seen] = client.run(_worker_settings).values()
+    finally:
+        client.close()
+        cluster.close()
+    assert seen["distributed.worker.profile.enabled"] is False
+    assert seen == QUIET_CLUSTER
+    assert {key: dask.config.get(key) for key in QUIET_CLUSTER} == before
 
 
 def _feed(tmp_path, n_points: int, **kwargs) -> tuple[list[int], list[int]]:
