@@ -23,6 +23,7 @@ a unit (``"nan N"``, ``"inf rpm"``, ``"1e999 N"``) are :class:`ExpressionError`.
 from __future__ import annotations
 
 import ast
+import functools
 import math
 import warnings
 from collections.abc import Callable
@@ -151,7 +152,8 @@ def _parse(text: str, name: str) -> ast.Expression:
 
 
 def compile_expression(text: str, name: str = "input") -> Callable[[Any], Any]:
-    """Parse an expression of ``t`` and return ``f(t)`` building the CasADi expression.
+    """Parse an expression of ``t`` and return ``f(t)`` building the CasADi expression (kept
+    per text and name: a sweep's points share few expressions; a failing text raises again).
 
     Parameters
     ----------
@@ -170,6 +172,14 @@ def compile_expression(text: str, name: str = "input") -> Callable[[Any], Any]:
     ExpressionError
         For a syntax error or a construct, name or function outside the whitelist.
     """
+    if not isinstance(text, str) or not isinstance(name, str):  # refused by the parser
+        return _compiled.__wrapped__(text, name)
+    return _compiled(text, name)
+
+
+@functools.lru_cache(maxsize=1024)
+def _compiled(text: str, name: str) -> Callable[[Any], Any]:
+    """:func:`compile_expression` of text (kept)."""
     tree = _parse(text, name)
     _check(tree.body, name, text)  # fail at compile time, not at the first evaluation
 

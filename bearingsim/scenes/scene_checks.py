@@ -4,6 +4,7 @@ that one error lists every problem with its key and line."""
 from __future__ import annotations
 
 import difflib
+import functools
 import math
 from pathlib import Path
 from typing import Any
@@ -215,25 +216,36 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[st
     return TableInput(t.tolist(), y.tolist(), source)
 
 
-def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
-                   section: str = "inputs") -> None:
-    """Expressions must be finite over the time span (checked on a fine grid)."""
+@functools.lru_cache(maxsize=1024)
+def _first_non_finite(text: str, t_start: float, t_end: float, n: int) -> float | None:
+    """The first of ``n`` evenly spaced times in ``[t_start, t_end]`` [s] where the expression
+    ``text`` is not finite; None when it is finite at all of them or does not compile (the
+    syntax check reports that). Kept per arguments: a sweep checks each point's scene, and its
+    points share few expressions and time spans."""
     import casadi as ca
 
     t = ca.SX.sym("t")
-    grid = np.linspace(sim.t_start, sim.t_end, max(2 * sim.n_points, 201))
+    grid = np.linspace(t_start, t_end, n)
+    try:
+        fn = ca.Function("u", [t], [ca.SX(compile_expression(text)(t))])
+        vals = np.asarray(fn.map(grid.size)(grid[None, :]), dtype=float).ravel()
+    except Exception:  # noqa: BLE001 - reported by the syntax check already
+        return None
+    bad = ~np.isfinite(vals)
+    return float(grid[np.argmax(bad)]) if np.any(bad) else None
+
+
+def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
+                   section: str = "inputs") -> None:
+    """Expressions must be finite over the time span (checked on a fine grid)."""
     for name, v in inputs.items():
         if not isinstance(v, str):
             continue
-        try:
-            fn = ca.Function("u", [t], [ca.SX(compile_expression(v, name)(t))])
-            vals = np.asarray(fn.map(grid.size)(grid[None, :]), dtype=float).ravel()
-        except Exception:  # noqa: BLE001 - reported by the syntax check already
-            continue
-        bad = ~np.isfinite(vals)
-        if np.any(bad):
+        bad = _first_non_finite(v, float(sim.t_start), float(sim.t_end),
+                                max(2 * sim.n_points, 201))
+        if bad is not None:
             c.add(f"{section}.{name}", f"the expression {v!r} is not finite at t = "
-                  f"{grid[np.argmax(bad)]:.6g} s (in the time span "
+                  f"{bad:.6g} s (in the time span "
                   f"[{sim.t_start:g}, {sim.t_end:g}] s)", "an expression finite for all t")
 
 

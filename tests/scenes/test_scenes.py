@@ -523,3 +523,19 @@ def test_a_sweep_without_dask_names_the_extra(monkeypatch):
     with pytest.raises(SweepError, match=r"bearingsim\[dask\]"):
         run_sweep("double_layer_rs", [{"inputs.shaft_speed": 100.0},
                                       {"inputs.shaft_speed": 200.0}], progress=False)
+
+
+def test_an_input_expression_not_finite_in_the_time_span_is_named_per_span():
+    """The finiteness check of an expression input is kept per expression and time span (a
+    sweep's points share them): a span that reaches the pole is refused every time, naming the
+    input and the time; a span that ends before it passes."""
+    text = ('outputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+            '[inputs]\nshaft_speed = "100 / (t - 0.5)"\n[simulation]\nt_end = {t_end}\n'
+            'n_points = 100\n')
+    for _ in range(2):
+        with pytest.raises(SceneError, match=r"inputs\.shaft_speed: the expression "
+                           r"'100 / \(t - 0.5\)' is not finite at t = 0.5 s \(in the time "
+                           r"span \[0, 1\] s\)"):
+            parse_scene(text.format(t_end=1.0), "s.toml")
+    scene = parse_scene(text.format(t_end=0.4), "s.toml")
+    assert scene.inputs["shaft_speed"] == "100 / (t - 0.5)"
