@@ -12,13 +12,8 @@ import numpy as np
 
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
-from bearingsim.validation import (
-    MAX_BALL_DIAMETER,
-    check_choice,
-    check_diameter,
-    check_radii,
-    check_range,
-)
+from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter, check_radii
+from bearingsim.validation import check_choice, check_range
 
 __all__ = [
     "raceway_radii",

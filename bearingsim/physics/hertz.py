@@ -26,9 +26,10 @@ import numpy as np
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
+from bearingsim.physical_checks import check_radii
 from bearingsim.physics.contact_curvature import raceway_radii
 from bearingsim.physics.materials import STEEL, Material, effective_modulus
-from bearingsim.validation import check_radii, check_range
+from bearingsim.validation import check_range
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry

@@ -8,7 +8,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from bearingsim.checks import guard_public_functions
-from bearingsim.validation import check_modulus, check_range
+from bearingsim.physical_checks import check_modulus
+from bearingsim.validation import check_range
 
 __all__ = [
     "Material",
