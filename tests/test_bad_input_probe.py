@@ -23,7 +23,7 @@ from bearingsim.assemblies import (
 )
 from bearingsim.catalog import get_bearing
 from bearingsim.errors import BearingsimError
-from bearingsim.physics import contact_law, hertz, life
+from bearingsim.physics import contact_curvature, contact_law, life, materials
 from bearingsim.physics.friction import palmgren_torque
 from bearingsim.physics.lubricant import Oil, get_lubricant
 from bearingsim.scenes.expressions import compile_expression
@@ -166,14 +166,14 @@ CASES = [
     ("C0 ten times C", lambda: dataclasses.replace(
         G, dynamic_load_rating=4000.0, static_load_rating=40000.0), "static_load_rating"),
     # --- physics functions
-    ("Young's modulus in GPa", lambda: hertz.Material("steel", 208.0, 0.3), "GPa"),
+    ("Young's modulus in GPa", lambda: materials.Material("steel", 208.0, 0.3), "GPa"),
     ("oil viscosity in m^2/s", lambda: Oil(32e-6, 40.0, 5.4e-6, 100.0), "did you pass m^2/s?"),
     ("pressure-viscosity coefficient in 1/GPa", lambda: Oil(32, 40.0, 5.4, 100.0, alpha=20.0),
      "alpha"),
-    ("Poisson ratio 0.5", lambda: hertz.Material("rubber", 2e9, 0.5), "poisson_ratio"),
+    ("Poisson ratio 0.5", lambda: materials.Material("rubber", 2e9, 0.5), "poisson_ratio"),
     ("contact load nan approach", lambda: contact_law.contact_load(1e10, NAN), "delta"),
-    ("raceway radii swapped race", lambda: hertz.raceway_radii(0.01, 0.04, 0.52, 0.0, "mid"),
-     "race"),
+    ("raceway radii swapped race",
+     lambda: contact_curvature.raceway_radii(0.01, 0.04, 0.52, 0.0, "mid"), "race"),
     ("rating life negative load", lambda: life.rating_life(1e4, -1.0), "p"),
     ("life hours at rest", lambda: life.life_hours(100.0, 0.0), "speed"),
     ("Palmgren bearing type", lambda: palmgren_torque(100.0, 0.03, get_lubricant("ISO VG 32"),

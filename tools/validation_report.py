@@ -28,7 +28,7 @@ from pathlib import Path
 
 from bearingsim.catalog import get_bearing
 from bearingsim.files import atomic_path
-from bearingsim.physics import film, friction, hertz, life
+from bearingsim.physics import contact_curvature, film, friction, hertz, life
 from bearingsim.physics.double_layer_theory import speed_ratio_palmgren
 from bearingsim.physics.lubricant import Oil
 from bearingsim.physics.lubrication import palmgren_f0
@@ -91,7 +91,7 @@ def _amesweb():
 
 
 def _eng_tools():
-    rx, ry = hertz.raceway_radii(9.525e-3, 46.0e-3, 4.89 / 9.525, 0.0, "inner")
+    rx, ry = contact_curvature.raceway_radii(9.525e-3, 46.0e-3, 4.89 / 9.525, 0.0, "inner")
     return hertz.hertz_contact(5.0 * 1000.0 / 9.0, rx, ry, _e_prime(210e9, 0.3),
                                method="hamrock_brewe")
 

@@ -13,7 +13,8 @@ import warnings
 from dataclasses import dataclass
 
 from bearingsim.errors import ParameterError, SpeedLimitWarning
-from bearingsim.validation import MAX_BALL_DIAMETER, check_diameter, check_range
+from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
+from bearingsim.validation import check_range
 
 __all__ = ["BearingGeometry", "PreloadClasses", "SPEED_LIMIT_MULTIPLE", "check_speed_limit",
            "speed_input_bounds"]

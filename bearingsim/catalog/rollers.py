@@ -18,8 +18,9 @@ from importlib import resources
 
 from bearingsim.catalog.geometry import check_speed_limit
 from bearingsim.errors import CatalogError, ParameterError
+from bearingsim.physical_checks import check_diameter
 from bearingsim.units import mm, rpm_to_rad_s
-from bearingsim.validation import check_count, check_diameter, check_range
+from bearingsim.validation import check_count, check_range
 
 __all__ = ["RollerBearingGeometry", "get_roller_bearing", "list_roller_bearings",
            "resolve_roller_bearing"]

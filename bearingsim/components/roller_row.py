@@ -42,7 +42,7 @@ from bearingsim.catalog.rollers import RollerBearingGeometry, resolve_roller_bea
 from bearingsim.components.connectors import RingFrame
 from bearingsim.components.rolling_element import LineContact
 from bearingsim.language import Component, Parameter, Variable
-from bearingsim.physics.hertz import STEEL, Material, effective_modulus
+from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
 from bearingsim.validation import check_count, check_range
 

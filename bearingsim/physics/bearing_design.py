@@ -19,14 +19,9 @@ from dataclasses import dataclass
 
 from bearingsim.catalog import BearingGeometry, get_bearing
 from bearingsim.errors import ParameterError
-from bearingsim.physics.hertz import (
-    STEEL,
-    Material,
-    effective_modulus,
-    load_deflection_constant,
-    raceway_radii,
-    semi_axes,
-)
+from bearingsim.physics.contact_curvature import raceway_radii
+from bearingsim.physics.hertz import load_deflection_constant, semi_axes
+from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.validation import check_range
 
 __all__ = ["BRASS", "STEEL_DENSITY", "BRASS_DENSITY", "POSITION_REGULARIZATION", "CageDesign",

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.checks import guard_public_functions
+from bearingsim.physical_checks import check_regularization
 from bearingsim.physics.traction import regularized_coulomb
 from bearingsim.symbolic import (
     fmax,
@@ -26,7 +27,7 @@ from bearingsim.symbolic import (
     sqrt_power,
     tanh,
 )
-from bearingsim.validation import check_finite, check_range, check_regularization
+from bearingsim.validation import check_finite, check_range
 
 __all__ = [
     "SIGMA_BALL",

@@ -13,9 +13,10 @@ from typing import Any
 import numpy as np
 
 from bearingsim.checks import guard_public_functions
+from bearingsim.physical_checks import MIN_LENGTH
 from bearingsim.physics.lubricant import check_kinematic_viscosity
 from bearingsim.symbolic import smooth_abs, sqrt
-from bearingsim.validation import MIN_LENGTH, check_range
+from bearingsim.validation import check_range
 
 __all__ = [
     "sphere_drag_coefficient",

@@ -12,16 +12,16 @@ from dataclasses import dataclass
 from typing import Any
 
 from bearingsim.checks import guard_public_functions
-from bearingsim.symbolic import cos, exp, power, smooth_abs, sqrt
-from bearingsim.validation import (
+from bearingsim.physical_checks import (
     MAX_BALL_DIAMETER,
     MIN_LENGTH,
     check_diameter,
     check_modulus,
     check_radii,
-    check_range,
     check_regularization,
 )
+from bearingsim.symbolic import cos, exp, power, smooth_abs, sqrt
+from bearingsim.validation import check_range
 
 __all__ = [
     "dimensionless_speed",
@@ -124,7 +124,7 @@ def ellipticity(Rx: Any, Ry: Any) -> Any:  # noqa: N803
     ----------
     Rx, Ry : float, array or casadi.SX
         Reduced radii in the rolling and transverse direction [m], > 0, ``Ry >= Rx``
-        (:func:`bearingsim.validation.check_radii`; swapped radii are rejected).
+        (:func:`bearingsim.physical_checks.check_radii`; swapped radii are rejected).
 
     Returns
     -------
@@ -311,7 +311,7 @@ def rolling_entrainment_speed(
         Inner minus outer ring speed [rad/s].
     Dw : float
         Ball diameter [m], in (0, 0.5] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.validation.check_diameter`).
+        :func:`~bearingsim.physical_checks.check_diameter`).
     dm : float
         Pitch diameter [m], > Dw and at most 6.
     contact_angle : float

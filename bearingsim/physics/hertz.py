@@ -1,7 +1,9 @@
 """Hertz theory of elastic point (elliptical) contact between a ball and a raceway.
 
 Every function works on floats, numpy arrays and CasADi SX alike (math through
-:mod:`bearingsim.symbolic`), so components can put them into symbolic equations.
+:mod:`bearingsim.symbolic`), so components can put them into symbolic equations. The inputs
+come from :mod:`bearingsim.physics.materials` (the effective modulus of two materials) and
+:mod:`bearingsim.physics.contact_curvature` (the effective radii of a ball-raceway contact).
 
 Notation (Hamrock, *Fundamentals of Fluid Film Lubrication*, chapter "Elastohydrodynamic
 lubrication of elliptical conjunctions" / "Simplified solutions for stresses and deformations"):
@@ -24,28 +26,17 @@ import numpy as np
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
-from bearingsim.validation import (
-    MAX_BALL_DIAMETER,
-    check_choice,
-    check_diameter,
-    check_modulus,
-    check_radii,
-    check_range,
-)
+from bearingsim.physical_checks import check_radii
+from bearingsim.physics.contact_curvature import raceway_radii
+from bearingsim.physics.materials import STEEL, Material, effective_modulus
+from bearingsim.validation import check_range
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry
 
 __all__ = [
-    "Material",
-    "STEEL",
-    "SILICON_NITRIDE",
     "EllipticParameters",
     "HertzContact",
-    "effective_modulus",
-    "raceway_radii",
-    "curvature_sum",
-    "curvature_difference",
     "elliptic_parameters",
     "ellipticity",
     "semi_axes",
@@ -62,42 +53,6 @@ METHODS = ("exact", "hamrock_brewe")
 _NEWTON_STEPS = 5
 _M_MIN = 1e-12  # smallest elliptic parameter used: k - 1 < 1e-12 (circular contact)
 _M_MAX = 1.0 - 1e-15
-
-
-@dataclass(frozen=True)
-class Material:
-    """Linear-elastic material of a ball or ring.
-
-    Attributes
-    ----------
-    name : str
-        Material name.
-    youngs_modulus : float
-        Young's modulus [Pa], in [1e8, 1e13] (a value in GPa is caught).
-    poisson_ratio : float
-        Poisson's ratio [-], in [0, 0.5).
-    """
-
-    name: str
-    youngs_modulus: float
-    poisson_ratio: float
-
-    def __post_init__(self) -> None:
-        where = f"Material({self.name})"
-        check_range(self.youngs_modulus, "youngs_modulus", "Pa", 0.0, low_inclusive=False,
-                    where=where)
-        check_modulus(self.youngs_modulus, "youngs_modulus", where)
-        check_range(self.poisson_ratio, "poisson_ratio", "-", 0.0, 0.5, high_inclusive=False,
-                    where=where)
-
-
-STEEL = Material("AISI 52100 bearing steel", 208e9, 0.3)
-"""Through-hardened bearing steel (Harris & Kotzalas, Essential Concepts, chapter "Contact stress
-and deformation": E = 208 GPa, nu = 0.3)."""
-
-SILICON_NITRIDE = Material("silicon nitride (Si3N4)", 310e9, 0.26)
-"""Hot isostatically pressed silicon nitride for hybrid bearings (Harris & Kotzalas, Essential
-Concepts, chapter "Rolling bearing materials": E = 310 GPa, nu = 0.26)."""
 
 
 class EllipticParameters(NamedTuple):
@@ -144,97 +99,6 @@ class HertzContact:
 def _check_method(method: str) -> None:
     if method not in METHODS:
         raise ParameterError(f"method must be one of {METHODS}, got {method!r}")
-
-
-def effective_modulus(body1: Material = STEEL, body2: Material = STEEL) -> float:
-    """Effective modulus ``E' = 2 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2)`` [Pa] (Hamrock).
-
-    Parameters
-    ----------
-    body1, body2 : Material
-        Materials of the two bodies (ball and ring).
-
-    Returns
-    -------
-    float
-        E' [Pa].
-    """
-    compliance = (1.0 - body1.poisson_ratio**2) / body1.youngs_modulus + (
-        1.0 - body2.poisson_ratio**2
-    ) / body2.youngs_modulus
-    return 2.0 / compliance
-
-
-def raceway_radii(ball_diameter, pitch_diameter, groove_factor, contact_angle, race: str):
-    """Effective radii of a ball-raceway contact (Hamrock; Harris & Kotzalas).
-
-    ``Rx = Dw (1 -+ gamma) / 2`` (inner -, outer +), ``Ry = f Dw / (2 f - 1)``,
-    ``gamma = Dw cos(alpha) / dm``.
-
-    Parameters
-    ----------
-    ball_diameter : float or array or SX
-        Ball diameter Dw [m], in (0, 0.5] (:data:`MAX_BALL_DIAMETER`).
-    pitch_diameter : float or array or SX
-        Pitch diameter dm [m], in (0, 6] (:data:`MAX_BEARING_DIAMETER`).
-    groove_factor : float or array or SX
-        Groove curvature factor f = groove radius / Dw [-], > 0.5.
-    contact_angle : float or array or SX
-        Contact angle [rad].
-    race : {"inner", "outer"}
-        Which raceway.
-
-    Returns
-    -------
-    (Rx, Ry) : tuple
-        Effective radii along and across the rolling direction [m].
-    """
-    where = "raceway_radii"
-    check_diameter(ball_diameter, "ball_diameter", where, MAX_BALL_DIAMETER)
-    check_diameter(pitch_diameter, "pitch_diameter", where)
-    check_range(groove_factor, "groove_factor", "-", 0.5, 1.0, low_inclusive=False, where=where)
-    check_range(contact_angle, "contact_angle", "rad", -np.pi / 2, np.pi / 2, where=where)
-    check_choice(race, "race", ("inner", "outer"), where)
-    gamma = ball_diameter * op.cos(contact_angle) / pitch_diameter
-    check_range(gamma, "Dw cos(alpha)/dm", "-", 0.0, 1.0, high_inclusive=False, where=where)
-    sign = -1.0 if race == "inner" else 1.0
-    rx = 0.5 * ball_diameter * (1.0 + sign * gamma)
-    ry = groove_factor * ball_diameter / (2.0 * groove_factor - 1.0)
-    return rx, ry
-
-
-def curvature_sum(rx, ry):
-    """Curvature sum ``1/Rx + 1/Ry`` [1/m] (Harris's sum rho).
-
-    Parameters
-    ----------
-    rx, ry : float or array
-        Effective radii of curvature in the rolling and transverse directions [m], > 0.
-
-    Returns
-    -------
-    float or array
-        Curvature sum [1/m].
-    """
-    check_radii(rx, ry, "curvature_sum")
-    return 1.0 / rx + 1.0 / ry
-
-
-def curvature_difference(rx, ry):
-    """Curvature difference ``F(rho) = (1/Rx - 1/Ry) / (1/Rx + 1/Ry)`` [-] (Harris).
-
-    Parameters
-    ----------
-    rx, ry : float or array
-        Effective radii of curvature in the rolling and transverse directions [m], > 0.
-
-    Returns
-    -------
-    float or array
-        Curvature difference [-].
-    """
-    check_radii(rx, ry, "curvature_difference")
-    return (ry - rx) / (ry + rx)
 
 
 def _hamrock_brewe(alpha_r):
@@ -365,7 +229,7 @@ def semi_axes(load, rx, ry, e_eff, method: str = "exact"):
     rx, ry : float or array or SX
         Effective radii [m], ``Ry >= Rx``.
     e_eff : float or array or SX
-        Effective modulus E' [Pa], see :func:`effective_modulus`.
+        Effective modulus E' [Pa], see :func:`~bearingsim.physics.materials.effective_modulus`.
     method : {"exact", "hamrock_brewe"}
 
     Returns
@@ -385,7 +249,8 @@ def load_deflection_constant(rx, ry, e_eff, method: str = "exact"):
     Parameters
     ----------
     rx, ry : float or array or SX
-        Effective radii [m], ``Ry >= Rx``; see :func:`raceway_radii`.
+        Effective radii [m], ``Ry >= Rx``; see
+        :func:`~bearingsim.physics.contact_curvature.raceway_radii`.
     e_eff : float or array or SX
         Effective modulus E' [Pa].
     method : {"exact", "hamrock_brewe"}
@@ -410,7 +275,7 @@ def approach(load, rx, ry, e_eff, method: str = "exact"):
     rx, ry : float or array
         Effective radii of curvature in the rolling and transverse directions [m], > 0.
     e_eff : float
-        Effective modulus [Pa], > 0 (:func:`effective_modulus`).
+        Effective modulus [Pa], > 0 (:func:`~bearingsim.physics.materials.effective_modulus`).
     method : {"exact", "hamrock_brewe"}
         Elliptic parameters exact or by Hamrock and Brewe's fit.
 
@@ -435,7 +300,7 @@ def max_pressure(load, rx, ry, e_eff, method: str = "exact"):
     rx, ry : float or array
         Effective radii of curvature in the rolling and transverse directions [m], > 0.
     e_eff : float
-        Effective modulus [Pa], > 0 (:func:`effective_modulus`).
+        Effective modulus [Pa], > 0 (:func:`~bearingsim.physics.materials.effective_modulus`).
     method : {"exact", "hamrock_brewe"}
         Elliptic parameters exact or by Hamrock and Brewe's fit.
 
@@ -549,7 +414,7 @@ def hertz_contact(load, rx, ry, e_eff, method: str = "exact") -> HertzContact:
     rx, ry : float or array
         Effective radii of curvature in the rolling and transverse directions [m], > 0.
     e_eff : float
-        Effective modulus [Pa], > 0 (:func:`effective_modulus`).
+        Effective modulus [Pa], > 0 (:func:`~bearingsim.physics.materials.effective_modulus`).
     method : {"exact", "hamrock_brewe"}
         Elliptic parameters exact or by Hamrock and Brewe's fit.
 

@@ -9,7 +9,7 @@ the standard follow it; this module is that form, so that results can be compare
   ``c_p = 1.48 E' [K(chi_i) (Sum rho_i / (chi_i^2 E(chi_i)))^(1/3)
   + K(chi_e) (Sum rho_e / (chi_e^2 E(chi_e)))^(1/3)]^(-3/2)``, one constant for both contacts in
   series, evaluated at the nominal contact angle; ``E' = E / (1 - nu^2)`` (for unlike ball and
-  ring materials the effective modulus of :func:`~bearingsim.physics.hertz.effective_modulus`),
+  ring materials the effective modulus of :func:`~bearingsim.physics.materials.effective_modulus`),
   ``chi`` the ellipticity from the curvature difference (eq. 2), ``K``, ``E`` the complete
   elliptic integrals (eqs. 3, 4).
 * **Deflection of ball j** (eq. 12), in small-rotation kinematics with the inner groove-centre
@@ -46,15 +46,10 @@ import numpy as np
 from bearingsim import symbolic as op
 from bearingsim.catalog import BearingGeometry
 from bearingsim.checks import guard_public_functions
-from bearingsim.physics.hertz import (
-    STEEL,
-    Material,
-    curvature_sum,
-    effective_modulus,
-    elliptic_parameters,
-    raceway_radii,
-)
+from bearingsim.physics.contact_curvature import curvature_sum, raceway_radii
+from bearingsim.physics.hertz import elliptic_parameters
 from bearingsim.physics.life import raceway_dynamic_ratings
+from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.validation import check_range
 
 __all__ = [

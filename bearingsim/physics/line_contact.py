@@ -17,7 +17,7 @@ sliced form, and the Hertz contact half-width and maximum pressure.
   loading", misaligned roller bearings, slice method).
 * **Hertz line contact** (Harris & Kotzalas, *Essential Concepts*, chapter "Contact stress and
   deformation"): semi-width ``b = sqrt(8 Q R / (pi l E'))`` with ``E' = 2 / ((1 - nu1^2)/E1 +
-  (1 - nu2^2)/E2)`` (:func:`~bearingsim.physics.hertz.effective_modulus`), the reduced radius
+  (1 - nu2^2)/E2)`` (:func:`~bearingsim.physics.materials.effective_modulus`), the reduced radius
   ``R = r1 r2 / (r1 + r2)`` of the roller and the raceway (:func:`line_contact_radius`), and
   maximum pressure ``p0 = 2 Q / (pi b l)``.
 
@@ -31,7 +31,7 @@ from typing import Any
 
 from bearingsim import symbolic as op
 from bearingsim.errors import ParameterError
-from bearingsim.physics.hertz import STEEL, Material, effective_modulus
+from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.validation import check_choice, check_count, check_range
 
 __all__ = [

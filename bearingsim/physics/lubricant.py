@@ -18,17 +18,15 @@ from collections.abc import Callable
 from typing import Any
 
 from bearingsim.errors import ParameterError
+from bearingsim.physics.dry import Dry
+from bearingsim.physics.grease import Grease
 from bearingsim.physics.lubricant_models import (
-    ISO_VG_NU100,
     KINEMATIC_VISCOSITY_RANGE,
-    MIN_OIL_VISCOSITY_CST,
-    Dry,
-    Grease,
     Lubricant,
-    Oil,
     check_kinematic_viscosity,
 )
 from bearingsim.physics.lubrication import LUBRICATION_METHODS
+from bearingsim.physics.oil import ISO_VG_NU100, MIN_OIL_VISCOSITY_CST, Oil
 from bearingsim.registry import Registry
 from bearingsim.validation import check_range
 

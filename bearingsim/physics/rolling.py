@@ -15,6 +15,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.checks import guard_public_functions
+from bearingsim.physical_checks import check_radii
 from bearingsim.physics.film import (
     dimensionless_load,
     dimensionless_material,
@@ -22,7 +23,7 @@ from bearingsim.physics.film import (
     ellipticity,
 )
 from bearingsim.symbolic import power
-from bearingsim.validation import check_radii, check_range
+from bearingsim.validation import check_range
 
 __all__ = ["ROLLING_FORCE_COEFFICIENT", "ROLLING_FORCE_EXPONENTS",
            "hydrodynamic_rolling_force", "rolling_resistance"]

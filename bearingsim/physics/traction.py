@@ -18,8 +18,9 @@ import numpy as np
 
 from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
+from bearingsim.physical_checks import check_regularization
 from bearingsim.symbolic import exp, smooth_abs, sqrt
-from bearingsim.validation import check_range, check_regularization
+from bearingsim.validation import check_range
 
 __all__ = [
     "EHL_TRACTION_DEFAULT",

@@ -37,13 +37,8 @@ from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import row_loads, row_parameters
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics import iso_ts_16281 as iso
-from bearingsim.physics.hertz import (
-    STEEL,
-    Material,
-    effective_modulus,
-    max_pressure,
-    raceway_radii,
-)
+from bearingsim.physics.contact_curvature import raceway_radii
+from bearingsim.physics.hertz import max_pressure
 from bearingsim.physics.life import (
     bearing_life,
     contact_life,
@@ -51,6 +46,7 @@ from bearingsim.physics.life import (
     raceway_dynamic_ratings,
     raceway_equivalent_load,
 )
+from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
 from bearingsim.validation import check_choice, check_range
 
@@ -119,7 +115,7 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
         Diametral clearance Pd [m], >= 0 (0 allowed); default: the geometry's.
     ball_material, ring_material : Material
         Materials of the balls and rings (Hertz constants; e.g.
-        :data:`~bearingsim.physics.hertz.SILICON_NITRIDE` balls).
+        :data:`~bearingsim.physics.materials.SILICON_NITRIDE` balls).
     method : {"exact", "iso_ts_16281"}
         bearingsim's exact kinematics or the form ISO/TS 16281 writes (module docstring).
     guess : array of 5, optional

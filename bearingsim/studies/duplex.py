@@ -1,10 +1,11 @@
-"""Duplex pair studies (docs/studies.md, section B): equilibrium, stiffness, modes and sweeps.
+"""Duplex pair studies (docs/studies.md, section B): equilibrium, stiffness and modes.
 
 One assembled system serves every configuration: preload (the spacer width difference or the
 DT spring force), contact angle (with the Hertz constants it implies), speed and ball position
 angle are parameters of the compiled functions, so a sweep re-solves without re-assembling.
 The pair's own configuration (``DuplexModel(pair_options=...)``) is the default; a study
-overrides only what it is given.
+overrides only what it is given. Sweeps over one parameter are in
+:mod:`bearingsim.studies.duplex_sweep`.
 
 * **Equilibrium**: ``dx/dt = 0`` of the assembled model (Newton with the exact Jacobian).
 * **Stiffness**: the exact static compliance ``C = d q / d F_ext = -(A^-1 B)_q`` of the model
@@ -42,30 +43,19 @@ from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.physics.shaft_modes import DOFS, LOSS_FACTOR, MODE_NAMES, Modes, modal_analysis
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
-from bearingsim.units import engineering, to_deg
+from bearingsim.units import engineering
 from bearingsim.validation import check_mapping, keyword_names
 
 __all__ = [
     "MODE_NAMES",
     "LOSS_FACTOR",
-    "SWEEP_PARAMETERS",
     "RowUnloadedWarning",
     "DuplexModel",
     "Equilibrium",
     "Modes",
-    "Sweep",
     "modal_analysis",
-    "sweep",
-    "plot_sweep",
 ]
 
-SWEEP_PARAMETERS = {
-    "preload": ("N", 1.0),
-    "contact_angle": ("deg", to_deg(1.0)),
-    "speed": ("rad/s", 1.0),
-    "ball_position_angle": ("deg", to_deg(1.0)),
-}
-"""Sweepable configuration parameters: (display unit, factor from SI to it)."""
 _LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))
 _POSITIONS = tuple(f"shaft.{k}" for k in DOFS)
 _PAIR_OPTIONS = frozenset(keyword_names(DuplexOptions, ("bearing", "arrangement"))) | {"name"}
@@ -157,9 +147,9 @@ class DuplexModel:  # numpydoc ignore=PR02
         options ``preload`` [N or class], ``speed`` [rad/s], ``contact_angle`` [rad],
         ``ball_position_angle`` [rad] and ``spacer_offset`` [m] become the model's default
         configuration: :meth:`parameters`, :meth:`equilibrium`, :meth:`modes` and
-        :func:`sweep` use them unless given explicitly. ``axisymmetric`` is rejected (the
-        studies need the radial and tilt load paths), and so are ``bearing``, ``arrangement``
-        and unknown names.
+        :func:`~bearingsim.studies.duplex_sweep.sweep` use them unless given explicitly.
+        ``axisymmetric`` is rejected (the studies need the radial and tilt load paths), and so
+        are ``bearing``, ``arrangement`` and unknown names.
 
     Raises
     ------
@@ -427,108 +417,3 @@ def _load_inputs(loads: dict[str, float] | None) -> dict[str, float]:
             raise ParameterError(f"load {key} must be finite, got {val!r}")
         out[name] = float(val)
     return out
-
-
-@dataclass
-class Sweep:
-    """Natural frequencies over one configuration parameter.
-
-    Attributes
-    ----------
-    parameter : str
-        Swept parameter (a key of :data:`SWEEP_PARAMETERS`).
-    values : ndarray
-        Its values (SI units).
-    frequencies : ndarray (n, 5)
-        Natural frequencies [Hz], columns in :data:`MODE_NAMES` order.
-    stiffness : ndarray (n, 5, 5)
-        Stiffness matrices.
-    label : str
-        Legend label of the swept model.
-    """
-
-    parameter: str
-    values: np.ndarray
-    frequencies: np.ndarray
-    stiffness: np.ndarray
-    label: str = ""
-
-    def relative_change(self) -> np.ndarray:
-        """Per mode: (max - min) / min of the frequency over the sweep [-].
-
-        Returns
-        -------
-        ndarray
-            Relative change [-] of each mode's frequency.
-        """
-        f = self.frequencies
-        return (f.max(axis=0) - f.min(axis=0)) / f.min(axis=0)
-
-
-def sweep(model: DuplexModel, parameter: str, values, label: str = "",
-          **config: Any) -> Sweep:
-    """Natural frequencies of ``model`` over ``values`` of one configuration parameter.
-
-    Parameters
-    ----------
-    model : DuplexModel
-    parameter : {"preload", "contact_angle", "speed", "ball_position_angle"}
-    values : array_like
-        Values in SI units (N, rad, rad/s, rad); preload may also list class names.
-    label : str
-        Legend label.
-    **config
-        The other configuration parameters (see :meth:`DuplexModel.parameters`); those not
-        given keep the pair's own values (``pair_options``).
-
-    Returns
-    -------
-    Sweep
-        The frequencies [Hz] of each mode at each value.
-    """
-    if parameter not in SWEEP_PARAMETERS:
-        raise ParameterError(f"sweep: parameter must be one of {', '.join(SWEEP_PARAMETERS)}, "
-                             f"got {parameter!r}")
-    freqs, stiff, xs = [], [], []
-    for v in values:
-        config[parameter] = v
-        eq = model.equilibrium(**config)
-        k = model.stiffness(eq)
-        modes = modal_analysis(k, model.mass)
-        freqs.append([modes.frequency(n) for n in MODE_NAMES])
-        stiff.append(k)
-        xs.append(model.preload_force(v, config.get("bearing")) if parameter == "preload"
-                  else float(v))
-    return Sweep(parameter, np.array(xs), np.array(freqs), np.array(stiff), label)
-
-
-def plot_sweep(result: Sweep, ax=None, modes=MODE_NAMES, **line_kw):
-    """Plot natural frequencies against the swept parameter.
-
-    Parameters
-    ----------
-    result : Sweep
-    ax : matplotlib Axes, optional
-    modes : sequence of str
-        Modes to draw.
-    **line_kw
-        Passed to ``ax.plot``.
-
-    Returns
-    -------
-    matplotlib Axes
-    """
-    import matplotlib.pyplot as plt
-
-    ax = ax if ax is not None else plt.subplots(figsize=(6, 4))[1]
-    unit, factor = SWEEP_PARAMETERS[result.parameter]
-    for name in modes:
-        k = MODE_NAMES.index(name)
-        label = f"{result.label} {name}".strip()
-        ax.plot(result.values * factor, result.frequencies[:, k], marker="o", label=label,
-                **line_kw)
-    ax.set_xlabel(f"{result.parameter.replace('_', ' ')} [{unit}]")
-    ax.set_ylabel("natural frequency [Hz]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
-    return ax

@@ -12,18 +12,20 @@ from bearingsim.errors import ParameterError
 from bearingsim.physics import contact_law as law
 from bearingsim.physics import geometry as kin
 from bearingsim.physics import hertz as h
+from bearingsim.physics.contact_curvature import curvature_difference, curvature_sum, raceway_radii
+from bearingsim.physics.materials import SILICON_NITRIDE, STEEL, Material, effective_modulus
 
-E_STEEL = h.effective_modulus()
+E_STEEL = effective_modulus()
 
 
 def test_materials_and_effective_modulus():
-    assert (h.STEEL.youngs_modulus, h.STEEL.poisson_ratio) == (208e9, 0.3)
-    assert (h.SILICON_NITRIDE.youngs_modulus, h.SILICON_NITRIDE.poisson_ratio) == (310e9, 0.26)
+    assert (STEEL.youngs_modulus, STEEL.poisson_ratio) == (208e9, 0.3)
+    assert (SILICON_NITRIDE.youngs_modulus, SILICON_NITRIDE.poisson_ratio) == (310e9, 0.26)
     assert E_STEEL == pytest.approx(208e9 / (1 - 0.09))
-    hybrid = h.effective_modulus(h.SILICON_NITRIDE, h.STEEL)
-    assert E_STEEL < hybrid < h.effective_modulus(h.SILICON_NITRIDE, h.SILICON_NITRIDE)
+    hybrid = effective_modulus(SILICON_NITRIDE, STEEL)
+    assert E_STEEL < hybrid < effective_modulus(SILICON_NITRIDE, SILICON_NITRIDE)
     with pytest.raises(ParameterError, match="poisson_ratio"):
-        h.Material("bad", 1e9, 0.6)
+        Material("bad", 1e9, 0.6)
 
 
 def test_sphere_on_flat_classical_hertz():
@@ -49,9 +51,9 @@ def test_harris_209_curvature():
     0.93997, 0.13780, 0.91209), which :func:`test_curvature_matches_iso_ts_16281_form` checks
     independently."""
     for race, s_ref, f_ref in (("inner", 0.2018, 0.9399), ("outer", 0.1378, 0.9120)):
-        rx, ry = h.raceway_radii(12.7e-3, 65e-3, 0.52, 0.0, race)
-        assert h.curvature_sum(rx, ry) * 1e-3 == pytest.approx(s_ref, abs=5e-5)
-        assert h.curvature_difference(rx, ry) == pytest.approx(f_ref, abs=1e-4)
+        rx, ry = raceway_radii(12.7e-3, 65e-3, 0.52, 0.0, race)
+        assert curvature_sum(rx, ry) * 1e-3 == pytest.approx(s_ref, abs=5e-5)
+        assert curvature_difference(rx, ry) == pytest.approx(f_ref, abs=1e-4)
 
 
 def test_curvature_matches_iso_ts_16281_form():
@@ -66,9 +68,9 @@ def test_curvature_matches_iso_ts_16281_form():
         r = f * dw
         s_iso = 2 / dw * (2 + t - dw / (2 * r))
         f_iso = (t + dw / (2 * r)) / (2 + t - dw / (2 * r))
-        rx, ry = h.raceway_radii(dw, dm, f, alpha, race)
-        assert h.curvature_sum(rx, ry) == pytest.approx(s_iso, rel=1e-12)
-        assert h.curvature_difference(rx, ry) == pytest.approx(f_iso, rel=1e-12)
+        rx, ry = raceway_radii(dw, dm, f, alpha, race)
+        assert curvature_sum(rx, ry) == pytest.approx(s_iso, rel=1e-12)
+        assert curvature_difference(rx, ry) == pytest.approx(f_iso, rel=1e-12)
 
 
 @pytest.mark.parametrize("alpha_r", [1.0 + 1e-6, 1.01, 1.5, 3.0, 10.0, 31.6, 100.0, 1e3, 1e4])
@@ -109,10 +111,10 @@ def test_subsurface_shear_limits():
 def test_load_deflection_consistent_with_approach():
     g = get_bearing("6204")
     k_i, k_o, k = h.bearing_load_deflection_constants(g)
-    rxi, ryi = h.raceway_radii(g.ball_diameter, g.pitch_diameter, g.fi, g.free_contact_angle,
-                               "inner")
-    rxo, ryo = h.raceway_radii(g.ball_diameter, g.pitch_diameter, g.fo, g.free_contact_angle,
-                               "outer")
+    rxi, ryi = raceway_radii(g.ball_diameter, g.pitch_diameter, g.fi, g.free_contact_angle,
+                             "inner")
+    rxo, ryo = raceway_radii(g.ball_diameter, g.pitch_diameter, g.fo, g.free_contact_angle,
+                             "outer")
     q = 800.0
     total = h.approach(q, rxi, ryi, E_STEEL) + h.approach(q, rxo, ryo, E_STEEL)
     assert law.contact_load(k, total) == pytest.approx(q, rel=1e-12)
@@ -128,7 +130,7 @@ def _casadi_eval(fn, *values):
 
 
 def test_float_array_sx_agree():
-    rx, ry = h.raceway_radii(7.938e-3, 33.5e-3, 0.52, 0.17, "inner")
+    rx, ry = raceway_radii(7.938e-3, 33.5e-3, 0.52, 0.17, "inner")
     loads = np.array([0.0, 10.0, 500.0, 5000.0])
 
     def quantities(q, ryy):
@@ -189,9 +191,9 @@ def test_no_nan_for_valid_input(load, rx, ratio, method):
     (lambda: h.hertz_contact(1.0, 1e-3, 2e-3, E_STEEL, method="fast"), "method"),
     (lambda: h.hertz_contact(1.0, 0.0, 2e-3, E_STEEL), "Rx"),
     (lambda: h.hertz_contact(1.0, 1e-3, 2e-3, -1.0), "e_eff"),
-    (lambda: h.raceway_radii(8e-3, 33e-3, 0.5, 0.0, "inner"), "groove_factor"),
-    (lambda: h.raceway_radii(8e-3, 33e-3, 0.52, 0.0, "middle"), "race"),
-    (lambda: h.raceway_radii(8e-3, 6e-3, 0.52, 0.0, "inner"), "Dw cos(alpha)/dm"),
+    (lambda: raceway_radii(8e-3, 33e-3, 0.5, 0.0, "inner"), "groove_factor"),
+    (lambda: raceway_radii(8e-3, 33e-3, 0.52, 0.0, "middle"), "race"),
+    (lambda: raceway_radii(8e-3, 6e-3, 0.52, 0.0, "inner"), "Dw cos(alpha)/dm"),
     (lambda: law.contact_load(-1.0, 1e-6), "k_const"),
     (lambda: law.contact_load(1.0, 1e-6, smooth=0.0), "smooth"),
     (lambda: h.orthogonal_shear_stress(1.0, 1.0, 0.5), "k"),

@@ -9,9 +9,9 @@ from scipy.optimize import brentq
 
 from bearingsim.catalog import get_bearing, list_bearings
 from bearingsim.errors import ParameterError
+from bearingsim.physics import contact_curvature, life, materials
 from bearingsim.physics import geometry as kin
 from bearingsim.physics import hertz as h
-from bearingsim.physics import life
 
 DEEP_GROOVE = [n for n in list_bearings() if get_bearing(n).bearing_type == "deep_groove"]
 PUBLISHED_INTERNALS = [n for n in DEEP_GROOVE if "Z" not in get_bearing(n).estimated]
@@ -47,12 +47,12 @@ def test_iso76_c0_matches_catalogue(name):
 def test_iso76_f0_is_4200_mpa_hertz(gamma):
     """ISO 76 f0 rests on 4 200 MPa at the most loaded contact (fi 0.52, fo 0.53, E 207 GPa,
     nu 0.3, Qmax = 5 F / (Z cos a)): our Hertz contact reproduces the table within 1 %."""
-    steel = h.Material("ISO 76 steel", 207e9, 0.3)
-    e_eff = h.effective_modulus(steel, steel)
+    steel = materials.Material("ISO 76 steel", 207e9, 0.3)
+    e_eff = materials.effective_modulus(steel, steel)
     dw = 1e-3
     loads = []
     for race, f in (("inner", 0.52), ("outer", 0.53)):
-        rx, ry = h.raceway_radii(dw, dw / gamma, f, 0.0, race)
+        rx, ry = contact_curvature.raceway_radii(dw, dw / gamma, f, 0.0, race)
         loads.append((4200e6 / h.max_pressure(1.0, rx, ry, e_eff)) ** 3)
     assert min(loads) / 5.0 == pytest.approx(life.static_factor(dw, dw / gamma), rel=0.01)
 

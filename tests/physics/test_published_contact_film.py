@@ -31,7 +31,7 @@ thickness result of a bearing, were not retrievable. See docs/physics.md, "Verif
 import numpy as np
 import pytest
 
-from bearingsim.physics import film, hertz
+from bearingsim.physics import contact_curvature, film, hertz
 from bearingsim.physics.lubricant import ISO_VG_NU100, Oil
 
 
@@ -77,10 +77,10 @@ def test_eng_tools_6206_inner_contact_brewe_hamrock_fits():
     Tolerances are half a unit of the last printed digit. The exact solution differs from the
     fits by 2.9 % in k and 1.0 % in p0 here (alpha_r = 48), within the accuracy the fits are
     stated to have (see ``test_hertz.py``)."""
-    rx, ry = hertz.raceway_radii(9.525e-3, 46.0e-3, 4.89 / 9.525, 0.0, "inner")
+    rx, ry = contact_curvature.raceway_radii(9.525e-3, 46.0e-3, 4.89 / 9.525, 0.0, "inner")
     e_eff = _e_prime(210e9, 0.3)
     assert e_eff / 2.0 == pytest.approx(115.4e9, abs=0.05e9)
-    assert 1.0 / hertz.curvature_sum(rx, ry) == pytest.approx(3.700e-3, abs=0.0005e-3)
+    assert 1.0 / contact_curvature.curvature_sum(rx, ry) == pytest.approx(3.700e-3, abs=0.0005e-3)
     c = hertz.hertz_contact(5.0 * 1000.0 / 9.0, rx, ry, e_eff, method="hamrock_brewe")
     assert c.k == pytest.approx(12.19, abs=0.005)
     assert c.a == pytest.approx(1.368e-3, abs=0.0005e-3)

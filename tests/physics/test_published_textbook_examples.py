@@ -28,13 +28,9 @@ import math
 
 import pytest
 
-from bearingsim.physics.hertz import (
-    Material,
-    curvature_sum,
-    effective_modulus,
-    elliptic_parameters,
-    hertz_contact,
-)
+from bearingsim.physics.contact_curvature import curvature_sum
+from bearingsim.physics.hertz import elliptic_parameters, hertz_contact
+from bearingsim.physics.materials import Material, effective_modulus
 
 STACHOWIAK_STEEL = Material("steel (Stachowiak & Batchelor, p. 291)", 2.1e11, 0.3)
 R_A = 10e-3  # [m]

@@ -9,9 +9,9 @@ from hypothesis import strategies as st
 
 from bearingsim.catalog import get_bearing
 from bearingsim.errors import ParameterError
+from bearingsim.physics.contact_curvature import raceway_radii
 from bearingsim.physics.film import rolling_entrainment_speed
 from bearingsim.physics.friction import palmgren_m0
-from bearingsim.physics.hertz import raceway_radii
 from bearingsim.physics.lubricant import Oil
 from bearingsim.physics.rolling import hydrodynamic_rolling_force, rolling_resistance
 

@@ -15,7 +15,7 @@ import pytest
 from bearingsim import Component, Input, Parameter, Variable, der, time
 from bearingsim.assembler import assemble
 from bearingsim.errors import ParameterError
-from bearingsim.physics import contact_law, film, hertz, life
+from bearingsim.physics import contact_curvature, contact_law, film, life
 from bearingsim.physics.friction import (
     palmgren_m0,
     palmgren_torque,
@@ -121,7 +121,7 @@ MM_SLIPS = [
     (lambda: life.static_factor(7.94, 38.5), "static_factor", "ball_diameter"),
     (lambda: life.raceway_contact_capacity(7.94, 38.5, 0.52, 9, 0.0, "inner"),
      "raceway_contact_capacity", "ball_diameter"),
-    (lambda: hertz.raceway_radii(0.00794, 38.5, 0.52, 0.0, "outer"), "raceway_radii",
+    (lambda: contact_curvature.raceway_radii(0.00794, 38.5, 0.52, 0.0, "outer"), "raceway_radii",
      "pitch_diameter"),
 ]
 

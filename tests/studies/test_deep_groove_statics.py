@@ -17,7 +17,8 @@ from bearingsim.catalog import get_bearing
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics.ball_equilibrium import static_state
 from bearingsim.physics.bearing_design import bearing_design
-from bearingsim.physics.hertz import SILICON_NITRIDE, STEEL, bearing_load_deflection_constants
+from bearingsim.physics.hertz import bearing_load_deflection_constants
+from bearingsim.physics.materials import SILICON_NITRIDE, STEEL
 from bearingsim.studies.deep_groove_statics import deep_groove_statics
 
 BEARING = "6304"

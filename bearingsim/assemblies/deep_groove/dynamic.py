@@ -26,8 +26,9 @@ from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign
-from bearingsim.physics.hertz import STEEL, effective_modulus, load_deflection_constant
+from bearingsim.physics.hertz import load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant
+from bearingsim.physics.materials import STEEL, effective_modulus
 
 
 def _pocket_constant(design: BearingDesign) -> float:

@@ -15,10 +15,7 @@ from bearingsim.components.ball_row.parameters import (
 from bearingsim.components.connectors import RingFrame
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Parameter, Variable
-from bearingsim.physics.hertz import (
-    STEEL,
-    Material,
-)
+from bearingsim.physics.materials import STEEL, Material
 from bearingsim.validation import check_choice, check_range
 
 

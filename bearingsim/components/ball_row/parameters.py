@@ -7,11 +7,8 @@ import math
 from dataclasses import dataclass
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
-from bearingsim.physics.hertz import (
-    STEEL,
-    Material,
-    bearing_load_deflection_constants,
-)
+from bearingsim.physics.hertz import bearing_load_deflection_constants
+from bearingsim.physics.materials import STEEL, Material
 from bearingsim.validation import check_range
 
 REFERENCES = ("touching", "centred")

@@ -10,6 +10,7 @@ import numpy as np
 
 from bearingsim.checks import MAX_STATIC_LOAD_FACTOR, guard_public_functions
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
+from bearingsim.physical_checks import check_diameter
 from bearingsim.physics.lubricant import Lubricant, check_kinematic_viscosity
 from bearingsim.symbolic import (
     if_else,
@@ -19,11 +20,7 @@ from bearingsim.symbolic import (
     smooth_max0,
 )
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
-from bearingsim.validation import (
-    check_diameter,
-    check_range,
-    table_entry,
-)
+from bearingsim.validation import check_range, table_entry
 
 __all__ = ["PALMGREN_F1", "palmgren_f1", "palmgren_p1", "palmgren_m0", "palmgren_torque"]
 
@@ -164,7 +161,7 @@ def palmgren_m0(nu: Any, n_abs: Any, dm: float, f0: float, smooth: bool = True) 
         Magnitude of the relative speed [rad/s], >= 0.
     dm : float
         Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.validation.check_diameter`).
+        :func:`~bearingsim.physical_checks.check_diameter`).
     f0 : float
         Palmgren factor [-], >= 0.
     smooth : bool
@@ -222,7 +219,7 @@ def palmgren_torque(
         Speed of the ring relative to the other ring [rad/s].
     dm : float
         Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.validation.check_diameter`).
+        :func:`~bearingsim.physical_checks.check_diameter`).
     lubricant : Lubricant
         Oil, Grease or Dry object (:mod:`bearingsim.physics.lubricant`).
     bearing_type : str

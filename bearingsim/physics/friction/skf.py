@@ -10,6 +10,7 @@ import numpy as np
 
 from bearingsim.checks import guard_public_functions
 from bearingsim.errors import ParameterError
+from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.physics.drag import orbital_drag_force
 from bearingsim.physics.friction.palmgren import _signed
 from bearingsim.physics.lubricant import Lubricant
@@ -25,13 +26,7 @@ from bearingsim.symbolic import (
     smooth_abs,
 )
 from bearingsim.units import m2_s_to_cst, rad_s_to_rpm
-from bearingsim.validation import (
-    MAX_BALL_DIAMETER,
-    check_count,
-    check_diameter,
-    check_range,
-    table_entry,
-)
+from bearingsim.validation import check_count, check_range, table_entry
 
 __all__ = [
     "SKF_DEEP_GROOVE",
@@ -272,7 +267,7 @@ def skf_friction_components(
         Relative ring speed [rad/s].
     dm : float
         Pitch diameter [m], in (0, 6] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.validation.check_diameter`).
+        :func:`~bearingsim.physical_checks.check_diameter`).
     lubricant : Lubricant
         Oil or Grease (the base oil viscosity is used); Dry gives zero rolling moment.
     series : str

@@ -149,7 +149,7 @@ def dynamic_load_rating(ball_diameter, pitch_diameter, ball_count, contact_angle
     ----------
     ball_diameter : float or array or SX
         Ball diameter Dw [m], in (0, 0.5] (a larger value is taken for millimetres, see
-        :func:`~bearingsim.validation.check_diameter`).
+        :func:`~bearingsim.physical_checks.check_diameter`).
     pitch_diameter : float or array or SX
         Pitch diameter dm [m], in (0, 6].
     ball_count : int or float or SX

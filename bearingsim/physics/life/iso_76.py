@@ -15,6 +15,7 @@ import numpy as np
 
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
+from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.physics.geometry import pitch_ratio
 from bearingsim.physics.life.tables import (
     MM_PER_M,
@@ -23,7 +24,7 @@ from bearingsim.physics.life.tables import (
     interp,
     within_table,
 )
-from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
+from bearingsim.validation import check_count, check_range
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry

@@ -11,8 +11,9 @@ import numpy as np
 
 from bearingsim import symbolic as op
 from bearingsim.errors import ParameterError
+from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.physics.geometry import pitch_ratio
-from bearingsim.validation import MAX_BALL_DIAMETER, check_count, check_diameter, check_range
+from bearingsim.validation import check_count, check_range
 
 MM_PER_M = 1e3
 """Metres to millimetres, the unit of the ISO formulas [mm/m]."""
