@@ -45,7 +45,9 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import Param
-from bearingsim.assembler.mapped import MappedForms, MappedKernel, NotMappable
+from bearingsim.assembler.mapped import MappedKernel
+from bearingsim.assembler.mapped_forms import MappedForms
+from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
 from bearingsim.assembler.pipeline import assemble
 from bearingsim.assembler.system import FunctionTable, System

@@ -49,7 +49,8 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.assembler.mapped import MappedKernel, NotMappable
+from bearingsim.assembler.mapped import MappedKernel
+from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.compile import (

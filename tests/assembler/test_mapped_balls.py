@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from bearingsim.assembler import assemble
-from bearingsim.assembler.mapped import NotMappable
+from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
 from bearingsim.physics.lubricant import Oil
 from bearingsim.simulation import simulate
