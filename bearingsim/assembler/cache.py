@@ -63,7 +63,7 @@ SUFFIX = ".bsys"
 def cache_root() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root of every cache of bearingsim
     (assembled systems here, compiled kernel libraries by
-    :func:`~bearingsim.simulation.compile.default_cache_dir`).
+    :func:`~bearingsim.simulation.c_compiler.default_cache_dir`).
 
     Returns
     -------

@@ -139,7 +139,7 @@ def test_entries_of_other_code_are_stale(tmp_path, monkeypatch):
 
 def test_cache_info_and_clear(tmp_path, monkeypatch):
     monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
-    from bearingsim.simulation.compile import default_cache_dir
+    from bearingsim.simulation.c_compiler import default_cache_dir
 
     assert default_cache_dir() == tmp_path == system_cache.cache_root()
     assemble_cached(TwoInertiaDrive())
