@@ -132,7 +132,7 @@ def section() -> Section:
         f"split off the main one, the per-ball Jacobians: `{' '.join(DEFAULT_SPLIT_FLAGS)}`) "
         "into an empty cache. The ODE form of the quasi-static level solves every ball's Newton "
         "block in one `fast_newton` rootfinder on the mapped DAE form "
-        "(`bearingsim.assembler.mapped.through_newton`). Code generation builds the inlined "
+        "(`bearingsim.assembler.mapped_forms.through_newton`). Code generation builds the inlined "
         "functions on first access (the mapped kernels never read them). The kernel is built "
         "and compiled twice in the same run: with one function per ball mapped over each row "
         "(what simulations use; building the mapped functions is part of its time) and with "

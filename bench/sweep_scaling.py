@@ -48,6 +48,7 @@ WARM_LOAD = """
 import json, sys, time
 t0 = time.perf_counter()
 from bearingsim.assembler import assemble, cache
+from bearingsim.assembler.fingerprint import structure_key
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.physics.lubricant import Oil
 t_import = time.perf_counter() - t0
@@ -57,7 +58,7 @@ bearing = double_layer_bearing("61905", "61907", fidelity="dynamic",
                                loads={"Fx": 0.0, "Fy": 0.0, "Fz": 100.0, "Mx": 0.0, "My": 0.0})
 t_build = time.perf_counter() - t0
 t0 = time.perf_counter()
-key = cache.structure_key(bearing)
+key = structure_key(bearing)
 t_key = time.perf_counter() - t0
 t0 = time.perf_counter()
 if sys.argv[1] == "no cache":

@@ -10,7 +10,7 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import Param
-from bearingsim.assembler.mapped import MappedForms
+from bearingsim.assembler.mapped_forms import MappedForms
 from bearingsim.assembler.numeric import buffered
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component

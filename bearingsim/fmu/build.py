@@ -2,9 +2,10 @@
 cross-built binaries), describing how to rebuild them, and zipping the archive.
 
 The compiler runs through bearingsim's one driver,
-:func:`bearingsim.simulation.compile.compile_units`; what is particular to an FMU is passed to it
-as flags (the forced include that pins glibc symbols, hidden visibility, C99) or as the compiler
-(zig's for a cross target). Failures raise :class:`~bearingsim.simulation.compile.CompileError`.
+:func:`bearingsim.simulation.c_compiler.compile_units`; what is particular to an FMU is passed to
+it as flags (the forced include that pins glibc symbols, hidden visibility, C99) or as the
+compiler (zig's for a cross target). Failures raise
+:class:`~bearingsim.simulation.c_compiler.CompileError`.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from importlib import resources
 from pathlib import Path
 
 from bearingsim.files import atomic_path
-from bearingsim.simulation.compile import CompileError, compile_units
+from bearingsim.simulation.c_compiler import CompileError, compile_units
 
 __all__ = ["BINARY_PLATFORMS", "CROSS_PLATFORMS", "GLIBC_BASELINE",
            "TEMPLATE_OPTIMISATION",

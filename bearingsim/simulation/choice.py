@@ -16,7 +16,7 @@ compiled kernels" and "Deep-groove work-precision, 50 ms"; ``docs/simulation.md`
    ``"compiled_bdf"``. The run's VM cost is estimated from a few evaluations of the VM
    right-hand side and the run's length (:data:`RHS_PER_SIMULATED_S`,
    :data:`VM_STEP_FACTOR`); the compile time from the C source's size at this machine's
-   recorded compile speed (:func:`~bearingsim.simulation.compile.compile_estimate`);
+   recorded compile speed (:func:`~bearingsim.simulation.c_compiler.compile_estimate`);
 5. tiny models (the kernel below
    :data:`~bearingsim.simulation.kernels.AUTO_MIN_INSTRUCTIONS`): ``"cvodes"`` on the VM,
    which costs less than compiling.
@@ -34,7 +34,7 @@ import numpy as np
 
 from bearingsim.assembler.numeric import buffered
 from bearingsim.assembler.system import System
-from bearingsim.simulation.compile import c_compiler, compile_estimate
+from bearingsim.simulation.c_compiler import c_compiler, compile_estimate
 from bearingsim.simulation.kernels import COMPILED, kernel, pending_build
 
 __all__ = ["RHS_PER_SIMULATED_S", "VM_STEP_FACTOR", "MethodChoice", "choose_method"]

@@ -15,7 +15,7 @@ are generated C in the integrator's library (compiled once per input structure a
 like the kernels).
 
 It needs a C compiler; without one it raises
-:class:`~bearingsim.simulation.compile.CompileError` (``method="cvodes"`` falls back to
+:class:`~bearingsim.simulation.c_compiler.CompileError` (``method="cvodes"`` falls back to
 CasADi's VM).
 """
 
@@ -33,12 +33,9 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
-from bearingsim.simulation.compile import (
-    CompileError,
-    compile_source,
-    generate_source,
-    library_path,
-)
+from bearingsim.simulation.c_compiler import CompileError
+from bearingsim.simulation.c_units import generate_source
+from bearingsim.simulation.compile import compile_source, library_path
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import COMPILED, Kernel

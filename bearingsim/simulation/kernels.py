@@ -49,19 +49,13 @@ from typing import Any
 
 import casadi as ca
 
-from bearingsim.assembler.mapped import MappedKernel, NotMappable
+from bearingsim.assembler.mapped import MappedKernel
+from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError
-from bearingsim.simulation.compile import (
-    DEFAULT_FLAGS,
-    DEFAULT_SPLIT_FLAGS,
-    Build,
-    CompileError,
-    c_compiler,
-    default_cache_dir,
-    generate_units,
-    library_path,
-)
+from bearingsim.simulation.c_compiler import Build, CompileError, c_compiler, default_cache_dir
+from bearingsim.simulation.c_units import generate_units
+from bearingsim.simulation.compile import DEFAULT_FLAGS, DEFAULT_SPLIT_FLAGS, library_path
 
 __all__ = ["COMPILED", "VM", "Kernel", "cache_key", "kernel", "clear_kernel_cache", "pending_build",
            "wait_for_compilations"]
@@ -170,7 +164,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
         ``"dae"`` needs a system with nonlinear blocks (``dae_ode``, ``dae_alg``).
     compiled : bool or "auto"
         ``True``: generated C, compiling it now if it is not cached (raises
-        :class:`~bearingsim.simulation.compile.CompileError` if that is impossible);
+        :class:`~bearingsim.simulation.c_compiler.CompileError` if that is impossible);
         ``False``: the CasADi VM; ``"auto"``: C when a compiler exists, the form can be
         generated and the model is not tiny (:data:`AUTO_MIN_INSTRUCTIONS`), else the VM; a
         library not yet on disk is compiled in the background and the VM kernel returned
@@ -178,7 +172,7 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     flags : tuple of str
         Compiler flags (of the main translation unit).
     cache_dir : path, optional
-        Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+        Library cache (default :func:`~bearingsim.simulation.c_compiler.default_cache_dir`).
     mapped : bool
         Use the mapped-ball functions of a model with ball sets (:attr:`System.mapped`);
         ``False``: the inlined ones.
@@ -276,7 +270,7 @@ def cache_key(form: str, compiled: bool | str, flags: tuple[str, ...] = DEFAULT_
     flags : tuple of str
         Compiler flags (of the main translation unit).
     cache_dir : path, optional
-        Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+        Library cache (default :func:`~bearingsim.simulation.c_compiler.default_cache_dir`).
     mapped : bool
         Whether the mapped-ball functions are used.
     split_flags : tuple of str or None
@@ -438,7 +432,7 @@ def pending_build(system: System, form: str = "ode",
     form : {"ode", "dae"}
         The kernel's form.
     cache_dir : path, optional
-        Library cache (default :func:`~bearingsim.simulation.compile.default_cache_dir`).
+        Library cache (default :func:`~bearingsim.simulation.c_compiler.default_cache_dir`).
 
     Returns
     -------

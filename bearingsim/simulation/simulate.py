@@ -166,7 +166,7 @@ def simulate(
         cached; ``False`` raises :class:`~bearingsim.errors.ParameterError`).
         Backend ``"casadi"``: evaluate the right-hand side (or DAE residual) and its exact
         Jacobian as generated C (``True``: compiling now if needed; raises
-        :class:`~bearingsim.simulation.compile.CompileError` when impossible), on CasADi's VM
+        :class:`~bearingsim.simulation.c_compiler.CompileError` when impossible), on CasADi's VM
         (``False``), or ``"auto"``: C when a compiler exists and the model is not tiny, a
         library not yet cached being compiled in the background while this run uses the VM
         (both give the same numbers). ``Result.stats["backend"]`` says which ran and

@@ -256,7 +256,8 @@ def test_idas_on_the_semi_explicit_dae_matches_the_ode_form():
 
 def test_line_search_newton_gives_the_fast_newton_result_and_refuses_code_generation(tmp_path):
     from bearingsim.fmu import export_fmu
-    from bearingsim.simulation.compile import CompileError, compile_system
+    from bearingsim.simulation.c_compiler import CompileError
+    from bearingsim.simulation.compile import compile_system
 
     fast = assemble(Pendulum())
     searched = assemble(Pendulum(), rootfinder="newton")

@@ -10,11 +10,12 @@ import numpy as np
 import pytest
 
 from bearingsim.assembler import assemble
-from bearingsim.assembler.mapped import NotMappable
+from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
 from bearingsim.physics.lubricant import Oil
 from bearingsim.simulation import simulate
-from bearingsim.simulation.compile import compilations, generate_source
+from bearingsim.simulation.c_compiler import compilations
+from bearingsim.simulation.c_units import generate_source
 from bearingsim.simulation.kernels import kernel
 
 OIL = Oil.from_iso_vg(32, method="oil_mist")

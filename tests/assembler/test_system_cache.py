@@ -9,6 +9,7 @@ import pytest
 
 from bearingsim.assembler import assemble, assemble_cached
 from bearingsim.assembler import cache as system_cache
+from bearingsim.assembler.fingerprint import structure_key
 from bearingsim.errors import ParameterError
 from tests.models import Pendulum, SpringMassChain, TwoInertiaDrive
 
@@ -81,13 +82,13 @@ def test_parameter_values_stay_free(tmp_path):
 
 
 def test_structure_outputs_and_options_change_the_key():
-    base = system_cache.structure_key(TwoInertiaDrive())
-    assert system_cache.structure_key(TwoInertiaDrive()) == base
-    assert system_cache.structure_key(TwoInertiaDrive(), ["w1"]) != base
-    assert system_cache.structure_key(TwoInertiaDrive(), rootfinder="newton") != base
-    assert system_cache.structure_key(Pendulum()) != base
+    base = structure_key(TwoInertiaDrive())
+    assert structure_key(TwoInertiaDrive()) == base
+    assert structure_key(TwoInertiaDrive(), ["w1"]) != base
+    assert structure_key(TwoInertiaDrive(), rootfinder="newton") != base
+    assert structure_key(Pendulum()) != base
     # a start value is structure (not a parameter): another start, another entry
-    assert system_cache.structure_key(Pendulum(angle0=0.4)) != system_cache.structure_key(
+    assert structure_key(Pendulum(angle0=0.4)) != structure_key(
         Pendulum(angle0=0.5))
 
 
@@ -138,7 +139,7 @@ def test_entries_of_other_code_are_stale(tmp_path, monkeypatch):
 
 def test_cache_info_and_clear(tmp_path, monkeypatch):
     monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
-    from bearingsim.simulation.compile import default_cache_dir
+    from bearingsim.simulation.c_compiler import default_cache_dir
 
     assert default_cache_dir() == tmp_path == system_cache.cache_root()
     assemble_cached(TwoInertiaDrive())

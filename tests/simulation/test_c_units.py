@@ -1,5 +1,5 @@
 """Generated C in several translation units compiled in parallel
-(bearingsim.simulation.c_units, bearingsim.simulation.compile.Build): the linked library
+(bearingsim.simulation.c_units, bearingsim.simulation.c_compiler.Build): the linked library
 computes what CasADi computes, bit for bit; the moved function is not exported; a source
 without the expected layout stays one unit; a failing unit names the compiler's message."""
 
@@ -11,8 +11,9 @@ import casadi as ca
 import numpy as np
 import pytest
 
+from bearingsim.simulation.c_compiler import CompileError, c_compiler
 from bearingsim.simulation.c_units import generate_units
-from bearingsim.simulation.compile import CompileError, c_compiler, compile_source, library_path
+from bearingsim.simulation.compile import compile_source, library_path
 
 pytestmark = pytest.mark.skipif(c_compiler() is None, reason="needs a C compiler")
 

@@ -1,4 +1,4 @@
-"""The one C compiler driver (:mod:`bearingsim.simulation.compile`): files with their own
+"""The one C compiler driver (:mod:`bearingsim.simulation.c_compiler`): files with their own
 flags compiled in parallel and linked; failures and a missing compiler as ``CompileError``,
 from the cached kernels and from the FMU export alike."""
 
@@ -11,7 +11,8 @@ import stat
 import pytest
 
 from bearingsim.fmu import export_fmu
-from bearingsim.simulation.compile import CompileError, compile_source, compile_units
+from bearingsim.simulation.c_compiler import CompileError, compile_units
+from bearingsim.simulation.compile import compile_source
 from tests.fmu.fmu_models import DrivenInertia
 
 

@@ -13,7 +13,7 @@ from bearingsim import Component, Variable, der
 from bearingsim.assembler import assemble
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import compiled_bdf, simulate
-from bearingsim.simulation.compile import CompileError, c_compiler
+from bearingsim.simulation.c_compiler import CompileError, c_compiler
 from tests.models import Pendulum, SpringMassChain
 
 pytestmark = pytest.mark.skipif(c_compiler() is None, reason="needs a C compiler")

@@ -78,7 +78,7 @@ print("finished", flush=True)
 def test_ctrl_c_stops_a_compiled_bdf_run_with_few_outputs(tmp_path):
     """The C loop returns to Python every STEPS_PER_CALL steps, however far apart the output
     times are (here three over 200 s): Ctrl-C is seen within one call."""
-    from bearingsim.simulation.compile import c_compiler
+    from bearingsim.simulation.c_compiler import c_compiler
 
     if c_compiler() is None:
         pytest.skip("needs a C compiler")

@@ -13,8 +13,7 @@ import pytest
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.simulation import choice, kernels, simulate
-from bearingsim.simulation import compile as compile_module
-from bearingsim.simulation.compile import Build, c_compiler
+from bearingsim.simulation.c_compiler import Build, c_compiler, stop_builds
 from bearingsim.simulation.kernels import clear_kernel_cache, wait_for_compilations
 from tests.models import Pendulum
 
@@ -106,7 +105,7 @@ def test_no_compiler_outlives_the_program(tmp_path, monkeypatch):
     monkeypatch.setenv("CC", str(slow))
     build = Build("int f(void) { return 0; }", tmp_path / "lib" / "never.so", ("-O0",))
     assert not build.done()
-    compile_module.stop_builds(grace=0.2)
+    stop_builds(grace=0.2)
     assert build.done() and not (tmp_path / "lib" / "never.so").exists()
     assert [p.name for p in (tmp_path / "lib").iterdir()] == []  # build folder removed
     # the group was sent SIGKILL; its processes end asynchronously (a loaded machine may show

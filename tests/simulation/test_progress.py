@@ -20,7 +20,7 @@ import pytest
 from bearingsim.assembler import assemble
 from bearingsim.scenes import parse_scene, run_scene
 from bearingsim.simulation import simulate, sundials
-from bearingsim.simulation.compile import c_compiler
+from bearingsim.simulation.c_compiler import c_compiler
 from bearingsim.simulation.progress import DELAY
 from bearingsim.simulation.sundials import clear_integrator_cache
 from tests.models import Pendulum

@@ -16,7 +16,7 @@ from scipy import sparse
 
 from bearingsim.assembler import assemble
 from bearingsim.simulation import simulate
-from bearingsim.simulation.compile import c_compiler
+from bearingsim.simulation.c_compiler import c_compiler
 from bearingsim.simulation.ordering import newton_pattern
 from bearingsim.simulation.sparse_lu import SparseLu
 from tests.models import SpringMassChain

@@ -9,7 +9,7 @@ import pytest
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.simulation import linearize, steady_state
-from bearingsim.simulation.compile import CompileError, compilations
+from bearingsim.simulation.c_compiler import CompileError, compilations
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
 from bearingsim.simulation.steady import integrator_states
 

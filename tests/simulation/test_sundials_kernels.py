@@ -15,7 +15,7 @@ from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.deep_groove import deep_groove_ball_bearing
 from bearingsim.errors import ParameterError
 from bearingsim.simulation import simulate
-from bearingsim.simulation.compile import CompileError, compilations
+from bearingsim.simulation.c_compiler import CompileError, compilations
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import VM, clear_kernel_cache, kernel
 from bearingsim.simulation.ordering import fill_reducing_order

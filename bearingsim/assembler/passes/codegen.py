@@ -18,7 +18,7 @@ import casadi as ca
 from bearingsim.assembler.dae import DAE
 from bearingsim.assembler.function_options import CSE, rootfinder_options
 from bearingsim.assembler.ir import Causal
-from bearingsim.assembler.mapped import MappedForms
+from bearingsim.assembler.mapped_forms import MappedForms
 from bearingsim.assembler.system import FunctionTable, Signal, System
 from bearingsim.errors import StructuralError
 
