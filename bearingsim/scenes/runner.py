@@ -26,14 +26,12 @@ from bearingsim.files import atomic_path, column_name, write_series_csv
 from bearingsim.plotting import set_value_scale
 from bearingsim.scenes.analyses import (
     NotSettledWarning,
-    operating_points,
-    point_label,
-    point_units,
     run_points,
     settling_check,
     steady_values,
 )
 from bearingsim.scenes.expressions import compile_expression
+from bearingsim.scenes.operating_points import operating_points, point_label, point_units
 from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.plots import analysis_figures, render_report
 from bearingsim.scenes.preparation import (

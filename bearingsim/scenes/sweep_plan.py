@@ -18,7 +18,7 @@ from typing import Any
 
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
-from bearingsim.scenes.analyses import point_model
+from bearingsim.scenes.operating_points import point_model
 from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError

@@ -168,7 +168,7 @@ def test_analysis_keys_are_validated(text, key, match):
 
 
 def test_grid_values_take_units_and_the_first_key_varies_fastest():
-    from bearingsim.scenes.analyses import operating_points
+    from bearingsim.scenes.operating_points import operating_points
 
     scene = parse_scene('analysis = "steady"\n[assembly]\nname = "double_layer_bearing"\n'
                         '[grid]\n"inputs.shaft_speed" = ["1000 rpm", 200.0]\n'
