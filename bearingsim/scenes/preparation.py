@@ -29,6 +29,7 @@ __all__ = [
     "Prepared",
     "choose_fidelity",
     "output_series",
+    "point_keys",
     "prepare",
     "run_simulation",
     "scene_inputs",
@@ -199,7 +200,7 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     names = list(scene.outputs or spec.default_outputs)
     for n in names:
         need[n] = post[n].fidelity if n in post else spec.min_fidelity(n)
-    point_names = [k.split(".", 1)[1] for k in _point_keys(scene)
+    point_names = [k.split(".", 1)[1] for k in point_keys(scene)
                    if k.split(".", 1)[0] in ("inputs", "parameters")]
     for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial) + point_names:
         need[n] = spec.min_fidelity(n)
@@ -231,8 +232,19 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     return chosen, reason, rejected
 
 
-def _point_keys(scene: Scene) -> list[str]:
-    """The keys an operating grid or the load cases set."""
+def point_keys(scene: Scene) -> list[str]:
+    """The keys an operating grid or the load cases set.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    list of str
+        The keys (``inputs.<name>``, ``parameters.<name>``, ...), each once, in order.
+    """
     keys = list(scene.grid)
     for case in scene.cases:
         keys += [k for k in case if k != "name" and k not in keys]
@@ -386,7 +398,7 @@ def _check_names(scene: Scene, system: System) -> None:
             + " (the run would hold them at their start value, e.g. a speed of 0)",
             "a number, an expression of t or a table for each; inputs that may be left out: "
             + (", ".join(scene.spec.optional_inputs) or "none"))
-    for key in _point_keys(scene):
+    for key in point_keys(scene):
         head, _, rest = key.partition(".")
         if head == "parameters" and rest not in system.parameter_names:
             add("grid" if scene.grid else "cases", f"the model has no parameter {rest!r}",

@@ -44,7 +44,7 @@ def result_columns(prep: Prepared, probe: dict[str, Any] | None
     tuple of (list of str, dict of str to str)
         The result column names and their SI units by name.
     """
-    from bearingsim.scenes.runner import analysis_units
+    from bearingsim.scenes.analysis_table import analysis_units
     from bearingsim.scenes.statics_table import statics_of
 
     kind = prep.scene.analysis
