@@ -29,8 +29,8 @@ import numpy as np
 
 from bearingsim.errors import BearingsimError, SimulationError
 from bearingsim.scenes.operating_points import point_label, point_model, split_point
-from bearingsim.scenes.preparation import output_series, run_simulation
 from bearingsim.scenes.scene import Settling
+from bearingsim.scenes.scene_simulation import output_series, run_simulation
 from bearingsim.scenes.statics_table import statics_of
 
 __all__ = [

@@ -34,15 +34,10 @@ from bearingsim.scenes.analysis_table import analysis_units, write_table
 from bearingsim.scenes.operating_points import operating_points, point_label
 from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.plots import analysis_figures
-from bearingsim.scenes.preparation import (
-    Prepared,
-    output_series,
-    point_keys,
-    prepare,
-    run_simulation,
-)
+from bearingsim.scenes.preparation import Prepared, point_keys, prepare
 from bearingsim.scenes.run_figures import scene_figures
 from bearingsim.scenes.scene import Scene, SceneError, line_of
+from bearingsim.scenes.scene_simulation import output_series, run_simulation
 from bearingsim.scenes.tables import scene_output_folder
 from bearingsim.simulation import Result
 

@@ -25,8 +25,8 @@ from bearingsim.scenes import (
     prepare,
     run_scene,
 )
-from bearingsim.scenes.preparation import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.scene import line_of
+from bearingsim.scenes.scene_simulation import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.sweep import (
     SweepError,
     grid_points,
