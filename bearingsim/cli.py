@@ -208,11 +208,11 @@ def _sweep(args: argparse.Namespace) -> int:
         SweepError,
         describe_failures,
         grid_points,
-        parse_grid,
         parse_sample,
         run_sweep,
         sample_points,
     )
+    from bearingsim.scenes.sweep_grid import parse_grid
 
     if not args.grid and not args.sample:
         raise SweepError("give at least one --grid key=v1,v2,... or --sample key=low:high")

@@ -36,7 +36,8 @@ _CHILD = """
 import json, sys, time, warnings
 warnings.simplefilter("ignore")
 from bearingsim.scenes import parse_scene
-from bearingsim.scenes.preparation import prepare, simulate_inputs
+from bearingsim.scenes.preparation import prepare
+from bearingsim.scenes.scene_simulation import simulate_inputs
 from bearingsim.simulation import simulate
 from bearingsim.simulation.kernels import kernel
 path, t_end, mode = sys.argv[1], float(sys.argv[2]), sys.argv[3]

@@ -58,7 +58,8 @@ def measure(repeats: int = 20) -> list[dict]:
     from bearingsim.errors import BearingsimError
     from bearingsim.scenes import parse_scene
     try:
-        from bearingsim.scenes.preparation import prepare, simulate_inputs
+        from bearingsim.scenes.preparation import prepare
+        from bearingsim.scenes.scene_simulation import simulate_inputs
     except ImportError:  # the baseline's package: the same functions in the runner
         from bearingsim.scenes.runner import prepare, simulate_inputs
     from bearingsim.simulation import simulate

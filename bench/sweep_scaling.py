@@ -198,12 +198,12 @@ def run(workers: int = 2) -> dict:
     """Measure everything; returns the raw numbers (seconds)."""
     from bearingsim.scenes import load_scene
     from bearingsim.scenes.library import builtin_scene_path
-    from bearingsim.scenes.sweep import _plan
+    from bearingsim.scenes.sweep_plan import plan_sweep
 
     load_before = os.getloadavg()
     nested = warm_load()
     scene = load_scene(builtin_scene_path("deep_groove_duty1"))
-    _plan(scene, _points(1))  # the model into the cache: every sweep below loads it
+    plan_sweep(scene, _points(1))  # the model into the cache: every sweep below loads it
     one = _child(1)
     many = _child(workers)
     overhead = {"defaults": _child_overhead(False), "quiet": _child_overhead(True)}

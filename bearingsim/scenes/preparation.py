@@ -1,9 +1,9 @@
-"""Prepare a scene: choose the fidelity, assemble only what the outputs need, simulate.
+"""Prepare a scene: choose the fidelity, assemble only what the outputs need.
 
 ``prepare`` builds and assembles the model (pruned to the requested outputs) and checks the
-scene's names against it; ``run_simulation`` simulates a prepared scene and ``output_series``
-computes its requested outputs (post-processed ones included). Running a whole scene and
-writing its files is :func:`bearingsim.scenes.runner.run_scene`.
+scene's names against it. Simulating a prepared scene is :mod:`bearingsim.scenes.scene_simulation`
+(``run_simulation``, ``output_series``); running a whole scene and writing its files is
+:func:`bearingsim.scenes.runner.run_scene`.
 """
 
 from __future__ import annotations
@@ -18,21 +18,18 @@ import numpy as np
 from bearingsim.assembler import System, assemble_cached
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
-from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.registry import build_component
-from bearingsim.scenes.scene import Scene, SceneError, TableInput, line_of, scene_from_dict
+from bearingsim.scenes.scene import Scene, SceneError, line_of, scene_from_dict
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
-from bearingsim.simulation import Result, simulate, steady_state
+from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 
 __all__ = [
     "Prepared",
     "choose_fidelity",
-    "output_series",
+    "point_keys",
     "prepare",
-    "run_simulation",
     "scene_inputs",
-    "simulate_inputs",
     "validate_scene",
 ]
 
@@ -158,7 +155,6 @@ class Prepared:
                                       if n in self.model_outputs or n in self.post]
 
 
-
 def _check(scene: Scene) -> Scene:
     """Re-validate a scene built in Python (dataclass) through the TOML validator."""
     if scene.text is not None:
@@ -199,7 +195,7 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     names = list(scene.outputs or spec.default_outputs)
     for n in names:
         need[n] = post[n].fidelity if n in post else spec.min_fidelity(n)
-    point_names = [k.split(".", 1)[1] for k in _point_keys(scene)
+    point_names = [k.split(".", 1)[1] for k in point_keys(scene)
                    if k.split(".", 1)[0] in ("inputs", "parameters")]
     for n in list(scene.inputs) + list(scene.parameters) + list(scene.initial) + point_names:
         need[n] = spec.min_fidelity(n)
@@ -231,8 +227,19 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
     return chosen, reason, rejected
 
 
-def _point_keys(scene: Scene) -> list[str]:
-    """The keys an operating grid or the load cases set."""
+def point_keys(scene: Scene) -> list[str]:
+    """The keys an operating grid or the load cases set.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    list of str
+        The keys (``inputs.<name>``, ``parameters.<name>``, ...), each once, in order.
+    """
     keys = list(scene.grid)
     for case in scene.cases:
         keys += [k for k in case if k != "name" and k not in keys]
@@ -386,7 +393,7 @@ def _check_names(scene: Scene, system: System) -> None:
             + " (the run would hold them at their start value, e.g. a speed of 0)",
             "a number, an expression of t or a table for each; inputs that may be left out: "
             + (", ".join(scene.spec.optional_inputs) or "none"))
-    for key in _point_keys(scene):
+    for key in point_keys(scene):
         head, _, rest = key.partition(".")
         if head == "parameters" and rest not in system.parameter_names:
             add("grid" if scene.grid else "cases", f"the model has no parameter {rest!r}",
@@ -406,30 +413,6 @@ def _check_names(scene: Scene, system: System) -> None:
         first = problems[0]
         raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,
                          problems=problems)
-
-
-def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
-    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays.
-
-    Parameters
-    ----------
-    inputs : dict
-        Scene inputs by name (numbers, expressions or tables).
-
-    Returns
-    -------
-    dict
-        The inputs for ``simulate``.
-    """
-    out = {}
-    for k, v in inputs.items():
-        if isinstance(v, str):
-            out[k] = compile_expression(v, f"inputs.{k}")
-        elif isinstance(v, TableInput):
-            out[k] = v.as_tuple()
-        else:
-            out[k] = v
-    return out
 
 
 def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,
@@ -460,62 +443,3 @@ def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,
     return prepare(scene) if assemble_model else scene
 
 
-def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,
-                   inputs: dict[str, Any] | None = None, progress: bool | None = False,
-                   **overrides) -> Result:
-    """Simulate a prepared scene (optionally with other parameters, inputs or settings;
-    ``progress`` as :func:`~bearingsim.simulation.simulate` takes it).
-
-    Parameters
-    ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    parameters : dict of str to float, optional
-        Parameter values over the scene's (SI units).
-    inputs : dict, optional
-        Inputs over the scene's.
-    progress : bool or None
-        Progress bar, as ``simulate`` takes it.
-    **overrides
-        Settings over the scene's ``simulation`` table (``t_end``, ``rtol``, ...).
-
-    Returns
-    -------
-    Result
-        The simulation result.
-    """
-    s = prep.scene.simulation
-    opts = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
-            "n_points": s.n_points, "max_step": s.max_step, "initial": s.initial,
-            "max_steps": s.max_steps, "timeout": s.timeout}
-    opts.update(overrides)
-    t_end = opts.pop("t_end", s.t_end)
-    params = {**prep.scene.parameters, **(parameters or {})}
-    ins = simulate_inputs({**prep.scene.inputs, **(inputs or {})})
-    return simulate(prep.system, t_end, inputs=ins, parameters=params,
-                    x0=prep.scene.initial or None, progress=progress, **opts)
-
-
-def output_series(prep: Prepared, result: Result) -> dict[str, np.ndarray]:
-    """The requested outputs: model series from the result, post-processed ones computed.
-
-    Parameters
-    ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    result : Result
-        The run's result.
-
-    Returns
-    -------
-    dict of str to ndarray
-        Series (SI units) by output name.
-    """
-    series = {n: np.asarray(result[n]) for n in prep.model_outputs}
-    out = {}
-    for n in prep.outputs:
-        if n in prep.post:
-            out[n] = np.asarray(prep.post[n].compute(series), dtype=float)
-        else:
-            out[n] = series[n]
-    return out

@@ -3,7 +3,8 @@
 ``run_scene`` prepares the scene (:func:`bearingsim.scenes.preparation.prepare`: the fidelity,
 the model assembled and pruned to the requested outputs, the names checked), simulates,
 computes the post-processed quantities and writes CSV, a JSON summary (with everything that was
-skipped) and PNG plots.
+skipped) and PNG plots (:mod:`bearingsim.scenes.run_figures`); an analysis scene's table is
+:mod:`bearingsim.scenes.analysis_table`.
 """
 
 from __future__ import annotations
@@ -22,29 +23,21 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import ModelError
-from bearingsim.files import atomic_path, column_name, write_series_csv
-from bearingsim.plotting import set_value_scale
+from bearingsim.files import write_series_csv
 from bearingsim.scenes.analyses import (
     NotSettledWarning,
-    operating_points,
-    point_label,
-    point_units,
     run_points,
     settling_check,
     steady_values,
 )
-from bearingsim.scenes.expressions import compile_expression
+from bearingsim.scenes.analysis_table import analysis_units, write_table
+from bearingsim.scenes.operating_points import operating_points, point_label
 from bearingsim.scenes.outputs import OutputFolder, command_line
-from bearingsim.scenes.plots import analysis_figures, render_report
-from bearingsim.scenes.preparation import (
-    Prepared,
-    _point_keys,
-    output_series,
-    prepare,
-    run_simulation,
-)
+from bearingsim.scenes.plots import analysis_figures
+from bearingsim.scenes.preparation import Prepared, point_keys, prepare
+from bearingsim.scenes.run_figures import scene_figures
 from bearingsim.scenes.scene import Scene, SceneError, line_of
-from bearingsim.scenes.statics_table import statics_of
+from bearingsim.scenes.scene_simulation import output_series, run_simulation
 from bearingsim.scenes.tables import scene_output_folder
 from bearingsim.simulation import Result
 
@@ -52,7 +45,6 @@ __all__ = [
     "SceneRun",
     "console_lines",
     "run_scene",
-    "scene_figures",
 ]
 
 
@@ -84,8 +76,6 @@ def _json_safe(v: Any) -> Any:
     if isinstance(v, np.ndarray):
         return _json_safe(v.tolist())
     return v
-
-
 
 
 def settling(prep: Prepared, result: Result, series: dict[str, np.ndarray]
@@ -227,177 +217,6 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
     })
 
 
-def _varying_inputs(prep: Prepared, result: Result
-                    ) -> tuple[dict[str, np.ndarray], dict[str, str]]:
-    """The inputs that change during the run, by name, and their units: the model's inputs
-    and the assembly's signal arguments given as expressions of t (e.g. a load torque step);
-    constant ones are left out."""
-    out, units = {}, {}
-    for name in prep.system.input_names:
-        if name in result:
-            out[name] = np.asarray(result[name], dtype=float)
-            units[name] = prep.system.inputs[prep.system.input_names.index(name)].unit
-    for name, arg in prep.spec.args.items():
-        text = prep.args.get(name)
-        if arg.kind == "signal" and isinstance(text, str):
-            values = compile_expression(text, f"assembly.{name}")(result.t)
-            out[name] = np.broadcast_to(np.asarray(values, dtype=float).ravel(), result.t.shape)
-            m = re.search(r"\[([^\]]+)\]", arg.doc)
-            units[name] = m.group(1).replace(" ", ".") if m else ""
-    keep = {n: y for n, y in out.items()
-            if y.size and np.ptp(y[np.isfinite(y)]) > 0.0}
-    return keep, {n: units[n] for n in keep}
-
-
-def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
-                 units: dict[str, str], groups: list[list[str]], title: str,
-                 inputs: dict[str, np.ndarray] | None = None, prep: Prepared | None = None
-                 ) -> list[tuple[str, Any]]:
-    """(file name, :class:`matplotlib.figure.Figure`) of the time traces, made without pyplot.
-
-    The inputs that change during the run are drawn on top of every figure (one panel per
-    unit), on the same time axis as the outputs they drive; then one panel per group
-    (default: per output), at most 6 panels a figure. Axes are labelled with the variables'
-    descriptions (``prep``) and display units (r/min, µm, N mm, kN, ...,
-    :func:`bearingsim.scenes.plots.display`); loads, torques and powers on linear axes that
-    show 0.
-
-    Parameters
-    ----------
-    stem : str
-        File name stem of the run's files.
-    t : ndarray
-        Times [s].
-    series : dict of str to ndarray
-        The requested outputs' series by name (SI units).
-    units : dict of str to str
-        SI unit of each column or series by name.
-    groups : list of list of str
-        Series drawn together in one panel.
-    title : str
-        Figure title.
-    inputs : dict of str to ndarray, optional
-        Input series (SI units) at ``t``.
-    prep : Prepared, optional
-        The prepared scene (for descriptions).
-
-    Returns
-    -------
-    list of (str, matplotlib.figure.Figure)
-        File name and figure of each.
-    """
-    from matplotlib.figure import Figure
-
-    from bearingsim.scenes.plots import axis_text, describe, display, include_zero
-
-    inputs = inputs or {}
-    by_unit: dict[str, list[str]] = {}
-    for name in inputs:
-        by_unit.setdefault(units.get(name, ""), []).append(name)
-    input_groups = list(by_unit.values())
-    data = {**inputs, **series}
-    groups = groups or [[n] for n in series]
-    per_figure = max(6 - len(input_groups), 2)
-    figures = []
-    for k in range(0, len(groups), per_figure):
-        chunk = input_groups + groups[k:k + per_figure]
-        fig = Figure(figsize=(7, 1.9 * len(chunk) + 1))
-        axes = np.atleast_1d(fig.subplots(len(chunk), 1, sharex=True, squeeze=False)[:, 0])
-        for row, (ax, group) in enumerate(zip(axes, chunk, strict=True)):
-            unit = units.get(group[0], "")
-            shown = []
-            for n in group:
-                y, label_unit = display(data[n], unit)
-                shown.append(y)
-                ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=describe(n, prep),
-                        color="0.35" if row < len(input_groups) else None)
-            if not include_zero(ax, np.concatenate(shown), label_unit):
-                set_value_scale(ax, shown)
-            text = (axis_text(group[0], prep, label_unit) if len(group) == 1
-                    else f"[{label_unit}]")
-            ax.set_ylabel(("input: " if row < len(input_groups) else "") + text, fontsize=8)
-            if len(group) > 1:
-                ax.legend(fontsize=7)
-            ax.grid(True, alpha=0.3)
-        axes[-1].set_xlabel("time [s]")
-        fig.suptitle(title, fontsize=10)
-        fig.tight_layout()
-        figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // per_figure + 1}.png", fig))
-    return figures
-
-
-def assembly_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray],
-                     stem: str) -> list[tuple[str, Any]]:
-    """(file name ``<stem>.<plot>.png``, Figure) of the assembly's own plots
-    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) for this run.
-
-    Parameters
-    ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    result : Result
-        The run's result.
-    series : dict of str to ndarray
-        The requested outputs' series by name (SI units).
-    stem : str
-        File name stem of the run's files.
-
-    Returns
-    -------
-    list of (str, matplotlib.figure.Figure)
-        File name and figure of each.
-    """
-    data = {**{n: np.asarray(result[n]) for n in prep.model_outputs + prep.plot_outputs},
-            **series}
-    figures = []
-    for plot in prep.plots:
-        spec = plot.make(prep, result, data)
-        if spec is not None:
-            figures.append((f"{stem}.{plot.name}.png",
-                            render_report(spec, f"{prep.scene.title}\n{spec.title}")))
-    return figures
-
-
-def scene_figures(prep: Prepared, result: Result, series: dict[str, np.ndarray], stem: str,
-                  units: dict[str, str]) -> list[tuple[str, Any]]:
-    """Every figure of a run: the assembly's plots first, then the time traces.
-
-    Parameters
-    ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    result : Result
-        The run's result.
-    series : dict of str to ndarray
-        The requested outputs' series by name (SI units).
-    stem : str
-        File name stem of the run's files.
-    units : dict of str to str
-        SI unit of each column or series by name.
-
-    Returns
-    -------
-    list of (str, matplotlib.figure.Figure)
-        File name and figure of each.
-
-    Raises
-    ------
-    SceneError
-        When ``output.plot_groups`` names a series that is not an output.
-    """
-    groups = [g for g in prep.scene.output.plot_groups]
-    missing = sorted({n for g in groups for n in g} - set(series))
-    if missing:
-        raise SceneError(f"plot group names {', '.join(missing)}, which are not "
-                         "outputs", "output.plot_groups",
-                         line_of(prep.scene.text, "output.plot_groups"),
-                         ", ".join(series), prep.scene.path)
-    inputs, input_units = _varying_inputs(prep, result)
-    return (assembly_figures(prep, result, series, stem)
-            + time_figures(stem, result.t, series, {**input_units, **units}, groups,
-                           prep.scene.title, inputs, prep))
-
-
 def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
               overwrite: bool = False, progress: bool | None = None,
               allow_paths: list[str | Path] | tuple = ()) -> SceneRun:
@@ -483,65 +302,6 @@ def _run_and_write(scene: Scene, folder: Path, stem: str, lock: OutputFolder | N
     return SceneRun(prep, result, series, data, files)
 
 
-def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]:
-    """SI unit of each column of an analysis table.
-
-    Parameters
-    ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    rows : list of dict
-        The analysis table's rows, one per operating point.
-
-    Returns
-    -------
-    dict of str to str
-        SI unit by column name.
-    """
-    scene = prep.scene
-    units = point_units(prep, scene, _point_keys(scene))
-    if scene.analysis == "steady":
-        units.update({n: u for n, u in {**prep.system.variable_units,
-                                        **{n: q.unit for n, q in prep.post.items()}}.items()
-                      if n in prep.outputs})
-    elif scene.analysis == "statics":
-        units.update({n: unit for n, (unit, _) in statics_of(prep).columns.items()})
-    else:
-        point = set(units) | {"name"}
-        units.update({n: "Hz" for row in rows for n in row if n not in point})
-    return units
-
-
-def write_table(path: Path, rows: list[dict[str, Any]], units: dict[str, str]) -> Path:
-    """An analysis table as CSV: one row per operating point, ``name [unit]`` headers (SI),
-    written atomically.
-
-    Parameters
-    ----------
-    path : Path
-        The CSV file.
-    rows : list of dict
-        The analysis table's rows, one per operating point.
-    units : dict of str to str
-        SI unit of each column or series by name.
-
-    Returns
-    -------
-    Path
-        ``path``.
-    """
-    import csv
-
-    names = [n for n in (rows[0] if rows else {}) if not n.startswith("_")]
-    for row in rows[1:]:
-        names += [n for n in row if n not in names and not n.startswith("_")]
-    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow([n if n == "name" else column_name(n, units.get(n, "")) for n in names])
-        w.writerows([[row.get(n, "") for n in names] for row in rows])
-    return path
-
-
 def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> SceneRun:
     """Run a steady, modes or statics scene: one table row per operating point, the figures
     that answer it and the JSON summary (written into ``lock``'s folder, last; None: write
@@ -554,7 +314,7 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
     units = analysis_units(prep, rows)
     columns = {n: np.array([row.get(n, math.nan) for row in rows])
                for n in rows[0] if n != "name"} if rows else {}
-    keys = [point_label(k) for k in _point_keys(scene)]
+    keys = [point_label(k) for k in point_keys(scene)]
     if lock is not None:
         lock.retire(f"{stem}.summary.json")
         if scene.output.csv:

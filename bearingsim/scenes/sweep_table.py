@@ -19,7 +19,7 @@ from typing import Any
 from bearingsim.files import atomic_path, column_name
 from bearingsim.scenes.sampling import SweepError
 
-__all__ = ["SweepTable", "open_table", "cell"]
+__all__ = ["SweepTable", "open_table", "cell", "from_cell"]
 
 
 def cell(value: Any) -> str:
@@ -171,3 +171,24 @@ def open_table(table: SweepTable, resume: bool, expected: dict[int, dict[str, st
                              "sweep, or give another --out")
         done[index] = row
     return done
+
+
+def from_cell(text: str) -> Any:
+    """A table cell read back: int, float, bool or text.
+
+    Parameters
+    ----------
+    text : str
+        The cell as :func:`cell` wrote it.
+
+    Returns
+    -------
+    int or float or bool or str
+        The value.
+    """
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return {"True": True, "False": False}.get(text, text)

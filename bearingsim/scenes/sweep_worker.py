@@ -58,7 +58,7 @@ class Job:
     parameters: dict[str, float]
     """Parameter overrides from arguments that only change parameter values (checked on the
     client; the point's run derives them again from its arguments,
-    :func:`~bearingsim.scenes.analyses.point_model`)."""
+    :func:`~bearingsim.scenes.operating_points.point_model`)."""
 
 
 MODELS: dict[str, Prepared] = {}

@@ -153,7 +153,7 @@ def test_reprs_show_units(df_pair):
 
 def _scene_figures(name, t_end):
     from bearingsim.scenes import load_scene, run_scene
-    from bearingsim.scenes.runner import scene_figures
+    from bearingsim.scenes.run_figures import scene_figures
 
     scene = load_scene(name)
     scene.simulation.t_end = t_end
@@ -229,7 +229,7 @@ def test_a_registered_assembly_declares_its_own_plots():
     from bearingsim.plotting import Curve, FigureSpec, Panel
     from bearingsim.scenes import register, run_scene
     from bearingsim.scenes.registry import unregister
-    from bearingsim.scenes.runner import scene_figures
+    from bearingsim.scenes.run_figures import scene_figures
     from bearingsim.scenes.scene import parse_scene
 
     def middle(prep, result, series):

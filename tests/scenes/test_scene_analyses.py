@@ -168,7 +168,7 @@ def test_analysis_keys_are_validated(text, key, match):
 
 
 def test_grid_values_take_units_and_the_first_key_varies_fastest():
-    from bearingsim.scenes.analyses import operating_points
+    from bearingsim.scenes.operating_points import operating_points
 
     scene = parse_scene('analysis = "steady"\n[assembly]\nname = "double_layer_bearing"\n'
                         '[grid]\n"inputs.shaft_speed" = ["1000 rpm", 200.0]\n'
@@ -283,8 +283,9 @@ _SHORT = {"deep_groove_duty1": 0.002, "deep_groove_radial": 1.5, "double_layer_f
 
 
 def _figures(name):
+    from bearingsim.scenes.analysis_table import analysis_units
     from bearingsim.scenes.plots import analysis_figures
-    from bearingsim.scenes.runner import analysis_units, scene_figures
+    from bearingsim.scenes.run_figures import scene_figures
 
     scene = load_scene(name)
     if scene.analysis != "transient":
@@ -409,8 +410,8 @@ def test_a_steady_figure_never_plots_a_variable_against_itself():
     """w_shaft is the imposed shaft speed, the x axis: its panel would be the identity
     (issue 27: one sweep panel plotted w_shaft against itself); the figure leaves it out and
     keeps the table column."""
+    from bearingsim.scenes.analysis_table import analysis_units
     from bearingsim.scenes.plots import analysis_figures
-    from bearingsim.scenes.runner import analysis_units
 
     scene = parse_scene('analysis = "steady"\noutputs = ["w_shaft", "Rs"]\n[assembly]\n'
                         'name = "double_layer_bearing"\nfidelity = "torque"\n[grid]\n'

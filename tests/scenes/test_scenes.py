@@ -25,17 +25,17 @@ from bearingsim.scenes import (
     prepare,
     run_scene,
 )
-from bearingsim.scenes.preparation import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.scene import line_of
+from bearingsim.scenes.scene_simulation import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.sweep import (
     SweepError,
-    _plan,
     grid_points,
-    parse_grid,
     parse_sample,
     run_sweep,
     sample_points,
 )
+from bearingsim.scenes.sweep_grid import parse_grid
+from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_worker import load_model, run_job
 from bearingsim.simulation import simulate
 from bearingsim.units import rpm_to_rad_s
@@ -355,14 +355,14 @@ def test_grid_and_sample_parsing():
 def test_sweep_points_are_validated_before_running():
     scene = _scene(["Rs", "M_shaft"])
     with pytest.raises(SweepError, match="simulation.rtol"):
-        _plan(scene, grid_points(parse_grid(["simulation.rtol=2"])))
+        plan_sweep(scene, grid_points(parse_grid(["simulation.rtol=2"])))
     with pytest.raises(SweepError, match="inner_layer.nu.*valid range"):
-        _plan(scene, grid_points(parse_grid(["parameters.inner_layer.nu=-1"])))
+        plan_sweep(scene, grid_points(parse_grid(["parameters.inner_layer.nu=-1"])))
 
 
 def test_lubricant_swap_is_a_parameter_change_equal_to_reassembly():
     scene = _scene(["Rs", "M_shaft"])
-    plan = _plan(scene, grid_points(parse_grid(["assembly.lubrication=ISO VG 32,ISO VG 150"])))
+    plan = plan_sweep(scene, grid_points(parse_grid(["assembly.lubrication=ISO VG 32,ISO VG 150"])))
     assert len(plan.prepared) == 1  # one model for both lubricants
     (payload,) = plan.payloads.values()
     swapped = run_job(load_model(payload), plan.jobs[1])
@@ -377,8 +377,8 @@ def test_lubricant_swap_is_a_parameter_change_equal_to_reassembly():
 
 def test_structural_arguments_build_one_model_each():
     scene = _scene(["Rs"])
-    plan = _plan(scene, grid_points(parse_grid(["assembly.outer=61907,61908",
-                                                "inputs.shaft_speed=100,200"])))
+    plan = plan_sweep(scene, grid_points(parse_grid(["assembly.outer=61907,61908",
+                                                     "inputs.shaft_speed=100,200"])))
     assert len(plan.prepared) == 2
 
 

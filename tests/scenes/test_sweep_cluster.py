@@ -10,7 +10,7 @@ import sys
 import pytest
 
 from bearingsim.scenes import load_scene
-from bearingsim.scenes.sweep import _plan, grid_points, parse_grid
+from bearingsim.scenes.sweep import grid_points
 from bearingsim.scenes.sweep_cluster import (
     QUIET_CLUSTER,
     TASKS_PER_WORKER,
@@ -18,6 +18,8 @@ from bearingsim.scenes.sweep_cluster import (
     chunk_size,
     connect,
 )
+from bearingsim.scenes.sweep_grid import parse_grid
+from bearingsim.scenes.sweep_plan import plan_sweep
 
 distributed = pytest.importorskip("distributed")
 
@@ -89,7 +91,7 @@ def _feed(tmp_path, n_points: int, **kwargs) -> tuple[list[int], list[int]]:
     path.write_text(SCENE)
     points = grid_points(parse_grid(
         [f"inputs.shaft_speed={','.join(str(100 + 10 * k) for k in range(n_points))}"]))
-    plan = _plan(load_scene(path), points)
+    plan = plan_sweep(load_scene(path), points)
     with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
                             dashboard_address=":0") as client:
         models = {key: client.scatter(p, broadcast=True) for key, p in plan.payloads.items()}

@@ -18,7 +18,8 @@ from pathlib import Path
 import pytest
 
 from bearingsim.scenes import load_scene, run_scene
-from bearingsim.scenes.sweep import grid_points, parse_grid, run_sweep
+from bearingsim.scenes.sweep import grid_points, run_sweep
+from bearingsim.scenes.sweep_grid import parse_grid
 
 distributed = pytest.importorskip("distributed")
 

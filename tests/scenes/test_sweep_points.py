@@ -13,8 +13,9 @@ from pathlib import Path
 import pytest
 
 from bearingsim.scenes import load_scene, run_scene
-from bearingsim.scenes.analyses import operating_points, point_label
-from bearingsim.scenes.sweep import SweepError, grid_points, parse_grid, run_sweep
+from bearingsim.scenes.operating_points import operating_points, point_label
+from bearingsim.scenes.sweep import SweepError, grid_points, run_sweep
+from bearingsim.scenes.sweep_grid import parse_grid
 
 distributed = pytest.importorskip("distributed")
 

@@ -22,9 +22,9 @@ from bearingsim.scenes.sweep import (
     SweepError,
     chunk_size,
     grid_points,
-    parse_grid,
     run_sweep,
 )
+from bearingsim.scenes.sweep_grid import parse_grid
 
 distributed = pytest.importorskip("distributed")
 

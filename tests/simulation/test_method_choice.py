@@ -152,7 +152,8 @@ n_points = 11
 
 def _scene_run(method_line: str = ""):
     from bearingsim.scenes import parse_scene
-    from bearingsim.scenes.preparation import prepare, run_simulation
+    from bearingsim.scenes.preparation import prepare
+    from bearingsim.scenes.scene_simulation import run_simulation
 
     prep = prepare(parse_scene(SCENE.format(method=method_line)))
     return prep, run_simulation(prep)

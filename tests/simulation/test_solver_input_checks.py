@@ -292,7 +292,7 @@ def test_bdf_finishes_the_duplex_load_step_that_stalled_it(arrangement, fz):
     Newton test took corrections 1e-9 of the tolerance that stopped shrinking for divergence):
     DF 2000 N stalled at t = 1.4966 ms with steps of 1e-12 s. With the stagnation rule the run
     ends in under 3 000 steps and agrees with LSODA."""
-    from bearingsim.scenes.runner import run_simulation
+    from bearingsim.scenes.scene_simulation import run_simulation
 
     prep = _duplex_step_scene(arrangement, fz)
     bdf = run_simulation(prep, method="BDF", max_steps=3000)
@@ -451,8 +451,9 @@ def test_palmgren_speed_ratio_has_one_branch_and_no_warning(torque_system):
 
 def test_scene_budgets_are_read_checked_and_end_the_run():
     from bearingsim.errors import BudgetExceededError
-    from bearingsim.scenes.runner import prepare, run_simulation
+    from bearingsim.scenes.preparation import prepare
     from bearingsim.scenes.scene import SceneError, scene_from_dict
+    from bearingsim.scenes.scene_simulation import run_simulation
 
     base = {"assembly": {"name": "double_layer_bearing", "fidelity": "torque"},
             "inputs": {"shaft_speed": 100.0}, "outputs": ["Rs"]}

@@ -339,7 +339,8 @@ def valid_scene(r: np.random.Generator):
 
 
 def test_generated_valid_scenes_run():
-    from bearingsim.scenes.runner import output_series, prepare, run_simulation
+    from bearingsim.scenes.preparation import prepare
+    from bearingsim.scenes.scene_simulation import output_series, run_simulation
 
     r = rng(61)
     for _ in range(5):

@@ -195,15 +195,16 @@ def test_motor_reference_input_is_bounded_by_the_bearing():
 def test_grid_values_take_units_and_the_table_stores_si():
     """--grid inputs.shaft_speed=500rpm,1000rpm and rpm(500) give the same SI input; the sweep
     table stores SI numbers under its [rad/s] header, not the text rpm(2000)."""
-    from bearingsim.scenes.sweep import _point_scene, _si_values, parse_grid, parse_sample
+    from bearingsim.scenes.sweep import parse_sample
+    from bearingsim.scenes.sweep_grid import parse_grid, point_scene, si_values
 
     scene = _scene(shaft_speed="rpm(1000)")
     grid = parse_grid(["inputs.shaft_speed=500rpm,rpm(1000),52.5"])
-    values = [_point_scene(scene, {"inputs.shaft_speed": v}).inputs["shaft_speed"]
+    values = [point_scene(scene, {"inputs.shaft_speed": v}).inputs["shaft_speed"]
               for v in grid["inputs.shaft_speed"]]
     assert values[0] == pytest.approx(500 * RPM) and values[2] == 52.5
     assert compile_expression(values[1])(0.0) == pytest.approx(1000 * RPM)
-    assert _si_values({"inputs.shaft_speed": "rpm(2000)", "assembly.inner": "61905"}) == {
+    assert si_values({"inputs.shaft_speed": "rpm(2000)", "assembly.inner": "61905"}) == {
         "inputs.shaft_speed": pytest.approx(2000 * RPM), "assembly.inner": "61905"}
     assert constant_value("rpm(2000) * t") is None
     assert parse_sample(["inputs.shaft_speed=500rpm:1000 r/min"])["inputs.shaft_speed"] == (

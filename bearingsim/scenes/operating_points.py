@@ -1,0 +1,205 @@
+"""The operating points of a scene and the model that runs each.
+
+A scene's points are every combination of its ``grid``, its load ``cases`` or its ``inputs``
+alone (:func:`operating_points`); a point's keys become table columns (:func:`point_label`,
+:func:`point_units`) and split into inputs, parameter values and assembly arguments
+(:func:`split_point`). :func:`point_model` gives the model that runs a point: the prepared
+one with parameter overrides when the point only changes parametric arguments, else one
+assembled for its arguments. Running a point is
+:func:`bearingsim.scenes.analyses.run_operating_point`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+from typing import Any
+
+from bearingsim.errors import BearingsimError
+from bearingsim.scenes.preparation import prepare
+from bearingsim.scenes.scene import Scene, SceneError, line_of
+
+__all__ = ["operating_points", "point_label", "point_model", "point_units", "split_point"]
+
+
+def operating_points(scene: Scene) -> list[dict[str, Any]]:
+    """The operating points of a scene: every combination of its ``grid`` (the first key
+    varying fastest), its ``cases`` in order, or one point of its ``inputs`` alone.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    list of dict
+        One ``{key: value}`` per operating point.
+    """
+    if scene.cases:
+        return [dict(c) for c in scene.cases]
+    if not scene.grid:
+        return [{}]
+    keys = list(scene.grid)
+    combos = itertools.product(*(scene.grid[k] for k in reversed(keys)))
+    return [dict(zip(keys, reversed(combo), strict=True)) for combo in combos]
+
+
+def point_label(key: str) -> str:
+    """The table column of a point key: ``inputs.shaft_speed`` -> ``shaft_speed``.
+
+    Parameters
+    ----------
+    key : str
+        A point key (``inputs.X``, ``parameters.X`` or an assembly argument).
+
+    Returns
+    -------
+    str
+        The column name.
+    """
+    return key.split(".", 1)[1] if key.split(".", 1)[0] in ("inputs", "parameters",
+                                                              "assembly") else key
+
+
+def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
+    """SI unit of each point key's column (inputs and parameters from the model, assembly
+    arguments from the ``[unit]`` of their description).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    scene : Scene
+        The loaded scene.
+    keys : list of str
+        The point keys.
+
+    Returns
+    -------
+    dict of str to str
+        SI unit by column name.
+    """
+    units = {}
+    system = prep.system if prep is not None else None
+    for key in keys:
+        head, _, rest = key.partition(".")
+        unit = ""
+        if head == "inputs" and system is not None and rest in system.input_names:
+            unit = system.inputs[system.input_names.index(rest)].unit
+        elif head == "inputs":
+            unit = scene.input_units.get(rest, "N" if re.search(r"\bF[xyzra]$", rest) else "")
+        elif head == "parameters" and system is not None and rest in system.parameter_names:
+            unit = system.params[system.parameter_names.index(rest)].unit
+        elif head == "assembly":
+            arg = scene.spec.args.get(rest)
+            m = re.search(r"\[([^\]]+)\]", arg.doc) if arg is not None else None
+            unit = m.group(1) if m else ""
+        units[point_label(key)] = unit
+    return units
+
+
+def split_point(scene: Scene, point: dict[str, Any]
+                ) -> tuple[dict[str, float], dict[str, float], dict[str, Any]]:
+    """The inputs, parameter values and assembly arguments of an operating point (the scene's
+    own merged with the point's).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    point : dict
+        An operating point, ``{key: value}``.
+
+    Returns
+    -------
+    tuple of (dict, dict, dict)
+        Inputs [SI], parameter values [SI] and assembly arguments.
+    """
+    inputs = {k: v for k, v in scene.inputs.items()}
+    parameters = dict(scene.parameters)
+    args = dict(scene.args)
+    for key, value in point.items():
+        head, _, rest = key.partition(".")
+        if head == "inputs":
+            inputs[rest] = value
+        elif head == "parameters":
+            parameters[rest] = value
+        elif head == "assembly":
+            args[rest] = value
+    return inputs, parameters, args
+
+
+def _parameter_values(component) -> dict[str, float]:
+    from bearingsim.language.declarations import Parameter
+
+    return {decl.path: float(decl.value) for comp in component.walk()
+            for decl in comp.declarations.values()
+            if isinstance(decl, Parameter) and decl.value is not None}
+
+
+def _is_parametric(spec: Any, key: str, args: dict[str, Any]) -> bool:
+    holds = spec.parametric_args.get(key)
+    return holds is not None and bool(holds(args))
+
+
+def point_model(prep: Any, args: dict[str, Any]) -> tuple[Any, dict[str, float]]:
+    """The prepared model that runs an operating point with the assembly arguments ``args``,
+    and the parameter overrides it needs.
+
+    Arguments the assembly declares parametric
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.parametric_args`, e.g. a duplex pair's
+    preload) become parameter overrides of the assembled model of ``prep``; any other changed
+    argument (an arrangement, a bearing) assembles the model for those arguments, once per
+    distinct set (cached on ``prep``).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    args : dict
+        The point's assembly arguments.
+
+    Returns
+    -------
+    tuple of (Prepared, dict of str to float)
+        The prepared model and its parameter overrides (SI units).
+
+    Raises
+    ------
+    SceneError
+        When an argument declared parametric changes the model's parameters (please report),
+        or the arguments are invalid.
+    """
+    from bearingsim.scenes.registry import build_component
+
+    spec = prep.spec
+    full = spec.with_defaults(args)
+    full.update({k: v for k, v in prep.args.items() if k not in spec.args})  # symmetry
+    changed = [k for k in spec.args if full.get(k) != prep.args.get(k)]
+    if not changed:
+        return prep, {}
+    cache = prep.__dict__.setdefault("_point_models", {})
+    structural = [k for k in changed if not _is_parametric(spec, k, full)]
+    if structural:
+        key = repr(sorted((k, repr(full[k])) for k in structural))
+        if key not in cache:
+            scene = prep.scene
+            base = {k: v for k, v in scene.args.items()}
+            base.update({k: full[k] for k in structural})
+            cache[key] = prepare(scene.replace(args=base))
+        return point_model(cache[key], args)
+    if "base" not in cache:
+        cache["base"] = _parameter_values(build_component(spec, prep.args, prep.fidelity))
+    base_values = cache["base"]
+    try:
+        new = _parameter_values(build_component(spec, full, prep.fidelity))
+    except BearingsimError as exc:
+        raise SceneError(str(exc), "grid", line_of(prep.scene.text, "grid"),
+                         path=prep.scene.path) from None
+    if set(new) != set(base_values):
+        raise SceneError(f"the assembly argument(s) {', '.join(changed)}, declared parametric, "
+                         "change the model's structure; please report", "grid",
+                         line_of(prep.scene.text, "grid"), path=prep.scene.path)
+    names = set(prep.system.parameter_names)
+    return prep, {n: v for n, v in new.items() if n in names and v != base_values[n]}

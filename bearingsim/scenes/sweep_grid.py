@@ -1,0 +1,244 @@
+"""The points of a sweep applied to its scene.
+
+``--grid`` items parsed into values by key (:func:`parse_grid`), a swept value converted to the
+type its key expects (:func:`coerce`), the scene of one point, validated with errors that name
+the sweep key (:func:`point_scene`), the check that an analysis scene's own grid inputs still
+have values (:func:`check_operating_points`) and the swept values as the sweep's table stores
+them (:func:`si_values`). Running the points is :func:`bearingsim.scenes.sweep.run_sweep`.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+from bearingsim.scenes.sampling import SweepError, check_key
+from bearingsim.scenes.scene import Scene, SceneError
+
+__all__ = ["check_operating_points", "coerce", "parse_grid", "point_scene", "si_values"]
+
+
+def _split_values(text: str) -> list[str]:
+    """Split on ';' if present, else on commas outside parentheses, brackets and quotes (a
+    TOML list such as ``["lithium grease", "ISO VG 32"]`` is one value)."""
+    if ";" in text:
+        return [v.strip() for v in text.split(";") if v.strip()]
+    out, depth, cur, quote = [], 0, "", ""
+    for ch in text:
+        if quote:
+            quote = "" if ch == quote else quote
+        elif ch in "\"'":
+            quote = ch
+        elif ch in "([":
+            depth += 1
+        elif ch in ")]":
+            depth -= 1
+        if ch == "," and depth == 0 and not quote:
+            out.append(cur.strip())
+            cur = ""
+        else:
+            cur += ch
+    if cur.strip():
+        out.append(cur.strip())
+    return out
+
+
+def _value(text: str) -> Any:
+    """A grid value: a TOML list or quoted string as TOML reads it, true/false, a number, or
+    the text itself."""
+    if text.strip()[:1] in ("[", "\"", "'"):
+        try:
+            return tomllib.loads(f"v = {text.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            raise SweepError(f"grid value {text!r} is not a TOML value (a list needs quoted "
+                             f"text: [\"lithium grease\", \"ISO VG 32\"])") from None
+    low = text.strip().lower()
+    if low in ("true", "false"):
+        return low == "true"
+    try:
+        v = float(text)
+    except ValueError:
+        return text.strip()
+    return int(v) if v.is_integer() and "." not in text and "e" not in low else v
+
+
+def parse_grid(items: list[str]) -> dict[str, list[Any]]:
+    """``["inputs.shaft_speed=100,200", ...]`` -> ``{"inputs.shaft_speed": ["100", "200"]}``.
+
+    Values stay text here; they are converted by the type the key expects when a point is
+    applied to a scene (numbers for parameters, designations stay text).
+
+    Parameters
+    ----------
+    items : list of str
+        ``key=v1,v2,...`` each.
+
+    Returns
+    -------
+    dict of str to list of str
+        The values by key.
+    """
+    grid: dict[str, list[Any]] = {}
+    for item in items:
+        if "=" not in item:
+            raise SweepError(f"--grid {item!r}: expected key=v1,v2,...")
+        key, values = item.split("=", 1)
+        key = key.strip()
+        check_key(key)
+        vals = _split_values(values)
+        if not vals:
+            raise SweepError(f"--grid {key}: no values")
+        grid[key] = vals
+    return grid
+
+
+def _set_nested(d: dict, path: list[str], value: Any) -> None:
+    for p in path[:-1]:
+        d = d.setdefault(p, {})
+    d[path[-1]] = value
+
+
+def coerce(scene: Scene, key: str, value: Any) -> Any:
+    """A grid value converted to the type its key expects.
+
+    Parameters
+    ----------
+    scene : Scene
+        The swept scene (its assembly's arguments give the kinds).
+    key : str
+        The sweep key (``inputs.<name>``, ``assembly.<argument>``, ...).
+    value : object
+        The value as given (text from ``--grid``, or already converted).
+
+    Returns
+    -------
+    object
+        The value: a number, bool, text or list of text.
+    """
+    head, rest = key.split(".", 1)
+    text_kinds = ("bearing", "lubricant", "choice")
+    if head == "assembly":
+        spec = scene.spec.args
+        parts = rest.split(".")
+        arg = None
+        for part in parts:
+            arg = spec.get(part) if spec else None
+            spec = arg.table if arg is not None and arg.table else None
+        if isinstance(value, str) and value.strip()[:1] in ("[", "\"", "'"):
+            value = _value(value)
+        if isinstance(value, list):
+            return [str(v) for v in value]
+        if rest == "fidelity" or (arg is not None and arg.kind in text_kinds):
+            return str(value) if not isinstance(value, str) else value
+        if arg is not None and arg.kind == "signal" and isinstance(value, str):
+            v = _value(value)
+            return v if not isinstance(v, bool) else value
+    if head == "simulation" and rest in ("method", "initial"):
+        return str(value)
+    if isinstance(value, str):
+        v = _value(value)
+        return value if isinstance(v, bool) and head != "assembly" else v
+    return value
+
+
+def point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
+    """The scene with the point's values applied, validated (errors name the sweep key); an
+    analysis scene's own grid or cases are left out (the sweep's point is its one operating
+    point).
+
+    Parameters
+    ----------
+    scene : Scene
+        The swept scene.
+    point : dict
+        The point's values by sweep key.
+
+    Returns
+    -------
+    Scene
+        The scene of the point.
+
+    Raises
+    ------
+    SweepError
+        When the point's values make an invalid scene.
+    """
+    d = scene.to_dict()
+    if scene.analysis != "transient":
+        d.pop("grid", None)
+        d.pop("cases", None)
+    for key, value in point.items():
+        value = coerce(scene, key, value)
+        head, rest = key.split(".", 1)
+        if head == "assembly":
+            _set_nested(d["assembly"], rest.split("."), value)
+        else:
+            d.setdefault(head, {})[rest] = value
+    from bearingsim.scenes.scene import scene_from_dict
+
+    try:
+        return scene_from_dict(d, path=scene.path)
+    except SceneError as exc:
+        shown = ", ".join(f"{k}={v!r}" for k, v in point.items())
+        why = "; ".join(p.key + ": " + p.reason + (f"; allowed: {p.allowed}" if p.allowed else "")
+                        for p in exc.problems)
+        raise SweepError(f"sweep point ({shown}): {why}") from None
+
+
+def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
+    """Raise :class:`SweepError` when an input the analysis scene takes from its own grid
+    (which a sweep replaces) has no value at the sweep's points (a load case leaves out the
+    inputs it does not set: those keep the scene's value or none).
+
+    Parameters
+    ----------
+    scene : Scene
+        The swept analysis scene.
+    points : list of dict
+        The sweep's points (values by sweep key).
+    """
+    missing = sorted(k for k in scene.grid if k.startswith("inputs.") and k not in points[0]
+                     and k.split(".", 1)[1] not in scene.inputs)
+    if missing:
+        raise SweepError(
+            f"the sweep replaces the grid of this {scene.analysis} scene, and "
+            f"{', '.join(missing)} then has no value: sweep it (--grid {missing[0]}=...) or "
+            f"give it under [inputs]")
+
+
+def si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any]:
+    """The swept values as the table stores them: SI numbers for inputs that are constant
+    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given. ``memo``
+    keeps the converted values across the points of a sweep (a grid repeats each value).
+
+    Parameters
+    ----------
+    point : dict
+        A point's values by sweep key.
+    memo : dict, optional
+        Converted values by (key, value), shared by the points of a sweep.
+
+    Returns
+    -------
+    dict
+        The values by sweep key, constant inputs in SI units.
+    """
+    from bearingsim.scenes.expressions import constant_value
+
+    memo = {} if memo is None else memo
+    out = {}
+    for key, value in point.items():
+        if not key.startswith("inputs."):
+            out[key] = value
+            continue
+        seen = (key, repr(value))
+        if seen not in memo:
+            si = constant_value(value, key)
+            memo[seen] = value if si is None else si
+        out[key] = memo[seen]
+    return out

@@ -1,0 +1,121 @@
+"""The plan of a sweep: every point validated, one model per distinct structure, the jobs.
+
+Points that differ only in parameter values (a parametric assembly argument such as a
+Palmgren model's lubricant) share a model structure (:func:`plan_sweep` keys them by fidelity
+and the non-parametric arguments); each structure is prepared once on the client and shipped
+to the workers as bytes (:class:`~bearingsim.scenes.sweep_worker.ModelPayload`, the cache entry
+of :mod:`bearingsim.assembler.cache` when there is one).
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import hashlib
+import json
+from dataclasses import dataclass
+from typing import Any
+
+from bearingsim.assembler import cache as system_cache
+from bearingsim.errors import ParameterError
+from bearingsim.scenes.operating_points import point_model
+from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
+from bearingsim.scenes.sampling import SweepError
+from bearingsim.scenes.scene import Scene, SceneError
+from bearingsim.scenes.sweep_grid import check_operating_points, coerce, point_scene, si_values
+from bearingsim.scenes.sweep_worker import Job, ModelPayload
+
+__all__ = ["SweepPlan", "plan_sweep"]
+
+
+def _structure(sc: Scene) -> tuple[str, str]:
+    """Key of the model structure of a point: fidelity and the non-parametric arguments (with
+    the symmetry the point's inputs allow, as :func:`~bearingsim.scenes.preparation.prepare`
+    uses)."""
+    spec = sc.spec
+    args = spec.with_defaults(sc.args)
+    args.update(spec.symmetric_args(args, sc.inputs))
+    post_all = spec.post(args)
+    post = {n: post_all[n] for n in (sc.outputs or spec.default_outputs) if n in post_all}
+    fidelity, _, _ = choose_fidelity(sc, spec, post)
+    stripped = copy.deepcopy(args)
+    for key, holds in spec.parametric_args.items():
+        if holds(args):
+            path, d = key.split("."), stripped
+            for p in path[:-1]:
+                d = d.get(p, {})
+            d.pop(path[-1], None)
+    return fidelity, json.dumps(stripped, sort_keys=True, default=str)
+
+
+def _payload(prep: Prepared) -> ModelPayload:
+    """The prepared model as bytes for the workers: the cache entry just used by ``prepare``
+    (no second serialization), else the system serialized now."""
+    last = system_cache.LAST
+    data = system_cache.read_payload(last["path"], last["key"]) if last.get("path") else None
+    if data is None:
+        data = system_cache.dumps_system(prep.system)
+    token = hashlib.sha256(data).hexdigest()
+    return ModelPayload(token, dataclasses.replace(prep, system=None), data)
+
+
+@dataclass
+class SweepPlan:
+    """The prepared models of a sweep (one per structure), their payloads and the jobs."""
+
+    prepared: dict[tuple, Prepared]
+    payloads: dict[tuple, ModelPayload]
+    jobs: list[Job]
+    structure: dict[int, tuple]
+    """Point number -> structure key."""
+    values: list[dict[str, Any]]
+    """Point number -> swept values (converted)."""
+
+
+def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
+    """Validate every point of a sweep, prepare one model per distinct structure and make
+    the jobs.
+
+    Parameters
+    ----------
+    scene : Scene
+        The swept scene.
+    points : list of dict
+        The sweep's points (values by sweep key).
+
+    Returns
+    -------
+    SweepPlan
+        The models, their payloads, the jobs and each point's structure and swept values.
+
+    Raises
+    ------
+    SweepError
+        For a point whose values make an invalid scene or model, naming the point.
+    """
+    scenes = [point_scene(scene, p) for p in points]
+    if scene.analysis != "transient":
+        check_operating_points(scene, points)
+    prepared: dict[tuple, Prepared] = {}
+    payloads: dict[tuple, ModelPayload] = {}
+    jobs, structure, values, converted = [], {}, [], {}
+    for k, (raw, sc) in enumerate(zip(points, scenes, strict=True)):
+        pt = {key: coerce(scene, key, v) for key, v in raw.items()}
+        key = _structure(sc)
+        try:
+            if key not in prepared:
+                prepared[key] = prepare(sc)
+                payloads[key] = _payload(prepared[key])
+            prep = prepared[key]
+            _, params = point_model(prep, sc.args)
+            prep.system.p0({**sc.parameters, **params})
+        except (SceneError, ParameterError) as exc:
+            raise SweepError(f"sweep point {pt}: {exc}") from None
+        for name in sc.inputs:  # (a statics load case also takes the speed, for the life)
+            if sc.analysis != "statics" and name not in prep.system.input_names:
+                raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "
+                                 + ", ".join(prep.system.input_names))
+        jobs.append(Job(k, sc, params))
+        structure[k] = key
+        values.append(si_values(pt, converted))
+    return SweepPlan(prepared, payloads, jobs, structure, values)

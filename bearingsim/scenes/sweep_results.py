@@ -1,0 +1,185 @@
+"""The results of a sweep: its result columns with their SI units, a point's table row and the
+sweep's figure.
+
+A sweep's row holds what ``bearingsim run`` gives for one operating point of the scene
+(:func:`~bearingsim.scenes.analyses.run_operating_point`); :func:`result_columns` names those
+columns from the prepared model (a modes sweep's from its first point), :func:`column_units`
+adds the swept keys' units and :func:`sweep_figures` draws each result against the first
+numeric swept key.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from bearingsim.scenes.preparation import Prepared
+from bearingsim.units import display_unit
+
+__all__ = ["TRANSIENT_COLUMNS", "column_units", "result_columns", "sweep_figures", "table_row"]
+
+
+TRANSIENT_COLUMNS = ("settled", "time_constant", "unsettled")
+"""The columns a transient point adds to its outputs' final values
+(:func:`~bearingsim.scenes.analyses.run_operating_point`)."""
+
+
+def result_columns(prep: Prepared, probe: dict[str, Any] | None
+                   ) -> tuple[list[str], dict[str, str]]:
+    """The result columns of a sweep's rows and their SI units: those of the scene's own table
+    row for its analysis (a transient's outputs with ``settled``, ``time_constant`` and
+    ``unsettled``; a steady point's outputs; a statics point's columns; a modes point's mode
+    names, read from the ``probe`` row of the first point).
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared model of the sweep's first point.
+    probe : dict, optional
+        The row of the first point (a modes sweep's mode names), or None.
+
+    Returns
+    -------
+    tuple of (list of str, dict of str to str)
+        The result column names and their SI units by name.
+    """
+    from bearingsim.scenes.analysis_table import analysis_units
+    from bearingsim.scenes.statics_table import statics_of
+
+    kind = prep.scene.analysis
+    if kind == "transient":
+        system = prep.system
+        units = {**system.variable_units, **{n: q.unit for n, q in prep.post.items()},
+                 **{p.name: p.unit for p in system.params}}
+        return ([*prep.outputs, *TRANSIENT_COLUMNS],
+                {**{n: units[n] for n in prep.outputs if n in units}, "time_constant": "s"})
+    if kind == "statics":
+        names = list(statics_of(prep).columns)
+    elif kind == "modes":
+        names = [n for n in (probe or {}) if not n.startswith("_")]
+    else:
+        names = list(prep.outputs)
+    units = analysis_units(prep, [probe] if probe else [])
+    return names, {n: units[n] for n in names if units.get(n)}
+
+
+def column_units(prep: Prepared, keys: list[str], results: dict[str, str]
+                 ) -> dict[str, str]:
+    """Unit of every numeric sweep column: the swept inputs, parameters and initial values
+    (from the first model; every model of a sweep has the same names), the results' and
+    ``wall_s``.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared model of the sweep's first point.
+    keys : list of str
+        The swept keys.
+    results : dict of str to str
+        SI units of the result columns (:func:`result_columns`).
+
+    Returns
+    -------
+    dict of str to str
+        SI unit by column name.
+    """
+    system = prep.system
+    units = {**system.variable_units, **{p.name: p.unit for p in system.params}}
+    out = dict(results)
+    for key in keys:
+        head, _, name = key.partition(".")
+        if head in ("inputs", "parameters", "initial") and name in units:
+            out[key] = units[name]
+    out["wall_s"] = "s"
+    return out
+
+
+def table_row(index: int, values: dict[str, Any], results: list[str],
+              r: dict[str, Any]) -> dict[str, Any]:
+    """The table row of a finished point: its number, swept values, status, results (NaN
+    when it failed), wall time [s] and error.
+
+    Parameters
+    ----------
+    index : int
+        The point number.
+    values : dict
+        The point's swept values by key (:func:`~bearingsim.scenes.sweep_grid.si_values`).
+    results : list of str
+        The result columns (:func:`result_columns`).
+    r : dict
+        What the worker returned for the point (``status``, ``final``, ``wall_s``,
+        ``error``).
+
+    Returns
+    -------
+    dict
+        The row by column name.
+    """
+    row: dict[str, Any] = {"point": index, **values, "status": r["status"]}
+    for name in results:
+        row[name] = r["final"].get(name, float("nan")) if r["status"] == "ok" else float("nan")
+    row["wall_s"] = round(float(r.get("wall_s", float("nan"))), 4)
+    row["error"] = r["error"]
+    return row
+
+
+def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
+                  results: list[str], units: dict[str, str], stem: str) -> list:
+    """``<stem>.png``: each result against the first numeric swept key (engineering units);
+    a transient's one panel per output, an analysis's one curve per value of the other keys
+    (:func:`~bearingsim.scenes.plots.characteristic_figures`, natural frequencies in one
+    panel); none when no swept key is numeric.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared model of the sweep's first point.
+    rows : list of dict
+        The sweep's rows (:func:`table_row`).
+    keys : list of str
+        The swept keys.
+    results : list of str
+        The result columns.
+    units : dict of str to str
+        SI unit by column name (:func:`column_units`).
+    stem : str
+        File name stem of the sweep's files.
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        File name and figure (none or one).
+    """
+    from matplotlib.figure import Figure
+
+    from bearingsim.scenes.plots import characteristic_figures
+
+    ok = [r for r in rows if r["status"] == "ok"]
+    numeric = [k for k in keys if ok and all(isinstance(r.get(k), (int, float))
+                                             and not isinstance(r.get(k), bool) for r in ok)]
+    outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
+    if not numeric or not outputs:
+        return []
+    kind = prep.scene.analysis
+    if kind != "transient":
+        order = [numeric[0], *(k for k in keys if k != numeric[0])]
+        what = "modes" if kind == "modes" else "steady"
+        figs = characteristic_figures(prep, ok, order, units, outputs, what)
+        return [(f"{stem}.png", fig) for _, fig in figs[:1]]
+    x_key = numeric[0]
+    x = np.array([r[x_key] for r in ok], dtype=float)
+    order = np.argsort(x)
+    x_factor, x_unit = display_unit(units.get(x_key, ""), x)
+    fig = Figure(figsize=(7, 1.9 * len(outputs) + 1))
+    axes = np.atleast_1d(fig.subplots(len(outputs), 1, sharex=True))
+    for ax, name in zip(axes, outputs, strict=True):
+        y = np.array([r[name] for r in ok], dtype=float)
+        factor, unit = display_unit(units[name], y)
+        ax.plot(x[order] * x_factor, y[order] * factor, "o-")
+        ax.set_ylabel(f"{name}\n[{unit}]", fontsize=8)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(f"{x_key} [{x_unit}]")
+    fig.tight_layout()
+    return [(f"{stem}.png", fig)]
