@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-import os
 import pickle
 import shutil
 import time
@@ -47,11 +46,12 @@ from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
 from bearingsim.assembler.pipeline import assemble
 from bearingsim.assembler.system import FunctionTable, System
+from bearingsim.cache_paths import cache_root
 from bearingsim.files import atomic_path
 from bearingsim.language.component import Component
 from bearingsim.language.declarations import Parameter
 
-__all__ = ["CacheInfo", "assemble_cached", "cache_info", "cache_root", "clear_cache",
+__all__ = ["CacheInfo", "assemble_cached", "cache_info", "clear_cache",
            "dumps_system", "loads_system", "read_payload", "systems_dir"]
 
 MAGIC = b"bearingsim-system\n"
@@ -60,27 +60,13 @@ SUFFIX = ".bsys"
 """File suffix of an entry."""
 
 
-def cache_root() -> Path:
-    """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root of every cache of bearingsim
-    (assembled systems here, compiled kernel libraries by
-    :func:`~bearingsim.simulation.c_compiler.default_cache_dir`).
-
-    Returns
-    -------
-    Path
-        The cache root folder.
-    """
-    root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
-    return Path(root)
-
-
 def systems_dir(root: str | Path | None = None) -> Path:
     """The folder of the assembled systems: ``<root>/systems``.
 
     Parameters
     ----------
     root : str or os.PathLike, optional
-        Cache root (None: :func:`cache_root`).
+        Cache root (None: :func:`~bearingsim.cache_paths.cache_root`).
 
     Returns
     -------
@@ -300,7 +286,7 @@ def assemble_cached(component: Component, outputs: list[str] | None = None, *,
     cache : bool
         Look up and store the entry; False: assemble only.
     cache_dir : path, optional
-        Root of the cache (default :func:`cache_root`).
+        Root of the cache (default :func:`~bearingsim.cache_paths.cache_root`).
     **options
         Keywords of ``assemble`` (``newton_tol``, ``rootfinder``); with ``extra_passes`` the
         model is assembled and not cached (user passes are not part of the key).
@@ -378,7 +364,7 @@ def cache_info(root: str | Path | None = None) -> CacheInfo:
     Parameters
     ----------
     root : str or os.PathLike, optional
-        Cache root (None: :func:`cache_root`).
+        Cache root (None: :func:`~bearingsim.cache_paths.cache_root`).
 
     Returns
     -------
@@ -399,7 +385,7 @@ def clear_cache(root: str | Path | None = None) -> CacheInfo:
     Parameters
     ----------
     root : str or os.PathLike, optional
-        Cache root (None: :func:`cache_root`).
+        Cache root (None: :func:`~bearingsim.cache_paths.cache_root`).
 
     Returns
     -------

@@ -26,7 +26,7 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
-from bearingsim.assembler.cache import cache_root
+from bearingsim.cache_paths import cache_root
 from bearingsim.errors import BearingsimError
 
 __all__ = ["Build", "CompileError", "c_compiler", "compilations", "compile_estimate",
@@ -110,7 +110,7 @@ class CompileError(BearingsimError):
 
 def default_cache_dir() -> Path:
     """``$BEARINGSIM_CACHE`` or ``~/.cache/bearingsim``: the root shared with the assembled
-    systems (:func:`bearingsim.assembler.cache.cache_root`; found once per value of the
+    systems (:func:`bearingsim.cache_paths.cache_root`; found once per value of the
     variables it depends on: every run's kernel look-up asks for it).
 
     Returns

@@ -10,6 +10,7 @@ import pytest
 from bearingsim.assembler import assemble, assemble_cached
 from bearingsim.assembler import cache as system_cache
 from bearingsim.assembler.fingerprint import structure_key
+from bearingsim.cache_paths import cache_root
 from bearingsim.errors import ParameterError
 from tests.models import Pendulum, SpringMassChain, TwoInertiaDrive
 
@@ -141,7 +142,7 @@ def test_cache_info_and_clear(tmp_path, monkeypatch):
     monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
     from bearingsim.simulation.c_compiler import default_cache_dir
 
-    assert default_cache_dir() == tmp_path == system_cache.cache_root()
+    assert default_cache_dir() == tmp_path == cache_root()
     assemble_cached(TwoInertiaDrive())
     (tmp_path / "bsm_ode_0123456789abcdef.so").write_bytes(b"x" * 10)
     (tmp_path / "notes.txt").write_text("not ours")
