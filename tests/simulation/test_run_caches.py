@@ -141,3 +141,16 @@ def test_input_values_at_times_are_new_arrays(system):
     first[:] = -1.0
     np.testing.assert_array_equal(signal.at([0.0, 1.0])[2], [100.0, 101.0])
     assert signal.at([1.0])[2, 0] == 101.0
+
+
+
+
+def test_states_are_finite_when_their_sum_overflows_and_not_with_one_nan_or_inf():
+    """CVODES' states are added up first (one pass) and looked at one by one only when the
+    sum is not finite."""
+    from bearingsim.simulation.sundials import _all_finite
+
+    assert _all_finite([1e308, 1e308, -5.0]) and _all_finite([])
+    assert not _all_finite([1e308, 1e308, float("nan")])
+    assert not _all_finite([1.0, float("inf"), 2.0])
+    assert not _all_finite([float("inf"), float("-inf")])
