@@ -37,8 +37,9 @@ from bench.common import Section, fmt, markdown_table
 __all__ = ["BASELINE", "measure", "section"]
 
 ROOT = Path(__file__).resolve().parents[1]
-BASELINE = "29a6fd4"
-"""The commit before the second round of work on fixed costs (the first began at 7955f3a)."""
+BASELINE = "0877683"
+"""The commit before the third round of work on fixed costs (the first began at 7955f3a, the
+second at 29a6fd4)."""
 RUN_S = 1e-3
 """Length of the timed runs [s]."""
 
