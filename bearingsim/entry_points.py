@@ -1,6 +1,7 @@
 """The argument layer of public entry points: a call with unknown or missing arguments raises
 :class:`~bearingsim.errors.ParameterError` naming the function, the argument and the accepted
-ones (:func:`entry_point`; re-exported by :mod:`bearingsim.validation`)."""
+ones (:func:`entry_point`; re-exported by :mod:`bearingsim.validation`); argument values as
+hashable keys, for remembering what was checked or built from them (:func:`value_key`)."""
 
 from __future__ import annotations
 
@@ -8,10 +9,11 @@ import difflib
 import functools
 import inspect
 from collections.abc import Callable
+from typing import Any
 
 from bearingsim.errors import ParameterError
 
-__all__ = ["entry_point"]
+__all__ = ["entry_point", "value_key"]
 
 
 def entry_point(func: Callable) -> Callable:
@@ -66,16 +68,45 @@ def _binding_rule(signature: inspect.Signature) -> Callable[[tuple, dict], bool]
         return None
     positional = [p.name for p in params if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD]
     names = frozenset(p.name for p in params)
-    required = [k for k, p in enumerate(params) if p.default is inspect.Parameter.empty]
-    required_names = [params[k].name for k in required]
+    required = [(k, p.name) for k, p in enumerate(params) if p.default is inspect.Parameter.empty]
+    # per number of positional arguments: the names they fill, the required names left
+    filled = [tuple(positional[:n]) for n in range(len(positional) + 1)]
+    left = [tuple(name for k, name in required if k >= n) for n in range(len(positional) + 1)]
 
     def binds(args: tuple, kwargs: dict) -> bool:
         n = len(args)
-        if n > len(positional) or not names.issuperset(kwargs):
+        if n >= len(filled) or not names.issuperset(kwargs):
             return False
-        if any(name in kwargs for name in positional[:n]):
-            return False
-        return all(k < n or name in kwargs for k, name in zip(required, required_names,
-                                                               strict=True))
+        for name in filled[n]:
+            if name in kwargs:
+                return False
+        for name in left[n]:
+            if name not in kwargs:
+                return False
+        return True
 
     return binds
+
+
+def value_key(value: Any) -> tuple | None:
+    """A hashable key of an argument value, equal only for values that are the same to every
+    check and conversion: a plain number by its bits (``float.hex``: ``-0.0`` is not ``0.0``,
+    an ``int`` not the equal ``float``), text by itself; None for anything else (a quantity,
+    an array, a function, a ``bool``), whose checks are then made anew on every call.
+
+    Parameters
+    ----------
+    value : object
+        An argument value.
+
+    Returns
+    -------
+    tuple or None
+        ``("float", hex)``, ``("int", value)`` or ``("str", value)``, else None.
+    """
+    kind = type(value)
+    if kind is float:
+        return ("float", value.hex())
+    if kind is int or kind is str:
+        return (kind.__name__, value)
+    return None

@@ -37,8 +37,9 @@ from bench.common import Section, fmt, markdown_table
 __all__ = ["BASELINE", "measure", "section"]
 
 ROOT = Path(__file__).resolve().parents[1]
-BASELINE = "29a6fd4"
-"""The commit before the second round of work on fixed costs (the first began at 7955f3a)."""
+BASELINE = "0877683"
+"""The commit before the third round of work on fixed costs (the first began at 7955f3a, the
+second at 29a6fd4)."""
 RUN_S = 1e-3
 """Length of the timed runs [s]."""
 
@@ -163,9 +164,9 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "checks, input functions, start values, kernel look-up, observed variables, the "
         f"result. *before*: the same runs on commit {baseline}, in a subprocess of this run, "
         "side by side (the machine is shared: absolute times move with its load, the ratios "
-        "less). A scene that states no method ran scipy's BDF before (the old scene default) "
-        "and now runs the method `simulate` chooses (`method=None`: CVODES on the VM for the "
-        "tiny torque-level models). Models without states (quasi-static levels) integrate "
+        "less). A scene that states no method runs the method `simulate` chooses "
+        "(`method=None`: CVODES on the VM for the tiny torque-level models). Models without "
+        "states (quasi-static levels) integrate "
         "nothing: their whole call is the per-call cost plus the solve of the nonlinear blocks "
         "at the output points (*total*). Goal: per-call cost <= 0.3 ms.\n\n"
         f"Command: `python -m bench.per_call --baseline {baseline} --repeats {repeats}`\n\n"

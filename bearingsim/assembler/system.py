@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -12,6 +13,7 @@ import numpy as np
 from bearingsim.assembler.dae import Param
 from bearingsim.assembler.mapped_forms import MappedForms
 from bearingsim.assembler.numeric import buffered
+from bearingsim.entry_points import value_key
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
 from bearingsim.units import to_si, unit_label
@@ -131,6 +133,12 @@ class System:
     """The outputs ``assemble`` was asked for (None: all variables kept)."""
 
     # ---------------------------------------------------------------- names
+    @functools.cached_property
+    def _layout(self) -> _Layout:
+        """Names, indices and default vectors, gathered on first use (a system is not changed
+        after assembly; every public accessor hands out copies)."""
+        return _Layout(self)
+
     @property
     def state_names(self) -> list[str]:
         """Dotted names of the states, in vector order.
@@ -138,9 +146,9 @@ class System:
         Returns
         -------
         list of str
-            The names.
+            The names (a new list).
         """
-        return [s.name for s in self.states]
+        return list(self._layout.state_names)
 
     @property
     def input_names(self) -> list[str]:
@@ -149,9 +157,9 @@ class System:
         Returns
         -------
         list of str
-            The names.
+            The names (a new list).
         """
-        return [s.name for s in self.inputs]
+        return list(self._layout.input_names)
 
     @property
     def output_names(self) -> list[str]:
@@ -160,7 +168,7 @@ class System:
         Returns
         -------
         list of str
-            The names.
+            The names (a new list).
         """
         return [s.name for s in self.outputs]
 
@@ -171,9 +179,20 @@ class System:
         Returns
         -------
         list of str
-            The names.
+            The names (a new list).
         """
-        return [q.name for q in self.params]
+        return list(self._layout.parameter_names)
+
+    @property
+    def input_ranges(self) -> tuple[tuple[float | None, float | None], ...]:
+        """The valid range ``(low, high)`` of every input, in vector order (None: unbounded).
+
+        Returns
+        -------
+        tuple of (float or None, float or None)
+            The ranges.
+        """
+        return self._layout.input_ranges
 
     @property
     def n_states(self) -> int:
@@ -198,13 +217,14 @@ class System:
         Returns
         -------
         ndarray
-            The start values.
+            The start values (a new array).
         """
-        x = np.array([s.start for s in self.states], dtype=float)
+        layout = self._layout
+        x = layout.x_start.copy()
         overrides = check_mapping(overrides, "x0", self.name, "state names")
         if not overrides:
             return x
-        index = {s.name: k for k, s in enumerate(self.states)}
+        index = layout.state_index
         values = np.array([_plain_float(v) for v in overrides.values()])
         if np.all(np.isfinite(values)) and all(name in index for name in overrides):
             x[[index[name] for name in overrides]] = values  # every override a finite number
@@ -232,23 +252,36 @@ class System:
         Returns
         -------
         ndarray
-            The parameter vector (SI units).
+            The parameter vector (SI units; a new array).
         """
-        p = np.array([q.value for q in self.params], dtype=float)
-        names = self.parameter_names
+        layout = self._layout
+        p = layout.p_default.copy()
         for name, val in check_mapping(overrides, "parameters", self.name,
                                        "parameter names").items():
-            if name not in names:
-                import difflib
-
-                close = difflib.get_close_matches(name, names, n=5)
-                hint = f"; did you mean {', '.join(close)}?" if close else ""
-                raise ParameterError(f"{self.name}: unknown parameter {name!r}{hint}")
-            k = names.index(name)
-            decl = self.params[k].declaration
-            val = to_si(val, self.params[k].unit, f"{self.name}: parameter {name}")
-            p[k] = decl.validate(val) if decl is not None else float(val)
+            key = value_key(val)
+            found = None if key is None else layout.validated.get((name, key))
+            if found is None:
+                found = self._validated(name, val)
+                if key is not None:
+                    if len(layout.validated) >= VALIDATED_PER_SYSTEM:
+                        del layout.validated[next(iter(layout.validated))]
+                    layout.validated[(name, key)] = found
+            p[found[0]] = found[1]
         return p
+
+    def _validated(self, name: str, value: Any) -> tuple[int, float]:
+        """The position of parameter ``name`` and ``value`` in its SI unit, checked against
+        its declaration (:meth:`p0` without the memory)."""
+        k = self._layout.parameter_index.get(name)
+        if k is None:
+            import difflib
+
+            close = difflib.get_close_matches(name, self._layout.parameter_names, n=5)
+            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            raise ParameterError(f"{self.name}: unknown parameter {name!r}{hint}")
+        decl = self.params[k].declaration
+        value = to_si(value, self.params[k].unit, f"{self.name}: parameter {name}")
+        return k, decl.validate(value) if decl is not None else float(value)
 
     def u_default(self) -> np.ndarray:
         """Default input values.
@@ -256,9 +289,9 @@ class System:
         Returns
         -------
         ndarray
-            The input vector (SI units).
+            The input vector (SI units; a new array).
         """
-        return np.array([s.start for s in self.inputs], dtype=float)
+        return self._layout.u_start.copy()
 
     # ---------------------------------------------------------------- evaluation
     def rhs(self, t: float, x, u=None, p=None) -> np.ndarray:
@@ -352,6 +385,39 @@ class System:
         for s in self.skipped:
             lines.append(f"  skipped: {s}")
         return "\n".join(lines)
+
+
+class _Layout:
+    """What a system's names and default vectors give once (:attr:`System._layout`): name
+    tuples, the index of each state and parameter name, and the start, default parameter and
+    default input vectors (read-only arrays; callers get copies)."""
+
+    def __init__(self, system: System):
+        self.state_names = tuple(s.name for s in system.states)
+        self.input_names = tuple(s.name for s in system.inputs)
+        self.parameter_names = tuple(q.name for q in system.params)
+        self.input_ranges = tuple((s.low, s.high) for s in system.inputs)
+        self.state_index = {name: k for k, name in enumerate(self.state_names)}
+        self.parameter_index: dict[str, int] = {}
+        for k, name in enumerate(self.parameter_names):
+            self.parameter_index.setdefault(name, k)
+        self.x_start = _frozen([s.start for s in system.states])
+        self.p_default = _frozen([q.value for q in system.params])
+        self.u_start = _frozen([s.start for s in system.inputs])
+        self.validated: dict[tuple[str, tuple], tuple[int, float]] = {}
+        """Parameter values checked by :meth:`System.p0`: (name, value key) -> (position,
+        SI value)."""
+
+
+VALIDATED_PER_SYSTEM = 1024
+"""Parameter values whose check a system remembers (the oldest are forgotten first)."""
+
+
+def _frozen(values: list[float]) -> np.ndarray:
+    """``values`` as a read-only float array."""
+    array = np.array(values, dtype=float)
+    array.flags.writeable = False
+    return array
 
 
 def _plain_float(value: Any) -> float:

@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import sys
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.system import System
+from bearingsim.entry_points import value_key
 from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.intervals import locate_problem
@@ -99,6 +100,9 @@ class InputSignal:
     q: np.ndarray
     key: str
     lifted: tuple[tuple[int, int] | None, ...] = ()
+    _evaluated: dict[bytes, np.ndarray] = field(default_factory=dict, compare=False, repr=False)
+    """:meth:`at`'s last results by the bytes of the times (``u`` is a pure function of ``t``
+    and ``q``)."""
 
     def of_time(self) -> ca.Function:
         """``u(t)`` with this run's numbers substituted.
@@ -113,7 +117,8 @@ class InputSignal:
 
     def at(self, times: np.ndarray) -> np.ndarray:
         """Every input at ``times`` [s]: shape ``(n_inputs, len(times))`` (one mapped call of
-        ``u``, the mapped function built once per structure and number of times).
+        ``u``, the mapped function built once per structure and number of times; the last
+        :data:`EVALUATED_PER_SIGNAL` results kept with the signal).
 
         Parameters
         ----------
@@ -123,12 +128,23 @@ class InputSignal:
         Returns
         -------
         numpy.ndarray
-            The inputs, one row per input and one column per time.
+            The inputs, one row per input and one column per time (a new array).
         """
         times = np.atleast_1d(np.asarray(times, dtype=float))
-        n = times.size
-        mapped = mapped_function(self.u, n)
-        return evaluate(mapped, times[None, :], np.repeat(self.q[:, None], n, axis=1))[0]
+        key = times.tobytes()
+        found = self._evaluated.get(key)
+        if found is None:
+            n = times.size
+            mapped = mapped_function(self.u, n)
+            found = evaluate(mapped, times[None, :], np.repeat(self.q[:, None], n, axis=1))[0]
+            if len(self._evaluated) >= EVALUATED_PER_SIGNAL:
+                del self._evaluated[next(iter(self._evaluated))]
+            self._evaluated[key] = found
+        return found.copy()
+
+
+EVALUATED_PER_SIGNAL = 8
+"""Results of :meth:`InputSignal.at` a signal keeps (the oldest are dropped first)."""
 
 
 _SIGNALS: dict[str, ca.Function] = {}
@@ -236,6 +252,43 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
         another quantity.
     """
     inputs = check_mapping(inputs, "inputs", "simulate", "input names")
+    key = _given_key(inputs)
+    signals = system.__dict__.setdefault("_input_signals", {})
+    found = None if key is None else signals.get(key)
+    if found is not None:
+        return found
+    signal = _new_signal(system, inputs)
+    if key is not None:
+        if len(signals) >= SIGNALS_PER_SYSTEM:
+            del signals[next(iter(signals))]
+        signal.q.flags.writeable = False  # shared by the runs with these inputs
+        signals[key] = signal
+    return signal
+
+
+SIGNALS_PER_SYSTEM = 64
+"""Input specifications whose :class:`InputSignal` a system keeps (the oldest dropped first)."""
+
+
+def _given_key(inputs: dict[str, Any]) -> tuple | None:
+    """What determines the signal of ``inputs``, hashable: every value a number or text
+    (:func:`~bearingsim.entry_points.value_key`) or a scene expression (by its text); None when a
+    value is anything else (a table, a quantity, a function that may read values that
+    change)."""
+    key = []
+    for name, spec in inputs.items():
+        found = value_key(spec)
+        if found is None:
+            text = getattr(spec, "expression", None)
+            if not (isinstance(text, str) and callable(spec)):
+                return None
+            found = ("expression", text)
+        key.append((name, found))
+    return tuple(key)
+
+
+def _new_signal(system: System, inputs: dict[str, Any]) -> InputSignal:
+    """:func:`input_signal` without the memory (``inputs`` checked to be a dict)."""
     unknown = set(inputs) - set(system.input_names)
     if unknown:
         raise ParameterError(
@@ -350,8 +403,7 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
     if not system.inputs or times.size == 0:
         return
     t0, t1 = float(times[0]), float(times[-1])
-    key = (tuple((sig.low, sig.high) for sig in system.inputs), signal.key,
-           signal.q.tobytes(), t0, t1)
+    key = (system.input_ranges, signal.key, signal.q.tobytes(), t0, t1)
     notes = _CHECKED.get(key)
     if notes is None:
         notes = _check_signal(system, signal, times)

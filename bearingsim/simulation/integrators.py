@@ -464,4 +464,8 @@ def methods_of(backend: str) -> tuple[str, ...]:
     tuple of str
         Its method names.
     """
-    return tuple(name for name, m in METHODS.items() if m.backend == backend)
+    return _METHODS_OF.get(backend, ())
+
+
+_METHODS_OF = {b: tuple(name for name, m in METHODS.items() if m.backend == b) for b in BACKENDS}
+"""The method names of every backend, in :data:`METHODS` order (:func:`methods_of`)."""

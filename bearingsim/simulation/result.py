@@ -15,7 +15,47 @@ from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path, write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
 
-__all__ = ["Result"]
+__all__ = ["Result", "ResultLayout"]
+
+
+@dataclass(frozen=True)
+class ResultLayout:
+    """What every result of one system shares: the observed variables' names, the units and
+    descriptions by name, the variables shown first, and the row of each name. Never changed
+    (a :class:`Result` hands out copies).
+
+    Attributes
+    ----------
+    names : tuple of str
+        Dotted names of the observed variables, in row order.
+    units : dict
+        Unit of each variable by name.
+    descriptions : dict
+        What each variable is, by name.
+    outputs : tuple of str
+        The variables asked for (see :attr:`Result.outputs`).
+    input_names, parameter_names : tuple of str
+        The system's inputs and parameters, in vector order.
+    index : dict
+        Row of each name.
+    """
+
+    names: tuple[str, ...]
+    units: dict[str, str]
+    descriptions: dict[str, str]
+    outputs: tuple[str, ...]
+    input_names: tuple[str, ...]
+    parameter_names: tuple[str, ...]
+    index: dict[str, int] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "index", {name: k for k, name in enumerate(self.names)})
+
+
+_MADE_ON_FIRST_READ = {"names": list, "units": dict, "descriptions": dict, "outputs": list,
+                       "inputs": dict, "parameters": dict}
+"""The fields a result of :meth:`Result.of_run` makes on first read (the first four copied
+from its layout)."""
 
 
 @dataclass
@@ -52,6 +92,13 @@ class Result:
         The variables asked for (the outputs the system was assembled for, else the
         assembly's own variables), shown first and alone by :meth:`to_pandas`,
         :meth:`to_xarray` and :meth:`plot` unless ``internal=True``; empty: all.
+
+    A result of :func:`~bearingsim.simulation.simulate` (:meth:`of_run`) makes its
+    ``names``, ``units``, ``descriptions``, ``outputs``, ``inputs`` and ``parameters`` when
+    they are first read, from what every run of its system shares (:class:`ResultLayout`) and
+    the run's own numbers: a run whose result is not read, as a sweep point, does not copy a
+    thousand names; each is the result's own, so a result changed by its user changes no
+    other result.
     """
 
     t: np.ndarray
@@ -64,10 +111,61 @@ class Result:
     descriptions: dict[str, str] = field(default_factory=dict)
     outputs: list[str] = field(default_factory=list)
 
+    @classmethod
+    def of_run(cls, t: np.ndarray, values: np.ndarray, layout: ResultLayout,
+               stats: dict[str, object], u_end: np.ndarray, p: np.ndarray) -> Result:
+        """The result of a run, its names, units, descriptions, outputs, inputs and
+        parameters made when first read (from ``layout``, ``u_end`` and ``p``).
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            Output times [s].
+        values : numpy.ndarray
+            Shape (len(layout.names), len(t)), in SI units.
+        layout : ResultLayout
+            The system's names, units, descriptions and outputs (never changed).
+        stats : dict
+            Integrator statistics.
+        u_end : numpy.ndarray
+            Every input at ``t[-1]``, in the order of ``layout.input_names`` (not changed
+            later).
+        p : numpy.ndarray
+            The run's parameter vector, in the order of ``layout.parameter_names`` (not
+            changed later).
+
+        Returns
+        -------
+        Result
+            The result.
+        """
+        result = cls.__new__(cls)
+        result.__dict__.update(t=t, values=values, stats=stats, _layout=layout,
+                               _run_vectors={"inputs": u_end, "parameters": p})
+        return result
+
+    def __getattr__(self, name: str):
+        """A field of a result of :meth:`of_run` not read before, made now (called only for
+        attributes the result does not hold)."""
+        layout = self.__dict__.get("_layout")
+        if layout is None or name not in _MADE_ON_FIRST_READ:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        if name in ("inputs", "parameters"):
+            names = layout.input_names if name == "inputs" else layout.parameter_names
+            value = dict(zip(names, self.__dict__["_run_vectors"][name].tolist(), strict=True))
+        else:
+            value = _MADE_ON_FIRST_READ[name](getattr(layout, name))
+        self.__dict__[name] = value
+        return value
+
     @functools.cached_property
     def _index(self) -> dict[str, int]:
         """Row of each variable by name (built on first use: a run that is only looked at
-        once, or not at all, as a sweep point, does not pay for it)."""
+        once, or not at all, as a sweep point, does not pay for it; a result of
+        :meth:`of_run` whose names were never read uses its layout's)."""
+        layout = self.__dict__.get("_layout")
+        if layout is not None and "names" not in self.__dict__:
+            return layout.index
         return {name: k for k, name in enumerate(self.names)}
 
     def _series(self, name: str) -> np.ndarray:

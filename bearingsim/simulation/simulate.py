@@ -3,6 +3,7 @@ integrator chosen from :data:`~bearingsim.simulation.integrators.METHODS`, obser
 
 from __future__ import annotations
 
+import functools
 import time as _time
 import warnings
 from typing import Any
@@ -26,7 +27,7 @@ from bearingsim.simulation.integrators import (
     Trajectory,
     methods_of,
 )
-from bearingsim.simulation.result import Result
+from bearingsim.simulation.result import Result, ResultLayout
 from bearingsim.simulation.steady import steady_state
 from bearingsim.simulation.sundials import LINEAR_SOLVERS
 from bearingsim.validation import check_choice, check_flag, check_range, entry_point
@@ -256,26 +257,23 @@ def simulate(
                 f"{system.name}: the variables could not be evaluated at the output times: "
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
-    units = system.variable_units
-    u_end = signal.at(ts[-1])[:, 0]
-    return Result(ts, list(system.observed_names), values, units, stats,
-                  inputs=dict(zip(system.input_names, u_end.tolist(), strict=True)),
-                  parameters=dict(zip(system.parameter_names, p.tolist(), strict=True)),
-                  descriptions=dict(system.observed_descriptions),
-                  outputs=_shown_outputs(system))
+    return Result.of_run(ts, values, _result_layout(system), stats, signal.at(ts)[:, -1], p)
 
 
-def _shown_outputs(system: System) -> list[str]:
-    """The variables a result shows first: the outputs the system was assembled for, else the
-    assembly's own variables (undotted names: ``Rs``, ``w_shaft``, not connector torques);
-    found once per system (a new list each call)."""
-    shown = system.__dict__.get("_shown_outputs")
-    if shown is None:
+def _result_layout(system: System) -> ResultLayout:
+    """The names, units, descriptions and shown outputs every result of ``system`` shares
+    (made once per system). Shown first: the outputs the system was assembled for, else the
+    assembly's own variables (undotted names: ``Rs``, ``w_shaft``, not connector torques)."""
+    layout = system.__dict__.get("_result_layout")
+    if layout is None:
         requested = getattr(system, "requested_outputs", None)
-        shown = system.__dict__["_shown_outputs"] = (
-            [n for n in requested if n in system.observed_units] if requested else
-            [n for n in system.observed_names if "." not in n and not n.startswith("der(")])
-    return list(shown)
+        shown = ([n for n in requested if n in system.observed_units] if requested else
+                 [n for n in system.observed_names if "." not in n and not n.startswith("der(")])
+        layout = system.__dict__["_result_layout"] = ResultLayout(
+            tuple(system.observed_names), system.variable_units,
+            dict(system.observed_descriptions), tuple(shown), tuple(system.input_names),
+            tuple(system.parameter_names))
+    return layout
 
 
 def _method_backend(method: str | None, backend: str | None
@@ -351,6 +349,8 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
                 f"simulate: n_points must be an integer >= 2 [1], got {n_points!r}"
             )
         check_range(n_points, "n_points", "1", 2, MAX_OUTPUT_BYTES // 16, where="simulate")
+        if type(t_start) is float and type(t_end) is float:
+            return _even_times(t_start.hex(), t_end.hex(), int(n_points)).copy()
         return np.linspace(t_start, t_end, int(n_points))
     times = np.asarray(check_range(t_eval, "t_eval", "s", where="simulate"), dtype=float)
     if times.ndim != 1 or times.size == 0:
@@ -368,6 +368,15 @@ def _output_times(t_start: float, t_end: float, n_points: Any, t_eval: Any) -> n
     return times
 
 
+@functools.lru_cache(maxsize=64)
+def _even_times(t_start: str, t_end: str, n: int) -> np.ndarray:
+    """``numpy.linspace(t_start, t_end, n)`` of the times given by their bits
+    (``float.hex``: ``-0.0`` is not ``0.0``), made once per span and number (read-only)."""
+    times = np.linspace(float.fromhex(t_start), float.fromhex(t_end), n)
+    times.flags.writeable = False
+    return times
+
+
 def _check_times(t_eval: np.ndarray, t_start: float, t_end: float) -> np.ndarray:
     """The times the inputs are checked at: the output times with the start and end time."""
     if t_eval[0] == t_start and t_eval[-1] == t_end:
@@ -378,9 +387,10 @@ def _check_times(t_eval: np.ndarray, t_start: float, t_end: float) -> np.ndarray
 def _check_finite(system: System, ts: np.ndarray, values: np.ndarray) -> None:
     """Raise if a variable is not finite at an output time (e.g. a Newton block of an algebraic
     loop that did not converge), naming the first time and the variables."""
-    bad = ~np.isfinite(values)
-    if not bad.any():
+    finite = np.isfinite(values)
+    if finite.all():
         return
+    bad = ~finite
     k = int(np.argmax(bad.any(axis=0)))
     names = [n for n, b in zip(system.observed_names, bad[:, k], strict=True) if b]
     raise SimulationError(

@@ -49,6 +49,7 @@ import atexit
 import contextlib
 import functools
 import io
+import math
 import os
 import signal
 import sys
@@ -587,34 +588,41 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     finally:
         if bar is not None:
             bar.close()
-    xs = built.from_integrator(_dense(out["xf"], n_x, tau.size))
-    if not np.all(np.isfinite(xs)):
-        k = int(np.argmax(~np.all(np.isfinite(xs), axis=0)))
+    starts = bool(t_eval[0] <= t0)  # the start values are the first output
+    reached = out["xf"].nonzeros()
+    xs = built.from_integrator(_dense(reached, n_x, tau.size, args["x0"] if starts else None))
+    if not _all_finite(reached):
+        k = int(np.argmax(~np.isfinite(xs[:, 1:] if starts else xs).all(axis=0)))
         raise SimulationError(
             f"{method.upper()} produced non-finite states by t = {t_out[k]:.6g} s; "
-            f"{diverged(system, xs[:, k], x0)}")
-    zs = _dense(out["zf"], z0.size, tau.size) if kernel.form == "dae" else None
-    ts = t_out
-    if t_eval[0] <= t0:
-        ts = np.concatenate([[t0], t_out])
-        xs = np.hstack([np.asarray(x0, dtype=float)[:, None], xs])
-        if zs is not None:
-            zs = np.hstack([np.asarray(z0, dtype=float)[:, None], zs])
+            f"{diverged(system, xs[:, k + starts], x0)}")
+    zs = (_dense(out["zf"].nonzeros(), z0.size, tau.size,
+                 np.asarray(z0, dtype=float) if starts else None)
+          if kernel.form == "dae" else None)
+    ts = np.concatenate(([t0], t_out)) if starts else t_out
     values = observe_at(kernel, signal, p, ts, xs, zs)
-    totals: dict[str, float] = {}
-    _add_counts(totals, built.integrator.stats())
     stats = _stats(method, kernel, linear_solver, 0.0 if cached else built.build_time, cached,
-                   totals)
+                   built.integrator.stats())
     stats["progress_observed"] = observed
     stats["integrate_cpu_time"] = integrate_cpu_time
     stats["state_order"] = "system" if built.order is None else "minimum degree"
     return SundialsRun(ts, xs, zs, values, stats)
 
 
-def _dense(matrix: ca.DM, rows: int, cols: int) -> np.ndarray:
-    """A dense integrator output as a ``rows x cols`` array, from its nonzeros (column-major;
-    half the cost of ``DM.full``)."""
-    return np.array(matrix.nonzeros(), dtype=float).reshape(rows, cols, order="F")
+def _dense(nonzeros: list[float], rows: int, cols: int, first: np.ndarray | None = None
+           ) -> np.ndarray:
+    """A dense integrator output as a ``rows x cols`` array, from its nonzeros (``DM.nonzeros``,
+    column-major; half the cost of ``DM.full``); with ``first``, that column before them
+    (``cols + 1`` columns, in one array)."""
+    if first is not None:
+        nonzeros, cols = first.tolist() + nonzeros, cols + 1
+    return np.array(nonzeros, dtype=float).reshape(rows, cols, order="F")
+
+
+def _all_finite(values: list[float]) -> bool:
+    """Whether every number is finite: their sum is (one pass in C), else each one is (finite
+    numbers may sum to inf)."""
+    return math.isfinite(sum(values)) or all(map(math.isfinite, values))
 
 
 class _Interrupted:
@@ -685,36 +693,25 @@ def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarra
     """
     n = ts.size
     us = signal.at(ts)
-    ps = np.repeat(p[:, None], n, axis=1)
+    ps = np.concatenate((p,) * n)  # one column per time, column-major
     args = (ts[None, :], xs, us, ps) if zs is None else (ts[None, :], xs, zs, us, ps)
     return evaluate(mapped_function(kernel.observe, n), *args)[0]
 
 
-_COUNTS = {"nsteps": "nsteps", "nfevals": "nfevals", "nlinsetups": "nlinsetups",
-           "nniters": "nniters", "netfails": "netfails", "nncfails": "nncfails",
-           "njevals": "n_call_jacF", "rhs_time": "t_wall_daeF", "jac_time": "t_wall_jacF"}
-"""Counts and timers of a run (summed over its integrator calls) by CasADi's stats names."""
-
-
-def _add_counts(totals: dict[str, float], st: dict[str, Any]) -> None:
-    """Add one integrator call's counts and timers (``Function.stats()``) to ``totals``."""
-    for name, key in _COUNTS.items():
-        if key in st:
-            totals[name] = totals.get(name, 0) + st[key]
-
-
 def _stats(method: str, kernel: Kernel, linear_solver: str, setup_time: float, cached: bool,
-           totals: dict[str, float]) -> dict[str, Any]:
+           counts: dict[str, Any]) -> dict[str, Any]:
+    """A run's statistics (:func:`sundials_run`), its counts and timers from the integrator
+    call's ``Function.stats()``."""
     stats: dict[str, Any] = {"method": method if kernel.form == "ode" else f"{method} (dae)",
                              "form": kernel.form, **kernel.describe(),
                              "linear_solver": linear_solver, "setup_time": setup_time,
                              "integrator_cached": cached}
     for name in ("nsteps", "nfevals", "nlinsetups", "nniters", "netfails", "nncfails"):
-        if name in totals:
-            stats[name] = int(totals[name])
-    stats["njevals"] = int(totals.get("njevals", 0))
-    stats["rhs_time"] = float(totals.get("rhs_time", 0.0))
-    stats["jac_time"] = float(totals.get("jac_time", 0.0))
+        if name in counts:
+            stats[name] = int(counts[name])
+    stats["njevals"] = int(counts.get("n_call_jacF", 0))
+    stats["rhs_time"] = float(counts.get("t_wall_daeF", 0.0))
+    stats["jac_time"] = float(counts.get("t_wall_jacF", 0.0))
     if kernel.form == "dae":
         stats["algebraic_states"] = int(kernel.function.size1_in(2))
     return stats
