@@ -64,7 +64,7 @@ from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import clear_kernel_cache, kernel
 from bearingsim.simulation.ordering import fill_reducing_order, newton_pattern
 from bearingsim.simulation.sparse_lu import SparseLu
-from bearingsim.simulation.sundials import (
+from bearingsim.simulation.sundials_integrators import (
     LINEAR_SOLVERS,
     choose_linear_solver,
     clear_integrator_cache,

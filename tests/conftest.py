@@ -22,7 +22,7 @@ def kernel_cache(tmp_path, monkeypatch):
     """A fresh kernel library cache (``BEARINGSIM_CACHE``), and no kernels or integrators left
     in memory from other tests."""
     from bearingsim.simulation.kernels import clear_kernel_cache
-    from bearingsim.simulation.sundials import clear_integrator_cache
+    from bearingsim.simulation.sundials_integrators import clear_integrator_cache
 
     monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path))
     clear_kernel_cache()

@@ -29,7 +29,7 @@ from bearingsim.simulation.integrators import (
 )
 from bearingsim.simulation.result import Result, ResultLayout
 from bearingsim.simulation.steady import steady_state
-from bearingsim.simulation.sundials import LINEAR_SOLVERS
+from bearingsim.simulation.sundials_integrators import LINEAR_SOLVERS
 from bearingsim.validation import check_choice, check_flag, check_range, entry_point
 
 __all__ = ["simulate", "initial_state"]
@@ -174,8 +174,8 @@ def simulate(
         ``stats["backend_reason"]`` why.
     linear_solver : str, optional
         Backend ``"casadi"``: the SUNDIALS linear solver, one of
-        :data:`~bearingsim.simulation.sundials.LINEAR_SOLVERS`; default by size
-        (:func:`~bearingsim.simulation.sundials.choose_linear_solver`).
+        :data:`~bearingsim.simulation.sundials_integrators.LINEAR_SOLVERS`; default by size
+        (:func:`~bearingsim.simulation.sundials_integrators.choose_linear_solver`).
     max_steps : int
         Step budget of the run [-], >= 1 (default
         :data:`~bearingsim.simulation.budget.DEFAULT_MAX_STEPS`; CVODES and IDAS get it as

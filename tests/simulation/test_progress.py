@@ -22,7 +22,7 @@ from bearingsim.scenes import parse_scene, run_scene
 from bearingsim.simulation import simulate, sundials
 from bearingsim.simulation.c_compiler import c_compiler
 from bearingsim.simulation.progress import DELAY
-from bearingsim.simulation.sundials import clear_integrator_cache
+from bearingsim.simulation.sundials_integrators import clear_integrator_cache
 from tests.models import Pendulum
 
 TOL = {"rtol": 1e-8, "atol": 1e-10}

@@ -19,7 +19,7 @@ from bearingsim.simulation.c_compiler import CompileError, compilations
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import VM, clear_kernel_cache, kernel
 from bearingsim.simulation.ordering import fill_reducing_order
-from bearingsim.simulation.sundials import (
+from bearingsim.simulation.sundials_integrators import (
     DENSE_LIMIT,
     choose_linear_solver,
     clear_integrator_cache,

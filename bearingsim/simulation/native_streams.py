@@ -1,0 +1,123 @@
+"""What native code writes and Ctrl-C during a native call: standard output sent to the null
+device (the MUMPS banner), standard error held aside while a run may be stopped on purpose, and
+SIGINT recorded while CVODES or IDAS run.
+"""
+
+from __future__ import annotations
+
+import _signal
+import contextlib
+import io
+import os
+import signal
+import sys
+import tempfile
+import threading
+from collections.abc import Iterator
+from typing import Any
+
+__all__ = ["Interrupted", "held_stderr", "interrupts", "quiet_stdout"]
+
+
+@contextlib.contextmanager
+def quiet_stdout() -> Iterator[None]:
+    """Send the process's standard output (file descriptor 1) to the null device: MUMPS prints
+    a banner on standard output when CasADi destroys one of its solvers, and has no option
+    against it (CasADi's MUMPS interface sets none)."""
+    try:
+        sys.stdout.flush()
+        saved = os.dup(1)
+    except (OSError, ValueError, AttributeError):  # no standard output to protect
+        yield
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(devnull)
+
+
+@contextlib.contextmanager
+def held_stderr(hold: bool, drop: Any) -> Iterator[None]:
+    """With ``hold``, send the process's standard error (file descriptor 2, and Python's
+    ``sys.stderr``) aside while the context lasts, then copy it to standard error unless
+    ``drop()`` is true:
+    a run its budget stopped ends in a failed evaluation, which the Python layer, CasADi and
+    SUNDIALS each report on standard error; the budget's own error says what happened.
+
+    Parameters
+    ----------
+    hold : bool
+        Whether to hold standard error at all.
+    drop : callable
+        Called at the end: true discards what was held.
+    """
+    if not hold:
+        yield
+        return
+    try:
+        sys.stderr.flush()
+        saved = os.dup(2)
+    except (OSError, ValueError, AttributeError):  # no standard error to hold
+        yield
+        return
+    python_level = io.StringIO()  # Python's own reports go to sys.stderr, not always fd 2
+    with tempfile.TemporaryFile() as held, contextlib.redirect_stderr(python_level):
+        os.dup2(held.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            if not drop():
+                held.seek(0)
+                text = held.read()
+                if text:
+                    os.write(2, text)
+    if not drop() and python_level.getvalue():
+        sys.stderr.write(python_level.getvalue())
+
+
+class Interrupted:
+    """Whether Ctrl-C came during a run (set from the SIGINT handler, in the main thread)."""
+
+    __slots__ = ("value",)
+
+    def __init__(self) -> None:
+        self.value = False
+
+    def is_set(self) -> bool:
+        return self.value
+
+
+@contextlib.contextmanager
+def interrupts() -> Iterator[Interrupted]:
+    """Record Ctrl-C (SIGINT) during a SUNDIALS run: CasADi checks for it between evaluations
+    and turns it into a failed evaluation (a RuntimeError); the flag tells the two apart, so
+    an interrupted run raises KeyboardInterrupt instead of being diagnosed as a failure.
+    Outside the main thread (where Python delivers signals) the flag stays clear.
+
+    The handler is swapped with ``_signal.signal``, the C function under ``signal.signal``:
+    the latter's conversion of the previous handler to an enum costs tens of microseconds per
+    call (a failed enum lookup for a function), a tenth of a short run's fixed cost. The
+    values are the same (SIG_DFL and SIG_IGN as plain ints, which are not callable either).
+    """
+    flag = Interrupted()
+    if threading.current_thread() is not threading.main_thread():
+        yield flag
+        return
+
+    def handler(signum, frame):
+        flag.value = True
+        if callable(previous):
+            previous(signum, frame)
+        raise KeyboardInterrupt
+
+    previous = _signal.signal(signal.SIGINT, handler)
+    try:
+        yield flag
+    finally:
+        _signal.signal(signal.SIGINT, previous)
