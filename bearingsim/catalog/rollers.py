@@ -10,13 +10,12 @@ geometry questions (:class:`~bearingsim.components.rolling_element.ElementGeomet
 from __future__ import annotations
 
 import csv
-import math
 import re
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
-from bearingsim.catalog.geometry import check_speed_limit
+from bearingsim.catalog.geometry import check_elements_fit, check_speed_limit
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physical_checks import check_diameter
 from bearingsim.units import mm, rpm_to_rad_s
@@ -109,18 +108,9 @@ class RollerBearingGeometry:
             if getattr(self, name) is not None:
                 check_range(getattr(self, name), name, "N" if "load" in name else "rad/s", 0.0,
                             low_inclusive=False, where=where)
-        d, big_d, dw, dm = self.bore, self.outside_diameter, self.roller_diameter, \
-            self.pitch_diameter
-        if not (d < dm - dw and dm + dw < big_d):
-            raise ParameterError(
-                f"{where}: the rollers do not fit the ring section: need bore < dm - Dw and "
-                f"dm + Dw < outside_diameter, got bore = {d:g}, dm = {dm:g}, Dw = {dw:g}, "
-                f"outside_diameter = {big_d:g} [m]")
-        if dw >= dm * math.sin(math.pi / self.roller_count):
-            raise ParameterError(
-                f"{where}: {self.roller_count} rollers of Dw = {dw:g} m do not fit on the pitch "
-                f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
-                f"{dm * math.sin(math.pi / self.roller_count):g} m)")
+        check_elements_fit(where, "rollers", self.roller_count, self.bore, self.outside_diameter,
+                           self.roller_diameter, self.pitch_diameter)
+        dw = self.roller_diameter
         if self.roller_length >= self.width:
             raise ParameterError(
                 f"{where}: roller_length = {self.roller_length:g} m must be below the width "
