@@ -15,7 +15,11 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
-from bearingsim.catalog.geometry import check_elements_fit, check_speed_limit
+from bearingsim.catalog.geometry import (
+    check_catalogue_values,
+    check_elements_fit,
+    check_speed_limit,
+)
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physical_checks import check_diameter
 from bearingsim.units import mm, rpm_to_rad_s
@@ -103,11 +107,9 @@ class RollerBearingGeometry:
             check_diameter(getattr(self, name), name, where)
         check_range(self.diametral_clearance, "diametral_clearance", "m", 0.0,
                     0.1 * self.roller_diameter, where=where)
-        for name in ("dynamic_load_rating", "static_load_rating", "fatigue_load_limit",
-                     "reference_speed", "limiting_speed"):
-            if getattr(self, name) is not None:
-                check_range(getattr(self, name), name, "N" if "load" in name else "rad/s", 0.0,
-                            low_inclusive=False, where=where)
+        check_catalogue_values(self, ("dynamic_load_rating", "static_load_rating",
+                                      "fatigue_load_limit", "reference_speed", "limiting_speed"),
+                               where)
         check_elements_fit(where, "rollers", self.roller_count, self.bore, self.outside_diameter,
                            self.roller_diameter, self.pitch_diameter)
         dw = self.roller_diameter

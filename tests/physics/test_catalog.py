@@ -137,8 +137,10 @@ def test_preload_classes_validated():
 @pytest.mark.parametrize("changes,words", [
     (dict(roller_diameter=0.02), ["the rollers do not fit the ring section", "Dw = 0.02"]),
     (dict(roller_count=30), ["30 rollers of Dw", "do not fit on the pitch circle"]),
+    (dict(fatigue_load_limit=-1.0), ["fatigue_load_limit", "[N]"]),
+    (dict(limiting_speed=0.0), ["limiting_speed", "[rad/s]"]),
 ])
-def test_roller_geometry_refuses_rollers_that_do_not_fit(changes, words):
+def test_roller_geometry_refuses_rollers_that_do_not_fit_and_bad_ratings(changes, words):
     with pytest.raises(ParameterError) as err:
         dataclasses.replace(get_roller_bearing("NU206"), **changes)
     for word in words:
