@@ -20,9 +20,10 @@ from bearingsim.catalog.geometry import (
     check_elements_fit,
     check_speed_limit,
 )
+from bearingsim.catalog.table_rows import optional_value, shared_columns
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physical_checks import check_diameter
-from bearingsim.units import mm, rpm_to_rad_s
+from bearingsim.units import mm
 from bearingsim.validation import check_count, check_range
 
 __all__ = ["RollerBearingGeometry", "get_roller_bearing", "list_roller_bearings",
@@ -197,29 +198,14 @@ class RollerBearingGeometry:
                           f"the limiting speed of {self.designation}")
 
 
-def _optional(text: str, scale: float) -> float | None:
-    return float(text) * scale if text.strip() else None
-
-
 def _row_to_geometry(row: dict[str, str]) -> RollerBearingGeometry:
     return RollerBearingGeometry(
-        designation=row["designation"],
-        bore=mm(float(row["d_mm"])),
-        outside_diameter=mm(float(row["D_mm"])),
-        width=mm(float(row["B_mm"])),
+        **shared_columns(row),
         roller_count=int(row["Z"]),
         roller_diameter=mm(float(row["Dw_mm"])),
-        pitch_diameter=mm(float(row["dm_mm"])),
         roller_length=mm(float(row["Lwe_mm"])),
-        diametral_clearance=float(row["Pd_um"]) * 1e-6,
-        dynamic_load_rating=_optional(row["C_kN"], 1e3),
-        static_load_rating=_optional(row["C0_kN"], 1e3),
-        fatigue_load_limit=_optional(row["Pu_kN"], 1e3),
-        reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),
-        limiting_speed=_optional(row["lim_speed_rpm"], rpm_to_rad_s(1.0)),
+        fatigue_load_limit=optional_value(row["Pu_kN"], 1e3),
         explorer=row["explorer"].strip() == "1",
-        estimated=tuple(f for f in row["estimated"].split(";") if f),
-        source=row["source"],
     )
 
 
