@@ -30,6 +30,7 @@ __all__ = [
     "check_count",
     "check_number",
     "check_options",
+    "options_object",
     "check_range",
     "keyword_names",
     "table_entry",
@@ -282,6 +283,36 @@ def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str
         ctx = f" {context}" if context else ""
         raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
                              f"accepted: {', '.join(accepted) or 'none'}")
+
+
+def options_object(options: Any, kind: type, where: str) -> Any:
+    """An options object of type ``kind``: a default ``kind()`` for None, ``options`` itself
+    when it is one, else an error.
+
+    Parameters
+    ----------
+    options : object or None
+        The options given to a constructor.
+    kind : type
+        The options class (a dataclass whose fields all have defaults).
+    where : str
+        Function or component name, used in the message.
+
+    Returns
+    -------
+    object
+        An instance of ``kind``.
+
+    Raises
+    ------
+    ParameterError
+        ``"<where>: options must be a <kind>, got <type>"``.
+    """
+    options = kind() if options is None else options
+    if not isinstance(options, kind):
+        raise ParameterError(f"{where}: options must be a {kind.__name__}, got "
+                             f"{type(options).__name__}")
+    return options
 
 
 def check_mapping(value: Any, name: str, where: str, what: str = "names") -> dict:

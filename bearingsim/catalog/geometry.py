@@ -11,13 +11,14 @@ import math
 import re
 import warnings
 from dataclasses import dataclass
+from typing import Any
 
 from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.validation import check_range
 
-__all__ = ["BearingGeometry", "PreloadClasses", "SPEED_LIMIT_MULTIPLE", "check_speed_limit",
-           "speed_input_bounds"]
+__all__ = ["BearingGeometry", "PreloadClasses", "SPEED_LIMIT_MULTIPLE", "check_catalogue_values",
+           "check_elements_fit", "check_speed_limit", "speed_input_bounds"]
 
 SPEED_LIMIT_MULTIPLE = 2.0
 """Multiple of a limiting speed above which a speed is refused (between 1x and this multiple a
@@ -62,6 +63,68 @@ def check_speed_limit(speed: float, limit: float | None, where: str, what: str) 
     if s > limit:
         warnings.warn(f"{where}: {shown} exceeds {what}, {limit * 30 / math.pi:.0f} r/min",
                       SpeedLimitWarning, stacklevel=4)
+
+
+def check_catalogue_values(geometry: Any, names: tuple[str, ...], where: str) -> None:
+    """Refuse a catalogue value of ``geometry`` that is given (not None) but not positive.
+
+    Parameters
+    ----------
+    geometry : object
+        A bearing geometry (its attributes ``names``).
+    names : tuple of str
+        Attribute names: loads and ratings [N], and speeds (names ending in ``speed``) [rad/s].
+    where : str
+        The geometry, for messages.
+
+    Raises
+    ------
+    ParameterError
+        For a value that is not finite and positive.
+    """
+    for name in names:
+        value = getattr(geometry, name)
+        if value is not None:
+            check_range(value, name, "rad/s" if name.endswith("speed") else "N", 0.0,
+                        low_inclusive=False, where=where)
+
+
+def check_elements_fit(where: str, elements: str, count: int, bore: float,
+                       outside_diameter: float, element_diameter: float,
+                       pitch_diameter: float) -> None:
+    """Refuse rolling elements that do not fit the ring section or the pitch circle.
+
+    Parameters
+    ----------
+    where : str
+        The geometry, for messages.
+    elements : str
+        What the elements are called, plural (``"balls"``, ``"rollers"``).
+    count : int
+        Number of elements Z [-].
+    bore, outside_diameter : float
+        d, D [m].
+    element_diameter : float
+        Dw [m].
+    pitch_diameter : float
+        dm [m].
+
+    Raises
+    ------
+    ParameterError
+        Unless ``bore < dm - Dw``, ``dm + Dw < outside_diameter`` and ``Dw < dm sin(pi/Z)``.
+    """
+    d, big_d, dw, dm = bore, outside_diameter, element_diameter, pitch_diameter
+    if not (d < dm - dw and dm + dw < big_d):
+        raise ParameterError(
+            f"{where}: the {elements} do not fit the ring section: need bore < dm - Dw and "
+            f"dm + Dw < outside_diameter, got bore = {d:g}, dm = {dm:g}, Dw = {dw:g}, "
+            f"outside_diameter = {big_d:g} [m]")
+    if dw >= dm * math.sin(math.pi / count):
+        raise ParameterError(
+            f"{where}: {count} {elements} of Dw = {dw:g} m do not fit on the pitch "
+            f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
+            f"{dm * math.sin(math.pi / count):g} m)")
 
 
 def speed_input_bounds(limit: float | None) -> dict[str, float]:
@@ -208,25 +271,11 @@ class BearingGeometry:
                     where=where)
         check_range(self.diametral_clearance, "diametral_clearance", "m",
                     -0.2 * (self.fi + self.fo - 1.0) * self.ball_diameter, where=where)
-        for name in ("dynamic_load_rating", "static_load_rating", "reference_speed",
-                     "limiting_speed"):
-            if getattr(self, name) is not None:
-                check_range(getattr(self, name), name, "N" if "rating" in name else "rad/s",
-                            0.0, low_inclusive=False, where=where)
+        check_catalogue_values(self, ("dynamic_load_rating", "static_load_rating",
+                                      "reference_speed", "limiting_speed"), where)
         self._check_rating_units(where)
-        d, big_d, dw, dm = self.bore, self.outside_diameter, self.ball_diameter, self.pitch_diameter
-        if not (d < dm - dw and dm + dw < big_d):
-            raise ParameterError(
-                f"{where}: the balls do not fit the ring section: need bore < dm - Dw and "
-                f"dm + Dw < outside_diameter, got bore = {d:g}, dm = {dm:g}, Dw = {dw:g}, "
-                f"outside_diameter = {big_d:g} [m]"
-            )
-        if dw >= dm * math.sin(math.pi / self.ball_count):
-            raise ParameterError(
-                f"{where}: {self.ball_count} balls of Dw = {dw:g} m do not fit on the pitch "
-                f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
-                f"{dm * math.sin(math.pi / self.ball_count):g} m)"
-            )
+        check_elements_fit(where, "balls", self.ball_count, self.bore, self.outside_diameter,
+                           self.ball_diameter, self.pitch_diameter)
         cos_free = 1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance)
         if cos_free < math.cos(_MAX_CONTACT_ANGLE):
             raise ParameterError(

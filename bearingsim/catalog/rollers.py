@@ -10,16 +10,20 @@ geometry questions (:class:`~bearingsim.components.rolling_element.ElementGeomet
 from __future__ import annotations
 
 import csv
-import math
 import re
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
-from bearingsim.catalog.geometry import check_speed_limit
+from bearingsim.catalog.geometry import (
+    check_catalogue_values,
+    check_elements_fit,
+    check_speed_limit,
+)
+from bearingsim.catalog.table_rows import optional_value, shared_columns
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physical_checks import check_diameter
-from bearingsim.units import mm, rpm_to_rad_s
+from bearingsim.units import mm
 from bearingsim.validation import check_count, check_range
 
 __all__ = ["RollerBearingGeometry", "get_roller_bearing", "list_roller_bearings",
@@ -104,23 +108,12 @@ class RollerBearingGeometry:
             check_diameter(getattr(self, name), name, where)
         check_range(self.diametral_clearance, "diametral_clearance", "m", 0.0,
                     0.1 * self.roller_diameter, where=where)
-        for name in ("dynamic_load_rating", "static_load_rating", "fatigue_load_limit",
-                     "reference_speed", "limiting_speed"):
-            if getattr(self, name) is not None:
-                check_range(getattr(self, name), name, "N" if "load" in name else "rad/s", 0.0,
-                            low_inclusive=False, where=where)
-        d, big_d, dw, dm = self.bore, self.outside_diameter, self.roller_diameter, \
-            self.pitch_diameter
-        if not (d < dm - dw and dm + dw < big_d):
-            raise ParameterError(
-                f"{where}: the rollers do not fit the ring section: need bore < dm - Dw and "
-                f"dm + Dw < outside_diameter, got bore = {d:g}, dm = {dm:g}, Dw = {dw:g}, "
-                f"outside_diameter = {big_d:g} [m]")
-        if dw >= dm * math.sin(math.pi / self.roller_count):
-            raise ParameterError(
-                f"{where}: {self.roller_count} rollers of Dw = {dw:g} m do not fit on the pitch "
-                f"circle dm = {dm:g} m (need Dw < dm sin(pi/Z) = "
-                f"{dm * math.sin(math.pi / self.roller_count):g} m)")
+        check_catalogue_values(self, ("dynamic_load_rating", "static_load_rating",
+                                      "fatigue_load_limit", "reference_speed", "limiting_speed"),
+                               where)
+        check_elements_fit(where, "rollers", self.roller_count, self.bore, self.outside_diameter,
+                           self.roller_diameter, self.pitch_diameter)
+        dw = self.roller_diameter
         if self.roller_length >= self.width:
             raise ParameterError(
                 f"{where}: roller_length = {self.roller_length:g} m must be below the width "
@@ -205,29 +198,14 @@ class RollerBearingGeometry:
                           f"the limiting speed of {self.designation}")
 
 
-def _optional(text: str, scale: float) -> float | None:
-    return float(text) * scale if text.strip() else None
-
-
 def _row_to_geometry(row: dict[str, str]) -> RollerBearingGeometry:
     return RollerBearingGeometry(
-        designation=row["designation"],
-        bore=mm(float(row["d_mm"])),
-        outside_diameter=mm(float(row["D_mm"])),
-        width=mm(float(row["B_mm"])),
+        **shared_columns(row),
         roller_count=int(row["Z"]),
         roller_diameter=mm(float(row["Dw_mm"])),
-        pitch_diameter=mm(float(row["dm_mm"])),
         roller_length=mm(float(row["Lwe_mm"])),
-        diametral_clearance=float(row["Pd_um"]) * 1e-6,
-        dynamic_load_rating=_optional(row["C_kN"], 1e3),
-        static_load_rating=_optional(row["C0_kN"], 1e3),
-        fatigue_load_limit=_optional(row["Pu_kN"], 1e3),
-        reference_speed=_optional(row["ref_speed_rpm"], rpm_to_rad_s(1.0)),
-        limiting_speed=_optional(row["lim_speed_rpm"], rpm_to_rad_s(1.0)),
+        fatigue_load_limit=optional_value(row["Pu_kN"], 1e3),
         explorer=row["explorer"].strip() == "1",
-        estimated=tuple(f for f in row["estimated"].split(";") if f),
-        source=row["source"],
     )
 
 

@@ -359,8 +359,9 @@ def ball_pocket_force(
 
 
 @dataclass(frozen=True)
-class CageGuidance:
-    """Land-guidance forces and drag moment on the cage.
+class CageGuidance(FilmForce):
+    """Land-guidance forces and drag moment on the cage: the guiding film's force and the
+    drag moment of its shear.
 
     Attributes
     ----------
@@ -368,18 +369,13 @@ class CageGuidance:
         Film force on the cage [N].
     radial, tangential : float or casadi.SX
         Its components along and across the eccentricity [N].
-    moment : float or casadi.SX
-        Viscous drag moment on the cage about its axis [N m], opposite to the relative speed.
     eps : float or casadi.SX
         Eccentricity ratio [-].
+    moment : float or casadi.SX
+        Viscous drag moment on the cage about its axis [N m], opposite to the relative speed.
     """
 
-    fx: Any
-    fy: Any
-    radial: Any
-    tangential: Any
     moment: Any
-    eps: Any
 
 
 def cage_guidance_force(

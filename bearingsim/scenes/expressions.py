@@ -25,6 +25,7 @@ from __future__ import annotations
 import ast
 import functools
 import math
+import operator
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -50,28 +51,23 @@ def _ramp(t, t0, t1):
     return ca.fmin(ca.fmax((t - t0) / (t1 - t0), 0.0), 1.0)
 
 
+def _casadi(nargs: int, names: str) -> dict[str, tuple[int, Callable[..., Any]]]:
+    """Table entries for CasADi's functions of the same ``names`` (space separated), each
+    taking ``nargs`` arguments (the time argument of a builder is not theirs)."""
+    def builder(fn):
+        return lambda t, *args: fn(*args)
+
+    return {name: (nargs, builder(getattr(ca, name))) for name in names.split()}
+
+
 # name -> (number of arguments (None: 2 or more), builder taking (t, *args))
 FUNCTIONS: dict[str, tuple[int | None, Callable[..., Any]]] = {
     "min": (None, lambda t, *a: _fold(ca.fmin, a)),
     "max": (None, lambda t, *a: _fold(ca.fmax, a)),
     "abs": (1, lambda t, x: ca.fabs(x)),
-    "sqrt": (1, lambda t, x: ca.sqrt(x)),
-    "exp": (1, lambda t, x: ca.exp(x)),
-    "log": (1, lambda t, x: ca.log(x)),
-    "log10": (1, lambda t, x: ca.log10(x)),
-    "sin": (1, lambda t, x: ca.sin(x)),
-    "cos": (1, lambda t, x: ca.cos(x)),
-    "tan": (1, lambda t, x: ca.tan(x)),
-    "asin": (1, lambda t, x: ca.asin(x)),
-    "acos": (1, lambda t, x: ca.acos(x)),
-    "atan": (1, lambda t, x: ca.atan(x)),
-    "atan2": (2, lambda t, y, x: ca.atan2(y, x)),
-    "tanh": (1, lambda t, x: ca.tanh(x)),
-    "sinh": (1, lambda t, x: ca.sinh(x)),
-    "cosh": (1, lambda t, x: ca.cosh(x)),
-    "floor": (1, lambda t, x: ca.floor(x)),
-    "ceil": (1, lambda t, x: ca.ceil(x)),
-    "sign": (1, lambda t, x: ca.sign(x)),
+    **_casadi(1, "sqrt exp log log10 sin cos tan asin acos atan"),
+    **_casadi(2, "atan2"),
+    **_casadi(1, "tanh sinh cosh floor ceil sign"),
     "step": (1, lambda t, t0: _step(t, t0)),
     "ramp": (2, lambda t, t0, t1: _ramp(t, t0, t1)),
     "rpm": (1, lambda t, n: n * (2.0 * math.pi / 60.0)),
@@ -82,19 +78,9 @@ FUNCTIONS: dict[str, tuple[int | None, Callable[..., Any]]] = {
 CONSTANTS = {"pi": math.pi, "e": math.e}
 """Named constants; ``t`` is the time [s]."""
 
-_BINOPS = {
-    ast.Add: lambda a, b: a + b,
-    ast.Sub: lambda a, b: a - b,
-    ast.Mult: lambda a, b: a * b,
-    ast.Div: lambda a, b: a / b,
-    ast.Pow: lambda a, b: a**b,
-}
-_CMPOPS = {
-    ast.Lt: lambda a, b: a < b,
-    ast.LtE: lambda a, b: a <= b,
-    ast.Gt: lambda a, b: a > b,
-    ast.GtE: lambda a, b: a >= b,
-}
+_BINOPS = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
+           ast.Div: operator.truediv, ast.Pow: operator.pow}
+_CMPOPS = {ast.Lt: operator.lt, ast.LtE: operator.le, ast.Gt: operator.gt, ast.GtE: operator.ge}
 _MAX_LENGTH = 2000
 _MAX_NODES = 400
 

@@ -6,6 +6,7 @@ import math
 import pytest
 
 from bearingsim.catalog import BearingGeometry, PreloadClasses, get_bearing, list_bearings
+from bearingsim.catalog.rollers import get_roller_bearing
 from bearingsim.errors import CatalogError, ParameterError
 
 REQUIRED = ["6204", "6205", "6206", "6304", "6305", "61905", "61907", "61908", "61909", "7020C",
@@ -131,3 +132,16 @@ def test_preload_classes_validated():
         PreloadClasses(100.0, 50.0, 200.0)
     with pytest.raises(ParameterError):
         PreloadClasses(1.0, 2.0, 3.0)["extreme"]
+
+
+@pytest.mark.parametrize("changes,words", [
+    (dict(roller_diameter=0.02), ["the rollers do not fit the ring section", "Dw = 0.02"]),
+    (dict(roller_count=30), ["30 rollers of Dw", "do not fit on the pitch circle"]),
+    (dict(fatigue_load_limit=-1.0), ["fatigue_load_limit", "[N]"]),
+    (dict(limiting_speed=0.0), ["limiting_speed", "[rad/s]"]),
+])
+def test_roller_geometry_refuses_rollers_that_do_not_fit_and_bad_ratings(changes, words):
+    with pytest.raises(ParameterError) as err:
+        dataclasses.replace(get_roller_bearing("NU206"), **changes)
+    for word in words:
+        assert word in str(err.value)

@@ -22,13 +22,13 @@ from bearingsim.components.dynamic import (
     RingLoad,
 )
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
-from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
 from bearingsim.physics.bearing_design import BRASS, BearingDesign
 from bearingsim.physics.hertz import load_deflection_constant
 from bearingsim.physics.lubricant import Lubricant
 from bearingsim.physics.materials import STEEL, effective_modulus
+from bearingsim.validation import options_object
 
 
 def _pocket_constant(design: BearingDesign) -> float:
@@ -99,10 +99,7 @@ class DeepGrooveBallBearing(Assembly):
     def __init__(self, design: BearingDesign, lubricant: Lubricant,
                  options: DeepGrooveOptions | None = None, name="bearing"):
         super().__init__(name)
-        options = DeepGrooveOptions() if options is None else options
-        if not isinstance(options, DeepGrooveOptions):
-            raise ParameterError(f"{WHERE}: options must be a DeepGrooveOptions, got "
-                                 f"{type(options).__name__}")
+        options = options_object(options, DeepGrooveOptions, WHERE)
         self.design, self.lubricant = design, lubricant
         self.options = dataclasses.replace(options, film=options.film.for_lubricant(lubricant),
                                            cage=options.cage.for_lubricant(lubricant))

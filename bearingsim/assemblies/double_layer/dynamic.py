@@ -13,6 +13,7 @@ from bearingsim.components.rotational import SpeedSource
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
+from bearingsim.validation import options_object
 
 
 class DynamicDoubleLayerBearing(Assembly):
@@ -67,10 +68,7 @@ class DynamicDoubleLayerBearing(Assembly):
 
     def __init__(self, options: DynamicDoubleLayerOptions | None = None, name="bearing"):
         super().__init__(name)
-        options = DynamicDoubleLayerOptions() if options is None else options
-        if not isinstance(options, DynamicDoubleLayerOptions):
-            raise ParameterError(f"double_layer_bearing: options must be a "
-                                 f"DynamicDoubleLayerOptions, got {type(options).__name__}")
+        options = options_object(options, DynamicDoubleLayerOptions, "double_layer_bearing")
         self.options = options
         self.structure = options.structure
         self.geometries = gi, go = options.geometries

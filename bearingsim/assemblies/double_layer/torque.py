@@ -9,9 +9,9 @@ from bearingsim.components.bearing_torque import PalmgrenBearing, PureRollingLay
 from bearingsim.components.connectors import Flange
 from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies
 from bearingsim.components.rotational import Damper, Fixed, SpeedSource
-from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.drag import TAYLOR_ONSET, couette_damping, taylor_number
+from bearingsim.validation import options_object
 
 
 class DoubleLayerBearing(Assembly):
@@ -55,10 +55,7 @@ class DoubleLayerBearing(Assembly):
 
     def __init__(self, options: DoubleLayerOptions | None = None, name="bearing"):
         super().__init__(name)
-        options = DoubleLayerOptions() if options is None else options
-        if not isinstance(options, DoubleLayerOptions):
-            raise ParameterError(f"double_layer_bearing: options must be a DoubleLayerOptions, "
-                                 f"got {type(options).__name__}")
+        options = options_object(options, DoubleLayerOptions, "double_layer_bearing")
         self.options = options
         self.structure = options.structure
         self.geometries = gi, go = options.geometries

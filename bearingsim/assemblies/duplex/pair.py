@@ -18,9 +18,8 @@ from bearingsim.components.rings import (
     Shaft,
     Spacer,
 )
-from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, connect
-from bearingsim.validation import check_options, keyword_names
+from bearingsim.validation import check_options, keyword_names, options_object
 
 
 class DuplexPair(Assembly):
@@ -72,10 +71,7 @@ class DuplexPair(Assembly):
 
     def __init__(self, options: DuplexOptions | None = None, name="pair"):
         super().__init__(name)
-        options = DuplexOptions() if options is None else options
-        if not isinstance(options, DuplexOptions):
-            raise ParameterError(f"duplex_pair: options must be a DuplexOptions, got "
-                                 f"{type(options).__name__}")
+        options = options_object(options, DuplexOptions, "duplex_pair")
         self.options = options
         self.geometry = options.geometry
         self.arrangement = options.arrangement

@@ -14,14 +14,15 @@ power ``M * omega_rel <= 0``) and passes smoothly through zero speed,
 * :mod:`.skf`: the SKF four-component model and its tables.
 """
 
-from bearingsim.physics.friction.palmgren import (
+from bearingsim.physics.friction import palmgren, skf
+from bearingsim.physics.friction.palmgren import (  # noqa: F401 (in __all__)
     PALMGREN_F1,
     palmgren_f1,
     palmgren_m0,
     palmgren_p1,
     palmgren_torque,
 )
-from bearingsim.physics.friction.skf import (
+from bearingsim.physics.friction.skf import (  # noqa: F401 (in __all__)
     SKF_ANGULAR_CONTACT,
     SKF_CYLINDRICAL_ROLLER,
     SKF_DEEP_GROOVE,
@@ -34,20 +35,5 @@ from bearingsim.physics.friction.skf import (
     skf_friction_torque,
 )
 
-__all__ = [
-    "PALMGREN_F1",
-    "SKF_DEEP_GROOVE",
-    "SKF_ANGULAR_CONTACT",
-    "SKF_CYLINDRICAL_ROLLER",
-    "SKF_ROLLER_TYPES",
-    "SKF_KRS",
-    "SKF_KZ",
-    "palmgren_f1",
-    "palmgren_p1",
-    "palmgren_m0",
-    "palmgren_torque",
-    "SkfSeal",
-    "SkfFriction",
-    "skf_friction_components",
-    "skf_friction_torque",
-]
+# the public names of the submodules, each imported above by name
+__all__ = [*palmgren.__all__, *skf.__all__]

@@ -24,14 +24,15 @@ Functions take floats, numpy arrays or CasADi SX; table look-ups are piecewise l
 
 from __future__ import annotations
 
-from bearingsim.physics.life.iso_76 import (
+from bearingsim.physics.life import iso_76, iso_281, iso_ts_16281, lundberg_palmgren, modified_life
+from bearingsim.physics.life.iso_76 import (  # noqa: F401 (in __all__)
     roller_static_load_rating,
     static_equivalent_load,
     static_factor,
     static_load_factors,
     static_load_rating,
 )
-from bearingsim.physics.life.iso_281 import (
+from bearingsim.physics.life.iso_281 import (  # noqa: F401 (in __all__)
     CYLINDRICAL_BM,
     LINE_LIFE_EXPONENT,
     basic_rating_life_hours,
@@ -43,14 +44,14 @@ from bearingsim.physics.life.iso_281 import (
     roller_fc,
     xy_factors,
 )
-from bearingsim.physics.life.iso_ts_16281 import (
+from bearingsim.physics.life.iso_ts_16281 import (  # noqa: F401 (in __all__)
     raceway_dynamic_ratings,
     reference_rating_life,
     roller_raceway_ratings,
     roller_reference_rating_life,
     slice_equivalent_load,
 )
-from bearingsim.physics.life.lundberg_palmgren import (
+from bearingsim.physics.life.lundberg_palmgren import (  # noqa: F401 (in __all__)
     ball_contact_capacity,
     bearing_life,
     combined_contact_life,
@@ -59,7 +60,7 @@ from bearingsim.physics.life.lundberg_palmgren import (
     raceway_contact_capacity,
     raceway_equivalent_load,
 )
-from bearingsim.physics.life.modified_life import (
+from bearingsim.physics.life.modified_life import (  # noqa: F401 (in __all__)
     A_ISO_MAX,
     KAPPA_RANGE,
     RELIABILITY_FACTORS,
@@ -70,40 +71,11 @@ from bearingsim.physics.life.modified_life import (
     viscosity_ratio,
 )
 
+# the public names of the submodules, each imported above by name
 __all__ = [
-    "dynamic_load_rating",
-    "static_load_rating",
-    "static_factor",
-    "static_load_factors",
-    "static_equivalent_load",
-    "xy_factors",
-    "equivalent_dynamic_load",
-    "rating_life",
-    "life_hours",
-    "basic_rating_life_hours",
-    "raceway_contact_capacity",
-    "ball_contact_capacity",
-    "contact_life",
-    "combined_contact_life",
-    "raceway_equivalent_load",
-    "bearing_life",
-    "raceway_dynamic_ratings",
-    "reference_rating_life",
-    "CYLINDRICAL_BM",
-    "LINE_LIFE_EXPONENT",
-    "roller_fc",
-    "roller_dynamic_load_rating",
-    "roller_static_load_rating",
-    "line_load_integrals",
-    "roller_raceway_ratings",
-    "slice_equivalent_load",
-    "roller_reference_rating_life",
-    "A_ISO_MAX",
-    "KAPPA_RANGE",
-    "RELIABILITY_FACTORS",
-    "reliability_factor",
-    "rated_viscosity",
-    "viscosity_ratio",
-    "life_modification_factor",
-    "modified_rating_life",
+    *iso_281.__all__,
+    *iso_76.__all__,
+    *lundberg_palmgren.__all__,
+    *iso_ts_16281.__all__,
+    *modified_life.__all__,
 ]

@@ -54,13 +54,19 @@ static int eval_u(bsm_bdf *b, double t) {
   return b->signal(b->arg, b->res, b->iw, b->w, 0);
 }
 
-static int eval_f(void *model, double t, const double *x, double *out) {
-  bsm_bdf *b = model;
-  if (eval_u(b, t)) return BSM_BDF_MODEL_FAILED;
-  b->arg[0] = &t;
+/* arg = (t, x, u = signal(t, q), p), the inputs of ode and jac; nonzero if the signal failed */
+static int model_args(bsm_bdf *b, const double *t, const double *x) {
+  if (eval_u(b, *t)) return 1;
+  b->arg[0] = t;
   b->arg[1] = x;
   b->arg[2] = b->u;
   b->arg[3] = b->p;
+  return 0;
+}
+
+static int eval_f(void *model, double t, const double *x, double *out) {
+  bsm_bdf *b = model;
+  if (model_args(b, &t, x)) return BSM_BDF_MODEL_FAILED;
   b->res[0] = out;
   if (b->ode(b->arg, b->res, b->iw, b->w, 0)) return BSM_BDF_MODEL_FAILED;
   return BSM_BDF_OK;
@@ -69,11 +75,7 @@ static int eval_f(void *model, double t, const double *x, double *out) {
 /* jac_nz = d ode / d x at (t, x), the nonzeros of the compressed columns */
 static int eval_jac(void *model, double t, const double *x) {
   bsm_bdf *b = model;
-  if (eval_u(b, t)) return BSM_BDF_MODEL_FAILED;
-  b->arg[0] = &t;
-  b->arg[1] = x;
-  b->arg[2] = b->u;
-  b->arg[3] = b->p;
+  if (model_args(b, &t, x)) return BSM_BDF_MODEL_FAILED;
   b->arg[4] = 0;
   b->res[0] = 0;
   b->res[1] = b->jac_nz;
