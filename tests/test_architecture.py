@@ -167,3 +167,20 @@ def test_a_submodule_imported_by_name_from_its_package_is_no_cycle(tmp_path):
                                 "toy/sub/rows.py": "from toy.sub import table\n",
                                 "toy/sub/table.py": "X = 1\n"})
     assert _cycles(_graph(package)) == []
+
+
+MODULE_LINES = 520
+"""Longest module of bearingsim in lines (about 500: a module that grows past it holds more
+than one concern and is split, unless :data:`LONG_MODULES` states why not)."""
+LONG_MODULES: dict[str, str] = {}
+"""Modules allowed past :data:`MODULE_LINES`, each with the reason."""
+
+
+def test_no_module_is_longer_than_about_500_lines_without_a_reason():
+    long = {str(path.relative_to(PACKAGE)): n for path in sorted(PACKAGE.rglob("*.py"))
+            if (n := len(path.read_text(encoding="utf-8").splitlines())) > MODULE_LINES}
+    unexplained = {name: n for name, n in long.items() if name not in LONG_MODULES}
+    assert not unexplained, (f"modules over {MODULE_LINES} lines (split them, or state the "
+                             f"reason in LONG_MODULES): {unexplained}")
+    stale = set(LONG_MODULES) - set(long)
+    assert not stale, f"LONG_MODULES names modules that are no longer long: {sorted(stale)}"
