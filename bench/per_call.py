@@ -61,8 +61,14 @@ def measure(repeats: int = 20) -> list[dict]:
     try:
         from bearingsim.scenes.preparation import prepare
         from bearingsim.scenes.scene_simulation import simulate_inputs
-    except ImportError:  # the baseline's package: the same functions in the runner
-        from bearingsim.scenes.runner import prepare, simulate_inputs
+    except ImportError:  # a baseline's package: the same function where it lived then
+        import importlib
+
+        for home in ("bearingsim.scenes.preparation", "bearingsim.scenes.runner"):
+            module = importlib.import_module(home)
+            if hasattr(module, "simulate_inputs"):
+                prepare, simulate_inputs = module.prepare, module.simulate_inputs
+                break
     from bearingsim.simulation import simulate
 
     rows = []
