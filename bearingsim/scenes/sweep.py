@@ -293,7 +293,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                   if any(plan.structure[j.index] == key for j in todo)}
         lap("ship")
         feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in todo],
-                             n_threads, timeout, chunk, point_s)
+                             n_threads, timeout, chunk, point_s, plan.payloads)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
                    leave=False)
         try:

@@ -32,7 +32,7 @@ from typing import Any
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.sweep_worker import Job, run_chunk
 
-__all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER",
+__all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER", "RESUBMITS",
            "distributed_module",
            "connect", "chunk_size", "ChunkFeeder"]
 
@@ -45,6 +45,8 @@ TASKS_PER_WORKER = 2
 WORKERS_RECOUNT_S = 2.0
 """How often the worker threads are counted again during a sweep [s] (on a cluster, workers
 join and leave)."""
+RESUBMITS = 100
+"""Most chunks of one sweep submitted again after their model was lost with a worker."""
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """Imported by the fork server (and preloaded by every worker)."""
 QUIET_CLUSTER = {
@@ -170,13 +172,20 @@ class ChunkFeeder:
         Fixed points per task (None: sized from the measured point times).
     point_s : float
         A point's wall time measured beforehand [s] (NaN: none).
+    payloads : dict, optional
+        Structure key -> the model's payload, scattered again when a dying worker took the
+        model with it (None: such chunks fail).
     """
 
     def __init__(self, client, models: dict[tuple, Any], jobs: list[tuple[tuple, Job]],
                  n_workers: int, timeout: float | None, chunk: int | None = None,
-                 point_s: float = math.nan):
+                 point_s: float = math.nan, payloads: dict[tuple, Any] | None = None):
         self.client = client
         self.models = models
+        self.payloads = payloads or {}
+        self.resubmitted = 0
+        """Chunks submitted again after their model was lost with a worker."""
+        self._model_of: dict[Any, tuple] = {}
         self.todo = list(jobs)
         self.n_workers = max(1, n_workers)
         self.timeout = timeout
@@ -221,6 +230,7 @@ class ChunkFeeder:
                                       pure=False,
                                       key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
             self.running[task] = part
+            self._model_of[task] = key
             self.done.add(task)
             self.largest = max(self.largest, len(part))
 
@@ -230,12 +240,31 @@ class ChunkFeeder:
         self._fill()
         for task, result in self.done:
             part = self.running.pop(task)
+            key = self._model_of.pop(task)
             # an error comes as (type, exception, traceback), a cancelled task as its error
             rows = result[1] if task.status == "error" else result
+            if self._lost_model(rows, key, part):
+                continue  # submitted again with the model scattered anew
             if not isinstance(rows, BaseException):
                 self.times += [r["wall_s"] for r in rows if r["status"] == "ok"]
             self._fill()
             yield part, rows
+
+    def _lost_model(self, rows: Any, key: tuple, part: list[Job]) -> bool:
+        """A chunk cancelled because the model it reads was lost with a dying worker (dask:
+        "lost dependencies"): scatter the model again to the workers left and submit the chunk
+        anew, at most :data:`RESUBMITS` times a sweep; True when it was."""
+        if not (isinstance(rows, BaseException) and "lost dependencies" in str(rows)
+                and self.payloads and self.resubmitted < RESUBMITS):
+            return False
+        self.models[key] = self.client.scatter(self.payloads[key], broadcast=True)
+        self.resubmitted += 1
+        task = self.client.submit(run_chunk, self.models[key], part, self.timeout, pure=False,
+                                  key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
+        self.running[task] = part
+        self._model_of[task] = key
+        self.done.add(task)
+        return True
 
     def cancel(self) -> None:
         """Cancel the chunks in flight; submit no more."""
