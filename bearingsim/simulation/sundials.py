@@ -167,12 +167,14 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     stopped: list[BudgetExceededError] = []
 
     def observe(tau_now: float) -> None:
-        if bar is not None and tau_now > reached[0]:
-            bar.update(span * (min(tau_now, 1.0) - reached[0]))
-            reached[0] = min(tau_now, 1.0)
+        tau_now = min(tau_now, 1.0)
+        if tau_now > reached[0]:
+            if bar is not None:
+                bar.update(span * (tau_now - reached[0]))
+            reached[0] = tau_now  # also the time a late failure reports against the budget
         if timed:
             try:  # the wall-time budget, checked as the clock ticks (no steps counted)
-                budget.step(t0 + span * min(tau_now, 1.0), 0)
+                budget.step(t0 + span * tau_now, 0)
             except BudgetExceededError as exc:
                 stopped.append(exc)
                 raise _Stop from None  # fails the evaluation: the integrator call returns
