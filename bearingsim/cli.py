@@ -252,7 +252,8 @@ def _cache(args: argparse.Namespace) -> int:
     verb = "removed" if args.action == "clear" else "holds"
     print(f"{info.root} {verb}: {info.systems} assembled system(s), "
           f"{info.systems_bytes / 1e6:.1f} MB; {info.libraries} compiled librar"
-          f"{'y' if info.libraries == 1 else 'ies'}, {info.libraries_bytes / 1e6:.1f} MB")
+          f"{'y' if info.libraries == 1 else 'ies'}, {info.libraries_bytes / 1e6:.1f} MB; "
+          f"unit definitions, {info.units_bytes / 1e6:.1f} MB")
     return 0
 
 

@@ -50,6 +50,7 @@ from bearingsim.cache_paths import cache_root
 from bearingsim.files import atomic_path
 from bearingsim.language.component import Component
 from bearingsim.language.declarations import Parameter
+from bearingsim.units.registry import PINT_CACHE
 
 __all__ = ["CacheInfo", "assemble_cached", "cache_info", "clear_cache",
            "dumps_system", "loads_system", "read_payload", "systems_dir"]
@@ -327,13 +328,15 @@ def assemble_cached(component: Component, outputs: list[str] | None = None, *,
 # --------------------------------------------------------------------------- housekeeping
 @dataclasses.dataclass
 class CacheInfo:
-    """What the cache holds: its root, the assembled systems and the compiled libraries."""
+    """What the cache holds: its root, the assembled systems, the compiled libraries and the
+    units library's parsed definitions."""
 
     root: Path
     systems: int
     systems_bytes: int
     libraries: int
     libraries_bytes: int
+    units_bytes: int
 
 
 def _libraries(root: Path) -> list[Path]:
@@ -359,7 +362,8 @@ def _size(path: Path) -> int:
 
 
 def cache_info(root: str | Path | None = None) -> CacheInfo:
-    """Count and size [bytes] of the cached systems and libraries under ``root``.
+    """Count and size [bytes] of the cached systems and libraries, and the size of the parsed
+    unit definitions, under ``root``.
 
     Parameters
     ----------
@@ -374,13 +378,14 @@ def cache_info(root: str | Path | None = None) -> CacheInfo:
     root = Path(root) if root is not None else cache_root()
     systems = sorted(systems_dir(root).glob(f"*{SUFFIX}")) if systems_dir(root).is_dir() else []
     libs = _libraries(root)
+    units = root / PINT_CACHE
     return CacheInfo(root, len(systems), sum(_size(p) for p in systems), len(libs),
-                     sum(_size(p) for p in libs))
+                     sum(_size(p) for p in libs), _size(units) if units.is_dir() else 0)
 
 
 def clear_cache(root: str | Path | None = None) -> CacheInfo:
-    """Remove every cached system and compiled library under ``root``; returns what was
-    there. Other files in the folder are left alone.
+    """Remove every cached system, compiled library and the parsed unit definitions under
+    ``root``; returns what was there. Other files in the folder are left alone.
 
     Parameters
     ----------
@@ -396,7 +401,7 @@ def clear_cache(root: str | Path | None = None) -> CacheInfo:
     before = cache_info(root)
     if systems_dir(root).is_dir():
         shutil.rmtree(systems_dir(root))
-    for p in _libraries(root):
+    for p in [*_libraries(root), root / PINT_CACHE]:
         if p.is_dir():
             shutil.rmtree(p, ignore_errors=True)
         else:

@@ -12,6 +12,7 @@ from bearingsim.assembler import cache as system_cache
 from bearingsim.assembler.fingerprint import structure_key
 from bearingsim.cache_paths import cache_root
 from bearingsim.errors import ParameterError
+from bearingsim.units.registry import PINT_CACHE
 from tests.models import Pendulum, SpringMassChain, TwoInertiaDrive
 
 
@@ -146,12 +147,17 @@ def test_cache_info_and_clear(tmp_path, monkeypatch):
     assemble_cached(TwoInertiaDrive())
     (tmp_path / "bsm_ode_0123456789abcdef.so").write_bytes(b"x" * 10)
     (tmp_path / "notes.txt").write_text("not ours")
+    units = tmp_path / PINT_CACHE  # where the units library keeps its parsed definitions
+    units.mkdir(exist_ok=True)
+    (units / "definitions.pickle").write_bytes(b"y" * 20)
     info = system_cache.cache_info()
     assert info.systems == 1 and info.systems_bytes > 1000
     assert info.libraries == 1 and info.libraries_bytes == 10
+    assert info.units_bytes >= 20
     system_cache.clear_cache()
     after = system_cache.cache_info()
-    assert (after.systems, after.libraries) == (0, 0)
+    assert (after.systems, after.libraries, after.units_bytes) == (0, 0, 0)
+    assert not units.exists()  # "cache clear" empties every cache (it left the units' before)
     assert (tmp_path / "notes.txt").exists()
 
 
