@@ -41,7 +41,9 @@ __all__ = [
     "FIDELITY_ERRORS_FILE",
     "declared_errors",
     "factory_default",
+    "given_args",
     "nested_post",
+    "single_level",
 ]
 
 FIDELITY_ERRORS_FILE = Path(__file__).resolve().parent / "fidelity_errors.json"
@@ -342,6 +344,43 @@ def factory_default(factory: Callable, name: str) -> Any:
         raise ParameterError(f"factory_default: {factory.__qualname__} has no parameter "
                              f"{name!r} with a default")
     return parameter.default
+
+
+def given_args(args: dict[str, Any] | None, leave_out: tuple[str, ...] = ()) -> dict[str, Any]:
+    """The arguments a build passes on as keywords: those with a value (an argument left at
+    None takes the factory's own default), less ``leave_out``.
+
+    Parameters
+    ----------
+    args : dict or None
+        Arguments by name (None: none).
+    leave_out : tuple of str
+        Names the build handles itself.
+
+    Returns
+    -------
+    dict
+        The arguments whose value is not None.
+    """
+    return {k: v for k, v in (args or {}).items() if v is not None and k not in leave_out}
+
+
+def single_level(level: str) -> dict[str, Any]:
+    """The :class:`AssemblySpec` keywords of an assembly with one fidelity level: ``auto``
+    picks it, every name is provided by it and scenes give no fidelity.
+
+    Parameters
+    ----------
+    level : str
+        The level's name, e.g. ``"quasi-static"``.
+
+    Returns
+    -------
+    dict
+        ``fidelities``, ``auto_fidelities``, ``output_fidelity`` and ``fidelity_arg``.
+    """
+    return {"fidelities": (level,), "auto_fidelities": (level,), "output_fidelity": [],
+            "fidelity_arg": None}
 
 
 def nested_post(quantities: dict[str, PostQuantity], prefix: str) -> dict[str, PostQuantity]:

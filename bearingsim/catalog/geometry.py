@@ -10,15 +10,16 @@ from __future__ import annotations
 import math
 import re
 import warnings
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from typing import Any
 
 from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.validation import check_range
 
-__all__ = ["BearingGeometry", "PreloadClasses", "SPEED_LIMIT_MULTIPLE", "check_catalogue_values",
-           "check_elements_fit", "check_speed_limit", "speed_input_bounds"]
+__all__ = ["BearingGeometry", "CatalogueBearing", "PreloadClasses", "SPEED_LIMIT_MULTIPLE",
+           "check_catalogue_values", "check_elements_fit", "check_speed_limit",
+           "speed_input_bounds"]
 
 SPEED_LIMIT_MULTIPLE = 2.0
 """Multiple of a limiting speed above which a speed is refused (between 1x and this multiple a
@@ -189,133 +190,75 @@ class PreloadClasses:
 
 
 @dataclass(frozen=True)
-class BearingGeometry:
-    """Geometry of a single-row ball bearing (deep-groove or angular contact), SI units.
+class CatalogueBearing:
+    """What every catalogued bearing has, whatever its rolling elements: the fields of the
+    columns all bearing tables share (:func:`~bearingsim.catalog.table_rows.shared_columns`),
+    SI units, and their checks. A subclass declares its elements' fields after ``KW_ONLY``.
 
     Attributes
     ----------
     designation : str
         Bearing designation, e.g. "6204".
-    bore : float
-        Bore diameter d [m].
-    outside_diameter : float
-        Outside diameter D [m].
-    width : float
-        Width B [m].
-    ball_count : int
-        Number of balls Z [-], at least 3.
-    ball_diameter : float
-        Ball diameter Dw [m].
+    bore, outside_diameter, width : float
+        d, D, B [m].
     pitch_diameter : float
-        Pitch diameter dm [m].
-    fi, fo : float
-        Inner and outer groove curvature factors (groove radius / Dw) [-], each in (0.5, 1).
-    contact_angle : float
-        Nominal contact angle [rad], 0 for a deep-groove bearing, at most 45 deg.
+        dm [m].
     diametral_clearance : float
-        Diametral clearance Pd [m]: the total radial play of one ring against the other (ISO
-        5753's radial internal clearance), twice the clearance per side. Negative: an internal
-        preload (the operating clearance of a bearing mounted with more interference than
-        clearance, :func:`~bearingsim.physics.fits.operating_clearance`), down to
-        ``-0.2 A``; the quasi-static ball rows and the ISO/TS 16281 form model it, the
-        ball-level (dynamic) models refuse it by name.
+        Radial internal clearance Pd [m] (the subclass states its valid range).
     dynamic_load_rating, static_load_rating : float or None
         Catalogue basic dynamic and static radial load ratings C, C0 [N].
     reference_speed, limiting_speed : float or None
         Catalogue reference (thermal) and limiting speeds [rad/s].
-    preload : PreloadClasses or None
-        Preload classes of a duplex pair, where published.
     estimated : tuple of str
         Names of the fields that were estimated because no catalogue publishes them.
     source : str
         Where the values come from.
-
-    Raises
-    ------
-    ParameterError
-        If a value is out of range or the balls do not fit the ring section.
     """
 
     designation: str
     bore: float
     outside_diameter: float
     width: float
-    ball_count: int
-    ball_diameter: float
     pitch_diameter: float
-    fi: float
-    fo: float
-    contact_angle: float = 0.0
     diametral_clearance: float = 0.0
     dynamic_load_rating: float | None = None
     static_load_rating: float | None = None
     reference_speed: float | None = None
     limiting_speed: float | None = None
-    preload: PreloadClasses | None = None
     estimated: tuple[str, ...] = ()
     source: str = "user"
 
-    def __post_init__(self) -> None:
-        where = f"BearingGeometry({self.designation})"
-        if isinstance(self.ball_count, bool) or not isinstance(self.ball_count, int):
-            raise ParameterError(
-                f"{where}: ball_count must be an integer >= 3 [-], got {self.ball_count!r}"
-            )
-        check_range(self.ball_count, "ball_count", "-", 3, where=where)
+    def _check_section(self, where: str) -> None:
+        """Refuse a d, D, B or dm out of range."""
         for name in ("bore", "outside_diameter", "width", "pitch_diameter"):
             check_diameter(getattr(self, name), name, where)
-        check_diameter(self.ball_diameter, "ball_diameter", where, MAX_BALL_DIAMETER)
-        check_range(self.fi, "fi", "-", 0.5, 1.0, low_inclusive=False, where=where)
-        check_range(self.fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
-        check_range(self.contact_angle, "contact_angle", "rad", 0.0, _MAX_CONTACT_ANGLE,
-                    where=where)
-        check_range(self.diametral_clearance, "diametral_clearance", "m",
-                    -0.2 * (self.fi + self.fo - 1.0) * self.ball_diameter, where=where)
-        check_catalogue_values(self, ("dynamic_load_rating", "static_load_rating",
-                                      "reference_speed", "limiting_speed"), where)
-        self._check_rating_units(where)
-        check_elements_fit(where, "balls", self.ball_count, self.bore, self.outside_diameter,
-                           self.ball_diameter, self.pitch_diameter)
-        cos_free = 1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance)
-        if cos_free < math.cos(_MAX_CONTACT_ANGLE):
-            raise ParameterError(
-                f"{where}: diametral_clearance = {self.diametral_clearance:g} m gives a free "
-                f"contact angle above 45 deg; valid range [0, "
-                f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
-            )
 
-    def _check_rating_units(self, where: str) -> None:
-        """Catch ratings in kN and swapped or mistyped ratings: a ball bearing's C and C0 per
-        unit ball area, ``C / (Z Dw^2)`` and ``C0 / (Z Dw^2)`` with Dw in mm, lie within
-        :data:`_SPECIFIC_RATING` (6304: 25.1 and 12.5 N/mm^2), and C0 / C within
-        :data:`_RATING_RATIO`."""
-        area = self.ball_count * (self.ball_diameter * 1e3) ** 2  # mm^2
+    def _check_catalogue_values(self, where: str, loads: tuple[str, ...] = ()) -> None:
+        """Refuse a given rating, further catalogue load ``loads`` [N] or speed that is not
+        positive (:func:`check_catalogue_values`)."""
+        check_catalogue_values(self, ("dynamic_load_rating", "static_load_rating", *loads,
+                                      "reference_speed", "limiting_speed"), where)
+
+    def _check_specific_ratings(self, where: str, area: float, valid: tuple[float, float],
+                                element: str, elements: str, formula: str) -> None:
+        """Refuse a C or C0 [N] whose rating per element area ``area`` [mm^2] (``formula``) is
+        outside ``valid`` [N/mm^2]: in kN, mistyped or of another set of ``elements``."""
+        low, high = valid
         for name in ("dynamic_load_rating", "static_load_rating"):
             value = getattr(self, name)
-            if value is not None and not _SPECIFIC_RATING[0] <= value / area \
-                    <= _SPECIFIC_RATING[1]:
+            if value is not None and not low <= value / area <= high:
+                hint = ("did you pass kN?" if value / area < low else
+                        f"mistyped, or not this {element} set's rating?")
                 raise ParameterError(
-                    f"{where}: {name} = {value:g} N is not a rating of {self.ball_count} balls "
-                    f"of {self.ball_diameter * 1e3:g} mm: {name} / (Z Dw^2) = "
-                    f"{value / area:.3g} N/mm^2, valid range [{_SPECIFIC_RATING[0]:g}, "
-                    f"{_SPECIFIC_RATING[1]:g}] N/mm^2 ("
-                    + ("did you pass kN?)" if value / area < _SPECIFIC_RATING[0]
-                       else "mistyped, or not this ball set's rating?)"))
-        c, c0 = self.dynamic_load_rating, self.static_load_rating
-        if c is not None and c0 is not None and not _RATING_RATIO[0] <= c0 / c \
-                <= _RATING_RATIO[1]:
-            raise ParameterError(
-                f"{where}: static_load_rating / dynamic_load_rating = {c0 / c:.3g}, valid range "
-                f"[{_RATING_RATIO[0]:g}, {_RATING_RATIO[1]:g}] for ball bearings (swapped or "
-                f"mistyped ratings?)")
+                    f"{where}: {name} = {value:g} N is not a rating of {elements}: {name} / "
+                    f"({formula}) = {value / area:.3g} N/mm^2, valid range [{low:g}, "
+                    f"{high:g}] N/mm^2 ({hint})")
 
     def check_speed(self, speed: float, where: str) -> None:
-        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed, refuse
-        it above :data:`SPEED_LIMIT_MULTIPLE` times that (:func:`check_speed_limit`).
-
-        The limiting speed bounds the bearing's kinematic and thermal safe operation (cage,
-        lubricant); above it the models still compute, but the catalogue no longer vouches for
-        the bearing. Nothing is checked without a catalogue limiting speed.
+        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed (the
+        bearing's kinematic and thermal safe operation: cage, lubricant), refuse it above
+        :data:`SPEED_LIMIT_MULTIPLE` times that (:func:`check_speed_limit`); nothing is checked
+        without a limiting speed.
 
         Parameters
         ----------
@@ -334,6 +277,90 @@ class BearingGeometry:
         """
         check_speed_limit(speed, self.limiting_speed, where,
                           f"the limiting speed of {self.designation}")
+
+
+@dataclass(frozen=True)
+class BearingGeometry(CatalogueBearing):
+    """Geometry of a single-row ball bearing (deep-groove or angular contact), SI units.
+
+    Attributes
+    ----------
+    designation, bore, outside_diameter, width, pitch_diameter
+        As :class:`CatalogueBearing`; also its ratings, speeds, ``estimated`` and ``source``.
+    ball_count : int
+        Number of balls Z [-], at least 3 (keyword only, as the fields below).
+    ball_diameter : float
+        Ball diameter Dw [m].
+    fi, fo : float
+        Inner and outer groove curvature factors (groove radius / Dw) [-], each in (0.5, 1).
+    contact_angle : float
+        Nominal contact angle [rad], 0 for a deep-groove bearing, at most 45 deg.
+    diametral_clearance : float
+        Diametral clearance Pd [m]: the total radial play of one ring against the other (ISO
+        5753's radial internal clearance), twice the clearance per side. Negative: an internal
+        preload (the operating clearance of a bearing mounted with more interference than
+        clearance, :func:`~bearingsim.physics.fits.operating_clearance`), down to
+        ``-0.2 A``; the quasi-static ball rows and the ISO/TS 16281 form model it, the
+        ball-level (dynamic) models refuse it by name.
+    preload : PreloadClasses or None
+        Preload classes of a duplex pair, where published.
+
+    Raises
+    ------
+    ParameterError
+        If a value is out of range or the balls do not fit the ring section.
+    """
+
+    _: KW_ONLY
+    ball_count: int
+    ball_diameter: float
+    fi: float
+    fo: float
+    contact_angle: float = 0.0
+    preload: PreloadClasses | None = None
+
+    def __post_init__(self) -> None:
+        where = f"BearingGeometry({self.designation})"
+        if isinstance(self.ball_count, bool) or not isinstance(self.ball_count, int):
+            raise ParameterError(
+                f"{where}: ball_count must be an integer >= 3 [-], got {self.ball_count!r}"
+            )
+        check_range(self.ball_count, "ball_count", "-", 3, where=where)
+        self._check_section(where)
+        check_diameter(self.ball_diameter, "ball_diameter", where, MAX_BALL_DIAMETER)
+        check_range(self.fi, "fi", "-", 0.5, 1.0, low_inclusive=False, where=where)
+        check_range(self.fo, "fo", "-", 0.5, 1.0, low_inclusive=False, where=where)
+        check_range(self.contact_angle, "contact_angle", "rad", 0.0, _MAX_CONTACT_ANGLE,
+                    where=where)
+        check_range(self.diametral_clearance, "diametral_clearance", "m",
+                    -0.2 * (self.fi + self.fo - 1.0) * self.ball_diameter, where=where)
+        self._check_catalogue_values(where)
+        self._check_rating_units(where)
+        check_elements_fit(where, "balls", self.ball_count, self.bore, self.outside_diameter,
+                           self.ball_diameter, self.pitch_diameter)
+        cos_free = 1.0 - self.diametral_clearance / (2.0 * self.groove_centre_distance)
+        if cos_free < math.cos(_MAX_CONTACT_ANGLE):
+            raise ParameterError(
+                f"{where}: diametral_clearance = {self.diametral_clearance:g} m gives a free "
+                f"contact angle above 45 deg; valid range [0, "
+                f"{2.0 * self.groove_centre_distance * (1 - math.cos(_MAX_CONTACT_ANGLE)):g}] [m]"
+            )
+
+    def _check_rating_units(self, where: str) -> None:
+        """Catch ratings in kN and swapped or mistyped ratings: a ball bearing's C and C0 per
+        unit ball area, ``C / (Z Dw^2)`` and ``C0 / (Z Dw^2)`` with Dw in mm, lie within
+        :data:`_SPECIFIC_RATING` (6304: 25.1 and 12.5 N/mm^2), and C0 / C within
+        :data:`_RATING_RATIO`."""
+        self._check_specific_ratings(
+            where, self.ball_count * (self.ball_diameter * 1e3) ** 2, _SPECIFIC_RATING, "ball",
+            f"{self.ball_count} balls of {self.ball_diameter * 1e3:g} mm", "Z Dw^2")
+        c, c0 = self.dynamic_load_rating, self.static_load_rating
+        if c is not None and c0 is not None and not _RATING_RATIO[0] <= c0 / c \
+                <= _RATING_RATIO[1]:
+            raise ParameterError(
+                f"{where}: static_load_rating / dynamic_load_rating = {c0 / c:.3g}, valid range "
+                f"[{_RATING_RATIO[0]:g}, {_RATING_RATIO[1]:g}] for ball bearings (swapped or "
+                f"mistyped ratings?)")
 
     @property
     def series(self) -> str | None:

@@ -11,15 +11,11 @@ from __future__ import annotations
 
 import csv
 import re
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from functools import lru_cache
 from importlib import resources
 
-from bearingsim.catalog.geometry import (
-    check_catalogue_values,
-    check_elements_fit,
-    check_speed_limit,
-)
+from bearingsim.catalog.geometry import CatalogueBearing, check_elements_fit
 from bearingsim.catalog.table_rows import optional_value, shared_columns
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physical_checks import check_diameter
@@ -35,36 +31,27 @@ _SPECIFIC_RATING = (10.0, 200.0)
 
 
 @dataclass(frozen=True)
-class RollerBearingGeometry:
+class RollerBearingGeometry(CatalogueBearing):
     """Geometry of a single-row cylindrical roller bearing (NU type), SI units.
 
     Attributes
     ----------
-    designation : str
-        E.g. "NU206".
-    bore, outside_diameter, width : float
-        d, D, B [m].
+    designation, bore, outside_diameter, width, pitch_diameter
+        As :class:`~bearingsim.catalog.geometry.CatalogueBearing` ("NU206", d, D, B, dm [m]);
+        also its ratings C, C0 [N], speeds [rad/s], ``estimated`` (the fields derived by the
+        catalogue's stated rules) and ``source``.
     roller_count : int
-        Rollers Z [-], >= 3.
+        Rollers Z [-], >= 3 (keyword only, as the fields below).
     roller_diameter : float
         Dw [m].
-    pitch_diameter : float
-        dm [m].
     roller_length : float
         Effective roller length Lwe [m] (the contact length of a straight roller).
     diametral_clearance : float
         Radial internal clearance Pd [m] (total play of one ring against the other), >= 0.
-    dynamic_load_rating, static_load_rating : float or None
-        C, C0 [N].
     fatigue_load_limit : float or None
         Pu [N].
-    reference_speed, limiting_speed : float or None
-        [rad/s].
     explorer : bool
         An SKF Explorer bearing (its C lies above the ISO 281 value of its roller set).
-    estimated : tuple of str
-        Fields derived by the catalogue's stated rules.
-    source : str
 
     Raises
     ------
@@ -73,23 +60,12 @@ class RollerBearingGeometry:
         or ratings that are not of this roller set (e.g. given in kN).
     """
 
-    designation: str
-    bore: float
-    outside_diameter: float
-    width: float
+    _: KW_ONLY
     roller_count: int
     roller_diameter: float
-    pitch_diameter: float
     roller_length: float
-    diametral_clearance: float = 0.0
-    dynamic_load_rating: float | None = None
-    static_load_rating: float | None = None
     fatigue_load_limit: float | None = None
-    reference_speed: float | None = None
-    limiting_speed: float | None = None
     explorer: bool = False
-    estimated: tuple[str, ...] = ()
-    source: str = "user"
 
     bearing_type = "cylindrical_roller"
     """Key of the friction and life tables."""
@@ -103,14 +79,12 @@ class RollerBearingGeometry:
     def __post_init__(self) -> None:
         where = f"RollerBearingGeometry({self.designation})"
         check_count(self.roller_count, "roller_count", 3, where=where)
-        for name in ("bore", "outside_diameter", "width", "pitch_diameter", "roller_diameter",
-                     "roller_length"):
+        self._check_section(where)
+        for name in ("roller_diameter", "roller_length"):
             check_diameter(getattr(self, name), name, where)
         check_range(self.diametral_clearance, "diametral_clearance", "m", 0.0,
                     0.1 * self.roller_diameter, where=where)
-        check_catalogue_values(self, ("dynamic_load_rating", "static_load_rating",
-                                      "fatigue_load_limit", "reference_speed", "limiting_speed"),
-                               where)
+        self._check_catalogue_values(where, ("fatigue_load_limit",))
         check_elements_fit(where, "rollers", self.roller_count, self.bore, self.outside_diameter,
                            self.roller_diameter, self.pitch_diameter)
         dw = self.roller_diameter
@@ -118,16 +92,11 @@ class RollerBearingGeometry:
             raise ParameterError(
                 f"{where}: roller_length = {self.roller_length:g} m must be below the width "
                 f"{self.width:g} m")
-        area = self.roller_count * self.roller_length * 1e3 * dw * 1e3  # mm^2
-        for name in ("dynamic_load_rating", "static_load_rating"):
-            value = getattr(self, name)
-            if value is not None and not _SPECIFIC_RATING[0] <= value / area \
-                    <= _SPECIFIC_RATING[1]:
-                raise ParameterError(
-                    f"{where}: {name} = {value:g} N is not a rating of {self.roller_count} "
-                    f"rollers of {dw * 1e3:g} x {self.roller_length * 1e3:g} mm: "
-                    f"{name} / (Z Lwe Dw) = {value / area:.3g} N/mm^2, valid range "
-                    f"[{_SPECIFIC_RATING[0]:g}, {_SPECIFIC_RATING[1]:g}] N/mm^2")
+        self._check_specific_ratings(
+            where, self.roller_count * self.roller_length * 1e3 * dw * 1e3, _SPECIFIC_RATING,
+            "roller",
+            f"{self.roller_count} rollers of {dw * 1e3:g} x {self.roller_length * 1e3:g} mm",
+            "Z Lwe Dw")
 
     @property
     def gamma(self) -> float:
@@ -177,25 +146,6 @@ class RollerBearingGeometry:
             return None
         number = digits.group()
         return number[:-2]
-
-    def check_speed(self, speed: float, where: str) -> None:
-        """Warn when a constant ring speed [rad/s] exceeds the catalogue limiting speed, refuse
-        it above the shared multiple (:func:`~bearingsim.catalog.geometry.check_speed_limit`,
-        the rule of the ball geometries too).
-
-        Parameters
-        ----------
-        speed : float
-            Constant ring speed [rad/s] (its magnitude is checked).
-        where : str
-            What is checked, for the messages (component or assembly and parameter).
-
-        Warns
-        -----
-        SpeedLimitWarning
-        """
-        check_speed_limit(speed, self.limiting_speed, where,
-                          f"the limiting speed of {self.designation}")
 
 
 def _row_to_geometry(row: dict[str, str]) -> RollerBearingGeometry:

@@ -52,16 +52,12 @@ class RingFrame(Connector):
         Moment about x and y acting on the owning body.
     """
 
-    x = Potential(unit="m", description="radial displacement x")
-    y = Potential(unit="m", description="radial displacement y")
-    z = Potential(unit="m", description="axial displacement")
-    tx = Potential(unit="rad", description="tilt about x")
-    ty = Potential(unit="rad", description="tilt about y")
-    Fx = Flow(unit="N", description="force x on the body")
-    Fy = Flow(unit="N", description="force y on the body")
-    Fz = Flow(unit="N", description="axial force on the body")
-    Mx = Flow(unit="N.m", description="moment about x on the body")
-    My = Flow(unit="N.m", description="moment about y on the body")
+    x, y, z = Potential.each("m", "radial displacement x", "radial displacement y",
+                             "axial displacement")
+    tx, ty = Potential.each("rad", "tilt about x", "tilt about y")
+    Fx, Fy, Fz = Flow.each("N", "force x on the body", "force y on the body",
+                           "axial force on the body")
+    Mx, My = Flow.each("N.m", "moment about x on the body", "moment about y on the body")
 
     def displacement(self):
         """(x, y, z, tx, ty) symbols.
@@ -108,18 +104,11 @@ class BallFrame(Connector):
     r = Potential(unit="m", description="radial position of the ball centre")
     theta = Potential(unit="rad", description="orbital angle")
     z = Potential(unit="m", description="axial position of the ball centre")
-    vr = Potential(unit="m/s", description="radial velocity")
-    vz = Potential(unit="m/s", description="axial velocity")
-    w_orbit = Potential(unit="rad/s", description="orbital speed")
-    wr = Potential(unit="rad/s", description="ball angular velocity along e_r")
-    wt = Potential(unit="rad/s", description="ball angular velocity along e_t")
-    wz = Potential(unit="rad/s", description="ball angular velocity along e_z")
-    Fr = Flow(unit="N", description="force on the ball along e_r")
-    Ft = Flow(unit="N", description="force on the ball along e_t")
-    Fz = Flow(unit="N", description="force on the ball along e_z")
-    Mr = Flow(unit="N.m", description="moment on the ball along e_r")
-    Mt = Flow(unit="N.m", description="moment on the ball along e_t")
-    Mz = Flow(unit="N.m", description="moment on the ball along e_z")
+    vr, vz = Potential.each("m/s", "radial velocity", "axial velocity")
+    w_orbit, wr, wt, wz = Potential.each(
+        "rad/s", "orbital speed", *(f"ball angular velocity along e_{a}" for a in "rtz"))
+    Fr, Ft, Fz = Flow.each("N", *(f"force on the ball along e_{a}" for a in "rtz"))
+    Mr, Mt, Mz = Flow.each("N.m", *(f"moment on the ball along e_{a}" for a in "rtz"))
 
 
 class CageFrame(Connector):
@@ -137,9 +126,7 @@ class CageFrame(Connector):
         Moment on the cage about its centre.
     """
 
-    x = Potential(unit="m", description="cage centre x")
-    y = Potential(unit="m", description="cage centre y")
+    x, y = Potential.each("m", "cage centre x", "cage centre y")
     phi = Potential(unit="rad", description="cage angle")
-    Fx = Flow(unit="N", description="force x on the cage")
-    Fy = Flow(unit="N", description="force y on the cage")
+    Fx, Fy = Flow.each("N", "force x on the cage", "force y on the cage")
     Mz = Flow(unit="N.m", description="moment about z on the cage")

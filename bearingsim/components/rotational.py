@@ -23,6 +23,7 @@ from bearingsim.validation import check_range
 __all__ = [
     "Flange",
     "Inertia",
+    "PartialTwoFlanges",
     "PartialCompliant",
     "Spring",
     "Damper",
@@ -38,7 +39,26 @@ __all__ = [
 TimeFunction = Callable[[ca.SX], ca.SX]
 
 
-class Inertia(Component):
+class PartialTwoFlanges(Component):
+    """Base of elements between two flanges, ``flange_a`` and ``flange_b``.
+
+    Parameters
+    ----------
+    name : str
+        Instance name (the prefix of its variables' dotted names).
+
+    Connectors
+    ----------
+    flange_a, flange_b : Flange
+    """
+
+    def __init__(self, name=None):
+        super().__init__(name)
+        self.flange_a = Flange()
+        self.flange_b = Flange()
+
+
+class Inertia(PartialTwoFlanges):
     """Rigid body rotating about a fixed axis.
 
     Parameters
@@ -62,8 +82,6 @@ class Inertia(Component):
     def __init__(self, J: float = 1.0, phi0: float = 0.0, w0: float = 0.0, name=None):
         super().__init__(name)
         self.J = Parameter(J, "kg.m2", "moment of inertia", low=0.0, low_inclusive=False)
-        self.flange_a = Flange()
-        self.flange_b = Flange()
         self.phi = Variable(phi0, "rad", "absolute rotation angle")
         self.w = Variable(w0, "rad/s", "absolute angular speed")
 
@@ -76,7 +94,7 @@ class Inertia(Component):
         ]
 
 
-class PartialCompliant(Component):
+class PartialCompliant(PartialTwoFlanges):
     """Base of elements that transmit a torque ``tau`` from flange_a to flange_b.
 
     Variables
@@ -92,8 +110,6 @@ class PartialCompliant(Component):
 
     def __init__(self, name=None):
         super().__init__(name)
-        self.flange_a = Flange()
-        self.flange_b = Flange()
         self.phi_rel = Variable(unit="rad", description="relative rotation angle")
         self.tau = Variable(unit="N.m", description="transmitted torque")
 
@@ -262,7 +278,7 @@ class SpeedSource(Component):
         ]
 
 
-class IdealGear(Component):
+class IdealGear(PartialTwoFlanges):
     """Ideal gear without inertia: ``phi_a = ratio * phi_b``, power conserving.
 
     Parameters
@@ -280,8 +296,6 @@ class IdealGear(Component):
             from bearingsim.errors import ParameterError
 
             raise ParameterError(f"{type(self).__name__}: ratio [1] must be non-zero")
-        self.flange_a = Flange()
-        self.flange_b = Flange()
 
     def equations(self):
         return [
@@ -308,7 +322,7 @@ class SpeedSensor(Component):
         return [self.w == der(self.flange.phi), self.flange.tau == 0]
 
 
-class TorqueSensor(Component):
+class TorqueSensor(PartialTwoFlanges):
     """Measures the torque ``tau`` [N m] passed from flange_a to flange_b.
 
     Parameters
@@ -319,8 +333,6 @@ class TorqueSensor(Component):
 
     def __init__(self, name=None):
         super().__init__(name)
-        self.flange_a = Flange()
-        self.flange_b = Flange()
         self.tau = Variable(unit="N.m", description="measured torque")
 
     def equations(self):

@@ -139,6 +139,25 @@ class Variable(Declaration):
         self._derivative: Variable | None = None
         self.integral: Variable | None = None
 
+    @classmethod
+    def each(cls, unit: str, *descriptions: str) -> tuple[Variable, ...]:
+        """One declaration of this kind per description, all in ``unit``: the components of a
+        vector declared at once, in order (``x, y = Potential.each("m", "x", "y")``).
+
+        Parameters
+        ----------
+        unit : str
+            Unit of every declaration.
+        *descriptions : str
+            One description per declaration.
+
+        Returns
+        -------
+        tuple of Variable
+            Instances of the class it is called on, without start values.
+        """
+        return tuple(cls(unit=unit, description=d) for d in descriptions)
+
     def derivative_symbol(self) -> ca.SX:
         """The symbol of ``der(self)``, created on first use.
 

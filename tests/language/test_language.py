@@ -263,3 +263,21 @@ def test_connector_guess_sets_start_values_of_potentials_only():
         h.frame.guess(Fx=1.0)
     with pytest.raises(ModelError, match="assign the connector to a component first"):
         RingFrame().guess(x=0.0)
+
+
+def test_each_declares_a_vector_of_fields_in_order():
+    from bearingsim.components.connectors import BallFrame, RingFrame
+    from bearingsim.language import Flow, Potential, Variable
+
+    x, y = Potential.each("m", "x position", "y position")
+    assert (type(x), x.unit, x.description, y.description) == (Potential, "m", "x position",
+                                                             "y position")
+    assert [type(f) for f in Flow.each("N", "a", "b", "c")] == [Flow] * 3
+    assert Variable.each("s") == ()
+    assert list(RingFrame._field_decls) == ["x", "y", "z", "tx", "ty", "Fx", "Fy", "Fz", "Mx",
+                                            "My"]
+    ball = BallFrame._field_decls
+    assert [ball[k].unit for k in ("w_orbit", "wr", "wt", "wz", "Fr", "Mz")] == \
+        ["rad/s"] * 4 + ["N", "N.m"]
+    assert ball["Ft"].description == "force on the ball along e_t"
+    assert ball["wz"].description == "ball angular velocity along e_z"

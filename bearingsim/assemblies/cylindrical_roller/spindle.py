@@ -15,7 +15,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.assemblies.duplex import ARRANGEMENTS, PRELOAD_CLASSES, ShaftSpec, duplex_pair
-from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
+from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, given_args, single_level
 from bearingsim.catalog.rollers import list_roller_bearings
 from bearingsim.components.dynamic import FixedFrame
 from bearingsim.components.rings import InnerRing
@@ -108,8 +108,7 @@ def spindle(bearing: str = "7014C", roller_bearing: str = "NU210", arrangement: 
 
 def _spindle_from_scene(args: dict[str, Any], fidelity: str) -> Spindle:
     """Build the spindle from the scene arguments (defaults filled in; one level)."""
-    keywords = {k: v for k, v in args.items() if v is not None}
-    return spindle(**keywords)
+    return spindle(**given_args(args))
 
 
 SPINDLE_SCENE_SPEC = AssemblySpec(
@@ -131,11 +130,8 @@ SPINDLE_SCENE_SPEC = AssemblySpec(
         "damping_ratio": ArgSpec("float", None, "damping ratio of the shaft against the "
                                  "housing [-], 0 to 1 (default: none)"),
     },
-    fidelities=("quasi-static",),
-    auto_fidelities=("quasi-static",),
-    output_fidelity=[],
+    **single_level("quasi-static"),
     default_outputs=["pair.shaft.x", "pair.shaft.ty", "nu.Q[0]"],
-    fidelity_arg=None,
     optional_inputs=("pair.shaft.*",),
 )
 """The spindle as a scene assembly (:mod:`bearingsim.scenes`)."""

@@ -11,6 +11,8 @@ drags the middle ring to a speed ``n_z``; the speed distribution ratio is ``Rs =
   the levels' options checked once: :class:`DoubleLayerOptions` (with each layer's lubrication
   method and oil-bath level, the middle ring's oil gap), :class:`DynamicDoubleLayerOptions`;
 * :mod:`.speed`: the limiting shaft speed and the speed ratio ``Rs``;
+* :mod:`.base`: what the torque and dynamic levels share (the shaft, its speed variables and
+  drive), :class:`~.base.PartialDoubleLayer`;
 * :mod:`.torque`: pure rolling (``kinematic``) and friction torque (``torque``, Palmgren or SKF),
   :class:`DoubleLayerBearing` with each layer's element;
 * :mod:`.quasi_static`: load sharing (``quasi-static``), :class:`NestedQuasiStatic`;

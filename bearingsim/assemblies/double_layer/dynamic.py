@@ -4,19 +4,16 @@
 from __future__ import annotations
 
 from bearingsim.assemblies.deep_groove import DeepGrooveBallBearing, DeepGrooveOptions
+from bearingsim.assemblies.double_layer.base import PartialDoubleLayer
 from bearingsim.assemblies.double_layer.options import DynamicDoubleLayerOptions
-from bearingsim.assemblies.double_layer.speed import _shaft_speed_input, speed_ratio
-from bearingsim.components.connectors import Flange
 from bearingsim.components.dynamic import RingBody
 from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies
-from bearingsim.components.rotational import SpeedSource
 from bearingsim.errors import ParameterError
-from bearingsim.language import Assembly, Variable, connect, der
+from bearingsim.language import Variable, connect, der
 from bearingsim.physics.bearing_design import bearing_design
-from bearingsim.validation import options_object
 
 
-class DynamicDoubleLayerBearing(Assembly):
+class DynamicDoubleLayerBearing(PartialDoubleLayer):
     """A double-layer bearing with ball and cage dynamics in both layers.
 
     Each layer is a :class:`~bearingsim.assemblies.deep_groove.DeepGrooveBallBearing`: the inner
@@ -67,16 +64,13 @@ class DynamicDoubleLayerBearing(Assembly):
     """
 
     def __init__(self, options: DynamicDoubleLayerOptions | None = None, name="bearing"):
-        super().__init__(name)
-        options = options_object(options, DynamicDoubleLayerOptions, "double_layer_bearing")
-        self.options = options
-        self.structure = options.structure
-        self.geometries = gi, go = options.geometries
+        super().__init__(options, DynamicDoubleLayerOptions, name)
+        options = self.options
+        gi, go = self.geometries
         self.designs = (bearing_design(gi), bearing_design(go))
         lub_i, lub_o = options.lubricants
         loads = options.loads
         constant = DeepGrooveOptions.constant_loads(loads)
-        self.shaft = Flange()
         self.middle = MiddleRing(middle_ring_bodies(gi, go, self.structure), w0=options.w_middle0)
         self.outer_layer = DeepGrooveBallBearing(self.designs[1], lub_o, options.for_layer(
             constant, ring_inertia=False, inner_ring="frame"))
@@ -88,20 +82,14 @@ class DynamicDoubleLayerBearing(Assembly):
         self.inner_layer = DeepGrooveBallBearing(self.designs[0], lub_i, options.for_layer(
             loads, outer_ring="flange", ring_inertia=options.drive == "flange",
             outer_support="frame", outer_start=middle0))
-        self.w_shaft = Variable(unit="rad/s", description="shaft (inner ring) speed")
-        self.w_middle = Variable(unit="rad/s", description="middle ring speed")
-        self.Rs = Variable(unit="1", description="speed distribution ratio n_z / n_i")
+        self._declare_speeds()
         self.M_middle = Variable(unit="N.m", description="net torque on the middle ring")
         connect(self.shaft, self.inner_layer.shaft)
         connect(self.inner_layer.outer_flange, self.middle.inner_side)
         connect(self.middle.outer_side, self.outer_layer.shaft)
         connect(self.middle_body.frame, self.inner_layer.outer_frame,
                 self.outer_layer.inner_frame)
-        if options.drive == "speed":
-            self.drive = SpeedSource(options.speed)
-            connect(self.drive.flange, self.shaft)
-            if options.speed is None:
-                self.shaft_speed = _shaft_speed_input(gi, go)
+        self._build_drive()
 
     def rolling_start(self, w_shaft: float, w_middle: float,
                       states: list[str]) -> dict[str, float]:
@@ -166,12 +154,6 @@ class DynamicDoubleLayerBearing(Assembly):
         raise ParameterError(f"{self.name}: the system holds no state {key!r}")
 
     def equations(self):
-        eqs = [
-            self.w_shaft == der(self.shaft.phi),
-            self.w_middle == self.middle.w,
-            self.Rs == speed_ratio(self.w_middle, self.w_shaft),
-            self.M_middle == self.middle.J * der(self.middle.sleeve.w),
-        ]
-        if hasattr(self, "shaft_speed"):
-            eqs.append(self.drive.w_in == self.shaft_speed)
-        return eqs
+        return [*self._speed_equations(),
+                self.M_middle == self.middle.J * der(self.middle.sleeve.w),
+                *self._drive_equations()]

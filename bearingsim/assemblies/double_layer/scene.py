@@ -18,6 +18,7 @@ from bearingsim.assemblies.spec import (
     PostQuantity,
     declared_errors,
     factory_default,
+    given_args,
 )
 from bearingsim.catalog import resolve_bearing
 from bearingsim.components.middle_ring import (
@@ -61,14 +62,12 @@ def double_layer_from_scene(args: dict[str, Any], fidelity: str,
         extra = {"drive": drive} if fidelity == "dynamic" else {}
         return double_layer_bearing(args["inner"], args["outer"], structure=args["structure"],
                                     fidelity=fidelity, lubrication=args["lubrication"], **extra)
-    options = {k: v for k, v in (args["layer_options"] or {}).items() if v is not None}
     return double_layer_bearing(
         args["inner"], args["outer"], structure=args["structure"], fidelity=fidelity,
         lubrication=args["lubrication"], friction_model=args["friction_model"], drive=drive,
         lubrication_method=args["lubrication_method"], oil_level=args["oil_level"],
-        middle_ring_drag={k: v for k, v in (args["middle_ring_drag"] or {}).items()
-                          if v is not None} or None,
-        layer_options=options or None,
+        middle_ring_drag=given_args(args["middle_ring_drag"]) or None,
+        layer_options=given_args(args["layer_options"]) or None,
     )
 
 

@@ -3,18 +3,16 @@
 
 from __future__ import annotations
 
+from bearingsim.assemblies.double_layer.base import PartialDoubleLayer
 from bearingsim.assemblies.double_layer.options import DoubleLayerOptions
-from bearingsim.assemblies.double_layer.speed import _shaft_speed_input, speed_ratio
 from bearingsim.components.bearing_torque import PalmgrenBearing, PureRollingLayer, SkfBearing
-from bearingsim.components.connectors import Flange
 from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies
-from bearingsim.components.rotational import Damper, Fixed, SpeedSource
-from bearingsim.language import Assembly, Input, Variable, connect, der
+from bearingsim.components.rotational import Damper, Fixed
+from bearingsim.language import Input, Variable, connect
 from bearingsim.physics.drag import TAYLOR_ONSET, couette_damping, taylor_number
-from bearingsim.validation import options_object
 
 
-class DoubleLayerBearing(Assembly):
+class DoubleLayerBearing(PartialDoubleLayer):
     """A double-layer bearing at the kinematic or torque fidelity level.
 
     Parameters
@@ -54,21 +52,15 @@ class DoubleLayerBearing(Assembly):
     """
 
     def __init__(self, options: DoubleLayerOptions | None = None, name="bearing"):
-        super().__init__(name)
-        options = options_object(options, DoubleLayerOptions, "double_layer_bearing")
-        self.options = options
-        self.structure = options.structure
-        self.geometries = gi, go = options.geometries
+        super().__init__(options, DoubleLayerOptions, name)
+        options = self.options
         fidelity, friction_model = options.fidelity, options.friction_model
-        self.shaft = Flange()
         self.housing = Fixed()
-        self.middle = MiddleRing(middle_ring_bodies(gi, go, self.structure))
+        self.middle = MiddleRing(middle_ring_bodies(*self.geometries, self.structure))
         self.inner_layer, self.outer_layer = (
             _layer(g, lub, fidelity, friction_model, opts) for g, lub, opts in
             zip(options.geometries, options.lubricants, options.layer_options_each, strict=True))
-        self.w_shaft = Variable(unit="rad/s", description="shaft (inner ring) speed")
-        self.w_middle = Variable(unit="rad/s", description="middle ring speed")
-        self.Rs = Variable(unit="1", description="speed distribution ratio n_z / n_i")
+        self._declare_speeds()
         self.M_shaft = Variable(unit="N.m", description="friction torque on the shaft")
         self._lubricated = fidelity == "torque"
         if self._lubricated:
@@ -78,11 +70,7 @@ class DoubleLayerBearing(Assembly):
         connect(self.inner_layer.outer, self.middle.inner_side)
         connect(self.middle.outer_side, self.outer_layer.inner)
         connect(self.outer_layer.outer, self.housing.flange)
-        if options.drive == "speed":
-            self.drive = SpeedSource(options.speed)
-            connect(self.drive.flange, self.shaft)
-            if options.speed is None:
-                self.shaft_speed = _shaft_speed_input(gi, go)
+        self._build_drive()
         self._gap = options.gap
         if self._gap is not None:
             radius, gap, length, wetted, eta, _ = self._gap
@@ -93,17 +81,11 @@ class DoubleLayerBearing(Assembly):
                                       f"oil gap (laminar below {TAYLOR_ONSET})")
 
     def equations(self):
-        eqs = [
-            self.w_shaft == der(self.shaft.phi),
-            self.w_middle == self.middle.w,
-            self.Rs == speed_ratio(self.w_middle, self.w_shaft),
-            self.M_shaft == self.inner_layer.M,
-        ]
+        eqs = [*self._speed_equations(), self.M_shaft == self.inner_layer.M]
         if self._lubricated:
             for layer in (self.inner_layer, self.outer_layer):
                 eqs += [layer.Fr == self.Fr, layer.Fa == self.Fa]
-        if hasattr(self, "shaft_speed"):
-            eqs.append(self.drive.w_in == self.shaft_speed)
+        eqs += self._drive_equations()
         if self._gap is not None:
             radius, gap, _, _, _, nu = self._gap
             eqs.append(self.middle_Ta == taylor_number(self.w_middle, radius, gap, nu))

@@ -9,7 +9,13 @@ from bearingsim.assemblies.duplex.figures import MODE_NAMES_BY_STATE, duplex_plo
 from bearingsim.assemblies.duplex.options import DuplexOptions
 from bearingsim.assemblies.duplex.pair import DuplexPair, duplex_pair
 from bearingsim.assemblies.duplex.preload import ARRANGEMENTS, PRELOAD_CLASSES
-from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, factory_default
+from bearingsim.assemblies.spec import (
+    ArgSpec,
+    AssemblySpec,
+    factory_default,
+    given_args,
+    single_level,
+)
 from bearingsim.errors import ParameterError
 
 # --------------------------------------------------------------------------- scene spec
@@ -19,8 +25,7 @@ _RADIAL_INPUTS = ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")
 def _duplex_from_scene(args: dict[str, Any], fidelity: str) -> DuplexPair:
     """Build the pair from the scene arguments of :data:`SCENE_SPEC` (defaults filled in;
     ``fidelity`` is unused: the pair has one level)."""
-    keywords = {k: v for k, v in args.items()
-                if v is not None and k not in ("bearing", "preload_force")}
+    keywords = given_args(args, leave_out=("bearing", "preload_force"))
     if args.get("preload_force") is not None:
         if args.get("preload") is not None:
             raise ParameterError(
@@ -70,9 +75,7 @@ SCENE_SPEC = AssemblySpec(
                                  "damping ratio of the shaft against the housing [-], 0 to 1 "
                                  "(default: none, a load step rings for ever)"),
     },
-    fidelities=("quasi-static",),
-    auto_fidelities=("quasi-static",),
-    output_fidelity=[],
+    **single_level("quasi-static"),
     default_outputs=["shaft.x", "shaft.z", "shaft.ty"],
     symmetry=_symmetry,
     symmetric_args=_symmetric_args,
@@ -80,7 +83,6 @@ SCENE_SPEC = AssemblySpec(
     # built in) are parameters of the assembled pair: a grid over them needs no re-assembly
     parametric_args={"preload": lambda args: True, "preload_force": lambda args: True,
                      "speed": lambda args: bool(args.get("speed_effects"))},
-    fidelity_arg=None,
     optional_inputs=("shaft.*",),  # no external load (the preload alone)
     plots=duplex_plots,
     mode_names=MODE_NAMES_BY_STATE,

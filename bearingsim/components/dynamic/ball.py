@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from bearingsim.components.connectors import BallFrame
-from bearingsim.language import Component, Parameter, Variable, der
+from bearingsim.components.dynamic.rigid_body import PartialRigidBody
+from bearingsim.language import Parameter, Variable, der
 from bearingsim.physics.bearing_design import POSITION_REGULARIZATION
 
 __all__ = ["Ball"]
@@ -25,7 +26,7 @@ _FORCE_SCALE = 1e-3
 then means 1e-9 N."""
 
 
-class Ball(Component):
+class Ball(PartialRigidBody):
     """Ball with orbital and spin dynamics; radial/axial position quasi-static or with mass.
 
     Equations in the ball's azimuthal frame (Gupta, *Advanced Dynamics of Rolling Elements*,
@@ -87,11 +88,8 @@ class Ball(Component):
     def __init__(self, mass: float, inertia: float, r0: float, pitch_radius: float,
                  theta0: float = 0.0, z0: float = 0.0, w_orbit0: float = 0.0, spin0=(0.0, 0.0, 0.0),
                  massive: bool = False, name=None):
-        super().__init__(name)
+        super().__init__(mass, inertia, "ball", "moment of inertia", name)
         self.massive = bool(massive)
-        self.m = Parameter(mass, "kg", "ball mass", low=0.0, low_inclusive=False)
-        self.J = Parameter(inertia, "kg.m2", "ball moment of inertia", low=0.0,
-                           low_inclusive=False)
         self.pitch_radius = Parameter(pitch_radius, "m", "pitch radius", low=0.0,
                                       low_inclusive=False)
         self.frame = BallFrame()

@@ -7,6 +7,7 @@ import math
 from bearingsim import symbolic as op
 from bearingsim.components.connectors import BallFrame, CageFrame, Flange
 from bearingsim.components.dynamic.ball import MICRON
+from bearingsim.components.dynamic.rigid_body import PartialRigidBody
 from bearingsim.language import Component, Parameter, Variable, der
 from bearingsim.physics.cage import (
     SIGMA_BALL,
@@ -24,7 +25,7 @@ SIGMA = math.hypot(SIGMA_BALL, SIGMA_CAGE)
 """Composite roughness of ball and pocket [m]."""
 
 
-class Cage(Component):
+class Cage(PartialRigidBody):
     """Rigid cage moving in its plane: translation x, y and rotation phi about the axis z.
 
     ``m der(vx) = Fx``, ``m der(vy) = Fy``, ``J der(w) = Mz`` with the forces of the pockets and
@@ -52,9 +53,7 @@ class Cage(Component):
     """
 
     def __init__(self, mass: float, inertia: float, w0: float = 0.0, name=None):
-        super().__init__(name)
-        self.m = Parameter(mass, "kg", "cage mass", low=0.0, low_inclusive=False)
-        self.J = Parameter(inertia, "kg.m2", "cage polar inertia", low=0.0, low_inclusive=False)
+        super().__init__(mass, inertia, "cage", "polar inertia", name)
         self.frame = CageFrame()
         self.x_um = Variable(0.0, "um", "cage centre x (state)")
         self.y_um = Variable(0.0, "um", "cage centre y (state)")

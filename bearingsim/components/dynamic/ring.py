@@ -8,9 +8,10 @@ from typing import Any
 
 from bearingsim.components.connectors import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.components.dynamic.ball import MICRON
+from bearingsim.components.dynamic.rigid_body import PartialRigidBody
 from bearingsim.components.rotational import _signal
 from bearingsim.errors import ParameterError
-from bearingsim.language import Component, Input, Parameter, Variable, der
+from bearingsim.language import Component, Input, Variable, der
 from bearingsim.symbolic import is_symbolic
 from bearingsim.validation import check_range
 
@@ -89,7 +90,7 @@ def check_loads(loads: Mapping[str, Any] | None, where: str = "RingLoad") -> dic
     return checked
 
 
-class RingBody(Component):
+class RingBody(PartialRigidBody):
     """A rigid ring (with its shaft) moving in 5 DOF: translations x, y, z and tilts tx, ty.
 
     ``m der(v) = F``, ``J_t der(w_t) = M`` with the forces and moments of everything connected
@@ -122,11 +123,8 @@ class RingBody(Component):
 
     def __init__(self, mass: float, tilt_inertia: float, start: Sequence[float] = (0.0,) * 5,
                  free_tilt: bool = False, name=None):
-        super().__init__(name)
+        super().__init__(mass, tilt_inertia, "ring", "tilt inertia", name)
         self.free_tilt = bool(free_tilt)
-        self.m = Parameter(mass, "kg", "ring mass", low=0.0, low_inclusive=False)
-        self.J = Parameter(tilt_inertia, "kg.m2", "ring tilt inertia", low=0.0,
-                           low_inclusive=False)
         self.frame = RingFrame()
         units = ("m", "m", "m", "rad", "rad")
         for key, unit, x0 in zip(FRAME_POTENTIALS, units, start, strict=True):
