@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 from fmpy import read_model_description
+from fmpy.ssp.simulation import simulate_ssp
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.motor_drive import motor_drive
@@ -57,6 +58,40 @@ def errors(ref, t, values: dict[str, np.ndarray]) -> dict[str, tuple[float, floa
         e = np.abs(np.asarray(values[name]) - r[index]) / np.max(np.abs(r))
         out[name] = (float(e.max()), float(e[late].max()))
     return out
+
+
+def ssp_run(paths, h):
+    """fmpy's SSP master (fixed step, Jacobi: both FMUs step on the last exchanged values)."""
+    res = simulate_ssp(str(paths["ssp"]), stop_time=T_END, step_size=h)
+    # a row holds the outputs at the end of the step that starts at res["time"]
+    return res["time"] + h, {n: res[n] for n in REF_OUTPUTS}
+
+
+def libcosim_run(paths, h):
+    """libcosim's fixed-step master on the same SSP file (``OSError`` where libcosimpy's
+    runtime library cannot be loaded)."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+    n = int(round(T_END / h))
+    execution = CosimExecution.from_ssp_file(str(paths["ssp"]), step_size=int(round(h * 1e9)))
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    refs = []
+    for name in REF_OUTPUTS:
+        element, var = name.split(".", 1)
+        index = execution.slave_index_from_instance_name(element)
+        vrs = {v.name.decode(): v.reference for v in execution.slave_variables(index)}
+        refs.append((index, vrs[var]))
+    values = np.empty((n, len(refs)))
+    for k in range(n):
+        assert execution.step()
+        for j, (index, vr) in enumerate(refs):
+            values[k, j] = observer.last_real_values(index, [vr])[0]
+    t = h * np.arange(1, n + 1)
+    return t, {name: values[:, j] for j, name in enumerate(REF_OUTPUTS)}
 
 
 def derivative_run(paths, h, tmp_path, derivatives=True):
