@@ -8,13 +8,15 @@ FMUs on a guess of every coupled signal over the step, reads the outputs at the 
 step, rolls back (``fmi2SetFMUstate`` / ``fmi3SetFMUState``) and steps again on the improved
 guess until the end values agree with the guess; then it moves on.
 
-Over the step each coupled input follows
+Over the step each coupled input follows (``interpolation``)
 
-* FMI 3.0 (intermediate update): the cubic Hermite polynomial through the output's value and
-  total time derivative at both ends of the step, given to the FMU through the
-  ``intermediateUpdate`` callback at every time it asks for;
-* FMI 2.0 (input derivatives): the straight line from the value at the start to the value at
-  the end (``fmi2SetRealInputDerivatives``, first order).
+* ``"cubic"``: the cubic Hermite polynomial through the output's value and total time
+  derivative at both ends of the step; FMI 3.0 gets it through the ``intermediateUpdate``
+  callback at every time it asks for, FMI 2.0 as input derivatives of order 1 to 3 at the
+  step start (``fmi2SetRealInputDerivatives``; the standard allows any order, bearingsim's
+  FMUs accept up to 3, many other FMUs only 1);
+* ``"linear"``: the straight line from the value at the start to the value at the end (FMI
+  2.0: a first-order input derivative, which any FMU with ``canInterpolateInputs`` accepts).
 
 The total time derivative of an output is ``fmi3GetOutputDerivatives`` (inputs held) plus the
 directional derivative along the rates of the FMU's coupled inputs (FMI 3.0), or
@@ -69,7 +71,8 @@ def _hermite(y0: float, d0: float, y1: float, d1: float, h: float, s: float) -> 
 class _Member:
     """One FMU of the coupling, instantiated with fmpy's low-level API."""
 
-    def __init__(self, name: str, path: Path, inputs: list[str], fmu_tolerance: float):
+    def __init__(self, name: str, path: Path, inputs: list[str], fmu_tolerance: float,
+                 cubic: bool):
         from fmpy import extract, read_model_description
 
         md = read_model_description(str(path))
@@ -80,6 +83,7 @@ class _Member:
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.causality = {v.name: v.causality for v in md.modelVariables}
         self.inputs = inputs
+        self.cubic = cubic
         self.segment = {}  # input name -> (y0, d0, y1, d1, t0, h) of the current guess
         self.unzip = extract(str(path))
         ident = md.coSimulation.modelIdentifier
@@ -113,7 +117,9 @@ class _Member:
 
     def _intermediate_update(self, env, t, *_):
         for u, (y0, d0, y1, d1, t0, h) in self.segment.items():
-            self.fmu.setFloat64([self.vr[u]], [_hermite(y0, d0, y1, d1, h, (t - t0) / h)])
+            s = (t - t0) / h
+            value = _hermite(y0, d0, y1, d1, h, s) if self.cubic else y0 + (y1 - y0) * s
+            self.fmu.setFloat64([self.vr[u]], [value])
 
     def get(self, variable: str) -> float:
         get = self.fmu.getFloat64 if self.fmi3 else self.fmu.getReal
@@ -125,6 +131,13 @@ class _Member:
         if self.fmi3:
             self.fmu.setFloat64([self.vr[u]], [y0])
             self.segment[u] = (y0, d0, y1, d1, t0, h)
+        elif self.cubic:  # the Hermite cubic's derivatives at t0
+            self.fmu.setReal([self.vr[u]], [y0])
+            secant = (y1 - y0) / h
+            self.fmu.setRealInputDerivatives(
+                [self.vr[u]] * 3, [1, 2, 3],
+                [d0, 2.0 * (3.0 * secant - 2.0 * d0 - d1) / h,
+                 6.0 * (d0 + d1 - 2.0 * secant) / (h * h)])
         else:
             self.fmu.setReal([self.vr[u]], [y0])
             self.fmu.setRealInputDerivatives([self.vr[u]], [1], [(y1 - y0) / h])
@@ -171,8 +184,8 @@ def _split(path: str) -> tuple[str, str]:
 
 def run_coupled(fmus: dict[str, str | Path], connections: Sequence[tuple[str, str]],
                 t_end: float, step: float, record: Sequence[str] = (),
-                tolerance: float = 1e-4, max_iterations: int = 20,
-                fmu_tolerance: float = 1e-8) -> CoupledRun:
+                interpolation: str = "cubic", tolerance: float = 1e-4,
+                max_iterations: int = 20, fmu_tolerance: float = 1e-8) -> CoupledRun:
     """Co-simulate FMUs with every communication step iterated until the coupling converges.
 
     Parameters
@@ -187,6 +200,9 @@ def run_coupled(fmus: dict[str, str | Path], connections: Sequence[tuple[str, st
         Communication step [s].
     record : sequence of str
         ``"component.output"`` variables recorded at every communication point.
+    interpolation : {"cubic", "linear"}
+        Shape of each coupled input over the step (module docstring). ``"cubic"`` needs FMI
+        3.0 intermediate update, or FMI 2.0 input derivatives up to order 3.
     tolerance : float
         Convergence of a step: each coupled output changes between two iterations by at most
         ``tolerance`` times the largest magnitude it has had in the run [relative].
@@ -214,6 +230,9 @@ def run_coupled(fmus: dict[str, str | Path], connections: Sequence[tuple[str, st
     ...                   MOTOR_BEARING_CONNECTIONS, 0.3, 1e-3,
     ...                   record=["bearing.M_shaft"])  # doctest: +SKIP
     """
+    if interpolation not in ("cubic", "linear"):
+        raise ParameterError(f"run_coupled: interpolation must be 'cubic' or 'linear', got "
+                             f"{interpolation!r}")
     n = int(round(t_end / step)) if step > 0.0 else 0
     if n < 1 or abs(n * step - t_end) > 1e-9 * t_end:
         raise ParameterError(f"run_coupled: step = {step} s must divide t_end = {t_end} s")
@@ -225,7 +244,8 @@ def run_coupled(fmus: dict[str, str | Path], connections: Sequence[tuple[str, st
     try:
         for name, path in fmus.items():
             members[name] = _Member(name, Path(path),
-                                    [iv for _, _, ic, iv in links if ic == name], fmu_tolerance)
+                                    [iv for _, _, ic, iv in links if ic == name], fmu_tolerance,
+                                    interpolation == "cubic")
         for oc, ov, ic, iv in links:
             members[oc].check(ov, "output")
             members[ic].check(iv, "input")
