@@ -109,7 +109,8 @@ def test_master_passing_derivatives_matches_within_0_1_percent(pair, tmp_path):
     it is below omega_reg = 0.1 rad/s (the first 4 ms), lags through that band. It is not an
     event (the regularized sign is smooth and the speed never crosses zero inside a step):
     the error is a sampling error of a fast smooth transient and falls with the square of
-    the step (0.5 ms: 3.5x smaller; it is below 0.1 % at 0.125 ms, docs/fmu.md)."""
+    the step (0.5 ms: 3.5x smaller; it is below 0.1 % at 0.125 ms, docs/fmu.md), or at 1 ms
+    with each step iterated (``test_fmu_strong_coupling.py``)."""
     _, paths, ref = pair
     with_slopes = errors(ref, *derivative_run(paths, 1e-3, tmp_path))
     held = errors(ref, *derivative_run(paths, 1e-3, tmp_path, derivatives=False))
