@@ -82,7 +82,6 @@ class _Member:
         self.fmi3 = md.fmiVersion.startswith("3")
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.causality = {v.name: v.causality for v in md.modelVariables}
-        self.inputs = inputs
         self.cubic = cubic
         self.segment = {}  # input name -> (y0, d0, y1, d1, t0, h) of the current guess
         self.unzip = extract(str(path))
@@ -111,8 +110,8 @@ class _Member:
         """Value reference of ``variable``, which must have ``causality``."""
         if self.causality.get(variable) != causality:
             found = self.causality.get(variable, "not a variable")
-            raise ParameterError(f"run_coupled: {self.name}.{variable} must be an {causality} "
-                             f"({found})")
+            raise ParameterError(f"run_coupled: {self.name}.{variable} must be an "
+                                 f"{causality} ({found})")
         return self.vr[variable]
 
     def _intermediate_update(self, env, t, *_):
