@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 from fmpy import read_model_description
+from fmpy.ssp.simulation import simulate_ssp
 
 from bearingsim.assembler import assemble
 from bearingsim.assemblies.motor_drive import motor_drive
@@ -18,16 +19,20 @@ BREAKAWAY = 0.01
 its running value while the slip is inside the regularization band (omega_reg = 0.1 rad/s,
 the first 4 ms); a sampled coupling follows that fast transient with a lag."""
 
+REF_STEP = 1.25e-4
+"""Sampling of the monolithic reference [s]: every communication point of the runs (steps of
+0.125 ms and multiples) is one of its samples."""
+
 REF_OUTPUTS = {"motor.w_shaft": "shaft.w", "bearing.M_shaft": "bearing.M_shaft",
                "bearing.w_middle": "bearing.w_middle"}
 
 
 def monolithic_reference(motor: str):
     """``simulate`` of the monolithic drive with the ramp of the co-simulation tests (rtol
-    1e-10), sampled every 0.5 ms over T_END."""
+    1e-10), sampled every REF_STEP over T_END."""
     system = assemble(motor_drive(motor=motor, speed_ref=cosim_ramp),
                       outputs=list(REF_OUTPUTS.values()))
-    return simulate(system, T_END, n_points=int(round(T_END / 5e-4)) + 1,
+    return simulate(system, T_END, n_points=int(round(T_END / REF_STEP)) + 1,
                     inputs={"bearing.Fr": COSIM_FR}, rtol=1e-10, atol=1e-12, progress=False)
 
 
@@ -38,16 +43,55 @@ def value_reference(path, name: str) -> int:
 
 
 def errors(ref, t, values: dict[str, np.ndarray]) -> dict[str, tuple[float, float]]:
-    """Per signal: largest error relative to the largest reference value, over the whole run
-    and after the breakaway."""
+    """Per signal: largest error at the communication points ``t`` (where a co-simulation has
+    values) relative to the largest reference value, over the whole run and after the
+    breakaway."""
+    t = np.asarray(t)
+    index = np.rint(t / REF_STEP).astype(int)
+    if np.any(np.abs(index * REF_STEP - t) > 1e-9) or index.max() >= len(ref.t):
+        raise ValueError("errors: the communication points must be samples of the reference "
+                         f"(multiples of {REF_STEP} s up to {T_END} s)")
+    late = t >= BREAKAWAY
     out = {}
-    late = ref.t >= BREAKAWAY
     for name, ref_name in REF_OUTPUTS.items():
-        r = ref[ref_name]
-        v = np.interp(ref.t, t, values[name], left=0.0)
-        e = np.abs(v - r) / np.max(np.abs(r))
+        r = np.asarray(ref[ref_name])
+        e = np.abs(np.asarray(values[name]) - r[index]) / np.max(np.abs(r))
         out[name] = (float(e.max()), float(e[late].max()))
     return out
+
+
+def ssp_run(paths, h):
+    """fmpy's SSP master (fixed step, Jacobi: both FMUs step on the last exchanged values)."""
+    res = simulate_ssp(str(paths["ssp"]), stop_time=T_END, step_size=h)
+    # a row holds the outputs at the end of the step that starts at res["time"]
+    return res["time"] + h, {n: res[n] for n in REF_OUTPUTS}
+
+
+def libcosim_run(paths, h):
+    """libcosim's fixed-step master on the same SSP file (``OSError`` where libcosimpy's
+    runtime library cannot be loaded)."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+    n = int(round(T_END / h))
+    execution = CosimExecution.from_ssp_file(str(paths["ssp"]), step_size=int(round(h * 1e9)))
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    refs = []
+    for name in REF_OUTPUTS:
+        element, var = name.split(".", 1)
+        index = execution.slave_index_from_instance_name(element)
+        vrs = {v.name.decode(): v.reference for v in execution.slave_variables(index)}
+        refs.append((index, vrs[var]))
+    values = np.empty((n, len(refs)))
+    for k in range(n):
+        assert execution.step()
+        for j, (index, vr) in enumerate(refs):
+            values[k, j] = observer.last_real_values(index, [vr])[0]
+    t = h * np.arange(1, n + 1)
+    return t, {name: values[:, j] for j, name in enumerate(REF_OUTPUTS)}
 
 
 def derivative_run(paths, h, tmp_path, derivatives=True):

@@ -73,7 +73,8 @@ typedef void (*bsm_logger)(void *host, BsmStatus status, const char *category,
 
 /* Inputs inside a co-simulation step from the API layer (FMI 3.0 intermediate update): the
  * stepper calls it with a time t in the step; it writes the inputs at t into u and returns 1,
- * or returns 0 to leave them to u0 + du (t - t0). */
+ * or returns 0 to leave them to the polynomial of the input derivatives,
+ * u0 + du (t - t0) + d2u (t - t0)^2 / 2 + d3u (t - t0)^3 / 6. */
 typedef int (*bsm_inputs_fn)(void *host, double t, double *u);
 
 /* Everything that defines where an instance is: saved and restored as one block
@@ -85,6 +86,8 @@ typedef struct {
     double x[BSM_DIM(NX)];
     double u[BSM_DIM(NU)];
     double du[BSM_DIM(NU)]; /* input slopes for the next doStep */
+    double d2u[BSM_DIM(NU)]; /* second and third time derivatives of the inputs at the step */
+    double d3u[BSM_DIM(NU)]; /* start (FMI 2.0 input derivatives of order 2 and 3) */
     double p[BSM_DIM(NP)];
     double h_next;          /* proposed internal step of the stepper (0: none yet) */
     double rtol;
@@ -164,6 +167,7 @@ typedef struct {
     double xs[BSM_DIM(NX)];
     double x_new[BSM_DIM(NX)];
     double dfdt[BSM_DIM(NX)];
+    double rate_u[BSM_DIM(NU)]; /* input rates at the start of the internal step */
     double ut[BSM_DIM(NU)];
     BsmState saved; /* state at the start of a doStep, restored on failure */
     /* host */
@@ -171,7 +175,7 @@ typedef struct {
     void *host;
     bsm_logger logger;
     int debug_logging;
-    bsm_inputs_fn inputs_between; /* NULL: inputs follow u0 + du (t - t0) */
+    bsm_inputs_fn inputs_between; /* NULL: inputs follow their derivatives' polynomial */
 } BsmInstance;
 
 /* Outcome of a shared API operation: done; refused without harm (bad arguments or a call in

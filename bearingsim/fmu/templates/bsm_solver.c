@@ -37,8 +37,10 @@
  * All use the exact Jacobian d der(x)/dx of the generated code when they evaluate one. The
  * Rosenbrock stage equations are (I/(h gamma) - J) k_s = f(t + alpha_s h, x + sum_j a_sj k_j)
  * + sum_j c_sj / h k_j + h gamma_s df/dt and x_new = x + sum_s m_s k_s. Inputs follow
- * u(t) = u0 + du * (t - t0) over the communication step (du = 0 unless input derivatives were
- * set), so df/dt includes jac_u * du (and the BDF's right-hand side sees u(t)); an FMI 3.0
+ * u(t) = u0 + du (t - t0) + d2u (t - t0)^2 / 2 + d3u (t - t0)^3 / 6 over the communication
+ * step (du = d2u = d3u = 0 unless input derivatives were set), so df/dt includes jac_u times
+ * the input rate at the start of each internal step (and the BDF's right-hand side sees
+ * u(t)); an FMI 3.0
  * importer may instead give the inputs at every stage or right-hand-side time (intermediate
  * update, BsmInstance.inputs_between), for every stepper. The LU factorisation (bsm_lu.c,
  * shared with the compiled BDF integrator) is a sparse one on W (BDF: I - c J) permuted by
@@ -70,11 +72,14 @@
 #endif
 
 /* Inputs at time t of the step into m->ut: from the API layer where it gives them (FMI 3.0
- * intermediate update), else u0 + du (t - t0). */
+ * intermediate update), else the polynomial of the input derivatives at the step start. */
 static void inputs_at(BsmInstance *m, double t) {
     int i;
+    double tau = t - m->saved.time;
     if (m->inputs_between != NULL && m->inputs_between(m->host, t, m->ut)) return;
-    for (i = 0; i < NU; ++i) m->ut[i] = m->saved.u[i] + m->saved.du[i] * (t - m->saved.time);
+    for (i = 0; i < NU; ++i)
+        m->ut[i] = m->saved.u[i] + tau * (m->saved.du[i] + tau * (m->saved.d2u[i] / 2.0
+                                                                  + tau * m->saved.d3u[i] / 6.0));
 }
 
 static int all_finite(const double *v, int n) {
@@ -136,6 +141,8 @@ static void end_step(BsmInstance *m, double t_end) {
     inputs_at(m, t_end);
     memcpy(m->s.u, m->ut, sizeof(m->s.u));
     memset(m->s.du, 0, sizeof(m->s.du));
+    memset(m->s.d2u, 0, sizeof(m->s.d2u));
+    memset(m->s.d3u, 0, sizeof(m->s.d3u));
     bsm_invalidate(m);
 }
 
@@ -320,12 +327,16 @@ static int rhs(BsmInstance *m, double t, const double *y, double *f) {
     return all_finite(f, NX);
 }
 
-/* df/dt = jac_t + jac_u * du [unit of x / s^2] from the stepper's Jacobians. */
-static void time_derivative(BsmInstance *m) {
+/* df/dt = jac_t + jac_u * du/dt [unit of x / s^2] at time t of the step from the stepper's
+ * Jacobians, du/dt the rate of the inputs' polynomial there. */
+static void time_derivative(BsmInstance *m, double t) {
     int i, j;
+    double tau = t - m->saved.time;
+    for (j = 0; j < NU; ++j)
+        m->rate_u[j] = m->saved.du[j] + tau * (m->saved.d2u[j] + tau * m->saved.d3u[j] / 2.0);
     for (i = 0; i < NX; ++i) {
         m->dfdt[i] = m->w_jt[i];
-        for (j = 0; j < NU; ++j) m->dfdt[i] += m->w_ju[i * NU + j] * m->saved.du[j];
+        for (j = 0; j < NU; ++j) m->dfdt[i] += m->w_ju[i * NU + j] * m->rate_u[j];
     }
 }
 
@@ -361,7 +372,6 @@ static int new_jacobian(BsmInstance *m, double t, const double *x) {
     m->s.jac_t = t;
     memcpy(m->s.jac_x, x, sizeof(m->s.jac_x));
     memcpy(m->s.jac_u, m->ut, sizeof(m->s.jac_u));
-    time_derivative(m);
     return 1;
 }
 
@@ -465,7 +475,6 @@ static BsmStatus ros_do_step(BsmInstance *m, double h) {
     if (st != BSM_OK) return st;
     h_prop = (m->s.h_next > 0.0) ? m->s.h_next : h;
     need_jac = !ros_reuse || !jacobian_current(m);
-    if (!need_jac) time_derivative(m); /* du of this doStep */
     while (NX > 0 && t_end - t > 1e-13 * fmax(1.0, fabs(t_end))) {
         double hs = next_step(h_prop, t_end - t, m->w_h);
         int ok = 1;
@@ -476,6 +485,7 @@ static BsmStatus ros_do_step(BsmInstance *m, double h) {
          * W of a nearby h is I/(hs gamma) - (J + delta I), still a W-method */
         if (ok && !(ros_reuse && fabs(hs - m->w_h) <= 1e-6 * hs))
             ok = factorise(m, hs);
+        if (ok) time_derivative(m, t); /* the inputs' rate at the internal step's start */
         err = ok ? ros_step(m, t, m->s.x, hs) : -1.0;
         if (err >= 0.0 && err <= 1.0) {
             double fac = (err > 0.0) ? 0.9 * pow(err, -1.0 / ROS_ORDER) : 5.0;

@@ -451,10 +451,10 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component component, const fmi2ValueR
     size_t i;
     INSTANCE("fmi2SetRealInputDerivatives", MODE_INITIALIZATION | MODE_STEP_COMPLETE)
     for (i = 0; i < nvr; ++i) {
-        if (vr[i] < VR_U || vr[i] >= VR_Y || order[i] != 1) {
+        if (vr[i] < VR_U || vr[i] >= VR_Y || order[i] < 1 || order[i] > 3) {
             bsm_log(&c->m, BSM_ERROR, "logStatusError",
-                    "fmi2SetRealInputDerivatives: only first derivatives of inputs (got vr %u, "
-                    "order %d)", (unsigned)vr[i], (int)order[i]);
+                    "fmi2SetRealInputDerivatives: derivatives of order 1 to 3 of inputs only "
+                    "(got vr %u, order %d)", (unsigned)vr[i], (int)order[i]);
             return fmi2Error;
         }
         if (!isfinite(value[i])) {
@@ -464,7 +464,8 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component component, const fmi2ValueR
                     bsm_u_names[vr[i] - VR_U], bsm_num(num, value[i]));
             return fail(c, BSM_ERROR);
         }
-        c->m.s.du[vr[i] - VR_U] = value[i];
+        (order[i] == 1 ? c->m.s.du : order[i] == 2 ? c->m.s.d2u : c->m.s.d3u)[vr[i] - VR_U] =
+            value[i];
     }
     return fmi2OK;
 }
