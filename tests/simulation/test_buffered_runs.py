@@ -17,7 +17,8 @@ import pytest
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.errors import BudgetExceededError, ParameterError
-from bearingsim.simulation import simulate
+from bearingsim.simulation import simulate, steady_state
+from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.sundials_integrators import clear_integrator_cache, normalized_grid
 
 SPEED = {"shaft_speed": 100.0, "Fr": 200.0, "Fa": 50.0}
@@ -149,3 +150,78 @@ def test_a_changed_cache_variable_moves_the_kernel_library(system, kernel_cache,
     second = simulate(system, 0.01, inputs=SPEED, n_points=3, method="cvodes", compiled=True)
     assert second.stats["library"].startswith(str(other))
     assert _same(first, second)
+
+
+# ---------------------------------------------------------------- input bounds, steady states
+
+
+def _slow_check(system, signal, times, monkeypatch):
+    """check_input_ranges input by input (the vectorised test switched off): its error or
+    its warnings."""
+    from bearingsim.simulation import inputs as inputs_module
+
+    monkeypatch.setattr(inputs_module, "numbers_valid", lambda system, signal: False)
+    try:
+        return _outcome(lambda: inputs_module._check_signal(system, signal, times))
+    finally:
+        monkeypatch.undo()
+
+
+def _outcome(check):
+    try:
+        return ("notes", check())
+    except ParameterError as exc:
+        return ("error", str(exc))
+
+
+@pytest.mark.parametrize("speed", [0.0, -7958.7013890941425, 7958.7013890941425, 7958.71,
+                                   -8000.0, 3979.3506945470713, 3979.36, 100.0])
+@pytest.mark.parametrize("load", [0.0, -0.0, -1e-300, 5.0, (np.array([0.0, 1.0, 2.0]),
+                                                             np.array([0.0, 10.0, -1.0]))])
+def test_the_vectorised_bounds_test_agrees_with_the_input_by_input_check(
+        system, speed, load, monkeypatch):
+    """Bounds inclusive, the limiting speed (a warning above it, not at it), a table value
+    below its range; the vectorised test passes exactly the signals the input by input check
+    passes without a word."""
+    from bearingsim.simulation.inputs import _check_signal
+
+    signal = input_signal(system, {"shaft_speed": speed, "Fr": load})
+    times = np.array([0.0, 1.0])
+    fast = _outcome(lambda: _check_signal(system, signal, times))
+    assert fast == _slow_check(system, signal, times, monkeypatch)
+
+
+def test_steady_states_of_threads_and_systems_at_once_are_those_solved_alone(system):
+    other = assemble(double_layer_bearing("61905", "61908", fidelity="torque"))
+    points = [(s, {"shaft_speed": w}) for s in (system, other) for w in (50.0, 300.0, 900.0)]
+    alone = [steady_state(s, inputs=inputs) for s, inputs in points]
+    together: list = [None] * len(points)
+    start = threading.Barrier(len(points))
+
+    def work(k):
+        start.wait()
+        for _ in range(5):
+            s, inputs = points[k]
+            together[k] = steady_state(s, inputs=inputs)
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(len(points))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for mine, theirs in zip(alone, together, strict=True):
+        np.testing.assert_array_equal(mine, theirs)
+
+
+def test_a_steady_state_keeps_the_guess_of_the_states_it_does_not_solve_for(system):
+    """The angles have no steady value: each solve keeps its own guess for them, whatever
+    the solve before it was given."""
+    guess = system.x0()
+    angles = [k for k, name in enumerate(system.state_names) if name.endswith("phi")]
+    for value in (1.0, -2.5, 1.0):
+        guess[angles] = value
+        x = steady_state(system, inputs={"shaft_speed": 100.0}, x_guess=guess)
+        assert x[angles].tolist() == [value] * len(angles)
+        np.testing.assert_array_equal(
+            np.delete(x, angles),
+            np.delete(steady_state(system, inputs={"shaft_speed": 100.0}), angles))

@@ -1,0 +1,69 @@
+"""The bounds of an input signal's numbers, laid out once per system and signal structure, so
+that the numbers of a new run (a sweep's next point) are checked in one vectorised test.
+
+A signal made of constants and tables only is valid when every constant and every table value
+is finite, within its input's range and not above its limit (``warn_above``); otherwise the
+input-by-input check of :func:`~bearingsim.simulation.inputs.check_input_ranges` finds the value
+and says what is wrong with it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from bearingsim.assembler.system import System
+
+if TYPE_CHECKING:
+    from bearingsim.simulation.inputs import InputSignal
+
+__all__ = ["numbers_valid"]
+
+LAID_OUT_PER_SYSTEM = 64
+"""Signal structures whose bounds a system keeps (the oldest dropped first)."""
+
+
+def numbers_valid(system: System, signal: InputSignal) -> bool:
+    """Whether every constant and table value of ``signal`` is finite, within its input's
+    range and not above its limit.
+
+    Parameters
+    ----------
+    system : System
+        The closed system declaring the inputs' ranges and limits.
+    signal : InputSignal
+        The run's inputs, without functions of time (``None not in signal.lifted``).
+
+    Returns
+    -------
+    bool
+        True when all are; False when one is not (or may not be: the input-by-input check
+        decides).
+    """
+    laid_out = system.__dict__.setdefault("_number_bounds", {})
+    bounds = laid_out.get(signal.key)
+    if bounds is None:
+        bounds = laid_out[signal.key] = _bounds(system, signal)
+        if len(laid_out) > LAID_OUT_PER_SYSTEM:
+            del laid_out[next(iter(laid_out))]
+    index, low, high, limit = bounds
+    values = signal.q[index]
+    return bool(np.isfinite(values).all() and (values >= low).all() and (values <= high).all()
+                and (np.abs(values) <= limit).all())
+
+
+def _bounds(system: System, signal: InputSignal) -> tuple[np.ndarray, ...]:
+    """Positions of the checked numbers in ``signal.q`` (a constant; a table's values, not its
+    times) with the lower and upper bound and the limit of each (infinite where none)."""
+    index, low, high, limit = [], [], [], []
+    for sig, (first, last) in zip(system.inputs, signal.lifted, strict=True):
+        values = range(first, last) if last - first == 1 else \
+            range(first + (last - first) // 2, last)
+        above = getattr(sig, "warn_above", None)
+        index.extend(values)
+        low.extend([-np.inf if sig.low is None else sig.low] * len(values))
+        high.extend([np.inf if sig.high is None else sig.high] * len(values))
+        limit.extend([np.inf if above is None else above] * len(values))
+    return (np.array(index, dtype=int),
+            *(np.array(column, dtype=float) for column in (low, high, limit)))
