@@ -30,7 +30,7 @@ from bearingsim.assembler.system import System
 from bearingsim.errors import BudgetExceededError, ParameterError, SimulationError
 from bearingsim.simulation.budget import RunBudget
 from bearingsim.simulation.diagnostics import diverged
-from bearingsim.simulation.fastcall import evaluate, mapped_function
+from bearingsim.simulation.fastcall import columns_call
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.native_streams import held_stderr, interrupts, quiet_stdout
@@ -266,11 +266,11 @@ def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarra
     numpy.ndarray
         Observed variables, one column per time.
     """
-    n = ts.size
     us = signal.at(ts)
-    ps = np.concatenate((p,) * n)  # one column per time, column-major
-    args = (ts[None, :], xs, us, ps) if zs is None else (ts[None, :], xs, zs, us, ps)
-    return evaluate(mapped_function(kernel.observe, n), *args)[0]
+    call = columns_call(kernel.observe, ts.size)
+    if zs is None:
+        return call(ts, xs, us, p, repeated=3)
+    return call(ts, xs, zs, us, p, repeated=4)
 
 
 def _stats(method: str, kernel: Kernel, linear_solver: str, setup_time: float, cached: bool,
