@@ -475,9 +475,13 @@ def build_integrator(method: str, system: System, kernel: Kernel, signal: InputS
     """
     # the kernel by what it evaluates (kernels are rebuilt after clear_kernel_cache)
     kernel_key = (kernel.form, kernel.backend, str(kernel.library))
-    key = (method, kernel_key, signal.key, grid_key, observed,
-           tuple(sorted((k, repr(v)) for k, v in opts.items())))
-    built = INTEGRATORS.get(system, key)
+    settings = tuple(sorted(opts.items()))  # the names are unique: values never compared
+    key = (method, kernel_key, signal.key, grid_key, observed, settings)
+    try:
+        built = INTEGRATORS.get(system, key)
+    except TypeError:  # an option value that is not hashable (a list): keyed by its text
+        key = (*key[:-1], tuple((name, repr(value)) for name, value in settings))
+        built = INTEGRATORS.get(system, key)
     if built is not None:
         return built, True
     start = time.perf_counter()
