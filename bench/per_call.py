@@ -139,7 +139,7 @@ def _baseline(commit: str, repeats: int) -> list[dict]:
     return rows
 
 
-ROUNDS = 2
+ROUNDS = 3
 """Rounds of the baseline and this code, alternating."""
 
 
@@ -154,7 +154,7 @@ def _fastest(into: dict[str, dict], rows: list[dict]) -> None:
 
 def section(quick: bool = False, baseline: str = BASELINE) -> Section:
     """The run_all section: per-call cost per shipped scene, this code and the baseline."""
-    repeats = 8 if quick else 20
+    repeats = 8 if quick else 40
     then = subprocess.run(["git", "-C", str(ROOT), "ls-tree", "--name-only", baseline,
                            "bearingsim/scenes/library/"], check=True, capture_output=True,
                           text=True).stdout.split()

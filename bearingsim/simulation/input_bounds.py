@@ -9,14 +9,9 @@ and says what is wrong with it.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from bearingsim.assembler.system import System
-
-if TYPE_CHECKING:
-    from bearingsim.simulation.inputs import InputSignal
 
 __all__ = ["numbers_valid"]
 
@@ -24,16 +19,18 @@ LAID_OUT_PER_SYSTEM = 64
 """Signal structures whose bounds a system keeps (the oldest dropped first)."""
 
 
-def numbers_valid(system: System, signal: InputSignal) -> bool:
-    """Whether every constant and table value of ``signal`` is finite, within its input's
-    range and not above its limit.
+def numbers_valid(system: System, key: str, q: np.ndarray,
+                  lifted: tuple[tuple[int, int], ...]) -> bool:
+    """Whether every constant and table value of an input signal is finite, within its
+    input's range and not above its limit.
 
     Parameters
     ----------
     system : System
         The closed system declaring the inputs' ranges and limits.
-    signal : InputSignal
-        The run's inputs, without functions of time (``None not in signal.lifted``).
+    key, q, lifted
+        The signal's structure key, numbers and their slice per input
+        (:class:`~bearingsim.simulation.inputs.InputSignal`; no function of time among them).
 
     Returns
     -------
@@ -42,22 +39,23 @@ def numbers_valid(system: System, signal: InputSignal) -> bool:
         decides).
     """
     laid_out = system.__dict__.setdefault("_number_bounds", {})
-    bounds = laid_out.get(signal.key)
+    bounds = laid_out.get(key)
     if bounds is None:
-        bounds = laid_out[signal.key] = _bounds(system, signal)
+        bounds = laid_out[key] = _bounds(system, lifted)
         if len(laid_out) > LAID_OUT_PER_SYSTEM:
             del laid_out[next(iter(laid_out))]
     index, low, high, limit = bounds
-    values = signal.q[index]
+    values = q[index]
     return bool(np.isfinite(values).all() and (values >= low).all() and (values <= high).all()
                 and (np.abs(values) <= limit).all())
 
 
-def _bounds(system: System, signal: InputSignal) -> tuple[np.ndarray, ...]:
-    """Positions of the checked numbers in ``signal.q`` (a constant; a table's values, not its
-    times) with the lower and upper bound and the limit of each (infinite where none)."""
+def _bounds(system: System, lifted: tuple[tuple[int, int], ...]) -> tuple[np.ndarray, ...]:
+    """Positions of the checked numbers in a signal's numbers (a constant; a table's values,
+    not its times) with the lower and upper bound and the limit of each (infinite where
+    none)."""
     index, low, high, limit = [], [], [], []
-    for sig, (first, last) in zip(system.inputs, signal.lifted, strict=True):
+    for sig, (first, last) in zip(system.inputs, lifted, strict=True):
         values = range(first, last) if last - first == 1 else \
             range(first + (last - first) // 2, last)
         above = getattr(sig, "warn_above", None)

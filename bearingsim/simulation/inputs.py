@@ -419,7 +419,7 @@ def _check_signal(system: System, signal: InputSignal, times: np.ndarray) -> lis
     """:func:`check_input_ranges` without the memory: raises for an input out of range,
     returns the warnings (speeds above a limiting speed)."""
     t0, t1 = float(times[0]), float(times[-1])
-    if None not in signal.lifted and numbers_valid(system, signal):
+    if None not in signal.lifted and numbers_valid(system, signal.key, signal.q, signal.lifted):
         return []
     notes: list[str | None] = []
     functions = []
