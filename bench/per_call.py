@@ -34,7 +34,7 @@ from pathlib import Path
 
 from bench.common import Section, fmt, markdown_table
 
-__all__ = ["BASELINE", "measure", "section"]
+__all__ = ["BASELINE", "measure", "output_on_commit", "section"]
 
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE = "da2b26e"
@@ -120,8 +120,33 @@ def _time_runs(simulate, system, t_end: float, args: dict, repeats: int
 
 
 def _baseline(commit: str, repeats: int) -> list[dict]:
-    """:func:`measure` on the package at ``commit`` (exported from git into a temporary
-    folder, run in a subprocess)."""
+    """:func:`measure` on the package at ``commit`` (in a subprocess)."""
+    return json.loads(output_on_commit(commit, ["bench.per_call", "--json", "--repeats",
+                                                str(repeats)]).strip().splitlines()[-1])
+
+
+def output_on_commit(commit: str, module_args: list[str]) -> str:
+    """Standard output of ``python -m <module_args>`` run with the package at ``commit``
+    (exported from git into a temporary folder) and this checkout's ``bench``.
+
+    Parameters
+    ----------
+    commit : str
+        A commit of this repository.
+    module_args : list of str
+        The module to run and its arguments; its last output line is JSON rows, each with
+        ``package``, the folder of the package it imported.
+
+    Returns
+    -------
+    str
+        What the run printed.
+
+    Raises
+    ------
+    RuntimeError
+        When the run imported another package than the exported one.
+    """
     with tempfile.TemporaryDirectory() as tmp:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "bearingsim"],
                                  check=True, capture_output=True).stdout
@@ -130,13 +155,12 @@ def _baseline(commit: str, repeats: int) -> list[dict]:
         # PYTHONSAFEPATH: ``-m`` would put the working folder (this checkout) first
         env = {**os.environ, "PYTHONPATH": os.pathsep.join([tmp, str(ROOT)]),
                "PYTHONSAFEPATH": "1"}
-        out = subprocess.run([sys.executable, "-m", "bench.per_call", "--json",
-                              "--repeats", str(repeats)], check=True, capture_output=True,
-                             text=True, env=env, cwd=str(ROOT)).stdout
+        out = subprocess.run([sys.executable, "-m", *module_args], check=True,
+                             capture_output=True, text=True, env=env, cwd=str(ROOT)).stdout
     rows = json.loads(out.strip().splitlines()[-1])
     if any(not row["package"].startswith(tmp) for row in rows):
         raise RuntimeError(f"the baseline run imported another package: {rows[0]['package']}")
-    return rows
+    return out
 
 
 ROUNDS = 3
