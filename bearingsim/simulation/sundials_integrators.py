@@ -119,8 +119,9 @@ class Built:
     build_time: float
     order: np.ndarray | None = None
     """The integrator's state order (``x_integrator = x[order]``), or None: the system's."""
-    _inverse: np.ndarray | None = field(init=False, repr=False)
-    _calls: threading.local = field(init=False, repr=False, default_factory=threading.local)
+    _inverse: np.ndarray | None = field(init=False, repr=False, compare=False)
+    _calls: threading.local = field(init=False, repr=False, compare=False,
+                                    default_factory=threading.local)
 
     def __post_init__(self) -> None:
         self._inverse = None if self.order is None else np.argsort(self.order)

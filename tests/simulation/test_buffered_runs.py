@@ -225,3 +225,26 @@ def test_a_steady_state_keeps_the_guess_of_the_states_it_does_not_solve_for(syst
         np.testing.assert_array_equal(
             np.delete(x, angles),
             np.delete(steady_state(system, inputs={"shaft_speed": 100.0}), angles))
+
+
+def test_an_integrator_call_gives_the_keyword_calls_numbers_and_counts_per_call():
+    import casadi as ca
+
+    from bearingsim.simulation.integrator_calls import IntegratorCall
+
+    x, p = ca.MX.sym("x"), ca.MX.sym("p")
+    integrator = ca.integrator("decay", "cvodes", {"x": x, "p": p, "ode": -p * x}, 0.0,
+                               [0.5, 1.0], {})
+    call = IntegratorCall(integrator)
+    xf = np.empty(2)
+    with pytest.raises(ValueError, match="needs 2 contiguous numbers"):
+        call(np.array([1.0]), np.array([2.0]), None, np.empty(3), None)
+    expected = integrator(x0=1.0, p=2.0)
+    counts = integrator.stats()
+    for _ in range(3):
+        call(np.array([1.0]), np.array([2.0]), None, xf, None)
+        assert xf.tolist() == np.asarray(expected["xf"]).ravel().tolist()
+        stats = call.stats()
+        assert stats["nsteps"] == counts["nsteps"] > 0
+        assert stats["n_call_daeF"] == counts["n_call_daeF"] > 0
+    np.testing.assert_allclose(xf, np.exp([-1.0, -2.0]), rtol=1e-4)
