@@ -3,11 +3,15 @@
 For 61905/61907 at 10 000 r/min the speed ratio ``Rs`` is found by integrating until it stops
 changing and by solving ``dx/dt = 0`` directly; then ``Rs`` is swept over the shaft speed with one
 assembled system (parameters and inputs change without recompilation) and, for comparison, with
-a fresh assembly per point.
+a fresh assembly per point. The 100-point sweep on one system is also timed on a baseline
+commit of the package (:data:`BASELINE`, in a subprocess), alternating with this code, side by
+side (``python -m bench.double_layer_steady --sweep-json`` prints this code's times).
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import os
 import statistics
 import time
@@ -22,13 +26,19 @@ from bearingsim.simulation import simulate, steady_state
 from bearingsim.units import rpm_to_rad_s
 from bench.common import Section, fmt, image_link, markdown_table
 
-__all__ = ["run", "steady_rs", "PAIRINGS"]
+__all__ = ["BASELINE", "run", "steady_rs", "sweep_times", "PAIRINGS"]
 
 PAIRINGS = (("61905", "61907", None), ("61905", "61908", None), ("61905", "61909", "I"))
 """(inner, outer, structure) of the swept pairings; None lets the assembly choose."""
 SPEED_RPM = 10_000.0
 T_END = 30.0
 SETTLED = 1e-10
+BASELINE = "da2b26e"
+"""The commit before the work on the sweep's fixed costs (buffered Newton, vectorised input
+bounds)."""
+SWEEP_POINTS = 100
+SWEEP_ROUNDS = 5
+"""Sweeps timed per measurement (the fastest counts: the machine is shared)."""
 
 
 def _bearing(inner: str, outer: str, structure: str | None):
@@ -41,6 +51,47 @@ def steady_rs(system, w: float) -> float:
     u = system.u_default()
     u[system.input_names.index("shaft_speed")] = w
     return float(system.observe(0.0, x, u)["Rs"])
+
+
+def sweep_times(rounds: int = SWEEP_ROUNDS) -> dict:
+    """The fastest of ``rounds`` 100-point sweeps of 61905/61907 on one assembled system
+    (after one warm-up point): process CPU and wall time [s].
+
+    Returns
+    -------
+    dict
+        ``cpu_s``, ``wall_s``, and ``package``, the folder of the package timed.
+    """
+    import bearingsim
+
+    system = assemble(_bearing("61905", "61907", None))
+    speeds = rpm_to_rad_s(np.linspace(0.0, SPEED_RPM, SWEEP_POINTS + 1)[1:])
+    steady_rs(system, float(speeds[0]))
+    cpu, wall = [], []
+    for _ in range(rounds):
+        t0, c0 = time.perf_counter(), time.process_time()
+        for w in speeds:
+            steady_rs(system, float(w))
+        cpu.append(time.process_time() - c0)
+        wall.append(time.perf_counter() - t0)
+    return {"cpu_s": min(cpu), "wall_s": min(wall),
+            "package": str(Path(bearingsim.__file__).parent)}
+
+
+def _side_by_side(baseline: str, rounds: int = 2) -> dict[str, dict]:
+    """:func:`sweep_times` of ``baseline`` (in a subprocess) and of this code, alternating
+    ``rounds`` times; the fastest of each."""
+    from bench.per_call import output_on_commit
+
+    best: dict[str, dict] = {}
+    for _ in range(rounds):
+        then = json.loads(output_on_commit(baseline, ["bench.double_layer_steady",
+                                                      "--sweep-json"]).splitlines()[-1])[0]
+        for name, row in (("before", then), ("now", sweep_times())):
+            kept = best.setdefault(name, row)
+            for key in ("cpu_s", "wall_s"):
+                kept[key] = min(kept[key], row[key])
+    return best
 
 
 def _settle_time(t: np.ndarray, rs: np.ndarray, tol: float) -> float:
@@ -113,6 +164,8 @@ def run(quick: bool, img_dir: Path, out_md: Path, log=print) -> Section:
     log(f"  sweep of {n_points}: {sweep_time['61905/61907']:.2f} s reused, {t_fresh:.2f} s "
         "re-assembled")
 
+    side = _side_by_side(BASELINE)
+    log(f"  sweep CPU before {side['before']['cpu_s']:.3f} s, now {side['now']['cpu_s']:.3f} s")
     img = img_dir / "double_layer_rs_vs_speed.png"
     _plot(rpm, sweeps, img)
     return _report(locals(), img, out_md)
@@ -171,6 +224,23 @@ def _report(v: dict, img: Path, out_md: Path) -> Section:
         "",
         table2,
         "",
+        f"The {SWEEP_POINTS}-point sweep on one system, the fastest of {SWEEP_ROUNDS} sweeps "
+        f"in each of 2 rounds, alternating with the package of commit {BASELINE} (before the "
+        "work on the sweep's fixed costs) in a subprocess of this run (the machine is "
+        "shared: compare the columns, not runs on other days):",
+        "",
+        markdown_table(
+            ["package", "CPU [s]", "wall [s]"],
+            [[f"{BASELINE} (before)", fmt(v["side"]["before"]["cpu_s"]),
+              fmt(v["side"]["before"]["wall_s"])],
+             ["this code", fmt(v["side"]["now"]["cpu_s"]), fmt(v["side"]["now"]["wall_s"])],
+             ["ratio (before / now)",
+              fmt(v["side"]["before"]["cpu_s"] / v["side"]["now"]["cpu_s"]),
+              fmt(v["side"]["before"]["wall_s"] / v["side"]["now"]["wall_s"])]]),
+        "",
+        f"Command: `python -m bench.double_layer_steady --sweep-json` (this code's times; "
+        f"the section runs it on {BASELINE} too).",
+        "",
         f"Largest Rs difference between the reused and the re-assembled sweeps: "
         f"{v['sweep_diff']:.2g}.",
         "",
@@ -180,7 +250,7 @@ def _report(v: dict, img: Path, out_md: Path) -> Section:
     ]
     data = {"t_ss": t_ss, "rs_ss": rs_ss, "stepping": stepping, "sweep_reused_s": t_one,
             "sweep_reused_cpu_s": cpu_one,
-            "sweep_fresh_s": t_fresh, "n_points": n}
+            "sweep_fresh_s": t_fresh, "n_points": n, "side_by_side": v["side"]}
     return Section("3. Double-layer steady state", "\n".join(text), data)
 
 
@@ -198,3 +268,19 @@ def _plot(rpm: np.ndarray, sweeps: dict[str, np.ndarray], path: Path) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def main() -> None:
+    """Command line: ``--sweep-json`` prints :func:`sweep_times` as a JSON row."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sweep-json", action="store_true",
+                        help="time the 100-point sweep and print it as JSON")
+    args = parser.parse_args()
+    if args.sweep_json:
+        print(json.dumps([sweep_times()]))
+    else:
+        parser.print_help()
+
+
+if __name__ == "__main__":
+    main()

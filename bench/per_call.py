@@ -34,14 +34,17 @@ from pathlib import Path
 
 from bench.common import Section, fmt, markdown_table
 
-__all__ = ["BASELINE", "measure", "section"]
+__all__ = ["BASELINE", "measure", "output_on_commit", "section"]
 
 ROOT = Path(__file__).resolve().parents[1]
-BASELINE = "0877683"
-"""The commit before the third round of work on fixed costs (the first began at 7955f3a, the
-second at 29a6fd4)."""
+BASELINE = "da2b26e"
+"""The commit before the fourth round of work on fixed costs (buffered integrator and observe
+calls; the first three began at 7955f3a, 29a6fd4 and 0877683)."""
 RUN_S = 1e-3
 """Length of the timed runs [s]."""
+SHORT_RUN_S = 1e-9
+"""Length of the runs timed for comparison [s]: a few steps, so that little runs between the
+Python before and after the integrator call."""
 
 
 def measure(repeats: int = 20) -> list[dict]:
@@ -53,7 +56,8 @@ def measure(repeats: int = 20) -> list[dict]:
     list of dict
         Per scene: ``scene``, ``method``, ``states``, ``total_ms`` and ``overhead_ms``
         (the fastest call's; ``overhead_ms`` NaN where the stats have no
-        ``integrate_cpu_time``), and ``package``, the folder of the package timed.
+        ``integrate_cpu_time``), ``short_overhead_ms`` (the same for runs of
+        :data:`SHORT_RUN_S`), and ``package``, the folder of the package timed.
     """
     import bearingsim
     from bearingsim.errors import BearingsimError
@@ -87,27 +91,62 @@ def measure(repeats: int = 20) -> list[dict]:
                     "inputs": simulate_inputs(prep.scene.inputs),
                     "parameters": prep.scene.parameters, "x0": prep.scene.initial or None,
                     "progress": False}
-            t_end = s.t_start + RUN_S
-            for _ in range(3):
-                result = simulate(prep.system, t_end, **args)
-            totals, overheads = [], []
-            for _ in range(repeats):
-                start = time.thread_time()
-                result = simulate(prep.system, t_end, **args)
-                total = time.thread_time() - start
-                totals.append(total)
-                overheads.append(total - result.stats.get("integrate_cpu_time", float("nan")))
-        rows.append({"scene": path.stem, "method": str(result.stats.get("method", "-")),
-                     "states": prep.system.n_states,
+            timed = {length: _time_runs(simulate, prep.system, s.t_start + length, args,
+                                        repeats)
+                     for length in (RUN_S, SHORT_RUN_S)}
+        totals, overheads, method = timed[RUN_S]
+        rows.append({"scene": path.stem, "method": method, "states": prep.system.n_states,
                      "total_ms": 1e3 * min(totals),
                      "overhead_ms": 1e3 * min(overheads),
+                     "short_overhead_ms": 1e3 * min(timed[SHORT_RUN_S][1]),
                      "package": str(Path(bearingsim.__file__).parent)})
     return rows
 
 
+def _time_runs(simulate, system, t_end: float, args: dict, repeats: int
+               ) -> tuple[list[float], list[float], str]:
+    """CPU times [s] of ``repeats`` runs to ``t_end`` after 3 warm-up runs: totals, per-call
+    costs (NaN without ``integrate_cpu_time``) and the method the runs used."""
+    for _ in range(3):
+        result = simulate(system, t_end, **args)
+    totals, overheads = [], []
+    for _ in range(repeats):
+        start = time.thread_time()
+        result = simulate(system, t_end, **args)
+        total = time.thread_time() - start
+        totals.append(total)
+        overheads.append(total - result.stats.get("integrate_cpu_time", float("nan")))
+    return totals, overheads, str(result.stats.get("method", "-"))
+
+
 def _baseline(commit: str, repeats: int) -> list[dict]:
-    """:func:`measure` on the package at ``commit`` (exported from git into a temporary
-    folder, run in a subprocess)."""
+    """:func:`measure` on the package at ``commit`` (in a subprocess)."""
+    return json.loads(output_on_commit(commit, ["bench.per_call", "--json", "--repeats",
+                                                str(repeats)]).strip().splitlines()[-1])
+
+
+def output_on_commit(commit: str, module_args: list[str]) -> str:
+    """Standard output of ``python -m <module_args>`` run with the package at ``commit``
+    (exported from git into a temporary folder) and this checkout's ``bench``.
+
+    Parameters
+    ----------
+    commit : str
+        A commit of this repository.
+    module_args : list of str
+        The module to run and its arguments; its last output line is JSON rows, each with
+        ``package``, the folder of the package it imported.
+
+    Returns
+    -------
+    str
+        What the run printed.
+
+    Raises
+    ------
+    RuntimeError
+        When the run imported another package than the exported one.
+    """
     with tempfile.TemporaryDirectory() as tmp:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "bearingsim"],
                                  check=True, capture_output=True).stdout
@@ -116,16 +155,15 @@ def _baseline(commit: str, repeats: int) -> list[dict]:
         # PYTHONSAFEPATH: ``-m`` would put the working folder (this checkout) first
         env = {**os.environ, "PYTHONPATH": os.pathsep.join([tmp, str(ROOT)]),
                "PYTHONSAFEPATH": "1"}
-        out = subprocess.run([sys.executable, "-m", "bench.per_call", "--json",
-                              "--repeats", str(repeats)], check=True, capture_output=True,
-                             text=True, env=env, cwd=str(ROOT)).stdout
+        out = subprocess.run([sys.executable, "-m", *module_args], check=True,
+                             capture_output=True, text=True, env=env, cwd=str(ROOT)).stdout
     rows = json.loads(out.strip().splitlines()[-1])
     if any(not row["package"].startswith(tmp) for row in rows):
         raise RuntimeError(f"the baseline run imported another package: {rows[0]['package']}")
-    return rows
+    return out
 
 
-ROUNDS = 2
+ROUNDS = 3
 """Rounds of the baseline and this code, alternating."""
 
 
@@ -133,14 +171,14 @@ def _fastest(into: dict[str, dict], rows: list[dict]) -> None:
     """Keep per scene the row with the smaller total and the smaller per-call cost."""
     for row in rows:
         kept = into.setdefault(row["scene"], dict(row))
-        for key in ("total_ms", "overhead_ms"):
+        for key in ("total_ms", "overhead_ms", "short_overhead_ms"):
             if row[key] < kept[key] or math.isnan(kept[key]):
                 kept[key] = row[key]
 
 
 def section(quick: bool = False, baseline: str = BASELINE) -> Section:
     """The run_all section: per-call cost per shipped scene, this code and the baseline."""
-    repeats = 8 if quick else 20
+    repeats = 8 if quick else 40
     then = subprocess.run(["git", "-C", str(ROOT), "ls-tree", "--name-only", baseline,
                            "bearingsim/scenes/library/"], check=True, capture_output=True,
                           text=True).stdout.split()
@@ -157,7 +195,9 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         then_row = old.get(row["scene"], {})
         rows.append([row["scene"], then_row.get("method", "—"), row["method"], row["states"],
                      fmt(then_row.get("total_ms", math.nan)), fmt(row["total_ms"]),
-                     fmt(then_row.get("overhead_ms", math.nan)), fmt(row["overhead_ms"])])
+                     fmt(then_row.get("overhead_ms", math.nan)), fmt(row["overhead_ms"]),
+                     fmt(then_row.get("short_overhead_ms", math.nan)),
+                     fmt(row["short_overhead_ms"])])
     worst = max((row["overhead_ms"] for row in new if math.isfinite(row["overhead_ms"])),
                 default=math.nan)
     text = (
@@ -174,12 +214,18 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "(`method=None`: CVODES on the VM for the tiny torque-level models). Models without "
         "states (quasi-static levels) integrate "
         "nothing: their whole call is the per-call cost plus the solve of the nonlinear blocks "
-        "at the output points (*total*). Goal: per-call cost <= 0.3 ms.\n\n"
+        "at the output points (*total*). *1 ns run*: the per-call cost of runs of "
+        f"{SHORT_RUN_S:g} s (a few steps) timed the same way: the same Python, run right "
+        "after the Python before the call instead of after an integration of tens of "
+        "milliseconds (which leaves the processor's caches to be filled again: the difference "
+        "is largest for the largest model). Goal: per-call cost <= 0.3 ms.\n\n"
         f"Command: `python -m bench.per_call --baseline {baseline} --repeats {repeats}`\n\n"
         + markdown_table(["scene", "method before", "method now", "states",
                           "total before [ms]", "total now [ms]", "per-call cost before [ms]",
-                          "per-call cost now [ms]"], rows)
-        + f"\n\nLargest per-call cost now: {worst:.2f} ms.\n")
+                          "per-call cost now [ms]", "1 ns run: per-call cost before [ms]",
+                          "1 ns run: now [ms]"], rows)
+        + f"\n\nLargest per-call cost now: {worst:.2f} ms. Load average at the end of the "
+        f"run: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores.\n")
     return Section("Per-call cost of simulate", text, {"rows": new, "baseline": old})
 
 

@@ -4,7 +4,9 @@
 conversion: a call costs a few microseconds instead of a few hundred, which is what scipy's
 integrators pay per right-hand-side evaluation. :func:`mapped_function` keeps the
 ``Function.map(n)`` of the functions evaluated at every output time (a new map costs about
-0.1 ms, more than the mapped call of a short run).
+0.1 ms, more than the mapped call of a short run); :class:`ColumnsCall` calls one with its
+inputs copied column-major into the buffer and a parameter vector repeated there, without the
+generic argument handling of :func:`evaluate`.
 """
 
 from __future__ import annotations
@@ -17,7 +19,8 @@ import scipy.sparse
 
 from bearingsim.assembler.numeric import buffered
 
-__all__ = ["BufferedFunction", "buffered_function", "evaluate", "mapped_function"]
+__all__ = ["BufferedFunction", "ColumnsCall", "buffered_function", "columns_call", "evaluate",
+           "mapped_function"]
 
 _MAPPED: dict[tuple[int, int], tuple[ca.Function, ca.Function]] = {}
 """``fn.map(n)`` by ``(id(fn), n)``, with ``fn`` kept so that its id stays unique."""
@@ -177,3 +180,94 @@ def evaluate(fn: ca.Function, *args: np.ndarray | float) -> list[np.ndarray]:
         Its outputs, in order.
     """
     return buffered(fn)(*args)
+
+
+class ColumnsCall:
+    """``fn.map(n)`` through one buffer: inputs of ``n`` columns (a vector given once for every
+    column where :meth:`__call__` says so), the output as a new dense array.
+
+    Not thread-safe: :func:`columns_call` keeps one per thread.
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        The function evaluated per column (dense inputs).
+    n : int
+        Columns.
+    """
+
+    def __init__(self, fn: ca.Function, n: int):
+        self.fn, self.n = fn, n
+        mapped = mapped_function(fn, n)
+        self._buf, self._eval = mapped.buffer()
+        self._inputs = []
+        for k in range(mapped.n_in()):
+            array = np.zeros(mapped.nnz_in(k))
+            self._buf.set_arg(k, memoryview(array))
+            self._inputs.append(array.reshape((fn.nnz_in(k), n), order="F"))
+        sp = mapped.sparsity_out(0)
+        self._out = np.zeros(sp.nnz())
+        self._buf.set_res(0, memoryview(self._out))
+        self._shape = (fn.size1_out(0), n)
+        self._rows = None if sp.is_dense() else np.asarray(sp.find(), dtype=np.int64)
+
+    def __call__(self, *columns: np.ndarray, repeated: int | None = None) -> np.ndarray:
+        """The first output for inputs ``columns`` (arrays of ``n`` columns, or for input
+        ``repeated`` one vector, the same in every column).
+
+        Parameters
+        ----------
+        *columns : numpy.ndarray
+            The inputs, in order.
+        repeated : int, optional
+            The position of the input given as one vector for all columns.
+
+        Returns
+        -------
+        numpy.ndarray
+            The output, shape ``(rows, n)`` (C order; structural zeros as 0.0).
+
+        Raises
+        ------
+        RuntimeError
+            When the evaluation fails.
+        """
+        for k, (array, value) in enumerate(zip(self._inputs, columns, strict=True)):
+            array[:] = value[:, None] if k == repeated else value
+        self._eval()
+        if self._buf.ret() != 0:
+            raise RuntimeError(f"evaluation of {self.fn.name()} failed (return code "
+                               f"{self._buf.ret()})")
+        if self._rows is None:
+            return self._out.reshape(self._shape, order="F").copy()
+        full = np.zeros(self._shape[0] * self._shape[1])
+        full[self._rows] = self._out
+        return full.reshape(self._shape, order="F")
+
+
+def columns_call(fn: ca.Function, n: int) -> ColumnsCall:
+    """This thread's :class:`ColumnsCall` of ``fn`` over ``n`` columns, made on first use.
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        The function evaluated per column.
+    n : int
+        Columns (>= 1).
+
+    Returns
+    -------
+    ColumnsCall
+        The thread's call.
+    """
+    cache = getattr(_LOCAL, "columns", None)
+    if cache is None:
+        cache = _LOCAL.columns = {}
+    key = (id(fn), n)
+    found = cache.get(key)
+    if found is not None and found.fn is fn:
+        return found
+    if len(cache) >= BUFFERED_PER_THREAD:
+        del cache[next(iter(cache))]
+    made = cache[key] = ColumnsCall(fn, n)
+    return made

@@ -22,6 +22,7 @@ from bearingsim.assembler.system import System
 from bearingsim.entry_points import value_key
 from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.simulation.fastcall import evaluate, mapped_function
+from bearingsim.simulation.input_bounds import numbers_valid
 from bearingsim.simulation.intervals import locate_problem
 from bearingsim.units import CUSTOMARY_DIFFERS, engineering, is_quantity, to_si
 from bearingsim.units.registry import si_factor
@@ -418,6 +419,8 @@ def _check_signal(system: System, signal: InputSignal, times: np.ndarray) -> lis
     """:func:`check_input_ranges` without the memory: raises for an input out of range,
     returns the warnings (speeds above a limiting speed)."""
     t0, t1 = float(times[0]), float(times[-1])
+    if None not in signal.lifted and numbers_valid(system, signal.key, signal.q, signal.lifted):
+        return []
     notes: list[str | None] = []
     functions = []
     for k, (sig, piece) in enumerate(zip(system.inputs, signal.lifted, strict=True)):

@@ -202,23 +202,15 @@ def simulate(
         When the run uses up ``max_steps`` or ``timeout``, with the time reached.
     """
     system = as_system(system, "simulate")
-    check_flag(progress, "progress", "simulate", allow_none=True)
-    check_range(t_start, "t_start", "s", where="simulate")
-    check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
-    check_tolerance(rtol, "rtol", "rtol", "simulate")
-    check_tolerance(atol, "atol", "atol", "simulate")
-    if max_step != np.inf:
-        check_range(max_step, "max_step", "s", 0.0, None, low_inclusive=False, where="simulate")
-    method, backend = _method_backend(method, backend)
+    settings = (t_start, t_end, rtol, atol, max_step, method, backend, initial, progress,
+                compiled, linear_solver)
+    try:
+        method, backend = _checked_settings(*settings)
+    except TypeError:  # an argument that is not hashable: checked without the memory
+        method, backend = _check_settings(*settings)
     budget = RunBudget(max_steps, timeout, method, t_end)
-    check_choice(initial, "initial", ("start", "steady"), "simulate")
     t_eval = _output_times(t_start, t_end, n_points, t_eval)
     _check_work(system, t_start, t_end, t_eval.size, max_step)
-    if compiled not in (True, False, "auto"):
-        raise ParameterError(f"simulate: compiled must be True, False or 'auto', got "
-                             f"{compiled!r}")
-    if linear_solver is not None:
-        check_choice(linear_solver, "linear_solver", LINEAR_SOLVERS, "simulate")
     setup = _time.perf_counter()
     if method is None:
         choice = (MethodChoice("cvodes", compiled, "no states: nothing to integrate")
@@ -258,6 +250,34 @@ def simulate(
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
     return Result.of_run(ts, values, _result_layout(system), stats, signal.at(ts)[:, -1], p)
+
+
+def _check_settings(t_start: Any, t_end: Any, rtol: Any, atol: Any, max_step: Any,
+                    method: Any, backend: Any, initial: Any, progress: Any, compiled: Any,
+                    linear_solver: Any) -> tuple[str, str] | tuple[None, None]:
+    """Check the scalar settings of a :func:`simulate` call (raising
+    :class:`~bearingsim.errors.ParameterError` for a bad one); the checked
+    ``(method, backend)`` (:func:`_method_backend`)."""
+    check_flag(progress, "progress", "simulate", allow_none=True)
+    check_range(t_start, "t_start", "s", where="simulate")
+    check_range(t_end, "t_end", "s", t_start, None, low_inclusive=False, where="simulate")
+    check_tolerance(rtol, "rtol", "rtol", "simulate")
+    check_tolerance(atol, "atol", "atol", "simulate")
+    if max_step != np.inf:
+        check_range(max_step, "max_step", "s", 0.0, None, low_inclusive=False, where="simulate")
+    checked = _method_backend(method, backend)
+    check_choice(initial, "initial", ("start", "steady"), "simulate")
+    if compiled not in (True, False, "auto"):
+        raise ParameterError(f"simulate: compiled must be True, False or 'auto', got "
+                             f"{compiled!r}")
+    if linear_solver is not None:
+        check_choice(linear_solver, "linear_solver", LINEAR_SOLVERS, "simulate")
+    return checked
+
+
+_checked_settings = functools.lru_cache(maxsize=256, typed=True)(_check_settings)
+""":func:`_check_settings` remembered per settings of the same values and types (the checks
+are pure functions of them; a setting that fails raises each time)."""
 
 
 def _result_layout(system: System) -> ResultLayout:

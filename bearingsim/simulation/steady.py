@@ -9,13 +9,13 @@ CasADi's VM, with the same numbers either way.
 from __future__ import annotations
 
 import math
+import threading
 
 import casadi as ca
 import numpy as np
 import scipy.optimize
-from scipy.linalg.lapack import dgesv
+from scipy.linalg.lapack import dgesdd, dgesv
 
-from bearingsim.assembler.numeric import buffered
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.inputs import check_input_ranges, input_signal
@@ -116,21 +116,19 @@ def steady_state(
     free = _free_states(system)
     if not free.size:
         return x
-    both = buffered(_newton_function(kernel(system, "ode", compiled).function))
-    block = np.ix_(free, free)
+    newton = _newton_call(_newton_function(kernel(system, "ode", compiled).function), free)
+    newton.start(t, x, u, p)
     last: list = [None, None]  # the point last evaluated and its Jacobian
 
     def res(z):
-        xx = x.copy()
-        xx[free] = z
-        f, j = both(t, xx, u, p)
+        f, j = newton(z)
         last[0], last[1] = z.copy(), j
-        return f.ravel()[free]
+        return f
 
     def jac(z):
-        if last[0] is None or not np.array_equal(last[0], z):
+        if last[0] is None or not (last[0] == z).all():
             res(z)
-        return last[1][block]
+        return last[1]
 
     solution = _newton(res, jac, x[free], tol, residual_tol)
     if solution is None:  # Newton did not converge from this guess: the trust region's way
@@ -194,6 +192,87 @@ def _newton_function(rhs: ca.Function) -> ca.Function:
     return found[1]
 
 
+class NewtonCall:
+    """``f(t, x, u, p)`` and ``df/dx`` on the free states through one ``Function.buffer``:
+    ``t``, ``u``, ``p`` and the states that are not free set once per solve
+    (:meth:`start`), the free states per iterate, the outputs scattered straight into the
+    free rows and columns (structural zeros as 0.0). Not thread-safe: one per thread
+    (:func:`_newton_call`).
+
+    Parameters
+    ----------
+    fn : casadi.Function
+        ``(t, x, u, p) -> (f, df/dx)`` (:func:`_newton_function`).
+    free : numpy.ndarray
+        Indices of the free states.
+    """
+
+    def __init__(self, fn: ca.Function, free: np.ndarray):
+        self.fn, self.free = fn, free
+        self._buf, self._eval = fn.buffer()
+        self._inputs = [np.zeros(fn.nnz_in(k)) for k in range(4)]
+        for k, array in enumerate(self._inputs):
+            self._buf.set_arg(k, memoryview(array))
+        self._outputs = [np.zeros(fn.nnz_out(k)) for k in range(2)]
+        for k, array in enumerate(self._outputs):
+            self._buf.set_res(k, memoryview(array))
+        n_x, n = fn.size1_in(1), free.size
+        where = np.full(n_x, -1)
+        where[free] = np.arange(n)
+        f_rows = where[np.asarray(fn.sparsity_out(0).row(), dtype=int)]
+        self._f = (np.flatnonzero(f_rows >= 0), f_rows[f_rows >= 0])
+        jac = fn.sparsity_out(1)
+        rows, cols = (where[np.asarray(i, dtype=int)] for i in jac.get_triplet())
+        kept = (rows >= 0) & (cols >= 0)
+        self._j = (np.flatnonzero(kept), rows[kept] * n + cols[kept])
+
+    def start(self, t: float, x: np.ndarray, u: np.ndarray, p: np.ndarray) -> None:
+        """Set the time [s], the states (the free ones are replaced per iterate), the
+        inputs and the parameters of a solve."""
+        t_in, x_in, u_in, p_in = self._inputs
+        t_in[0] = t
+        x_in[:] = x
+        u_in[:] = u
+        p_in[:] = p
+
+    def __call__(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``f`` on the free states and its Jacobian block at free states ``z`` (new
+        arrays)."""
+        self._inputs[1][self.free] = z
+        self._eval()
+        if self._buf.ret() != 0:
+            raise RuntimeError(f"evaluation of {self.fn.name()} failed (return code "
+                               f"{self._buf.ret()})")
+        n = self.free.size
+        f, jac = np.zeros(n), np.zeros((n, n))
+        taken, into = self._f
+        f[into] = self._outputs[0][taken]
+        taken, into = self._j
+        jac.ravel()[into] = self._outputs[1][taken]
+        return f, jac
+
+
+_LOCAL = threading.local()
+NEWTON_CALLS_PER_THREAD = 64
+"""Most :class:`NewtonCall` a thread keeps (the oldest are forgotten first)."""
+
+
+def _newton_call(fn: ca.Function, free: np.ndarray) -> NewtonCall:
+    """This thread's :class:`NewtonCall` of ``fn`` on the states ``free`` (made on first
+    use)."""
+    calls = getattr(_LOCAL, "calls", None)
+    if calls is None:
+        calls = _LOCAL.calls = {}
+    key = (id(fn), free.tobytes())
+    found = calls.get(key)
+    if found is not None and found.fn is fn:
+        return found
+    if len(calls) >= NEWTON_CALLS_PER_THREAD:
+        del calls[next(iter(calls))]
+    made = calls[key] = NewtonCall(fn, free)
+    return made
+
+
 def _free_states(system: System) -> np.ndarray:
     """The states that some derivative depends on (all but :func:`integrator_states`), found
     once per system."""
@@ -212,6 +291,11 @@ def _check_determined(system: System, jacobian: np.ndarray, free: list[int],
     states can take any value (e.g. a ring that no torque acts on), and the solver has only
     returned its start guess for them."""
     if jacobian.size == 0:
+        return
+    # LAPACK's gesdd for the singular values alone, without numpy's per-call checks (a
+    # fifth of a small model's sweep point); the vectors only to name the states
+    _, sv, _, info = dgesdd(jacobian, compute_uv=0)
+    if info == 0 and sv[0] > 0.0 and sv[-1] > rcond * sv[0]:
         return
     _, sv, vt = np.linalg.svd(jacobian)
     if sv[0] > 0.0 and sv[-1] > rcond * sv[0]:

@@ -30,7 +30,7 @@ from bearingsim.assembler.system import System
 from bearingsim.errors import BudgetExceededError, ParameterError, SimulationError
 from bearingsim.simulation.budget import RunBudget
 from bearingsim.simulation.diagnostics import diverged
-from bearingsim.simulation.fastcall import evaluate, mapped_function
+from bearingsim.simulation.fastcall import columns_call
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.native_streams import held_stderr, interrupts, quiet_stdout
@@ -142,26 +142,29 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     if linear_solver is not None and linear_solver not in LINEAR_SOLVERS:
         raise ParameterError(f"linear_solver must be one of {', '.join(LINEAR_SOLVERS)}, got "
                              f"{linear_solver!r}")
-    t_out = t_eval[t_eval > t0]
     n_x = system.n_states
     if linear_solver is None:
         linear_solver = choose_linear_solver(*jacobian_size(kernel, n_x), kernel.form)
-    base: dict[str, Any] = {"abstol": atol, "reltol": rtol,
+    opts: dict[str, Any] = {"abstol": atol, "reltol": rtol,
                             "max_num_steps": budget.max_steps if budget else 100000,
                             "linear_solver": linear_solver, **(options or {})}
     span = t1 - t0
-    tau, grid_key = normalized_grid(t0, t1, t_out)
-    opts = dict(base)
-    if np.isfinite(max_step):
+    t_out, tau, grid_key = normalized_grid(t0, t1, t_eval)
+    if math.isfinite(max_step):
         opts["max_step_size"] = float(max_step) / span
     timed = budget is not None and budget.timeout is not None
     observed = shows_progress(progress) or timed
     built, cached = build_integrator(method, system, kernel, signal, p.size, tau, grid_key, opts,
                                      observed)
-    p_ext = np.concatenate([p, signal.q, [t0, span]])
-    args = {"x0": built.to_integrator(np.asarray(x0, dtype=float)), "p": p_ext}
+    call = built.call()
+    p_ext = np.concatenate((p, signal.q, (t0, span)))
+    x_start = built.to_integrator(np.asarray(x0, dtype=float))
+    starts = bool(t_eval[0] <= t0)  # the start values are the first output
+    xs_run = _outputs(x_start, tau.size, starts)
+    zs = None
     if kernel.form == "dae":
-        args["z0"] = z0
+        z0 = np.asarray(z0, dtype=float)
+        zs = _outputs(z0, tau.size, starts)
     bar = progress_bar(t0, t1, progress)
     reached = [0.0]
     stopped: list[BudgetExceededError] = []
@@ -179,12 +182,14 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
                 stopped.append(exc)
                 raise _Stop from None  # fails the evaluation: the integrator call returns
 
+    xf = _after(xs_run, n_x, starts)
+    zf = None if zs is None else _after(zs, z0.size, starts)
     called = time.thread_time()
     try:
         with interrupts() as interrupted, (CLOCK.observing(observe) if observed
                                             else contextlib.nullcontext()), \
                 held_stderr(timed and bar is None, lambda: bool(stopped)):
-            out = built.integrator(**args)
+            call(x_start, p_ext, z0, xf, zf)
         integrate_cpu_time = time.thread_time() - called
         observe(1.0)
     except RuntimeError as exc:
@@ -200,41 +205,41 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     finally:
         if bar is not None:
             bar.close()
-    starts = bool(t_eval[0] <= t0)  # the start values are the first output
-    reached = out["xf"].nonzeros()
-    xs = built.from_integrator(_dense(reached, n_x, tau.size, args["x0"] if starts else None))
-    if not _all_finite(reached):
+    xs = built.from_integrator(xs_run)
+    if not _all_finite(xf):
         k = int(np.argmax(~np.isfinite(xs[:, 1:] if starts else xs).all(axis=0)))
         raise SimulationError(
             f"{method.upper()} produced non-finite states by t = {t_out[k]:.6g} s; "
             f"{diverged(system, xs[:, k + starts], x0)}")
-    zs = (_dense(out["zf"].nonzeros(), z0.size, tau.size,
-                 np.asarray(z0, dtype=float) if starts else None)
-          if kernel.form == "dae" else None)
-    ts = np.concatenate(([t0], t_out)) if starts else t_out
+    ts = np.concatenate(((t0,), t_out)) if starts else t_out.copy()
     values = observe_at(kernel, signal, p, ts, xs, zs)
     stats = _stats(method, kernel, linear_solver, 0.0 if cached else built.build_time, cached,
-                   built.integrator.stats())
+                   call.stats())
     stats["progress_observed"] = observed
     stats["integrate_cpu_time"] = integrate_cpu_time
     stats["state_order"] = "system" if built.order is None else "minimum degree"
     return SundialsRun(ts, xs, zs, values, stats)
 
 
-def _dense(nonzeros: list[float], rows: int, cols: int, first: np.ndarray | None = None
-           ) -> np.ndarray:
-    """A dense integrator output as a ``rows x cols`` array, from its nonzeros (``DM.nonzeros``,
-    column-major; half the cost of ``DM.full``); with ``first``, that column before them
-    (``cols + 1`` columns, in one array)."""
-    if first is not None:
-        nonzeros, cols = first.tolist() + nonzeros, cols + 1
-    return np.array(nonzeros, dtype=float).reshape(rows, cols, order="F")
+def _outputs(start: np.ndarray, cols: int, starts: bool) -> np.ndarray:
+    """A new ``rows x cols`` array (column-major) for an integrator's outputs at ``cols``
+    output times; with ``starts``, one more column first, holding ``start``."""
+    out = np.empty((start.size, cols + starts), order="F")
+    if starts:
+        out[:, 0] = start
+    return out
 
 
-def _all_finite(values: list[float]) -> bool:
-    """Whether every number is finite: their sum is (one pass in C), else each one is (finite
-    numbers may sum to inf)."""
-    return math.isfinite(sum(values)) or all(map(math.isfinite, values))
+def _after(outputs: np.ndarray, rows: int, starts: bool) -> np.ndarray:
+    """The columns of ``outputs`` the integrator writes (after the start column, if any), as
+    one contiguous vector viewing them."""
+    return outputs.reshape(-1, order="F")[rows if starts else 0:]
+
+
+def _all_finite(values: np.ndarray | list[float]) -> bool:
+    """Whether every number is finite (one pass in C; no sum that finite numbers could
+    overflow)."""
+    return bool(np.isfinite(values).all())
 
 
 def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarray,
@@ -261,11 +266,11 @@ def observe_at(kernel: Kernel, signal: InputSignal, p: np.ndarray, ts: np.ndarra
     numpy.ndarray
         Observed variables, one column per time.
     """
-    n = ts.size
     us = signal.at(ts)
-    ps = np.concatenate((p,) * n)  # one column per time, column-major
-    args = (ts[None, :], xs, us, ps) if zs is None else (ts[None, :], xs, zs, us, ps)
-    return evaluate(mapped_function(kernel.observe, n), *args)[0]
+    call = columns_call(kernel.observe, ts.size)
+    if zs is None:
+        return call(ts, xs, us, p, repeated=3)
+    return call(ts, xs, zs, us, p, repeated=4)
 
 
 def _stats(method: str, kernel: Kernel, linear_solver: str, setup_time: float, cached: bool,

@@ -45,7 +45,7 @@ import threading
 import time
 import weakref
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import casadi as ca
@@ -53,6 +53,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.simulation.inputs import InputSignal
+from bearingsim.simulation.integrator_calls import IntegratorCall
 from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.native_streams import quiet_stdout
 from bearingsim.simulation.ordering import fill_reducing_order
@@ -118,6 +119,26 @@ class Built:
     build_time: float
     order: np.ndarray | None = None
     """The integrator's state order (``x_integrator = x[order]``), or None: the system's."""
+    _inverse: np.ndarray | None = field(init=False, repr=False, compare=False)
+    _calls: threading.local = field(init=False, repr=False, compare=False,
+                                    default_factory=threading.local)
+
+    def __post_init__(self) -> None:
+        self._inverse = None if self.order is None else np.argsort(self.order)
+
+    def call(self) -> IntegratorCall:
+        """This thread's buffered call of the integrator (made on first use, dropped with
+        the integrator).
+
+        Returns
+        -------
+        IntegratorCall
+            The call through ``Function.buffer``.
+        """
+        made = getattr(self._calls, "call", None)
+        if made is None:
+            made = self._calls.call = IntegratorCall(self.integrator)
+        return made
 
     def to_integrator(self, x: np.ndarray) -> np.ndarray:
         """States (one column per time, or a vector) in the integrator's order.
@@ -147,7 +168,7 @@ class Built:
         numpy.ndarray
             The same states in the system's order.
         """
-        return x if self.order is None else x[np.argsort(self.order)]
+        return x if self._inverse is None else x[self._inverse]
 
 
 class IntegratorCache:
@@ -230,29 +251,53 @@ def clear_integrator_cache() -> None:
     INTEGRATORS.clear()
 
 
-def normalized_grid(t0: float, t1: float, t_out: np.ndarray) -> tuple[np.ndarray, tuple]:
-    """Output times in ``tau = (t - t0) / (t1 - t0)`` and their cache key: ``("linspace", n)``
-    for equally spaced times ending at ``t1`` (then exactly ``linspace(0, 1, n)[1:]``), else
-    the bytes of ``tau``.
+def normalized_grid(t0: float, t1: float, t_eval: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, tuple]:
+    """The output times after ``t0``, the same in ``tau = (t - t0) / (t1 - t0)``, and the
+    key of the normalized grid: ``("linspace", n)`` for equally spaced times ending at ``t1``
+    (then exactly ``linspace(0, 1, n)[1:]``), else the bytes of ``tau``. Found once per
+    ``t0``, ``t1`` and output times of up to :data:`GRIDS_KEPT_UP_TO` points.
 
     Parameters
     ----------
     t0, t1 : float
         Start and end of the run [s].
-    t_out : numpy.ndarray
-        Output times after ``t0`` [s].
+    t_eval : numpy.ndarray
+        Output times [s], increasing, from ``t0`` on.
 
     Returns
     -------
     tuple
-        ``(tau, key)``.
+        ``(t_out, tau, key)``; the arrays are read-only (shared by the runs with these
+        times).
     """
+    times = np.ascontiguousarray(t_eval, dtype=float)
+    if times.size > GRIDS_KEPT_UP_TO:
+        return _grid(float(t0), float(t1), times)
+    return _kept_grid(float(t0).hex(), float(t1).hex(), times.tobytes())
+
+
+GRIDS_KEPT_UP_TO = 4096
+"""Most output times whose normalized grid :func:`normalized_grid` keeps (64 grids at most)."""
+
+
+@functools.lru_cache(maxsize=64)
+def _kept_grid(t0: str, t1: str, times: bytes) -> tuple[np.ndarray, np.ndarray, tuple]:
+    """:func:`_grid` of the times given by their bits (``float.hex``, ``tobytes``)."""
+    return _grid(float.fromhex(t0), float.fromhex(t1), np.frombuffer(times, dtype=float))
+
+
+def _grid(t0: float, t1: float, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, tuple]:
+    """:func:`normalized_grid`, computed."""
+    t_out = times[times > t0]
     tau = (t_out - t0) / (t1 - t0)
     n = tau.size
     even = _even_grid(n)
+    t_out.flags.writeable = False
     if np.max(np.abs(tau - even)) <= 1e-12:
-        return even, ("linspace", n)
-    return tau, ("grid", tau.tobytes())
+        return t_out, even, ("linspace", n)
+    tau.flags.writeable = False
+    return t_out, tau, ("grid", tau.tobytes())
 
 
 @functools.lru_cache(maxsize=64)
@@ -431,9 +476,13 @@ def build_integrator(method: str, system: System, kernel: Kernel, signal: InputS
     """
     # the kernel by what it evaluates (kernels are rebuilt after clear_kernel_cache)
     kernel_key = (kernel.form, kernel.backend, str(kernel.library))
-    key = (method, kernel_key, signal.key, grid_key, observed,
-           tuple(sorted((k, repr(v)) for k, v in opts.items())))
-    built = INTEGRATORS.get(system, key)
+    settings = tuple(sorted(opts.items()))  # the names are unique: values never compared
+    key = (method, kernel_key, signal.key, grid_key, observed, settings)
+    try:
+        built = INTEGRATORS.get(system, key)
+    except TypeError:  # an option value that is not hashable (a list): keyed by its text
+        key = (*key[:-1], tuple((name, repr(value)) for name, value in settings))
+        built = INTEGRATORS.get(system, key)
     if built is not None:
         return built, True
     start = time.perf_counter()
