@@ -19,7 +19,7 @@ from bearingsim.simulation.compile import compile_source, library_path
 __all__ = ["SparseLu"]
 
 C_DIR = Path(__file__).with_name("c")
-FLAGS = ("-O2", f"-I{C_DIR}")
+FLAGS = ("-O3", f"-I{C_DIR}")
 """As the compiled BDF integrator's library."""
 
 

@@ -189,25 +189,40 @@ static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int
     int n = b->n;
     BsmBdfHistory *h = b->h;
     double *y = work(b, W_Y), *d = work(b, W_D), *f = work(b, W_F), *dy = work(b, W_DY);
-    double *psi = work(b, W_PSI), *scale = work(b, W_SCALE);
+    const double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI);
+    const double *scale = work(b, W_SCALE);
     double del_old = 0.0, ratio = 2.0 / (1.0 + c / h->c_lu);
     double tol = NEWTON_COEF / b->error_const[order];
-    memcpy(y, work(b, W_Y_PREDICT), sizeof(double) * n);
-    memset(d, 0, sizeof(double) * n);
     *status = BSM_BDF_OK;
     for (int k = 0; k < NEWTON_MAXITER; ++k) {
+        /* the first iteration starts at y = y_predict, d = 0 */
         *n_iter = k + 1;
-        if ((*status = eval_f(b, t_new, y, f))) return 0;
-        if (!all_finite(f, n)) return 0;
-        for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i] - d[i];
+        if ((*status = eval_f(b, t_new, k == 0 ? y_predict : y, f))) return 0;
+        if (k == 0)
+            for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i];
+        else
+            for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i] - d[i];
         b->ops->solve(b->model, dy);
-        if (ratio != 1.0)
-            for (int i = 0; i < n; ++i) dy[i] *= ratio;
-        double del = rms(dy, scale, n);
-        for (int i = 0; i < n; ++i) {
-            y[i] += dy[i];
-            d[i] += dy[i];
+        /* one pass: the correction scaled, its norm, y and d moved by it */
+        double sum = 0.0;
+        if (k == 0) {
+            for (int i = 0; i < n; ++i) {
+                double v = dy[i] * ratio, w = v / scale[i];
+                sum += w * w;
+                y[i] = y_predict[i] + v;
+                d[i] = v;
+            }
+        } else {
+            for (int i = 0; i < n; ++i) {
+                double v = dy[i] * ratio, w = v / scale[i];
+                sum += w * w;
+                y[i] += v;
+                d[i] += v;
+            }
         }
+        double del = sqrt(sum / n);
+        /* a non-finite f (or correction) gives a non-finite norm: not converged */
+        if (!isfinite(del)) return 0;
         if (k > 0) h->crate = fmax(CRATE_DOWN * h->crate, del / del_old);
         if (del * fmin(1.0, h->crate) <= tol) return 1;
         if (k > 0 && del > DIVERGENCE * del_old) return 0;
@@ -238,24 +253,22 @@ static void adapt(BsmBdf *b, int mode) {
     BsmBdfHistory *h = b->h;
     int order = h->order;
     if (h->n_equal_steps < order + 1) return;
-    double *scale = last_scale(b), *tmp = work(b, W_TMP);
-    const double *d = b->D + (size_t)(order + 1) * n;
-    double norms[3];
-    for (int i = 0; i < n; ++i) tmp[i] = b->error_const[order] * d[i];
-    norms[1] = rms(tmp, scale, n);
-    if (order > 1) {
-        for (int i = 0; i < n; ++i) tmp[i] = b->error_const[order - 1] * b->D[(size_t)order * n + i];
-        norms[0] = rms(tmp, scale, n);
-    } else {
-        norms[0] = INFINITY;
+    /* the error estimates at orders order - 1, order, order + 1, in one pass over D's rows
+     * order .. order + 2 (row order + 2 exists at the highest order too) */
+    const double *scale = last_scale(b), *lower = b->D + (size_t)order * n;
+    const double *same = lower + n, *higher = same + n;
+    double c0 = b->error_const[order - 1], c1 = b->error_const[order];
+    double c2 = b->error_const[order + 1], s0 = 0.0, s1 = 0.0, s2 = 0.0, norms[3];
+    for (int i = 0; i < n; ++i) {
+        double v0 = c0 * lower[i] / scale[i], v1 = c1 * same[i] / scale[i];
+        double v2 = c2 * higher[i] / scale[i];
+        s0 += v0 * v0;
+        s1 += v1 * v1;
+        s2 += v2 * v2;
     }
-    if (order < BSM_BDF_MAX_ORDER) {
-        for (int i = 0; i < n; ++i)
-            tmp[i] = b->error_const[order + 1] * b->D[(size_t)(order + 2) * n + i];
-        norms[2] = rms(tmp, scale, n);
-    } else {
-        norms[2] = INFINITY;
-    }
+    norms[0] = order > 1 ? sqrt(s0 / n) : INFINITY;
+    norms[1] = sqrt(s1 / n);
+    norms[2] = order < BSM_BDF_MAX_ORDER ? sqrt(s2 / n) : INFINITY;
     int best = 0;
     double factors[3];
     for (int k = 0; k < 3; ++k) {
@@ -299,7 +312,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     int n = b->n, status;
     BsmBdfHistory *h = b->h;
     double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI), *d = work(b, W_D);
-    double *y = work(b, W_Y), *scale = work(b, W_SCALE), *tmp = work(b, W_TMP);
+    double *y = work(b, W_Y), *scale = work(b, W_SCALE);
     if (h->adapt_pending) adapt(b, mode);
     h->adapt_pending = 0;
     double t = h->t;
@@ -319,13 +332,20 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     for (;;) {
         if (h_abs < min_step || h->h_want < min_step) return BSM_BDF_STEP_TOO_SMALL;
         h_abs = fit_step(b, t, h_abs, t_stop, mode, &t_new);
+        /* y_predict = sum D[0..order], psi = sum gamma[j] D[j] / alpha, row by row */
+        memcpy(y_predict, b->D, sizeof(double) * n);
+        for (int i = 0; i < n; ++i) psi[i] = 0.0;
+        for (int j = 1; j <= order; ++j) {
+            const double *Dj = b->D + (size_t)j * n;
+            double g = b->gamma[j];
+            for (int i = 0; i < n; ++i) {
+                y_predict[i] += Dj[i];
+                psi[i] += g * Dj[i];
+            }
+        }
         for (int i = 0; i < n; ++i) {
-            double s = 0.0, ps = 0.0;
-            for (int j = 0; j <= order; ++j) s += b->D[(size_t)j * n + i];
-            for (int j = 1; j <= order; ++j) ps += b->gamma[j] * b->D[(size_t)j * n + i];
-            y_predict[i] = s;
-            psi[i] = ps / b->alpha[order];
-            scale[i] = b->atol + b->rtol * fabs(s);
+            psi[i] /= b->alpha[order];
+            scale[i] = b->atol + b->rtol * fabs(y_predict[i]);
         }
         double c = h_abs / b->alpha[order];
         int converged = 0, n_iter = 0;
@@ -350,12 +370,13 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
             continue;
         }
         h->safety = STEP_SAFETY * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter);
-        double *weights = last_scale(b);
+        double *weights = last_scale(b), sum = 0.0;
         for (int i = 0; i < n; ++i) {
-            weights[i] = b->atol + b->rtol * fabs(y[i]);
-            tmp[i] = b->error_const[order] * d[i];
+            double w = b->atol + b->rtol * fabs(y[i]), v = b->error_const[order] * d[i] / w;
+            weights[i] = w;
+            sum += v * v;
         }
-        error_norm = rms(tmp, weights, n);
+        error_norm = sqrt(sum / n);
         if (!(error_norm <= 1.0)) { /* also NaN */
             h->stats[BSM_BDF_ERROR_FAILS]++;
             double factor = isfinite(error_norm)
