@@ -27,7 +27,8 @@ typedef struct {
   int n, n_u, n_p, n_q;
   bsm_fn ode, jac, signal;
   bsm_int jac_nnz;
-  const int *jac_slot, *diag_slot; /* nonzero of J / of the diagonal in a_val */
+  const int *diag_slot; /* the diagonal's entries in a_val */
+  int *a_jac; /* the nonzero of J in each entry of a_val (jac_nnz: none, jac_nz[jac_nnz] = 0) */
   int *lu_order; /* unknown lu_order[i] is row and column i of the LU */
   double *p, *q, *u;
   double t_bound;
@@ -88,9 +89,9 @@ static int eval_jac(void *model, double t, const double *x) {
 /* The LU factors of I - c J with the unknowns in the LU order; nonzero if singular. */
 static int factorize(void *model, double c) {
   bsm_bdf *b = model;
-  memset(b->a_val, 0, sizeof(double) * (size_t)b->factors.a_start[b->n]);
-  for (int i = 0; i < b->n; ++i) b->a_val[b->diag_slot[i]] = 1.0;
-  for (bsm_int k = 0; k < b->jac_nnz; ++k) b->a_val[b->jac_slot[k]] -= c * b->jac_nz[k];
+  int nnz = b->factors.a_start[b->n];
+  for (int s = 0; s < nnz; ++s) b->a_val[s] = -c * b->jac_nz[b->a_jac[s]];
+  for (int i = 0; i < b->n; ++i) b->a_val[b->diag_slot[i]] += 1.0;
   return bsm_lu_factor(&b->factors, b->a_val);
 }
 
@@ -107,7 +108,7 @@ void bsm_bdf_free(bsm_bdf *b) {
   free(b->p); free(b->q); free(b->u);
   free(b->arg); free(b->res); free(b->iw); free(b->w);
   free(b->jac_nz); free(b->a_val); free(b->permuted); free(b->x0);
-  free(b->lu_order);
+  free(b->lu_order); free(b->a_jac);
   BsmLu *c = &b->factors;
   free(c->row_of); free(c->step_of); free(c->l_start); free(c->l_index); free(c->l_val);
   free(c->u_start); free(c->u_index); free(c->u_pos); free(c->u_val); free(c->ur_start);
@@ -132,7 +133,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->n = n; b->n_u = n_u; b->n_p = n_p; b->n_q = n_q;
   b->ode = ode; b->jac = jac; b->signal = signal;
   b->jac_nnz = nnz;
-  b->jac_slot = jac_slot; b->diag_slot = diag_slot;
+  b->diag_slot = diag_slot;
   b->t_bound = t_bound;
   size_t nn = (size_t)n * n;
   b->p = malloc(sizeof(double) * (n_p + 1));
@@ -147,6 +148,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->permuted = calloc(n, sizeof(double));
   b->x0 = calloc(n, sizeof(double));
   b->lu_order = calloc(n, sizeof(int));
+  b->a_jac = malloc(sizeof(int) * ((size_t)a_start[n] + 1));
   BsmLu *c = &b->factors;
   size_t half = nn / 2 + 1; /* strictly lower or upper triangle */
   c->n = n; c->keep_order = 1; c->a_start = a_start; c->a_index = a_index;
@@ -169,7 +171,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   core->D = calloc((size_t)BSM_BDF_D_ROWS * n, sizeof(double));
   core->work = calloc((size_t)BSM_BDF_WORK_VECTORS * n, sizeof(double));
   int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
-           b->a_val && b->permuted && b->x0 && b->lu_order && c->row_of && c->step_of &&
+           b->a_val && b->permuted && b->x0 && b->lu_order && b->a_jac && c->row_of && c->step_of &&
            c->work && c->l_start && c->l_index && c->l_val && c->u_start && c->u_index &&
            c->u_pos && c->u_val && c->ur_start && c->ur_index && c->ur_val && c->inv_diag &&
            c->x && core->D && core->work;
@@ -181,6 +183,8 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   memcpy(b->q, q, sizeof(double) * n_q);
   memcpy(b->x0, x0, sizeof(double) * n);
   memcpy(b->lu_order, order, sizeof(int) * n);
+  for (int s = 0; s < a_start[n]; ++s) b->a_jac[s] = (int)nnz;
+  for (bsm_int k = 0; k < nnz; ++k) b->a_jac[jac_slot[k]] = (int)k;
   core->n = n;
   core->rtol = rtol;
   core->atol = atol;

@@ -47,18 +47,39 @@
 #define STEP_SAFETY 0.8
 #define CHANGE_BLOCK 8
 
-/* the work vectors */
-enum { W_Y_PREDICT, W_PSI, W_D, W_Y, W_F, W_DY, W_SCALE, W_TMP };
+/* the work vectors (W_WEIGHT: the inverse error weights 1 / (atol + rtol |y|) of the
+ * prediction) */
+enum { W_Y_PREDICT, W_PSI, W_D, W_Y, W_F, W_DY, W_WEIGHT, W_TMP };
 
 static double *work(const BsmBdf *b, int k) { return b->work + (size_t)k * b->n; }
 
-static double rms(const double *x, const double *scale, int n) {
-    double s = 0.0;
-    for (int i = 0; i < n; ++i) {
-        double v = x[i] / scale[i];
-        s += v * v;
+/* The weighted RMS norm of x with the inverse weights w: sqrt(mean((x w)^2)), summed in four
+ * partial sums (one would wait on each addition before the next). */
+static double rms(const double *x, const double *w, int n) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+        double v0 = x[i] * w[i], v1 = x[i + 1] * w[i + 1];
+        double v2 = x[i + 2] * w[i + 2], v3 = x[i + 3] * w[i + 3];
+        s0 += v0 * v0;
+        s1 += v1 * v1;
+        s2 += v2 * v2;
+        s3 += v3 * v3;
     }
-    return sqrt(s / n);
+    for (; i < n; ++i) s0 += (x[i] * w[i]) * (x[i] * w[i]);
+    return sqrt(((s0 + s1) + (s2 + s3)) / n);
+}
+
+/* w = 1 / (atol + rtol |y|): the inverse error weights at y */
+static void inverse_weights(const BsmBdf *b, const double *restrict y, double *restrict w) {
+    int n = b->n;
+    double atol = b->atol, rtol = b->rtol;
+    for (int i = 0; i < n; ++i) w[i] = 1.0 / (atol + rtol * fabs(y[i]));
+}
+
+/* a += x (distinct rows: the loop vectorises) */
+static void add_row(int n, double *restrict a, const double *restrict x) {
+    for (int i = 0; i < n; ++i) a[i] += x[i];
 }
 
 static int all_finite(const double *x, int n) {
@@ -146,18 +167,18 @@ int bsm_bdf_first_step(BsmBdf *b, double t0, const double *x0, double t_stop) {
     int n = b->n, status;
     BsmBdfHistory *h = b->h;
     double interval = t_stop - t0;
-    double *f = work(b, W_F), *scale = work(b, W_SCALE), *tmp = work(b, W_TMP);
+    double *f = work(b, W_F), *weight = work(b, W_WEIGHT), *tmp = work(b, W_TMP);
     double *f1 = work(b, W_DY);
     if ((status = eval_f(b, t0, x0, f))) return status;
     if (!all_finite(f, n)) return BSM_BDF_NOT_FINITE;
-    for (int i = 0; i < n; ++i) scale[i] = b->atol + fabs(x0[i]) * b->rtol;
-    double d0 = rms(x0, scale, n), d1 = rms(f, scale, n);
+    inverse_weights(b, x0, weight);
+    double d0 = rms(x0, weight, n), d1 = rms(f, weight, n);
     double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
     h0 = fmin(h0, interval);
     for (int i = 0; i < n; ++i) tmp[i] = x0[i] + h0 * f[i];
     if ((status = eval_f(b, t0 + h0, tmp, f1))) return status;
     for (int i = 0; i < n; ++i) tmp[i] = f1[i] - f[i];
-    double d2 = all_finite(tmp, n) ? rms(tmp, scale, n) / h0 : INFINITY;
+    double d2 = all_finite(tmp, n) ? rms(tmp, weight, n) / h0 : INFINITY;
     double h1 = (d1 <= 1e-15 && d2 <= 1e-15) ? fmax(1e-6, h0 * 1e-3)
                                              : pow(0.01 / fmax(d1, d2), 0.5);
     h->t = t0;
@@ -190,7 +211,7 @@ static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int
     BsmBdfHistory *h = b->h;
     double *y = work(b, W_Y), *d = work(b, W_D), *f = work(b, W_F), *dy = work(b, W_DY);
     const double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI);
-    const double *scale = work(b, W_SCALE);
+    const double *weight = work(b, W_WEIGHT);
     double del_old = 0.0, ratio = 2.0 / (1.0 + c / h->c_lu);
     double tol = NEWTON_COEF / b->error_const[order];
     *status = BSM_BDF_OK;
@@ -203,24 +224,21 @@ static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int
         else
             for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i] - d[i];
         b->ops->solve(b->model, dy);
-        /* one pass: the correction scaled, its norm, y and d moved by it */
-        double sum = 0.0;
+        /* the correction scaled (CVODES' gamma ratio), y and d moved by it */
         if (k == 0) {
             for (int i = 0; i < n; ++i) {
-                double v = dy[i] * ratio, w = v / scale[i];
-                sum += w * w;
-                y[i] = y_predict[i] + v;
-                d[i] = v;
+                dy[i] *= ratio;
+                y[i] = y_predict[i] + dy[i];
+                d[i] = dy[i];
             }
         } else {
             for (int i = 0; i < n; ++i) {
-                double v = dy[i] * ratio, w = v / scale[i];
-                sum += w * w;
-                y[i] += v;
-                d[i] += v;
+                dy[i] *= ratio;
+                y[i] += dy[i];
+                d[i] += dy[i];
             }
         }
-        double del = sqrt(sum / n);
+        double del = rms(dy, weight, n);
         /* a non-finite f (or correction) gives a non-finite norm: not converged */
         if (!isfinite(del)) return 0;
         if (k > 0) h->crate = fmax(CRATE_DOWN * h->crate, del / del_old);
@@ -241,8 +259,8 @@ static double resize(BsmBdf *b, double h_abs, double factor, int mode) {
     return h_abs * factor;
 }
 
-/* The error weights of the last step (kept in D's last row). */
-static double *last_scale(const BsmBdf *b) {
+/* The inverse error weights of the last step (kept in D's last row). */
+static double *last_weight(const BsmBdf *b) {
     return b->D + (size_t)(BSM_BDF_D_ROWS - 1) * b->n;
 }
 
@@ -253,22 +271,14 @@ static void adapt(BsmBdf *b, int mode) {
     BsmBdfHistory *h = b->h;
     int order = h->order;
     if (h->n_equal_steps < order + 1) return;
-    /* the error estimates at orders order - 1, order, order + 1, in one pass over D's rows
-     * order .. order + 2 (row order + 2 exists at the highest order too) */
-    const double *scale = last_scale(b), *lower = b->D + (size_t)order * n;
-    const double *same = lower + n, *higher = same + n;
-    double c0 = b->error_const[order - 1], c1 = b->error_const[order];
-    double c2 = b->error_const[order + 1], s0 = 0.0, s1 = 0.0, s2 = 0.0, norms[3];
-    for (int i = 0; i < n; ++i) {
-        double v0 = c0 * lower[i] / scale[i], v1 = c1 * same[i] / scale[i];
-        double v2 = c2 * higher[i] / scale[i];
-        s0 += v0 * v0;
-        s1 += v1 * v1;
-        s2 += v2 * v2;
-    }
-    norms[0] = order > 1 ? sqrt(s0 / n) : INFINITY;
-    norms[1] = sqrt(s1 / n);
-    norms[2] = order < BSM_BDF_MAX_ORDER ? sqrt(s2 / n) : INFINITY;
+    /* the error estimates at orders order - 1, order, order + 1 from D's rows order ..
+     * order + 2 (the error constants are positive) */
+    const double *weight = last_weight(b), *row = b->D + (size_t)order * n;
+    double norms[3];
+    norms[0] = order > 1 ? b->error_const[order - 1] * rms(row, weight, n) : INFINITY;
+    norms[1] = b->error_const[order] * rms(row + n, weight, n);
+    norms[2] = order < BSM_BDF_MAX_ORDER ? b->error_const[order + 1] * rms(row + 2 * n, weight, n)
+                                         : INFINITY;
     int best = 0;
     double factors[3];
     for (int k = 0; k < 3; ++k) {
@@ -312,7 +322,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     int n = b->n, status;
     BsmBdfHistory *h = b->h;
     double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI), *d = work(b, W_D);
-    double *y = work(b, W_Y), *scale = work(b, W_SCALE);
+    double *y = work(b, W_Y), *weight = work(b, W_WEIGHT);
     if (h->adapt_pending) adapt(b, mode);
     h->adapt_pending = 0;
     double t = h->t;
@@ -337,16 +347,13 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
         for (int i = 0; i < n; ++i) psi[i] = 0.0;
         for (int j = 1; j <= order; ++j) {
             const double *Dj = b->D + (size_t)j * n;
-            double g = b->gamma[j];
+            double g = b->gamma[j] / b->alpha[order];
             for (int i = 0; i < n; ++i) {
                 y_predict[i] += Dj[i];
                 psi[i] += g * Dj[i];
             }
         }
-        for (int i = 0; i < n; ++i) {
-            psi[i] /= b->alpha[order];
-            scale[i] = b->atol + b->rtol * fabs(y_predict[i]);
-        }
+        inverse_weights(b, y_predict, weight);
         double c = h_abs / b->alpha[order];
         int converged = 0, n_iter = 0;
         for (;;) {
@@ -370,13 +377,9 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
             continue;
         }
         h->safety = STEP_SAFETY * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter);
-        double *weights = last_scale(b), sum = 0.0;
-        for (int i = 0; i < n; ++i) {
-            double w = b->atol + b->rtol * fabs(y[i]), v = b->error_const[order] * d[i] / w;
-            weights[i] = w;
-            sum += v * v;
-        }
-        error_norm = sqrt(sum / n);
+        double *last = last_weight(b);
+        inverse_weights(b, y, last);
+        error_norm = b->error_const[order] * rms(d, last, n);
         if (!(error_norm <= 1.0)) { /* also NaN */
             h->stats[BSM_BDF_ERROR_FAILS]++;
             double factor = isfinite(error_norm)
@@ -395,13 +398,14 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     h->t = t_new;
     h->h_abs = h_abs;
     if (mode == BSM_BDF_CLIP) h->h_want = h_abs;
-    /* D^{j+1} y_n = D^j y_n - D^j y_{n-1} */
+    /* D^{j+1} y_n = D^j y_n - D^j y_{n-1}: D[order + 2] = d - D[order + 1], D[order + 1] =
+     * d, D[j] += D[j + 1] for j = order .. 0 */
+    double *top = b->D + (size_t)(order + 1) * n;
     for (int i = 0; i < n; ++i) {
-        b->D[(size_t)(order + 2) * n + i] = d[i] - b->D[(size_t)(order + 1) * n + i];
-        b->D[(size_t)(order + 1) * n + i] = d[i];
+        top[n + i] = d[i] - top[i];
+        top[i] = d[i];
     }
-    for (int j = order; j >= 0; --j)
-        for (int i = 0; i < n; ++i) b->D[(size_t)j * n + i] += b->D[(size_t)(j + 1) * n + i];
+    for (int j = order; j >= 0; --j) add_row(n, b->D + (size_t)j * n, b->D + (size_t)(j + 1) * n);
     h->h_last = h_abs;
     h->order_last = order;
     h->adapt_pending = 1;
