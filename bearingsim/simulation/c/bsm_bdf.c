@@ -77,6 +77,23 @@ static void inverse_weights(const BsmBdf *b, const double *restrict y, double *r
     for (int i = 0; i < n; ++i) w[i] = 1.0 / (atol + rtol * fabs(y[i]));
 }
 
+/* y_predict = sum D[0..order] and psi = sum gamma[j] D[j] / alpha[order], row by row */
+static void predict(const BsmBdf *b, int order, double *restrict y_predict,
+                    double *restrict psi) {
+    int n = b->n;
+    const double *restrict D = b->D;
+    memcpy(y_predict, D, sizeof(double) * n);
+    for (int i = 0; i < n; ++i) psi[i] = 0.0;
+    for (int j = 1; j <= order; ++j) {
+        const double *restrict row = D + (size_t)j * n;
+        double g = b->gamma[j] / b->alpha[order];
+        for (int i = 0; i < n; ++i) {
+            y_predict[i] += row[i];
+            psi[i] += g * row[i];
+        }
+    }
+}
+
 /* a += x (distinct rows: the loop vectorises) */
 static void add_row(int n, double *restrict a, const double *restrict x) {
     for (int i = 0; i < n; ++i) a[i] += x[i];
@@ -342,17 +359,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     for (;;) {
         if (h_abs < min_step || h->h_want < min_step) return BSM_BDF_STEP_TOO_SMALL;
         h_abs = fit_step(b, t, h_abs, t_stop, mode, &t_new);
-        /* y_predict = sum D[0..order], psi = sum gamma[j] D[j] / alpha, row by row */
-        memcpy(y_predict, b->D, sizeof(double) * n);
-        for (int i = 0; i < n; ++i) psi[i] = 0.0;
-        for (int j = 1; j <= order; ++j) {
-            const double *Dj = b->D + (size_t)j * n;
-            double g = b->gamma[j] / b->alpha[order];
-            for (int i = 0; i < n; ++i) {
-                y_predict[i] += Dj[i];
-                psi[i] += g * Dj[i];
-            }
-        }
+        predict(b, order, y_predict, psi);
         inverse_weights(b, y_predict, weight);
         double c = h_abs / b->alpha[order];
         int converged = 0, n_iter = 0;
