@@ -18,7 +18,9 @@ bearing as ``bench/sundials_compiled.py`` runs them (``CASES``: its tolerances, 
   least of ``REPEATS``, the two builds alternating), steps, right-hand sides, Newton iterations
   per step and the error against a tight CVODES reference (the largest over 201 output times
   of the weighted RMS norm of the difference, weights ``atol + rtol |x|`` with the case's
-  rtol and atol: a global error in units of the case's tolerance).
+  rtol and atol: a global error in units of the case's tolerance); and the tree's again with
+  rtol larger by 1e-9 of itself, whose errors show how much a rounding-level change of the
+  step sequence alone moves the error at one tolerance.
 
 ``python -m bench.compiled_bdf_core [split] [before] [--cases massive,nested]``
 """
@@ -49,6 +51,11 @@ REPEATS = 5
 
 TOLERANCES = (1e-4, 1e-5, 1e-6, 1e-7)
 """rtol of the ``before`` runs (atol in the case's proportion)."""
+
+NUDGE = 1e-9
+"""The tree's runs again with rtol larger by this fraction: the scatter of the error at one
+tolerance that a rounding-level change of the step sequence gives (the cuts of the core change
+the rounding of the norms)."""
 
 SOURCES = ("bdf.c", "bsm_bdf.c", "bsm_bdf.h", "bsm_lu.c", "bsm_lu.h")
 
@@ -194,15 +201,16 @@ def before_after(case: Case) -> list[list]:
                                 atol=case.atol * 1e-6, n_points=201, progress=False, **common))
     weights = case.atol + case.rtol * np.abs(reference)
     with tempfile.TemporaryDirectory() as tmp:
-        builds = {f"{BEFORE} (-O2)": (_sources(BEFORE, Path(tmp)), BEFORE_FLAGS),
-                  "tree": (None, None)}
+        builds = {f"{BEFORE} (-O2)": (_sources(BEFORE, Path(tmp)), BEFORE_FLAGS, 1.0),
+                  "tree": (None, None, 1.0),
+                  f"tree, rtol x {1 + NUDGE:.10g}": (None, None, 1.0 + NUDGE)}
         best: dict[tuple[str, float], tuple] = {}
         for _ in range(REPEATS):
-            for label, (folder, flags) in builds.items():
+            for label, (folder, flags, nudge) in builds.items():
                 with integrator_build(folder, flags):
                     for rtol in TOLERANCES:
                         res = simulate(system, case.t_start_up, method="compiled_bdf",
-                                       rtol=rtol, atol=rtol * case.atol / case.rtol,
+                                       rtol=rtol * nudge, atol=rtol * case.atol / case.rtol,
                                        n_points=201, progress=False, **common)
                         key = (label, rtol)
                         cpu = res.stats["integrate_cpu_time"]
