@@ -24,6 +24,7 @@ from bench import (
     assembly_work_precision,
     backends,
     ball_level_assembly,
+    compiled_bdf_core,
     cosim,
     cosim_coupling,
     dgbb,
@@ -137,6 +138,7 @@ def main(argv: list[str] | None = None) -> int:
         ("sweep scaling", sweep_scaling.section),
         ("FMU export time", fmu_bench.export_section),
         ("co-simulation coupling accuracy", lambda: cosim_coupling.section(args.quick)),
+        ("compiled BDF stepping core", lambda: compiled_bdf_core.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

@@ -285,19 +285,18 @@ def bsm_lu_us(pattern: ca.Sparsity, jac_nonzeros: np.ndarray, c: float = 1e-3,
               n: int = 2000) -> dict[str, float]:
     """Costs [us] of the compiled integrators' sparse LU (``c/bsm_lu.c`` as the BDF
     integrator runs it) on the Newton matrix ``I - c J`` in the fill-reducing order: a
-    factorisation in the kept pivot order and pattern, a fresh one, a solve; and the nonzeros
-    of ``L`` and ``U``."""
+    factorisation in the kept pivot order and pattern and a solve, each repeated inside C
+    (:meth:`~bearingsim.simulation.sparse_lu.SparseLu.time_calls`), a fresh factorisation (from
+    Python, less an empty matrix's call); and the nonzeros of ``L`` and ``U``."""
     newton = newton_pattern(pattern)
     values, none = newton.values(jac_nonzeros, c), np.zeros(0)
     lu = SparseLu(newton.start, newton.index, keep_order=True)
     empty = SparseLu([0], [], keep_order=True)
-    lu.factor(values)
-    factor, solve = lu.bound_calls(values, np.ones(newton.order.size))
-    empty_factor, empty_solve = empty.bound_calls(none, none)
-    return {"bsm_lu factor": _net_us(factor, empty_factor, n),
+    factor_s, solve_s = lu.time_calls(values, np.ones(newton.order.size), repeats=n)
+    return {"bsm_lu factor": factor_s * 1e6,
             "bsm_lu fresh": _net_us(lambda: lu.factor(values, fresh=True),
                                     lambda: empty.factor(none, fresh=True), max(n // 5, 1)),
-            "bsm_lu solve": _net_us(solve, empty_solve, 4 * n),
+            "bsm_lu solve": solve_s * 1e6,
             "L+U nonzeros": sum(lu.nnz)}
 
 
@@ -466,7 +465,12 @@ COMPILED_BDF = "C, compiled_bdf"
 """Row label of the BDF loop in C (``method="compiled_bdf"``) on the C kernels."""
 
 
-def runs(case: Case, per_call: dict[str, float], repeats: int = 3) -> dict[str, Any]:
+RUN_REPEATS = 7
+"""Runs per backend and phase, the least CPU time kept: as many as the per-call costs' loops
+(least of 7), so that the run and its limit are estimated alike on the shared machine."""
+
+
+def runs(case: Case, per_call: dict[str, float], repeats: int = RUN_REPEATS) -> dict[str, Any]:
     """Start-up and steady running on VM and C (and, for ODE-form cases, the compiled BDF
     on C): integration CPU times (``integrate_cpu_time``), counts, limit."""
     system, common = case.system()
@@ -686,8 +690,9 @@ def section(quick: bool = False) -> Section:
         "`method=\"compiled_bdf\"`, a BDF whose step loop is C calling the same C kernels "
         "(`bearingsim.simulation.compiled_bdf`; its own steps, no time split by kernel). "
         "Times are CPU times (the integration's thread, `Result.stats[\"integrate_cpu_time\"]`; "
-        "per call the least of 7 loops), so that the other jobs on this shared 2-core machine "
-        "count less; ratios come from one run, side by side. "
+        "per call the least of 7 loops, per run the least of 7 runs; *spread*: the slowest run "
+        "over the fastest), so that the other jobs on this shared 2-core machine count less; "
+        "ratios come from one run, side by side. "
         "*CPU / sim s*: CPU seconds per "
         "simulated second; *limit*: the compiled per-call costs times the calls the run took "
         "(kernels only, and with the LU of the Newton matrix: one factorisation and solve per "
@@ -697,7 +702,8 @@ def section(quick: bool = False) -> Section:
         "compiled_bdf's right-hand sides). The LU costs of the limits are the cheaper of a "
         "library LU (dense LAPACK, or above 200 states CSparse's ordered sparse LU, the "
         "default's; the solve LAPACK's or SuperLU's in the integrator's order) and the "
-        "compiled integrators' own sparse LU (`bsm_lu`, `c/bsm_lu.c`), all measured on the "
+        "compiled integrators' own sparse LU (`bsm_lu`, `c/bsm_lu.c`; its factorisation and "
+        "solve repeated in loops inside C), all measured on the "
         "run's Newton matrix I - 1e-3 J in the fill-reducing order. *bsm_lu factor*: a "
         "factorisation in the kept pivot order and fill pattern (what the integrator does at "
         "almost every set-up); *bsm_lu fresh*: one that finds a new pivot order and pattern "
@@ -707,7 +713,9 @@ def section(quick: bool = False) -> Section:
         "*/ rhs*: in "
         "right-hand-side calls; *fresh LU / set-ups*: compiled_bdf's fresh factorisations "
         "(`npivotings`) of its linear set-ups. *solves / step*: "
-        "Newton iterations per step. Goals: at most 1 s per "
+        "Newton iterations per step. Where compiled_bdf's steps spend their time inside the "
+        "run (the kernels, the LU and its stepping core apart): section \"The compiled BDF's "
+        "stepping core\". Goals: at most 1 s per "
         "simulated second for the 6304 massive-ball level, 10 s for the nested dynamic bearing. "
         "Set-up: a 1 ms run repeated, first call (kernel from the disk cache, integrator built) "
         "and later calls (both cached).\n\n"

@@ -9,6 +9,7 @@ stepper call the same C directly; this module compiles it alone into a small lib
 from __future__ import annotations
 
 import ctypes
+import time
 from functools import cache
 from pathlib import Path
 
@@ -19,7 +20,7 @@ from bearingsim.simulation.compile import compile_source, library_path
 __all__ = ["SparseLu"]
 
 C_DIR = Path(__file__).with_name("c")
-FLAGS = ("-O2", f"-I{C_DIR}")
+FLAGS = ("-O3", f"-I{C_DIR}")
 """As the compiled BDF integrator's library."""
 
 
@@ -37,16 +38,18 @@ class _BsmLu(ctypes.Structure):
 
 @cache
 def _library(cache_dir: str | None) -> ctypes.CDLL:
-    source = (C_DIR / "bsm_lu.c").read_text()
-    lib = library_path("\n".join([source, (C_DIR / "bsm_lu.h").read_text()]), flags=FLAGS,
+    units = [(C_DIR / name).read_text() for name in ("bsm_lu.c", "bsm_lu_timing.c")]
+    lib = library_path("\n".join([*units, (C_DIR / "bsm_lu.h").read_text()]), flags=FLAGS,
                        cache_dir=cache_dir, prefix="bsm_lu")
     if not lib.exists():
-        compile_source(source, lib, flags=FLAGS)
+        compile_source(units, lib, flags=FLAGS)
     dll = ctypes.CDLL(str(lib))
-    dll.bsm_lu_factor.argtypes = [ctypes.POINTER(_BsmLu), ctypes.c_void_p]
-    dll.bsm_lu_factor.restype = ctypes.c_int
-    dll.bsm_lu_solve.argtypes = [ctypes.POINTER(_BsmLu), ctypes.c_void_p, ctypes.c_void_p,
-                                 ctypes.c_void_p]
+    v, i = ctypes.c_void_p, ctypes.c_int
+    dll.bsm_lu_factor.argtypes = [ctypes.POINTER(_BsmLu), v]
+    dll.bsm_lu_factor.restype = i
+    dll.bsm_lu_solve.argtypes = [ctypes.POINTER(_BsmLu), v, v, v]
+    dll.bsm_lu_factor_repeat.argtypes = [ctypes.POINTER(_BsmLu), v, i]
+    dll.bsm_lu_solve_repeat.argtypes = [ctypes.POINTER(_BsmLu), v, v, v, v, i, i]
     return dll
 
 
@@ -136,36 +139,46 @@ class SparseLu:
                                self._work.ctypes.data, x.ctypes.data)
         return x
 
-    def bound_calls(self, values: np.ndarray, b: np.ndarray):
-        """The C calls with their arguments bound, for timing them without numpy's share:
-        ``(factor, solve)``, zero-argument callables that factorise the nonzeros ``values``
-        (kept order, as :meth:`factor`) and solve for ``b`` in place.
+    def time_calls(self, values: np.ndarray, b: np.ndarray, repeats: int = 2000,
+                   loops: int = 7) -> tuple[float, float]:
+        """CPU time of one factorisation in the kept pivot order and of one solve [s], each
+        repeated inside C (``c/bsm_lu_timing.c``: without the caller's share; the solve's
+        copy of ``b`` before each solve measured alone and taken out), the least of ``loops``
+        loops of ``repeats`` calls.
 
         Parameters
         ----------
         values : numpy.ndarray
-            Nonzeros of the matrix, in the pattern's order.
+            Nonzeros of the matrix, in the pattern's order (factorised once first).
         b : numpy.ndarray
-            Right-hand side (n,), solved in place.
+            Right-hand side (n,).
+        repeats, loops : int
+            Calls per loop and loops.
 
         Returns
         -------
-        tuple of callable
-            ``(factor, solve)``.
+        tuple of float
+            ``(factor, solve)`` [s].
         """
         values = np.ascontiguousarray(values, dtype=float)
-        x = np.array(b, dtype=float)
-        self._bound = (values, x)  # alive while the pointers are in use
+        b = np.ascontiguousarray(b, dtype=float)
+        x = np.empty_like(b)
+        self.factor(values)
         dll, c = self._dll, ctypes.byref(self._c)
-        value_pointer = values.ctypes.data
-        pointers = [a.ctypes.data for a in (self._identity, self._work, x)]
+        pointers = [a.ctypes.data for a in (self._identity, self._work, b, x)]
 
-        def factor() -> int:
-            return dll.bsm_lu_factor(c, value_pointer)
+        def least(call) -> float:
+            times = []
+            for _ in range(loops):
+                start = time.thread_time()
+                call()
+                times.append((time.thread_time() - start) / repeats)
+            return min(times)
 
-        def solve() -> None:
-            dll.bsm_lu_solve(c, *pointers)
-        return factor, solve
+        factor = least(lambda: dll.bsm_lu_factor_repeat(c, values.ctypes.data, repeats))
+        solve = least(lambda: dll.bsm_lu_solve_repeat(c, *pointers, repeats, 1))
+        copy = least(lambda: dll.bsm_lu_solve_repeat(c, *pointers, repeats, 0))
+        return factor, max(solve - copy, 0.0)
 
     @property
     def pivotings(self) -> int:

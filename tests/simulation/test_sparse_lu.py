@@ -214,3 +214,18 @@ def test_newton_pattern_orders_the_matrix_and_adds_the_diagonal():
 def test_compiled_bdf_counts_its_fresh_factorisations(kernel_cache):
     res = simulate(assemble(SpringMassChain(phi0=0.1)), 0.5, method="compiled_bdf")
     assert 1 <= res.stats["npivotings"] <= res.stats["nlinsetups"]
+
+
+def test_timing_loops_leave_the_factors_and_the_right_hand_side_as_they_were():
+    """``time_calls`` factorises and solves copies inside C: afterwards the factors solve as
+    numpy does, the right-hand side given is unchanged and the costs are finite."""
+    jac = _bearing_jacobian(7, 6, 8, seed=3)
+    pattern, values, dense = _newton(jac, 1e-3)
+    lu = SparseLu(pattern.start, pattern.index, keep_order=True)
+    b = np.random.default_rng(4).standard_normal(dense.shape[0])
+    kept = b.copy()
+    factor_s, solve_s = lu.time_calls(values, b, repeats=50, loops=2)
+    np.testing.assert_array_equal(b, kept)
+    assert np.isfinite(factor_s) and np.isfinite(solve_s)
+    assert lu.pivotings == 1  # the repeated factorisations kept the first pivot order
+    _assert_solves(lu, dense, 5)

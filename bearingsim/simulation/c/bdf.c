@@ -10,6 +10,11 @@
  * in), the pivot order and fill pattern found once and reused while the pivots stay
  * acceptable (on the ball-level models a dense LU, LAPACK's, cost more than the right-hand
  * side).
+ *
+ * Built with -DBSM_BDF_PROFILE (bench/compiled_bdf_core.py), each call of the four model
+ * operations is timed (monotonic clock) and bsm_bdf_start/bsm_bdf_advance too (CPU time of the
+ * thread), and bsm_bdf_profile returns the seconds: the run less the operations is the
+ * stepping core's own work.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -27,7 +32,8 @@ typedef struct {
   int n, n_u, n_p, n_q;
   bsm_fn ode, jac, signal;
   bsm_int jac_nnz;
-  const int *jac_slot, *diag_slot; /* nonzero of J / of the diagonal in a_val */
+  const int *diag_slot; /* the diagonal's entries in a_val */
+  int *a_jac; /* the nonzero of J in each entry of a_val (jac_nnz: none, jac_nz[jac_nnz] = 0) */
   int *lu_order; /* unknown lu_order[i] is row and column i of the LU */
   double *p, *q, *u;
   double t_bound;
@@ -37,6 +43,9 @@ typedef struct {
   double *w;
   double *jac_nz, *a_val, *permuted, *x0;
   BsmLu factors;
+#ifdef BSM_BDF_PROFILE
+  double profile[13]; /* the operations' and the run's time (BSM_BDF_PROFILE, below) */
+#endif
 } bsm_bdf;
 
 static int all_finite(const double *x, bsm_int n) {
@@ -88,9 +97,9 @@ static int eval_jac(void *model, double t, const double *x) {
 /* The LU factors of I - c J with the unknowns in the LU order; nonzero if singular. */
 static int factorize(void *model, double c) {
   bsm_bdf *b = model;
-  memset(b->a_val, 0, sizeof(double) * (size_t)b->factors.a_start[b->n]);
-  for (int i = 0; i < b->n; ++i) b->a_val[b->diag_slot[i]] = 1.0;
-  for (bsm_int k = 0; k < b->jac_nnz; ++k) b->a_val[b->jac_slot[k]] -= c * b->jac_nz[k];
+  int nnz = b->factors.a_start[b->n];
+  for (int s = 0; s < nnz; ++s) b->a_val[s] = -c * b->jac_nz[b->a_jac[s]];
+  for (int i = 0; i < b->n; ++i) b->a_val[b->diag_slot[i]] += 1.0;
   return bsm_lu_factor(&b->factors, b->a_val);
 }
 
@@ -100,14 +109,92 @@ static void solve(void *model, double *rhs) {
   bsm_lu_solve(&b->factors, b->lu_order, b->permuted, rhs);
 }
 
+#ifdef BSM_BDF_PROFILE
+#include <time.h>
+
+/* profile: 0-3 seconds in rhs, jac, factor, solve (the calls not interrupted); 4 CPU seconds
+ * of bsm_bdf_start and bsm_bdf_advance; 5-8 the calls timed; 9-12 the calls interrupted */
+enum { PROFILE_RUN_S = 4, PROFILE_CALLS = 5, PROFILE_INTERRUPTED = 9, PROFILE_SIZE = 13 };
+
+/* A call longer than this was interrupted by the machine's other work (the operations take
+ * microseconds, a time slice milliseconds): its time is not counted. */
+#define INTERRUPTED_S 1e-3
+
+static double clock_s(clockid_t clock) {
+  struct timespec ts;
+  clock_gettime(clock, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* count a call of operation k that began at t0 (monotonic clock) */
+static void spent(void *model, int k, double t0) {
+  double *profile = ((bsm_bdf *)model)->profile, dt = clock_s(CLOCK_MONOTONIC) - t0;
+  if (dt > INTERRUPTED_S) {
+    profile[PROFILE_INTERRUPTED + k] += 1.0;
+    return;
+  }
+  profile[k] += dt;
+  profile[PROFILE_CALLS + k] += 1.0;
+}
+
+static int timed_f(void *model, double t, const double *x, double *out) {
+  double t0 = clock_s(CLOCK_MONOTONIC);
+  int status = eval_f(model, t, x, out);
+  spent(model, 0, t0);
+  return status;
+}
+
+static int timed_jac(void *model, double t, const double *x) {
+  double t0 = clock_s(CLOCK_MONOTONIC);
+  int status = eval_jac(model, t, x);
+  spent(model, 1, t0);
+  return status;
+}
+
+static int timed_factor(void *model, double c) {
+  double t0 = clock_s(CLOCK_MONOTONIC);
+  int status = factorize(model, c);
+  spent(model, 2, t0);
+  return status;
+}
+
+static void timed_solve(void *model, double *rhs) {
+  double t0 = clock_s(CLOCK_MONOTONIC);
+  solve(model, rhs);
+  spent(model, 3, t0);
+}
+
+static const BsmBdfOps KERNEL_OPS = {timed_f, timed_jac, timed_factor, timed_solve};
+
+/* out[0..12]: the profile (above); out[13]: the cost of one monotonic clock reading [s] (the
+ * least mean of 100 batches of 1000) */
+void bsm_bdf_profile(const bsm_bdf *b, double *out) {
+  memcpy(out, b->profile, sizeof(b->profile));
+  out[PROFILE_SIZE] = INFINITY;
+  for (int batch = 0; batch < 100; ++batch) {
+    double t0 = clock_s(CLOCK_MONOTONIC);
+    for (int k = 0; k < 1000; ++k) clock_s(CLOCK_MONOTONIC);
+    out[PROFILE_SIZE] = fmin(out[PROFILE_SIZE], (clock_s(CLOCK_MONOTONIC) - t0) / 1000);
+  }
+}
+#define PROFILE_RUN(status)                                                                   \
+  do {                                                                                        \
+    double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);                                             \
+    int result = (status);                                                                    \
+    b->profile[PROFILE_RUN_S] += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;                       \
+    return result;                                                                            \
+  } while (0)
+#else
 static const BsmBdfOps KERNEL_OPS = {eval_f, eval_jac, factorize, solve};
+#define PROFILE_RUN(status) return (status)
+#endif
 
 void bsm_bdf_free(bsm_bdf *b) {
   if (!b) return;
   free(b->p); free(b->q); free(b->u);
   free(b->arg); free(b->res); free(b->iw); free(b->w);
   free(b->jac_nz); free(b->a_val); free(b->permuted); free(b->x0);
-  free(b->lu_order);
+  free(b->lu_order); free(b->a_jac);
   BsmLu *c = &b->factors;
   free(c->row_of); free(c->step_of); free(c->l_start); free(c->l_index); free(c->l_val);
   free(c->u_start); free(c->u_index); free(c->u_pos); free(c->u_val); free(c->ur_start);
@@ -132,7 +219,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->n = n; b->n_u = n_u; b->n_p = n_p; b->n_q = n_q;
   b->ode = ode; b->jac = jac; b->signal = signal;
   b->jac_nnz = nnz;
-  b->jac_slot = jac_slot; b->diag_slot = diag_slot;
+  b->diag_slot = diag_slot;
   b->t_bound = t_bound;
   size_t nn = (size_t)n * n;
   b->p = malloc(sizeof(double) * (n_p + 1));
@@ -147,6 +234,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   b->permuted = calloc(n, sizeof(double));
   b->x0 = calloc(n, sizeof(double));
   b->lu_order = calloc(n, sizeof(int));
+  b->a_jac = malloc(sizeof(int) * ((size_t)a_start[n] + 1));
   BsmLu *c = &b->factors;
   size_t half = nn / 2 + 1; /* strictly lower or upper triangle */
   c->n = n; c->keep_order = 1; c->a_start = a_start; c->a_index = a_index;
@@ -169,7 +257,7 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   core->D = calloc((size_t)BSM_BDF_D_ROWS * n, sizeof(double));
   core->work = calloc((size_t)BSM_BDF_WORK_VECTORS * n, sizeof(double));
   int ok = b->p && b->q && b->u && b->arg && b->res && b->iw && b->w && b->jac_nz &&
-           b->a_val && b->permuted && b->x0 && b->lu_order && c->row_of && c->step_of &&
+           b->a_val && b->permuted && b->x0 && b->lu_order && b->a_jac && c->row_of && c->step_of &&
            c->work && c->l_start && c->l_index && c->l_val && c->u_start && c->u_index &&
            c->u_pos && c->u_val && c->ur_start && c->ur_index && c->ur_val && c->inv_diag &&
            c->x && core->D && core->work;
@@ -181,6 +269,8 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
   memcpy(b->q, q, sizeof(double) * n_q);
   memcpy(b->x0, x0, sizeof(double) * n);
   memcpy(b->lu_order, order, sizeof(int) * n);
+  for (int s = 0; s < a_start[n]; ++s) b->a_jac[s] = (int)nnz;
+  for (bsm_int k = 0; k < nnz; ++k) b->a_jac[jac_slot[k]] = (int)k;
   core->n = n;
   core->rtol = rtol;
   core->atol = atol;
@@ -195,15 +285,12 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
 
 /* First step size and the start of D; status code. */
 int bsm_bdf_start(bsm_bdf *b) {
-  return bsm_bdf_first_step(&b->core, b->history.t, b->x0, b->t_bound);
+  PROFILE_RUN(bsm_bdf_first_step(&b->core, b->history.t, b->x0, b->t_bound));
 }
 
-/* Integrate until every output time t_out[0..n_out-1] (increasing, not before the start of
- * the last step, at most t_bound) is reached, or for at most max_steps steps; x_out[k*n + i] =
- * state i at t_out[k]. Returns a status code; *n_done: the outputs written (fewer than n_out
- * when the steps ran out: call again with the rest). */
-int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, int max_steps,
-                    int *n_done) {
+/* bsm_bdf_advance's loop */
+static int advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, int max_steps,
+                   int *n_done) {
   int n = b->n, k = 0, steps = 0, status;
   *n_done = 0;
   for (;;) {
@@ -214,6 +301,15 @@ int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, i
     if (k == n_out || steps++ == max_steps) return BSM_BDF_OK;
     if ((status = bsm_bdf_step(&b->core, b->t_bound, BSM_BDF_CLIP))) return status;
   }
+}
+
+/* Integrate until every output time t_out[0..n_out-1] (increasing, not before the start of
+ * the last step, at most t_bound) is reached, or for at most max_steps steps; x_out[k*n + i] =
+ * state i at t_out[k]. Returns a status code; *n_done: the outputs written (fewer than n_out
+ * when the steps ran out: call again with the rest). */
+int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, int max_steps,
+                    int *n_done) {
+  PROFILE_RUN(advance(b, n_out, t_out, x_out, max_steps, n_done));
 }
 
 double bsm_bdf_time(const bsm_bdf *b) { return b->history.t; }

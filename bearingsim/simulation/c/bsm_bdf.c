@@ -47,18 +47,56 @@
 #define STEP_SAFETY 0.8
 #define CHANGE_BLOCK 8
 
-/* the work vectors */
-enum { W_Y_PREDICT, W_PSI, W_D, W_Y, W_F, W_DY, W_SCALE, W_TMP };
+/* the work vectors (W_WEIGHT: the inverse error weights 1 / (atol + rtol |y|) of the
+ * prediction) */
+enum { W_Y_PREDICT, W_PSI, W_D, W_Y, W_F, W_DY, W_WEIGHT, W_TMP };
 
 static double *work(const BsmBdf *b, int k) { return b->work + (size_t)k * b->n; }
 
-static double rms(const double *x, const double *scale, int n) {
-    double s = 0.0;
-    for (int i = 0; i < n; ++i) {
-        double v = x[i] / scale[i];
-        s += v * v;
+/* The weighted RMS norm of x with the inverse weights w: sqrt(mean((x w)^2)), summed in four
+ * partial sums (one would wait on each addition before the next). */
+static double rms(const double *x, const double *w, int n) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+        double v0 = x[i] * w[i], v1 = x[i + 1] * w[i + 1];
+        double v2 = x[i + 2] * w[i + 2], v3 = x[i + 3] * w[i + 3];
+        s0 += v0 * v0;
+        s1 += v1 * v1;
+        s2 += v2 * v2;
+        s3 += v3 * v3;
     }
-    return sqrt(s / n);
+    for (; i < n; ++i) s0 += (x[i] * w[i]) * (x[i] * w[i]);
+    return sqrt(((s0 + s1) + (s2 + s3)) / n);
+}
+
+/* w = 1 / (atol + rtol |y|): the inverse error weights at y */
+static void inverse_weights(const BsmBdf *b, const double *restrict y, double *restrict w) {
+    int n = b->n;
+    double atol = b->atol, rtol = b->rtol;
+    for (int i = 0; i < n; ++i) w[i] = 1.0 / (atol + rtol * fabs(y[i]));
+}
+
+/* y_predict = sum D[0..order] and psi = sum gamma[j] D[j] / alpha[order], row by row */
+static void predict(const BsmBdf *b, int order, double *restrict y_predict,
+                    double *restrict psi) {
+    int n = b->n;
+    const double *restrict D = b->D;
+    memcpy(y_predict, D, sizeof(double) * n);
+    for (int i = 0; i < n; ++i) psi[i] = 0.0;
+    for (int j = 1; j <= order; ++j) {
+        const double *restrict row = D + (size_t)j * n;
+        double g = b->gamma[j] / b->alpha[order];
+        for (int i = 0; i < n; ++i) {
+            y_predict[i] += row[i];
+            psi[i] += g * row[i];
+        }
+    }
+}
+
+/* a += x (distinct rows: the loop vectorises) */
+static void add_row(int n, double *restrict a, const double *restrict x) {
+    for (int i = 0; i < n; ++i) a[i] += x[i];
 }
 
 static int all_finite(const double *x, int n) {
@@ -146,18 +184,18 @@ int bsm_bdf_first_step(BsmBdf *b, double t0, const double *x0, double t_stop) {
     int n = b->n, status;
     BsmBdfHistory *h = b->h;
     double interval = t_stop - t0;
-    double *f = work(b, W_F), *scale = work(b, W_SCALE), *tmp = work(b, W_TMP);
+    double *f = work(b, W_F), *weight = work(b, W_WEIGHT), *tmp = work(b, W_TMP);
     double *f1 = work(b, W_DY);
     if ((status = eval_f(b, t0, x0, f))) return status;
     if (!all_finite(f, n)) return BSM_BDF_NOT_FINITE;
-    for (int i = 0; i < n; ++i) scale[i] = b->atol + fabs(x0[i]) * b->rtol;
-    double d0 = rms(x0, scale, n), d1 = rms(f, scale, n);
+    inverse_weights(b, x0, weight);
+    double d0 = rms(x0, weight, n), d1 = rms(f, weight, n);
     double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
     h0 = fmin(h0, interval);
     for (int i = 0; i < n; ++i) tmp[i] = x0[i] + h0 * f[i];
     if ((status = eval_f(b, t0 + h0, tmp, f1))) return status;
     for (int i = 0; i < n; ++i) tmp[i] = f1[i] - f[i];
-    double d2 = all_finite(tmp, n) ? rms(tmp, scale, n) / h0 : INFINITY;
+    double d2 = all_finite(tmp, n) ? rms(tmp, weight, n) / h0 : INFINITY;
     double h1 = (d1 <= 1e-15 && d2 <= 1e-15) ? fmax(1e-6, h0 * 1e-3)
                                              : pow(0.01 / fmax(d1, d2), 0.5);
     h->t = t0;
@@ -189,25 +227,37 @@ static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int
     int n = b->n;
     BsmBdfHistory *h = b->h;
     double *y = work(b, W_Y), *d = work(b, W_D), *f = work(b, W_F), *dy = work(b, W_DY);
-    double *psi = work(b, W_PSI), *scale = work(b, W_SCALE);
+    const double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI);
+    const double *weight = work(b, W_WEIGHT);
     double del_old = 0.0, ratio = 2.0 / (1.0 + c / h->c_lu);
     double tol = NEWTON_COEF / b->error_const[order];
-    memcpy(y, work(b, W_Y_PREDICT), sizeof(double) * n);
-    memset(d, 0, sizeof(double) * n);
     *status = BSM_BDF_OK;
     for (int k = 0; k < NEWTON_MAXITER; ++k) {
+        /* the first iteration starts at y = y_predict, d = 0 */
         *n_iter = k + 1;
-        if ((*status = eval_f(b, t_new, y, f))) return 0;
-        if (!all_finite(f, n)) return 0;
-        for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i] - d[i];
+        if ((*status = eval_f(b, t_new, k == 0 ? y_predict : y, f))) return 0;
+        if (k == 0)
+            for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i];
+        else
+            for (int i = 0; i < n; ++i) dy[i] = c * f[i] - psi[i] - d[i];
         b->ops->solve(b->model, dy);
-        if (ratio != 1.0)
-            for (int i = 0; i < n; ++i) dy[i] *= ratio;
-        double del = rms(dy, scale, n);
-        for (int i = 0; i < n; ++i) {
-            y[i] += dy[i];
-            d[i] += dy[i];
+        /* the correction scaled (CVODES' gamma ratio), y and d moved by it */
+        if (k == 0) {
+            for (int i = 0; i < n; ++i) {
+                dy[i] *= ratio;
+                y[i] = y_predict[i] + dy[i];
+                d[i] = dy[i];
+            }
+        } else {
+            for (int i = 0; i < n; ++i) {
+                dy[i] *= ratio;
+                y[i] += dy[i];
+                d[i] += dy[i];
+            }
         }
+        double del = rms(dy, weight, n);
+        /* a non-finite f (or correction) gives a non-finite norm: not converged */
+        if (!isfinite(del)) return 0;
         if (k > 0) h->crate = fmax(CRATE_DOWN * h->crate, del / del_old);
         if (del * fmin(1.0, h->crate) <= tol) return 1;
         if (k > 0 && del > DIVERGENCE * del_old) return 0;
@@ -226,8 +276,8 @@ static double resize(BsmBdf *b, double h_abs, double factor, int mode) {
     return h_abs * factor;
 }
 
-/* The error weights of the last step (kept in D's last row). */
-static double *last_scale(const BsmBdf *b) {
+/* The inverse error weights of the last step (kept in D's last row). */
+static double *last_weight(const BsmBdf *b) {
     return b->D + (size_t)(BSM_BDF_D_ROWS - 1) * b->n;
 }
 
@@ -238,24 +288,14 @@ static void adapt(BsmBdf *b, int mode) {
     BsmBdfHistory *h = b->h;
     int order = h->order;
     if (h->n_equal_steps < order + 1) return;
-    double *scale = last_scale(b), *tmp = work(b, W_TMP);
-    const double *d = b->D + (size_t)(order + 1) * n;
+    /* the error estimates at orders order - 1, order, order + 1 from D's rows order ..
+     * order + 2 (the error constants are positive) */
+    const double *weight = last_weight(b), *row = b->D + (size_t)order * n;
     double norms[3];
-    for (int i = 0; i < n; ++i) tmp[i] = b->error_const[order] * d[i];
-    norms[1] = rms(tmp, scale, n);
-    if (order > 1) {
-        for (int i = 0; i < n; ++i) tmp[i] = b->error_const[order - 1] * b->D[(size_t)order * n + i];
-        norms[0] = rms(tmp, scale, n);
-    } else {
-        norms[0] = INFINITY;
-    }
-    if (order < BSM_BDF_MAX_ORDER) {
-        for (int i = 0; i < n; ++i)
-            tmp[i] = b->error_const[order + 1] * b->D[(size_t)(order + 2) * n + i];
-        norms[2] = rms(tmp, scale, n);
-    } else {
-        norms[2] = INFINITY;
-    }
+    norms[0] = order > 1 ? b->error_const[order - 1] * rms(row, weight, n) : INFINITY;
+    norms[1] = b->error_const[order] * rms(row + n, weight, n);
+    norms[2] = order < BSM_BDF_MAX_ORDER ? b->error_const[order + 1] * rms(row + 2 * n, weight, n)
+                                         : INFINITY;
     int best = 0;
     double factors[3];
     for (int k = 0; k < 3; ++k) {
@@ -299,7 +339,7 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     int n = b->n, status;
     BsmBdfHistory *h = b->h;
     double *y_predict = work(b, W_Y_PREDICT), *psi = work(b, W_PSI), *d = work(b, W_D);
-    double *y = work(b, W_Y), *scale = work(b, W_SCALE), *tmp = work(b, W_TMP);
+    double *y = work(b, W_Y), *weight = work(b, W_WEIGHT);
     if (h->adapt_pending) adapt(b, mode);
     h->adapt_pending = 0;
     double t = h->t;
@@ -319,14 +359,8 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     for (;;) {
         if (h_abs < min_step || h->h_want < min_step) return BSM_BDF_STEP_TOO_SMALL;
         h_abs = fit_step(b, t, h_abs, t_stop, mode, &t_new);
-        for (int i = 0; i < n; ++i) {
-            double s = 0.0, ps = 0.0;
-            for (int j = 0; j <= order; ++j) s += b->D[(size_t)j * n + i];
-            for (int j = 1; j <= order; ++j) ps += b->gamma[j] * b->D[(size_t)j * n + i];
-            y_predict[i] = s;
-            psi[i] = ps / b->alpha[order];
-            scale[i] = b->atol + b->rtol * fabs(s);
-        }
+        predict(b, order, y_predict, psi);
+        inverse_weights(b, y_predict, weight);
         double c = h_abs / b->alpha[order];
         int converged = 0, n_iter = 0;
         for (;;) {
@@ -350,12 +384,9 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
             continue;
         }
         h->safety = STEP_SAFETY * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter);
-        double *weights = last_scale(b);
-        for (int i = 0; i < n; ++i) {
-            weights[i] = b->atol + b->rtol * fabs(y[i]);
-            tmp[i] = b->error_const[order] * d[i];
-        }
-        error_norm = rms(tmp, weights, n);
+        double *last = last_weight(b);
+        inverse_weights(b, y, last);
+        error_norm = b->error_const[order] * rms(d, last, n);
         if (!(error_norm <= 1.0)) { /* also NaN */
             h->stats[BSM_BDF_ERROR_FAILS]++;
             double factor = isfinite(error_norm)
@@ -374,13 +405,14 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
     h->t = t_new;
     h->h_abs = h_abs;
     if (mode == BSM_BDF_CLIP) h->h_want = h_abs;
-    /* D^{j+1} y_n = D^j y_n - D^j y_{n-1} */
+    /* D^{j+1} y_n = D^j y_n - D^j y_{n-1}: D[order + 2] = d - D[order + 1], D[order + 1] =
+     * d, D[j] += D[j + 1] for j = order .. 0 */
+    double *top = b->D + (size_t)(order + 1) * n;
     for (int i = 0; i < n; ++i) {
-        b->D[(size_t)(order + 2) * n + i] = d[i] - b->D[(size_t)(order + 1) * n + i];
-        b->D[(size_t)(order + 1) * n + i] = d[i];
+        top[n + i] = d[i] - top[i];
+        top[i] = d[i];
     }
-    for (int j = order; j >= 0; --j)
-        for (int i = 0; i < n; ++i) b->D[(size_t)j * n + i] += b->D[(size_t)(j + 1) * n + i];
+    for (int j = order; j >= 0; --j) add_row(n, b->D + (size_t)j * n, b->D + (size_t)(j + 1) * n);
     h->h_last = h_abs;
     h->order_last = order;
     h->adapt_pending = 1;

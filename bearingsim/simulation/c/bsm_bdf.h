@@ -6,16 +6,16 @@
  * The core knows the model only through BsmBdfOps: the right-hand side, the Jacobian and the
  * LU factorisation of I - c J with its solve (the caller keeps J and the factors). Everything
  * the next step depends on besides the model, J and the factors is the history: the scalars of
- * BsmBdfHistory and the backward differences D (with the last step's error weights). A caller that saves both, and re-creates J and
- * the factors where the history says they were made (jac_t, jac_x: its own record; c_lu), takes
- * the same steps again bit for bit.
+ * BsmBdfHistory and the backward differences D (with the last step's inverse error weights). A
+ * caller that saves both, and re-creates J and the factors where the history says they were
+ * made (jac_t, jac_x: its own record; c_lu), takes the same steps again bit for bit.
  */
 #ifndef BSM_BDF_H
 #define BSM_BDF_H
 
 #define BSM_BDF_MAX_ORDER 5
-/* rows of n values in D: the differences of orders 0 .. MAX_ORDER + 2, then the error weights
- * of the last step */
+/* rows of n values in D: the differences of orders 0 .. MAX_ORDER + 2, then the inverse error
+ * weights of the last step */
 #define BSM_BDF_D_ROWS (BSM_BDF_MAX_ORDER + 4)
 #define BSM_BDF_WORK_VECTORS 8                 /* work vectors of n values */
 
