@@ -46,7 +46,8 @@ WORKERS_RECOUNT_S = 2.0
 """How often the worker threads are counted again during a sweep [s] (on a cluster, workers
 join and leave)."""
 RESUBMITS = 100
-"""Most chunks of one sweep submitted again after their model was lost with a worker."""
+"""Most chunks of one sweep submitted again after the scheduler cancelled them (their model
+lost with a worker)."""
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """Imported by the fork server (and preloaded by every worker)."""
 QUIET_CLUSTER = {
@@ -184,8 +185,11 @@ class ChunkFeeder:
         self.models = models
         self.payloads = payloads or {}
         self.resubmitted = 0
-        """Chunks submitted again after their model was lost with a worker."""
-        self._model_of: dict[Any, tuple] = {}
+        """Chunks submitted again after the scheduler cancelled them (their model lost with a
+        worker)."""
+        self._model_of: dict[Any, tuple[tuple, Any]] = {}
+        """Chunk future -> (structure key, the model future it reads)."""
+        self._cancelled = False
         self.todo = list(jobs)
         self.n_workers = max(1, n_workers)
         self.timeout = timeout
@@ -226,13 +230,17 @@ class ChunkFeeder:
             part = []
             while self.todo and len(part) < size and self.todo[0][0] == key:
                 part.append(self.todo.pop(0)[1])
-            task = self.client.submit(run_chunk, self.models[key], part, self.timeout,
-                                      pure=False,
-                                      key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
-            self.running[task] = part
-            self._model_of[task] = key
-            self.done.add(task)
+            self._submit(key, part)
             self.largest = max(self.largest, len(part))
+
+    def _submit(self, key: tuple, part: list[Job]) -> None:
+        """Submit one chunk of the model ``key``."""
+        model = self.models[key]
+        task = self.client.submit(run_chunk, model, part, self.timeout, pure=False,
+                                  key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
+        self.running[task] = part
+        self._model_of[task] = (key, model)
+        self.done.add(task)
 
     def __iter__(self) -> Iterator[tuple[list[Job], list[dict[str, Any]] | BaseException]]:
         """``(jobs, rows)`` of each finished chunk, or ``(jobs, exception)`` of a chunk lost
@@ -240,33 +248,36 @@ class ChunkFeeder:
         self._fill()
         for task, result in self.done:
             part = self.running.pop(task)
-            key = self._model_of.pop(task)
+            key, model = self._model_of.pop(task)
+            if task.status == "cancelled" and self._run_again(key, model, part):
+                continue
             # an error comes as (type, exception, traceback), a cancelled task as its error
             rows = result[1] if task.status == "error" else result
-            if self._lost_model(rows, key, part):
-                continue  # submitted again with the model scattered anew
             if not isinstance(rows, BaseException):
                 self.times += [r["wall_s"] for r in rows if r["status"] == "ok"]
             self._fill()
             yield part, rows
 
-    def _lost_model(self, rows: Any, key: tuple, part: list[Job]) -> bool:
-        """A chunk cancelled because the model it reads was lost with a dying worker (dask:
-        "lost dependencies"): scatter the model again to the workers left and submit the chunk
-        anew, at most :data:`RESUBMITS` times a sweep; True when it was."""
-        if not (isinstance(rows, BaseException) and "lost dependencies" in str(rows)
-                and self.payloads and self.resubmitted < RESUBMITS):
+    def _run_again(self, key: tuple, model: Any, part: list[Job]) -> bool:
+        """Submit a chunk cancelled by the scheduler again, at most :data:`RESUBMITS` times a
+        sweep; True when it was.
+
+        The scheduler cancels a chunk when the model it reads is lost: it forgets scattered
+        data whose last replica goes with a dying worker, and cancels the chunks in flight
+        that read it ("already forgotten") and any submitted after ("lost dependencies"). The
+        first such chunk back scatters the model anew to the workers there are (waiting for
+        one); the chunk goes out again with it. Chunks that :meth:`cancel` cancelled are not
+        run again."""
+        if self._cancelled or not self.payloads or self.resubmitted >= RESUBMITS:
             return False
-        self.models[key] = self.client.scatter(self.payloads[key], broadcast=True)
+        if self.models[key] is model and model.status != "finished":
+            self.models[key] = self.client.scatter(self.payloads[key], broadcast=True)
         self.resubmitted += 1
-        task = self.client.submit(run_chunk, self.models[key], part, self.timeout, pure=False,
-                                  key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
-        self.running[task] = part
-        self._model_of[task] = key
-        self.done.add(task)
+        self._submit(key, part)
         return True
 
     def cancel(self) -> None:
         """Cancel the chunks in flight; submit no more."""
+        self._cancelled = True
         self.todo.clear()
         self.client.cancel(list(self.running))
