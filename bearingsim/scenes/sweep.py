@@ -17,7 +17,8 @@ Palmgren friction model, become parameter overrides,
 :func:`~bearingsim.scenes.sweep_plan.plan_sweep`) through the on-disk cache of assembled
 systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
 process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster's workers are
-forked from a process that imported bearingsim once, and points go out in chunks sized from
+forked from a process that imported bearingsim once, started before anything else
+(:mod:`bearingsim.sweep_server`), and points go out in chunks sized from
 the measured time of the points finished so far, as the workers finish them
 (:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over ~0.25 s
 of work; each point runs what
@@ -68,6 +69,7 @@ from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_results import column_units, result_columns, sweep_figures, table_row
 from bearingsim.scenes.sweep_table import SweepTable, cell, from_cell, open_table
 from bearingsim.scenes.sweep_worker import run_point
+from bearingsim.sweep_server import start_worker_server
 from bearingsim.units import display_unit
 from bearingsim.validation import check_count
 
@@ -190,6 +192,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
     check_count(n_workers, "n_workers", 1, "run_sweep")
+    if scheduler is None and client is None:  # the workers' imports begin, on another core
+        start_worker_server()
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     if not points:

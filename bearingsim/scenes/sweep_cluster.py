@@ -3,20 +3,22 @@
 **The cluster.** Given a scheduler address, a sweep connects to it (``dask scheduler`` and
 ``dask worker`` processes started elsewhere). Otherwise it starts a LocalCluster whose worker
 processes are forked from one server process that imported bearingsim once
-(:mod:`multiprocessing`'s ``forkserver`` with ``bearingsim.scenes.sweep_worker`` preloaded):
-N workers cost one import of bearingsim instead of N (on a machine with few cores the client
-plans meanwhile, and the imports would compete with it), a later sweep in the same Python
+(:mod:`bearingsim.sweep_server`, started before the sweep imports or plans anything, so that
+it imports on another core meanwhile): N workers cost one import of bearingsim instead of N,
+and none of it after the client is ready, a later sweep in the same Python
 process forks its workers from the running server in a fraction of a second, and a forked
 worker exits without the teardown of a spawned interpreter. One thread per worker (the
 solvers hold the GIL), no dashboard.
 
 **Feeding.** Chunks of points go out as the workers finish them, a few tasks per worker in
 flight (one running and the next queued on the worker, so a worker never waits for the
-client). Each chunk is sized from the median wall time of the points finished so far
-(:func:`chunk_size`: about :data:`CHUNK_SECONDS` of work per task, smaller towards the end of
-the sweep so the workers finish together); until the first point is back, chunks hold one
-point. The client does nothing heavy while the workers run: it records rows and submits the
-next chunk.
+client). The last points, no more than there are workers, go out one per worker that is free:
+a point queued behind another on one worker while a second worker has nothing left to do
+would leave that worker idle at the end of the sweep for up to a point's time. Each chunk is
+sized from the median wall time of the points finished so far (:func:`chunk_size`: about
+:data:`CHUNK_SECONDS` of work per task, smaller towards the end of the sweep so the workers
+finish together); until the first point is back, chunks hold one point. The client does
+nothing heavy while the workers run: it records rows and submits the next chunk.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from typing import Any
 
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.sweep_worker import Job, run_chunk
+from bearingsim.sweep_server import start_worker_server
 
 __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER", "RESUBMITS",
            "distributed_module",
@@ -41,7 +44,8 @@ CHUNK_SECONDS = 0.25
 CHUNKS_PER_WORKER = 4
 """At least this many chunks per worker of the points still to go (balance at the end)."""
 TASKS_PER_WORKER = 2
-"""Tasks in flight per worker thread: one running, one queued on the worker."""
+"""Tasks in flight per worker thread: one running, one queued on the worker (one per worker
+for the last points, :meth:`ChunkFeeder._in_flight`)."""
 WORKERS_RECOUNT_S = 2.0
 """How often the worker threads are counted again during a sweep [s] (on a cluster, workers
 join and leave)."""
@@ -49,7 +53,8 @@ RESUBMITS = 100
 """Most chunks of one sweep submitted again after the scheduler cancelled them (their model
 lost with a worker)."""
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
-"""Imported by the fork server (and preloaded by every worker)."""
+"""Preloaded by every worker (a LocalCluster's fork server imported it already,
+:data:`~bearingsim.sweep_server.WORKER_MODULES`)."""
 QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
@@ -86,18 +91,15 @@ def _forked_local_cluster(n_workers: int):
     """A LocalCluster of ``n_workers`` single-thread worker processes forked from a server
     that imported bearingsim (started on first use, kept for the life of this process);
     returns when every worker is up."""
-    import multiprocessing
-
     import dask
     import distributed.utils
     from distributed import LocalCluster
 
     # distributed's first forkserver context would import its optional packages (pandas, ...)
     # into this process to preload them in the server (while the client plans); the workers
-    # need bearingsim's modules instead
+    # need bearingsim's modules instead, which the server imports (started by now, usually)
     distributed.utils._forkserver_preload_set = True
-    multiprocessing.get_context("forkserver").set_forkserver_preload(
-        ["distributed", WORKER_MODULE])
+    start_worker_server()
     # the variables bearingsim reads at run time go to every worker as they are now (the
     # fork server keeps the environment it started with)
     env = {k: v for k, v in os.environ.items() if k.startswith("BEARINGSIM_")}
@@ -219,12 +221,18 @@ class ChunkFeeder:
             return self.chunk
         return chunk_size(self.point_s, len(self.todo), self.n_workers)
 
+    def _in_flight(self) -> int:
+        """Most tasks in flight: :data:`TASKS_PER_WORKER` per worker, one per worker once no
+        more points are left to submit than there are workers."""
+        per_worker = TASKS_PER_WORKER if len(self.todo) > self.n_workers else 1
+        return per_worker * self.n_workers
+
     def _fill(self) -> None:
-        """Submit chunks until :data:`TASKS_PER_WORKER` per worker are in flight."""
+        """Submit chunks until :meth:`_in_flight` tasks are in flight."""
         if time.monotonic() - self._counted > WORKERS_RECOUNT_S:  # workers joined or left
             self.n_workers = max(1, sum(self.client.nthreads().values()))
             self._counted = time.monotonic()
-        while self.todo and len(self.running) < TASKS_PER_WORKER * self.n_workers:
+        while self.todo and len(self.running) < self._in_flight():
             key = self.todo[0][0]
             size = self._size()
             part = []
