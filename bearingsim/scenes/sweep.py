@@ -93,6 +93,9 @@ class SweepResult:
     """Most points in one task."""
     point_s: float = math.nan
     """Median wall time of a point, which sized the chunks [s]."""
+    spans: dict[int, tuple[int, float, float]] = field(default_factory=dict)
+    """Point -> (process id of the worker that ran it, epoch time it started [s], its wall
+    time [s]) of the points this sweep ran: a timeline of the workers."""
     phases: dict[str, float] = field(default_factory=dict)
     """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
@@ -332,7 +335,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
                 for r in ordered if r["status"] != "ok"]
     res = SweepResult(keys, ordered, failures, len(plan.prepared), resumed=len(done or {}),
-                      chunk_size=size, point_s=point_s, phases=phases)
+                      chunk_size=size, point_s=point_s, phases=phases,
+                      spans={k: (r["pid"], r["started"], r["wall_s"])
+                             for k, r in results.items() if "started" in r})
     if table is not None:
         for path in table.finish(ordered):
             folder.add(path)
