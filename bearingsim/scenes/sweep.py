@@ -99,8 +99,9 @@ class SweepResult:
     phases: dict[str, float] = field(default_factory=dict)
     """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
-    ``points`` (first chunk out to last row in), ``close`` (close the cluster), ``write``
-    (sorted table, Parquet copy, plot, summary)."""
+    ``points`` (first chunk out to last row in; the client imports what writing takes
+    meanwhile), ``close`` (close the cluster), ``write`` (sorted table, Parquet copy, plot,
+    summary)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -114,18 +115,16 @@ class SweepResult:
         return [r for r in self.rows if r["status"] == "ok"]
 
 
-def _ready_to_write(units: dict[str, str], cluster_up) -> None:
+def _ready_to_write(units: dict[str, str]) -> None:
     """Import what writing the results takes (Parquet, the figure) and resolve the display
-    units of the columns, a step at a time until ``cluster_up()``: the client does it while it
-    would wait idle for the workers, instead of after the last point."""
+    units of the columns: the client does it in a thread while the workers run the points
+    (it waits for them meanwhile), instead of after the last point."""
     steps = [SweepTable.ready,
              *(functools.partial(importlib.import_module, name) for name in (
                  "matplotlib.figure", "matplotlib.backends.backend_agg",
                  "bearingsim.scenes.plots")),
              *(functools.partial(display_unit, unit) for unit in set(units.values()))]
     for step in steps:
-        if cluster_up():
-            return
         try:
             step()
         except Exception:  # noqa: BLE001, S112 - writing the results reports it, if it recurs
@@ -288,8 +287,6 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         lap("plan")
 
         if own:
-            if table is not None:
-                _ready_to_write(units, starting.done)
             client, cluster = starting.result()
         client.wait_for_workers(1)
         lap("cluster")
@@ -303,6 +300,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                              n_threads, timeout, chunk, point_s, plan.payloads)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
                    leave=False)
+        preparing = concurrent.futures.ThreadPoolExecutor(1)
+        if table is not None:
+            preparing.submit(_ready_to_write, units)
         try:
             for part, chunk_rows in feeder:
                 if isinstance(chunk_rows, BaseException):  # a chunk lost for good
@@ -317,6 +317,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             raise
         finally:
             bar.close()
+            preparing.shutdown()
         point_s, size = feeder.point_s, feeder.largest
         lap("points")
     finally:
