@@ -5,7 +5,7 @@
 processes are forked from one server process that imported bearingsim once
 (:mod:`bearingsim.sweep_server`, started before the sweep imports or plans anything, so that
 it imports on another core meanwhile): N workers cost one import of bearingsim instead of N,
-and none of it after the client is ready, a later sweep in the same Python
+and little of it after the client is ready; a later sweep in the same Python
 process forks its workers from the running server in a fraction of a second, and a forked
 worker exits without the teardown of a spawned interpreter. One thread per worker (the
 solvers hold the GIL), no dashboard.
