@@ -20,8 +20,8 @@ process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster'
 forked from a process that imported bearingsim once, started before anything else
 (:mod:`bearingsim.sweep_server`), and points go out in chunks sized from
 the measured time of the points finished so far, as the workers finish them
-(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over ~0.25 s
-of work; each point runs what
+(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over about a
+second of work; each point runs what
 ``bearingsim run`` runs for one operating point of that scene
 (:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
 ``settled`` and ``time_constant``, a steady, modes or statics point's table row; an analysis

@@ -39,8 +39,11 @@ __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUS
            "distributed_module",
            "connect", "chunk_size", "ChunkFeeder"]
 
-CHUNK_SECONDS = 0.25
-"""Target wall time of one task [s]: a chunk holds about this much integration."""
+CHUNK_SECONDS = 1.0
+"""Target wall time of one task [s]: a chunk holds about this much integration. A task costs
+its worker a few milliseconds (messages, task state) on a quiet machine and tens under load
+(bench section 19, the gaps between points); the balance bound of :func:`chunk_size` keeps
+the last chunks small whatever this is."""
 CHUNKS_PER_WORKER = 4
 """At least this many chunks per worker of the points still to go (balance at the end)."""
 TASKS_PER_WORKER = 2
