@@ -204,6 +204,10 @@ def _validate(args: argparse.Namespace) -> int:
 
 
 def _sweep(args: argparse.Namespace) -> int:
+    if args.scheduler is None:  # the LocalCluster's workers import meanwhile, on another core
+        from bearingsim.sweep_server import start_worker_server
+
+        start_worker_server()
     from bearingsim.scenes.sweep import (
         SweepError,
         describe_failures,

@@ -8,9 +8,10 @@ Two measurements:
   against the assembly it replaces.
 * **Sweep scaling.** The shipped ball-level scene ``deep_groove_duty1`` (6304, massive balls,
   75 states) over load x speed, ``t_end`` 100 ms, ``N_POINTS`` points on a LocalCluster of 1
-  worker, then of ``--workers``, each in a new Python process as ``bearingsim sweep`` runs
-  (two sweeps there: the first starts the fork server of the workers, the second forks from
-  it). Each worker times every point it runs
+  worker, then of ``--workers``, each in a new Python process in the order of
+  ``bearingsim sweep`` (the fork server of the workers started first, then the imports, the
+  scene and two sweeps: the second forks its workers from the running server), also timed
+  from the launch of the process (the whole command). Each worker times every point it runs
   (:func:`bearingsim.scenes.sweep_worker.run_job`: the simulation and its outputs, what
   ``bearingsim run`` does for the point); the per-point overhead is the rest of the workers'
   time in the points phase (``workers x points phase - sum of point times``, per point),
@@ -100,10 +101,25 @@ def _points(n: int) -> list[dict]:
     return pts[:n]
 
 
+def timeline(spans: dict[int, tuple[int, float, float]]) -> dict:
+    """From a sweep's :attr:`~bearingsim.scenes.sweep.SweepResult.spans`: the workers' idle
+    time at the end (summed over the workers: the last point's end less each worker's last
+    end [s]) and the mean gap between two points on one worker (end to next start [s]: a
+    task's cost on the worker and, between tasks, the wait for the next)."""
+    by_worker: dict[int, list[tuple[float, float]]] = {}
+    for pid, start, wall in spans.values():
+        by_worker.setdefault(pid, []).append((start, start + wall))
+    ends = {pid: max(e for _, e in v) for pid, v in by_worker.items()}
+    gaps = [b[0] - a[1] for v in by_worker.values()
+            for a, b in zip(sorted(v), sorted(v)[1:], strict=False)]
+    return {"idle_end_s": sum(max(ends.values()) - e for e in ends.values()),
+            "gap_s": float(np.mean(gaps)) if gaps else float("nan")}
+
+
 def _sweep(scene, points, workers: int) -> dict:
     """One sweep in this process: wall, phases, the workers' busy fraction, the overhead per
-    point and the CPU time of this process (the client and, with a LocalCluster, the
-    scheduler)."""
+    point (and its parts: idle at the end, gaps between points), the CPU time of this process
+    (the client and, with a LocalCluster, the scheduler)."""
     from bearingsim.scenes.sweep import run_sweep
 
     with tempfile.TemporaryDirectory() as out:
@@ -117,22 +133,32 @@ def _sweep(scene, points, workers: int) -> dict:
     return {"wall": wall, "chunk": res.chunk_size, "phases": res.phases, "workers": workers,
             "point_s": float(np.mean(on_workers)), "busy": sum(on_workers) / busy,
             "overhead_s": (busy - sum(on_workers)) / len(on_workers),
-            "fixed_s": wall - res.phases["points"], "client_cpu_s": cpu}
+            "fixed_s": wall - res.phases["points"], "client_cpu_s": cpu,
+            **timeline(res.spans), "ended": time.time()}
 
 
-def sweeps_in_a_fresh_process(workers: int, n_points: int = N_POINTS, repeats: int = 2
-                              ) -> list[dict]:
+def sweeps_in_a_fresh_process(workers: int, launched: float, n_points: int = N_POINTS,
+                              repeats: int = 2) -> list[dict]:
     """``repeats`` sweeps of ``n_points`` on ``workers`` workers in one new Python process
-    (as ``bearingsim sweep`` runs): the first starts the fork server of the workers, a repeat
-    forks from it. Each sweep also notes the load average after it."""
+    launched at epoch time ``launched``, in the order of ``bearingsim sweep``: the fork server
+    of the workers started first (before this process imports bearingsim's scenes), the scene
+    loaded, then the sweeps; a repeat forks its workers from the running server. Each sweep
+    notes the load average after it; the first, the time from the launch to its start
+    (``ready_s``: interpreter, imports, scene) and to its end (``command_s``, the wall of
+    the whole command)."""
+    from bearingsim.sweep_server import start_worker_server
+
+    start_worker_server()
     from bearingsim.scenes import load_scene
     from bearingsim.scenes.library import builtin_scene_path
 
     scene = load_scene(builtin_scene_path("deep_groove_duty1"))
+    ready = time.time() - launched
     out = []
     for _ in range(repeats):
         out.append(_sweep(scene, _points(n_points), workers))
         out[-1]["load_after"] = os.getloadavg()[0]
+    out[0].update(ready_s=ready, command_s=out[0]["ended"] - launched)
     return out
 
 
@@ -150,7 +176,8 @@ def _child(workers: int) -> list[dict]:
     root = Path(__file__).resolve().parent.parent
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [str(root), *filter(None, [os.environ.get("PYTHONPATH")])])}
-    out = subprocess.run([sys.executable, "-m", "bench.sweep_scaling", "--child", str(workers)],
+    out = subprocess.run([sys.executable, "-m", "bench.sweep_scaling", "--child", str(workers),
+                          "--launched", repr(time.time())],
                          capture_output=True, text=True, check=True, env=env, cwd=root)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -217,6 +244,7 @@ def _scaling_row(label: str, sweep: dict) -> list[str]:
     ph = sweep["phases"]
     return ([label, f"{sweep['wall']:.2f}", str(sweep["chunk"]), f"{sweep['point_s'] * 1e3:.0f}",
              f"{sweep['busy']:.1%}", f"{sweep['overhead_s'] * 1e3:.1f}",
+             f"{sweep['idle_end_s']:.2f}", f"{sweep['gap_s'] * 1e3:.1f}",
              f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}"]
             + [f"{ph.get(k, float('nan')):.2f}" for k in
                ("plan", "cluster", "ship", "points", "close", "write")]
@@ -241,20 +269,26 @@ def _scaling_text(r: dict) -> list[str]:
             _scaling_row("1 worker, again in that process", again[0]),
             _scaling_row(f"{p} workers, again in that process", again[1])]
     busy = min(first[1]["busy"], again[1]["busy"])
+    command = (first[0]["command_s"], first[1]["command_s"])
     return [
         f"**Sweep scaling**: scene `deep_groove_duty1` (6304, massive balls, 75 states), "
         f"t_end {T_END * 1e3:.0f} ms, {N_POINTS} points over load x speed. Each worker count "
-        "runs in a new Python process, as `bearingsim sweep` does: its first sweep starts the "
-        "fork server of the workers (one import of bearingsim), a second sweep in the same "
-        "process forks its workers from the running server. Point: mean wall of a point on a "
-        "worker; workers busy: the points' share of the workers' time in the points phase; "
-        "overhead: the rest, per point (target <= 5 ms); fixed: wall outside the points phase "
-        "(target <= 2 s + assembly; the model is loaded from the cache here, in `plan`); "
-        "client CPU: CPU time of the client's process (client and scheduler) per point over "
-        "the whole sweep. Phases in seconds.",
+        "runs in a new Python process in the order of `bearingsim sweep`: the fork server of "
+        "the workers started first (it imports bearingsim on another core while the process "
+        "imports bearingsim's scenes and loads the scene), then a sweep, then a second sweep "
+        "in the same process, whose workers fork from the running server. Point: mean wall "
+        "of a point on a worker; workers busy: the points' share of the workers' time in the "
+        "points phase; overhead: the rest, per point (target <= 5 ms), made of the workers' "
+        "idle time at the end (summed over the workers: the last point's end less each "
+        "worker's last end) and the gaps between two points on a worker (mean, end to next "
+        "start: a task's cost on the worker); fixed: wall of `run_sweep` outside the points "
+        "phase (target <= 2 s + assembly; the model is loaded from the cache here, in "
+        "`plan`); client CPU: CPU time of the client's process (client and scheduler) per "
+        "point over the whole sweep. Phases in seconds.",
         "",
         markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "workers busy",
-                        "overhead [ms]", "fixed [s]", "client CPU [ms/point]", "plan",
+                        "overhead [ms]", "idle at end [s]", "gap [ms]", "fixed [s]",
+                        "client CPU [ms/point]", "plan",
                         "cluster", "ship", "points", "close", "write", "load after"], rows),
         "",
         f"Speed-up of the whole sweep, {p} workers against 1: {speedup:.2f}x in a fresh "
@@ -271,9 +305,19 @@ def _scaling_text(r: dict) -> list[str]:
         f"time over its wall: s = {fmt(s)}) predicts "
         + ", ".join(f"{v:.1f}x on {q}" for q, v in predict.items())
         + f" workers for these {N_POINTS} points; the 16-worker target >= 12x needs s <= "
-        "0.022, i.e. sweeps of about ten times the work (more or longer points) for the same "
-        "fixed cost. Rerun with `python -m bench.sweep_scaling --workers 16` on a machine "
-        "with 16 free cores.",
+        f"{fmt(amdahl_serial_fraction(12.0, 16))}, i.e. sweeps of about "
+        f"{s / amdahl_serial_fraction(12.0, 16):.0f} times the work (more or longer points) for "
+        "the same fixed cost. Rerun with `python -m bench.sweep_scaling --workers 16` on a "
+        "machine with 16 free cores.",
+        "",
+        f"The whole command (launch of the process to the end of its first sweep: interpreter, "
+        f"imports, scene, sweep): {command[0]:.2f} s on 1 worker, {command[1]:.2f} s on {p}, "
+        f"{command[0] / command[1]:.2f}x (serial fraction "
+        f"{fmt(amdahl_serial_fraction(command[0] / command[1], p))}); the process was ready "
+        f"to sweep after {first[0]['ready_s']:.2f} s and {first[1]['ready_s']:.2f} s, and the "
+        "command's time outside the points phase is "
+        f"{command[0] - first[0]['phases']['points']:.2f} s and "
+        f"{command[1] - first[1]['phases']['points']:.2f} s.",
         "",
     ]
 
@@ -333,12 +377,14 @@ if __name__ == "__main__":
                         help="workers of the scaling run (default 2)")
     parser.add_argument("--child", type=int, metavar="WORKERS",
                         help=argparse.SUPPRESS)  # the sweeps of one worker count, as JSON
+    parser.add_argument("--launched", type=float, default=time.time(),
+                        help=argparse.SUPPRESS)  # epoch time the parent launched the child
     parser.add_argument("--overhead", choices=("defaults", "quiet"),
                         help=argparse.SUPPRESS)  # the cluster's own CPU time, as JSON
     args = parser.parse_args()
     if args.overhead:
         print(json.dumps(cluster_overhead(args.overhead == "quiet")))
     elif args.child:
-        print(json.dumps(sweeps_in_a_fresh_process(args.child)))
+        print(json.dumps(sweeps_in_a_fresh_process(args.child, args.launched)))
     else:
         print(section(args.workers).body)

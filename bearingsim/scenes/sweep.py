@@ -17,10 +17,11 @@ Palmgren friction model, become parameter overrides,
 :func:`~bearingsim.scenes.sweep_plan.plan_sweep`) through the on-disk cache of assembled
 systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
 process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster's workers are
-forked from a process that imported bearingsim once, and points go out in chunks sized from
+forked from a process that imported bearingsim once, started before anything else
+(:mod:`bearingsim.sweep_server`), and points go out in chunks sized from
 the measured time of the points finished so far, as the workers finish them
-(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over ~0.25 s
-of work; each point runs what
+(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over about a
+second of work; each point runs what
 ``bearingsim run`` runs for one operating point of that scene
 (:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
 ``settled`` and ``time_constant``, a steady, modes or statics point's table row; an analysis
@@ -68,6 +69,7 @@ from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_results import column_units, result_columns, sweep_figures, table_row
 from bearingsim.scenes.sweep_table import SweepTable, cell, from_cell, open_table
 from bearingsim.scenes.sweep_worker import run_point
+from bearingsim.sweep_server import start_worker_server
 from bearingsim.units import display_unit
 from bearingsim.validation import check_count
 
@@ -91,11 +93,15 @@ class SweepResult:
     """Most points in one task."""
     point_s: float = math.nan
     """Median wall time of a point, which sized the chunks [s]."""
+    spans: dict[int, tuple[int, float, float]] = field(default_factory=dict)
+    """Point -> (process id of the worker that ran it, epoch time it started [s], its wall
+    time [s]) of the points this sweep ran: a timeline of the workers."""
     phases: dict[str, float] = field(default_factory=dict)
     """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
-    ``points`` (first chunk out to last row in), ``close`` (close the cluster), ``write``
-    (sorted table, Parquet copy, plot, summary)."""
+    ``points`` (first chunk out to last row in; the client imports what writing takes
+    meanwhile), ``close`` (close the cluster), ``write`` (sorted table, Parquet copy, plot,
+    summary)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -109,18 +115,16 @@ class SweepResult:
         return [r for r in self.rows if r["status"] == "ok"]
 
 
-def _ready_to_write(units: dict[str, str], cluster_up) -> None:
+def _ready_to_write(units: dict[str, str]) -> None:
     """Import what writing the results takes (Parquet, the figure) and resolve the display
-    units of the columns, a step at a time until ``cluster_up()``: the client does it while it
-    would wait idle for the workers, instead of after the last point."""
+    units of the columns: the client does it in a thread while the workers run the points
+    (it waits for them meanwhile), instead of after the last point."""
     steps = [SweepTable.ready,
              *(functools.partial(importlib.import_module, name) for name in (
                  "matplotlib.figure", "matplotlib.backends.backend_agg",
                  "bearingsim.scenes.plots")),
              *(functools.partial(display_unit, unit) for unit in set(units.values()))]
     for step in steps:
-        if cluster_up():
-            return
         try:
             step()
         except Exception:  # noqa: BLE001, S112 - writing the results reports it, if it recurs
@@ -190,6 +194,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
     check_count(n_workers, "n_workers", 1, "run_sweep")
+    if scheduler is None and client is None:  # the workers' imports begin, on another core
+        start_worker_server()
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     if not points:
@@ -281,8 +287,6 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         lap("plan")
 
         if own:
-            if table is not None:
-                _ready_to_write(units, starting.done)
             client, cluster = starting.result()
         client.wait_for_workers(1)
         lap("cluster")
@@ -296,6 +300,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                              n_threads, timeout, chunk, point_s, plan.payloads)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
                    leave=False)
+        preparing = concurrent.futures.ThreadPoolExecutor(1)
+        if table is not None:
+            preparing.submit(_ready_to_write, units)
         try:
             for part, chunk_rows in feeder:
                 if isinstance(chunk_rows, BaseException):  # a chunk lost for good
@@ -310,6 +317,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             raise
         finally:
             bar.close()
+            preparing.shutdown()
         point_s, size = feeder.point_s, feeder.largest
         lap("points")
     finally:
@@ -328,7 +336,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
                 for r in ordered if r["status"] != "ok"]
     res = SweepResult(keys, ordered, failures, len(plan.prepared), resumed=len(done or {}),
-                      chunk_size=size, point_s=point_s, phases=phases)
+                      chunk_size=size, point_s=point_s, phases=phases,
+                      spans={k: (r["pid"], r["started"], r["wall_s"])
+                             for k, r in results.items() if "started" in r})
     if table is not None:
         for path in table.finish(ordered):
             folder.add(path)

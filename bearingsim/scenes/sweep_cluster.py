@@ -3,20 +3,22 @@
 **The cluster.** Given a scheduler address, a sweep connects to it (``dask scheduler`` and
 ``dask worker`` processes started elsewhere). Otherwise it starts a LocalCluster whose worker
 processes are forked from one server process that imported bearingsim once
-(:mod:`multiprocessing`'s ``forkserver`` with ``bearingsim.scenes.sweep_worker`` preloaded):
-N workers cost one import of bearingsim instead of N (on a machine with few cores the client
-plans meanwhile, and the imports would compete with it), a later sweep in the same Python
+(:mod:`bearingsim.sweep_server`, started before the sweep imports or plans anything, so that
+it imports on another core meanwhile): N workers cost one import of bearingsim instead of N,
+and little of it after the client is ready; a later sweep in the same Python
 process forks its workers from the running server in a fraction of a second, and a forked
 worker exits without the teardown of a spawned interpreter. One thread per worker (the
 solvers hold the GIL), no dashboard.
 
 **Feeding.** Chunks of points go out as the workers finish them, a few tasks per worker in
 flight (one running and the next queued on the worker, so a worker never waits for the
-client). Each chunk is sized from the median wall time of the points finished so far
-(:func:`chunk_size`: about :data:`CHUNK_SECONDS` of work per task, smaller towards the end of
-the sweep so the workers finish together); until the first point is back, chunks hold one
-point. The client does nothing heavy while the workers run: it records rows and submits the
-next chunk.
+client). The last points, no more than there are workers, go out one per worker that is free:
+a point queued behind another on one worker while a second worker has nothing left to do
+would leave that worker idle at the end of the sweep for up to a point's time. Each chunk is
+sized from the median wall time of the points finished so far (:func:`chunk_size`: about
+:data:`CHUNK_SECONDS` of work per task, smaller towards the end of the sweep so the workers
+finish together); until the first point is back, chunks hold one point. The client does
+nothing heavy while the workers run: it records rows and submits the next chunk.
 """
 
 from __future__ import annotations
@@ -31,24 +33,31 @@ from typing import Any
 
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.sweep_worker import Job, run_chunk
+from bearingsim.sweep_server import start_worker_server
 
 __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER", "RESUBMITS",
            "distributed_module",
            "connect", "chunk_size", "ChunkFeeder"]
 
-CHUNK_SECONDS = 0.25
-"""Target wall time of one task [s]: a chunk holds about this much integration."""
+CHUNK_SECONDS = 1.0
+"""Target wall time of one task [s]: a chunk holds about this much integration. A task costs
+its worker a few milliseconds (messages, task state) on a quiet machine and tens under load
+(bench section 19, the gaps between points); the balance bound of :func:`chunk_size` keeps
+the last chunks small whatever this is."""
 CHUNKS_PER_WORKER = 4
 """At least this many chunks per worker of the points still to go (balance at the end)."""
 TASKS_PER_WORKER = 2
-"""Tasks in flight per worker thread: one running, one queued on the worker."""
+"""Tasks in flight per worker thread: one running, one queued on the worker (one per worker
+for the last points, :meth:`ChunkFeeder._in_flight`)."""
 WORKERS_RECOUNT_S = 2.0
 """How often the worker threads are counted again during a sweep [s] (on a cluster, workers
 join and leave)."""
 RESUBMITS = 100
-"""Most chunks of one sweep submitted again after their model was lost with a worker."""
+"""Most chunks of one sweep submitted again after the scheduler cancelled them (their model
+lost with a worker)."""
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
-"""Imported by the fork server (and preloaded by every worker)."""
+"""Preloaded by every worker (a LocalCluster's fork server imported it already,
+:data:`~bearingsim.sweep_server.WORKER_MODULES`)."""
 QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
@@ -85,18 +94,15 @@ def _forked_local_cluster(n_workers: int):
     """A LocalCluster of ``n_workers`` single-thread worker processes forked from a server
     that imported bearingsim (started on first use, kept for the life of this process);
     returns when every worker is up."""
-    import multiprocessing
-
     import dask
     import distributed.utils
     from distributed import LocalCluster
 
     # distributed's first forkserver context would import its optional packages (pandas, ...)
     # into this process to preload them in the server (while the client plans); the workers
-    # need bearingsim's modules instead
+    # need bearingsim's modules instead, which the server imports (started by now, usually)
     distributed.utils._forkserver_preload_set = True
-    multiprocessing.get_context("forkserver").set_forkserver_preload(
-        ["distributed", WORKER_MODULE])
+    start_worker_server()
     # the variables bearingsim reads at run time go to every worker as they are now (the
     # fork server keeps the environment it started with)
     env = {k: v for k, v in os.environ.items() if k.startswith("BEARINGSIM_")}
@@ -184,8 +190,11 @@ class ChunkFeeder:
         self.models = models
         self.payloads = payloads or {}
         self.resubmitted = 0
-        """Chunks submitted again after their model was lost with a worker."""
-        self._model_of: dict[Any, tuple] = {}
+        """Chunks submitted again after the scheduler cancelled them (their model lost with a
+        worker)."""
+        self._model_of: dict[Any, tuple[tuple, Any]] = {}
+        """Chunk future -> (structure key, the model future it reads)."""
+        self._cancelled = False
         self.todo = list(jobs)
         self.n_workers = max(1, n_workers)
         self.timeout = timeout
@@ -215,24 +224,34 @@ class ChunkFeeder:
             return self.chunk
         return chunk_size(self.point_s, len(self.todo), self.n_workers)
 
+    def _in_flight(self) -> int:
+        """Most tasks in flight: :data:`TASKS_PER_WORKER` per worker, one per worker once no
+        more points are left to submit than there are workers."""
+        per_worker = TASKS_PER_WORKER if len(self.todo) > self.n_workers else 1
+        return per_worker * self.n_workers
+
     def _fill(self) -> None:
-        """Submit chunks until :data:`TASKS_PER_WORKER` per worker are in flight."""
+        """Submit chunks until :meth:`_in_flight` tasks are in flight."""
         if time.monotonic() - self._counted > WORKERS_RECOUNT_S:  # workers joined or left
             self.n_workers = max(1, sum(self.client.nthreads().values()))
             self._counted = time.monotonic()
-        while self.todo and len(self.running) < TASKS_PER_WORKER * self.n_workers:
+        while self.todo and len(self.running) < self._in_flight():
             key = self.todo[0][0]
             size = self._size()
             part = []
             while self.todo and len(part) < size and self.todo[0][0] == key:
                 part.append(self.todo.pop(0)[1])
-            task = self.client.submit(run_chunk, self.models[key], part, self.timeout,
-                                      pure=False,
-                                      key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
-            self.running[task] = part
-            self._model_of[task] = key
-            self.done.add(task)
+            self._submit(key, part)
             self.largest = max(self.largest, len(part))
+
+    def _submit(self, key: tuple, part: list[Job]) -> None:
+        """Submit one chunk of the model ``key``."""
+        model = self.models[key]
+        task = self.client.submit(run_chunk, model, part, self.timeout, pure=False,
+                                  key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
+        self.running[task] = part
+        self._model_of[task] = (key, model)
+        self.done.add(task)
 
     def __iter__(self) -> Iterator[tuple[list[Job], list[dict[str, Any]] | BaseException]]:
         """``(jobs, rows)`` of each finished chunk, or ``(jobs, exception)`` of a chunk lost
@@ -240,33 +259,36 @@ class ChunkFeeder:
         self._fill()
         for task, result in self.done:
             part = self.running.pop(task)
-            key = self._model_of.pop(task)
+            key, model = self._model_of.pop(task)
+            if task.status == "cancelled" and self._run_again(key, model, part):
+                continue
             # an error comes as (type, exception, traceback), a cancelled task as its error
             rows = result[1] if task.status == "error" else result
-            if self._lost_model(rows, key, part):
-                continue  # submitted again with the model scattered anew
             if not isinstance(rows, BaseException):
                 self.times += [r["wall_s"] for r in rows if r["status"] == "ok"]
             self._fill()
             yield part, rows
 
-    def _lost_model(self, rows: Any, key: tuple, part: list[Job]) -> bool:
-        """A chunk cancelled because the model it reads was lost with a dying worker (dask:
-        "lost dependencies"): scatter the model again to the workers left and submit the chunk
-        anew, at most :data:`RESUBMITS` times a sweep; True when it was."""
-        if not (isinstance(rows, BaseException) and "lost dependencies" in str(rows)
-                and self.payloads and self.resubmitted < RESUBMITS):
+    def _run_again(self, key: tuple, model: Any, part: list[Job]) -> bool:
+        """Submit a chunk cancelled by the scheduler again, at most :data:`RESUBMITS` times a
+        sweep; True when it was.
+
+        The scheduler cancels a chunk when the model it reads is lost: it forgets scattered
+        data whose last replica goes with a dying worker, and cancels the chunks in flight
+        that read it ("already forgotten") and any submitted after ("lost dependencies"). The
+        first such chunk back scatters the model anew to the workers there are (waiting for
+        one); the chunk goes out again with it. Chunks that :meth:`cancel` cancelled are not
+        run again."""
+        if self._cancelled or not self.payloads or self.resubmitted >= RESUBMITS:
             return False
-        self.models[key] = self.client.scatter(self.payloads[key], broadcast=True)
+        if self.models[key] is model and model.status != "finished":
+            self.models[key] = self.client.scatter(self.payloads[key], broadcast=True)
         self.resubmitted += 1
-        task = self.client.submit(run_chunk, self.models[key], part, self.timeout, pure=False,
-                                  key=f"sweep-chunk-{part[0].index}-{time.time_ns()}")
-        self.running[task] = part
-        self._model_of[task] = key
-        self.done.add(task)
+        self._submit(key, part)
         return True
 
     def cancel(self) -> None:
         """Cancel the chunks in flight; submit no more."""
+        self._cancelled = True
         self.todo.clear()
         self.client.cancel(list(self.running))

@@ -94,7 +94,8 @@ def load_model(payload: ModelPayload) -> Prepared:
 def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     """Run one point; returns ``index``, ``status`` ("ok"/"failed"), ``final`` (the table
     row of :func:`~bearingsim.scenes.analyses.run_operating_point`, columns starting with
-    ``_`` left out), ``error``, ``wall_s``, ``pid``. Never raises for a failing point.
+    ``_`` left out), ``error``, ``wall_s``, ``pid`` and ``started`` (the epoch time [s] the
+    point started, for a timeline of the workers). Never raises for a failing point.
 
     Parameters
     ----------
@@ -109,7 +110,7 @@ def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
         The point's row.
     """
     t0 = time.perf_counter()
-    row: dict[str, Any] = {"index": job.index, "pid": os.getpid()}
+    row: dict[str, Any] = {"index": job.index, "pid": os.getpid(), "started": time.time()}
     try:
         values = run_operating_point(dataclasses.replace(prep, scene=job.scene))
         final = {k: v for k, v in values.items() if not k.startswith("_")}

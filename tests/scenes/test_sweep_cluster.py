@@ -125,3 +125,24 @@ def test_chunks_are_sized_from_a_measured_point_time(tmp_path):
 def test_a_fixed_chunk_size_is_kept(tmp_path):
     sizes, _ = _feed(tmp_path, 7, chunk=3)
     assert sizes == [3, 3, 1]
+
+
+def test_the_last_points_wait_for_a_free_worker(tmp_path):
+    """Once no more points are left to submit than there are workers, none is queued behind a
+    running task (it would idle another worker at the end of the sweep): with one worker, the
+    last point goes out when the task before it is back."""
+    path = tmp_path / "bearing.toml"
+    path.write_text(SCENE)
+    points = grid_points(parse_grid(["inputs.shaft_speed=100,150,200,250,300"]))
+    plan = plan_sweep(load_scene(path), points)
+    in_flight = []
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=":0") as client:
+        models = {key: client.scatter(p, broadcast=True) for key, p in plan.payloads.items()}
+        feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in plan.jobs],
+                             1, None, chunk=1)
+        for _ in feeder:
+            in_flight.append((len(feeder.todo), len(feeder.running)))
+    # (points to submit, tasks in flight) after each chunk is back: two in flight while
+    # more than one point is left to submit; the last goes out when the worker is free
+    assert in_flight == [(2, 2), (1, 2), (1, 1), (0, 1), (0, 0)]

@@ -49,6 +49,18 @@ def _stop(proc: subprocess.Popen) -> None:
     proc.wait()
 
 
+def _scheduler_address(info: Path, deadline: float) -> str:
+    """The address in the scheduler's file, once the file is written whole (the scheduler
+    creates it, then writes it)."""
+    while True:
+        try:
+            return json.loads(info.read_text())["address"]
+        except (OSError, ValueError, KeyError):
+            if time.monotonic() > deadline:
+                raise
+            time.sleep(0.1)
+
+
 @pytest.fixture()
 def deployment(tmp_path):
     """(scheduler address, worker processes): one scheduler and two single-thread workers,
@@ -59,10 +71,7 @@ def deployment(tmp_path):
     procs = [_start(["scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
                      "--scheduler-file", str(info)])]
     try:
-        deadline = time.monotonic() + 90
-        while not info.is_file() and time.monotonic() < deadline:
-            time.sleep(0.1)
-        address = json.loads(info.read_text())["address"]
+        address = _scheduler_address(info, time.monotonic() + 90)
         workers = [_start(["worker", address, "--nthreads", "1", "--nworkers", "1",
                            "--no-dashboard", "--host", "127.0.0.1",
                            "--preload", "bearingsim.scenes.sweep_worker"]) for _ in range(2)]
