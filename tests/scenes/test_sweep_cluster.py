@@ -20,19 +20,11 @@ from bearingsim.scenes.sweep_cluster import (
 )
 from bearingsim.scenes.sweep_grid import parse_grid
 from bearingsim.scenes.sweep_plan import plan_sweep
+from tests.scenes.sweep_scenes import torque_level_scene
 
 distributed = pytest.importorskip("distributed")
 
-SCENE = """outputs = ["Rs"]
-[assembly]
-name = "double_layer_bearing"
-fidelity = "torque"
-[inputs]
-shaft_speed = 300.0
-[simulation]
-t_end = 0.02
-n_points = 3
-"""
+SCENE = torque_level_scene()
 
 
 def _worker_view() -> tuple[int, str | None, bool]:

@@ -20,21 +20,13 @@ import pytest
 from bearingsim.scenes import load_scene, run_scene
 from bearingsim.scenes.sweep import grid_points, run_sweep
 from bearingsim.scenes.sweep_grid import parse_grid
+from tests.scenes.sweep_scenes import torque_level_scene
 
 distributed = pytest.importorskip("distributed")
 
 WORKTREE = Path(__file__).resolve().parents[2]
 DASK = Path(sys.executable).parent / "dask"
-SCENE = """outputs = ["Rs", "M_shaft"]
-[assembly]
-name = "double_layer_bearing"
-fidelity = "torque"
-[inputs]
-shaft_speed = 300.0
-[simulation]
-t_end = 0.05
-n_points = 3
-"""
+SCENE = torque_level_scene(("Rs", "M_shaft"), t_end=0.05)
 
 
 def _start(args: list[str]) -> subprocess.Popen:
