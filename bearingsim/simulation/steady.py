@@ -227,8 +227,19 @@ class NewtonCall:
         self._j = (np.flatnonzero(kept), rows[kept] * n + cols[kept])
 
     def start(self, t: float, x: np.ndarray, u: np.ndarray, p: np.ndarray) -> None:
-        """Set the time [s], the states (the free ones are replaced per iterate), the
-        inputs and the parameters of a solve."""
+        """Set the fixed arguments of a solve.
+
+        Parameters
+        ----------
+        t : float
+            Time [s].
+        x : ndarray
+            States (the free ones are replaced per iterate).
+        u : ndarray
+            Inputs.
+        p : ndarray
+            Parameters.
+        """
         t_in, x_in, u_in, p_in = self._inputs
         t_in[0] = t
         x_in[:] = x
