@@ -9,6 +9,8 @@ preallocated arrays and costs about a microsecond plus the function.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable, Hashable
+from typing import TypeVar
 
 import casadi as ca
 import numpy as np
@@ -81,6 +83,45 @@ _LOCAL = threading.local()
 BUFFERS_PER_THREAD = 256
 """Most buffers a thread keeps (the oldest are dropped first)."""
 
+T = TypeVar("T")
+
+
+def thread_kept(kind: str, key: Hashable, fn: ca.Function, make: Callable[[], T],
+                limit: int) -> T:
+    """This thread's evaluator of ``kind`` for ``fn`` under ``key``, made by ``make`` on first
+    use; a thread keeps at most ``limit`` of a kind (the oldest are dropped first).
+
+    An entry is only returned for the very ``fn`` it was made for (a key holding ``id(fn)``
+    may come back for another function once ``fn`` is gone).
+
+    Parameters
+    ----------
+    kind : str
+        Which evaluators (each kind is kept apart).
+    key : hashable
+        The evaluator's key within its kind (``id(fn)`` and what else shapes it).
+    fn : casadi.Function
+        The function it evaluates.
+    make : callable
+        Makes the evaluator.
+    limit : int
+        Most evaluators of the kind a thread keeps.
+
+    Returns
+    -------
+    object
+        The thread's evaluator.
+    """
+    kept = _LOCAL.__dict__.setdefault(kind, {})
+    found = kept.get(key)
+    if found is not None and found[0] is fn:
+        return found[1]
+    if len(kept) >= limit:
+        del kept[next(iter(kept))]
+    made = make()
+    kept[key] = (fn, made)
+    return made
+
 
 def buffered(fn: ca.Function) -> Buffered:
     """This thread's :class:`Buffered` of ``fn``, made on first use.
@@ -95,13 +136,4 @@ def buffered(fn: ca.Function) -> Buffered:
     Buffered
         This thread's buffered evaluator of ``fn``.
     """
-    cache = getattr(_LOCAL, "cache", None)
-    if cache is None:
-        cache = _LOCAL.cache = {}
-    found = cache.get(id(fn))
-    if found is not None and found.fn is fn:
-        return found
-    if len(cache) >= BUFFERS_PER_THREAD:
-        del cache[next(iter(cache))]
-    made = cache[id(fn)] = Buffered(fn)
-    return made
+    return thread_kept("buffered", id(fn), fn, lambda: Buffered(fn), BUFFERS_PER_THREAD)

@@ -11,13 +11,11 @@ generic argument handling of :func:`evaluate`.
 
 from __future__ import annotations
 
-import threading
-
 import casadi as ca
 import numpy as np
 import scipy.sparse
 
-from bearingsim.assembler.numeric import buffered
+from bearingsim.assembler.numeric import buffered, thread_kept
 
 __all__ = ["BufferedFunction", "ColumnsCall", "buffered_function", "columns_call", "evaluate",
            "mapped_function"]
@@ -130,7 +128,6 @@ class BufferedFunction:
         return scipy.sparse.csc_matrix((data, self._indices, self._indptr), shape=self._shape)
 
 
-_LOCAL = threading.local()
 BUFFERED_PER_THREAD = 64
 """Most :class:`BufferedFunction` a thread keeps (the oldest are forgotten first)."""
 
@@ -149,17 +146,8 @@ def buffered_function(fn: ca.Function) -> BufferedFunction:
     BufferedFunction
         The thread's evaluator of ``fn``.
     """
-    cache = getattr(_LOCAL, "cache", None)
-    if cache is None:
-        cache = _LOCAL.cache = {}
-    found = cache.get(id(fn))
-    if found is not None and found[0] is fn:
-        return found[1]
-    if len(cache) >= BUFFERED_PER_THREAD:
-        del cache[next(iter(cache))]
-    made = BufferedFunction(fn)
-    cache[id(fn)] = (fn, made)
-    return made
+    return thread_kept("buffered_function", id(fn), fn, lambda: BufferedFunction(fn),
+                       BUFFERED_PER_THREAD)
 
 
 def evaluate(fn: ca.Function, *args: np.ndarray | float) -> list[np.ndarray]:
@@ -260,14 +248,5 @@ def columns_call(fn: ca.Function, n: int) -> ColumnsCall:
     ColumnsCall
         The thread's call.
     """
-    cache = getattr(_LOCAL, "columns", None)
-    if cache is None:
-        cache = _LOCAL.columns = {}
-    key = (id(fn), n)
-    found = cache.get(key)
-    if found is not None and found.fn is fn:
-        return found
-    if len(cache) >= BUFFERED_PER_THREAD:
-        del cache[next(iter(cache))]
-    made = cache[key] = ColumnsCall(fn, n)
-    return made
+    return thread_kept("columns", (id(fn), n), fn, lambda: ColumnsCall(fn, n),
+                       BUFFERED_PER_THREAD)

@@ -9,13 +9,13 @@ CasADi's VM, with the same numbers either way.
 from __future__ import annotations
 
 import math
-import threading
 
 import casadi as ca
 import numpy as np
 import scipy.optimize
 from scipy.linalg.lapack import dgesdd, dgesv
 
+from bearingsim.assembler.numeric import thread_kept
 from bearingsim.assembler.system import System, as_system
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.inputs import check_input_ranges, input_signal
@@ -263,7 +263,6 @@ class NewtonCall:
         return f, jac
 
 
-_LOCAL = threading.local()
 NEWTON_CALLS_PER_THREAD = 64
 """Most :class:`NewtonCall` a thread keeps (the oldest are forgotten first)."""
 
@@ -271,17 +270,8 @@ NEWTON_CALLS_PER_THREAD = 64
 def _newton_call(fn: ca.Function, free: np.ndarray) -> NewtonCall:
     """This thread's :class:`NewtonCall` of ``fn`` on the states ``free`` (made on first
     use)."""
-    calls = getattr(_LOCAL, "calls", None)
-    if calls is None:
-        calls = _LOCAL.calls = {}
-    key = (id(fn), free.tobytes())
-    found = calls.get(key)
-    if found is not None and found.fn is fn:
-        return found
-    if len(calls) >= NEWTON_CALLS_PER_THREAD:
-        del calls[next(iter(calls))]
-    made = calls[key] = NewtonCall(fn, free)
-    return made
+    return thread_kept("newton", (id(fn), free.tobytes()), fn, lambda: NewtonCall(fn, free),
+                       NEWTON_CALLS_PER_THREAD)
 
 
 def _free_states(system: System) -> np.ndarray:
