@@ -36,6 +36,15 @@ def _run(system, t_end=0.05, **kwargs):
     return simulate(system, t_end, n_points=5, compiled=False, **kwargs)
 
 
+def _in_threads(work, n: int) -> None:
+    """Run ``work(k)`` for k = 0 .. n - 1, each in its own thread, all at once."""
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(n)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+
+
 def _same(a, b):
     return (np.array_equal(a.t, b.t) and a.values.shape == b.values.shape
             and np.array_equal(a.values.view(np.int64), b.values.view(np.int64)))
@@ -131,11 +140,7 @@ def test_threads_running_one_system_at_once_get_the_results_of_runs_alone(system
         for _ in range(3):
             together[k] = _run(system, **runs[k])
 
-    threads = [threading.Thread(target=work, args=(k,)) for k in range(len(runs))]
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join()
+    _in_threads(work, len(runs))
     for mine, theirs in zip(alone, together, strict=True):
         assert _same(mine, theirs)
         assert {k: mine.stats[k] for k in COUNTS} == {k: theirs.stats[k] for k in COUNTS}
@@ -204,11 +209,7 @@ def test_steady_states_of_threads_and_systems_at_once_are_those_solved_alone(sys
             s, inputs = points[k]
             together[k] = steady_state(s, inputs=inputs)
 
-    threads = [threading.Thread(target=work, args=(k,)) for k in range(len(points))]
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join()
+    _in_threads(work, len(points))
     for mine, theirs in zip(alone, together, strict=True):
         np.testing.assert_array_equal(mine, theirs)
 
