@@ -15,6 +15,8 @@ from typing import TypeVar
 import casadi as ca
 import numpy as np
 
+from bearingsim.keeps import kept
+
 __all__ = ["Buffered", "buffered"]
 
 
@@ -78,7 +80,6 @@ class Buffered:
         return results
 
 
-
 _LOCAL = threading.local()
 BUFFERS_PER_THREAD = 256
 """Most buffers a thread keeps (the oldest are dropped first)."""
@@ -112,15 +113,11 @@ def thread_kept(kind: str, key: Hashable, fn: ca.Function, make: Callable[[], T]
     object
         The thread's evaluator.
     """
-    kept = _LOCAL.__dict__.setdefault(kind, {})
-    found = kept.get(key)
-    if found is not None and found[0] is fn:
-        return found[1]
-    if len(kept) >= limit:
-        del kept[next(iter(kept))]
-    made = make()
-    kept[key] = (fn, made)
-    return made
+    store = _LOCAL.__dict__.setdefault(kind, {})
+    found = store.get(key)
+    if found is not None and found[0] is not fn:  # the key of a function that is gone
+        del store[key]
+    return kept(store, key, lambda: (fn, make()), limit)[1]
 
 
 def buffered(fn: ca.Function) -> Buffered:

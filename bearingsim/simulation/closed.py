@@ -16,6 +16,7 @@ from typing import Any
 import casadi as ca
 
 from bearingsim.assembler.system import System
+from bearingsim.keeps import kept
 from bearingsim.simulation.inputs import InputSignal, input_signal
 
 __all__ = ["ClosedModel", "close_inputs"]
@@ -59,11 +60,13 @@ def close_inputs(system: System, inputs: dict[str, Any] | None,
         input sets are kept with the system).
     """
     signal = input_signal(system, inputs) if signal is None else signal
-    cache = system.__dict__.setdefault("_closed_models", {})
     key = (signal.key, signal.q.tobytes(), symbolic)
-    found = cache.get(key)
-    if found is not None:
-        return found
+    return kept(system.__dict__.setdefault("_closed_models", {}), key,
+                lambda: _closed(system, signal, symbolic), CLOSED_PER_SYSTEM)
+
+
+def _closed(system: System, signal: InputSignal, symbolic: bool) -> ClosedModel:
+    """The closed model of ``signal``'s inputs (:func:`closed_model`, made anew)."""
     generic = _composed(system, signal, symbolic)
     t, x, p = ca.MX.sym("t"), ca.MX.sym("x", system.n_states), ca.MX.sym("p", len(system.params))
     q = ca.DM(signal.q)
@@ -73,10 +76,7 @@ def close_inputs(system: System, inputs: dict[str, Any] | None,
                                       strict=True)]
     t_u = ca.SX.sym("t")
     u_fn = ca.Function("u", [t_u], [signal.u(t_u, q)])
-    if len(cache) >= CLOSED_PER_SYSTEM:
-        del cache[next(iter(cache))]
-    closed = cache[key] = ClosedModel(f=bound[0], jac=bound[1], observe=bound[2], u=u_fn)
-    return closed
+    return ClosedModel(f=bound[0], jac=bound[1], observe=bound[2], u=u_fn)
 
 
 CLOSED_PER_SYSTEM = 16

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from bearingsim.assembler.system import System
+from bearingsim.keeps import kept
 
 __all__ = ["numbers_valid"]
 
@@ -38,13 +39,8 @@ def numbers_valid(system: System, key: str, q: np.ndarray,
         True when all are; False when one is not (or may not be: the input-by-input check
         decides).
     """
-    laid_out = system.__dict__.setdefault("_number_bounds", {})
-    bounds = laid_out.get(key)
-    if bounds is None:
-        bounds = laid_out[key] = _bounds(system, lifted)
-        if len(laid_out) > LAID_OUT_PER_SYSTEM:
-            del laid_out[next(iter(laid_out))]
-    index, low, high, limit = bounds
+    index, low, high, limit = kept(system.__dict__.setdefault("_number_bounds", {}), key,
+                                   lambda: _bounds(system, lifted), LAID_OUT_PER_SYSTEM)
     values = q[index]
     return bool(np.isfinite(values).all() and (values >= low).all() and (values <= high).all()
                 and (np.abs(values) <= limit).all())

@@ -21,6 +21,7 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.entry_points import value_key
 from bearingsim.errors import ParameterError, SpeedLimitWarning
+from bearingsim.keeps import kept
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.input_bounds import numbers_valid
 from bearingsim.simulation.intervals import locate_problem
@@ -254,17 +255,16 @@ def input_signal(system: System, inputs: dict[str, Any] | None) -> InputSignal:
     """
     inputs = check_mapping(inputs, "inputs", "simulate", "input names")
     key = _given_key(inputs)
-    signals = system.__dict__.setdefault("_input_signals", {})
-    found = None if key is None else signals.get(key)
-    if found is not None:
-        return found
-    signal = _new_signal(system, inputs)
-    if key is not None:
-        if len(signals) >= SIGNALS_PER_SYSTEM:
-            del signals[next(iter(signals))]
+    if key is None:
+        return _new_signal(system, inputs)
+
+    def shared() -> InputSignal:
+        signal = _new_signal(system, inputs)
         signal.q.flags.writeable = False  # shared by the runs with these inputs
-        signals[key] = signal
-    return signal
+        return signal
+
+    return kept(system.__dict__.setdefault("_input_signals", {}), key, shared,
+                SIGNALS_PER_SYSTEM)
 
 
 SIGNALS_PER_SYSTEM = 64
