@@ -277,6 +277,7 @@ def _iterate(members, links, n, h, record, tolerance, max_iterations) -> Coupled
         y0 = outputs()
         d0 = rates(d0)
     scale = np.abs(y0)
+    recorded = [_split(r) for r in record]
     values = np.empty((n, len(record)))
     iterations = np.zeros(n, dtype=int)
     do_steps = 0
@@ -310,6 +311,6 @@ def _iterate(members, links, n, h, record, tolerance, max_iterations) -> Coupled
             m.free(states[name])
         iterations[k] = it
         y0, d0 = y1, d1
-        values[k] = [members[c].get(v) for c, v in map(_split, record)]
+        values[k] = [members[c].get(v) for c, v in recorded]
     return CoupledRun(h * np.arange(1, n + 1), {r: values[:, j] for j, r in enumerate(record)},
                       do_steps, iterations)
