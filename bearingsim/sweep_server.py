@@ -15,9 +15,11 @@ from __future__ import annotations
 import multiprocessing
 import multiprocessing.forkserver
 
-__all__ = ["WORKER_MODULES", "start_worker_server"]
+__all__ = ["WORKER_MODULE", "WORKER_MODULES", "start_worker_server"]
 
-WORKER_MODULES = ("distributed", "bearingsim.scenes.sweep_worker")
+WORKER_MODULE = "bearingsim.scenes.sweep_worker"
+"""The sweep worker's module (also preloaded by every worker of a sweep's cluster)."""
+WORKER_MODULES = ("distributed", WORKER_MODULE)
 """Imported by the server before it forks the first worker."""
 
 

@@ -33,7 +33,7 @@ from typing import Any
 
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.sweep_worker import Job, run_chunk
-from bearingsim.sweep_server import start_worker_server
+from bearingsim.sweep_server import WORKER_MODULE, start_worker_server
 
 __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER", "RESUBMITS",
            "distributed_module",
@@ -55,9 +55,6 @@ join and leave)."""
 RESUBMITS = 100
 """Most chunks of one sweep submitted again after the scheduler cancelled them (their model
 lost with a worker)."""
-WORKER_MODULE = "bearingsim.scenes.sweep_worker"
-"""Preloaded by every worker (a LocalCluster's fork server imported it already,
-:data:`~bearingsim.sweep_server.WORKER_MODULES`)."""
 QUIET_CLUSTER = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
