@@ -30,11 +30,12 @@ import tarfile
 import tempfile
 import time
 import warnings
+from collections.abc import Iterator
 from pathlib import Path
 
 from bench.common import Section, fmt, markdown_table
 
-__all__ = ["BASELINE", "measure", "output_on_commit", "section"]
+__all__ = ["BASELINE", "cache_refill", "measure", "output_on_commit", "section"]
 
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE = "da2b26e"
@@ -60,6 +61,27 @@ def measure(repeats: int = 20) -> list[dict]:
         :data:`SHORT_RUN_S`), and ``package``, the folder of the package timed.
     """
     import bearingsim
+    from bearingsim.simulation import simulate
+
+    rows = []
+    for scene, system, t_start, args in _transient_scenes():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            timed = {length: _time_runs(simulate, system, t_start + length, args, repeats)
+                     for length in (RUN_S, SHORT_RUN_S)}
+        totals, overheads, method = timed[RUN_S]
+        rows.append({"scene": scene, "method": method, "states": system.n_states,
+                     "total_ms": 1e3 * min(totals),
+                     "overhead_ms": 1e3 * min(overheads),
+                     "short_overhead_ms": 1e3 * min(timed[SHORT_RUN_S][1]),
+                     "package": str(Path(bearingsim.__file__).parent)})
+    return rows
+
+
+def _transient_scenes() -> Iterator[tuple[str, object, float, dict]]:
+    """Every shipped transient scene the package can read, prepared: its name, system, start
+    time [s] and the arguments of :func:`~bearingsim.simulation.simulate` (the scene's method,
+    inputs and tolerances, 3 output points, no progress bar)."""
     from bearingsim.errors import BearingsimError
     from bearingsim.scenes import parse_scene
     try:
@@ -73,9 +95,6 @@ def measure(repeats: int = 20) -> list[dict]:
             if hasattr(module, "simulate_inputs"):
                 prepare, simulate_inputs = module.prepare, module.simulate_inputs
                 break
-    from bearingsim.simulation import simulate
-
-    rows = []
     for path in sorted((ROOT / "scenes").glob("*.toml")):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -83,32 +102,82 @@ def measure(repeats: int = 20) -> list[dict]:
                 prep = prepare(parse_scene(path.read_text(encoding="utf-8")))
             except BearingsimError:  # a scene the baseline's package cannot read
                 continue
-            if getattr(prep.scene, "analysis", "transient") != "transient":
-                continue  # steady, modes, statics: no time run to time
-            s = prep.scene.simulation
-            args = {"t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
-                    "n_points": 3, "max_step": s.max_step, "initial": s.initial,
-                    "inputs": simulate_inputs(prep.scene.inputs),
-                    "parameters": prep.scene.parameters, "x0": prep.scene.initial or None,
-                    "progress": False}
-            timed = {length: _time_runs(simulate, prep.system, s.t_start + length, args,
-                                        repeats)
-                     for length in (RUN_S, SHORT_RUN_S)}
-        totals, overheads, method = timed[RUN_S]
-        rows.append({"scene": path.stem, "method": method, "states": prep.system.n_states,
-                     "total_ms": 1e3 * min(totals),
-                     "overhead_ms": 1e3 * min(overheads),
-                     "short_overhead_ms": 1e3 * min(timed[SHORT_RUN_S][1]),
-                     "package": str(Path(bearingsim.__file__).parent)})
+        if getattr(prep.scene, "analysis", "transient") != "transient":
+            continue  # steady, modes, statics: no time run to time
+        s = prep.scene.simulation
+        yield path.stem, prep.system, s.t_start, {
+            "t_start": s.t_start, "method": s.method, "rtol": s.rtol, "atol": s.atol,
+            "n_points": 3, "max_step": s.max_step, "initial": s.initial,
+            "inputs": simulate_inputs(prep.scene.inputs), "parameters": prep.scene.parameters,
+            "x0": prep.scene.initial or None, "progress": False}
+
+
+PROBE_SIZE = 150
+"""Numbers the probe of :func:`cache_refill` checks (the states at two output times of the
+6304's 75-state model)."""
+
+
+def cache_refill(repeats: int = 20) -> list[dict]:
+    """The CPU time of one small numpy call (``numpy.isfinite(v).all()`` on
+    :data:`PROBE_SIZE` numbers, what :mod:`~bearingsim.simulation.sundials` checks the states
+    with) right after the integrator call of a CVODES scene's run, and the same call repeated
+    at once: how much of the Python after the integrator pays for filling the processor's
+    caches again after the integration.
+
+    Every shipped transient scene whose runs call CVODES or IDAS is run as in :func:`measure`
+    (1 ms and 1 ns), with the probe hooked after the integrator call
+    (:class:`~bearingsim.simulation.integrator_calls.IntegratorCall`); the hook is removed
+    afterwards.
+
+    Returns
+    -------
+    list of dict
+        Per scene and run length: ``scene``, ``run_s``, ``first_us`` and ``again_us`` (the
+        fastest of ``repeats`` runs, microseconds).
+    """
+    import numpy as np
+
+    from bearingsim.simulation import integrator_calls, simulate
+
+    values = np.ones(PROBE_SIZE)
+    timings: list[tuple[int, int]] = []
+    original = integrator_calls.IntegratorCall.__call__
+
+    def probed(call, *args):
+        original(call, *args)
+        start = time.thread_time_ns()
+        np.isfinite(values).all()
+        middle = time.thread_time_ns()
+        np.isfinite(values).all()
+        timings.append((middle - start, time.thread_time_ns() - middle))
+
+    integrator_calls.IntegratorCall.__call__ = probed
+    rows = []
+    try:
+        for scene, system, t_start, args in _transient_scenes():
+            for length in (RUN_S, SHORT_RUN_S):
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    _time_runs(simulate, system, t_start + length, args, repeats,
+                               after_warm_up=timings.clear)
+                if timings:  # the run called CVODES or IDAS
+                    rows.append({"scene": scene, "run_s": length,
+                                 "first_us": min(t[0] for t in timings) / 1e3,
+                                 "again_us": min(t[1] for t in timings) / 1e3})
+    finally:
+        integrator_calls.IntegratorCall.__call__ = original
     return rows
 
 
-def _time_runs(simulate, system, t_end: float, args: dict, repeats: int
-               ) -> tuple[list[float], list[float], str]:
-    """CPU times [s] of ``repeats`` runs to ``t_end`` after 3 warm-up runs: totals, per-call
-    costs (NaN without ``integrate_cpu_time``) and the method the runs used."""
+def _time_runs(simulate, system, t_end: float, args: dict, repeats: int,
+               after_warm_up=None) -> tuple[list[float], list[float], str]:
+    """CPU times [s] of ``repeats`` runs to ``t_end`` after 3 warm-up runs (then
+    ``after_warm_up()``, if given): totals, per-call costs (NaN without
+    ``integrate_cpu_time``) and the method the runs used."""
     for _ in range(3):
         result = simulate(system, t_end, **args)
+    if after_warm_up is not None:
+        after_warm_up()
     totals, overheads = [], []
     for _ in range(repeats):
         start = time.thread_time()
@@ -190,6 +259,7 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
                        if row["scene"] in shipped_then])
         _fastest(new_rows, measure(repeats))
     new = list(new_rows.values())
+    refill = cache_refill(repeats)
     rows = []
     for row in new:
         then_row = old.get(row["scene"], {})
@@ -224,9 +294,25 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
                           "total before [ms]", "total now [ms]", "per-call cost before [ms]",
                           "per-call cost now [ms]", "1 ns run: per-call cost before [ms]",
                           "1 ns run: now [ms]"], rows)
-        + f"\n\nLargest per-call cost now: {worst:.2f} ms. Load average at the end of the "
-        f"run: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores.\n")
-    return Section("Per-call cost of simulate", text, {"rows": new, "baseline": old})
+        + f"\n\nLargest per-call cost now: {worst:.2f} ms.\n\n"
+        "**The caches after the integration.** The CPU time of one small numpy call "
+        f"(`numpy.isfinite(v).all()` on {PROBE_SIZE} numbers, the check the states get) hooked "
+        "right after the integrator call of the runs on CVODES, and the same call again at "
+        "once (the fastest of the repeats). After the 1 ms run's integration the first call "
+        "costs many times the second: the integration has filled the processor's caches with "
+        "the kernels' code and data, and every piece of Python or numpy that runs first after "
+        "it pays for loading its own again. The 1 ms run's per-call cost above is the 1 ns "
+        "run's plus that price over all the Python after the integrator.\n\n"
+        f"Command: `python -c 'from bench.per_call import cache_refill; "
+        f"print(cache_refill({repeats}))'`\n\n"
+        + markdown_table(["scene", "run", "first call after the integrator [us]",
+                          "the same call again [us]"],
+                         [[row["scene"], f"{row['run_s']:g} s", fmt(row["first_us"]),
+                           fmt(row["again_us"])] for row in refill])
+        + f"\n\nLoad average at the end of the run: {os.getloadavg()[0]:.1f} on "
+        f"{os.cpu_count()} cores.\n")
+    return Section("Per-call cost of simulate", text,
+                   {"rows": new, "baseline": old, "cache_refill": refill})
 
 
 def main() -> None:
