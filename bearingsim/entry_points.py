@@ -1,6 +1,6 @@
 """The argument layer of public entry points: a call with unknown or missing arguments raises
 :class:`~bearingsim.errors.ParameterError` naming the function, the argument and the accepted
-ones (:func:`entry_point`; re-exported by :mod:`bearingsim.validation`); argument values as
+ones (:func:`entry_point`); argument values as
 hashable keys, for remembering what was checked or built from them (:func:`value_key`)."""
 
 from __future__ import annotations

@@ -16,13 +16,11 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.entry_points import entry_point
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.symbolic import is_symbolic
 
 __all__ = [
     "check_finite",
-    "entry_point",
     "check_flag",
     "check_mapping",
     "check_vector",

@@ -39,9 +39,10 @@ from bearingsim.assembler.passes import (
 from bearingsim.assembler.state import AssemblyState
 from bearingsim.assembler.system import System
 from bearingsim.checks import check_tolerance
+from bearingsim.entry_points import entry_point
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
-from bearingsim.validation import check_choice, check_mapping, entry_point
+from bearingsim.validation import check_choice, check_mapping
 
 __all__ = ["Pass", "Stage", "STAGES", "PASS_NAMES", "assemble"]
 

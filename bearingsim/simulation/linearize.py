@@ -8,10 +8,11 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assembler.system import System, as_system
+from bearingsim.entry_points import entry_point
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.result import Result
-from bearingsim.validation import check_mapping, check_range, check_vector, entry_point
+from bearingsim.validation import check_mapping, check_range, check_vector
 
 __all__ = ["LinearModel", "linearize"]
 

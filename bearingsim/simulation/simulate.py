@@ -14,6 +14,7 @@ import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.checks import check_tolerance
+from bearingsim.entry_points import entry_point
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
 from bearingsim.simulation.choice import MethodChoice, choose_method
@@ -30,7 +31,7 @@ from bearingsim.simulation.integrators import (
 from bearingsim.simulation.result import Result, ResultLayout
 from bearingsim.simulation.steady import steady_state
 from bearingsim.simulation.sundials_integrators import LINEAR_SOLVERS
-from bearingsim.validation import check_choice, check_flag, check_range, entry_point
+from bearingsim.validation import check_choice, check_flag, check_range
 
 __all__ = ["simulate", "initial_state"]
 

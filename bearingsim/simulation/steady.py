@@ -17,10 +17,11 @@ from scipy.linalg.lapack import dgesdd, dgesv
 
 from bearingsim.assembler.numeric import thread_kept
 from bearingsim.assembler.system import System, as_system
+from bearingsim.entry_points import entry_point
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.inputs import check_input_ranges, input_signal
 from bearingsim.simulation.kernels import kernel
-from bearingsim.validation import check_flag, check_range, check_vector, entry_point
+from bearingsim.validation import check_flag, check_range, check_vector
 
 __all__ = ["steady_state", "integrator_states"]
 
