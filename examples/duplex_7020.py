@@ -25,7 +25,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from bearingsim.studies.duplex import MODE_NAMES, DuplexModel  # noqa: E402
+from bearingsim.physics.shaft_modes import MODE_NAMES  # noqa: E402
+from bearingsim.studies.duplex import DuplexModel  # noqa: E402
 from bearingsim.studies.duplex_sweep import plot_sweep, sweep  # noqa: E402
 from bearingsim.units import deg, rpm_to_rad_s  # noqa: E402
 

@@ -40,20 +40,16 @@ from bearingsim.assemblies.duplex import (
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import ParameterError, SimulationError
-from bearingsim.physics.shaft_modes import DOFS, LOSS_FACTOR, MODE_NAMES, Modes, modal_analysis
+from bearingsim.physics.shaft_modes import DOFS, LOSS_FACTOR, Modes, modal_analysis
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
 from bearingsim.units import engineering
 from bearingsim.validation import check_mapping, keyword_names
 
 __all__ = [
-    "MODE_NAMES",
-    "LOSS_FACTOR",
     "RowUnloadedWarning",
     "DuplexModel",
     "Equilibrium",
-    "Modes",
-    "modal_analysis",
 ]
 
 _LOADS = tuple(f"shaft.{k}" for k in ("Fx", "Fy", "Fz", "Mx", "My"))

@@ -26,7 +26,8 @@ from bearingsim.catalog import get_bearing
 from bearingsim.components.ball_row import row_parameters
 from bearingsim.errors import ParameterError
 from bearingsim.physics.hertz import combined_load_deflection_constant
-from bearingsim.studies.duplex import MODE_NAMES, DuplexModel, RowUnloadedWarning, modal_analysis
+from bearingsim.physics.shaft_modes import MODE_NAMES, modal_analysis
+from bearingsim.studies.duplex import DuplexModel, RowUnloadedWarning
 from bearingsim.studies.duplex_sweep import sweep
 from bearingsim.units import deg
 from tests.components.test_ball_row import jones_contact_angle

@@ -193,7 +193,7 @@ def test_duplex_modes_are_plotted_by_name_and_match_the_study(df_pair):
     """The DF pair scene's modes figure: one curve per mode name, each with its own marker and
     line style, so the radial x and y modes, which coincide under the preload alone, are both
     visible; before the load steps they are the study's modes at no load."""
-    from bearingsim.studies.duplex import MODE_NAMES
+    from bearingsim.physics.shaft_modes import MODE_NAMES
 
     _, figures = _scene_figures("duplex_pair_axial", 0.0015)  # before the axial step
     ax = figures["duplex_pair_axial.modes.png"].axes[0]
