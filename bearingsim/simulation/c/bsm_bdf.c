@@ -46,6 +46,7 @@
 #define FIT_RESET 0.2
 #define STEP_SAFETY 0.8
 #define CHANGE_BLOCK 8
+#define JAC_RATE 0.3
 
 /* the work vectors (W_WEIGHT: the inverse error weights 1 / (atol + rtol |y|) of the
  * prediction) */
@@ -128,6 +129,7 @@ static int eval_jac(BsmBdf *b, double t, const double *x) {
     int status = b->ops->jacobian(b->model, t, x);
     h->jac_current = 1;
     h->jac_age = 0;
+    h->jac_wanted = 0;
     return status;
 }
 
@@ -208,6 +210,7 @@ int bsm_bdf_first_step(BsmBdf *b, double t0, const double *x0, double t_stop) {
     h->n_equal_steps = 0;
     h->lu_valid = 0;
     h->jac_current = 0;
+    h->jac_wanted = 0;
     h->crate = 1.0;
     h->safety = STEP_SAFETY;
     memset(b->D, 0, sizeof(double) * (size_t)BSM_BDF_D_ROWS * n);
@@ -222,7 +225,8 @@ int bsm_bdf_first_step(BsmBdf *b, double t0, const double *x0, double t_stop) {
  * Convergence as in CVODES: the correction's norm times the rate estimate (kept across
  * steps, reset by a new factorisation) below NEWTON_COEF / error_const[order], i.e. its
  * effect on the error estimate NEWTON_COEF of the tolerance; divergence when a correction
- * grows by 2x. */
+ * grows by 2x, or, on an old Jacobian, as soon as the rate estimate reaches 1 (the caller
+ * evaluates a new one at once instead of iterating on to NEWTON_MAXITER). */
 static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int *status) {
     int n = b->n;
     BsmBdfHistory *h = b->h;
@@ -260,7 +264,8 @@ static int newton(BsmBdf *b, double t_new, double c, int order, int *n_iter, int
         if (!isfinite(del)) return 0;
         if (k > 0) h->crate = fmax(CRATE_DOWN * h->crate, del / del_old);
         if (del * fmin(1.0, h->crate) <= tol) return 1;
-        if (k > 0 && del > DIVERGENCE * del_old) return 0;
+        if (k > 0 && (del > DIVERGENCE * del_old || (!h->jac_current && h->crate >= 1.0)))
+            return 0;
         del_old = del;
     }
     return 0;
@@ -364,8 +369,8 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
         double c = h_abs / b->alpha[order];
         int converged = 0, n_iter = 0;
         for (;;) {
-            if (!h->lu_valid || fabs(c / h->c_lu - 1.0) > LU_RATIO) {
-                if (!h->jac_current && h->jac_age >= JAC_AGE &&
+            if (!h->lu_valid || h->jac_wanted || fabs(c / h->c_lu - 1.0) > LU_RATIO) {
+                if (!h->jac_current && (h->jac_age >= JAC_AGE || h->jac_wanted) &&
                     (status = eval_jac(b, t_new, y_predict)))
                     return status;
                 if ((status = factorize(b, c))) return status;
@@ -383,6 +388,8 @@ int bsm_bdf_step(BsmBdf *b, double t_stop, int mode) {
             h->lu_valid = 0;
             continue;
         }
+        /* slow convergence on an old Jacobian: a new one for the next step */
+        if (!h->jac_current && n_iter > 1 && h->crate > JAC_RATE) h->jac_wanted = 1;
         h->safety = STEP_SAFETY * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter);
         double *last = last_weight(b);
         inverse_weights(b, y, last);
