@@ -101,7 +101,7 @@ def split(case: Case) -> list[list]:
     integrator, and the same with commit ``BEFORE``'s stepping core (``bsm_bdf.c``, at its
     -O2), the two alternating."""
     with tempfile.TemporaryDirectory() as tmp:
-        older = _sources(BEFORE, Path(tmp))
+        older = sources_at(BEFORE, Path(tmp))
         (older / "bdf.c").write_text((compiled_bdf.C_DIR / "bdf.c").read_text())
         builds = {"tree": (None, _tree_flags()),
                   f"{BEFORE}'s core (-O2)": (older, BEFORE_FLAGS)}
@@ -177,7 +177,8 @@ BEFORE_HEADER = ["build", "rtol", "CPU / step [us]", "steps", "rhs", "iterations
                  "error / tol"]
 
 
-def _sources(commit: str, folder: Path) -> Path:
+def sources_at(commit: str, folder: Path) -> Path:
+    """The integrator's C sources (``SOURCES``) of ``commit``, written into ``folder``."""
     for name in SOURCES:
         text = subprocess.run(["git", "show", f"{commit}:bearingsim/simulation/c/{name}"],
                               cwd=Path(__file__).parent, capture_output=True, text=True,
@@ -201,7 +202,7 @@ def before_after(case: Case) -> list[list]:
                                 atol=case.atol * 1e-6, n_points=201, progress=False, **common))
     weights = case.atol + case.rtol * np.abs(reference)
     with tempfile.TemporaryDirectory() as tmp:
-        builds = {f"{BEFORE} (-O2)": (_sources(BEFORE, Path(tmp)), BEFORE_FLAGS, 1.0),
+        builds = {f"{BEFORE} (-O2)": (sources_at(BEFORE, Path(tmp)), BEFORE_FLAGS, 1.0),
                   "tree": (None, None, 1.0),
                   f"tree, rtol x {1 + NUDGE:.10g}": (None, None, 1.0 + NUDGE)}
         best: dict[tuple[str, float], tuple] = {}
