@@ -70,6 +70,7 @@ from bearingsim.simulation.sundials_integrators import (
     clear_integrator_cache,
 )
 from bench.common import Section, fmt, markdown_table
+from bench.kernel_timing import kernel_call_us
 
 __all__ = ["CASES", "Case", "main", "report", "section"]
 
@@ -212,6 +213,12 @@ def _form(case: Case) -> str:
     return "dae" if case.method == "idas" else "ode"
 
 
+RHS_IN_C = "rhs C (loop in C)"
+JAC_IN_C = "jac C d/dx (loop in C)"
+"""Per-call costs of the compiled kernel timed in loops inside C
+(:func:`bench.kernel_timing.kernel_call_us`): the limits' costs where measured."""
+
+
 def calls(case: Case) -> dict[str, float]:
     """Per-call costs [us] of the kernel and its Jacobian, VM and C, and of the default linear
     solver's factorization and solve (dense LU, or the ordered sparse LU above DENSE_LIMIT)."""
@@ -234,6 +241,9 @@ def calls(case: Case) -> dict[str, float]:
         value = value if isinstance(value, (list, tuple)) else [value]
         out[f"rhs {label}"] = per_call_us(fn, args)
         out[f"jac {label}"] = per_call_us(jac, [*args, *value], n=1000)
+        if comp and form == "ode":  # the limit's costs: loops inside C, as bdf.c calls them
+            out[RHS_IN_C] = kernel_call_us(kern, "rhs", args)
+            out[JAC_IN_C] = kernel_call_us(kern, "jac", args)
     n = system.n_states + (args[2].size if form == "dae" else 0)
     nnz = jac.sparsity_out(1).nnz() + n  # jac_ode_x and the identity (ode form)
     if form == "ode" and choose_linear_solver(n, nnz, form) == "csparse":
@@ -517,9 +527,10 @@ def run_rows(case: Case, data: dict) -> list[list]:
                                                 if isinstance(k, tuple)):
         st = res.stats
         cpu = min(cpus)
-        limit = physical_limit_s(st, pc["rhs C"], pc["jac C"])
+        rhs_us, jac_us = pc.get(RHS_IN_C, pc["rhs C"]), pc.get(JAC_IN_C, pc["jac C"])
+        limit = physical_limit_s(st, rhs_us, jac_us)
         set_up_us, solve_us = lu_costs(pc)
-        limit_la = physical_limit_s(st, pc["rhs C"], pc["jac C"], set_up_us)
+        limit_la = physical_limit_s(st, rhs_us, jac_us, set_up_us)
         solves = newton_solves(st)
         limit_all = limit_la + max(solves - st["nlinsetups"], 0) * solve_us * 1e-6
         rows.append([label, phase, fmt(span), fmt(cpu / span), fmt(max(cpus) / cpu),
@@ -695,6 +706,10 @@ def section(quick: bool = False) -> Section:
         "ratios come from one run, side by side. "
         "*CPU / sim s*: CPU seconds per "
         "simulated second; *limit*: the compiled per-call costs times the calls the run took "
+        f"(the kernels' costs on ODE forms *{RHS_IN_C}* and *{JAC_IN_C}*: the calls repeated "
+        "in a loop inside C as the compiled integrators make them, of the Jacobian only the "
+        "block d ode / d x; *rhs C*, *jac C*: a Python loop of calls of the whole functions "
+        "less an empty function's loop, used on the DAE form) "
         "(kernels only, and with the LU of the Newton matrix: one factorisation and solve per "
         "linear set-up, i.e. per Jacobian update or step-size change), the physical limit of "
         "this machine; *CPU / limit*: the distance to it; *+every solve*: the limit counted "
