@@ -12,7 +12,10 @@ bearing as ``bench/sundials_compiled.py`` runs them (``CASES``: its tolerances, 
   and the rest, the stepping core's own work (prediction, Newton updates, norms, difference
   updates, step size and order), with the clock's own cost taken out (one reading per timed
   call from the operations, one from the rest); the uninstrumented run's CPU per step beside
-  it. The run of least CPU time of ``REPEATS``.
+  it. The run of least CPU time of ``REPEATS``. *CPU / limit (in-run)*: the run over its
+  operations' time, the distance to the limit counted with every LU solve, both measured in
+  the same run (the limit of section "SUNDIALS on compiled kernels" times the operations
+  apart from the runs, and moves with the machine's load between the two).
 * ``before``: the stepping core of commit ``BEFORE`` (its C sources from git, compiled at its
   -O2) and the tree's, on the start-up runs at four tolerances: CPU per step (thread time,
   least of ``REPEATS``, the two builds alternating), steps, right-hand sides, Newton iterations
@@ -92,7 +95,7 @@ def _phases(case: Case, **kw) -> dict[str, tuple]:
 # ------------------------------------------------------------------------------ split
 SPLIT_HEADER = ["build", "phase", "steps", "CPU / step (uninstrumented)",
                 "CPU / step (instrumented)", "rhs", "jac", "LU factor", "LU solve",
-                "stepping core", "core share",
+                "stepping core", "core share", "CPU / limit (in-run)",
                 "timed calls / step", "interrupted share", "clock reading [ns]"]
 
 
@@ -130,7 +133,8 @@ def split(case: Case) -> list[list]:
         core = run - sum(ops) - 2 * clock * sum(calls)
         per = [v / steps * 1e6 for v in (run, *ops, core)]
         rows.append([label, phase, steps, fmt(min(plain[label, phase]) * 1e6),
-                     *[fmt(v) for v in per], fmt(core / run, 2), fmt(sum(calls) / steps),
+                     *[fmt(v) for v in per], fmt(core / run, 2), fmt(run / sum(ops), 3),
+                     fmt(sum(calls) / steps),
                      fmt(sum(profile[9:13]) / sum(calls), 2), fmt(clock * 1e9)])
     return rows
 
