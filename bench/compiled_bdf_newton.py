@@ -18,7 +18,10 @@ over ``NUDGES`` step sequences rather than one (one steady run of the nested bea
   reference (the largest over 201 output times of the weighted RMS norm of the difference,
   weights ``atol + rtol |x|`` with the case's rtol and atol; geometric mean over the
   nudges). CVODES on the same compiled kernels at the same tolerance for comparison
-  (``nniters`` per step; its CPU includes CasADi's integrator interface).
+  (``nniters`` per step; its CPU includes CasADi's integrator interface). And an experiment,
+  ``KEPT_RATE``: the tree's core with the rate estimate kept at a new factorisation instead
+  of reset to 1 (as CVODES resets it): the reset costs a second iteration at almost every
+  new factorisation; kept, the iteration may stop after one.
 * ``histogram``: the same runs one step per call of the C loop: the share of steps that took
   1, 2, 3 and 4 or more Newton iterations (with those of attempts that failed), the share of
   steps with a Jacobian evaluation in them (after a failed attempt on an old one, or asked
@@ -39,7 +42,7 @@ import numpy as np
 
 from bearingsim.simulation import compiled_bdf, simulate
 from bench.common import Section, fmt, markdown_table
-from bench.compiled_bdf_core import integrator_build, sources_at
+from bench.compiled_bdf_core import SOURCES, integrator_build, sources_at
 from bench.sundials_compiled import CASES, Case
 
 __all__ = ["main", "report", "section"]
@@ -114,11 +117,31 @@ def _tolerances(case: Case) -> tuple[float, float]:
     return case.rtol, case.rtol / TIGHTER
 
 
+RESET_LINE = "    h->c_lu = c;\n    h->crate = 1.0;\n"
+"""The reset of the rate estimate at a new factorisation in ``c/bsm_bdf.c``."""
+
+KEPT_RATE = "tree, rate kept at a new LU (experiment)"
+
+
+def _kept_rate_sources(folder: Path) -> Path:
+    """The tree's C sources with the rate estimate kept at a new factorisation (an
+    experiment: the iteration may then stop after one correction on a new Jacobian)."""
+    for name in SOURCES:
+        (folder / name).write_text((compiled_bdf.C_DIR / name).read_text())
+    core = (folder / "bsm_bdf.c").read_text()
+    if RESET_LINE not in core:
+        raise RuntimeError("bsm_bdf.c no longer resets the rate estimate where expected")
+    (folder / "bsm_bdf.c").write_text(core.replace(RESET_LINE, "    h->c_lu = c;\n"))
+    return folder
+
+
 def counts(case: Case) -> list[list]:
-    """The tree's core and ``BEFORE``'s, alternating, and CVODES (``counts``)."""
+    """The tree's core and ``BEFORE``'s, alternating, the experiment ``KEPT_RATE`` and
+    CVODES (``counts``)."""
     runs: dict[tuple, tuple] = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        builds = {f"{BEFORE} (before)": sources_at(BEFORE, Path(tmp)), "tree": None}
+    with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as kept:
+        builds = {f"{BEFORE} (before)": sources_at(BEFORE, Path(tmp)), "tree": None,
+                  KEPT_RATE: _kept_rate_sources(Path(kept))}
         for _ in range(REPEATS):
             for label, folder in builds.items():
                 with integrator_build(folder, _tree_flags()):

@@ -31,11 +31,12 @@
  * On the nested dynamic bearing this took the Newton iterations per step from 1.35 to 1.29
  * in the start-up and from 2.92 to 2.35 in steady running (CVODES: 1.19 and 2.35) at the
  * same error and CPU time (bench/compiled_bdf_newton.py). The rate estimate is reset to 1 at
- * every new factorisation, as CVODES does, although the first iteration after a new
- * Jacobian contracts by 0.002-0.08 there: kept instead, the iteration stops after one
- * correction, and the error test then fails so often that steady running takes ten times
- * the steps. With a Jacobian 2-3 steps old in steady running and two iterations after each,
- * 1.3 iterations per step cannot be had there at this step size.
+ * every new factorisation, as CVODES does, which costs a second iteration there: kept
+ * instead, the iteration often stops after one correction, the error test fails 3-25 times
+ * as often, and steady running takes 2.4-2.8 times the steps and 1.3-1.5 times the CPU time.
+ * In steady running a Jacobian evaluation falls on every third step (an older one converges
+ * too slowly) with two iterations after it: 1.3 iterations per step cannot be had there at
+ * this step size.
  *
  * Stopping at a time t_stop: BSM_BDF_CLIP cuts the one step that would pass it (scipy's
  * t_bound); BSM_BDF_EVEN divides what is left into equal steps no longer than the controller's
