@@ -34,9 +34,9 @@
  * every new factorisation, as CVODES does, which costs a second iteration there: kept
  * instead, the iteration often stops after one correction, the error test fails 3-25 times
  * as often, and steady running takes 2.4-2.8 times the steps and 1.3-1.5 times the CPU time.
- * In steady running a Jacobian evaluation falls on every third step (an older one converges
- * too slowly) with two iterations after it: 1.3 iterations per step cannot be had there at
- * this step size.
+ * In steady running a Jacobian evaluation falls on every third to fifth step (an older one
+ * converges too slowly) with two iterations after it: 1.3 iterations per step cannot be had
+ * there at this step size.
  *
  * Stopping at a time t_stop: BSM_BDF_CLIP cuts the one step that would pass it (scipy's
  * t_bound); BSM_BDF_EVEN divides what is left into equal steps no longer than the controller's
