@@ -12,7 +12,10 @@ bearing as ``bench/sundials_compiled.py`` runs them (``CASES``: its tolerances, 
   and the rest, the stepping core's own work (prediction, Newton updates, norms, difference
   updates, step size and order), with the clock's own cost taken out (one reading per timed
   call from the operations, one from the rest); the uninstrumented run's CPU per step beside
-  it. The run of least CPU time of ``REPEATS``.
+  it. The run of least CPU time of ``REPEATS``. *CPU / limit (in-run)*: the run over its
+  operations' time, the distance to the limit counted with every LU solve, both measured in
+  the same run (the limit of section "SUNDIALS on compiled kernels" times the operations
+  apart from the runs, and moves with the machine's load between the two).
 * ``before``: the stepping core of commit ``BEFORE`` (its C sources from git, compiled at its
   -O2) and the tree's, on the start-up runs at four tolerances: CPU per step (thread time,
   least of ``REPEATS``, the two builds alternating), steps, right-hand sides, Newton iterations
@@ -92,7 +95,7 @@ def _phases(case: Case, **kw) -> dict[str, tuple]:
 # ------------------------------------------------------------------------------ split
 SPLIT_HEADER = ["build", "phase", "steps", "CPU / step (uninstrumented)",
                 "CPU / step (instrumented)", "rhs", "jac", "LU factor", "LU solve",
-                "stepping core", "core share",
+                "stepping core", "core share", "CPU / limit (in-run)",
                 "timed calls / step", "interrupted share", "clock reading [ns]"]
 
 
@@ -101,7 +104,7 @@ def split(case: Case) -> list[list]:
     integrator, and the same with commit ``BEFORE``'s stepping core (``bsm_bdf.c``, at its
     -O2), the two alternating."""
     with tempfile.TemporaryDirectory() as tmp:
-        older = _sources(BEFORE, Path(tmp))
+        older = sources_at(BEFORE, Path(tmp))
         (older / "bdf.c").write_text((compiled_bdf.C_DIR / "bdf.c").read_text())
         builds = {"tree": (None, _tree_flags()),
                   f"{BEFORE}'s core (-O2)": (older, BEFORE_FLAGS)}
@@ -130,7 +133,8 @@ def split(case: Case) -> list[list]:
         core = run - sum(ops) - 2 * clock * sum(calls)
         per = [v / steps * 1e6 for v in (run, *ops, core)]
         rows.append([label, phase, steps, fmt(min(plain[label, phase]) * 1e6),
-                     *[fmt(v) for v in per], fmt(core / run, 2), fmt(sum(calls) / steps),
+                     *[fmt(v) for v in per], fmt(core / run, 2), fmt(run / sum(ops), 3),
+                     fmt(sum(calls) / steps),
                      fmt(sum(profile[9:13]) / sum(calls), 2), fmt(clock * 1e9)])
     return rows
 
@@ -177,7 +181,8 @@ BEFORE_HEADER = ["build", "rtol", "CPU / step [us]", "steps", "rhs", "iterations
                  "error / tol"]
 
 
-def _sources(commit: str, folder: Path) -> Path:
+def sources_at(commit: str, folder: Path) -> Path:
+    """The integrator's C sources (``SOURCES``) of ``commit``, written into ``folder``."""
     for name in SOURCES:
         text = subprocess.run(["git", "show", f"{commit}:bearingsim/simulation/c/{name}"],
                               cwd=Path(__file__).parent, capture_output=True, text=True,
@@ -201,7 +206,7 @@ def before_after(case: Case) -> list[list]:
                                 atol=case.atol * 1e-6, n_points=201, progress=False, **common))
     weights = case.atol + case.rtol * np.abs(reference)
     with tempfile.TemporaryDirectory() as tmp:
-        builds = {f"{BEFORE} (-O2)": (_sources(BEFORE, Path(tmp)), BEFORE_FLAGS, 1.0),
+        builds = {f"{BEFORE} (-O2)": (sources_at(BEFORE, Path(tmp)), BEFORE_FLAGS, 1.0),
                   "tree": (None, None, 1.0),
                   f"tree, rtol x {1 + NUDGE:.10g}": (None, None, 1.0 + NUDGE)}
         best: dict[tuple[str, float], tuple] = {}

@@ -25,6 +25,7 @@ from bench import (
     backends,
     ball_level_assembly,
     compiled_bdf_core,
+    compiled_bdf_newton,
     cosim,
     cosim_coupling,
     dgbb,
@@ -139,6 +140,7 @@ def main(argv: list[str] | None = None) -> int:
         ("FMU export time", fmu_bench.export_section),
         ("co-simulation coupling accuracy", lambda: cosim_coupling.section(args.quick)),
         ("compiled BDF stepping core", lambda: compiled_bdf_core.section(args.quick)),
+        ("compiled BDF Newton iteration", lambda: compiled_bdf_newton.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]

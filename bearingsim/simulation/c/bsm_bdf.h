@@ -61,6 +61,7 @@ typedef struct {
     double safety; /* step-size safety factor of the last step */
     int order, order_last, n_equal_steps;
     int lu_valid, jac_current, jac_age, adapt_pending;
+    int jac_wanted; /* a new Jacobian at the next step (the last converged slowly) */
     long long stats[BSM_BDF_N_STATS];
 } BsmBdfHistory;
 
