@@ -27,6 +27,10 @@ __all__ = [
     "peak_rss_reset",
     "peak_rss_kib",
     "fmt",
+    "CasePart",
+    "case_report",
+    "case_text",
+    "case_command_line",
 ]
 
 
@@ -150,6 +154,67 @@ def markdown_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> s
     lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
     lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class CasePart:
+    """One table a case-by-case benchmark can report: its heading, columns and rows.
+
+    Attributes
+    ----------
+    heading : str
+        The line above the table.
+    header : sequence of str
+        The column names.
+    rows : callable
+        A case -> the table's rows.
+    """
+
+    heading: str
+    header: Sequence[str]
+    rows: Callable[[object], list]
+
+
+def case_report(parts: dict[str, CasePart], chosen: Sequence[str],
+                cases: Sequence[object]) -> str:
+    """The Markdown of the ``chosen`` parts for every case (an object with ``label`` and
+    ``system()`` returning the assembled system first): per case a heading with its number
+    of states, then each part's heading and table."""
+    out = []
+    for case in cases:
+        system = case.system()[0]
+        out.append(f"### {case.label}: {system.n_states} states\n")
+        for name in chosen:
+            part = parts[name]
+            out.append(part.heading + "\n")
+            out.append(markdown_table(part.header, part.rows(case)) + "\n")
+    return "\n".join(out)
+
+
+def case_text(doc: str, note: str, module: str, parts: dict[str, CasePart],
+              cases: dict[str, object], quick: bool) -> str:
+    """The run_all section body of a case-by-case benchmark: the module docstring ``doc``
+    without its first paragraph and its last (the command line), ``note``, the command that
+    reruns it and every part's tables for the massive-ball case (``quick``) or the massive
+    and nested ones."""
+    names = ("massive",) if quick else ("massive", "nested")
+    body = doc.split("\n\n", 1)[1].rsplit("\n\n", 1)[0]
+    return (f"{body}\n\n{note}\n\nCommand: `python -m {module} {' '.join(parts)} --cases "
+            f"{','.join(names)}`\n\n"
+            + case_report(parts, tuple(parts), [cases[name] for name in names]))
+
+
+def case_command_line(description: str, parts: dict[str, CasePart], cases: dict[str, object],
+                      default_cases: str) -> None:
+    """The command line of a case-by-case benchmark: the chosen parts (default all) for the
+    cases named by ``--cases`` (default ``default_cases``), Markdown on standard output."""
+    import argparse
+
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("parts", nargs="*", default=list(parts), choices=list(parts))
+    parser.add_argument("--cases", default=default_cases)
+    args = parser.parse_args()
+    print(case_report(parts, args.parts, [cases[name] for name in args.cases.split(",")]))
 
 
 def peak_rss_reset() -> bool:

@@ -30,7 +30,6 @@ bearing as ``bench/sundials_compiled.py`` runs them (``CASES``: its tolerances, 
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import ctypes
 import subprocess
@@ -40,10 +39,10 @@ from pathlib import Path
 import numpy as np
 
 from bearingsim.simulation import compiled_bdf
-from bench.common import Section, fmt, markdown_table
+from bench.common import CasePart, Section, case_command_line, case_text, fmt
 from bench.sundials_compiled import CASES, Case
 
-__all__ = ["main", "report", "section"]
+__all__ = ["PARTS", "main", "section", "text"]
 
 BEFORE = "da2b26e"
 """The last commit before the stepping core's bookkeeping was cut (its library at -O2)."""
@@ -231,30 +230,23 @@ def before_after(case: Case) -> list[list]:
 
 
 # ------------------------------------------------------------------------------ report
-def report(parts: tuple[str, ...], cases: tuple[str, ...]) -> str:
-    """The Markdown of the chosen parts for the chosen cases."""
-    out = []
-    for name in cases:
-        case = CASES[name]
-        system, _ = case.system()
-        out.append(f"### {case.label}: {system.n_states} states\n")
-        if "split" in parts:
-            out.append("Where a step's time goes [us per step] (instrumented build):\n")
-            out.append(markdown_table(SPLIT_HEADER, split(case)) + "\n")
-        if "before" in parts:
-            out.append(f"Commit `{BEFORE}`'s stepping core and the tree's, start-up run:\n")
-            out.append(markdown_table(BEFORE_HEADER, before_after(case)) + "\n")
-    return "\n".join(out)
+PARTS = {
+    "split": CasePart("Where a step's time goes [us per step] (instrumented build):",
+                      SPLIT_HEADER, split),
+    "before": CasePart(f"Commit `{BEFORE}`'s stepping core and the tree's, start-up run:",
+                       BEFORE_HEADER, before_after),
+}
+"""The tables this benchmark reports, by the name the command line chooses them with."""
+
+
+NOTE = ("CPU per step on this shared 2-core machine varies by 10-30 % from run to "
+        "run; the two builds of `before` alternate, so that both see the same load.")
+"""The section's note on the machine."""
 
 
 def text(quick: bool = False) -> str:
     """The section body."""
-    cases = ("massive",) if quick else ("massive", "nested")
-    doc = __doc__.split("\n\n", 1)[1].rsplit("\n\n", 1)[0]
-    return (doc + "\n\nCPU per step on this shared 2-core machine varies by 10-30 % from run to "
-            "run; the two builds of `before` alternate, so that both see the same load.\n\n"
-            "Command: `python -m bench.compiled_bdf_core split before --cases "
-            f"{','.join(cases)}`\n\n" + report(("split", "before"), cases))
+    return case_text(__doc__, NOTE, "bench.compiled_bdf_core", PARTS, CASES, quick)
 
 
 def section(quick: bool = False) -> Section:
@@ -264,12 +256,7 @@ def section(quick: bool = False) -> Section:
 
 def main() -> None:
     """Command line: the chosen parts for the chosen cases, Markdown on stdout."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("parts", nargs="*", default=["split", "before"],
-                        choices=["split", "before"])
-    parser.add_argument("--cases", default="massive,nested")
-    args = parser.parse_args()
-    print(report(tuple(args.parts), tuple(args.cases.split(","))))
+    case_command_line(__doc__.splitlines()[0], PARTS, CASES, "massive,nested")
 
 
 if __name__ == "__main__":

@@ -33,7 +33,6 @@ over ``NUDGES`` step sequences rather than one (one steady run of the nested bea
 
 from __future__ import annotations
 
-import argparse
 import ctypes
 import tempfile
 from pathlib import Path
@@ -41,11 +40,11 @@ from pathlib import Path
 import numpy as np
 
 from bearingsim.simulation import compiled_bdf, simulate
-from bench.common import Section, fmt, markdown_table
+from bench.common import CasePart, Section, case_command_line, case_text, fmt
 from bench.compiled_bdf_core import SOURCES, integrator_build, sources_at
 from bench.sundials_compiled import CASES, Case
 
-__all__ = ["main", "report", "section"]
+__all__ = ["PARTS", "main", "section", "text"]
 
 BEFORE = "506389c"
 """The last commit before the Newton iteration's Jacobian policy changed."""
@@ -266,31 +265,23 @@ def _histogram_row(steps: list[np.ndarray], col: dict[str, int]) -> list:
 
 
 # ------------------------------------------------------------------------------ report
-def report(parts: tuple[str, ...], cases: tuple[str, ...]) -> str:
-    """The Markdown of the chosen parts for the chosen cases."""
-    out = []
-    for name in cases:
-        case = CASES[name]
-        system, _ = case.system()
-        out.append(f"### {case.label}: {system.n_states} states\n")
-        if "counts" in parts:
-            out.append(f"Commit `{BEFORE}`'s core, the tree's and CVODES (means over "
-                       f"{NUDGES} nudged step sequences):\n")
-            out.append(markdown_table(COUNT_HEADER, counts(case)) + "\n")
-        if "histogram" in parts:
-            out.append("Newton iterations per step (shares of the steps):\n")
-            out.append(markdown_table(HISTOGRAM_HEADER, histogram(case)) + "\n")
-    return "\n".join(out)
+PARTS = {
+    "counts": CasePart(f"Commit `{BEFORE}`'s core, the tree's and CVODES (means over "
+                       f"{NUDGES} nudged step sequences):", COUNT_HEADER, counts),
+    "histogram": CasePart("Newton iterations per step (shares of the steps):",
+                          HISTOGRAM_HEADER, histogram),
+}
+"""The tables this benchmark reports, by the name the command line chooses them with."""
+
+
+NOTE = ("CPU times on this shared 2-core machine vary by 10-30 % from run to run; "
+        "the builds alternate, so that both see the same load.")
+"""The section's note on the machine."""
 
 
 def text(quick: bool = False) -> str:
     """The section body."""
-    cases = ("massive",) if quick else ("massive", "nested")
-    doc = __doc__.split("\n\n", 1)[1].rsplit("\n\n", 1)[0]
-    return (doc + "\n\nCPU times on this shared 2-core machine vary by 10-30 % from run to run; "
-            "the builds alternate, so that both see the same load.\n\n"
-            "Command: `python -m bench.compiled_bdf_newton counts histogram --cases "
-            f"{','.join(cases)}`\n\n" + report(("counts", "histogram"), cases))
+    return case_text(__doc__, NOTE, "bench.compiled_bdf_newton", PARTS, CASES, quick)
 
 
 def section(quick: bool = False) -> Section:
@@ -300,12 +291,7 @@ def section(quick: bool = False) -> Section:
 
 def main() -> None:
     """Command line: the chosen parts for the chosen cases, Markdown on stdout."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("parts", nargs="*", default=["counts", "histogram"],
-                        choices=["counts", "histogram"])
-    parser.add_argument("--cases", default="massive,nested")
-    args = parser.parse_args()
-    print(report(tuple(args.parts), tuple(args.cases.split(","))))
+    case_command_line(__doc__.splitlines()[0], PARTS, CASES, "massive,nested")
 
 
 if __name__ == "__main__":
