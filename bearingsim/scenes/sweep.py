@@ -18,10 +18,11 @@ Palmgren friction model, become parameter overrides,
 systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
 process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster's workers are
 forked from a process that imported bearingsim once, started before anything else
-(:mod:`bearingsim.sweep_server`), and points go out in chunks sized from
-the measured time of the points finished so far, as the workers finish them
-(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over about a
-second of work; each point runs what
+(:mod:`bearingsim.sweep_server`), and points go out longest first by an estimate of their
+time learned from the points finished so far (:mod:`bearingsim.scenes.sweep_order`), in
+chunks sized from it, as the workers finish them (:mod:`bearingsim.scenes.sweep_cluster`), so
+a task's scheduling cost is spread over about a second of work and the workers finish
+together; each point runs what
 ``bearingsim run`` runs for one operating point of that scene
 (:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
 ``settled`` and ``time_constant``, a steady, modes or statics point's table row; an analysis
@@ -65,6 +66,7 @@ from bearingsim.scenes.sweep_cluster import (
     connect,
     distributed_module,
 )
+from bearingsim.scenes.sweep_order import PointCosts, point_features
 from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_results import column_units, result_columns, sweep_figures, table_row
 from bearingsim.scenes.sweep_table import SweepTable, cell, from_cell, open_table
@@ -279,6 +281,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             if table is not None:
                 table.append(row)
 
+        costs = PointCosts({j.index: point_features(
+            j, plan.values[j.index], plan.prepared[plan.structure[j.index]].system.variable_units)
+            for j in todo})
         point_s = math.nan
         if probe is not None and todo and todo[0].index == probe["index"]:
             todo.pop(0)
@@ -297,7 +302,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                   if any(plan.structure[j.index] == key for j in todo)}
         lap("ship")
         feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in todo],
-                             n_threads, timeout, chunk, point_s, plan.payloads)
+                             n_threads, timeout, chunk, point_s, plan.payloads, costs)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
                    leave=False)
         preparing = concurrent.futures.ThreadPoolExecutor(1)
