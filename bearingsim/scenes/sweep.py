@@ -143,7 +143,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
               progress: bool = True, client=None, resume: bool = False,
               timeout: float | None = None, chunk: int | None = None,
-              overwrite: bool = False) -> SweepResult:
+              overwrite: bool = False, longest_first: bool = True) -> SweepResult:
     """Run a scene at every point on dask.distributed; one table, appended as points finish.
 
     Each point runs the scene's analysis for that operating point
@@ -178,6 +178,10 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     overwrite : bool
         Replace an earlier sweep's files of this scene in ``out`` (without it, and without
         ``resume``, such files stop the sweep before anything runs).
+    longest_first : bool
+        Run the points longest first, by an estimate of their wall time
+        (:class:`~bearingsim.scenes.sweep_order.PointCosts`), so the workers finish together;
+        False: in the given order. The rows are the same either way.
 
     Returns
     -------
@@ -213,7 +217,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
     if out is None:
         return _sweep(scene, points, None, stem, scheduler, n_workers, progress, client,
-                      resume, timeout, chunk)
+                      resume, timeout, chunk, longest_first)
     with OutputFolder(out, command_line()) as folder:
         earlier = _earlier_files(folder.folder, stem)
         if earlier and not (overwrite or resume):
@@ -221,12 +225,12 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
                              + ", ".join(earlier) + "): add --overwrite to replace it, "
                              "--resume to continue it, or give another --out")
         return _sweep(scene, points, folder, stem, scheduler, n_workers, progress, client,
-                      resume, timeout, chunk)
+                      resume, timeout, chunk, longest_first)
 
 
 def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | None, stem: str,
            scheduler: str | None, n_workers: int, progress: bool, client, resume: bool,
-           timeout: float | None, chunk: int | None) -> SweepResult:
+           timeout: float | None, chunk: int | None, longest_first: bool) -> SweepResult:
     """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
     distributed_module()  # a named error before anything starts when it is missing
     from tqdm import tqdm
@@ -283,7 +287,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
 
         costs = PointCosts({j.index: point_features(
             j, plan.values[j.index], plan.prepared[plan.structure[j.index]].system.variable_units)
-            for j in todo})
+            for j in todo}) if longest_first else None
         point_s = math.nan
         if probe is not None and todo and todo[0].index == probe["index"]:
             todo.pop(0)

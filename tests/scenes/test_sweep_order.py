@@ -101,8 +101,7 @@ def _table(folder: Path) -> list[list[str]]:
     return [[c for j, c in enumerate(r) if j != drop] for r in rows]
 
 
-def test_the_order_the_points_run_in_changes_nothing_in_the_table(scene, tmp_path,
-                                                                  monkeypatch):
+def test_the_order_the_points_run_in_changes_nothing_in_the_table(scene, tmp_path):
     """The same sweep longest first and in the given order: the same rows, in point order;
     longest first, the fastest points ran first."""
     points = grid_points(parse_grid(["inputs.shaft_speed=100,200,300,400",
@@ -110,17 +109,15 @@ def test_the_order_the_points_run_in_changes_nothing_in_the_table(scene, tmp_pat
     runs = {}
     with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
                             dashboard_address=":0") as client:
-        runs["longest first"] = run_sweep(scene, points, client=client, out=tmp_path / "lpt",
-                                          progress=False, chunk=1)
-        with monkeypatch.context() as m:
-            m.setattr(PointCosts, "longest_first", lambda self, indices: list(indices))
-            runs["given"] = run_sweep(scene, points, client=client, out=tmp_path / "given",
-                                      progress=False, chunk=1)
+        for name, longest in (("longest first", True), ("given", False)):
+            runs[name] = run_sweep(scene, points, client=client, out=tmp_path / name,
+                                   progress=False, chunk=1, longest_first=longest)
     started = {name: sorted(res.spans, key=lambda k: res.spans[k][1])
                for name, res in runs.items()}
     assert started["given"] == list(range(8))
     assert started["longest first"][:2] == [6, 7]  # 400 rad/s first
     assert started["longest first"] != started["given"]
-    lpt, given = _table(tmp_path / "lpt"), _table(tmp_path / "given")
+    lpt, given = _table(tmp_path / "longest first"), _table(tmp_path / "given")
     assert lpt == given
     assert [int(r[0]) for r in lpt[1:]] == list(range(8))
+    assert [r["point"] for r in runs["longest first"].rows] == list(range(8))
