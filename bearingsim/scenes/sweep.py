@@ -21,7 +21,7 @@ forked from a process that imported bearingsim once, started before anything els
 (:mod:`bearingsim.sweep_server`), and points go out longest first by an estimate of their
 time learned from the points finished so far (:mod:`bearingsim.scenes.sweep_order`), in
 chunks sized from it, as the workers finish them (:mod:`bearingsim.scenes.sweep_cluster`), so
-a task's scheduling cost is spread over about a second of work and the workers finish
+a task's scheduling cost is spread over about two seconds of work and the workers finish
 together; each point runs what
 ``bearingsim run`` runs for one operating point of that scene
 (:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
