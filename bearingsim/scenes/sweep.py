@@ -94,7 +94,7 @@ class SweepResult:
     chunk_size: int = 1
     """Most points in one task."""
     point_s: float = math.nan
-    """Median wall time of a point, which sized the chunks [s]."""
+    """Median wall time of a point [s] (which sized the chunks with ``longest_first=False``)."""
     spans: dict[int, tuple[int, float, float]] = field(default_factory=dict)
     """Point -> (process id of the worker that ran it, epoch time it started [s], its wall
     time [s]) of the points this sweep ran: a timeline of the workers."""
@@ -173,8 +173,9 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         Time budget of one point [s]: a point still running after it is recorded as failed.
         Default: the scene's ``simulation.timeout`` (None there: no budget).
     chunk : int, optional
-        Points per task (default: :func:`chunk_size` of the median time of the points
-        finished so far, one point a task until the first is back).
+        Points per task (default: :func:`chunk_size` of the estimated time of the chunk's
+        first point, or with ``longest_first=False`` of the median time of the points
+        finished so far; one point a task until the first is back).
     overwrite : bool
         Replace an earlier sweep's files of this scene in ``out`` (without it, and without
         ``resume``, such files stop the sweep before anything runs).
