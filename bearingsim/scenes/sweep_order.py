@@ -142,15 +142,18 @@ class PointCosts:
         names = sorted({n for f in features.values() for n in f})
         matrix = np.array([[f.get(n, math.nan) for n in names] for f in features.values()],
                           dtype=float).reshape(len(features), len(names))
-        # a constant and the columns known at every point, standardized, each kept only
+        # a constant and the columns known at every point, standardized (scaled to their
+        # largest magnitude first: a swept value may be as large as 1e308), each kept only
         # when it is not a combination of those before it (the rotation of a sweep over
         # speed alone follows the speed)
         x = np.ones((len(features), 1))
         for column in matrix.T:
-            if np.all(np.isfinite(column)) and np.ptp(column) > 0:
-                wider = np.column_stack([x, (column - column.mean()) / column.std()])
-                if np.linalg.matrix_rank(wider) == wider.shape[1]:
-                    x = wider
+            if not np.all(np.isfinite(column)) or np.all(column == column[0]):
+                continue
+            column = column / np.max(np.abs(column))
+            wider = np.column_stack([x, (column - column.mean()) / column.std()])
+            if np.all(np.isfinite(wider)) and np.linalg.matrix_rank(wider) == wider.shape[1]:
+                x = wider
         self._rows = {k: x[i] for i, k in enumerate(features)}
         self._prior = {k: f["rotation"] if f.get("rotation", 0.0) > 0 else f.get("span", 0.0)
                        for k, f in features.items()}

@@ -93,6 +93,22 @@ def test_the_fit_learns_the_cost_of_a_point_and_ignores_each_workers_first(scene
         [law(k) + (1.5 if i < 2 else 0.4 if k == 13 else 0.0) for i, k in enumerate(measured)]))
 
 
+def test_swept_values_up_to_the_largest_float_give_finite_estimates():
+    """A sweep may hold a value of 1e308 (an initial speed the run then refuses): the fit
+    standardizes it without overflow and its estimates stay finite (this raised
+    ``LinAlgError: SVD did not converge`` from the standardized column of NaN)."""
+    features = {k: {"span": 0.02, "rotation": 0.02 * w, "initial.w": big}
+                for k, (w, big) in enumerate([(100.0, 0.0), (100.0, 1e308), (200.0, 0.0),
+                                              (200.0, 1e308), (300.0, 0.0), (300.0, 1e308)])}
+    costs = PointCosts(features)
+    assert costs.n_coefficients == 3  # constant, speed (rotation), initial value
+    for k in (0, 2, 4, 5, 1):
+        costs.add(k, 0.01 + 1e-4 * features[k]["rotation"] / 0.02
+                  + (0.002 if features[k]["initial.w"] else 0.0))
+    assert costs.estimate(3) == pytest.approx(0.01 + 0.02 + 0.002, rel=0.01)
+    assert costs.longest_first(list(features))[0] == 5
+
+
 def _table(folder: Path) -> list[list[str]]:
     """The sweep's table without the wall time of each point."""
     with (folder / "bearing.sweep.csv").open() as fh:
