@@ -104,19 +104,22 @@ def _points(n: int) -> list[dict]:
 def timeline(spans: dict[int, tuple[int, float, float]]) -> dict:
     """From a sweep's :attr:`~bearingsim.scenes.sweep.SweepResult.spans`: the workers' idle
     time at the end (summed over the workers: the last point's end less each worker's last
-    end [s]) and the mean gap between two points on one worker (end to next start [s]: a
-    task's cost on the worker and, between tasks, the wait for the next)."""
+    end [s]), the mean gap between two points on one worker (end to next start [s]: a
+    task's cost on the worker and, between tasks, the wait for the next) and the mean wall
+    time of the last point each worker ran [s] (what the others may wait for)."""
     by_worker: dict[int, list[tuple[float, float]]] = {}
     for pid, start, wall in spans.values():
         by_worker.setdefault(pid, []).append((start, start + wall))
     ends = {pid: max(e for _, e in v) for pid, v in by_worker.items()}
     gaps = [b[0] - a[1] for v in by_worker.values()
             for a, b in zip(sorted(v), sorted(v)[1:], strict=False)]
+    last = [e - s for s, e in (max(v) for v in by_worker.values())]
     return {"idle_end_s": sum(max(ends.values()) - e for e in ends.values()),
-            "gap_s": float(np.mean(gaps)) if gaps else float("nan")}
+            "gap_s": float(np.mean(gaps)) if gaps else float("nan"),
+            "last_s": float(np.mean(last))}
 
 
-def _sweep(scene, points, workers: int) -> dict:
+def _sweep(scene, points, workers: int, longest_first: bool = True) -> dict:
     """One sweep in this process: wall, phases, the workers' busy fraction, the overhead per
     point (and its parts: idle at the end, gaps between points), the CPU time of this process
     (the client and, with a LocalCluster, the scheduler)."""
@@ -124,7 +127,8 @@ def _sweep(scene, points, workers: int) -> dict:
 
     with tempfile.TemporaryDirectory() as out:
         cpu0, t0 = time.process_time(), time.perf_counter()
-        res = run_sweep(scene, points, n_workers=workers, out=out, progress=False)
+        res = run_sweep(scene, points, n_workers=workers, out=out, progress=False,
+                        longest_first=longest_first)
         wall, cpu = time.perf_counter() - t0, time.process_time() - cpu0
     if len(res.ok) != len(points):
         raise RuntimeError(res.failures[:3])
@@ -142,10 +146,11 @@ def sweeps_in_a_fresh_process(workers: int, launched: float, n_points: int = N_P
     """``repeats`` sweeps of ``n_points`` on ``workers`` workers in one new Python process
     launched at epoch time ``launched``, in the order of ``bearingsim sweep``: the fork server
     of the workers started first (before this process imports bearingsim's scenes), the scene
-    loaded, then the sweeps; a repeat forks its workers from the running server. Each sweep
-    notes the load average after it; the first, the time from the launch to its start
-    (``ready_s``: interpreter, imports, scene) and to its end (``command_s``, the wall of
-    the whole command)."""
+    loaded, then the sweeps; a repeat forks its workers from the running server. With more
+    than one worker, one more sweep runs the points in the given order instead of longest
+    first (``longest_first=False``). Each sweep notes the load average after it; the first,
+    the time from the launch to its start (``ready_s``: interpreter, imports, scene) and to
+    its end (``command_s``, the wall of the whole command)."""
     from bearingsim.sweep_server import start_worker_server
 
     start_worker_server()
@@ -155,8 +160,8 @@ def sweeps_in_a_fresh_process(workers: int, launched: float, n_points: int = N_P
     scene = load_scene(builtin_scene_path("deep_groove_duty1"))
     ready = time.time() - launched
     out = []
-    for _ in range(repeats):
-        out.append(_sweep(scene, _points(n_points), workers))
+    for longest_first in [True] * repeats + ([False] if workers > 1 else []):
+        out.append(_sweep(scene, _points(n_points), workers, longest_first))
         out[-1]["load_after"] = os.getloadavg()[0]
     out[0].update(ready_s=ready, command_s=out[0]["ended"] - launched)
     return out
@@ -243,6 +248,7 @@ def run(workers: int = 2) -> dict:
 def _scaling_row(label: str, sweep: dict) -> list[str]:
     ph = sweep["phases"]
     return ([label, f"{sweep['wall']:.2f}", str(sweep["chunk"]), f"{sweep['point_s'] * 1e3:.0f}",
+             f"{sweep['last_s'] * 1e3:.0f}",
              f"{sweep['busy']:.1%}", f"{sweep['overhead_s'] * 1e3:.1f}",
              f"{sweep['idle_end_s']:.2f}", f"{sweep['gap_s'] * 1e3:.1f}",
              f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}"]
@@ -255,7 +261,8 @@ def _scaling_text(r: dict) -> list[str]:
     """The sweep scaling part of the section."""
     p = r["workers"]
     first = (r["one"][0], r["many"][0])
-    again = (r["one"][-1], r["many"][-1])
+    again = (r["one"][-1], r["many"][-2])
+    given = r["many"][-1]
     speedup = first[0]["wall"] / first[1]["wall"]
     speedup_again = again[0]["wall"] / again[1]["wall"]
     points_speedup = first[0]["phases"]["points"] / first[1]["phases"]["points"]
@@ -267,7 +274,8 @@ def _scaling_text(r: dict) -> list[str]:
     rows = [_scaling_row("1 worker, fresh process", first[0]),
             _scaling_row(f"{p} workers, fresh process", first[1]),
             _scaling_row("1 worker, again in that process", again[0]),
-            _scaling_row(f"{p} workers, again in that process", again[1])]
+            _scaling_row(f"{p} workers, again in that process", again[1]),
+            _scaling_row(f"{p} workers, given order, again in that process", given)]
     busy = min(first[1]["busy"], again[1]["busy"])
     command = (first[0]["command_s"], first[1]["command_s"])
     return [
@@ -276,8 +284,12 @@ def _scaling_text(r: dict) -> list[str]:
         "runs in a new Python process in the order of `bearingsim sweep`: the fork server of "
         "the workers started first (it imports bearingsim on another core while the process "
         "imports bearingsim's scenes and loads the scene), then a sweep, then a second sweep "
-        "in the same process, whose workers fork from the running server. Point: mean wall "
-        "of a point on a worker; workers busy: the points' share of the workers' time in the "
+        "in the same process, whose workers fork from the running server; the points go out "
+        "longest first (`longest_first=True`, by their estimated time), and with "
+        f"{p} workers a third sweep hands them out in the given order (speed rising: the "
+        "longest last), side by side. Point: mean wall of a point on a worker; last: mean "
+        "wall of the last point each worker ran; workers busy: the points' share of the "
+        "workers' time in the "
         "points phase; overhead: the rest, per point (target <= 5 ms), made of the workers' "
         "idle time at the end (summed over the workers: the last point's end less each "
         "worker's last end) and the gaps between two points on a worker (mean, end to next "
@@ -286,7 +298,8 @@ def _scaling_text(r: dict) -> list[str]:
         "`plan`); client CPU: CPU time of the client's process (client and scheduler) per "
         "point over the whole sweep. Phases in seconds.",
         "",
-        markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "workers busy",
+        markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "last [ms]",
+                        "workers busy",
                         "overhead [ms]", "idle at end [s]", "gap [ms]", "fixed [s]",
                         "client CPU [ms/point]", "plan",
                         "cluster", "ship", "points", "close", "write", "load after"], rows),
@@ -294,7 +307,11 @@ def _scaling_text(r: dict) -> list[str]:
         f"Speed-up of the whole sweep, {p} workers against 1: {speedup:.2f}x in a fresh "
         f"process, {speedup_again:.2f}x for the second sweep (target >= 1.8x for 2; implied "
         f"serial fractions {fmt(amdahl_serial_fraction(speedup, p))} and "
-        f"{fmt(amdahl_serial_fraction(speedup_again, p))}). The points phase alone: "
+        f"{fmt(amdahl_serial_fraction(speedup_again, p))}). Longest first against the "
+        f"given order, {p} workers in the same process: {again[1]['wall']:.2f} s against "
+        f"{given['wall']:.2f} s, the workers idle at the end {again[1]['idle_end_s']:.2f} s "
+        f"against {given['idle_end_s']:.2f} s, overhead {again[1]['overhead_s'] * 1e3:.1f} "
+        f"against {given['overhead_s'] * 1e3:.1f} ms a point. The points phase alone: "
         f"{points_speedup:.2f}x, with the workers busy {busy:.1%} of it or more; a point took "
         f"{slowdown:.2f}x as long with {p} workers as with 1"
         + (f": {p} workers, the client and the scheduler (and any other process) share "

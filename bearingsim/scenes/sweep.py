@@ -18,10 +18,11 @@ Palmgren friction model, become parameter overrides,
 systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
 process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster's workers are
 forked from a process that imported bearingsim once, started before anything else
-(:mod:`bearingsim.sweep_server`), and points go out in chunks sized from
-the measured time of the points finished so far, as the workers finish them
-(:mod:`bearingsim.scenes.sweep_cluster`), so a task's scheduling cost is spread over about a
-second of work; each point runs what
+(:mod:`bearingsim.sweep_server`), and points go out longest first by an estimate of their
+time learned from the points finished so far (:mod:`bearingsim.scenes.sweep_order`), in
+chunks sized from it, as the workers finish them (:mod:`bearingsim.scenes.sweep_cluster`), so
+a task's scheduling cost is spread over about two seconds of work and the workers finish
+together; each point runs what
 ``bearingsim run`` runs for one operating point of that scene
 (:func:`~bearingsim.scenes.analyses.run_operating_point`: a transient's final values with
 ``settled`` and ``time_constant``, a steady, modes or statics point's table row; an analysis
@@ -65,6 +66,7 @@ from bearingsim.scenes.sweep_cluster import (
     connect,
     distributed_module,
 )
+from bearingsim.scenes.sweep_order import PointCosts, point_features
 from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_results import column_units, result_columns, sweep_figures, table_row
 from bearingsim.scenes.sweep_table import SweepTable, cell, from_cell, open_table
@@ -92,7 +94,7 @@ class SweepResult:
     chunk_size: int = 1
     """Most points in one task."""
     point_s: float = math.nan
-    """Median wall time of a point, which sized the chunks [s]."""
+    """Median wall time of a point [s] (which sized the chunks with ``longest_first=False``)."""
     spans: dict[int, tuple[int, float, float]] = field(default_factory=dict)
     """Point -> (process id of the worker that ran it, epoch time it started [s], its wall
     time [s]) of the points this sweep ran: a timeline of the workers."""
@@ -141,7 +143,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
               progress: bool = True, client=None, resume: bool = False,
               timeout: float | None = None, chunk: int | None = None,
-              overwrite: bool = False) -> SweepResult:
+              overwrite: bool = False, longest_first: bool = True) -> SweepResult:
     """Run a scene at every point on dask.distributed; one table, appended as points finish.
 
     Each point runs the scene's analysis for that operating point
@@ -171,11 +173,16 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         Time budget of one point [s]: a point still running after it is recorded as failed.
         Default: the scene's ``simulation.timeout`` (None there: no budget).
     chunk : int, optional
-        Points per task (default: :func:`chunk_size` of the median time of the points
-        finished so far, one point a task until the first is back).
+        Points per task (default: :func:`chunk_size` of the estimated time of the chunk's
+        first point, or with ``longest_first=False`` of the median time of the points
+        finished so far; one point a task until the first is back).
     overwrite : bool
         Replace an earlier sweep's files of this scene in ``out`` (without it, and without
         ``resume``, such files stop the sweep before anything runs).
+    longest_first : bool
+        Run the points longest first, by an estimate of their wall time
+        (:class:`~bearingsim.scenes.sweep_order.PointCosts`), so the workers finish together;
+        False: in the given order. The rows are the same either way.
 
     Returns
     -------
@@ -211,7 +218,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     stem = (Path(scene.path).stem if scene.path else scene.assembly) + ".sweep"
     if out is None:
         return _sweep(scene, points, None, stem, scheduler, n_workers, progress, client,
-                      resume, timeout, chunk)
+                      resume, timeout, chunk, longest_first)
     with OutputFolder(out, command_line()) as folder:
         earlier = _earlier_files(folder.folder, stem)
         if earlier and not (overwrite or resume):
@@ -219,12 +226,12 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
                              + ", ".join(earlier) + "): add --overwrite to replace it, "
                              "--resume to continue it, or give another --out")
         return _sweep(scene, points, folder, stem, scheduler, n_workers, progress, client,
-                      resume, timeout, chunk)
+                      resume, timeout, chunk, longest_first)
 
 
 def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | None, stem: str,
            scheduler: str | None, n_workers: int, progress: bool, client, resume: bool,
-           timeout: float | None, chunk: int | None) -> SweepResult:
+           timeout: float | None, chunk: int | None, longest_first: bool) -> SweepResult:
     """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
     distributed_module()  # a named error before anything starts when it is missing
     from tqdm import tqdm
@@ -279,6 +286,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             if table is not None:
                 table.append(row)
 
+        costs = PointCosts({j.index: point_features(
+            j, plan.values[j.index], plan.prepared[plan.structure[j.index]].system.variable_units)
+            for j in todo}) if longest_first else None
         point_s = math.nan
         if probe is not None and todo and todo[0].index == probe["index"]:
             todo.pop(0)
@@ -297,7 +307,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                   if any(plan.structure[j.index] == key for j in todo)}
         lap("ship")
         feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in todo],
-                             n_threads, timeout, chunk, point_s, plan.payloads)
+                             n_threads, timeout, chunk, point_s, plan.payloads, costs)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
                    leave=False)
         preparing = concurrent.futures.ThreadPoolExecutor(1)

@@ -14,11 +14,14 @@ solvers hold the GIL), no dashboard.
 flight (one running and the next queued on the worker, so a worker never waits for the
 client). The last points, no more than there are workers, go out one per worker that is free:
 a point queued behind another on one worker while a second worker has nothing left to do
-would leave that worker idle at the end of the sweep for up to a point's time. Each chunk is
-sized from the median wall time of the points finished so far (:func:`chunk_size`: about
-:data:`CHUNK_SECONDS` of work per task, smaller towards the end of the sweep so the workers
-finish together); until the first point is back, chunks hold one point. The client does
-nothing heavy while the workers run: it records rows and submits the next chunk.
+would leave that worker idle at the end of the sweep for up to a point's time. Given the
+estimates of :class:`~bearingsim.scenes.sweep_order.PointCosts`, the points go out longest
+first (the order is revised as the estimates improve), so the last points are the short ones
+and the workers finish together; each chunk is sized from the estimated time of its first
+point (:func:`chunk_size`: about :data:`CHUNK_SECONDS` of work per task, smaller towards the
+end of the sweep); without estimates, in the given order, sized from the median wall time of
+the points finished so far. Until the first point is back, chunks hold one point. The client
+does nothing heavy while the workers run: it records rows and submits the next chunk.
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from bearingsim.scenes.sampling import SweepError
+from bearingsim.scenes.sweep_order import PointCosts
 from bearingsim.scenes.sweep_worker import Job, run_chunk
 from bearingsim.sweep_server import WORKER_MODULE, start_worker_server
 
@@ -39,11 +43,14 @@ __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUS
            "distributed_module",
            "connect", "chunk_size", "ChunkFeeder"]
 
-CHUNK_SECONDS = 1.0
+CHUNK_SECONDS = 2.0
 """Target wall time of one task [s]: a chunk holds about this much integration. A task costs
-its worker a few milliseconds (messages, task state) on a quiet machine and tens under load
-(bench section 19, the gaps between points); the balance bound of :func:`chunk_size` keeps
-the last chunks small whatever this is."""
+its worker a few milliseconds (messages, task state) on a quiet machine and more under load:
+measured on 2 loaded cores, 64 ball-level points of 0.4-0.9 s on 2 workers, 5-7 ms between
+two tasks on a worker, against none between two points of one task; 2 s chunks instead of 1 s
+halved the client's CPU time per point and cut the mean gap between points from 5-7 ms to
+1.4-5 ms. The balance bound of :func:`chunk_size` keeps the last chunks small whatever this
+is."""
 CHUNKS_PER_WORKER = 4
 """At least this many chunks per worker of the points still to go (balance at the end)."""
 TASKS_PER_WORKER = 2
@@ -178,11 +185,16 @@ class ChunkFeeder:
     payloads : dict, optional
         Structure key -> the model's payload, scattered again when a dying worker took the
         model with it (None: such chunks fail).
+    costs : PointCosts, optional
+        Estimates of the points' wall times: the points go out longest first and a chunk is
+        sized from the estimate of its first point (None: in the given order, chunks sized
+        from the median time of the points finished so far).
     """
 
     def __init__(self, client, models: dict[tuple, Any], jobs: list[tuple[tuple, Job]],
                  n_workers: int, timeout: float | None, chunk: int | None = None,
-                 point_s: float = math.nan, payloads: dict[tuple, Any] | None = None):
+                 point_s: float = math.nan, payloads: dict[tuple, Any] | None = None,
+                 costs: PointCosts | None = None):
         self.client = client
         self.models = models
         self.payloads = payloads or {}
@@ -200,6 +212,10 @@ class ChunkFeeder:
         self.largest = 0
         """Most points in one task so far."""
         self.running: dict[Any, list[Job]] = {}
+        self.costs = costs
+        self._ordered = -1
+        """:attr:`PointCosts.version` the points still to go were last ordered by."""
+        self._workers_seen: set[Any] = set()
         self._counted = time.monotonic()
         # results come with the futures (fetched by the client's event loop, not one
         # round trip per chunk after it is reported done)
@@ -219,7 +235,28 @@ class ChunkFeeder:
     def _size(self) -> int:
         if self.chunk is not None:
             return self.chunk
-        return chunk_size(self.point_s, len(self.todo), self.n_workers)
+        head = self.costs.estimate(self.todo[0][1].index) if self.costs else math.nan
+        return chunk_size(head if math.isfinite(head) else self.point_s, len(self.todo),
+                          self.n_workers)
+
+    def _order(self) -> None:
+        """Put the points still to go longest first when the estimates changed."""
+        if self.costs is None or self.costs.version == self._ordered:
+            return
+        by_index = {job.index: (key, job) for key, job in self.todo}
+        self.todo = [by_index[k] for k in self.costs.longest_first(list(by_index))]
+        self._ordered = self.costs.version
+
+    def _measured(self, rows: list[dict[str, Any]]) -> None:
+        """Note the wall times of a chunk's finished points."""
+        for r in rows:
+            if r["status"] != "ok":
+                continue
+            self.times.append(r["wall_s"])
+            if self.costs is not None:
+                worker = r.get("pid")
+                self.costs.add(r["index"], r["wall_s"], worker not in self._workers_seen)
+                self._workers_seen.add(worker)
 
     def _in_flight(self) -> int:
         """Most tasks in flight: :data:`TASKS_PER_WORKER` per worker, one per worker once no
@@ -232,12 +269,15 @@ class ChunkFeeder:
         if time.monotonic() - self._counted > WORKERS_RECOUNT_S:  # workers joined or left
             self.n_workers = max(1, sum(self.client.nthreads().values()))
             self._counted = time.monotonic()
+        self._order()
         while self.todo and len(self.running) < self._in_flight():
             key = self.todo[0][0]
             size = self._size()
-            part = []
-            while self.todo and len(part) < size and self.todo[0][0] == key:
-                part.append(self.todo.pop(0)[1])
+            part, rest = [], []
+            for item in self.todo:  # the next points of the first one's model, in order
+                (part if item[0] == key and len(part) < size else rest).append(item)
+            self.todo = rest
+            part = [job for _, job in part]
             self._submit(key, part)
             self.largest = max(self.largest, len(part))
 
@@ -262,7 +302,7 @@ class ChunkFeeder:
             # an error comes as (type, exception, traceback), a cancelled task as its error
             rows = result[1] if task.status == "error" else result
             if not isinstance(rows, BaseException):
-                self.times += [r["wall_s"] for r in rows if r["status"] == "ok"]
+                self._measured(rows)
             self._fill()
             yield part, rows
 

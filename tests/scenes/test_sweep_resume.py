@@ -137,8 +137,10 @@ def test_a_point_over_its_time_budget_fails_alone(scene, tmp_path, client):
         run_sweep(scene, points, client=client, progress=False, timeout=0.0)
 
 
-def test_chunks_hold_a_second_of_work_and_balance_the_workers():
-    assert chunk_size(0.001, 10_000, 2) == int(CHUNK_SECONDS / 0.001)
+def test_chunks_hold_chunk_seconds_of_work_and_balance_the_workers():
+    assert CHUNK_SECONDS == 2.0
+    assert chunk_size(0.001, 100_000, 2) == 2000
+    assert chunk_size(0.5, 1000, 2) == 4
     assert chunk_size(0.001, 64, 2) == 8  # 4 chunks per worker at the end
     assert chunk_size(2.0, 64, 2) == 1
     assert chunk_size(float("nan"), 64, 16) == 1

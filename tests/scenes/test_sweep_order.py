@@ -1,0 +1,139 @@
+"""The order a sweep's points run in: longest first by an estimate of their wall time (a priori
+the rotation each point simulates, then a robust fit of the measured times), and a table that
+does not depend on it."""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bearingsim.scenes import load_scene
+from bearingsim.scenes.sweep import grid_points, run_sweep
+from bearingsim.scenes.sweep_grid import parse_grid
+from bearingsim.scenes.sweep_order import PointCosts, point_features
+from bearingsim.scenes.sweep_plan import plan_sweep
+from tests.scenes.sweep_scenes import torque_level_scene
+
+distributed = pytest.importorskip("distributed")
+
+RPM = 2.0 * math.pi / 60.0
+"""1 r/min in rad/s."""
+
+
+@pytest.fixture()
+def scene(tmp_path) -> Path:
+    path = tmp_path / "bearing.toml"
+    path.write_text(torque_level_scene(t_end=0.1))
+    return path
+
+
+def _costs(scene: Path, grid: list[str]) -> tuple[PointCosts, dict[int, dict[str, float]]]:
+    plan = plan_sweep(load_scene(scene), grid_points(parse_grid(grid)))
+    features = {j.index: point_features(j, plan.values[j.index],
+                                        plan.prepared[plan.structure[j.index]].system.
+                                        variable_units) for j in plan.jobs}
+    return PointCosts(features), features
+
+
+def test_a_ramped_speed_is_read_by_its_mean_and_the_rotation_it_simulates(scene):
+    """``rpm(1000) * ramp(0, 0.02)`` over 0.1 s: the speed is 0 at t = 0 and 1000 r/min from
+    0.02 s, so its mean is 0.9 x 1000 r/min and the shaft turns 1.5 revolutions (3 pi rad);
+    a constant 300 rad/s over 0.05 s turns 15 rad."""
+    _, features = _costs(scene, ['inputs.shaft_speed="rpm(1000) * ramp(0, 0.02)";300',
+                                 "simulation.t_end=0.1,0.05"])
+    ramp, constant = features[0], features[3]
+    assert ramp["inputs.shaft_speed"] == pytest.approx(0.9 * 1000 * RPM, rel=1e-12)
+    assert ramp["rotation"] == pytest.approx(3.0 * math.pi, rel=1e-12)
+    assert ramp["span"] == pytest.approx(0.1) and ramp["simulation.t_end"] == 0.1
+    assert constant["rotation"] == pytest.approx(15.0) and constant["span"] == 0.05
+
+
+def test_before_any_time_is_measured_the_points_rank_by_the_rotation_they_simulate(scene):
+    """Speeds 100-400 rad/s x t_end 0.05, 0.1 s: the rotation (speed x time) ranks them; equal
+    rotations (200 rad/s for 0.1 s, 400 rad/s for 0.05 s) keep their order; no estimate in
+    seconds yet."""
+    costs, features = _costs(scene, ["inputs.shaft_speed=100,200,400",
+                                     "simulation.t_end=0.05,0.1"])
+    order = costs.longest_first(list(features))
+    rotations = [features[k]["rotation"] for k in order]
+    assert rotations == sorted(rotations, reverse=True)
+    assert order == [5, 3, 4, 1, 2, 0]  # 40, 20 (3 before 4), 20, 10, 10 (1 before 2), 5 rad
+    assert math.isnan(costs.estimate(0))
+
+
+def test_the_fit_learns_the_cost_of_a_point_and_ignores_each_workers_first(scene):
+    """Measured times that follow the cost of bench section 19's ball-level points (about
+    0.30 s at 1000 r/min to 0.50 s at 3000 r/min, 0.02 s more per 1000 N of load), the first
+    point of each of two workers 1.5 s longer (model and kernel load) and one more point
+    disturbed by 0.4 s: the fit gives the others' times within 1 %, and orders the points not
+    yet run longest first."""
+    speeds = ",".join(f"rpm({n})" for n in range(1000, 3001, 250))
+    costs, features = _costs(scene, [f"inputs.shaft_speed={speeds}", "inputs.Fr=500,1000,1500"])
+
+    def law(k: int) -> float:
+        f = features[k]
+        return 0.2 + 0.1 * f["inputs.shaft_speed"] / (1000 * RPM) + 2e-5 * f["inputs.Fr"]
+
+    assert costs.n_coefficients == 3  # constant, speed, load (rotation follows the speed)
+    measured = [0, 26, 5, 9, 13, 14, 22, 2, 17, 6]
+    for i, k in enumerate(measured):
+        costs.add(k, law(k) + (1.5 if i < 2 else 0.4 if k == 13 else 0.0),
+                  first_on_worker=i < 2)
+    rest = [k for k in features if k not in measured]
+    for k in rest:
+        assert costs.estimate(k) == pytest.approx(law(k), rel=0.01)
+    order = costs.longest_first(rest)
+    assert [law(k) for k in order] == sorted((law(k) for k in rest), reverse=True)
+    # the typical time (the chunks' size before the fit) counts every measured point
+    assert costs.typical_s == pytest.approx(np.median(
+        [law(k) + (1.5 if i < 2 else 0.4 if k == 13 else 0.0) for i, k in enumerate(measured)]))
+
+
+def test_swept_values_up_to_the_largest_float_give_finite_estimates():
+    """A sweep may hold a value of 1e308 (an initial speed the run then refuses): the fit
+    standardizes it without overflow and its estimates stay finite (this raised
+    ``LinAlgError: SVD did not converge`` from the standardized column of NaN)."""
+    features = {k: {"span": 0.02, "rotation": 0.02 * w, "initial.w": big}
+                for k, (w, big) in enumerate([(100.0, 0.0), (100.0, 1e308), (200.0, 0.0),
+                                              (200.0, 1e308), (300.0, 0.0), (300.0, 1e308)])}
+    costs = PointCosts(features)
+    assert costs.n_coefficients == 3  # constant, speed (rotation), initial value
+    for k in (0, 2, 4, 5, 1):
+        costs.add(k, 0.01 + 1e-4 * features[k]["rotation"] / 0.02
+                  + (0.002 if features[k]["initial.w"] else 0.0))
+    assert costs.estimate(3) == pytest.approx(0.01 + 0.02 + 0.002, rel=0.01)
+    assert costs.longest_first(list(features))[0] == 5
+
+
+def _table(folder: Path) -> list[list[str]]:
+    """The sweep's table without the wall time of each point."""
+    with (folder / "bearing.sweep.csv").open() as fh:
+        rows = list(csv.reader(fh))
+    drop = rows[0].index("wall_s [s]")
+    return [[c for j, c in enumerate(r) if j != drop] for r in rows]
+
+
+def test_the_order_the_points_run_in_changes_nothing_in_the_table(scene, tmp_path):
+    """The same sweep longest first and in the given order: the same rows, in point order;
+    longest first, the fastest points ran first."""
+    points = grid_points(parse_grid(["inputs.shaft_speed=100,200,300,400",
+                                     "inputs.Fr=100,400"]))
+    runs = {}
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=":0") as client:
+        for name, longest in (("longest first", True), ("given", False)):
+            runs[name] = run_sweep(scene, points, client=client, out=tmp_path / name,
+                                   progress=False, chunk=1, longest_first=longest)
+    started = {name: sorted(res.spans, key=lambda k: res.spans[k][1])
+               for name, res in runs.items()}
+    assert started["given"] == list(range(8))
+    assert started["longest first"][:2] == [6, 7]  # 400 rad/s first
+    assert started["longest first"] != started["given"]
+    lpt, given = _table(tmp_path / "longest first"), _table(tmp_path / "given")
+    assert lpt == given
+    assert [int(r[0]) for r in lpt[1:]] == list(range(8))
+    assert [r["point"] for r in runs["longest first"].rows] == list(range(8))
