@@ -14,8 +14,6 @@ import math
 import warnings
 from typing import Any
 
-from scipy.stats import qmc
-
 from bearingsim.checks import check_output_size
 from bearingsim.errors import ParameterError
 from bearingsim.units import parse_quantity
@@ -145,6 +143,9 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     if not ranges:
         raise SweepError("a sample needs at least one key=low:high range")
     check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")
+    # imported here: scipy.stats takes about 0.5 s to import, which a grid sweep never needs
+    from scipy.stats import qmc
+
     d = len(ranges)
     if method == "lhs":
         engine = qmc.LatinHypercube(d, scramble=scramble, rng=seed)

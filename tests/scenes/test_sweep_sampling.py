@@ -5,6 +5,8 @@ every dimension; Sobol with 2^m points: one per dyadic interval in every dimensi
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -85,3 +87,17 @@ def test_cli_flags_kept_and_sampler_added():
                                  "16", "--seed", "7", "--sampler", "sobol", "--no-scramble"])
     assert (args.samples, args.seed, args.sampler, args.no_scramble) == (16, 7, "sobol", True)
     assert _parser().parse_args(["sweep", "s.toml"]).sampler == "lhs"
+
+
+def test_a_sweep_imports_scipy_stats_only_to_sample() -> None:
+    """scipy.stats takes about half a second to import: a grid sweep (the sweep modules and the
+    command line's sweep) never loads it; the first sample does."""
+    code = ("import sys\n"
+            "import bearingsim.cli, bearingsim.scenes.sweep\n"
+            "before = 'scipy.stats' in sys.modules\n"
+            "from bearingsim.scenes.sampling import sample_points\n"
+            "sample_points({'a': (0.0, 1.0)}, 4)\n"
+            "print(before, 'scipy.stats' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["False", "True"]
