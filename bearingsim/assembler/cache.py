@@ -46,7 +46,7 @@ from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
 from bearingsim.assembler.pipeline import assemble
 from bearingsim.assembler.system import FunctionTable, System
-from bearingsim.cache_paths import cache_root
+from bearingsim.cache_paths import KERNEL_NAMES, cache_root
 from bearingsim.files import atomic_path
 from bearingsim.language.component import Component
 from bearingsim.language.declarations import Parameter
@@ -107,7 +107,8 @@ def dumps_system(system: System) -> bytes:
         The serialized system.
     """
     data: dict[str, Any] = {}
-    skip = {"functions", "params", "mapped", "init_residual", "symbolic_functions"}
+    skip = {"functions", "params", "mapped", "init_residual", "symbolic_functions",
+            "content_key"}
     for f in dataclasses.fields(System):
         if f.name not in skip:
             data[f.name] = getattr(system, f.name)
@@ -168,7 +169,7 @@ def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = No
     Returns
     -------
     System
-        The loaded system.
+        The loaded system, its ``content_key`` the SHA-256 of ``payload``.
     """
     data = pickle.loads(payload)  # noqa: S301 - checksummed entries of the user's own cache
     pending = {k: partial(ca.Function.deserialize, v) for k, v in data.pop("functions").items()}
@@ -193,7 +194,8 @@ def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = No
     return System(**data, functions=table, params=params,
                   mapped=_LoadedForms(mapped) if mapped is not None else None,
                   init_residual=(ca.Function.deserialize(init_residual)
-                                 if init_residual is not None else None))
+                                 if init_residual is not None else None),
+                  content_key=hashlib.sha256(payload).hexdigest())
 
 
 # --------------------------------------------------------------------------- entries
@@ -384,8 +386,9 @@ def cache_info(root: str | Path | None = None) -> CacheInfo:
 
 
 def clear_cache(root: str | Path | None = None) -> CacheInfo:
-    """Remove every cached system, compiled library and the parsed unit definitions under
-    ``root``; returns what was there. Other files in the folder are left alone.
+    """Remove every cached system, compiled library (and the remembered library names) and the
+    parsed unit definitions under ``root``; returns what was there. Other files in the folder
+    are left alone.
 
     Parameters
     ----------
@@ -401,7 +404,7 @@ def clear_cache(root: str | Path | None = None) -> CacheInfo:
     before = cache_info(root)
     if systems_dir(root).is_dir():
         shutil.rmtree(systems_dir(root))
-    for p in [*_libraries(root), root / PINT_CACHE]:
+    for p in [*_libraries(root), root / KERNEL_NAMES, root / PINT_CACHE]:
         if p.is_dir():
             shutil.rmtree(p, ignore_errors=True)
         else:

@@ -131,6 +131,11 @@ class System:
     no ball sets); the SUNDIALS kernels use them."""
     requested_outputs: list[str] | None = None
     """The outputs ``assemble`` was asked for (None: all variables kept)."""
+    content_key: str | None = None
+    """SHA-256 (hex) of the bytes the system was loaded from
+    (:func:`~bearingsim.assembler.cache.loads_system`), which determine its functions; None for
+    a system assembled in this process. Kernel libraries are remembered by it
+    (:mod:`bearingsim.simulation.kernel_names`)."""
 
     # ---------------------------------------------------------------- names
     @functools.cached_property

@@ -56,6 +56,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.simulation.c_compiler import Build, CompileError, c_compiler, default_cache_dir
 from bearingsim.simulation.c_units import generate_units
 from bearingsim.simulation.compile import DEFAULT_FLAGS, DEFAULT_SPLIT_FLAGS, library_path
+from bearingsim.simulation.kernel_names import remember_library, remembered_library
 
 __all__ = ["COMPILED", "VM", "Kernel", "cache_key", "kernel", "clear_kernel_cache", "pending_build",
            "wait_for_compilations"]
@@ -209,13 +210,18 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     lib = cache.get(("library", *key))
     if lib is None:
         identity = None if sources is None else _identity(form, sources)
-        if identity is None:  # named by its C source
-            generated = _generated(system, form, per_ball)
-            units = generate_units(generated, prefix)
-            identity = "\n".join(units)
-        lib = cache[("library", *key)] = library_path(identity, flags=flags,
-                                                      cache_dir=cache_dir, prefix=prefix,
-                                                      split_flags=split_flags)
+        recipe = (form, f"mapped={per_ball is not None}", prefix, *flags, "split:",
+                  *(flags if split_flags is None else split_flags))
+        lib = None if identity is not None else remembered_library(system, recipe, cache_dir)
+        if lib is None:
+            if identity is None:  # named by its C source
+                generated = _generated(system, form, per_ball)
+                units = generate_units(generated, prefix)
+            lib = library_path(identity or "\n".join(units), flags=flags, cache_dir=cache_dir,
+                               prefix=prefix, split_flags=split_flags)
+            if identity is None:
+                remember_library(system, recipe, cache_dir, lib)
+        cache[("library", *key)] = lib
     record = lib.with_name(lib.name + ".balls")
     balls = (record.read_text() if lib.exists() and record.exists()
              else _ball_sets(system, form, mapped))
