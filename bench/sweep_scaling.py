@@ -108,6 +108,54 @@ def warm_load() -> dict:
     return {"plain": plain, "cold": cold, "warm": warm, "unnamed": unnamed}
 
 
+SIDE_BY_SIDE = """
+import json, sys, time, warnings
+warnings.simplefilter("ignore")
+from bearingsim.scenes import load_scene
+from bearingsim.scenes.library import builtin_scene_path
+from bearingsim.scenes.preparation import prepare
+from bearingsim.scenes.scene_simulation import simulate_inputs
+from bearingsim.simulation import simulate
+prep = prepare(load_scene(builtin_scene_path("deep_groove_duty1")))
+s = prep.scene.simulation
+args = dict(t_start=s.t_start, method=s.method, rtol=s.rtol, atol=s.atol, n_points=51,
+            inputs=simulate_inputs(prep.scene.inputs), progress=False)
+simulate(prep.system, T_END, **args)
+time.sleep(max(0.0, float(sys.argv[1]) - time.time()))
+cpu = []
+for _ in range(RUNS):
+    t0 = time.thread_time()
+    simulate(prep.system, T_END, **args)
+    cpu.append(time.thread_time() - t0)
+print(json.dumps(cpu))
+""".replace("RUNS", "8")
+
+
+def side_by_side(processes: int = 2) -> dict:
+    """CPU time [s] of one sweep point's run (the scene's start-up to ``T_END``), 8 runs in one
+    process alone, then in ``processes`` processes at once (started together): what running
+    side by side costs each run on this machine, with no sweep code involved.
+
+    Returns
+    -------
+    dict
+        ``alone`` and ``together``: the median CPU seconds of a run.
+    """
+    script = SIDE_BY_SIDE.replace("T_END", repr(T_END))
+
+    def start(at: float) -> subprocess.Popen:
+        return subprocess.Popen([sys.executable, "-c", script, repr(at)],
+                                stdout=subprocess.PIPE, text=True)
+
+    def medians(procs: list[subprocess.Popen]) -> float:
+        runs = [t for p in procs for t in json.loads(p.communicate()[0].splitlines()[-1])]
+        return float(np.median(runs))
+
+    alone = medians([start(time.time() + 8.0)])
+    together = medians([start(time.time() + 8.0) for _ in range(processes)])
+    return {"alone": alone, "together": together}
+
+
 def _points(n: int) -> list[dict]:
     """``n`` points over radial load x shaft speed (start-up ramps as in the scene)."""
     loads = np.linspace(500.0, 1500.0, 8)
@@ -256,7 +304,7 @@ def run(workers: int = 2) -> dict:
     many = _child(workers)
     overhead = {"defaults": _child_overhead(False), "quiet": _child_overhead(True)}
     return {"nested": nested, "one": one, "many": many, "workers": workers,
-            "overhead": overhead,
+            "overhead": overhead, "side_by_side": side_by_side(workers),
             "load_before": load_before,
             "load_after": os.getloadavg(), "cores": len(os.sched_getaffinity(0))}
 
@@ -293,6 +341,7 @@ def _scaling_text(r: dict) -> list[str]:
             _scaling_row(f"{p} workers, again in that process", again[1]),
             _scaling_row(f"{p} workers, given order, again in that process", given)]
     busy = min(first[1]["busy"], again[1]["busy"])
+    sbs = r.get("side_by_side")
     command = (first[0]["command_s"], first[1]["command_s"])
     return [
         f"**Sweep scaling**: scene `deep_groove_duty1` (6304, massive balls, 75 states), "
@@ -334,6 +383,14 @@ def _scaling_text(r: dict) -> list[str]:
            f"{r['cores']} cores, so a point runs slower when the workers run side by side; "
            "that limits the speed-up of this machine, not the sweep's feeding, which the "
            "busy fraction measures." if slowdown > 1.05 else ".")
+        + (f" The same point's run with no sweep code, in one process and in {p} processes "
+           f"at once: {sbs['alone']:.3f} s and {sbs['together']:.3f} s of CPU (median of 8 "
+           f"runs each), {sbs['together'] / sbs['alone']:.2f}x"
+           + (f": the processes slow each other down in the caches and memory they share (and "
+              "in what the virtual machine's host shares), which caps "
+              f"{p} workers at {p * sbs['alone'] / sbs['together']:.2f}x on this machine "
+              "during this run, whatever the sweep does."
+              if sbs["together"] > 1.05 * sbs["alone"] else ".") if sbs else "")
         + f" Amdahl's law with the serial fraction of the fresh 1-worker sweep (its fixed "
         f"time over its wall: s = {fmt(s)}) predicts "
         + ", ".join(f"{v:.1f}x on {q}" for q, v in predict.items())

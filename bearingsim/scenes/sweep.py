@@ -65,6 +65,7 @@ from bearingsim.scenes.sweep_cluster import (
     chunk_size,
     connect,
     distributed_module,
+    ship,
 )
 from bearingsim.scenes.sweep_order import PointCosts, point_features
 from bearingsim.scenes.sweep_plan import plan_sweep
@@ -302,7 +303,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         lap("cluster")
         # every worker (scheduler_info may list a few); a LocalCluster's are all up
         n_threads = sum(client.nthreads().values())
-        models = {key: client.scatter(payload, broadcast=True)
+        models = {key: ship(client, payload)
                   for key, payload in plan.payloads.items()
                   if any(plan.structure[j.index] == key for j in todo)}
         lap("ship")

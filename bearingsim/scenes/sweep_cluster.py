@@ -41,7 +41,7 @@ from bearingsim.sweep_server import WORKER_MODULE, start_worker_server
 
 __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "TASKS_PER_WORKER", "QUIET_CLUSTER", "RESUBMITS",
            "distributed_module",
-           "connect", "chunk_size", "ChunkFeeder"]
+           "connect", "ship", "chunk_size", "ChunkFeeder"]
 
 CHUNK_SECONDS = 2.0
 """Target wall time of one task [s]: a chunk holds about this much integration. A task costs
@@ -140,6 +140,28 @@ def connect(scheduler: str | None, n_workers: int) -> tuple[Any, Any]:
         return distributed.Client(scheduler), None
     cluster = _forked_local_cluster(n_workers)
     return distributed.Client(cluster), cluster
+
+
+def ship(client: Any, payload: Any) -> Any:
+    """Send a model's payload to every worker (``Client.scatter``, broadcast); its future.
+
+    The payload is scattered under a random key (``hash=False``): dask would otherwise hash
+    its megabytes to name it, about 0.1 s per model of the client's time (the payload carries
+    its own token already).
+
+    Parameters
+    ----------
+    client : distributed.Client
+        The sweep's client.
+    payload : ModelPayload
+        The model (:mod:`~bearingsim.scenes.sweep_plan`).
+
+    Returns
+    -------
+    distributed.Future
+        The scattered payload.
+    """
+    return client.scatter(payload, broadcast=True, hash=False)
 
 
 def chunk_size(point_s: float, n_points: int, n_workers: int) -> int:
@@ -319,7 +341,7 @@ class ChunkFeeder:
         if self._cancelled or not self.payloads or self.resubmitted >= RESUBMITS:
             return False
         if self.models[key] is model and model.status != "finished":
-            self.models[key] = self.client.scatter(self.payloads[key], broadcast=True)
+            self.models[key] = ship(self.client, self.payloads[key])
         self.resubmitted += 1
         self._submit(key, part)
         return True
