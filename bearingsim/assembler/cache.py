@@ -155,7 +155,8 @@ def _jacobian(function: Callable[[str], ca.Function], name: str, of: str, wrt_in
                        list("txup"), [out_name])
 
 
-def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = None) -> System:
+def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = None,
+                 content_key: str | None = None) -> System:
     """The :class:`System` of :func:`dumps_system` bytes.
 
     Parameters
@@ -165,6 +166,8 @@ def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = No
     parameters : mapping, optional
         Parameter declarations by dotted path (of the component the system is loaded for):
         their values and range checks replace the stored ones.
+    content_key : str, optional
+        The SHA-256 (hex) of ``payload`` when the caller has it already (None: computed).
 
     Returns
     -------
@@ -195,7 +198,7 @@ def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = No
                   mapped=_LoadedForms(mapped) if mapped is not None else None,
                   init_residual=(ca.Function.deserialize(init_residual)
                                  if init_residual is not None else None),
-                  content_key=hashlib.sha256(payload).hexdigest())
+                  content_key=content_key or hashlib.sha256(payload).hexdigest())
 
 
 # --------------------------------------------------------------------------- entries

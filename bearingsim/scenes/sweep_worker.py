@@ -41,7 +41,8 @@ class ModelPayload:
     """One assembled model for the workers (picklable; the system as bytes)."""
 
     token: str
-    """Identifies the model (hash of the bytes)."""
+    """Identifies the model: the SHA-256 (hex) of ``system``, the loaded system's
+    ``content_key``."""
     prepared: Prepared
     """The prepared scene of the model's structure, ``system`` None."""
     system: bytes
@@ -84,7 +85,7 @@ def load_model(payload: ModelPayload) -> Prepared:
     with _LOCK:
         prep = MODELS.get(payload.token)
         if prep is None:
-            system = loads_system(payload.system)
+            system = loads_system(payload.system, content_key=payload.token)
             prep = dataclasses.replace(payload.prepared, system=system)
             MODELS[payload.token] = prep
             LOADS[payload.token] = LOADS.get(payload.token, 0) + 1

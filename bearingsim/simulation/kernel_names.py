@@ -2,15 +2,16 @@
 
 A kernel library whose identity is its generated C source (the mapped ball-level kernels, and
 kernels of MX functions) is found by generating that source and hashing it
-(:func:`~bearingsim.simulation.compile.library_path`): 0.2 s for the 6304's ball level and
-0.6-1 s for the nested double-layer bearing, paid by every new process before its first run
-even when the library is on disk. A system loaded from bytes
-(:func:`~bearingsim.assembler.cache.loads_system`: the system cache, a sweep's workers) carries
+(:func:`~bearingsim.simulation.compile.library_path`), paid by every new process before its
+first run even when the library is on disk (for the nested double-layer bearing: section
+"Sweep scaling" of ``docs/benchmarks.md``, the warm load's first kernel look-up). A system
+loaded from bytes (:func:`~bearingsim.assembler.cache.loads_system`: the system cache, a
+sweep's workers) carries
 the SHA-256 of those bytes (``System.content_key``), which determines its functions exactly;
-together with the code version (the code generation is bearingsim's), the kernel's form,
-ball mapping, prefix, compiler, CasADi version and flags it determines the generated source,
-so the library's name found once is kept under that key and read back instead of generating
-the source again.
+together with the code version (bearingsim's sources, which generate the code, and the
+CasADi version), the kernel's form, ball mapping, prefix, compiler and flags it determines the
+generated source, so the library's name found once is kept under that key and read back
+instead of generating the source again.
 
 An entry is one small file in ``<cache>/kernel_names/`` (written atomically) holding the
 library's file name; an entry whose name is malformed or whose library is gone is ignored and
@@ -24,8 +25,6 @@ import hashlib
 import re
 from collections.abc import Sequence
 from pathlib import Path
-
-import casadi as ca
 
 from bearingsim.assembler.fingerprint import code_version
 from bearingsim.assembler.system import System
@@ -43,8 +42,7 @@ def _entry(system: System, recipe: Sequence[str], cache_dir: str | Path | None) 
     """The entry file of a kernel request (None: the system was not loaded from bytes)."""
     if system.content_key is None:
         return None
-    key = "\n".join([system.content_key, code_version(), ca.__version__, c_compiler() or "",
-                     *recipe])
+    key = "\n".join([system.content_key, code_version(), c_compiler() or "", *recipe])
     folder = Path(cache_dir) if cache_dir is not None else default_cache_dir()
     return folder / KERNEL_NAMES / hashlib.sha256(key.encode()).hexdigest()[:32]
 

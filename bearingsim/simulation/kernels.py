@@ -210,16 +210,18 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
     lib = cache.get(("library", *key))
     if lib is None:
         identity = None if sources is None else _identity(form, sources)
-        recipe = (form, f"mapped={per_ball is not None}", prefix, *flags, "split:",
-                  *(flags if split_flags is None else split_flags))
-        lib = None if identity is not None else remembered_library(system, recipe, cache_dir)
-        if lib is None:
-            if identity is None:  # named by its C source
+        if identity is not None:
+            lib = library_path(identity, flags=flags, cache_dir=cache_dir, prefix=prefix,
+                               split_flags=split_flags)
+        else:  # named by its C source: generated once per loaded system's bytes
+            recipe = (form, f"mapped={per_ball is not None}", prefix, *flags, "split:",
+                      *(flags if split_flags is None else split_flags))
+            lib = remembered_library(system, recipe, cache_dir)
+            if lib is None:
                 generated = _generated(system, form, per_ball)
                 units = generate_units(generated, prefix)
-            lib = library_path(identity or "\n".join(units), flags=flags, cache_dir=cache_dir,
-                               prefix=prefix, split_flags=split_flags)
-            if identity is None:
+                lib = library_path("\n".join(units), flags=flags, cache_dir=cache_dir,
+                                   prefix=prefix, split_flags=split_flags)
                 remember_library(system, recipe, cache_dir, lib)
         cache[("library", *key)] = lib
     record = lib.with_name(lib.name + ".balls")
