@@ -20,7 +20,7 @@ from functools import cache
 
 import numpy as np
 
-from bearingsim.simulation.compile import compile_source, library_path
+from bearingsim.simulation.compile import source_library
 from bearingsim.simulation.kernels import Kernel
 
 __all__ = ["kernel_call_us"]
@@ -43,10 +43,7 @@ FLAGS = ("-O2",)
 
 @cache
 def _library() -> ctypes.CDLL:
-    lib = library_path(SOURCE, flags=FLAGS, prefix="bsm_kernel_timing")
-    if not lib.exists():
-        compile_source(SOURCE, lib, flags=FLAGS)
-    dll = ctypes.CDLL(str(lib))
+    dll = ctypes.CDLL(str(source_library([SOURCE], flags=FLAGS, prefix="bsm_kernel_timing")))
     p = ctypes.c_void_p
     dll.bsm_kernel_repeat.argtypes = [p, p, p, p, p, ctypes.c_int]
     return dll

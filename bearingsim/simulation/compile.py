@@ -38,7 +38,7 @@ from bearingsim.simulation.c_compiler import (
 from bearingsim.simulation.c_units import generate_units
 
 __all__ = ["DEFAULT_FLAGS", "DEFAULT_SPLIT_FLAGS", "build_library", "compile_source",
-           "compile_system", "library_path"]
+           "compile_system", "library_path", "source_library"]
 
 DEFAULT_FLAGS: tuple[str, ...] = ("-O1",)
 """Compiler flags of the SUNDIALS kernels: -O1 compiles 2-3x faster than -O2 and runs as fast on
@@ -116,6 +116,40 @@ def compile_source(source: str | Sequence[str], lib: Path, *,
         If no C compiler is found or compilation fails.
     """
     return Build(source, lib, flags, split_flags).wait()
+
+
+def source_library(units: Sequence[str], *, headers: Sequence[str] = (),
+                   flags: Sequence[str] = DEFAULT_FLAGS, cache_dir: str | Path | None = None,
+                   prefix: str = "bsm") -> Path:
+    """The shared library of the hand-written C translation units ``units``, named by their
+    source and the ``headers`` they include, compiled only on a cache miss.
+
+    Parameters
+    ----------
+    units : sequence of str
+        The translation units' source.
+    headers : sequence of str
+        The source of the headers they include (part of the name, not compiled).
+    flags : sequence of str
+        Compiler flags (part of the name).
+    cache_dir : path, optional
+        Where libraries are kept (default :func:`default_cache_dir`).
+    prefix : str
+        File name prefix of the library.
+
+    Returns
+    -------
+    pathlib.Path
+        The shared library ``<prefix>_<hash>.so``, built.
+
+    Raises
+    ------
+    CompileError
+        If no C compiler is found or compilation fails.
+    """
+    lib = library_path("\n".join([*units, *headers]), flags=flags, cache_dir=cache_dir,
+                       prefix=prefix)
+    return lib if lib.exists() else compile_source(list(units), lib, flags=flags)
 
 
 def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Function]], *,

@@ -35,7 +35,7 @@ from bearingsim.assembler.system import System
 from bearingsim.errors import SimulationError
 from bearingsim.simulation.c_compiler import CompileError
 from bearingsim.simulation.c_units import generate_source
-from bearingsim.simulation.compile import compile_source, library_path
+from bearingsim.simulation.compile import source_library
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import COMPILED, Kernel
@@ -103,10 +103,8 @@ def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
     units = [DRIVER_SOURCE.read_text(), *[(C_DIR / name).read_text() for name in CORE_SOURCES],
              signal_source]
     headers = [(C_DIR / name).read_text() for name in CORE_HEADERS]
-    lib = library_path("\n".join([*units, *headers]), flags=FLAGS, cache_dir=cache_dir,
-                       prefix="bsm_bdf")
-    if not lib.exists():
-        compile_source(units, lib, flags=FLAGS)
+    lib = source_library(units, headers=headers, flags=FLAGS, cache_dir=cache_dir,
+                         prefix="bsm_bdf")
     dll = ctypes.CDLL(str(lib))
     p, i, ll, d = ctypes.c_void_p, ctypes.c_int, ctypes.c_longlong, ctypes.c_double
     dp = ctypes.POINTER(ctypes.c_double)

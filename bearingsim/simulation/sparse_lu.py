@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bearingsim.simulation.compile import compile_source, library_path
+from bearingsim.simulation.compile import source_library
 
 __all__ = ["SparseLu"]
 
@@ -39,10 +39,8 @@ class _BsmLu(ctypes.Structure):
 @cache
 def _library(cache_dir: str | None) -> ctypes.CDLL:
     units = [(C_DIR / name).read_text() for name in ("bsm_lu.c", "bsm_lu_timing.c")]
-    lib = library_path("\n".join([*units, (C_DIR / "bsm_lu.h").read_text()]), flags=FLAGS,
-                       cache_dir=cache_dir, prefix="bsm_lu")
-    if not lib.exists():
-        compile_source(units, lib, flags=FLAGS)
+    lib = source_library(units, headers=[(C_DIR / "bsm_lu.h").read_text()], flags=FLAGS,
+                         cache_dir=cache_dir, prefix="bsm_lu")
     dll = ctypes.CDLL(str(lib))
     v, i = ctypes.c_void_p, ctypes.c_int
     dll.bsm_lu_factor.argtypes = [ctypes.POINTER(_BsmLu), v]
