@@ -13,10 +13,12 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-__all__ = ["KERNEL_NAMES", "cache_root"]
+__all__ = ["KERNEL_NAMES", "SYSTEM_SUFFIX", "cache_root", "library_files", "systems_dir"]
 
 KERNEL_NAMES = "kernel_names"
 """The folder of the remembered kernel library names in the cache root."""
+SYSTEM_SUFFIX = ".bsys"
+"""File suffix of an assembled system's entry (:mod:`bearingsim.assembler.cache`)."""
 
 
 def cache_root() -> Path:
@@ -29,3 +31,46 @@ def cache_root() -> Path:
     """
     root = os.environ.get("BEARINGSIM_CACHE") or Path.home() / ".cache" / "bearingsim"
     return Path(root)
+
+
+def systems_dir(root: str | Path | None = None) -> Path:
+    """The folder of the assembled systems: ``<root>/systems``.
+
+    Parameters
+    ----------
+    root : str or os.PathLike, optional
+        Cache root (None: :func:`~bearingsim.cache_paths.cache_root`).
+
+    Returns
+    -------
+    Path
+        The systems folder.
+    """
+    return Path(root if root is not None else cache_root()) / "systems"
+
+
+def library_files(root: Path) -> list[Path]:
+    """The compiled kernel libraries (``<prefix>_<16 hex>.so`` and their companions) and
+    unfinished build folders in ``root``.
+
+    Parameters
+    ----------
+    root : Path
+        The cache folder of the libraries.
+
+    Returns
+    -------
+    list of Path
+        The libraries, their companion files and the build folders.
+    """
+    if not root.is_dir():
+        return []
+    out = []
+    for p in root.iterdir():
+        stem = p.name.split(".so", 1)[0]
+        if p.name.startswith(".build_") or (".so" in p.name and len(stem) > 17
+                                            and stem[-17] == "_"
+                                            and all(c in "0123456789abcdef"
+                                                    for c in stem[-16:])):
+            out.append(p)
+    return out

@@ -46,35 +46,23 @@ from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
 from bearingsim.assembler.pipeline import assemble
 from bearingsim.assembler.system import FunctionTable, System
-from bearingsim.cache_paths import KERNEL_NAMES, cache_root
+from bearingsim.cache_paths import (
+    KERNEL_NAMES,
+    SYSTEM_SUFFIX,
+    cache_root,
+    library_files,
+    systems_dir,
+)
 from bearingsim.files import atomic_path
 from bearingsim.language.component import Component
 from bearingsim.language.declarations import Parameter
 from bearingsim.units.registry import PINT_CACHE
 
 __all__ = ["CacheInfo", "assemble_cached", "cache_info", "clear_cache",
-           "dumps_system", "loads_system", "read_payload", "systems_dir"]
+           "dumps_system", "loads_system", "read_payload"]
 
 MAGIC = b"bearingsim-system\n"
 """First bytes of an entry file."""
-SUFFIX = ".bsys"
-"""File suffix of an entry."""
-
-
-def systems_dir(root: str | Path | None = None) -> Path:
-    """The folder of the assembled systems: ``<root>/systems``.
-
-    Parameters
-    ----------
-    root : str or os.PathLike, optional
-        Cache root (None: :func:`~bearingsim.cache_paths.cache_root`).
-
-    Returns
-    -------
-    Path
-        The systems folder.
-    """
-    return Path(root if root is not None else cache_root()) / "systems"
 
 
 # --------------------------------------------------------------------------- (de)serializing
@@ -203,7 +191,7 @@ def loads_system(payload: bytes, parameters: Mapping[str, Parameter] | None = No
 
 # --------------------------------------------------------------------------- entries
 def _entry(key: str, root: str | Path | None) -> Path:
-    return systems_dir(root) / f"{key}{SUFFIX}"
+    return systems_dir(root) / f"{key}{SYSTEM_SUFFIX}"
 
 
 def _value_dependent(system: System) -> dict[str, float] | None:
@@ -344,22 +332,6 @@ class CacheInfo:
     units_bytes: int
 
 
-def _libraries(root: Path) -> list[Path]:
-    """The compiled kernel libraries (``<prefix>_<16 hex>.so`` and their companions) and
-    unfinished build folders in ``root``."""
-    if not root.is_dir():
-        return []
-    out = []
-    for p in root.iterdir():
-        stem = p.name.split(".so", 1)[0]
-        if p.name.startswith(".build_") or (".so" in p.name and len(stem) > 17
-                                            and stem[-17] == "_"
-                                            and all(c in "0123456789abcdef"
-                                                    for c in stem[-16:])):
-            out.append(p)
-    return out
-
-
 def _size(path: Path) -> int:
     if path.is_dir():
         return sum(f.stat().st_size for f in path.rglob("*") if f.is_file())
@@ -381,8 +353,9 @@ def cache_info(root: str | Path | None = None) -> CacheInfo:
         Counts and sizes [bytes].
     """
     root = Path(root) if root is not None else cache_root()
-    systems = sorted(systems_dir(root).glob(f"*{SUFFIX}")) if systems_dir(root).is_dir() else []
-    libs = _libraries(root)
+    folder = systems_dir(root)
+    systems = sorted(folder.glob(f"*{SYSTEM_SUFFIX}")) if folder.is_dir() else []
+    libs = library_files(root)
     units = root / PINT_CACHE
     return CacheInfo(root, len(systems), sum(_size(p) for p in systems), len(libs),
                      sum(_size(p) for p in libs), _size(units) if units.is_dir() else 0)
@@ -407,7 +380,7 @@ def clear_cache(root: str | Path | None = None) -> CacheInfo:
     before = cache_info(root)
     if systems_dir(root).is_dir():
         shutil.rmtree(systems_dir(root))
-    for p in [*_libraries(root), root / KERNEL_NAMES, root / PINT_CACHE]:
+    for p in [*library_files(root), root / KERNEL_NAMES, root / PINT_CACHE]:
         if p.is_dir():
             shutil.rmtree(p, ignore_errors=True)
         else:
