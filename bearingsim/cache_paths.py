@@ -5,7 +5,9 @@ compiled kernel libraries (:func:`bearingsim.simulation.compile.default_cache_di
 of the kernel libraries of loaded systems (``kernel_names/``,
 :mod:`bearingsim.simulation.kernel_names`) and the parsed unit definitions of the units library
 (``pint/``, :mod:`bearingsim.units.registry`).
-``bearingsim cache clear`` empties it; everything in it is rebuilt on demand.
+``bearingsim cache clear`` empties it; everything in it is rebuilt on demand. The systems and
+libraries keep to a size budget, the least recently used going first
+(:mod:`bearingsim.cache_budget`).
 """
 
 from __future__ import annotations
@@ -13,7 +15,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-__all__ = ["KERNEL_NAMES", "SYSTEM_SUFFIX", "cache_root", "library_files", "systems_dir"]
+__all__ = ["KERNEL_NAMES", "SYSTEM_SUFFIX", "cache_root", "library_files", "system_files",
+           "systems_dir"]
 
 KERNEL_NAMES = "kernel_names"
 """The folder of the remembered kernel library names in the cache root."""
@@ -47,6 +50,23 @@ def systems_dir(root: str | Path | None = None) -> Path:
         The systems folder.
     """
     return Path(root if root is not None else cache_root()) / "systems"
+
+
+def system_files(root: str | Path | None = None) -> list[Path]:
+    """The entries of the assembled systems in the cache ``root``, sorted by name.
+
+    Parameters
+    ----------
+    root : str or os.PathLike, optional
+        Cache root (None: :func:`~bearingsim.cache_paths.cache_root`).
+
+    Returns
+    -------
+    list of Path
+        The ``<root>/systems/*.bsys`` files.
+    """
+    folder = systems_dir(root)
+    return sorted(folder.glob(f"*{SYSTEM_SUFFIX}")) if folder.is_dir() else []
 
 
 def library_files(root: Path) -> list[Path]:

@@ -258,6 +258,11 @@ def _cache(args: argparse.Namespace) -> int:
           f"{info.systems_bytes / 1e6:.1f} MB; {info.libraries} compiled librar"
           f"{'y' if info.libraries == 1 else 'ies'}, {info.libraries_bytes / 1e6:.1f} MB; "
           f"unit definitions, {info.units_bytes / 1e6:.1f} MB")
+    if args.action != "clear":
+        from bearingsim.cache_budget import BUDGET_VARIABLE, budget_bytes
+
+        print(f"budget for the systems and libraries: {budget_bytes() / 1e6:.1f} MB "
+              f"(${BUDGET_VARIABLE}; the least recently used go first beyond it)")
     return 0
 
 

@@ -21,7 +21,9 @@ per-ball kernels and everything else of the :class:`~bearingsim.assembler.System
 data.
 
 The entries live in ``<root>/systems`` with ``root`` from ``BEARINGSIM_CACHE`` (default
-``~/.cache/bearingsim``), the same root as the compiled kernel libraries.
+``~/.cache/bearingsim``), the same root as the compiled kernel libraries. The cache keeps to
+a size budget with them (:mod:`bearingsim.cache_budget`): an entry loaded is marked used, and
+storing one removes the least recently used entries beyond the budget.
 """
 
 from __future__ import annotations
@@ -46,11 +48,13 @@ from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
 from bearingsim.assembler.pipeline import assemble
 from bearingsim.assembler.system import FunctionTable, System
+from bearingsim.cache_budget import budget_bytes, keep_to_budget, mark_used
 from bearingsim.cache_paths import (
     KERNEL_NAMES,
     SYSTEM_SUFFIX,
     cache_root,
     library_files,
+    system_files,
     systems_dir,
 )
 from bearingsim.files import atomic_path
@@ -234,6 +238,7 @@ def _read_entry(path: Path, key: str, values: dict[str, float]) -> bytes | None:
                 and any(values.get(n, v) != v for n, v in entry["values"].items()))):
         path.unlink(missing_ok=True)
         return None
+    mark_used(path)
     return entry["payload"]
 
 
@@ -309,9 +314,11 @@ def assemble_cached(component: Component, outputs: list[str] | None = None, *,
             system.timings = [("cache load", seconds)]
             LAST.update(hit=True, key=key, path=path, seconds=seconds)
             return system
+    budget = budget_bytes()  # a budget that is not a size stops before the assembly
     system = assemble(component, outputs, **options)
     try:
         _write_entry(path, key, dumps_system(system), _value_dependent(system))
+        keep_to_budget(path.parent.parent, path, budget)
     except OSError:
         pass  # a read-only or full cache only costs the next run an assembly
     LAST.update(hit=False, key=key, path=path, seconds=time.perf_counter() - t0)
@@ -353,8 +360,7 @@ def cache_info(root: str | Path | None = None) -> CacheInfo:
         Counts and sizes [bytes].
     """
     root = Path(root) if root is not None else cache_root()
-    folder = systems_dir(root)
-    systems = sorted(folder.glob(f"*{SYSTEM_SUFFIX}")) if folder.is_dir() else []
+    systems = system_files(root)
     libs = library_files(root)
     units = root / PINT_CACHE
     return CacheInfo(root, len(systems), sum(_size(p) for p in systems), len(libs),

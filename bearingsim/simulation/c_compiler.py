@@ -26,6 +26,7 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
+from bearingsim.cache_budget import budget_bytes, keep_to_budget
 from bearingsim.cache_paths import cache_root
 from bearingsim.errors import BearingsimError
 
@@ -275,6 +276,8 @@ class Build:
         units = [sources] if isinstance(sources, str) else list(sources)
         lib.parent.mkdir(parents=True, exist_ok=True)
         self.lib = lib
+        self.budget = budget_bytes()
+        """The cache's budget [bytes], kept to when the library is in place."""
         self.source_bytes = sum(len(unit) for unit in units)
         """Size of the C source [bytes]."""
         self.started = time.perf_counter()
@@ -331,6 +334,8 @@ class Build:
         if self._proc.returncode == 0 and self.lib.exists():
             _record_rate(self.lib.parent, self.source_bytes / max(
                 time.perf_counter() - self.started, 1e-3))
+            with contextlib.suppress(OSError):  # a read-only cache keeps what it has
+                keep_to_budget(self.lib.parent, self.lib, self.budget)
 
     def stop(self) -> None:
         """Stop the compiler (its whole process group) and remove the build directory."""

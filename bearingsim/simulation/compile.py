@@ -29,6 +29,7 @@ import casadi as ca
 
 from bearingsim.assembler.passes.codegen import mapped_ode_functions
 from bearingsim.assembler.system import FunctionTable, System
+from bearingsim.cache_budget import mark_used
 from bearingsim.simulation.c_compiler import (
     Build,
     CompileError,
@@ -149,7 +150,7 @@ def source_library(units: Sequence[str], *, headers: Sequence[str] = (),
     """
     lib = library_path("\n".join([*units, *headers]), flags=flags, cache_dir=cache_dir,
                        prefix=prefix)
-    return lib if lib.exists() else compile_source(list(units), lib, flags=flags)
+    return lib if mark_used(lib) else compile_source(list(units), lib, flags=flags)
 
 
 def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Function]], *,
@@ -188,7 +189,7 @@ def build_library(functions: Sequence[ca.Function] | Callable[[], Sequence[ca.Fu
         units = generate_units(functions() if callable(functions) else functions, prefix)
     lib = library_path(identity if identity is not None else "\n".join(units), flags=flags,
                        cache_dir=cache_dir, prefix=prefix)
-    if lib.exists():
+    if mark_used(lib):
         return lib
     if units is None:
         units = generate_units(functions() if callable(functions) else functions, prefix)

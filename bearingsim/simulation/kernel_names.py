@@ -28,6 +28,7 @@ from pathlib import Path
 
 from bearingsim.assembler.fingerprint import code_version
 from bearingsim.assembler.system import System
+from bearingsim.cache_budget import mark_used
 from bearingsim.cache_paths import KERNEL_NAMES
 from bearingsim.files import atomic_path
 from bearingsim.simulation.c_compiler import c_compiler, default_cache_dir
@@ -75,7 +76,7 @@ def remembered_library(system: System, recipe: Sequence[str],
     if not _LIBRARY_NAME.fullmatch(name):
         return None
     library = entry.parent.parent / name
-    return library if library.exists() else None
+    return library if mark_used(library) else None
 
 
 def remember_library(system: System, recipe: Sequence[str], cache_dir: str | Path | None,

@@ -52,6 +52,7 @@ import casadi as ca
 from bearingsim.assembler.mapped import MappedKernel
 from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.system import System
+from bearingsim.cache_budget import mark_used
 from bearingsim.errors import ParameterError
 from bearingsim.simulation.c_compiler import Build, CompileError, c_compiler, default_cache_dir
 from bearingsim.simulation.c_units import generate_units
@@ -225,9 +226,10 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
                 remember_library(system, recipe, cache_dir, lib)
         cache[("library", *key)] = lib
     record = lib.with_name(lib.name + ".balls")
-    balls = (record.read_text() if lib.exists() and record.exists()
+    present = mark_used(lib)
+    balls = (record.read_text() if present and record.exists()
              else _ball_sets(system, form, mapped))
-    if not lib.exists():
+    if not present:
         with _LOCK:
             pending = _PENDING.get(lib)
         if pending is None:
