@@ -309,7 +309,7 @@ def test_bdf_newton_accepts_corrections_stagnating_at_round_off():
     (status -1 after ~3 000 steps); the stagnation rule runs through in ~250 steps."""
     import scipy.integrate
 
-    from bearingsim.simulation.integrators import StagnationTolerantBDF
+    from bearingsim.simulation.scipy_solvers import StagnationTolerantBDF
 
     def steps(solver):
         rng = np.random.default_rng(0)
