@@ -7,10 +7,40 @@ typed :class:`AssemblyState`, as the staged lists :data:`STAGES`; the result is 
 :mod:`bearingsim.simulation` integrates, linearizes and solves.
 """
 
+from typing import Any
+
 from bearingsim.assembler.cache import assemble_cached
-from bearingsim.assembler.pipeline import PASS_NAMES, STAGES, Pass, Stage, assemble
 from bearingsim.assembler.state import AssemblyState
 from bearingsim.assembler.system import Signal, System
 
 __all__ = ["PASS_NAMES", "STAGES", "AssemblyState", "Pass", "Signal", "Stage", "System",
            "assemble", "assemble_cached"]
+
+_PIPELINE = ("PASS_NAMES", "STAGES", "Pass", "Stage", "assemble")
+"""Names of :mod:`bearingsim.assembler.pipeline`, imported on first use: the passes and networkx
+take ~0.5 s to import, and a model loaded from the cache needs none of them."""
+
+
+def __getattr__(name: str) -> Any:
+    """A name of the pipeline (:data:`_PIPELINE`), importing it on first use.
+
+    Parameters
+    ----------
+    name : str
+        The attribute asked for.
+
+    Returns
+    -------
+    object
+        The pipeline's object of that name.
+
+    Raises
+    ------
+    AttributeError
+        For any other name.
+    """
+    if name in _PIPELINE:
+        from bearingsim.assembler import pipeline
+
+        return getattr(pipeline, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

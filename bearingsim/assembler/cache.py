@@ -46,7 +46,6 @@ from bearingsim.assembler.mapped import MappedKernel
 from bearingsim.assembler.mapped_forms import MappedForms
 from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.passes.codegen import GRAPH_KEYS, JACOBIANS
-from bearingsim.assembler.pipeline import assemble
 from bearingsim.assembler.system import FunctionTable, System
 from bearingsim.cache_budget import budget_bytes, keep_to_budget, mark_used
 from bearingsim.cache_paths import (
@@ -266,6 +265,14 @@ def _parameter_declarations(component: Component) -> dict[str, Parameter]:
             for decl in comp.declarations.values() if isinstance(decl, Parameter)}
 
 
+def _assemble(component: Component, outputs: list[str] | None, **options: Any) -> System:
+    """:func:`~bearingsim.assembler.assemble`, imported on use: the passes and networkx take
+    ~0.5 s to import, and a model loaded from the cache needs none of them."""
+    from bearingsim.assembler.pipeline import assemble
+
+    return assemble(component, outputs, **options)
+
+
 LAST: dict[str, Any] = {}
 """What the last :func:`assemble_cached` call of this process did: ``hit`` (bool), ``key``,
 ``path``, ``seconds`` (for reports and tests)."""
@@ -297,7 +304,7 @@ def assemble_cached(component: Component, outputs: list[str] | None = None, *,
         time) or assembled and stored.
     """
     if not cache or options.get("extra_passes"):
-        return assemble(component, outputs, **options)
+        return _assemble(component, outputs, **options)
     t0 = time.perf_counter()
     key = structure_key(component, outputs, **options)
     path = _entry(key, cache_dir)
@@ -315,7 +322,7 @@ def assemble_cached(component: Component, outputs: list[str] | None = None, *,
             LAST.update(hit=True, key=key, path=path, seconds=seconds)
             return system
     budget = budget_bytes()  # a budget that is not a size stops before the assembly
-    system = assemble(component, outputs, **options)
+    system = _assemble(component, outputs, **options)
     try:
         _write_entry(path, key, dumps_system(system), _value_dependent(system))
         keep_to_budget(path.parent.parent, path, budget)

@@ -15,7 +15,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.optimize
 
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.physics.bearing_design import POSITION_REGULARIZATION, BearingDesign
@@ -147,9 +146,11 @@ def static_state(design: BearingDesign, loads: dict[str, float], w_cage: float =
     else:
         start = _seated_guess(design, f_ext, theta, free_tilt) / np.concatenate(
             [_UNIT, np.full(2 * nz, scale_r)])
-    sol = scipy.optimize.root(residual, start, method="hybr", tol=1e-12)
+    from scipy.optimize import root  # on use: importing scipy.optimize takes ~0.6 s
+
+    sol = root(residual, start, method="hybr", tol=1e-12)
     if np.max(np.abs(residual(sol.x))) > 1e-6:
-        sol = scipy.optimize.root(residual, sol.x, method="lm", tol=1e-14)
+        sol = root(residual, sol.x, method="lm", tol=1e-14)
     if not np.all(np.isfinite(sol.x)) or np.max(np.abs(residual(sol.x))) > 1e-6:
         raise SimulationError(f"static_state: no quasi-static equilibrium for loads {loads} "
                               f"({sol.message})")
@@ -194,6 +195,8 @@ def _seated_guess(design: BearingDesign, f_ext: np.ndarray, theta: np.ndarray,
                   free_tilt: bool) -> np.ndarray:
     """Ring displacement that balances each loaded direction alone (1-D roots), summed, with the
     two-force ball centres there: ``(ring (5), dr (Z), z (Z))`` [m, rad]."""
+    from scipy.optimize import brentq  # on use: importing scipy.optimize takes ~0.6 s
+
     ring = np.zeros(5)
     for k in np.flatnonzero(f_ext[:5 if free_tilt else 3]):
         unit = np.zeros(5)
@@ -206,6 +209,6 @@ def _seated_guess(design: BearingDesign, f_ext: np.ndarray, theta: np.ndarray,
         while np.sign(residual(hi)) == np.sign(residual(0.0)) and hi < 1e7:
             hi *= 2.0
         if np.sign(residual(hi)) != np.sign(residual(0.0)):
-            ring += scipy.optimize.brentq(residual, 0.0, hi, xtol=1e-12) * unit
+            ring += brentq(residual, 0.0, hi, xtol=1e-12) * unit
     _, dr, z = _two_force_balls(design, ring, theta)
     return np.concatenate([ring, dr, z])

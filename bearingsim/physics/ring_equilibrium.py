@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import casadi as ca
 import numpy as np
-import scipy.optimize
 
 from bearingsim.errors import SimulationError
 
@@ -162,8 +161,10 @@ class EquilibriumProblem:  # numpydoc ignore=PR02
         u0 = v0 / scale
         if not np.all(np.isfinite(fun(u0))):  # e.g. a ball flung off its race: no start
             return np.full_like(v0, np.nan)
-        sol = scipy.optimize.least_squares(fun, u0, jac=jac, method="lm", xtol=1e-15,
-                                           ftol=1e-15, gtol=1e-15, max_nfev=400)
+        from scipy.optimize import least_squares  # on use: importing scipy.optimize takes ~0.6 s
+
+        sol = least_squares(fun, u0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            max_nfev=400)
         return sol.x * scale
 
     def _start(self, ring: np.ndarray) -> np.ndarray:
@@ -184,6 +185,8 @@ class EquilibriumProblem:  # numpydoc ignore=PR02
         numpy.ndarray
             A start for the unknowns [m, rad].
         """
+        from scipy.optimize import brentq  # on use: importing scipy.optimize takes ~0.6 s
+
         ring = np.zeros(self.n_ring)
         for k in np.flatnonzero(f_ext):
             unit = np.zeros(self.n_ring)
@@ -196,7 +199,7 @@ class EquilibriumProblem:  # numpydoc ignore=PR02
             while np.sign(residual(hi)) == np.sign(residual(0.0)) and hi < 1e7:
                 hi *= 2.0
             if np.sign(residual(hi)) != np.sign(residual(0.0)):
-                ring += scipy.optimize.brentq(residual, 0.0, hi, xtol=1e-12) * unit
+                ring += brentq(residual, 0.0, hi, xtol=1e-12) * unit
         return self._start(ring)
 
     def _starts(self, f_ext: np.ndarray) -> list[np.ndarray]:

@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
-import scipy.optimize
 
 from bearingsim.errors import BearingsimError, ParameterError
 from bearingsim.validation import check_range, check_vector
@@ -107,7 +106,11 @@ class Modes:
 def _name_modes(shapes: np.ndarray, mass: np.ndarray) -> list[str]:
     """Assign each mode the degree of freedom that holds most of its kinetic energy."""
     energy = shapes * (mass @ shapes)  # energy[i, k]: share of DOF i in mode k (M diagonal)
-    rows, cols = scipy.optimize.linear_sum_assignment(-np.abs(energy.T))
+    from scipy.optimize import (
+        linear_sum_assignment,  # on use: importing scipy.optimize takes ~0.6 s
+    )
+
+    rows, cols = linear_sum_assignment(-np.abs(energy.T))
     names = [""] * shapes.shape[1]
     for k, i in zip(rows, cols, strict=True):
         names[k] = MODE_NAMES[i]

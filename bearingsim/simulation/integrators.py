@@ -24,7 +24,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import scipy.integrate
 
 from bearingsim.assembler.system import System
 from bearingsim.errors import ParameterError, SimulationError
@@ -36,7 +35,6 @@ from bearingsim.simulation.fastcall import buffered_function
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.progress import progress_bar
-from bearingsim.simulation.scipy_solvers import SCIPY_SOLVERS
 from bearingsim.simulation.sundials import observe_at, sundials_run
 
 __all__ = [
@@ -159,6 +157,11 @@ class ScipyIntegrator(Integrator):
         Trajectory
             States (and algebraic variables) at the output times, with the run's statistics.
         """
+        # on use: scipy.integrate (with scipy.optimize) takes ~0.6 s to import
+        import scipy.integrate
+
+        from bearingsim.simulation.scipy_solvers import SCIPY_SOLVERS
+
         pb, system = problem, problem.system
         f, jac = buffered_function(pb.closed.f), buffered_function(pb.closed.jac)
         n_f = [0]

@@ -9,8 +9,6 @@ import warnings
 from typing import Any
 
 import numpy as np
-import scipy.integrate
-import scipy.optimize
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.checks import check_tolerance
@@ -75,7 +73,9 @@ def initial_state(
             xx[free] = z
             return np.asarray(system.init_residual(t0, xx, u0, p), dtype=float).ravel()
 
-        sol = scipy.optimize.root(res, x[free], tol=1e-12)
+        from scipy.optimize import root  # on use: importing scipy.optimize takes ~0.6 s
+
+        sol = root(res, x[free], tol=1e-12)
         if not sol.success:
             raise SimulationError(
                 "initial equations could not be solved for "

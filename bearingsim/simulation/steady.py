@@ -12,7 +12,6 @@ import math
 
 import casadi as ca
 import numpy as np
-import scipy.optimize
 from scipy.linalg.lapack import dgesdd, dgesv
 
 from bearingsim.assembler.numeric import thread_kept
@@ -133,7 +132,9 @@ def steady_state(
 
     solution = _newton(res, jac, x[free], tol, residual_tol)
     if solution is None:  # Newton did not converge from this guess: the trust region's way
-        sol = scipy.optimize.root(res, x[free], jac=jac, method="hybr", tol=tol)
+        from scipy.optimize import root  # on use: importing scipy.optimize takes ~0.6 s
+
+        sol = root(res, x[free], jac=jac, method="hybr", tol=tol)
         converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
         if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
             raise SimulationError(

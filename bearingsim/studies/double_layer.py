@@ -6,7 +6,6 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.optimize
 
 from bearingsim.assembler import assemble
 from bearingsim.assembler.system import System, as_system
@@ -70,11 +69,13 @@ def steady_branches(system: System, inputs: dict[str, float], p: np.ndarray
     n = grid.size
     values = np.asarray(rhs.map(n)(np.zeros((1, n)), grid[None, :], np.repeat(
         u[:, None], n, axis=1), np.repeat(p[:, None], n, axis=1)), dtype=float).ravel()
+    from scipy.optimize import brentq  # on use: importing scipy.optimize takes ~0.6 s
+
     branches = []
     for k in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0.0):
         if values[k] == 0.0 and k > 0 and values[k - 1] == 0.0:
             continue  # a flat zero counted once
-        root = grid[k] if values[k] == 0.0 else scipy.optimize.brentq(
+        root = grid[k] if values[k] == 0.0 else brentq(
             f, grid[k], grid[k + 1], xtol=1e-12 * max(w, 1.0))
         stable = values[k] >= 0.0 >= values[k + 1] and values[k] != values[k + 1]
         branches.append(SteadyBranch(float(root), bool(stable)))

@@ -7,8 +7,6 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-import scipy.optimize
-
 from bearingsim import symbolic as op
 from bearingsim.components.ball_row.parameters import STEEL_DENSITY, RowParameters
 from bearingsim.errors import ParameterError
@@ -223,4 +221,6 @@ def axial_approach(p: RowParameters, n_balls: int, force: float, *, reference="t
         hi *= 2.0
         if hi > p.Dw:
             raise ParameterError(f"axial_approach: the row cannot carry {force:g} N axially")
-    return float(scipy.optimize.brentq(residual, 0.0, hi, xtol=1e-18, rtol=1e-14))
+    from scipy.optimize import brentq  # on use: importing scipy.optimize takes ~0.6 s
+
+    return float(brentq(residual, 0.0, hi, xtol=1e-18, rtol=1e-14))

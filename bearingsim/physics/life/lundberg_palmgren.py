@@ -14,7 +14,6 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from scipy.integrate import quad
 
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
@@ -294,6 +293,8 @@ def line_load_integrals(epsilon: float = 0.5) -> tuple[float, float, float]:
     """
     check_range(epsilon, "epsilon", "-", 0.0, 1.0, low_inclusive=False,
                 where="line_load_integrals")
+    from scipy.integrate import quad  # on use: scipy.integrate takes ~0.6 s to import
+
     edge = math.acos(max(1.0 - 2.0 * epsilon, -1.0))
 
     def share(psi):

@@ -1,0 +1,65 @@
+"""What a command imports: the assembler's passes with networkx, and scipy.optimize and
+scipy.integrate (with what they pull in, ~0.8 s together on this machine's runs of
+``python -X importtime``) are imported where they are used, not by the command line, the
+scene runner or a sweep worker, nor by a run whose model loads from the cache and integrates
+on SUNDIALS. Each check runs in a fresh Python process."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "bearingsim.assembler.pipeline")
+
+
+def _imported_after(code: str, env: dict | None = None) -> list[str]:
+    """The modules of :data:`HEAVY` imported after running ``code`` in a new process."""
+    script = textwrap.dedent(code) + textwrap.dedent(f"""
+        import json, sys
+        print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))
+        """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True, env={**os.environ, **(env or {})}, timeout=600)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_the_command_line_scene_runner_and_sweep_worker_import_none_of_them():
+    assert _imported_after("""
+        import bearingsim.cli, bearingsim.scenes, bearingsim.scenes.runner
+        import bearingsim.scenes.sweep_worker, bearingsim.simulation
+        """) == []
+
+
+def test_a_run_loaded_from_the_cache_imports_none_of_them(tmp_path):
+    run = f"""
+        import warnings
+        warnings.simplefilter("ignore")
+        from bearingsim.scenes import load_scene
+        from bearingsim.scenes.library import builtin_scene_path
+        from bearingsim.scenes.runner import run_scene
+        scene = load_scene(builtin_scene_path("motor_drive_spinup"))
+        run = run_scene(scene, {str(tmp_path / "out")!r}, write=False, progress=False)
+        """
+    env = {"BEARINGSIM_CACHE": str(tmp_path / "cache")}
+    first = _imported_after(run, env)  # assembles (the passes) and stores the system
+    assert "bearingsim.assembler.pipeline" in first
+    assert _imported_after(run, env) == []  # loads it: no pass, no scipy solver
+
+
+@pytest.mark.parametrize("method", ["LSODA", "BDF"])
+def test_a_scipy_method_still_imports_scipy_integrate_when_it_runs(method):
+    used = _imported_after(f"""
+        from bearingsim.assembler import assemble
+        from bearingsim.simulation import simulate
+        from tests.models import TwoInertiaDrive
+        simulate(assemble(TwoInertiaDrive()), 0.01, method={method!r})
+        """, {"PYTHONPATH": str(ROOT)})
+    assert "scipy.integrate" in used
