@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
+import io
 import os
 import platform
 import statistics
+import subprocess
+import tarfile
+import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -51,6 +56,36 @@ class Section:
     title: str
     body: str
     data: dict = field(default_factory=dict)
+
+
+ROOT = Path(__file__).resolve().parents[1]
+"""The checkout the benchmarks run in."""
+
+
+@contextlib.contextmanager
+def exported_package(commit: str) -> Iterator[dict[str, str]]:
+    """The package ``bearingsim`` at ``commit``, exported from git into a temporary folder
+    for the ``with`` block; yields the environment a Python process needs to import it
+    instead of this checkout's (with this checkout's ``bench`` and ``tests`` on the path).
+
+    Parameters
+    ----------
+    commit : str
+        A commit of this repository.
+
+    Yields
+    ------
+    dict of str to str
+        ``os.environ`` with ``PYTHONPATH`` (the export first) and ``PYTHONSAFEPATH``
+        (``-m`` would otherwise put the working folder, this checkout, first).
+    """
+    with tempfile.TemporaryDirectory() as tmp:
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "bearingsim"],
+                                 check=True, capture_output=True).stdout
+        with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+            tar.extractall(tmp, filter="data")
+        yield {**os.environ, "PYTHONPATH": os.pathsep.join([tmp, str(ROOT)]),
+               "PYTHONSAFEPATH": "1"}
 
 
 def machine_info() -> dict[str, str]:

@@ -20,24 +20,20 @@ Command: ``python -m bench.per_call [--baseline COMMIT] [--repeats N]``.
 from __future__ import annotations
 
 import argparse
-import io
 import json
 import math
 import os
 import subprocess
 import sys
-import tarfile
-import tempfile
 import time
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
 
-from bench.common import Section, fmt, markdown_table
+from bench.common import ROOT, Section, exported_package, fmt, markdown_table
 
 __all__ = ["BASELINE", "cache_refill", "measure", "output_on_commit", "section"]
 
-ROOT = Path(__file__).resolve().parents[1]
 BASELINE = "da2b26e"
 """The commit before the fourth round of work on fixed costs (buffered integrator and observe
 calls; the first three began at 7955f3a, 29a6fd4 and 0877683)."""
@@ -216,16 +212,10 @@ def output_on_commit(commit: str, module_args: list[str]) -> str:
     RuntimeError
         When the run imported another package than the exported one.
     """
-    with tempfile.TemporaryDirectory() as tmp:
-        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "bearingsim"],
-                                 check=True, capture_output=True).stdout
-        with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
-            tar.extractall(tmp, filter="data")
-        # PYTHONSAFEPATH: ``-m`` would put the working folder (this checkout) first
-        env = {**os.environ, "PYTHONPATH": os.pathsep.join([tmp, str(ROOT)]),
-               "PYTHONSAFEPATH": "1"}
+    with exported_package(commit) as env:
         out = subprocess.run([sys.executable, "-m", *module_args], check=True,
                              capture_output=True, text=True, env=env, cwd=str(ROOT)).stdout
+    tmp = env["PYTHONPATH"].split(os.pathsep)[0]
     rows = json.loads(out.strip().splitlines()[-1])
     if any(not row["package"].startswith(tmp) for row in rows):
         raise RuntimeError(f"the baseline run imported another package: {rows[0]['package']}")

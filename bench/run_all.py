@@ -37,6 +37,7 @@ from bench import (
     per_call,
     pruning,
     roller,
+    startup,
     sundials_compiled,
     sweep_scaling,
     table_inputs,
@@ -141,6 +142,7 @@ def main(argv: list[str] | None = None) -> int:
         ("co-simulation coupling accuracy", lambda: cosim_coupling.section(args.quick)),
         ("compiled BDF stepping core", lambda: compiled_bdf_core.section(args.quick)),
         ("compiled BDF Newton iteration", lambda: compiled_bdf_newton.section(args.quick)),
+        ("start-up of a command", lambda: startup.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
