@@ -133,15 +133,17 @@ print(json.dumps(cpu))
 """.replace("RUNS", "8")
 
 
-def side_by_side(processes: int = 2) -> dict:
+def side_by_side(processes: int = 2, rounds: int = ROUNDS) -> dict:
     """CPU time [s] of one sweep point's run (the scene's start-up to ``T_END``), 8 runs in one
-    process alone, then in ``processes`` processes at once (started together): what running
-    side by side costs each run on this machine, with no sweep code involved.
+    process alone, then in ``processes`` processes at once (started together), alternating
+    over ``rounds`` rounds: what running side by side costs each run on this machine, with no
+    sweep code involved.
 
     Returns
     -------
     dict
-        ``alone`` and ``together``: the median CPU seconds of a run.
+        ``alone`` and ``together``: the median CPU seconds of a run over all rounds;
+        ``ratios``: together over alone in each round.
     """
     script = SIDE_BY_SIDE.replace("T_END", repr(T_END))
 
@@ -153,9 +155,12 @@ def side_by_side(processes: int = 2) -> dict:
         runs = [t for p in procs for t in json.loads(p.communicate()[0].splitlines()[-1])]
         return float(np.median(runs))
 
-    alone = medians([start(time.time() + 8.0)])
-    together = medians([start(time.time() + 8.0) for _ in range(processes)])
-    return {"alone": alone, "together": together}
+    alone, together = [], []
+    for _ in range(rounds):
+        alone.append(medians([start(time.time() + 8.0)]))
+        together.append(medians([start(time.time() + 8.0) for _ in range(processes)]))
+    return {"alone": float(np.median(alone)), "together": float(np.median(together)),
+            "ratios": [b / a for a, b in zip(alone, together, strict=True)]}
 
 
 def _points(n: int) -> list[dict]:
@@ -397,8 +402,10 @@ def _scaling_text(r: dict) -> list[str]:
            "that limits the speed-up of this machine, not the sweep's feeding, which the "
            "busy fraction measures." if slowdown > 1.05 else ".")
         + (f" The same point's run with no sweep code, in one process and in {p} processes "
-           f"at once: {sbs['alone']:.3f} s and {sbs['together']:.3f} s of CPU (median of 8 "
-           f"runs each), {sbs['together'] / sbs['alone']:.2f}x"
+           f"at once, alternating over {len(sbs['ratios'])} rounds: {sbs['alone']:.3f} s "
+           f"and {sbs['together']:.3f} s of CPU (medians of 8 runs a round), "
+           f"{sbs['together'] / sbs['alone']:.2f}x (rounds: "
+           + ", ".join(f"{r:.2f}x" for r in sbs["ratios"]) + ")"
            + (f": the processes slow each other down in the caches and memory they share (and "
               "in what the virtual machine's host shares); at that cost "
               f"{p} workers could reach {p * sbs['alone'] / sbs['together']:.2f}x at most. "
