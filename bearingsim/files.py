@@ -70,7 +70,8 @@ def os_reason(exc: OSError) -> str:
                errno.EACCES: "permission denied", errno.EPERM: "permission denied",
                errno.EROFS: "the file system is read-only",
                errno.ENOSPC: "no space left on the device", errno.EDQUOT: "disk quota exceeded",
-               errno.EISDIR: "it is a folder", errno.ENOTDIR: "a part of the path is a file"}
+               errno.EISDIR: "it is a folder", errno.ENOTDIR: "a part of the path is a file",
+               errno.EEXIST: "a file of that name is in the way"}
     return reasons.get(exc.errno, exc.strerror or type(exc).__name__)
 
 

@@ -220,7 +220,7 @@ def _read_entry(path: Path, key: str, values: dict[str, float]) -> bytes | None:
     corrupt one, or one whose structure was chosen at other parameter ``values``."""
     try:
         raw = path.read_bytes()
-    except FileNotFoundError:
+    except OSError:  # missing, or a cache folder that cannot be read: assembled instead
         return None
     head = len(MAGIC) + 32
     body = raw[head:]

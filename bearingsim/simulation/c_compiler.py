@@ -29,9 +29,11 @@ from pathlib import Path
 from bearingsim.cache_budget import budget_bytes, keep_to_budget
 from bearingsim.cache_paths import cache_root
 from bearingsim.errors import BearingsimError
+from bearingsim.files import os_reason
 
 __all__ = ["Build", "CompileError", "c_compiler", "compilations", "compile_estimate",
-           "compile_units", "default_cache_dir", "require_compiler", "stop_builds"]
+           "compile_units", "default_cache_dir", "require_compiler", "stop_builds",
+           "unwritable_cache"]
 
 _COMPILATIONS = [0]
 _LOCK = threading.Lock()
@@ -246,6 +248,48 @@ def compilations() -> int:
     return _COMPILATIONS[0]
 
 
+def _build_folder(lib: Path, units: list[str]) -> Path:
+    """A private build folder beside ``lib`` holding the units' sources
+    (``<lib stem>_<k>.c``).
+
+    Raises
+    ------
+    CompileError
+        When the cache folder cannot be created or written (a file in its place, no
+        permission, a full disk), naming the folder and ``BEARINGSIM_CACHE``.
+    """
+    folder = None
+    try:
+        lib.parent.mkdir(parents=True, exist_ok=True)
+        folder = Path(tempfile.mkdtemp(dir=lib.parent, prefix=".build_"))
+        for k, unit in enumerate(units):
+            (folder / f"{lib.stem}_{k}.c").write_text(unit)
+    except OSError as exc:
+        if folder is not None:
+            shutil.rmtree(folder, ignore_errors=True)
+        raise unwritable_cache(lib.parent, exc) from None
+    return folder
+
+
+def unwritable_cache(folder: Path, exc: OSError) -> CompileError:
+    """The error of a kernel cache folder that cannot be created or written.
+
+    Parameters
+    ----------
+    folder : Path
+        The cache folder.
+    exc : OSError
+        What creating or writing in it raised.
+
+    Returns
+    -------
+    CompileError
+        Naming the folder, the reason and ``BEARINGSIM_CACHE``.
+    """
+    return CompileError(f"the kernel cache folder {folder} cannot be written ({os_reason(exc)}): "
+                        "point BEARINGSIM_CACHE at a folder this user can write")
+
+
 class Build:
     """A compilation of one library by the C compiler in a child process.
 
@@ -274,20 +318,18 @@ class Build:
                  split_flags: Sequence[str] | None = None):
         cc = require_compiler()
         units = [sources] if isinstance(sources, str) else list(sources)
-        lib.parent.mkdir(parents=True, exist_ok=True)
         self.lib = lib
         self.budget = budget_bytes()
         """The cache's budget [bytes], kept to when the library is in place."""
         self.source_bytes = sum(len(unit) for unit in units)
         """Size of the C source [bytes]."""
         self.started = time.perf_counter()
-        self._dir = Path(tempfile.mkdtemp(dir=lib.parent, prefix=".build_"))
+        self._dir = _build_folder(lib, units)
         self._log = self._dir / "cc.log"
         tmp_lib = self._dir / lib.name
         objects, compile_lines = [], []
-        for k, unit in enumerate(units):
+        for k in range(len(units)):
             source_path = self._dir / f"{lib.stem}_{k}.c"
-            source_path.write_text(unit)
             obj = self._dir / f"{lib.stem}_{k}.o"
             objects.append(str(obj))
             unit_flags = flags if k == 0 or split_flags is None else split_flags

@@ -54,7 +54,13 @@ from bearingsim.assembler.mapped_parts import NotMappable
 from bearingsim.assembler.system import System
 from bearingsim.cache_budget import mark_used
 from bearingsim.errors import ParameterError
-from bearingsim.simulation.c_compiler import Build, CompileError, c_compiler, default_cache_dir
+from bearingsim.simulation.c_compiler import (
+    Build,
+    CompileError,
+    c_compiler,
+    default_cache_dir,
+    unwritable_cache,
+)
 from bearingsim.simulation.c_units import generate_units
 from bearingsim.simulation.compile import DEFAULT_FLAGS, DEFAULT_SPLIT_FLAGS, library_path
 from bearingsim.simulation.kernel_names import remember_library, remembered_library
@@ -234,10 +240,20 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
             pending = _PENDING.get(lib)
         if pending is None:
             generated = generated or _generated(system, form, per_ball)
-            record.parent.mkdir(parents=True, exist_ok=True)
-            record.write_text(balls)  # what the library maps, read when it is reused
-            pending = _submit(lib, units or generate_units(generated, prefix), flags,
-                              split_flags)
+            try:
+                record.parent.mkdir(parents=True, exist_ok=True)
+                record.write_text(balls)  # what the library maps, read when it is reused
+                pending = _submit(lib, units or generate_units(generated, prefix), flags,
+                                  split_flags)
+            except (CompileError, OSError) as exc:  # a cache folder that cannot be written
+                failure = (exc if isinstance(exc, CompileError)
+                           else unwritable_cache(record.parent, exc))
+                if compiled is True:
+                    raise failure from None
+                fn, jac, observe = generated
+                result = cache[key] = _vm_kernel(form, fn, jac, observe,
+                                                 f"compiling failed: {failure}", start, balls)
+                return result
         if compiled is True:
             pending.wait()  # raises the CompileError of a failed build
         elif not pending.done():
