@@ -35,7 +35,8 @@ __all__ = ["BASELINE", "ROUNDS", "SCENES", "measure", "section"]
 
 BASELINE = "fd189b3"
 """The commit before scipy.optimize, scipy.integrate, networkx and the assembler's passes
-were imported where they are used."""
+were imported where they are used, and before the units library kept pint's conversions on
+disk."""
 ROUNDS = 5
 """Rounds of the baseline and this code, alternating."""
 SCENES = ("deep_groove_duty1", "double_layer_friction", "spindle_radial")
@@ -116,13 +117,15 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
     body = (
         f"Each a fresh Python process; medians of {rounds} rounds, the baseline {baseline} "
         "(before scipy.optimize, scipy.integrate, networkx and the assembler's passes were "
-        "imported where they are used) and this code alternating. *imports*: wall time of "
+        "imported where they are used, and before pint's conversions were kept on disk) and "
+        "this code alternating. *imports*: wall time of "
         "`import bearingsim.cli, bearingsim.scenes.runner` inside the process; *run*: "
         "`bearingsim run <scene> --out <temporary folder> --no-progress` on a warm cache "
         "(assembled systems and kernels stored by a first run of each package), launch to "
         "exit, wall time and CPU time of the process and its children (plots, CSV and "
         "summary written). A model loaded from the cache and run on SUNDIALS needs none of "
-        "the four; `spindle_radial` runs LSODA (scipy.integrate) from a start point solved "
+        "the four, nor pint once its units' conversions are kept (the warm-up run keeps "
+        "them); `spindle_radial` runs LSODA (scipy.integrate) from a start point solved "
         "by scipy.optimize, so it imports them on use.\n\n"
         f"Command: `python -m bench.startup --baseline {baseline}`\n\n"
         + markdown_table(["", "wall before [s]", "wall now [s]", "CPU before [s]",

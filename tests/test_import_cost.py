@@ -2,7 +2,8 @@
 scipy.integrate (with what they pull in, ~0.8 s together on this machine's runs of
 ``python -X importtime``) are imported where they are used, not by the command line, the
 scene runner or a sweep worker, nor by a run whose model loads from the cache and integrates
-on SUNDIALS. Each check runs in a fresh Python process."""
+on SUNDIALS; pint neither, once the conversions such a run needs are kept on disk
+(:mod:`bearingsim.units.conversion_memo`). Each check runs in a fresh Python process."""
 
 from __future__ import annotations
 
@@ -17,7 +18,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 
-HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "bearingsim.assembler.pipeline")
+HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "bearingsim.assembler.pipeline",
+         "pint")
 
 
 def _imported_after(code: str, env: dict | None = None) -> list[str]:

@@ -110,7 +110,8 @@ def pint_unit(unit: str):
 @functools.lru_cache(maxsize=512)
 def base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, float]:
     """Exponents of the SI base units (radian counted as a base unit), factor and offset:
-    ``SI value = factor * value + offset``.
+    ``SI value = factor * value + offset``; kept on disk for later processes, which then need
+    not import pint (:mod:`~bearingsim.units.conversion_memo`).
 
     Parameters
     ----------
@@ -120,7 +121,33 @@ def base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, flo
     -------
     tuple
         ``((("kilogram", 1.0), ...), factor, offset)``.
+
+    Raises
+    ------
+    UnitError
+        For a unit pint does not know, or one without a finite SI factor.
     """
+    from bearingsim.units.conversion_memo import memo
+
+    if not isinstance(unit, str):
+        return _base_exponents(unit)  # refused by pint_unit; nothing to keep
+    kept = memo().get(unit)
+    if isinstance(kept, dict) and isinstance(kept.get("error"), str):
+        raise UnitError(kept["error"])
+    if isinstance(kept, list) and len(kept) == 3:
+        exps, factor, offset = kept
+        return tuple((str(name), float(power)) for name, power in exps), factor, offset
+    try:
+        result = _base_exponents(unit)
+    except UnitError as exc:
+        memo().put(unit, {"error": str(exc)})
+        raise
+    memo().put(unit, [[list(e) for e in result[0]], result[1], result[2]])
+    return result
+
+
+def _base_exponents(unit: str) -> tuple[tuple[tuple[str, float], ...], float, float]:
+    """:func:`base_exponents` computed by pint."""
     ureg = registry()
     u = pint_unit(unit)
     try:

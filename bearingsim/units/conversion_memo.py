@@ -1,0 +1,122 @@
+"""The SI conversions the units library computed, kept on disk for later processes.
+
+A command needs few conversions: the display units of its outputs, the units of its scene's
+quantities. Importing pint to compute them costs every process ~0.25 s
+(``python -X importtime -c 'import pint'``), more than a warm run's simulation of most
+models. So :func:`~bearingsim.units.registry.base_exponents`, which every conversion goes
+through, keeps what pint computed (the base units' exponents, factor and offset of a unit, or
+why the unit is refused) in ``<cache root>/pint/conversions.json``; a later process reads them
+and imports pint only for a unit it has not seen.
+
+The memo is keyed by pint's version and by the source of :mod:`bearingsim.units.registry`
+(which translates the model's unit spellings to pint's): a change of either starts a new memo.
+It is written atomically after each new unit; one that cannot be read, parsed, or is of
+another key, is ignored and replaced. ``bearingsim cache clear`` removes it with the parsed
+definitions.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import importlib
+import json
+import os
+import tempfile
+import threading
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+from bearingsim.cache_paths import cache_root
+
+__all__ = ["FILE", "ConversionMemo", "memo"]
+
+FILE = "conversions.json"
+"""File name of the memo in the units library's cache folder."""
+
+
+class ConversionMemo:
+    """Units -> what pint computed for them, read from and written to ``path``.
+
+    Parameters
+    ----------
+    path : Path
+        The memo file.
+    key : str
+        What the entries are valid for (pint's version, the translation's source).
+    """
+
+    def __init__(self, path: Path, key: str):
+        self.path = path
+        self.key = key
+        self._lock = threading.Lock()
+        self._entries: dict[str, Any] = self._read()
+
+    def _read(self) -> dict[str, Any]:
+        try:
+            data = json.loads(self.path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):  # none yet, unreadable or not JSON: start anew
+            return {}
+        if not isinstance(data, dict) or data.get("key") != self.key:
+            return {}
+        entries = data.get("units")
+        return entries if isinstance(entries, dict) else {}
+
+    def get(self, unit: str) -> Any:
+        """What was kept for ``unit``.
+
+        Parameters
+        ----------
+        unit : str
+            The unit string as asked for.
+
+        Returns
+        -------
+        object or None
+            The kept JSON value, or None.
+        """
+        return self._entries.get(unit)
+
+    def put(self, unit: str, value: Any) -> None:
+        """Keep ``value`` (JSON) for ``unit`` and write the memo; a memo that cannot be
+        written (a read-only cache) only stays in memory.
+
+        Parameters
+        ----------
+        unit : str
+            The unit string.
+        value : object
+            JSON-serialisable value.
+        """
+        with self._lock:
+            self._entries[unit] = value
+            text = json.dumps({"key": self.key, "units": self._entries}, ensure_ascii=False)
+            # written whole and renamed into place (bearingsim.files, which does this for
+            # outputs, imports the units library: it cannot be used here)
+            tmp = None
+            try:
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+                fd, tmp = tempfile.mkstemp(dir=self.path.parent, prefix=f".{FILE}.",
+                                           suffix=".part")
+                with os.fdopen(fd, "w", encoding="utf-8") as f:
+                    f.write(text)
+                os.replace(tmp, self.path)
+            except OSError:  # a read-only cache: the memo stays in memory
+                if tmp is not None:
+                    Path(tmp).unlink(missing_ok=True)
+
+
+@functools.lru_cache(maxsize=1)
+def memo() -> ConversionMemo:
+    """This process's memo, under the cache root's units folder.
+
+    Returns
+    -------
+    ConversionMemo
+        The memo (read on the first call).
+    """
+    registry = importlib.import_module("bearingsim.units.registry")  # (its function too)
+    source = Path(registry.__file__).read_bytes()
+    key = f"pint {metadata.version('pint')}; {hashlib.sha256(source).hexdigest()[:16]}"
+    return ConversionMemo(cache_root() / registry.PINT_CACHE / FILE, key)
