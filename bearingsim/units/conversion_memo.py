@@ -30,10 +30,13 @@ from typing import Any
 
 from bearingsim.cache_paths import cache_root
 
-__all__ = ["FILE", "ConversionMemo", "memo"]
+__all__ = ["FILE", "MAX_UNITS", "ConversionMemo", "memo"]
 
 FILE = "conversions.json"
 """File name of the memo in the units library's cache folder."""
+MAX_UNITS = 1000
+"""Units kept at most: a run's units are few, and text that is not a unit (a refusal is kept
+too) must not grow the memo without bound."""
 
 
 class ConversionMemo:
@@ -79,8 +82,9 @@ class ConversionMemo:
         return self._entries.get(unit)
 
     def put(self, unit: str, value: Any) -> None:
-        """Keep ``value`` (JSON) for ``unit`` and write the memo; a memo that cannot be
-        written (a read-only cache) only stays in memory.
+        """Keep ``value`` (JSON) for a new ``unit`` and write the memo (nothing once it holds
+        :data:`MAX_UNITS`); a memo that cannot be written (a read-only cache) only stays in
+        memory.
 
         Parameters
         ----------
@@ -90,6 +94,8 @@ class ConversionMemo:
             JSON-serialisable value.
         """
         with self._lock:
+            if unit in self._entries or len(self._entries) >= MAX_UNITS:
+                return
             self._entries[unit] = value
             text = json.dumps({"key": self.key, "units": self._entries}, ensure_ascii=False)
             # written whole and renamed into place (bearingsim.files, which does this for

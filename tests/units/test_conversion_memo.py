@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from bearingsim.units.conversion_memo import FILE, ConversionMemo, memo
+from bearingsim.units.conversion_memo import FILE, MAX_UNITS, ConversionMemo, memo
 from bearingsim.units.display import DISPLAY_UNITS
 from bearingsim.units.registry import PINT_CACHE, UnitError, _base_exponents, base_exponents
 
@@ -95,3 +95,14 @@ def test_a_refusal_is_kept_with_its_message(own_cache):
         base_exponents("blorps")
     assert str(kept.value) == str(first.value)
     assert "blorps" in str(kept.value)
+
+
+def test_the_memo_stops_growing_at_its_bound(tmp_path):
+    path = tmp_path / FILE
+    kept = ConversionMemo(path, "k")
+    for k in range(MAX_UNITS + 5):
+        kept.put(f"unit{k}", {"error": "refused"})
+    reread = ConversionMemo(path, "k")
+    assert reread.get(f"unit{MAX_UNITS - 1}") == {"error": "refused"}
+    assert reread.get(f"unit{MAX_UNITS}") is None
+    assert len(json.loads(path.read_text())["units"]) == MAX_UNITS
