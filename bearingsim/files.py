@@ -17,7 +17,6 @@ Messages name the file, never its content.
 from __future__ import annotations
 
 import contextlib
-import csv
 import errno
 import os
 import stat
@@ -25,18 +24,15 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from bearingsim.errors import BearingsimError
-from bearingsim.units import unit_label
 
 __all__ = [
     "FileAccessError",
     "PathOutsideError",
     "atomic_path",
     "atomic_write_text",
-    "column_name",
     "confined_path",
     "open_regular",
     "os_reason",
-    "write_series_csv",
 ]
 
 PART = ".part"
@@ -222,51 +218,3 @@ def open_regular(path: str | Path, what: str = "file", max_bytes: int | None = N
     except BaseException:
         os.close(fd)
         raise
-
-
-def column_name(name: str, unit: str) -> str:
-    """The CSV header of a series: ``"name [unit]"``, ``[-]`` for a dimensionless one.
-
-    Parameters
-    ----------
-    name : str
-        Series name.
-    unit : str
-        Its SI unit (``"1"`` or ``""`` for dimensionless).
-
-    Returns
-    -------
-    str
-        The header.
-    """
-    return f"{name} [{unit_label(unit)}]"
-
-
-def write_series_csv(path: str | Path, t, columns: dict, units: dict[str, str]) -> Path:
-    """Write time series as CSV with one header row ``time [s], name [unit], ...`` (readable by
-    ``pandas.read_csv`` without options), atomically (:func:`atomic_path`).
-
-    Parameters
-    ----------
-    path : str or Path
-        The file.
-    t : array_like
-        Times [s].
-    columns : dict
-        Name -> values at the times.
-    units : dict
-        Name -> unit (missing: dimensionless).
-
-    Returns
-    -------
-    Path
-    """
-    import numpy as np
-
-    path = Path(path)
-    names = list(columns)
-    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow([column_name("time", "s"), *[column_name(n, units.get(n, "")) for n in names]])
-        w.writerows(np.vstack([t, *[columns[n] for n in names]]).T.tolist())
-    return path

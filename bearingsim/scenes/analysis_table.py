@@ -8,10 +8,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from bearingsim.files import atomic_path, column_name
+from bearingsim.files import atomic_path
 from bearingsim.scenes.operating_points import point_units
 from bearingsim.scenes.preparation import Prepared, point_keys
 from bearingsim.scenes.statics_table import statics_of
+from bearingsim.series_csv import column_name
 
 __all__ = ["analysis_units", "write_table"]
 

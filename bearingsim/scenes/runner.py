@@ -23,7 +23,6 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import ModelError
-from bearingsim.files import write_series_csv
 from bearingsim.scenes.analyses import (
     NotSettledWarning,
     run_points,
@@ -39,6 +38,7 @@ from bearingsim.scenes.run_figures import scene_figures
 from bearingsim.scenes.scene import Scene, SceneError, line_of
 from bearingsim.scenes.scene_simulation import output_series, run_simulation
 from bearingsim.scenes.tables import scene_output_folder
+from bearingsim.series_csv import write_series_csv
 from bearingsim.simulation import Result
 
 __all__ = [

@@ -16,8 +16,9 @@ import os
 from pathlib import Path
 from typing import Any
 
-from bearingsim.files import atomic_path, column_name
+from bearingsim.files import atomic_path
 from bearingsim.scenes.sampling import SweepError
+from bearingsim.series_csv import column_name
 
 __all__ = ["SweepTable", "open_table", "cell", "from_cell"]
 

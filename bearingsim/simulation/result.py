@@ -12,7 +12,8 @@ import numpy as np
 
 from bearingsim.checks import checked
 from bearingsim.errors import ParameterError
-from bearingsim.files import atomic_path, write_series_csv
+from bearingsim.files import atomic_path
+from bearingsim.series_csv import write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
 
 __all__ = ["Result", "ResultLayout"]
@@ -247,7 +248,7 @@ class Result:
 
     def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
         """Write ``time`` and the chosen variables (default all) as CSV in SI, one header row
-        ``time [s], name [unit], ...`` (:func:`~bearingsim.files.write_series_csv`).
+        ``time [s], name [unit], ...`` (:func:`~bearingsim.series_csv.write_series_csv`).
 
         Parameters
         ----------
