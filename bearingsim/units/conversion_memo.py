@@ -10,7 +10,8 @@ and imports pint only for a unit it has not seen.
 
 The memo is keyed by pint's version and by the source of :mod:`bearingsim.units.registry`
 (which translates the model's unit spellings to pint's): a change of either starts a new memo.
-It is written atomically after each new unit; one that cannot be read, parsed, or is of
+It is written whole and renamed into place after each new unit
+(:func:`~bearingsim.files.atomic_write_text`); one that cannot be read, parsed, or is of
 another key, is ignored and replaced. ``bearingsim cache clear`` removes it with the parsed
 definitions.
 """
@@ -21,14 +22,13 @@ import functools
 import hashlib
 import importlib
 import json
-import os
-import tempfile
 import threading
 from importlib import metadata
 from pathlib import Path
 from typing import Any
 
 from bearingsim.cache_paths import cache_root
+from bearingsim.files import atomic_write_text
 
 __all__ = ["FILE", "MAX_UNITS", "ConversionMemo", "memo"]
 
@@ -98,19 +98,11 @@ class ConversionMemo:
                 return
             self._entries[unit] = value
             text = json.dumps({"key": self.key, "units": self._entries}, ensure_ascii=False)
-            # written whole and renamed into place (bearingsim.files, which does this for
-            # outputs, imports the units library: it cannot be used here)
-            tmp = None
             try:
                 self.path.parent.mkdir(parents=True, exist_ok=True)
-                fd, tmp = tempfile.mkstemp(dir=self.path.parent, prefix=f".{FILE}.",
-                                           suffix=".part")
-                with os.fdopen(fd, "w", encoding="utf-8") as f:
-                    f.write(text)
-                os.replace(tmp, self.path)
+                atomic_write_text(self.path, text)
             except OSError:  # a read-only cache: the memo stays in memory
-                if tmp is not None:
-                    Path(tmp).unlink(missing_ok=True)
+                pass
 
 
 @functools.lru_cache(maxsize=1)
