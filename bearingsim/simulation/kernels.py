@@ -246,14 +246,8 @@ def kernel(system: System, form: str = "ode", compiled: bool | str = "auto",
                 pending = _submit(lib, units or generate_units(generated, prefix), flags,
                                   split_flags)
             except (CompileError, OSError) as exc:  # a cache folder that cannot be written
-                failure = (exc if isinstance(exc, CompileError)
-                           else unwritable_cache(record.parent, exc))
-                if compiled is True:
-                    raise failure from None
-                fn, jac, observe = generated
-                result = cache[key] = _vm_kernel(form, fn, jac, observe,
-                                                 f"compiling failed: {failure}", start, balls)
-                return result
+                pending = _FailedBuild(exc if isinstance(exc, CompileError)
+                                       else unwritable_cache(record.parent, exc))
         if compiled is True:
             pending.wait()  # raises the CompileError of a failed build
         elif not pending.done():
@@ -331,6 +325,20 @@ def _ball_sets(system: System, form: str, mapped: bool) -> str:
 
 
 _PENDING: dict[Path, Build] = {}
+
+
+class _FailedBuild:
+    """A build that could not start (its cache folder cannot be written): done, and waiting
+    for it raises its error, as a failed compilation's :class:`Build` does."""
+
+    def __init__(self, error: CompileError):
+        self.error = error
+
+    def done(self) -> bool:
+        return True
+
+    def wait(self) -> Path:
+        raise self.error
 
 
 def _submit(lib: Path, units: list[str], flags: tuple[str, ...],
