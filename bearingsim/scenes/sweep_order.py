@@ -61,13 +61,12 @@ def _mean_abs(text: str, t_start: float, t_end: float) -> float:
 
 
 def _span_mean(grid: np.ndarray, values: np.ndarray) -> float:
-    """Mean of ``|values|`` over the times ``grid`` (trapezoidal rule; a span of no length:
-    the first value)."""
-    from scipy.integrate import trapezoid
-
+    """Mean of ``|values|`` over the times ``grid`` (trapezoidal rule, numpy's: the sweep's
+    client plans without importing scipy.integrate, 0.3 s; a span of no length: the first
+    value)."""
     level = np.abs(values)
     span = grid[-1] - grid[0]
-    return float(trapezoid(level, grid) / span) if span > 0 else float(level[0])
+    return float(np.trapezoid(level, grid) / span) if span > 0 else float(level[0])
 
 
 def _input_level(value: Any, t_start: float, t_end: float) -> float | None:
@@ -206,8 +205,8 @@ class PointCosts:
         y = np.array([self._measured[k] for k in done])
         start = np.linalg.lstsq(a, y, rcond=None)[0]
         scale = 0.05 * float(np.median(y)) or 1e-3
-        self._coef = least_squares(lambda c: a @ c - y, start, loss="cauchy",
-                                   f_scale=scale).x
+        self._coef = least_squares(lambda c: a @ c - y, start, jac=lambda c: a,
+                                   loss="cauchy", f_scale=scale).x
         self._fitted_on = len(done)
         self.version += 1
 
