@@ -1,6 +1,7 @@
-"""What a command imports: the assembler's passes with networkx, and scipy.optimize and
+"""What a command imports: the assembler's passes with networkx, scipy.optimize and
 scipy.integrate (with what they pull in, ~0.8 s together on this machine's runs of
-``python -X importtime``) are imported where they are used, not by the command line, the
+``python -X importtime``), and scipy.linalg and scipy.sparse (~0.35 s with scipy's common
+base) are imported where they are used, not by the command line, the
 scene runner or a sweep worker, nor by a run whose model loads from the cache and integrates
 on SUNDIALS; pint neither, once the conversions such a run needs are kept on disk
 (:mod:`bearingsim.units.conversion_memo`). Each check runs in a fresh Python process."""
@@ -18,8 +19,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 
-HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "bearingsim.assembler.pipeline",
-         "pint")
+HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "scipy.linalg", "scipy.sparse",
+         "bearingsim.assembler.pipeline", "pint")
 
 
 def _imported_after(code: str, env: dict | None = None) -> list[str]:

@@ -11,11 +11,15 @@ generic argument handling of :func:`evaluate`.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import casadi as ca
 import numpy as np
-import scipy.sparse
 
 from bearingsim.assembler.numeric import buffered, thread_kept
+
+if TYPE_CHECKING:
+    import scipy.sparse
 
 __all__ = ["BufferedFunction", "ColumnsCall", "buffered_function", "columns_call", "evaluate",
            "mapped_function"]
@@ -124,6 +128,8 @@ class BufferedFunction:
         scipy.sparse.csc_matrix
             The output in its sparsity pattern.
         """
+        import scipy.sparse  # on use: a command that needs no sparse matrix imports none
+
         data = self._run(t, x, p).copy()
         return scipy.sparse.csc_matrix((data, self._indices, self._indptr), shape=self._shape)
 

@@ -14,8 +14,6 @@ from dataclasses import dataclass
 
 import casadi as ca
 import numpy as np
-import scipy.sparse as sparse
-from scipy.sparse.linalg import splu
 
 __all__ = ["NewtonPattern", "fill_reducing_order", "newton_pattern"]
 
@@ -35,6 +33,9 @@ def fill_reducing_order(pattern: ca.Sparsity) -> np.ndarray:
     ndarray of int
         ``order``: the permuted matrix is ``A[order][:, order]``.
     """
+    import scipy.sparse as sparse  # on use: scipy.sparse.linalg imports scipy.linalg
+    from scipy.sparse.linalg import splu
+
     n = pattern.size1()
     rows, cols = pattern.get_triplet()
     # ones off the diagonal, n on it: diagonally dominant, so SuperLU keeps the diagonal

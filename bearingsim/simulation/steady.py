@@ -12,7 +12,6 @@ import math
 
 import casadi as ca
 import numpy as np
-from scipy.linalg.lapack import dgesdd, dgesv
 
 from bearingsim.assembler.numeric import thread_kept
 from bearingsim.assembler.system import System, as_system
@@ -159,6 +158,8 @@ def _newton(res, jac, z: np.ndarray, tol: float, residual_tol: float) -> np.ndar
     is below ``tol`` relative to ``z`` (as MINPACK's ``xtol``) and the residual is below
     ``residual_tol`` after it, else None (a singular Jacobian, a residual that is not finite,
     no convergence in :data:`NEWTON_ITERATIONS` steps)."""
+    from scipy.linalg.lapack import dgesv  # on use: scipy.linalg, ~0.25 s of every command
+
     r = res(z)
     for _ in range(NEWTON_ITERATIONS):
         if not np.isfinite(r).all():
@@ -295,6 +296,8 @@ def _check_determined(system: System, jacobian: np.ndarray, free: list[int],
     returned its start guess for them."""
     if jacobian.size == 0:
         return
+    from scipy.linalg.lapack import dgesdd  # on use, as in _newton
+
     # LAPACK's gesdd for the singular values alone, without numpy's per-call checks (a
     # fifth of a small model's sweep point); the vectors only to name the states
     _, sv, _, info = dgesdd(jacobian, compute_uv=0)
