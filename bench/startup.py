@@ -125,8 +125,11 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "exit, wall time and CPU time of the process and its children (plots, CSV and "
         "summary written). A model loaded from the cache and run on SUNDIALS needs none of "
         "the four, nor pint once its units' conversions are kept (the warm-up run keeps "
-        "them); `spindle_radial` runs LSODA (scipy.integrate) from a start point solved "
-        "by scipy.optimize, so it imports them on use.\n\n"
+        "them), nor, since 5d83818, scipy.linalg and scipy.sparse (imported on use too): "
+        "`double_layer_friction` imports no scipy at all, `deep_groove_duty1` scipy.special "
+        "(the contacts' elliptic integrals, with scipy's common base); `spindle_radial` runs "
+        "LSODA (scipy.integrate) from a start point solved by scipy.optimize, so it imports "
+        "them on use.\n\n"
         f"Command: `python -m bench.startup --baseline {baseline}`\n\n"
         + markdown_table(["", "wall before [s]", "wall now [s]", "CPU before [s]",
                           "CPU now [s]", "wall before / now"], rows))

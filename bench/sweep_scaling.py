@@ -42,7 +42,7 @@ from bench.common import Section, fmt, markdown_table
 __all__ = ["run", "section"]
 
 N_POINTS = 64
-ROUNDS = 3
+ROUNDS = 5
 """Rounds of the 1-worker and the many-worker sweeps, alternating (odd: the median is one)."""
 T_END = 0.1
 """Simulated time of each sweep point [s]."""
