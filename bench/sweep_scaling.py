@@ -205,8 +205,11 @@ def _sweep(scene, points, workers: int, longest_first: bool = True) -> dict:
         raise RuntimeError(res.failures[:3])
     on_workers = [r["wall_s"] for r in res.rows]
     busy = workers * res.phases["points"]
+    cpu_of_points = [res.point_cpu[k] for k in sorted(res.point_cpu)]
     return {"wall": wall, "chunk": res.chunk_size, "phases": res.phases, "workers": workers,
             "point_s": float(np.mean(on_workers)), "busy": sum(on_workers) / busy,
+            "point_cpu_s": float(np.mean(cpu_of_points)),
+            "waiting": 1.0 - sum(cpu_of_points) / sum(on_workers),
             "overhead_s": (busy - sum(on_workers)) / len(on_workers),
             "fixed_s": wall - res.phases["points"], "client_cpu_s": cpu,
             **timeline(res.spans), "ended": time.time()}
@@ -323,6 +326,7 @@ def run(workers: int = 2) -> dict:
 def _scaling_row(label: str, sweep: dict) -> list[str]:
     ph = sweep["phases"]
     return ([label, f"{sweep['wall']:.2f}", str(sweep["chunk"]), f"{sweep['point_s'] * 1e3:.0f}",
+             f"{sweep['point_cpu_s'] * 1e3:.0f}", f"{sweep['waiting']:.1%}",
              f"{sweep['last_s'] * 1e3:.0f}",
              f"{sweep['busy']:.1%}", f"{sweep['overhead_s'] * 1e3:.1f}",
              f"{sweep['idle_end_s']:.2f}", f"{sweep['gap_s'] * 1e3:.1f}",
@@ -342,6 +346,7 @@ def _scaling_text(r: dict) -> list[str]:
     speedup_again = again[0]["wall"] / again[1]["wall"]
     points_speedup = first[0]["phases"]["points"] / first[1]["phases"]["points"]
     slowdown = first[1]["point_s"] / first[0]["point_s"]
+    cpu_slowdown = first[1]["point_cpu_s"] / first[0]["point_cpu_s"]
     # Amdahl from the 1-worker sweep's own split: what does not run in the points phase
     # (plan, cluster, ship, finish) is serial; the points phase is parallel
     s = first[0]["fixed_s"] / first[0]["wall"]
@@ -365,7 +370,10 @@ def _scaling_text(r: dict) -> list[str]:
         "fresh-process speed-up); the points go out "
         "longest first (`longest_first=True`, by their estimated time), and with "
         f"{p} workers a third sweep hands them out in the given order (speed rising: the "
-        "longest last), side by side. Point: mean wall of a point on a worker; last: mean "
+        "longest last), side by side. Point: mean wall of a point on a worker; point CPU: "
+        "mean CPU time of the thread that ran it; waiting: the share of the points' wall "
+        "time they were not on a core (waiting for one: other processes, the client and "
+        "the scheduler among them); last: mean "
         "wall of the last point each worker ran; workers busy: the points' share of the "
         "workers' time in the "
         "points phase; overhead: the rest, per point (target <= 5 ms), made of the workers' "
@@ -376,7 +384,8 @@ def _scaling_text(r: dict) -> list[str]:
         "`plan`); client CPU: CPU time of the client's process (client and scheduler) per "
         "point over the whole sweep. Phases in seconds.",
         "",
-        markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "last [ms]",
+        markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "point CPU [ms]",
+                        "waiting", "last [ms]",
                         "workers busy",
                         "overhead [ms]", "idle at end [s]", "gap [ms]", "fixed [s]",
                         "client CPU [ms/point]", "plan",
@@ -396,7 +405,9 @@ def _scaling_text(r: dict) -> list[str]:
         f"against {given['idle_end_s']:.2f} s, overhead {again[1]['overhead_s'] * 1e3:.1f} "
         f"against {given['overhead_s'] * 1e3:.1f} ms a point. The points phase alone: "
         f"{points_speedup:.2f}x, with the workers busy {busy:.1%} of it or more; a point took "
-        f"{slowdown:.2f}x as long with {p} workers as with 1"
+        f"{slowdown:.2f}x as long with {p} workers as with 1, its CPU time {cpu_slowdown:.2f}x "
+        f"as long, and the points waited for a core {first[0]['waiting']:.1%} and "
+        f"{first[1]['waiting']:.1%} of their wall time"
         + (f": {p} workers, the client and the scheduler (and any other process) share "
            f"{r['cores']} cores, so a point runs slower when the workers run side by side; "
            "that limits the speed-up of this machine, not the sweep's feeding, which the "

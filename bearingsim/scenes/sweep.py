@@ -99,6 +99,10 @@ class SweepResult:
     spans: dict[int, tuple[int, float, float]] = field(default_factory=dict)
     """Point -> (process id of the worker that ran it, epoch time it started [s], its wall
     time [s]) of the points this sweep ran: a timeline of the workers."""
+    point_cpu: dict[int, float] = field(default_factory=dict)
+    """Point -> CPU time of the thread that ran it on its worker [s], of the points this
+    sweep ran; below the wall time in :attr:`spans` by the time the point waited for a core
+    (other processes on the worker's machine)."""
     phases: dict[str, float] = field(default_factory=dict)
     """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
@@ -349,7 +353,8 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     res = SweepResult(keys, ordered, failures, len(plan.prepared), resumed=len(done or {}),
                       chunk_size=size, point_s=point_s, phases=phases,
                       spans={k: (r["pid"], r["started"], r["wall_s"])
-                             for k, r in results.items() if "started" in r})
+                             for k, r in results.items() if "started" in r},
+                      point_cpu={k: r["cpu_s"] for k, r in results.items() if "cpu_s" in r})
     if table is not None:
         for path in table.finish(ordered):
             folder.add(path)

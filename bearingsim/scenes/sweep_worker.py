@@ -95,8 +95,10 @@ def load_model(payload: ModelPayload) -> Prepared:
 def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     """Run one point; returns ``index``, ``status`` ("ok"/"failed"), ``final`` (the table
     row of :func:`~bearingsim.scenes.analyses.run_operating_point`, columns starting with
-    ``_`` left out), ``error``, ``wall_s``, ``pid`` and ``started`` (the epoch time [s] the
-    point started, for a timeline of the workers). Never raises for a failing point.
+    ``_`` left out), ``error``, ``wall_s``, ``cpu_s`` (the CPU time of the thread that ran
+    it [s]: below ``wall_s`` by the time it waited for a core), ``pid`` and ``started`` (the
+    epoch time [s] the point started, for a timeline of the workers). Never raises for a
+    failing point.
 
     Parameters
     ----------
@@ -110,7 +112,7 @@ def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     dict
         The point's row.
     """
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), time.thread_time()
     row: dict[str, Any] = {"index": job.index, "pid": os.getpid(), "started": time.time()}
     try:
         values = run_operating_point(dataclasses.replace(prep, scene=job.scene))
@@ -122,6 +124,7 @@ def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
         row.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
     row["wall_s"] = time.perf_counter() - t0
+    row["cpu_s"] = time.thread_time() - cpu0
     return row
 
 

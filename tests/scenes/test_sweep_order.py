@@ -137,3 +137,19 @@ def test_the_order_the_points_run_in_changes_nothing_in_the_table(scene, tmp_pat
     assert lpt == given
     assert [int(r[0]) for r in lpt[1:]] == list(range(8))
     assert [r["point"] for r in runs["longest first"].rows] == list(range(8))
+
+
+@pytest.mark.parametrize("timeout", [None, 60.0])
+def test_each_point_reports_the_cpu_time_of_its_thread_beside_its_wall_time(scene, timeout):
+    """``point_cpu``: the CPU time of the thread that ran each point (the worker's, or the
+    point's own thread under a time budget), positive and not above the point's wall time (a
+    thread's CPU time cannot exceed the time it ran; the difference is the time it waited
+    for a core)."""
+    points = grid_points(parse_grid(["inputs.shaft_speed=100,400", "inputs.Fr=100,400"]))
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=":0") as client:
+        res = run_sweep(scene, points, client=client, progress=False, timeout=timeout)
+    assert set(res.point_cpu) == set(res.spans) == set(range(4))
+    for k, cpu in res.point_cpu.items():
+        wall = res.spans[k][2]
+        assert 0.0 < cpu <= wall + 1e-3
