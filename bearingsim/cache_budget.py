@@ -29,7 +29,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from bearingsim.cache_paths import library_files, system_files
+from bearingsim.cache_paths import entry_name, library_files, system_files
 from bearingsim.errors import ParameterError
 
 __all__ = ["BUDGET_VARIABLE", "DEFAULT_BUDGET", "REFILL", "budget_bytes", "keep_to_budget",
@@ -108,7 +108,7 @@ class _Entry:
 def _owner(path: Path) -> Path:
     """The entry a file belongs to: a library with its companions (``x.so``, ``x.so.balls``)
     is one entry, a system file its own."""
-    return path.with_name(path.name.split(".so", 1)[0])
+    return path.with_name(entry_name(path.name))
 
 
 def _entries(root: Path) -> list[_Entry]:

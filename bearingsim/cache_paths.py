@@ -15,8 +15,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-__all__ = ["KERNEL_NAMES", "SYSTEM_SUFFIX", "cache_root", "library_files", "system_files",
-           "systems_dir"]
+__all__ = ["KERNEL_NAMES", "SYSTEM_SUFFIX", "cache_root", "entry_name", "library_files",
+           "system_files", "systems_dir"]
 
 KERNEL_NAMES = "kernel_names"
 """The folder of the remembered kernel library names in the cache root."""
@@ -69,6 +69,24 @@ def system_files(root: str | Path | None = None) -> list[Path]:
     return sorted(folder.glob(f"*{SYSTEM_SUFFIX}")) if folder.is_dir() else []
 
 
+def entry_name(file_name: str) -> str:
+    """The name of the cache entry a file belongs to: a library's companions
+    (``x.so.balls``) and the library (``x.so``) share ``x``; a file without ``.so`` in its
+    name is its own entry.
+
+    Parameters
+    ----------
+    file_name : str
+        A file's name in the cache.
+
+    Returns
+    -------
+    str
+        The name before ``.so`` (the whole name without it).
+    """
+    return file_name.split(".so", 1)[0]
+
+
 def library_files(root: Path) -> list[Path]:
     """The compiled kernel libraries (``<prefix>_<16 hex>.so`` and their companions) and
     unfinished build folders in ``root``.
@@ -87,7 +105,7 @@ def library_files(root: Path) -> list[Path]:
         return []
     out = []
     for p in root.iterdir():
-        stem = p.name.split(".so", 1)[0]
+        stem = entry_name(p.name)
         if p.name.startswith(".build_") or (".so" in p.name and len(stem) > 17
                                             and stem[-17] == "_"
                                             and all(c in "0123456789abcdef"
