@@ -36,6 +36,8 @@ class Var:
     """An input a run must give (:class:`~bearingsim.language.Input` ``required``)."""
     warn_above: float | None = None
     """Input magnitude above which a run warns (e.g. a limiting speed)."""
+    limit: str | None = None
+    """What ``warn_above`` is: a key of :data:`~bearingsim.input_limits.INPUT_LIMITS`."""
     derivative: Var | None = None
     dummy: bool = False
     """Set when index reduction made this derivative an algebraic (dummy) variable."""

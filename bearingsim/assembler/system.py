@@ -93,6 +93,8 @@ class Signal:
     """An input every run must give (a shaft speed: never held at its start value)."""
     warn_above: float | None = None
     """Input magnitude above which a run warns (a bearing's limiting speed)."""
+    limit: str | None = None
+    """What ``warn_above`` is: a key of :data:`~bearingsim.input_limits.INPUT_LIMITS`."""
 
 
 @dataclass

@@ -128,8 +128,8 @@ def check_elements_fit(where: str, elements: str, count: int, bore: float,
             f"{dm * math.sin(math.pi / count):g} m)")
 
 
-def speed_input_bounds(limit: float | None) -> dict[str, float]:
-    """``low``, ``high`` and ``warn_above`` [rad/s] of a speed input
+def speed_input_bounds(limit: float | None) -> dict[str, Any]:
+    """``low``, ``high`` and ``warn_above`` [rad/s] and ``limit`` (``"speed"``) of a speed input
     (:class:`~bearingsim.language.Input`) under a limiting speed: the run warns above ``limit``
     and refuses above :data:`SPEED_LIMIT_MULTIPLE` times it; nothing without a limit.
 
@@ -145,7 +145,7 @@ def speed_input_bounds(limit: float | None) -> dict[str, float]:
     if limit is None:
         return {}
     return {"low": -SPEED_LIMIT_MULTIPLE * limit, "high": SPEED_LIMIT_MULTIPLE * limit,
-            "warn_above": limit}
+            "warn_above": limit, "limit": "speed"}
 
 _MAX_CONTACT_ANGLE = math.radians(45.0)
 _SPECIFIC_RATING = (1.0, 100.0)

@@ -29,10 +29,12 @@ from typing import Any, Protocol, runtime_checkable
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.catalog.rollers import RollerBearingGeometry, get_roller_bearing
+from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.errors import CatalogError
 from bearingsim.physics import line_contact
 from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.life import static_equivalent_load as ball_static_equivalent_load
+from bearingsim.physics.life import static_load_factors
 from bearingsim.validation import check_count, check_range
 
 __all__ = [
@@ -43,6 +45,7 @@ __all__ = [
     "PointContact",
     "element_of",
     "friction_key",
+    "load_input_bounds",
     "resolve_geometry",
     "static_equivalent_load",
 ]
@@ -317,6 +320,33 @@ def static_equivalent_load(Fr: Any, Fa: Any, geometry: Any) -> Any:  # noqa: N80
     check_range(Fr, "Fr", "N", 0.0, where="static_equivalent_load")
     check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
     return Fr + 0.0 * Fa
+
+
+def load_input_bounds(geometry: Any) -> dict[str, dict[str, Any]]:
+    """The bounds of the load inputs ``Fx``, ``Fy`` (radial) and ``Fz`` (axial) of a bearing
+    (:class:`~bearingsim.language.Input` keywords): each warns above the load that alone makes
+    the ISO 76 static equivalent load reach the static load rating C0 (``Fr = C0``; a ball
+    bearing's ``Fa = C0 / Y0``; a radial roller bearing takes no axial load) and is refused
+    beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times it, as constant loads are.
+
+    Parameters
+    ----------
+    geometry : ElementGeometry
+        The bearing; without a static load rating, no bounds.
+
+    Returns
+    -------
+    dict
+        Load name -> ``low``, ``high``, ``warn_above`` [N] and ``limit`` (``"static load"``).
+    """
+    c0 = geometry.static_load_rating
+    if c0 is None:
+        return {}
+    alone = {"Fx": c0, "Fy": c0}
+    if element_of(geometry) == "ball":
+        alone["Fz"] = c0 / static_load_factors(geometry)[1]
+    return {key: {"low": -MAX_STATIC_LOAD_FACTOR * load, "high": MAX_STATIC_LOAD_FACTOR * load,
+                  "warn_above": load, "limit": "static load"} for key, load in alone.items()}
 
 
 def resolve_geometry(bearing: Any) -> BearingGeometry | RollerBearingGeometry:

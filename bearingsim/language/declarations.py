@@ -12,6 +12,7 @@ from typing import Any
 import casadi as ca
 
 from bearingsim.errors import ModelError, ParameterError
+from bearingsim.input_limits import INPUT_LIMITS
 from bearingsim.language.symbols import new_symbol
 from bearingsim.validation import check_range
 
@@ -219,21 +220,32 @@ class Input(Variable):
         Whether a run must give the input (``simulate``, ``steady_state`` and scenes refuse to
         hold it at its default, e.g. a shaft speed at 0). Default: ``default is None``.
     warn_above : float, optional
-        Magnitude [unit] above which a run warns
-        (:class:`~bearingsim.errors.SpeedLimitWarning` for a speed above a bearing's
-        limiting speed); ``low``/``high`` stay the hard bounds.
+        Magnitude [unit] above which a run warns (``limit`` says what this limit is);
+        ``low``/``high`` stay the hard bounds.
+    limit : str, optional
+        The kind of ``warn_above``, a key of :data:`~bearingsim.input_limits.INPUT_LIMITS`
+        (``"speed"``: :class:`~bearingsim.errors.SpeedLimitWarning` above a bearing's limiting
+        speed; ``"static load"``: :class:`~bearingsim.errors.PlasticDeformationWarning`
+        above the load that alone reaches the static load rating); needed with ``warn_above``.
     """
 
     def __init__(self, default: float | None = None, unit: str = "1", description: str = "",
                  *, low: float | None = None, high: float | None = None,
-                 required: bool | None = None, warn_above: float | None = None):
+                 required: bool | None = None, warn_above: float | None = None,
+                 limit: str | None = None):
         super().__init__(start=None, unit=unit, description=description, fixed=False)
         self.default = None if default is None else float(
             check_range(default, "default", unit, low, high, where=description or "input"))
         self.low = low
         self.high = high
         self.required = default is None if required is None else bool(required)
+        if (warn_above is None) != (limit is None) or (limit is not None
+                                                       and limit not in INPUT_LIMITS):
+            raise ParameterError(f"{description or 'input'}: warn_above needs a limit, one of "
+                                 f"{', '.join(INPUT_LIMITS)} (and a limit needs warn_above); "
+                                 f"got warn_above={warn_above!r}, limit={limit!r}")
         self.warn_above = warn_above
+        self.limit = limit
 
 
 class Parameter(Declaration):

@@ -20,7 +20,8 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 from bearingsim.entry_points import value_key
-from bearingsim.errors import ParameterError, SpeedLimitWarning
+from bearingsim.errors import ParameterError
+from bearingsim.input_limits import INPUT_LIMITS
 from bearingsim.keeps import kept
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.input_bounds import numbers_valid
@@ -411,17 +412,18 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
         if len(_CHECKED) >= _CHECKED_LIMIT:
             del _CHECKED[next(iter(_CHECKED))]
         _CHECKED[key] = notes
-    for note in notes:
-        warnings.warn(note, SpeedLimitWarning, stacklevel=3)
+    for category, note in notes:
+        warnings.warn(note, category, stacklevel=3)
 
 
-def _check_signal(system: System, signal: InputSignal, times: np.ndarray) -> list[str]:
+def _check_signal(system: System, signal: InputSignal, times: np.ndarray
+                  ) -> list[tuple[type[UserWarning], str]]:
     """:func:`check_input_ranges` without the memory: raises for an input out of range,
-    returns the warnings (speeds above a limiting speed)."""
+    returns the warnings (their category and text: inputs above their limit)."""
     t0, t1 = float(times[0]), float(times[-1])
     if None not in signal.lifted and numbers_valid(system, signal.key, signal.q, signal.lifted):
         return []
-    notes: list[str | None] = []
+    notes: list[tuple[type[UserWarning], str] | None] = []
     functions = []
     for k, (sig, piece) in enumerate(zip(system.inputs, signal.lifted, strict=True)):
         if piece is None:
@@ -448,9 +450,11 @@ def _check_signal(system: System, signal: InputSignal, times: np.ndarray) -> lis
     return [note for note in notes if note is not None]
 
 
-def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None) -> str | None:
+def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None
+                  ) -> tuple[type[UserWarning], str] | None:
     """Values of one input: finite and within its declared range (else ParameterError); the
-    warning when they exceed the input's limit (``warn_above``), else None. ``times``: the
+    warning (category, text) when they exceed the input's limit (``warn_above``), else None.
+    ``times``: the
     times of the values [s], or a word naming them (``"table value"``), or None for a
     constant."""
     bad = ~np.isfinite(values)
@@ -478,10 +482,11 @@ def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None) -> st
     limit = getattr(sig, "warn_above", None)
     if limit is not None and values.size and np.max(np.abs(values)) > limit:
         k = int(np.argmax(np.abs(values)))
-        return (f"input {sig.name} reaches {engineering(abs(values[k]), sig.unit, both=True)}"
-                f"{where(k)}, above its limit {engineering(limit, sig.unit, both=True)} (the "
-                f"bearing's limiting speed: the catalogue no longer vouches for the bearing "
-                f"there)")
+        kind = INPUT_LIMITS[sig.limit]
+        return kind.warning, (
+            f"input {sig.name} reaches {engineering(abs(values[k]), sig.unit, both=True)}"
+            f"{where(k)}, above its limit {engineering(limit, sig.unit, both=True)} "
+            f"({kind.name}: {kind.effect})")
     return None
 
 
@@ -491,7 +496,7 @@ def _bare_number_hint(sig) -> str:
     limit = getattr(sig, "warn_above", None)
     text = ""
     if limit is not None and sig.high is not None:
-        text = (f"; the bound is {sig.high / limit:g} x the limiting speed "
+        text = (f"; the bound is {sig.high / limit:g} x {INPUT_LIMITS[sig.limit].name} "
                 f"{engineering(limit, sig.unit, both=True)}")
     if sig.unit in CUSTOMARY_DIFFERS:
         text += (f"; a bare number is in {sig.unit}, a number with a unit converts "

@@ -294,7 +294,8 @@ def run(state: AssemblyState) -> None:
         for v in dae.states
     ]
     inputs = [Signal(v.name, v.unit, v.description, v.default or 0.0, low=v.low, high=v.high,
-                     required=v.required, warn_above=v.warn_above)
+                     required=v.required, warn_above=v.warn_above,
+                     limit=v.limit)
               for v in dae.inputs]
     outputs = [Signal(n, units.get(n, "1"), descs.get(n, "")) for n in out_names]
     init_fn, free = initial_problem(dae, funcs)

@@ -211,6 +211,7 @@ def _make_var(d: Declaration) -> Var:
         high=getattr(d, "high", None),
         required=getattr(d, "required", False),
         warn_above=getattr(d, "warn_above", None),
+        limit=getattr(d, "limit", None),
     )
 
 

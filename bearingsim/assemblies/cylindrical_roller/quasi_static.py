@@ -20,6 +20,7 @@ from bearingsim.components.roller_row import (
     roller_row_equilibrium,
     roller_row_parameters,
 )
+from bearingsim.components.rolling_element import load_input_bounds
 from bearingsim.errors import PlasticDeformationWarning
 from bearingsim.language import Assembly, connect
 
@@ -58,7 +59,8 @@ class QuasiStaticCylindricalRoller(Assembly):
         self.row = RollerRow(g, options.n_slices, clearance=options.clearance)
         self.housing = FixedFrame()
         self.guide = MisalignmentGuide(*options.misalignment)
-        self.load = RingLoad({**loads, "Fz": 0.0, "Mx": 0.0, "My": 0.0})
+        self.load = RingLoad({**loads, "Fz": 0.0, "Mx": 0.0, "My": 0.0},
+                             bounds=load_input_bounds(g))
         self.row.inner.guess(x=float(self.start.inner[0]), y=float(self.start.inner[1]))
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)

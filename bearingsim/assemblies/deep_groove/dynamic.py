@@ -21,6 +21,7 @@ from bearingsim.components.dynamic import (
     RingDrag,
     RingLoad,
 )
+from bearingsim.components.rolling_element import load_input_bounds
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
@@ -136,7 +137,8 @@ class DeepGrooveBallBearing(Assembly):
                              start=[a + b for a, b in zip(ring0, (*rings.outer_start, 0.0, 0.0),
                                                           strict=True)],
                              free_tilt=rings.free_tilt)
-        self.load = RingLoad(self.options.loads)
+        self.load = RingLoad(self.options.loads,
+                             bounds=load_input_bounds(self.design.geometry))
 
     def _build_cage(self) -> None:
         """The cage body and its guidance by the outer ring land."""

@@ -16,6 +16,7 @@ from bearingsim.components.dynamic import (
     TiltGuide,
 )
 from bearingsim.components.dynamic.ring import check_loads
+from bearingsim.components.rolling_element import load_input_bounds
 from bearingsim.errors import ParameterError, PlasticDeformationWarning, SimulationError
 from bearingsim.language import Assembly, connect
 from bearingsim.physics.life import static_equivalent_load
@@ -98,7 +99,8 @@ class QuasiStaticDeepGroove(Assembly):
         self.row.inner_speed = speed
         self.housing = FixedFrame()
         self.guide = TiltGuide()
-        self.load = RingLoad({**loads, "Mx": 0.0, "My": 0.0})
+        self.load = RingLoad({**loads, "Mx": 0.0, "My": 0.0},
+                             bounds=load_input_bounds(geometry))
         self.row.inner.guess(**dict(zip(("x", "y", "z"), start.inner.tolist(), strict=True)))
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)

@@ -188,19 +188,25 @@ class RingLoad(Component):
         :class:`~bearingsim.errors.ParameterError` (see :func:`check_loads`).
     name : str
         Instance name (the prefix of its variables' dotted names).
+    bounds : dict, optional
+        Load name -> keywords of its input (``low``, ``high``, ``warn_above``, ``limit``:
+        :func:`~bearingsim.components.rolling_element.load_input_bounds`); a constant load is
+        checked where it is given.
 
     Connectors
     ----------
     frame : RingFrame
     """
 
-    def __init__(self, loads: dict[str, float | Callable | None] | None = None, name=None):
+    def __init__(self, loads: dict[str, float | Callable | None] | None = None, name=None,
+                 bounds: Mapping[str, Mapping[str, Any]] | None = None):
         super().__init__(name)
         self.frame = RingFrame()
         self._loads = check_loads(loads, type(self).__name__)
         for key in FRAME_FLOWS:
             if self._loads.get(key) is None:
-                self.add(key, Input(0.0, load_unit(key), f"external load {key} on the ring"))
+                self.add(key, Input(0.0, load_unit(key), f"external load {key} on the ring",
+                                    **(bounds or {}).get(key, {})))
 
     def equations(self):
         return [getattr(self.frame, key) == -_signal(self._loads.get(key), self, key,

@@ -1,0 +1,85 @@
+"""Load inputs carry the bearing's static load rating as their limit, as constant loads do.
+
+Before, a constant load beyond 10 C0 was refused when the bearing was built, but the same load
+given as an input (a scene's ``[inputs]``, ``simulate(inputs=...)``) ran: a 6304 under
+``-1e7 * ramp(0, 1)`` N reported ball 0 loaded with 2 765 kN at a contact angle of 180 deg (the
+inner ring pushed through the balls), "settled". Now each load input warns above the load that
+alone makes the ISO 76 static equivalent load reach C0 and is refused beyond 10 times it.
+
+C0 and Y0 values: the catalogue's 6304 (C0 = 7.9 kN) and NU206; ISO 76:2006 Table 1 gives
+Y0 = 0.5 for deep-groove ball bearings (so ``Fa`` alone reaches C0 at ``2 C0``).
+"""
+
+import warnings
+
+import pytest
+
+from bearingsim.assembler import assemble
+from bearingsim.assemblies import cylindrical_roller_bearing, deep_groove_ball_bearing
+from bearingsim.catalog import get_bearing
+from bearingsim.errors import ParameterError, PlasticDeformationWarning
+from bearingsim.language import Input
+from bearingsim.simulation import simulate
+
+C0 = get_bearing("6304").static_load_rating
+
+
+@pytest.fixture(scope="module")
+def quasi_static():
+    return assemble(deep_groove_ball_bearing("6304", "quasi-static"))
+
+
+def test_the_inputs_carry_c0_and_ten_times_it(quasi_static):
+    bounds = {s.name: (s.low, s.high, s.warn_above, s.limit) for s in quasi_static.inputs}
+    assert C0 == pytest.approx(7900.0)
+    assert bounds["load.Fx"] == pytest.approx((-10 * C0, 10 * C0, C0, "static load"))
+    assert bounds["load.Fy"] == bounds["load.Fx"]
+    assert bounds["load.Fz"][:3] == pytest.approx((-20 * C0, 20 * C0, 2 * C0))  # Y0 = 0.5
+
+
+def test_a_load_below_c0_runs_without_a_warning(quasi_static):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlasticDeformationWarning)
+        result = simulate(quasi_static, 0.1, inputs={"load.Fx": 0.9 * C0,
+                                                     "load.Fz": 1.9 * C0}, n_points=3)
+    assert result["row.Q_i[0]"][-1] > 0.0
+
+
+@pytest.mark.parametrize("name, value", [("load.Fx", 3.0 * C0), ("load.Fy", -3.0 * C0),
+                                         ("load.Fz", 5.0 * C0)])
+def test_a_load_input_beyond_c0_warns_naming_it(quasi_static, name, value):
+    with pytest.warns(PlasticDeformationWarning,
+                      match=rf"input {name} reaches .* above its limit .*static load rating "
+                            r"C0: the raceways deform permanently"):
+        simulate(quasi_static, 0.1, inputs={name: value}, n_points=3)
+
+
+@pytest.mark.parametrize("load", [
+    -1e7,                                    # the constant of the defect
+    ([0.0, 0.05, 0.1], [0.0, 0.0, -1e7]),    # a table
+    lambda t: -1e8 * t,                      # a function of time (interval arithmetic)
+])
+def test_a_load_input_beyond_ten_c0_is_refused(quasi_static, load):
+    with pytest.raises(ParameterError, match=r"input load\.Fx.*\[N\].*-79000.*the bound is 10 x "
+                                             r"the load that alone reaches the bearing's "
+                                             r"static load rating C0"):
+        simulate(quasi_static, 0.1, inputs={"load.Fx": load}, n_points=3)
+
+
+def test_the_dynamic_and_roller_levels_bound_their_load_inputs():
+    fx = deep_groove_ball_bearing("6304", "dynamic_massive_balls",
+                                  speed=300.0).load.declarations["Fx"]
+    assert (fx.high, fx.warn_above) == pytest.approx((10 * C0, C0))
+    roller = cylindrical_roller_bearing("NU206")
+    c0 = roller.geometry.static_load_rating
+    fx, fy = (roller.load.declarations[k] for k in ("Fx", "Fy"))
+    assert (fx.low, fy.warn_above, fy.limit) == (pytest.approx(-10 * c0), pytest.approx(c0),
+                                                 "static load")
+
+
+def test_a_limit_needs_its_kind():
+    with pytest.raises(ParameterError, match="warn_above needs a limit, one of speed, static "
+                                             "load"):
+        Input(0.0, "N", "a load", warn_above=100.0)
+    with pytest.raises(ParameterError, match="limit='torque'"):
+        Input(0.0, "N", "a load", warn_above=100.0, limit="torque")
