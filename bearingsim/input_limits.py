@@ -32,7 +32,8 @@ INPUT_LIMITS = {
                         "the catalogue no longer vouches for the bearing there",
                         SpeedLimitWarning),
     "static load": InputLimit(
-        "the load that alone reaches the bearing's static load rating C0",
+        "the load at which this component alone brings the static equivalent load to the "
+        "bearing's static load rating C0",
         "the raceways deform permanently (ISO 76)", PlasticDeformationWarning),
 }
 """Kinds of input limits: a speed above a limiting speed

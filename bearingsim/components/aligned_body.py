@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
 from bearingsim.components.connectors import RingFrame
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Parameter, Variable, der
@@ -33,6 +36,10 @@ class AlignedBody(Component):
         Numerical damping [N s/m], > 0.
     name : str
         Instance name (the prefix of its variables' dotted names).
+    bounds : dict, optional
+        Load name -> keywords of its input (``low``, ``high``, ``warn_above``, ``limit``:
+        :func:`~bearingsim.components.rolling_element.load_input_bounds` of the bearings the
+        body's load passes through).
 
     Variables
     ---------
@@ -44,7 +51,7 @@ class AlignedBody(Component):
     """
 
     def __init__(self, mass: float = 0.1, offsets=(0.0,), free=AXES, damping: float = 1e3,
-                 name=None):
+                 name=None, bounds: Mapping[str, Mapping[str, Any]] | None = None):
         super().__init__(name)
         unknown = set(free) - set(AXES)
         if unknown:
@@ -61,7 +68,8 @@ class AlignedBody(Component):
         for axis in self._free:
             self.add(f"v{axis}", Variable(0.0, "m/s", f"velocity {axis}"))
         for load in LOADS:
-            self.add(load, Input(0.0, "N", f"external load {load}"))
+            self.add(load, Input(0.0, "N", f"external load {load}",
+                                 **(bounds or {}).get(load, {})))
 
     def equations(self):
         eqs = []

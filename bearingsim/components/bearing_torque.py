@@ -15,6 +15,7 @@ from bearingsim.components.connectors import Flange
 from bearingsim.components.rolling_element import (
     element_of,
     friction_key,
+    magnitude_input_bounds,
     resolve_geometry,
     static_equivalent_load,
 )
@@ -117,8 +118,9 @@ class _LubricatedBearing(BearingTorqueElement):
             omega_reg, "rad/s", "speed below which friction is regularized (smooth sign)",
             low=0.0, low_inclusive=False,
         )
-        self.Fr = Input(0.0, "N", "radial load", low=0.0)
-        self.Fa = Input(0.0, "N", "axial load (magnitude)", low=0.0)
+        bounds = magnitude_input_bounds(g)
+        self.Fr = Input(0.0, "N", "radial load", **bounds.get("Fr", {"low": 0.0}))
+        self.Fa = Input(0.0, "N", "axial load (magnitude)", **bounds.get("Fa", {"low": 0.0}))
 
     @property
     def bearing_type(self) -> str:

@@ -24,6 +24,7 @@ floor:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
@@ -46,6 +47,7 @@ __all__ = [
     "element_of",
     "friction_key",
     "load_input_bounds",
+    "magnitude_input_bounds",
     "resolve_geometry",
     "static_equivalent_load",
 ]
@@ -322,31 +324,56 @@ def static_equivalent_load(Fr: Any, Fa: Any, geometry: Any) -> Any:  # noqa: N80
     return Fr + 0.0 * Fa
 
 
-def load_input_bounds(geometry: Any) -> dict[str, dict[str, Any]]:
-    """The bounds of the load inputs ``Fx``, ``Fy`` (radial) and ``Fz`` (axial) of a bearing
-    (:class:`~bearingsim.language.Input` keywords): each warns above the load that alone makes
-    the ISO 76 static equivalent load reach the static load rating C0 (``Fr = C0``; a ball
-    bearing's ``Fa = C0 / Y0``; a radial roller bearing takes no axial load) and is refused
-    beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times it, as constant loads are.
+def load_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:
+    """The bounds of the load inputs ``Fx``, ``Fy`` (radial) and ``Fz`` (axial) of bearings
+    that each carry the whole load (one bearing, or the layers of a nested bearing in series),
+    as :class:`~bearingsim.language.Input` keywords: each warns above the load that alone makes
+    the ISO 76 static equivalent load of one of them reach its static load rating C0
+    (``Fr = C0``; a ball bearing's ``Fa = C0 / Y0``; a radial roller bearing takes no axial
+    load) and is refused beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times it, as
+    constant loads are.
 
     Parameters
     ----------
-    geometry : ElementGeometry
-        The bearing; without a static load rating, no bounds.
+    *geometries : ElementGeometry
+        The bearings; one without a static load rating bounds nothing.
 
     Returns
     -------
     dict
         Load name -> ``low``, ``high``, ``warn_above`` [N] and ``limit`` (``"static load"``).
     """
-    c0 = geometry.static_load_rating
-    if c0 is None:
-        return {}
-    alone = {"Fx": c0, "Fy": c0}
-    if element_of(geometry) == "ball":
-        alone["Fz"] = c0 / static_load_factors(geometry)[1]
+    alone: dict[str, float] = {}
+    for g in geometries:
+        c0 = g.static_load_rating
+        if c0 is None:
+            continue
+        loads = {"Fx": c0, "Fy": c0}
+        if element_of(g) == "ball":
+            loads["Fz"] = c0 / static_load_factors(g)[1]
+        for key, load in loads.items():
+            alone[key] = min(load, alone.get(key, math.inf))
     return {key: {"low": -MAX_STATIC_LOAD_FACTOR * load, "high": MAX_STATIC_LOAD_FACTOR * load,
                   "warn_above": load, "limit": "static load"} for key, load in alone.items()}
+
+
+def magnitude_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:
+    """:func:`load_input_bounds` of the inputs ``Fr`` (radial load) and ``Fa`` (axial load),
+    magnitudes >= 0 (the torque-level models).
+
+    Parameters
+    ----------
+    *geometries : ElementGeometry
+        The bearings, each carrying the whole load.
+
+    Returns
+    -------
+    dict
+        ``"Fr"``/``"Fa"`` -> ``low`` (0), ``high``, ``warn_above`` [N] and ``limit``.
+    """
+    bounds = load_input_bounds(*geometries)
+    return {name: {**bounds[key], "low": 0.0}
+            for name, key in (("Fr", "Fx"), ("Fa", "Fz")) if key in bounds}
 
 
 def resolve_geometry(bearing: Any) -> BearingGeometry | RollerBearingGeometry:

@@ -496,7 +496,7 @@ def _bare_number_hint(sig) -> str:
     limit = getattr(sig, "warn_above", None)
     text = ""
     if limit is not None and sig.high is not None:
-        text = (f"; the bound is {sig.high / limit:g} x {INPUT_LIMITS[sig.limit].name} "
+        text = (f"; the bound is {sig.high / limit:g} x {INPUT_LIMITS[sig.limit].name}: "
                 f"{engineering(limit, sig.unit, both=True)}")
     if sig.unit in CUSTOMARY_DIFFERS:
         text += (f"; a bare number is in {sig.unit}, a number with a unit converts "

@@ -50,7 +50,7 @@ def test_a_load_below_c0_runs_without_a_warning(quasi_static):
 def test_a_load_input_beyond_c0_warns_naming_it(quasi_static, name, value):
     with pytest.warns(PlasticDeformationWarning,
                       match=rf"input {name} reaches .* above its limit .*static load rating "
-                            r"C0: the raceways deform permanently"):
+                            r"C0: the raceways deform permanently \(ISO 76\)"):
         simulate(quasi_static, 0.1, inputs={name: value}, n_points=3)
 
 
@@ -61,8 +61,9 @@ def test_a_load_input_beyond_c0_warns_naming_it(quasi_static, name, value):
 ])
 def test_a_load_input_beyond_ten_c0_is_refused(quasi_static, load):
     with pytest.raises(ParameterError, match=r"input load\.Fx.*\[N\].*-79000.*the bound is 10 x "
-                                             r"the load that alone reaches the bearing's "
-                                             r"static load rating C0"):
+                                             r"the load at which this component alone brings "
+                                             r"the static equivalent load to the bearing's "
+                                             r"static load rating C0: 7\.9 kN"):
         simulate(quasi_static, 0.1, inputs={"load.Fx": load}, n_points=3)
 
 
@@ -83,3 +84,28 @@ def test_a_limit_needs_its_kind():
         Input(0.0, "N", "a load", warn_above=100.0)
     with pytest.raises(ParameterError, match="limit='torque'"):
         Input(0.0, "N", "a load", warn_above=100.0, limit="torque")
+
+
+def test_a_nested_bearing_bounds_its_loads_by_the_weaker_layer_they_pass_through():
+    """The shaft's load passes through both layers (61905: C0 = 4.3 kN, 61907: 6.8 kN), the
+    middle ring's only through the outer one."""
+    from bearingsim.assemblies import double_layer_bearing
+
+    c0_inner, c0_outer = (get_bearing(d).static_load_rating for d in ("61905", "61907"))
+    assert c0_inner < c0_outer
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="quasi-static"))
+    warn = {s.name: s.warn_above for s in system.inputs}
+    assert warn["shaft.Fx"] == pytest.approx(c0_inner)
+    assert warn["shaft.Fz"] == pytest.approx(2 * c0_inner)
+    assert warn["middle.Fy"] == pytest.approx(c0_outer)
+    torque = double_layer_bearing("61905", "61907", fidelity="torque").declarations
+    assert (torque["Fr"].low, torque["Fr"].high, torque["Fa"].warn_above) == pytest.approx(
+        (0.0, 10 * c0_inner, 2 * c0_inner))
+
+
+def test_a_torque_level_bearing_refuses_a_radial_load_beyond_ten_c0():
+    from bearingsim.components.bearing_torque import PalmgrenBearing
+
+    declarations = PalmgrenBearing("6304", "ISO VG 68").declarations
+    assert (declarations["Fr"].low, declarations["Fr"].high) == pytest.approx((0.0, 10 * C0))
+    assert declarations["Fa"].warn_above == pytest.approx(2 * C0)

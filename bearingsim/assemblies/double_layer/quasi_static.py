@@ -19,6 +19,7 @@ from bearingsim.components.aligned_body import AXES, AlignedBody
 from bearingsim.components.ball_row import BallRow
 from bearingsim.components.middle_ring import middle_ring_structure, mounted_geometries
 from bearingsim.components.rings import Housing
+from bearingsim.components.rolling_element import load_input_bounds
 from bearingsim.language import Assembly, connect
 from bearingsim.validation import check_flag
 
@@ -65,8 +66,10 @@ class NestedQuasiStatic(Assembly):
         offset = 0.0 if structure == "I" else -(gi.width + go.width) / 2
         free = AXES if axial else ("x", "y")
         self.geometries = (gi, go)
-        self.shaft = AlignedBody(free=free)
-        self.middle = AlignedBody(offsets=(0.0, offset), free=free)
+        # the shaft's load passes through both layers, the middle ring's through the outer one
+        self.shaft = AlignedBody(free=free, bounds=load_input_bounds(gi, go))
+        self.middle = AlignedBody(offsets=(0.0, offset), free=free,
+                                  bounds=load_input_bounds(go))
         self.inner_row = BallRow(gi, reference="centred")
         self.outer_row = BallRow(go, reference="centred")
         self.housing = Housing(1)

@@ -7,6 +7,7 @@ from bearingsim.assemblies.double_layer.base import PartialDoubleLayer
 from bearingsim.assemblies.double_layer.options import DoubleLayerOptions
 from bearingsim.components.bearing_torque import PalmgrenBearing, PureRollingLayer, SkfBearing
 from bearingsim.components.middle_ring import MiddleRing, middle_ring_bodies
+from bearingsim.components.rolling_element import magnitude_input_bounds
 from bearingsim.components.rotational import Damper, Fixed
 from bearingsim.language import Input, Variable, connect
 from bearingsim.physics.drag import TAYLOR_ONSET, couette_damping, taylor_number
@@ -64,8 +65,11 @@ class DoubleLayerBearing(PartialDoubleLayer):
         self.M_shaft = Variable(unit="N.m", description="friction torque on the shaft")
         self._lubricated = fidelity == "torque"
         if self._lubricated:
-            self.Fr = Input(0.0, "N", "radial load through both layers", low=0.0)
-            self.Fa = Input(0.0, "N", "axial load through both layers (magnitude)", low=0.0)
+            bounds = magnitude_input_bounds(*options.geometries)
+            self.Fr = Input(0.0, "N", "radial load through both layers",
+                            **bounds.get("Fr", {"low": 0.0}))
+            self.Fa = Input(0.0, "N", "axial load through both layers (magnitude)",
+                            **bounds.get("Fa", {"low": 0.0}))
         connect(self.shaft, self.inner_layer.inner)
         connect(self.inner_layer.outer, self.middle.inner_side)
         connect(self.middle.outer_side, self.outer_layer.inner)
