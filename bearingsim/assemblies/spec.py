@@ -22,6 +22,7 @@ from __future__ import annotations
 import fnmatch
 import inspect
 import json
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -111,6 +112,20 @@ class ArgSpec:  # numpydoc ignore=PR02
     choices: tuple = ()
     low: float | None = None
     table: dict[str, ArgSpec] | None = None
+
+    @property
+    def unit(self) -> str:
+        """The SI unit of a ``"float"`` argument [model notation]: the first one in brackets in
+        :attr:`doc` (``"axial preload [N]"``), ``"1"`` for a dimensionless number (none or
+        ``[-]``).
+
+        Returns
+        -------
+        str
+            The unit.
+        """
+        stated = re.search(r"\[([^\]]+)\]", self.doc)
+        return stated.group(1) if stated and stated.group(1) != "-" else "1"
 
     def __post_init__(self) -> None:
         check_choice(self.kind, "kind", ARG_KINDS, "ArgSpec")

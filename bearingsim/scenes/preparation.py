@@ -27,6 +27,7 @@ from bearingsim.simulation.statics import static_stiffness
 __all__ = [
     "Prepared",
     "choose_fidelity",
+    "input_unit_mismatches",
     "point_keys",
     "prepare",
     "scene_inputs",
@@ -382,10 +383,10 @@ def _check_names(scene: Scene, system: System) -> None:
             key = f"inputs.{n}" if n in scene.inputs else ("grid" if scene.grid else "cases")
             add(key, f"the model has no input {n!r}", ", ".join(system.input_names) or "none")
     units = {sig.name: sig.unit for sig in system.inputs}
-    for n, si in scene.input_units.items():
-        if n in units and units[n] != si:
-            add(f"inputs.{n}", f"input {n} is in {units[n]}, but the value's unit is one of "
-                f"{si}", f"a number with a unit of {units[n]}, or a number in {units[n]}")
+    swept = point_keys(scene)
+    for n, message in input_unit_mismatches(scene, system).items():
+        add(("grid" if scene.grid else "cases") if f"inputs.{n}" in swept else f"inputs.{n}",
+            message, f"a number with a unit of {units[n]}, or a number in {units[n]}")
     missing = [n for n in system.input_names
                if n not in given and not scene.spec.is_optional_input(n)]
     if missing:
@@ -413,6 +414,28 @@ def _check_names(scene: Scene, system: System) -> None:
         first = problems[0]
         raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,
                          problems=problems)
+
+
+def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
+    """The inputs a scene gives as numbers with a unit of another quantity than the model's
+    input (``"5 kN"`` for a speed), each with its message.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its :attr:`~bearingsim.scenes.scene.Scene.input_units`: the SI unit of each
+        input given with a unit, in ``[inputs]``, a grid or cases).
+    system : System
+        The model.
+
+    Returns
+    -------
+    dict of str to str
+        Input name -> message.
+    """
+    units = {sig.name: sig.unit for sig in system.inputs}
+    return {n: f"input {n} is in {units[n]}, but its value is given in {si}"
+            for n, si in scene.input_units.items() if n in units and units[n] != si}
 
 
 def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,

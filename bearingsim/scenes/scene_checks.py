@@ -30,6 +30,7 @@ from bearingsim.scenes.tables import (
     read_table_file,
 )
 from bearingsim.units import parse_quantity
+from bearingsim.units.registry import UnitError, quantity_to_si, split_quantity
 
 
 # --------------------------------------------------------------------------- validation
@@ -264,11 +265,20 @@ def _point_value(c: _Collector, key: str, where: str, v: Any, spec: AssemblySpec
         if arg is None:
             _unknown(c, where.rsplit(".", 1)[0], key, [f"assembly.{a}" for a in spec.args])
             return None
-        if arg.kind == "float" and isinstance(v, str) and (q := parse_quantity(v)) is not None:
-            v = q[0]  # "4000 rpm": the argument's documented SI unit
+        if arg.kind == "float" and isinstance(v, str) and split_quantity(v) is not None:
+            try:  # "4000 rpm": in the argument's documented SI unit, a quantity of that kind
+                v = quantity_to_si(v, arg.unit, key)
+            except UnitError as exc:
+                c.add(where, str(exc), f"a number in {arg.unit}, or a number with a unit of "
+                      f"that quantity")
+                return None
         return _check_arg(c, where, arg, v)
     if head == "inputs" and isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
-        units[rest] = quantity[1]
+        if units.setdefault(rest, quantity[1]) != quantity[1]:
+            c.add(where, f"input {rest} is given in {units[rest]} and, as {v!r}, in "
+                  f"{quantity[1]}: values of another quantity", f"numbers with units of one "
+                  f"quantity ({units[rest]}), or numbers in the input's unit")
+            return None
         return quantity[0]
     value = _number(c, where, v, "SI units or a number with a unit ('10000 rpm')"
                     if head == "inputs" else "SI units")

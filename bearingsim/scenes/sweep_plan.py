@@ -19,7 +19,12 @@ from typing import Any
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.operating_points import point_model
-from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
+from bearingsim.scenes.preparation import (
+    Prepared,
+    choose_fidelity,
+    input_unit_mismatches,
+    prepare,
+)
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
 from bearingsim.scenes.sweep_grid import check_operating_points, coerce, point_scene, si_values
@@ -111,6 +116,8 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
             prep.system.p0({**sc.parameters, **params})
         except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
+        for message in input_unit_mismatches(sc, prep.system).values():
+            raise SweepError(f"sweep point {pt}: {message}")
         for name in sc.inputs:  # (a statics load case also takes the speed, for the life)
             if sc.analysis != "statics" and name not in prep.system.input_names:
                 raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "

@@ -1,0 +1,78 @@
+"""Values with a unit in grids, cases and sweep points are checked for their quantity.
+
+Found by a new-user trial (each case ran before the fix, exit code 0): only the last value with
+a unit of a grid's or the cases' input was compared with the model's unit (a dict entry per
+input, overwritten value by value), so ``["5 furlong", "2 kN"]`` for a load ran at 1005.8 N
+and ``"5 furlong"`` in one load case ran at 1005.8 rad/s; an assembly argument took any unit
+(``"5 furlong"`` as a preload: 1005.8 N); a sweep point (``--grid inputs.shaft_speed=5furlong``)
+was never compared with the model's units at all.
+"""
+
+import pytest
+
+from bearingsim.scenes import SceneError, parse_scene, validate_scene
+from bearingsim.scenes.library import builtin_scene_path
+from bearingsim.scenes.sweep import SweepError, grid_points
+from bearingsim.scenes.sweep_grid import parse_grid
+from bearingsim.scenes.sweep_plan import plan_sweep
+
+STATICS = """
+title = "6304 under loads"
+analysis = "statics"
+outputs = ["row.Q_i[0]"]
+[assembly]
+name = "deep_groove_ball_bearing"
+bearing = "6304"
+fidelity = "quasi-static"
+[inputs]
+"load.Fx" = 938.0
+{points}
+"""
+
+
+@pytest.mark.parametrize("values", [["5 furlong", "2 kN"], ["2 kN", "5 furlong"]])
+def test_a_grid_mixing_quantities_is_refused_at_its_line(values):
+    grid = '[grid]\n"inputs.load.Fx" = ' + str(values).replace("'", '"')
+    with pytest.raises(SceneError, match=r"grid\.inputs\.load\.Fx: input load\.Fx is given in "
+                                         r"(N|m) and, as '.*', in (m|N)") as caught:
+        parse_scene(STATICS.format(points=grid))
+    assert caught.value.line == 12  # the grid's line of the input
+
+
+def test_a_grid_of_another_quantity_is_refused_at_the_grid():
+    scene = parse_scene(STATICS.format(points='[grid]\n"inputs.load.Fx" = ["5 m", "6 m"]'))
+    with pytest.raises(SceneError, match=r"input load\.Fx is in N, but its value is given in "
+                                         r"m") as caught:
+        validate_scene(scene)
+    assert caught.value.key == "grid"
+
+
+def test_a_load_case_of_another_quantity_is_refused():
+    cases = ('[[cases]]\n"inputs.load.Fx" = "5 furlong"\n'
+             '[[cases]]\n"inputs.load.Fx" = "2 kN"\n')
+    with pytest.raises(SceneError, match=r"cases\.inputs\.load\.Fx: input load\.Fx is given in "
+                                         r"m and, as '2 kN', in N"):
+        parse_scene(STATICS.format(points=cases))
+
+
+def test_an_assembly_argument_takes_only_units_of_its_quantity():
+    text = builtin_scene_path("duplex_modes").read_text(encoding="utf-8")
+    good = parse_scene(text.replace('"assembly.preload_force" = [250.0, 500.0',
+                                    '"assembly.preload_force" = ["0.25 kN", "500 N"'))
+    assert good.grid["assembly.preload_force"][:2] == pytest.approx([250.0, 500.0])
+    with pytest.raises(SceneError, match=r"grid\.assembly\.preload_force: "
+                                         r"assembly\.preload_force: 'furlong' is not a unit of "
+                                         r"N quantities"):
+        parse_scene(text.replace('"assembly.preload_force" = [250.0',
+                                 '"assembly.preload_force" = ["5 furlong"'))
+    with pytest.raises(SceneError, match=r"'kN' is not a unit of rad/s"):
+        parse_scene(text.replace('"assembly.speed" = ["0 rpm"', '"assembly.speed" = ["5 kN"'))
+
+
+@pytest.mark.parametrize("flag", ["inputs.shaft_speed=5furlong,2000rpm",
+                                  "inputs.shaft_speed=2000rpm,5kN"])
+def test_a_sweep_point_of_another_quantity_stops_the_sweep_before_it_runs(flag):
+    scene = parse_scene(builtin_scene_path("double_layer_friction").read_text(encoding="utf-8"))
+    with pytest.raises(SweepError, match=r"sweep point .*input shaft_speed is in rad/s, but its "
+                                         r"value is given in (m|N)"):
+        plan_sweep(scene, grid_points(parse_grid([flag])))
