@@ -206,6 +206,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
     check_count(n_workers, "n_workers", 1, "run_sweep")
+    if chunk is not None:
+        check_count(chunk, "chunk (points per task, --chunk)", 1, "run_sweep")
     if scheduler is None and client is None:  # the workers' imports begin, on another core
         start_worker_server()
     if not isinstance(scene, Scene):

@@ -36,8 +36,8 @@ def cell(value: Any) -> str:
     str
         Its text.
     """
-    if isinstance(value, float):
-        return repr(value)
+    if isinstance(value, float):  # numpy's float64 too, whose repr names its type
+        return repr(float(value))
     return str(value)
 
 
