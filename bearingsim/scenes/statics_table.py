@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.catalog import resolve_bearing
 from bearingsim.scenes.scene import SceneError, line_of
 
 __all__ = ["STATICS", "STATICS_INPUTS", "Statics", "statics_of"]
@@ -51,9 +52,10 @@ def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, An
     from bearingsim.studies.deep_groove_statics import LOAD_NAMES, deep_groove_statics
 
     loads = {k: float(inputs.get(f"load.{k}", 0.0)) for k in LOAD_NAMES}
+    speed = abs(float(inputs.get("shaft_speed", 0.0)))
+    resolve_bearing(args["bearing"]).check_speed(speed, "statics: inputs.shaft_speed")
     res = deep_groove_statics(args["bearing"], loads, method=prep.scene.statics_method,
                               guess=guess)
-    speed = abs(float(inputs.get("shaft_speed", 0.0)))
     revolutions_per_hour = speed / (2.0 * math.pi) * 3600.0
     life_h = (res.reference_life * 1e6 / revolutions_per_hour if revolutions_per_hour > 0.0
               else math.nan)

@@ -137,7 +137,8 @@ def steady_state(
         converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
         if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
             raise SimulationError(
-                "steady state not found: " + str(sol.message) + "; residual max "
+                "steady state not found: " + " ".join(str(sol.message).split())  # one line
+                + "; residual max "
                 f"{np.max(np.abs(res(sol.x))):.3g} for states "
                 + ", ".join(system.state_names[k] for k in free)
             )

@@ -34,6 +34,7 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
+from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.ball_row import row_loads, row_parameters
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics import iso_ts_16281 as iso
@@ -135,7 +136,8 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     Raises
     ------
     ParameterError
-        For an unknown load name, a non-finite load, a clearance outside ``[0, Pd(45 deg)]``,
+        For an unknown load name, a non-finite load, loads beyond the strength of bearing steel
+        (see below), a clearance outside ``[0, Pd(45 deg)]``,
         a method other than the two above or a ``guess`` that is not 5 finite numbers.
     SimulationError
         If no equilibrium is found (the message names the load reached on the load path).
@@ -143,7 +145,9 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     Warns
     -----
     PlasticDeformationWarning
-        When the largest Hertz pressure exceeds 4 200 MPa (ISO 76's static limit).
+        When the largest Hertz pressure exceeds 4 200 MPa (ISO 76's static limit); above the
+        pressure of :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times C0 (about
+        9 000 MPa) a :class:`~bearingsim.errors.ParameterError` instead.
     """
     where = "deep_groove_statics"
     check_choice(method, "method", METHODS, where)
@@ -158,6 +162,14 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     q, alpha = problem.balls(state)
     stiffness = -np.asarray(problem.jacobian(state), dtype=float)
     p_max = problem.max_pressure(q, alpha)
+    if p_max > STATIC_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** (1.0 / 3.0):
+        raise ParameterError(
+            f"{where}({g.designation}): the loads {dict(loads or {})} [N, N.m] give a largest "
+            f"Hertz pressure of {p_max / 1e6:.0f} MPa, above the "
+            f"{STATIC_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** (1.0 / 3.0) / 1e6:.0f} MPa of "
+            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 (ISO 76's "
+            f"{STATIC_PRESSURE_LIMIT / 1e6:.0f} MPa at C0; the pressure grows as the load to the "
+            f"power 1/3): beyond the strength of bearing steel (N given for kN?)")
     if p_max > STATIC_PRESSURE_LIMIT:
         warnings.warn(f"{where}({g.designation}): the largest Hertz pressure is "
                       f"{p_max / 1e6:.0f} MPa, above the 4200 MPa of ISO 76's static load "
