@@ -11,36 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.preparation import Prepared
-from bearingsim.scenes.scene import TableInput
+from bearingsim.scenes.scene_types import simulate_inputs
 from bearingsim.simulation import Result, simulate
 
 __all__ = ["output_series", "run_simulation", "simulate_inputs"]
-
-
-def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
-    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays.
-
-    Parameters
-    ----------
-    inputs : dict
-        Scene inputs by name (numbers, expressions or tables).
-
-    Returns
-    -------
-    dict
-        The inputs for ``simulate``.
-    """
-    out = {}
-    for k, v in inputs.items():
-        if isinstance(v, str):
-            out[k] = compile_expression(v, f"inputs.{k}")
-        elif isinstance(v, TableInput):
-            out[k] = v.as_tuple()
-        else:
-            out[k] = v
-    return out
 
 
 def run_simulation(prep: Prepared, parameters: dict[str, float] | None = None,

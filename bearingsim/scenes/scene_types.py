@@ -6,10 +6,12 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from bearingsim.errors import ParameterError
+from bearingsim.scenes.expressions import compile_expression
 from bearingsim.simulation.budget import DEFAULT_MAX_STEPS
 
 TOP_KEYS = ("title", "description", "analysis", "outputs", "tolerance", "bearings", "lubricants",
@@ -202,3 +204,27 @@ def line_of(text: str | None, key: tuple[str, ...] | str) -> int | None:
         if length > best_len:
             best, best_len = n, length
     return best
+
+
+def simulate_inputs(inputs: dict[str, Any]) -> dict[str, Any]:
+    """Scene inputs as accepted by ``simulate``: expressions compiled, tables as arrays.
+
+    Parameters
+    ----------
+    inputs : dict
+        Scene inputs by name (numbers, expressions or tables).
+
+    Returns
+    -------
+    dict
+        The inputs for ``simulate``.
+    """
+    out = {}
+    for k, v in inputs.items():
+        if isinstance(v, str):
+            out[k] = compile_expression(v, f"inputs.{k}")
+        elif isinstance(v, TableInput):
+            out[k] = v.as_tuple()
+        else:
+            out[k] = v
+    return out
