@@ -20,6 +20,7 @@ from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, line_of, scene_from_dict
+from bearingsim.scenes.scene_input_checks import input_unit_mismatches
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
@@ -27,7 +28,6 @@ from bearingsim.simulation.statics import static_stiffness
 __all__ = [
     "Prepared",
     "choose_fidelity",
-    "input_unit_mismatches",
     "point_keys",
     "prepare",
     "scene_inputs",
@@ -414,28 +414,6 @@ def _check_names(scene: Scene, system: System) -> None:
         first = problems[0]
         raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,
                          problems=problems)
-
-
-def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
-    """The inputs a scene gives as numbers with a unit of another quantity than the model's
-    input (``"5 kN"`` for a speed), each with its message.
-
-    Parameters
-    ----------
-    scene : Scene
-        The scene (its :attr:`~bearingsim.scenes.scene.Scene.input_units`: the SI unit of each
-        input given with a unit, in ``[inputs]``, a grid or cases).
-    system : System
-        The model.
-
-    Returns
-    -------
-    dict of str to str
-        Input name -> message.
-    """
-    units = {sig.name: sig.unit for sig in system.inputs}
-    return {n: f"input {n} is in {units[n]}, but its value is given in {si}"
-            for n, si in scene.input_units.items() if n in units and units[n] != si}
 
 
 def validate_scene(scene: Scene | str | Path, assemble_model: bool = True,

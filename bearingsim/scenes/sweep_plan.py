@@ -19,14 +19,10 @@ from typing import Any
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.operating_points import point_model
-from bearingsim.scenes.preparation import (
-    Prepared,
-    choose_fidelity,
-    input_unit_mismatches,
-    prepare,
-)
+from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
+from bearingsim.scenes.scene_input_checks import input_unit_mismatches
 from bearingsim.scenes.sweep_grid import check_operating_points, coerce, point_scene, si_values
 from bearingsim.scenes.sweep_worker import Job, ModelPayload
 
