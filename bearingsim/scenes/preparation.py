@@ -20,7 +20,7 @@ from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, line_of, scene_from_dict
-from bearingsim.scenes.scene_input_checks import input_unit_mismatches
+from bearingsim.scenes.scene_input_checks import input_range_problems, input_unit_mismatches
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
@@ -410,6 +410,9 @@ def _check_names(scene: Scene, system: System) -> None:
         if n not in system.state_names:
             add(f"initial.{n}", f"{n!r} is not a state of the (pruned) model",
                 ", ".join(system.state_names) or "none")
+    if not problems:  # every input named and given: their values within the inputs' ranges
+        for key, message in input_range_problems(scene, system).items():
+            add(key, message, "see the range in the message")
     if problems:
         first = problems[0]
         raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,

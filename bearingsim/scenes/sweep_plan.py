@@ -22,7 +22,7 @@ from bearingsim.scenes.operating_points import point_model
 from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
-from bearingsim.scenes.scene_input_checks import input_unit_mismatches
+from bearingsim.scenes.scene_input_checks import input_range_problems, input_unit_mismatches
 from bearingsim.scenes.sweep_grid import check_operating_points, coerce, point_scene, si_values
 from bearingsim.scenes.sweep_worker import Job, ModelPayload
 
@@ -112,7 +112,8 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
             prep.system.p0({**sc.parameters, **params})
         except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
-        for message in input_unit_mismatches(sc, prep.system).values():
+        for message in [*input_unit_mismatches(sc, prep.system).values(),
+                        *input_range_problems(sc, prep.system).values()]:
             raise SweepError(f"sweep point {pt}: {message}")
         for name in sc.inputs:  # (a statics load case also takes the speed, for the life)
             if sc.analysis != "statics" and name not in prep.system.input_names:
