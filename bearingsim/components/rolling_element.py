@@ -25,13 +25,14 @@ floor:
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.catalog.rollers import RollerBearingGeometry, get_roller_bearing
 from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
-from bearingsim.errors import CatalogError
+from bearingsim.errors import CatalogError, ParameterError, PlasticDeformationWarning
 from bearingsim.physics import line_contact
 from bearingsim.physics.contact_law import contact_load
 from bearingsim.physics.life import static_equivalent_load as ball_static_equivalent_load
@@ -44,6 +45,7 @@ __all__ = [
     "ElementRow",
     "LineContact",
     "PointContact",
+    "check_static_rating",
     "element_of",
     "friction_key",
     "load_input_bounds",
@@ -355,6 +357,48 @@ def load_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:
             alone[key] = min(load, alone.get(key, math.inf))
     return {key: {"low": -MAX_STATIC_LOAD_FACTOR * load, "high": MAX_STATIC_LOAD_FACTOR * load,
                   "warn_above": load, "limit": "static load"} for key, load in alone.items()}
+
+
+def check_static_rating(geometry: Any, forces: Any, where: str) -> None:
+    """Warn when the ISO 76 static equivalent load of constant forces ``(Fx, Fy, Fz)`` [N]
+    exceeds the static load rating C0 (4 200 MPa at the most loaded ball contact, permanent
+    deformation beyond); refuse it beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR`
+    times C0 (beyond the strength of bearing steel: a unit slip).
+
+    Parameters
+    ----------
+    geometry : ElementGeometry
+        The bearing; without a static load rating nothing is checked.
+    forces : sequence of float
+        ``(Fx, Fy, Fz)`` [N].
+    where : str
+        The model, for messages.
+
+    Raises
+    ------
+    ParameterError
+        Beyond ``MAX_STATIC_LOAD_FACTOR`` times C0.
+
+    Warns
+    -----
+    PlasticDeformationWarning
+        Above C0.
+    """
+    if geometry.static_load_rating is None:
+        return
+    p0 = float(static_equivalent_load(math.hypot(forces[0], forces[1]), abs(forces[2]),
+                                      geometry))
+    if p0 > MAX_STATIC_LOAD_FACTOR * geometry.static_load_rating:
+        raise ParameterError(
+            f"{where}: the static equivalent load {p0:.4g} N is more than "
+            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 = "
+            f"{geometry.static_load_rating:.0f} N of {geometry.designation}: beyond the "
+            f"strength of bearing steel (N given for kN?)")
+    if p0 > geometry.static_load_rating:
+        warnings.warn(f"{where}: the static equivalent load {p0:.0f} N exceeds the static load "
+                      f"rating C0 = {geometry.static_load_rating:.0f} N of "
+                      f"{geometry.designation}: the raceways deform permanently",
+                      PlasticDeformationWarning, stacklevel=3)
 
 
 def magnitude_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:

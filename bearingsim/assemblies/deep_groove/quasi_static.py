@@ -5,10 +5,8 @@ from __future__ import annotations
 
 import math
 import numbers
-import warnings
 from typing import Any
 
-from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.ball_row import BallRow, row_equilibrium, row_parameters
 from bearingsim.components.dynamic import (
     FixedFrame,
@@ -16,10 +14,9 @@ from bearingsim.components.dynamic import (
     TiltGuide,
 )
 from bearingsim.components.dynamic.ring import check_loads
-from bearingsim.components.rolling_element import load_input_bounds
-from bearingsim.errors import ParameterError, PlasticDeformationWarning, SimulationError
+from bearingsim.components.rolling_element import check_static_rating, load_input_bounds
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.language import Assembly, connect
-from bearingsim.physics.life import static_equivalent_load
 from bearingsim.validation import (
     check_range,
 )
@@ -89,7 +86,7 @@ class QuasiStaticDeepGroove(Assembly):
                 f"{where}: no quasi-static ball equilibrium at the inner-ring speed {speed:g} "
                 f"rad/s ({speed * 30.0 / math.pi:.0f} r/min) under the loads {constant} N; "
                 f"the balls' equilibrium is lost there ({exc})") from None
-        _warn_beyond_static_rating(geometry, constant, where)
+        check_static_rating(geometry, constant, where)
         self.row = BallRow(geometry, reference="centred", speed_effects=speed > 0.0,
                            centre_start=start.centres)
         # load inputs move the equilibrium away from the start values; at speed the Jones-Harris
@@ -104,23 +101,3 @@ class QuasiStaticDeepGroove(Assembly):
         self.row.inner.guess(**dict(zip(("x", "y", "z"), start.inner.tolist(), strict=True)))
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)
-
-
-def _warn_beyond_static_rating(geometry, forces, where: str) -> None:
-    """Warn when the static equivalent load of constant forces ``(Fx, Fy, Fz)`` exceeds C0
-    (ISO 76: 4 200 MPa at the most loaded contact, permanent deformation beyond)."""
-    if geometry.static_load_rating is None:
-        return
-    p0 = float(static_equivalent_load(math.hypot(forces[0], forces[1]), abs(forces[2]),
-                                      geometry))
-    if p0 > MAX_STATIC_LOAD_FACTOR * geometry.static_load_rating:
-        raise ParameterError(
-            f"{where}: the static equivalent load {p0:.4g} N is more than "
-            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 = "
-            f"{geometry.static_load_rating:.0f} N of {geometry.designation}: beyond the "
-            f"strength of bearing steel (N given for kN?)")
-    if p0 > geometry.static_load_rating:
-        warnings.warn(f"{where}: the static equivalent load {p0:.0f} N exceeds the static load "
-                      f"rating C0 = {geometry.static_load_rating:.0f} N of "
-                      f"{geometry.designation}: the raceways deform permanently",
-                      PlasticDeformationWarning, stacklevel=3)
