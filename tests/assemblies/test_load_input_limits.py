@@ -109,3 +109,20 @@ def test_a_torque_level_bearing_refuses_a_radial_load_beyond_ten_c0():
     declarations = PalmgrenBearing("6304", "ISO VG 68").declarations
     assert (declarations["Fr"].low, declarations["Fr"].high) == pytest.approx((0.0, 10 * C0))
     assert declarations["Fa"].warn_above == pytest.approx(2 * C0)
+
+
+def test_constant_loads_of_the_dynamic_and_roller_levels_are_held_to_c0():
+    """Before, the ball level took a constant 1e9 N (an inner-ring displacement of 73 mm,
+    contact forces of 2.2e8 N) and the roller level only warned; the quasi-static ball level
+    refused it. Now all three check the static equivalent load against C0 and 10 C0."""
+    with pytest.raises(ParameterError, match=r"deep_groove_ball_bearing: the static equivalent "
+                                             r"load 1e\+09 N is more than 10 x .*C0 = 7900 N"):
+        deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0,
+                                 loads={"Fx": 1e9})
+    with pytest.warns(PlasticDeformationWarning, match="exceeds the static load rating"):
+        deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0,
+                                 loads={"Fx": 2.0 * C0})
+    c0 = cylindrical_roller_bearing("NU206").geometry.static_load_rating
+    with pytest.raises(ParameterError, match=r"cylindrical_roller_bearing\(quasi-static\): the "
+                                             r"static equivalent load .* more than 10 x"):
+        cylindrical_roller_bearing("NU206", loads={"Fx": 11.0 * c0})

@@ -10,8 +10,6 @@ roller_row_equilibrium`; load inputs count as 0 there).
 
 from __future__ import annotations
 
-import warnings
-
 from bearingsim.assemblies.cylindrical_roller.options import CylindricalRollerOptions
 from bearingsim.components.dynamic import FixedFrame, RingLoad
 from bearingsim.components.misalignment import MisalignmentGuide
@@ -20,8 +18,7 @@ from bearingsim.components.roller_row import (
     roller_row_equilibrium,
     roller_row_parameters,
 )
-from bearingsim.components.rolling_element import load_input_bounds
-from bearingsim.errors import PlasticDeformationWarning
+from bearingsim.components.rolling_element import check_static_rating, load_input_bounds
 from bearingsim.language import Assembly, connect
 
 __all__ = ["QuasiStaticCylindricalRoller"]
@@ -52,7 +49,7 @@ class QuasiStaticCylindricalRoller(Assembly):
         loads = options.loads
         constant = [float(v) if isinstance(v, (int, float)) else 0.0
                     for v in (loads.get("Fx"), loads.get("Fy"))]
-        _warn_beyond_static_rating(g, constant)
+        check_static_rating(g, [*constant, 0.0], "cylindrical_roller_bearing(quasi-static)")
         rp = roller_row_parameters(g, options.clearance)
         self.start = roller_row_equilibrium(rp, g.roller_count, options.n_slices, constant,
                                             options.misalignment)
@@ -64,15 +61,3 @@ class QuasiStaticCylindricalRoller(Assembly):
         self.row.inner.guess(x=float(self.start.inner[0]), y=float(self.start.inner[1]))
         connect(self.row.outer, self.housing.frame)
         connect(self.row.inner, self.load.frame, self.guide.frame)
-
-
-def _warn_beyond_static_rating(geometry, forces) -> None:
-    """Warn when a constant radial load exceeds C0 (ISO 76, ``P0 = Fr``: 4000 MPa at the most
-    loaded roller contact, permanent deformation beyond)."""
-    c0 = geometry.static_load_rating
-    fr = (forces[0] ** 2 + forces[1] ** 2) ** 0.5
-    if c0 is not None and fr > c0:
-        warnings.warn(f"cylindrical_roller_bearing(quasi-static): the radial load {fr:.0f} N "
-                      f"exceeds the static load rating C0 = {c0:.0f} N of "
-                      f"{geometry.designation}: the raceways deform permanently",
-                      PlasticDeformationWarning, stacklevel=4)

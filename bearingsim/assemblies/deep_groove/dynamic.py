@@ -21,7 +21,7 @@ from bearingsim.components.dynamic import (
     RingDrag,
     RingLoad,
 )
-from bearingsim.components.rolling_element import load_input_bounds
+from bearingsim.components.rolling_element import check_static_rating, load_input_bounds
 from bearingsim.components.rotational import Fixed, Inertia, SpeedSource
 from bearingsim.language import Assembly, Input, Variable, connect, der
 from bearingsim.physics.ball_equilibrium import StaticState, static_state
@@ -105,6 +105,8 @@ class DeepGrooveBallBearing(Assembly):
         self.options = dataclasses.replace(options, film=options.film.for_lubricant(lubricant),
                                            cage=options.cage.for_lubricant(lubricant))
         constant = DeepGrooveOptions.constant_loads(options.loads)
+        check_static_rating(self.design.geometry,
+                            [constant.get(k, 0.0) for k in ("Fx", "Fy", "Fz")], WHERE)
         self.start: StaticState | None = static_state(
             design, constant, free_tilt=options.rings.free_tilt) if constant else None
         self._build_rings()
