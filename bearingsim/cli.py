@@ -11,6 +11,7 @@ import inspect
 import math
 import re
 import sys
+import warnings
 
 __all__ = ["main", "printable"]
 
@@ -63,6 +64,21 @@ def printable(text: object) -> str:
 
 def _say(text: object, err: bool = False) -> None:
     print(printable(text), file=sys.stderr if err else sys.stdout)
+
+
+def _warning_printer(command: str):
+    """A ``warnings.showwarning`` that prints a warning as a line of the command
+    (``bearingsim run: warning: SpeedLimitWarning: ...``) on standard error, each text once,
+    instead of Python's file, line number and source line."""
+    shown: set[str] = set()
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ARG001
+        text = f"{category.__name__}: {message}"
+        if text not in shown:
+            shown.add(text)
+            _say(f"bearingsim {command}: warning: {text}", err=True)
+
+    return show
 
 
 LIST_SECTIONS = ("assemblies", "components", "bearings", "lubricants", "scenes")
@@ -362,7 +378,9 @@ def main(argv: list[str] | None = None) -> int:
     handlers = {"list": _list, "demo": _demo, "run": _run,
                 "validate": _validate, "sweep": _sweep, "cache": _cache}
     try:
-        return handlers[args.command](args)
+        with warnings.catch_warnings():  # warnings as lines of the command, each once
+            warnings.showwarning = _warning_printer(args.command)
+            return handlers[args.command](args)
     except SimulationError as exc:
         _say(f"bearingsim {args.command}: simulation failed: {exc}", err=True)
         return 1

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -100,7 +101,8 @@ def test_run_passes_the_progress_choice_to_the_solver(scene_file, tmp_path, monk
     assert main(["run", str(scene_file), "--out", str(tmp_path / "a"), "--no-progress"]) == 0
     assert main(["run", str(scene_file), "--out", str(tmp_path / "b")]) == 0
     assert seen == [False, None]
-    assert capsys.readouterr().err == ""  # not a terminal: no bar
+    err = capsys.readouterr().err  # not a terminal: no bar, only the run's warning lines
+    assert all(line.startswith("bearingsim run: warning: ") for line in err.splitlines())
 
 
 def test_run_reports_a_failed_simulation_with_exit_1(tmp_path, capsys):
@@ -270,3 +272,22 @@ def test_the_core_install_pulls_no_test_tool():
     assert isinstance(project["license"], str)  # SPDX string: no setuptools deprecation warning
     makefile = (root / "Makefile").read_text()
     assert "demo: $(BASE)" in makefile and 'pip install --quiet -e .\n' in makefile
+
+
+def test_warnings_are_lines_of_the_command_each_once(tmp_path, capsys):
+    """A new-user trial: a run above the limiting speed printed Python's warning format twice
+    (``.../entry_points.py:43: SpeedLimitWarning: ...`` and the source line ``return
+    func(*args, **kwargs)``), an unsettled run ``runner.py:260: NotSettledWarning: ...``."""
+    text = (SCENES / "double_layer_friction.toml").read_text(encoding="utf-8")
+    text = re.sub(r"(?m)^shaft_speed = .*$", 'shaft_speed = "50000 rpm"', text)
+    text = re.sub(r"(?m)^t_end = .*$", "t_end = 0.01", text)
+    scene = tmp_path / "fast.toml"
+    scene.write_text(text, encoding="utf-8")
+    assert main(["run", str(scene)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    speed = [line for line in err if "SpeedLimitWarning" in line]
+    assert len(speed) == 1
+    assert speed[0].startswith("bearingsim run: warning: SpeedLimitWarning: input shaft_speed "
+                               "reaches 50000 r/min")
+    assert any(line.startswith("bearingsim run: warning: NotSettledWarning: ") for line in err)
+    assert not any(".py:" in line or "return " in line for line in err)
