@@ -119,8 +119,8 @@ class _LubricatedBearing(BearingTorqueElement):
             low=0.0, low_inclusive=False,
         )
         bounds = magnitude_input_bounds(g)
-        self.Fr = Input(0.0, "N", "radial load", **bounds.get("Fr", {"low": 0.0}))
-        self.Fa = Input(0.0, "N", "axial load (magnitude)", **bounds.get("Fa", {"low": 0.0}))
+        self.Fr = Input(0.0, "N", "radial load", **bounds["Fr"])
+        self.Fa = Input(0.0, "N", "axial load (magnitude)", **bounds["Fa"])
 
     @property
     def bearing_type(self) -> str:

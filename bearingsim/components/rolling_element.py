@@ -413,11 +413,12 @@ def magnitude_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:
     Returns
     -------
     dict
-        ``"Fr"``/``"Fa"`` -> ``low`` (0), ``high``, ``warn_above`` [N] and ``limit``.
+        ``"Fr"`` and ``"Fa"`` -> ``low`` (0) and, where a static load rating bounds the load,
+        ``high``, ``warn_above`` [N] and ``limit``.
     """
     bounds = load_input_bounds(*geometries)
-    return {name: {**bounds[key], "low": 0.0}
-            for name, key in (("Fr", "Fx"), ("Fa", "Fz")) if key in bounds}
+    return {name: {**bounds.get(key, {}), "low": 0.0}
+            for name, key in (("Fr", "Fx"), ("Fa", "Fz"))}
 
 
 def resolve_geometry(bearing: Any) -> BearingGeometry | RollerBearingGeometry:

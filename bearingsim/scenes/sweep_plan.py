@@ -112,9 +112,10 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
             prep.system.p0({**sc.parameters, **params})
         except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
-        for message in [*input_unit_mismatches(sc, prep.system).values(),
-                        *input_range_problems(sc, prep.system).values()]:
-            raise SweepError(f"sweep point {pt}: {message}")
+        problems = [*input_unit_mismatches(sc, prep.system).values(),
+                    *input_range_problems(sc, prep.system).values()]
+        if problems:
+            raise SweepError(f"sweep point {pt}: {problems[0]}")
         for name in sc.inputs:  # (a statics load case also takes the speed, for the life)
             if sc.analysis != "statics" and name not in prep.system.input_names:
                 raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "

@@ -454,9 +454,8 @@ def _check_values(sig, values: np.ndarray, times: np.ndarray | str | None
                   ) -> tuple[type[UserWarning], str] | None:
     """Values of one input: finite and within its declared range (else ParameterError); the
     warning (category, text) when they exceed the input's limit (``warn_above``), else None.
-    ``times``: the
-    times of the values [s], or a word naming them (``"table value"``), or None for a
-    constant."""
+    ``times``: the times of the values [s], or a word naming them (``"table value"``), or None
+    for a constant."""
     bad = ~np.isfinite(values)
 
     def where(k: int) -> str:

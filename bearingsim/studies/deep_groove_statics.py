@@ -51,8 +51,8 @@ from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
 from bearingsim.validation import check_choice, check_range
 
-__all__ = ["DeepGrooveStatics", "LOAD_NAMES", "METHODS", "STATIC_PRESSURE_LIMIT",
-           "deep_groove_statics"]
+__all__ = ["DeepGrooveStatics", "LOAD_NAMES", "MAX_STATIC_PRESSURE", "METHODS",
+           "STATIC_PRESSURE_LIMIT", "deep_groove_statics"]
 
 LOAD_NAMES = ("Fx", "Fy", "Fz", "Mx", "My")
 """External loads on the inner ring: forces [N], moments [N m]; z is the bearing axis."""
@@ -60,6 +60,9 @@ METHODS = ("exact", "iso_ts_16281")
 STATIC_PRESSURE_LIMIT = 4.2e9
 """Hertz pressure [Pa] at which ISO 76 sets the static load rating of ball bearings (the onset of
 a permanent deformation of 1e-4 Dw); above it a warning is given."""
+MAX_STATIC_PRESSURE = STATIC_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** (1.0 / 3.0)
+"""Hertz pressure [Pa] of :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times C0 (the
+pressure grows as the load to the power 1/3: about 9 050 MPa); above it loads are refused."""
 
 _SCALE = np.array([1e-5, 1e-5, 1e-5, 1e-4, 1e-4])
 """Typical magnitudes of the unknowns [m, m, m, rad, rad], for the iteration."""
@@ -162,11 +165,11 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     q, alpha = problem.balls(state)
     stiffness = -np.asarray(problem.jacobian(state), dtype=float)
     p_max = problem.max_pressure(q, alpha)
-    if p_max > STATIC_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** (1.0 / 3.0):
+    if p_max > MAX_STATIC_PRESSURE:
         raise ParameterError(
             f"{where}({g.designation}): the loads {dict(loads or {})} [N, N.m] give a largest "
             f"Hertz pressure of {p_max / 1e6:.0f} MPa, above the "
-            f"{STATIC_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** (1.0 / 3.0) / 1e6:.0f} MPa of "
+            f"{MAX_STATIC_PRESSURE / 1e6:.0f} MPa of "
             f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 (ISO 76's "
             f"{STATIC_PRESSURE_LIMIT / 1e6:.0f} MPa at C0; the pressure grows as the load to the "
             f"power 1/3): beyond the strength of bearing steel (N given for kN?)")

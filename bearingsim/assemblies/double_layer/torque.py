@@ -66,10 +66,9 @@ class DoubleLayerBearing(PartialDoubleLayer):
         self._lubricated = fidelity == "torque"
         if self._lubricated:
             bounds = magnitude_input_bounds(*options.geometries)
-            self.Fr = Input(0.0, "N", "radial load through both layers",
-                            **bounds.get("Fr", {"low": 0.0}))
+            self.Fr = Input(0.0, "N", "radial load through both layers", **bounds["Fr"])
             self.Fa = Input(0.0, "N", "axial load through both layers (magnitude)",
-                            **bounds.get("Fa", {"low": 0.0}))
+                            **bounds["Fa"])
         connect(self.shaft, self.inner_layer.inner)
         connect(self.inner_layer.outer, self.middle.inner_side)
         connect(self.middle.outer_side, self.outer_layer.inner)
