@@ -2,7 +2,7 @@
 
 Between the limit and the input's hard bounds (``low``, ``high``) a run warns with the kind's
 warning, naming the limit and what happens beyond it; outside the bounds it is refused
-(:func:`~bearingsim.simulation.inputs.check_input_ranges`). Each kind says what its limit is,
+(:func:`~bearingsim.simulation.input_ranges.check_input_ranges`). Each kind says what its limit is,
 so that the same check serves speeds and loads.
 """
 

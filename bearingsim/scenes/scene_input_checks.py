@@ -13,7 +13,8 @@ from bearingsim.assembler import System
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.scene import Scene
 from bearingsim.scenes.scene_types import simulate_inputs
-from bearingsim.simulation.inputs import check_input_ranges, input_signal
+from bearingsim.simulation.input_ranges import check_input_ranges
+from bearingsim.simulation.inputs import input_signal
 
 __all__ = ["input_range_problems", "input_unit_mismatches"]
 
@@ -42,8 +43,8 @@ def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
 
 def input_range_problems(scene: Scene, system: System) -> dict[str, str]:
     """The inputs' values a run of the scene would refuse (out of the input's range, not
-    finite; :func:`~bearingsim.simulation.inputs.check_input_ranges` over the run's time span),
-    by the key that gives them: ``inputs.<name>``, or ``grid``/``cases`` for a point's value
+    finite; :func:`~bearingsim.simulation.input_ranges.check_input_ranges` over the run's time
+    span), by the key that gives them: ``inputs.<name>``, or ``grid``/``cases`` for a point's value
     (each with the scene's other inputs). Warnings (a speed above the limiting speed) are the
     run's to give.
 

@@ -3,8 +3,8 @@ that the numbers of a new run (a sweep's next point) are checked in one vectoris
 
 A signal made of constants and tables only is valid when every constant and every table value
 is finite, within its input's range and not above its limit (``warn_above``); otherwise the
-input-by-input check of :func:`~bearingsim.simulation.inputs.check_input_ranges` finds the value
-and says what is wrong with it.
+input-by-input check of :func:`~bearingsim.simulation.input_ranges.check_input_ranges` finds the
+value and says what is wrong with it.
 """
 
 from __future__ import annotations

@@ -18,7 +18,8 @@ from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
 from bearingsim.simulation.choice import MethodChoice, choose_method
 from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.fastcall import evaluate, mapped_function
-from bearingsim.simulation.inputs import InputSignal, check_input_ranges, input_signal
+from bearingsim.simulation.input_ranges import check_input_ranges
+from bearingsim.simulation.inputs import InputSignal, input_signal
 from bearingsim.simulation.integrators import (
     BACKENDS,
     METHODS,

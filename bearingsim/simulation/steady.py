@@ -17,7 +17,8 @@ from bearingsim.assembler.numeric import thread_kept
 from bearingsim.assembler.system import System, as_system
 from bearingsim.entry_points import entry_point
 from bearingsim.errors import SimulationError
-from bearingsim.simulation.inputs import check_input_ranges, input_signal
+from bearingsim.simulation.input_ranges import check_input_ranges
+from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.validation import check_flag, check_range, check_vector
 

@@ -163,11 +163,11 @@ def test_a_changed_cache_variable_moves_the_kernel_library(system, kernel_cache,
 def _slow_check(system, signal, times, monkeypatch):
     """check_input_ranges input by input (the vectorised test switched off): its error or
     its warnings."""
-    from bearingsim.simulation import inputs as inputs_module
+    from bearingsim.simulation import input_ranges as input_ranges_module
 
-    monkeypatch.setattr(inputs_module, "numbers_valid", lambda *signal: False)
+    monkeypatch.setattr(input_ranges_module, "numbers_valid", lambda *signal: False)
     try:
-        return _outcome(lambda: inputs_module._check_signal(system, signal, times))
+        return _outcome(lambda: input_ranges_module._check_signal(system, signal, times))
     finally:
         monkeypatch.undo()
 
@@ -188,7 +188,7 @@ def test_the_vectorised_bounds_test_agrees_with_the_input_by_input_check(
     """Bounds inclusive, the limiting speed (a warning above it, not at it), a table value
     below its range; the vectorised test passes exactly the signals the input by input check
     passes without a word."""
-    from bearingsim.simulation.inputs import _check_signal
+    from bearingsim.simulation.input_ranges import _check_signal
 
     signal = input_signal(system, {"shaft_speed": speed, "Fr": load})
     times = np.array([0.0, 1.0])

@@ -13,10 +13,11 @@ import pytest
 from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.errors import ParameterError
-from bearingsim.simulation import inputs as inputs_module
+from bearingsim.simulation import input_ranges as input_ranges_module
 from bearingsim.simulation import simulate, steady_state
 from bearingsim.simulation import steady as steady_module
-from bearingsim.simulation.inputs import check_input_ranges, input_signal
+from bearingsim.simulation.input_ranges import check_input_ranges
+from bearingsim.simulation.inputs import input_signal
 
 
 @pytest.fixture(scope="module")
@@ -53,10 +54,10 @@ def test_a_function_of_time_is_still_checked_between_the_output_times(torque_lev
 
 def test_an_input_signal_is_checked_once_per_numbers_and_span(torque_level, monkeypatch):
     calls = []
-    original = inputs_module.locate_problem
-    monkeypatch.setattr(inputs_module, "locate_problem",
+    original = input_ranges_module.locate_problem
+    monkeypatch.setattr(input_ranges_module, "locate_problem",
                         lambda *a, **k: calls.append(a[1:3]) or original(*a, **k))
-    inputs_module._CHECKED.clear()
+    input_ranges_module._CHECKED.clear()
     speed = {"shaft_speed": lambda t: 50.0 * (1.0 + t)}
     for _ in range(3):
         check_input_ranges(torque_level, input_signal(torque_level, speed),
