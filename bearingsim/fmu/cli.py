@@ -37,6 +37,18 @@ def _assignment(text: str) -> tuple[str, float]:
         raise argparse.ArgumentTypeError(f"{name}: {value!r} is not a number") from None
 
 
+def _input_assignment(text: str) -> tuple[str, float | str]:
+    """NAME=VALUE of an input start value: a number, or a number with a unit (``3000rpm``),
+    converted and checked by :func:`~bearingsim.fmu.export.export_fmu`."""
+    name, sep, value = text.partition("=")
+    if not sep:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    try:
+        return name.strip(), float(value)
+    except ValueError:
+        return name.strip(), value.strip()
+
+
 def _factory_argument(text: str) -> tuple[str, Any]:
     name, sep, value = text.partition("=")
     if not sep or not name.strip().isidentifier():
@@ -78,8 +90,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--name", default=None, help="model name (default: the assembly's)")
     parser.add_argument("--param", type=_assignment, action="append", default=[],
                         metavar="NAME=VALUE", help="parameter start value (repeatable)")
-    parser.add_argument("--input", type=_assignment, action="append", default=[],
-                        metavar="NAME=VALUE", help="input start value (repeatable)")
+    parser.add_argument("--input", type=_input_assignment, action="append", default=[],
+                        metavar="NAME=VALUE",
+                        help="input start value, a number in the input's unit or with a unit "
+                             "(3000rpm); checked against its range (repeatable)")
     parser.add_argument("--arg", type=_factory_argument, action="append", default=[],
                         metavar="NAME=VALUE", help="keyword argument of the factory, e.g. "
                         "motor=pmsm or inner=\"61905\" (repeatable; TOML values)")

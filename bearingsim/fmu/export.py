@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import logging
-import math
 import platform
 import re
 import tempfile
@@ -31,7 +30,9 @@ from bearingsim.fmu.interface import build_interface
 from bearingsim.fmu.model_c import STEPPERS, resolve_stepper, write_model_c
 from bearingsim.fmu.model_description import model_description_xml
 from bearingsim.fmu.nominal import state_nominals
+from bearingsim.fmu.units import derivative_unit
 from bearingsim.language import Component
+from bearingsim.simulation.input_ranges import check_input_value
 from bearingsim.simulation.ordering import newton_pattern
 
 __all__ = ["FMI_VERSIONS", "export_fmu"]
@@ -95,7 +96,7 @@ def _outputs(system, outputs) -> tuple[list[str], list[str], list[str]]:
         sig = known[n]
         if sig is None:
             state = known[n[4:-1]]
-            units.append(f"({state.unit})/s")
+            units.append(derivative_unit(state.unit))
             descriptions.append(f"time derivative of {state.name}")
         else:
             units.append(sig.unit)
@@ -111,10 +112,10 @@ def _input_starts(system, inputs):
                 f"export_fmu: unknown input {name!r}; inputs: "
                 + (", ".join(system.input_names) or "none")
             )
-        value = float(value)
-        if not math.isfinite(value):
-            raise ParameterError(f"export_fmu: start value of input {name} must be finite")
-        u[system.input_names.index(name)] = value
+        try:
+            u[system.input_names.index(name)] = check_input_value(system, name, value)
+        except ParameterError as exc:
+            raise ParameterError(f"export_fmu: start value of {exc}") from None
     return u
 
 
@@ -129,7 +130,7 @@ def _description(model, system: System) -> str:
 def export_fmu(
     model,
     path: str | Path,
-    inputs: dict[str, float] | None = None,
+    inputs: dict[str, float | str] | None = None,
     outputs: Sequence[str] | None = None,
     parameters: dict[str, float] | None = None,
     fmi_version: str = "2.0",
@@ -156,7 +157,10 @@ def export_fmu(
     path : str or pathlib.Path
         The ``.fmu`` file to write.
     inputs : dict, optional
-        Input name -> start value [input unit].
+        Input name -> start value [input unit] or number with a unit (``"3000 rpm"``),
+        checked against the input's range (the
+        FMU refuses values outside it in ``fmi2SetReal``/``fmi3SetFloat64`` too, and warns
+        once above its limit, e.g. a limiting speed).
     outputs : sequence of str, optional
         Dotted names of the FMU outputs. Default: the system's outputs (for an assembly: every
         variable). Inputs named here are dropped (they are FMU inputs already).

@@ -14,6 +14,7 @@ causality ``output``; its slot in the output block is then not declared.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import casadi as ca
@@ -47,7 +48,7 @@ class FmuVariable:
     start : float or None
         Start value (written when not ``None``).
     low, high : float or None
-        ``min``/``max`` (parameter ranges).
+        ``min``/``max`` (parameter and input ranges, inclusive as FMI reads them).
     nominal : float or None
         ``nominal`` (states: :mod:`bearingsim.fmu.nominal`; None: not written).
     """
@@ -173,6 +174,17 @@ def _pattern(fn: ca.Function, iind: int) -> np.ndarray:
     return np.array(ca.DM(sp, 1.0), dtype=float) != 0
 
 
+def _inclusive_bounds(decl) -> tuple[float | None, float | None]:
+    """A declaration's range as FMI's inclusive ``min``/``max``: an excluded bound becomes the
+    next double inside it (``min`` of a positive length is 5e-324, not 0)."""
+    low, high = getattr(decl, "low", None), getattr(decl, "high", None)
+    if low is not None and not getattr(decl, "low_inclusive", True):
+        low = math.nextafter(low, math.inf)
+    if high is not None and not getattr(decl, "high_inclusive", True):
+        high = math.nextafter(high, -math.inf)
+    return low, high
+
+
 def build_interface(system, functions: dict[str, ca.Function], output_names: list[str],
                     output_units: list[str], output_descriptions: list[str],
                     input_starts: np.ndarray, parameter_values: np.ndarray,
@@ -234,7 +246,7 @@ def build_interface(system, functions: dict[str, ca.Function], output_names: lis
     for k, s in enumerate(system.inputs):
         variables.append(FmuVariable(
             s.name, 2 * nx + k, "input", k, "input", "continuous", None, float(input_starts[k]),
-            normalize_unit(s.unit), s.description,
+            normalize_unit(s.unit), s.description, s.low, s.high,
         ))
     for k, name in enumerate(output_names):
         if output_vrs[k] == vr_y + k:
@@ -247,7 +259,7 @@ def build_interface(system, functions: dict[str, ca.Function], output_names: lis
         variables.append(FmuVariable(
             q.name, vr_y + ny + k, "parameter", k, "parameter", "tunable", "exact",
             float(parameter_values[k]), normalize_unit(q.unit), q.description,
-            getattr(decl, "low", None), getattr(decl, "high", None),
+            *_inclusive_bounds(decl),
         ))
     sparsity = {
         "ode_x": _pattern(functions["ode"], 1),

@@ -1,7 +1,7 @@
 """The model-specific C part of an FMU: ``model_config.h`` (sizes, value-reference blocks, work
-sizes, GUID) and ``model_data.c`` (start and nominal values, parameter ranges, names and the
-table of the CasADi-generated functions). Everything else in the FMU's C code is the generic
-template."""
+sizes, GUID) and ``model_data.c`` (start and nominal values, parameter and input ranges, input
+limits, names and the table of the CasADi-generated functions). Everything else in the FMU's C
+code is the generic template."""
 
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ import numpy as np
 
 from bearingsim.fmu.codegen import FUNCTION_NAMES, PREFIX
 from bearingsim.fmu.interface import FmuInterface
+from bearingsim.input_limits import INPUT_LIMITS
 from bearingsim.simulation.ordering import NewtonPattern, newton_pattern
 
 __all__ = ["BDF_MIN_STATES", "STEPPERS", "resolve_stepper", "write_model_c"]
@@ -154,6 +155,8 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
     params = iface.by_kind("parameter")
     p_start = [_c_double(v.start) for v in params]
     bounds = [_bounds(q.declaration) for q in system.params]
+    u_bounds = [_bounds(s) for s in system.inputs]
+    u_limits = [INPUT_LIMITS.get(s.limit) for s in system.inputs]
     table = ",\n".join(
         f"    {{{_c_string(key)}, {PREFIX}{key}, {PREFIX}{key}_sparsity_out, "
         f"{PREFIX}{key}_checkout, {PREFIX}{key}_release}}"
@@ -172,10 +175,22 @@ def write_model_c(directory: Path, iface: FmuInterface, system, guid: str,
         + _array("double", "bsm_p_low", "NP", [_c_double(b[0]) for b in bounds])
         + _array("double", "bsm_p_high", "NP", [_c_double(b[1]) for b in bounds])
         + _array("unsigned char", "bsm_p_bounds", "NP", [str(b[2]) for b in bounds])
+        + _array("double", "bsm_u_low", "NU", [_c_double(b[0]) for b in u_bounds])
+        + _array("double", "bsm_u_high", "NU", [_c_double(b[1]) for b in u_bounds])
+        + _array("unsigned char", "bsm_u_bounds", "NU", [str(b[2]) for b in u_bounds])
+        + _array("double", "bsm_u_warn_above", "NU",
+                 [_c_double(math.inf if s.warn_above is None else s.warn_above)
+                  for s in system.inputs])
+        + _array("char *const", "bsm_u_limit_names", "NU",
+                 [_c_string(k.name if k else "") for k in u_limits])
+        + _array("char *const", "bsm_u_limit_effects", "NU",
+                 [_c_string(k.effect if k else "") for k in u_limits])
         + _array("char *const", "bsm_x_names", "NX", [_c_string(s.name) for s in system.states])
         + _array("char *const", "bsm_u_names", "NU", [_c_string(s.name) for s in system.inputs])
         + _array("char *const", "bsm_y_names", "NY", [_c_string(n) for n in y_names])
         + _array("char *const", "bsm_p_names", "NP", [_c_string(v.name) for v in params])
+        + _array("char *const", "bsm_u_units", "NU",
+                 [_c_string(v.unit) for v in iface.by_kind("input")])
         + _array("char *const", "bsm_p_units", "NP", [_c_string(v.unit) for v in params])
         + _array("int", "bsm_lu_order", "NX", [str(k) for k in lu_pattern.order])
         + _array("int", "bsm_lu_start", "NX + 1", [str(k) for k in lu_pattern.start])

@@ -5,6 +5,7 @@ it), a value above its limit (a limiting speed, a static load rating) warns."""
 from __future__ import annotations
 
 import warnings
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -15,9 +16,9 @@ from bearingsim.input_limits import INPUT_LIMITS
 from bearingsim.simulation.input_bounds import numbers_valid
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.intervals import locate_problem
-from bearingsim.units import CUSTOMARY_DIFFERS, engineering
+from bearingsim.units import CUSTOMARY_DIFFERS, engineering, to_si
 
-__all__ = ["check_input_ranges"]
+__all__ = ["check_input_ranges", "check_input_value"]
 
 _T = ca.SX.sym("t")
 
@@ -64,6 +65,42 @@ def check_input_ranges(system: System, signal: InputSignal, times: np.ndarray) -
         _CHECKED[key] = notes
     for category, note in notes:
         warnings.warn(note, category, stacklevel=3)
+
+
+def check_input_value(system: System, name: str, value: Any) -> float:
+    """A constant value of one input in the input's unit, checked as a run would check it
+    (finite, within its declared range; a warning above its limit).
+
+    Parameters
+    ----------
+    system : System
+        The system declaring the input.
+    name : str
+        The input's name (one of ``system.input_names``).
+    value : float or str or pint.Quantity
+        A number [input unit] or a number with a unit (``"10000 rpm"``).
+
+    Returns
+    -------
+    float
+        The value [input unit].
+
+    Raises
+    ------
+    ParameterError
+        If the value is not a number (with a unit of the input's quantity), not finite or
+        outside the input's range.
+    """
+    sig = system.inputs[system.input_names.index(name)]
+    number = to_si(value, sig.unit, f"input {name}")
+    if isinstance(number, (str, bool, np.bool_)) or not isinstance(number, (int, float,
+                                                                            np.number)):
+        raise ParameterError(f"input {name}: give a number in {sig.unit} or a number with a "
+                             f"unit (e.g. '10000 rpm', '2 kN'), got {value!r:.60}")
+    note = _check_values(sig, np.array([number], dtype=float), None)
+    if note is not None:
+        warnings.warn(note[1], note[0], stacklevel=2)
+    return float(number)
 
 
 def _check_signal(system: System, signal: InputSignal, times: np.ndarray

@@ -51,7 +51,7 @@ def test_model_description(drive3):
     assert {v.type for v in md.modelVariables} == {"Float64"}
     assert variables["sd.tau"].unit == "N.m"
     assert variables["der(j2.w)"].derivative is variables["j2.w"]
-    assert variables["sd.c"].variability == "tunable" and variables["sd.c"].min == "0.0"
+    assert variables["sd.c"].variability == "tunable" and variables["sd.c"].min == "5e-324"
     assert [u.variable.name for u in md.outputs] == ["j1.phi", "j2.w", "sd.tau"]
     assert len(md.derivatives) == 4 and len(md.initialUnknowns) == 5
     deps = {u.variable.name: [d.name for d in u.dependencies] for u in md.derivatives}

@@ -42,7 +42,7 @@ def test_nan_parameter(drive_fmu, tmp_path):
     fmu, vr, log = _initialized(drive_fmu, tmp_path)
     with pytest.raises(FMICallException):
         fmu.setReal([vr["sd.phi_rel0"]], [math.nan])
-    assert "parameter sd.phi_rel0 = NaN" in log.text()
+    assert "parameter sd.phi_rel0 must be finite, got NaN; value not set" in log.text()
     fmu.freeInstance()
 
 

@@ -34,6 +34,7 @@ void bsm_reset(BsmInstance *m) {
     memcpy(m->s.p, bsm_p_start, sizeof(m->s.p));
     m->s.rtol = 1e-6;
     m->w_valid = 0;
+    memset(m->u_warned, 0, sizeof(m->u_warned));
     bsm_invalidate(m);
 }
 
@@ -120,30 +121,47 @@ BsmStatus bsm_current_outputs(BsmInstance *m) {
     return BSM_OK;
 }
 
-BsmStatus bsm_check_parameter(BsmInstance *m, int k, double v) {
-    unsigned char b = bsm_p_bounds[k];
-    int low_ok = !(b & BSM_HAS_LOW) ||
-                 ((b & BSM_LOW_INCLUSIVE) ? v >= bsm_p_low[k] : v > bsm_p_low[k]);
-    int high_ok = !(b & BSM_HAS_HIGH) ||
-                  ((b & BSM_HIGH_INCLUSIVE) ? v <= bsm_p_high[k] : v < bsm_p_high[k]);
+/* Whether v is finite and lies in the range (low, high) with the bound flags b (BSM_HAS_LOW
+ * ...); if not, log why ("<kind> <name> = v [unit] is outside its valid range ...; value not
+ * set"). */
+static BsmStatus check_range(BsmInstance *m, const char *kind, const char *name,
+                             const char *unit, double v, double low, double high,
+                             unsigned char b) {
+    int low_ok = !(b & BSM_HAS_LOW) || ((b & BSM_LOW_INCLUSIVE) ? v >= low : v > low);
+    int high_ok = !(b & BSM_HAS_HIGH) || ((b & BSM_HIGH_INCLUSIVE) ? v <= high : v < high);
     char range[128], num[32];
     if (isfinite(v) && low_ok && high_ok) return BSM_OK;
+    if (!isfinite(v)) {
+        bsm_log(m, BSM_ERROR, "logStatusError", "%s %s must be finite, got %s; value not set",
+                kind, name, bsm_num(num, v));
+        return BSM_ERROR;
+    }
     snprintf(range, sizeof(range), "%s%.17g, %.17g%s", (b & BSM_LOW_INCLUSIVE) ? "[" : "(",
-             (b & BSM_HAS_LOW) ? bsm_p_low[k] : -INFINITY,
-             (b & BSM_HAS_HIGH) ? bsm_p_high[k] : INFINITY,
+             (b & BSM_HAS_LOW) ? low : -INFINITY, (b & BSM_HAS_HIGH) ? high : INFINITY,
              (b & BSM_HIGH_INCLUSIVE) ? "]" : ")");
     bsm_log(m, BSM_ERROR, "logStatusError",
-            "parameter %s = %s [%s] is outside its valid range %s; value not set",
-            bsm_p_names[k], bsm_num(num, v), bsm_p_units[k], range);
+            "%s %s = %s [%s] is outside its valid range %s; value not set", kind, name,
+            bsm_num(num, v), unit, range);
     return BSM_ERROR;
 }
 
+BsmStatus bsm_check_parameter(BsmInstance *m, int k, double v) {
+    return check_range(m, "parameter", bsm_p_names[k], bsm_p_units[k], v, bsm_p_low[k],
+                       bsm_p_high[k], bsm_p_bounds[k]);
+}
+
 BsmStatus bsm_check_input(BsmInstance *m, int k, double v) {
-    char b[32];
-    if (isfinite(v)) return BSM_OK;
-    bsm_log(m, BSM_ERROR, "logStatusError", "input %s must be finite, got %s; value not set",
-            bsm_u_names[k], bsm_num(b, v));
-    return BSM_ERROR;
+    char num[32], limit[32];
+    if (check_range(m, "input", bsm_u_names[k], bsm_u_units[k], v, bsm_u_low[k],
+                    bsm_u_high[k], bsm_u_bounds[k]) != BSM_OK)
+        return BSM_ERROR;
+    if (!(fabs(v) > bsm_u_warn_above[k]) || m->u_warned[k]) return BSM_OK;
+    m->u_warned[k] = 1;
+    bsm_log(m, BSM_WARNING, "logStatusWarning",
+            "input %s = %s [%s] is above %s, %s [%s]: %s (warned once per instance)",
+            bsm_u_names[k], bsm_num(num, v), bsm_u_units[k], bsm_u_limit_names[k],
+            bsm_num(limit, bsm_u_warn_above[k]), bsm_u_units[k], bsm_u_limit_effects[k]);
+    return BSM_WARNING;
 }
 
 /* ------------------------------------------------------------------ values, derivatives */
@@ -184,8 +202,10 @@ BsmCall bsm_set_real(BsmInstance *m, unsigned int r, double v, int states_settab
         m->s.x[r - VR_X] = v;
         m->s.jac_set = 0;
     } else if (r >= VR_U && r < VR_Y) {
-        if (bsm_check_input(m, (int)(r - VR_U), v) != BSM_OK) return BSM_CALL_FAILED;
+        BsmStatus st = bsm_check_input(m, (int)(r - VR_U), v);
+        if (st == BSM_ERROR) return BSM_CALL_FAILED;
         m->s.u[r - VR_U] = v;
+        if (st == BSM_WARNING) return BSM_CALL_WARNED;
     } else if (r >= VR_P && r < VR_END) {
         if (!parameters_settable) {
             bsm_log(m, BSM_ERROR, "logStatusError",

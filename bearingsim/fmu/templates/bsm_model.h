@@ -41,7 +41,7 @@ enum {
     FN_COUNT
 };
 
-/* Bound flags of a parameter range. */
+/* Bound flags of a parameter's or an input's range. */
 enum { BSM_HAS_LOW = 1, BSM_LOW_INCLUSIVE = 2, BSM_HAS_HIGH = 4, BSM_HIGH_INCLUSIVE = 8 };
 
 extern const BsmFunction bsm_functions[FN_COUNT];
@@ -53,10 +53,19 @@ extern const double bsm_p_start[BSM_DIM(NP)];
 extern const double bsm_p_low[BSM_DIM(NP)];
 extern const double bsm_p_high[BSM_DIM(NP)];
 extern const unsigned char bsm_p_bounds[BSM_DIM(NP)];
+/* Ranges of the inputs (refused outside) and the magnitude above which a value is warned
+ * about (INFINITY: none), with what that limit is and what exceeding it means. */
+extern const double bsm_u_low[BSM_DIM(NU)];
+extern const double bsm_u_high[BSM_DIM(NU)];
+extern const unsigned char bsm_u_bounds[BSM_DIM(NU)];
+extern const double bsm_u_warn_above[BSM_DIM(NU)];
+extern const char *const bsm_u_limit_names[BSM_DIM(NU)];
+extern const char *const bsm_u_limit_effects[BSM_DIM(NU)];
 extern const char *const bsm_x_names[BSM_DIM(NX)];
 extern const char *const bsm_u_names[BSM_DIM(NU)];
 extern const char *const bsm_y_names[BSM_DIM(NY)];
 extern const char *const bsm_p_names[BSM_DIM(NP)];
+extern const char *const bsm_u_units[BSM_DIM(NU)];
 extern const char *const bsm_p_units[BSM_DIM(NP)];
 /* Fill-reducing order of the states for the LU factorisation of the stepper (a permutation of
  * 0 .. NX-1, computed at export from the sparsity of d der(x)/dx), and the pattern of
@@ -175,13 +184,16 @@ typedef struct {
     void *host;
     bsm_logger logger;
     int debug_logging;
+    unsigned char u_warned[BSM_DIM(NU)]; /* input k was warned about (bsm_u_warn_above) */
     bsm_inputs_fn inputs_between; /* NULL: inputs follow their derivatives' polynomial */
 } BsmInstance;
 
 /* Outcome of a shared API operation: done; refused without harm (bad arguments or a call in
  * the wrong mode; logged); failed in the model (logged; the caller puts the instance in its
- * error state). */
-typedef enum { BSM_CALL_DONE = 0, BSM_CALL_REFUSED = 1, BSM_CALL_FAILED = 2 } BsmCall;
+ * error state); done with a warning (logged). */
+typedef enum {
+    BSM_CALL_DONE = 0, BSM_CALL_REFUSED = 1, BSM_CALL_FAILED = 2, BSM_CALL_WARNED = 3
+} BsmCall;
 
 /* bsm_eval.c */
 const char *bsm_num(char buf[32], double v);

@@ -190,6 +190,7 @@ static fmi2Status bad_vr(Fmi2Instance *c, fmi2ValueReference vr, const char *wha
 /* Map a shared operation's outcome to an FMI status. */
 static fmi2Status outcome(Fmi2Instance *c, BsmCall call) {
     if (call == BSM_CALL_FAILED) return fail(c, BSM_ERROR);
+    if (call == BSM_CALL_WARNED) return fmi2Warning;
     return call == BSM_CALL_DONE ? fmi2OK : fmi2Error;
 }
 

@@ -303,6 +303,7 @@ static fmi3Status bad_vr(Fmi3Instance *c, fmi3ValueReference vr, const char *wha
 /* Map a shared operation's outcome to an FMI status. */
 static fmi3Status outcome(Fmi3Instance *c, BsmCall call) {
     if (call == BSM_CALL_FAILED) return fail(c, BSM_ERROR);
+    if (call == BSM_CALL_WARNED) return fmi3Warning;
     return call == BSM_CALL_DONE ? fmi3OK : fmi3Error;
 }
 
@@ -334,10 +335,12 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
 }
 
 /* fmi3SetFloat64 in intermediate update mode: inputs of requiredIntermediateVariables only,
- * each finite; a refused value leaves the instance as it was. */
+ * each finite and in its range; a refused value leaves the instance as it was. */
 static fmi3Status set_intermediate(Fmi3Instance *c, const fmi3ValueReference vrs[], size_t n,
                                    const fmi3Float64 values[]) {
     size_t i;
+    fmi3Status warned = fmi3OK;
+    BsmStatus st;
     for (i = 0; i < n; ++i) {
         unsigned int r = vrs[i];
         if (r < VR_U || r >= VR_Y || !c->between[r - VR_U]) {
@@ -346,15 +349,18 @@ static fmi3Status set_intermediate(Fmi3Instance *c, const fmi3ValueReference vrs
                     "input named in requiredIntermediateVariables", r);
             return fmi3Error;
         }
-        if (bsm_check_input(&c->m, (int)(r - VR_U), values[i]) != BSM_OK) return fmi3Error;
+        st = bsm_check_input(&c->m, (int)(r - VR_U), values[i]);
+        if (st == BSM_ERROR) return fmi3Error;
+        if (st == BSM_WARNING) warned = fmi3Warning;
     }
     for (i = 0; i < n; ++i) c->u_between[vrs[i] - VR_U] = values[i];
-    return fmi3OK;
+    return warned;
 }
 
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, const fmi3Float64 values[], size_t nValues) {
     size_t i;
+    BsmCall warned = BSM_CALL_DONE;
     INSTANCE("fmi3SetFloat64", RUN_MODES | MODE_INSTANTIATED | MODE_INTERMEDIATE)
     if (nValues != nValueReferences)
         return count_mismatch(c, "fmi3SetFloat64", nValues, nValueReferences);
@@ -364,10 +370,11 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
         BsmCall call = bsm_set_real(&c->m, valueReferences[i], values[i],
                                     (c->m.s.mode & SETUP_MODES) != 0,
                                     (c->m.s.mode & TUNE_MODES) != 0, "fmi3SetFloat64");
-        if (call != BSM_CALL_DONE) return outcome(c, call);
+        if (call == BSM_CALL_WARNED) warned = call;
+        else if (call != BSM_CALL_DONE) return outcome(c, call);
     }
     bsm_invalidate(&c->m);
-    return fmi3OK;
+    return outcome(c, warned);
 }
 
 /* The FMU has float64 variables only: other types accept empty requests. */
