@@ -14,6 +14,7 @@ import casadi as ca
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.input_limits import INPUT_LIMITS
 from bearingsim.language.symbols import new_symbol
+from bearingsim.units.fmi import derivative_unit
 from bearingsim.validation import check_range
 
 __all__ = [
@@ -175,7 +176,8 @@ class Variable(Declaration):
         if self.sym is None:
             raise ModelError(f"der() of an undeclared variable {self.attr!r}")
         if self._derivative is None:
-            d = Variable(unit=f"({self.unit})/s", description=f"time derivative of {self.attr}")
+            d = Variable(unit=derivative_unit(self.unit),
+                         description=f"time derivative of {self.attr}")
             d.integral = self
             d.owner = self.owner
             d.attr = f"der({self.attr})"

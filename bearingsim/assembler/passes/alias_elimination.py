@@ -13,6 +13,7 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.assembler.dae import DAE, Alias, Eq, Var
+from bearingsim.units.fmi import derivative_unit
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
@@ -239,7 +240,7 @@ def _in_derivative_chain(a: Var, b: Var) -> bool:
 def _new_derivative(dae: DAE, v: Var) -> Var:
     """A new variable ``der(v)``, linked to ``v``. It replaces an alias entry of that name (an
     eliminated derivative of ``v``): one observed name, one value."""
-    nd = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), f"({v.unit})/s")
+    nd = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), derivative_unit(v.unit))
     nd.is_derivative = True
     dae.vars.append(nd)
     dae.aliases.pop(nd.name, None)

@@ -20,6 +20,7 @@ import scipy.sparse.csgraph
 from bearingsim.assembler.dae import DAE, Eq, Var
 from bearingsim.assembler.graph import incidence_map, maximum_matching
 from bearingsim.errors import ModelError, SingularBlockError
+from bearingsim.units.fmi import derivative_unit
 
 if TYPE_CHECKING:
     from bearingsim.assembler.state import AssemblyState
@@ -37,7 +38,7 @@ def _derivative_var(dae: DAE, v: Var, lookup: dict[str, Var]) -> Var:
                 f"index reduction needs the time derivative of input {v.name}; "
                 "drive it through a state (e.g. a filter) or give it as a time function"
             )
-        d = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), f"({v.unit})/s")
+        d = Var(f"der({v.name})", ca.SX.sym(f"der_{v.sym.name()}"), derivative_unit(v.unit))
         d.is_derivative = True
         v.derivative = d
         dae.vars.append(d)
