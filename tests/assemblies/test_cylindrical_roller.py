@@ -237,6 +237,10 @@ def test_scene_runs_and_post_processes(tmp_path):
     assert s["Q_max"][-1] >= s["row.Q[0]"][-1] > 0.25 * 10000.0
     assert 1.5e9 < s["p_max"][-1] < 3e9
     assert s["L10r"][0] == np.inf and 0 < s["L10r"][-1] < np.inf
+    # a life in the unit the statics scenes give it (it was "1" here, "Mrev" there)
+    from bearingsim.scenes.statics_table import _DEEP_GROOVE_COLUMNS
+
+    assert run.summary["outputs"]["L10r"]["unit"] == _DEEP_GROOVE_COLUMNS["L10r"][0] == "Mrev"
 
 
 def test_fmu_matches_simulate(tmp_path):

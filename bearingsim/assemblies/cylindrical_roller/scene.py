@@ -75,8 +75,8 @@ def _post(args: dict[str, Any]) -> dict[str, PostQuantity]:
         "p_max": PostQuantity("p_max", "Pa", "largest contact pressure (inner raceway)",
                               pressures, lambda s: np.max([s[n] for n in pressures], axis=0),
                               _QUASI_STATIC),
-        "L10r": PostQuantity("L10r", "1", "ISO/TS 16281 roller-form reference rating life "
-                             "[10^6 rev]", _DISPLACEMENT,
+        "L10r": PostQuantity("L10r", "Mrev", "ISO/TS 16281 roller-form reference rating life "
+                             "(10^6 revolutions)", _DISPLACEMENT,
                              lambda s: reference_life(args, s), _QUASI_STATIC),
     }
 
