@@ -8,6 +8,7 @@ import math
 
 import pytest
 
+from bearingsim.assembler import assemble_cached
 from bearingsim.assemblies import deep_groove_ball_bearing, double_layer_bearing
 from bearingsim.assemblies.double_layer import layer_option_names
 from bearingsim.components.bearing_torque import PalmgrenBearing
@@ -16,6 +17,7 @@ from bearingsim.language import Parameter
 from bearingsim.physics.ball_equilibrium import static_state
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Dry
+from bearingsim.simulation import simulate
 from bearingsim.validation import keyword_names
 
 LOADS = {"Fx": 500.0}
@@ -110,6 +112,20 @@ def test_static_state_rejects_moments_it_would_ignore_and_zero_ones_are_fine():
         static_state(bearing_design("6304"), {"Fx": 500.0, "Mx": 3.0})
     bearing = deep_groove_ball_bearing("6304", "dynamic", loads={**LOADS, "Mx": 0.0, "My": 0.0})
     assert not bearing.ring.free_tilt
+
+
+def test_a_ring_held_straight_has_no_moment_inputs_to_ignore():
+    """Without free_tilt, load.Mx and load.My were inputs whose values had no effect (a run
+    with load.Mx = 50 N m gave the same answer as without); now giving one is refused as an
+    unknown input, and with free_tilt they are inputs."""
+    straight = assemble_cached(deep_groove_ball_bearing("6304", "dynamic", loads={"Fx": 500.0}))
+    assert "load.Mx" not in straight.input_names and "load.My" not in straight.input_names
+    assert {"load.Fy", "load.Fz"} <= set(straight.input_names)
+    with pytest.raises(ParameterError, match=r"unknown input\(s\) load.Mx"):
+        simulate(straight, 1e-4, inputs={"shaft_speed": 100.0, "load.Mx": 50.0}, progress=False)
+    tilting = assemble_cached(deep_groove_ball_bearing(
+        "6304", "dynamic", loads={"Fx": 500.0}, free_tilt=True))
+    assert {"load.Mx", "load.My"} <= set(tilting.input_names)
 
 
 def test_dynamic_double_layer_rejects_moments_on_the_straight_shaft():

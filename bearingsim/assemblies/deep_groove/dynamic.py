@@ -139,8 +139,10 @@ class DeepGrooveBallBearing(Assembly):
                              start=[a + b for a, b in zip(ring0, (*rings.outer_start, 0.0, 0.0),
                                                           strict=True)],
                              free_tilt=rings.free_tilt)
-        self.load = RingLoad(self.options.loads,
-                             bounds=load_input_bounds(self.design.geometry))
+        # a ring held straight takes no moment: no Mx, My inputs that would be ignored
+        loads = self.options.loads if rings.free_tilt else {"Mx": 0.0, "My": 0.0,
+                                                            **self.options.loads}
+        self.load = RingLoad(loads, bounds=load_input_bounds(self.design.geometry))
 
     def _build_cage(self) -> None:
         """The cage body and its guidance by the outer ring land."""

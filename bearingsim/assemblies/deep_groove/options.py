@@ -261,8 +261,8 @@ class DeepGrooveOptions:
         ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m] on the inner ring: finite constants, functions of
         time or ``None`` for inputs (missing keys are inputs with default 0); any other key
         raises :class:`~bearingsim.errors.ParameterError`. With ``rings.free_tilt=False``
-        ``Mx, My`` may only be 0 (missing keys stay inputs, without effect); with
-        ``rings.inner_ring="frame"`` every load must be a constant.
+        ``Mx, My`` may only be 0 (missing ones are 0, not inputs that would have no effect);
+        with ``rings.inner_ring="frame"`` every load must be a constant.
     rings : RingOptions
     film : FilmOptions
     cage : CageOptions
