@@ -28,7 +28,12 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import BearingsimError, SimulationError
-from bearingsim.scenes.operating_points import point_label, point_model, split_point
+from bearingsim.scenes.operating_points import (
+    filled_point,
+    point_label,
+    point_model,
+    split_point,
+)
 from bearingsim.scenes.scene import Settling
 from bearingsim.scenes.scene_simulation import output_series, run_simulation
 from bearingsim.scenes.statics_table import statics_of
@@ -278,10 +283,8 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     point = dict(point or {})
     scene = prep.scene
     inputs, parameters, args = split_point(scene, point)
-    row: dict[str, Any] = {}
-    if "name" in point:
-        row["name"] = point.pop("name")
-    row.update({point_label(k): v for k, v in point.items()})
+    row = {point_label(k): v for k, v in filled_point(prep, point).items()}
+    point.pop("name", None)
     if scene.analysis == "statics":
         statics = statics_of(prep)
         values, state = statics.solve(prep, inputs, prep.spec.with_defaults(args), x_guess)

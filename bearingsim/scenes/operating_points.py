@@ -16,10 +16,11 @@ import re
 from typing import Any
 
 from bearingsim.errors import BearingsimError
-from bearingsim.scenes.preparation import prepare
+from bearingsim.scenes.preparation import point_keys, prepare
 from bearingsim.scenes.scene import Scene, SceneError, line_of
 
-__all__ = ["operating_points", "point_label", "point_model", "point_units", "split_point"]
+__all__ = ["filled_point", "operating_points", "point_label", "point_model", "point_units",
+           "split_point"]
 
 
 def operating_points(scene: Scene) -> list[dict[str, Any]]:
@@ -97,6 +98,44 @@ def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
             unit = m.group(1) if m else ""
         units[point_label(key)] = unit
     return units
+
+
+def filled_point(prep: Any, point: dict[str, Any]) -> dict[str, Any]:
+    """An operating point with every key the scene's grid or cases set, in their order: a key
+    this point leaves out holds the value its run uses (the scene's own ``inputs`` or
+    ``parameters``, the assembly's argument, else the model's default), so that a table of
+    load cases has no blank cells.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    point : dict
+        An operating point, ``{key: value}`` (``name`` is kept as it is).
+
+    Returns
+    -------
+    dict
+        ``{key: value}``; a key whose value no one states (an input the model does not have)
+        is left out.
+    """
+    scene, system = prep.scene, prep.system
+    inputs, parameters, args = split_point(scene, point)
+    defaults = {f"inputs.{n}": float(u) for n, u in zip(system.input_names, system.u_default(),
+                                                          strict=True)}
+    defaults.update({f"parameters.{n}": float(v)
+                     for n, v in zip(system.parameter_names, system.p0(), strict=True)})
+    defaults.update({f"assembly.{n}": v for n, v in prep.spec.with_defaults(args).items()})
+    given = {**{f"inputs.{n}": v for n, v in inputs.items()},
+             **{f"parameters.{n}": v for n, v in parameters.items()},
+             **{f"assembly.{n}": v for n, v in args.items()}}
+    filled = {k: v for k, v in point.items() if k == "name"}
+    for key in [*point_keys(scene), *(k for k in point if k != "name")]:
+        if key in point:
+            filled[key] = point[key]
+        elif key in given or key in defaults:
+            filled[key] = given.get(key, defaults.get(key))
+    return filled
 
 
 def split_point(scene: Scene, point: dict[str, Any]
