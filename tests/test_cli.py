@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -123,12 +124,22 @@ def test_sweep_needs_a_grid_or_sample(scene_file, capsys):
 
 
 def test_console_script_runs_sweep_on_a_local_cluster(scene_file, tmp_path):
+    """Neither point settles by t_end (the intermediate ring still speeds up): the summary
+    counts them as not settled, and warns as a run of one of them does (before: ``2 point(s):
+    2 ok, 0 failed`` and no warning)."""
     proc = subprocess.run(
         [sys.executable, "-m", "bearingsim.cli", "sweep", str(scene_file), "--grid",
          "inputs.shaft_speed=50;100*min(t,1)", "--out", str(tmp_path / "sw"),
-         "--no-progress"], capture_output=True, text=True, timeout=120)
+         "--no-progress"], capture_output=True, text=True, timeout=120,
+        env={**os.environ, "PYTHONPATH": str(Path(bearingsim.__file__).parents[1])})
     assert proc.returncode == 0, proc.stderr
-    assert "2 point(s): 2 ok, 0 failed; 1 model(s) built" in proc.stdout
+    assert ("2 point(s): 0 settled, 2 not settled (values flagged: settled False), 0 failed; "
+            "1 model(s) built") in proc.stdout
+    assert proc.stderr.splitlines() == [
+        "bearingsim sweep: warning: NotSettledWarning: cli test: 2 of 2 point(s) had not "
+        "settled at t_end (their rows say settled False and name the outputs in unsettled). "
+        "Run longer (simulation.t_end), ask analysis = \"steady\" for the settled points, or "
+        "set transient_on_purpose = true"]
     assert (tmp_path / "sw" / "fast.sweep.csv").is_file()
 
 
