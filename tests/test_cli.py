@@ -143,6 +143,30 @@ def test_console_script_runs_sweep_on_a_local_cluster(scene_file, tmp_path):
     assert (tmp_path / "sw" / "fast.sweep.csv").is_file()
 
 
+def test_sweep_warns_of_a_sobol_sample_that_is_not_a_power_of_two(tmp_path, capsys):
+    """A line of the command before the sweep runs (before: nothing), and the sweep runs as
+    asked (here on an in-process scheduler)."""
+    from distributed import Client
+
+    from tests.scenes.sweep_scenes import torque_level_scene
+
+    scene = tmp_path / "torque.toml"
+    scene.write_text(torque_level_scene())
+    with Client(processes=False, n_workers=1, threads_per_worker=1,
+                dashboard_address=":0") as client:
+        assert main(["sweep", str(scene), "--scheduler", client.scheduler.address, "--sample",
+                     "inputs.shaft_speed=100:300", "--samples", "3", "--sampler", "sobol",
+                     "--out", str(tmp_path / "sw"), "--no-progress"]) == 0
+    out, err = capsys.readouterr()
+    assert err.splitlines() == [
+        "bearingsim sweep: warning: SampleBalanceWarning: --sampler sobol with --samples 3: a "
+        "Sobol sample of n points is balanced (one point in each of n equal intervals of every "
+        "key's range) only when n is a power of two; the first 3 points of the sequence leave "
+        "some intervals empty and crowd others. Use --samples 2 or 4, or --sampler lhs "
+        "(balanced for any n)"]
+    assert out.startswith("3 point(s): 3 settled, 0 not settled, 0 failed;")
+
+
 def test_demo_and_export_fmu_commands_are_kept():
     from bearingsim.cli import _parser
 
