@@ -227,6 +227,7 @@ def _sweep(args: argparse.Namespace) -> int:
     from bearingsim.scenes.sweep import (
         SweepError,
         describe_failures,
+        describe_points,
         grid_points,
         parse_sample,
         run_sweep,
@@ -254,7 +255,7 @@ def _sweep(args: argparse.Namespace) -> int:
         _say(f"bearingsim sweep: interrupted; the finished points are in {out}; add --resume "
              "to run the others", err=True)
         return 130
-    _say(f"{len(res.rows)} point(s): {len(res.ok)} ok, {len(res.failures)} failed"
+    _say(describe_points(res)
          + (f" ({res.resumed} from the earlier run)" if res.resumed else "")
          + f"; {res.models_built} model(s) built and shipped; {res.chunk_size} point(s) a task; "
          f"{res.wall_s:.1f} s")

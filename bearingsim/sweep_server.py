@@ -8,12 +8,24 @@ starts the less the sweep waits for it: ``bearingsim sweep`` and
 :func:`~bearingsim.scenes.sweep.run_sweep` call :func:`start_worker_server` before they import
 or load anything, and the server imports on another core while the client imports, reads the
 scene and plans the sweep. This module imports nothing else of bearingsim, so that it can.
+
+**Ctrl-C.** A terminal sends SIGINT to every process of the foreground process group: the
+client, the fork server and every worker forked from it. The client answers it (it cancels the
+chunks in flight, closes the cluster and keeps the rows that finished); a worker must not, or
+each one dies of its own ``KeyboardInterrupt`` and prints a traceback of dask's nanny and
+asyncio (dask.distributed leaves this to the application: dask/distributed#1925). So the server
+is spawned with SIGINT ignored (an ignored signal stays ignored across ``exec``, and Python
+leaves it so), which keeps the server quiet while it imports; the server hands its original
+handler, "ignore", to every process it forks, so the workers ignore SIGINT from their first
+instruction and end when the client closes the cluster.
 """
 
 from __future__ import annotations
 
 import multiprocessing
 import multiprocessing.forkserver
+import signal
+import threading
 
 __all__ = ["WORKER_MODULE", "WORKER_MODULES", "start_worker_server"]
 
@@ -26,6 +38,19 @@ WORKER_MODULES = ("distributed", WORKER_MODULE)
 def start_worker_server() -> None:
     """Start the fork server of the sweep workers of this process, importing
     :data:`WORKER_MODULES`; returns at once (the server imports them meanwhile). A server
-    already running is kept (it lives as long as this process)."""
+    already running is kept (it lives as long as this process).
+
+    Called from the main thread, the server starts with SIGINT ignored, and so do the
+    workers forked from it (see the module's docstring); this process ignores SIGINT only
+    while it spawns the server."""
     multiprocessing.get_context("forkserver").set_forkserver_preload(list(WORKER_MODULES))
-    multiprocessing.forkserver.ensure_running()
+    handler = signal.getsignal(signal.SIGINT)
+    if handler is None or threading.current_thread() is not threading.main_thread():
+        # only the main thread sets handlers; one set outside Python cannot be put back
+        multiprocessing.forkserver.ensure_running()
+        return
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        multiprocessing.forkserver.ensure_running()
+    finally:
+        signal.signal(signal.SIGINT, handler)

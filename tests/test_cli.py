@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -123,13 +124,47 @@ def test_sweep_needs_a_grid_or_sample(scene_file, capsys):
 
 
 def test_console_script_runs_sweep_on_a_local_cluster(scene_file, tmp_path):
+    """Neither point settles by t_end (the intermediate ring still speeds up): the summary
+    counts them as not settled, and warns as a run of one of them does (before: ``2 point(s):
+    2 ok, 0 failed`` and no warning)."""
     proc = subprocess.run(
         [sys.executable, "-m", "bearingsim.cli", "sweep", str(scene_file), "--grid",
          "inputs.shaft_speed=50;100*min(t,1)", "--out", str(tmp_path / "sw"),
-         "--no-progress"], capture_output=True, text=True, timeout=120)
+         "--no-progress"], capture_output=True, text=True, timeout=120,
+        env={**os.environ, "PYTHONPATH": str(Path(bearingsim.__file__).parents[1])})
     assert proc.returncode == 0, proc.stderr
-    assert "2 point(s): 2 ok, 0 failed; 1 model(s) built" in proc.stdout
+    assert ("2 point(s): 0 settled, 2 not settled (values flagged: settled False), 0 failed; "
+            "1 model(s) built") in proc.stdout
+    assert proc.stderr.splitlines() == [
+        "bearingsim sweep: warning: NotSettledWarning: cli test: 2 of 2 point(s) had not "
+        "settled at t_end (their rows say settled False and name the outputs in unsettled). "
+        "Run longer (simulation.t_end), ask analysis = \"steady\" for the settled points, or "
+        "set transient_on_purpose = true"]
     assert (tmp_path / "sw" / "fast.sweep.csv").is_file()
+
+
+def test_sweep_warns_of_a_sobol_sample_that_is_not_a_power_of_two(tmp_path, capsys):
+    """A line of the command before the sweep runs (before: nothing), and the sweep runs as
+    asked (here on an in-process scheduler)."""
+    from distributed import Client
+
+    from tests.scenes.sweep_scenes import torque_level_scene
+
+    scene = tmp_path / "torque.toml"
+    scene.write_text(torque_level_scene())
+    with Client(processes=False, n_workers=1, threads_per_worker=1,
+                dashboard_address=":0") as client:
+        assert main(["sweep", str(scene), "--scheduler", client.scheduler.address, "--sample",
+                     "inputs.shaft_speed=100:300", "--samples", "3", "--sampler", "sobol",
+                     "--out", str(tmp_path / "sw"), "--no-progress"]) == 0
+    out, err = capsys.readouterr()
+    assert err.splitlines() == [
+        "bearingsim sweep: warning: SampleBalanceWarning: --sampler sobol with --samples 3: a "
+        "Sobol sample of n points is balanced (one point in each of n equal intervals of every "
+        "key's range) only when n is a power of two; the first 3 points of the sequence leave "
+        "some intervals empty and crowd others. Use --samples 2 or 4, or --sampler lhs "
+        "(balanced for any n)"]
+    assert out.startswith("3 point(s): 3 settled, 0 not settled, 0 failed;")
 
 
 def test_demo_and_export_fmu_commands_are_kept():

@@ -2,9 +2,10 @@
 samples of ranges.
 
 Samples come from :mod:`scipy.stats.qmc`: a Latin hypercube (``"lhs"``, optionally
-``"lhs-optimal"`` with CD-optimal random permutations) or a Sobol sequence (``"sobol"``; a
-power of two keeps its balance properties, other counts are accepted with scipy's warning
-silenced). Both are scrambled by default and reproducible with ``seed``.
+``"lhs-optimal"`` with CD-optimal random permutations) or a Sobol sequence (``"sobol"``: only
+a power of two keeps its balance properties; another count is run as asked, with a
+:class:`SampleBalanceWarning` naming the powers of two around it). Both are scrambled by
+default and reproducible with ``seed``.
 """
 
 from __future__ import annotations
@@ -18,8 +19,8 @@ from bearingsim.checks import check_output_size
 from bearingsim.errors import ParameterError
 from bearingsim.units import parse_quantity
 
-__all__ = ["SAMPLERS", "SIM_KEYS", "SweepError", "check_key", "grid_points", "parse_sample",
-           "sample_points"]
+__all__ = ["SAMPLERS", "SIM_KEYS", "SampleBalanceWarning", "SweepError", "check_key",
+           "grid_points", "parse_sample", "sample_points"]
 
 SAMPLERS = ("lhs", "lhs-optimal", "sobol")
 """Names of the samplers :func:`sample_points` takes."""
@@ -31,6 +32,11 @@ SIM_KEYS = ("t_end", "t_start", "rtol", "atol", "method", "max_step", "n_points"
 
 class SweepError(ParameterError):
     """A sweep specification is invalid (key, value or point), naming it."""
+
+
+class SampleBalanceWarning(UserWarning):
+    """A Sobol sample of a count that is not a power of two: its points do not fill the
+    ranges evenly (the sample runs as asked)."""
 
 
 def check_key(key: str) -> None:
@@ -137,6 +143,11 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     ------
     SweepError
         For ``n < 1``, an unknown method or no ranges.
+
+    Warns
+    -----
+    SampleBalanceWarning
+        For ``method="sobol"`` with ``n`` not a power of two.
     """
     if n < 1:
         raise SweepError(f"--samples must be >= 1, got {n}")
@@ -155,8 +166,15 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
         engine = qmc.Sobol(d, scramble=scramble, rng=seed)
     else:
         raise SweepError(f"--sampler {method!r}: allowed: {', '.join(SAMPLERS)}")
-    with warnings.catch_warnings():
-        # Sobol balance needs n = 2^m; other counts are the user's choice, not an error
+    if method == "sobol" and n & (n - 1):
+        below = 1 << (n.bit_length() - 1)
+        warnings.warn(
+            f"--sampler sobol with --samples {n}: a Sobol sample of n points is balanced (one "
+            f"point in each of n equal intervals of every key's range) only when n is a power "
+            f"of two; the first {n} points of the sequence leave some intervals empty and crowd "
+            f"others. Use --samples {below} or {2 * below}, or --sampler lhs (balanced for any "
+            "n)", SampleBalanceWarning, stacklevel=2)
+    with warnings.catch_warnings():  # scipy's own warning says less; this one is above
         warnings.filterwarnings("ignore", message=".*balance properties.*")
         unit = engine.random(n)
     lows = [lo for lo, _ in ranges.values()]

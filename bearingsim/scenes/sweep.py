@@ -35,7 +35,11 @@ columns and the figure are :mod:`bearingsim.scenes.sweep_results`);
 ``resume=True`` skips the points already there; a point that fails or exceeds ``timeout`` is
 recorded with its error and does not affect the others (``timeout`` defaults to the scene's
 ``simulation.timeout``); a worker lost mid-sweep has its chunks
-re-run by the scheduler on the others.
+re-run by the scheduler on the others. A transient point that ran but had not settled by
+``t_end`` is kept with its values flagged (``settled`` False, the outputs in ``unsettled``),
+counted apart from the settled ones (:func:`describe_points`), and the sweep warns
+(:class:`~bearingsim.scenes.analyses.NotSettledWarning`) as ``bearingsim run`` does for one
+point.
 """
 
 from __future__ import annotations
@@ -47,10 +51,12 @@ import importlib
 import json
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from bearingsim.scenes.analyses import NotSettledWarning
 from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.sampling import (
     SweepError,
@@ -77,7 +83,8 @@ from bearingsim.units import display_unit
 from bearingsim.validation import check_count
 
 __all__ = ["SweepError", "SweepResult", "parse_sample", "grid_points",
-           "sample_points", "run_sweep", "describe_failures", "chunk_size", "CHUNK_SECONDS"]
+           "sample_points", "run_sweep", "describe_failures", "describe_points", "chunk_size",
+           "CHUNK_SECONDS"]
 
 
 @dataclass
@@ -109,10 +116,15 @@ class SweepResult:
     ``points`` (first chunk out to last row in; the client imports what writing takes
     meanwhile), ``close`` (close the cluster), ``write`` (sorted table, Parquet copy, plot,
     summary)."""
+    settling: str = ""
+    """Whether the rows say if each point settled: ``"checked"`` (a transient scene: columns
+    ``settled`` and ``unsettled``), ``"on purpose"`` (a transient scene that reports a
+    transient on purpose: not checked, as ``bearingsim run`` does not) or ``""`` (a steady,
+    modes or statics point is solved, not run in time)."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
-        """The rows of the points that succeeded.
+        """The rows of the points that succeeded (settled or not).
 
         Returns
         -------
@@ -120,6 +132,19 @@ class SweepResult:
             The rows.
         """
         return [r for r in self.rows if r["status"] == "ok"]
+
+    @property
+    def unsettled(self) -> list[dict[str, Any]]:
+        """The rows of the points that ran but had not settled by ``t_end``: their values are
+        flagged (``settled`` False, the outputs that had not in ``unsettled``). Empty unless the
+        sweep checks settling (:attr:`settling`).
+
+        Returns
+        -------
+        list of dict
+            The rows.
+        """
+        return [r for r in self.ok if self.settling == "checked" and not r["settled"]]
 
 
 def _ready_to_write(units: dict[str, str]) -> None:
@@ -356,7 +381,15 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                       chunk_size=size, point_s=point_s, phases=phases,
                       spans={k: (r["pid"], r["started"], r["wall_s"])
                              for k, r in results.items() if "started" in r},
-                      point_cpu={k: r["cpu_s"] for k, r in results.items() if "cpu_s" in r})
+                      point_cpu={k: r["cpu_s"] for k, r in results.items() if "cpu_s" in r},
+                      settling=("" if scene.analysis != "transient" else
+                                "on purpose" if scene.transient_on_purpose else "checked"))
+    if res.unsettled:
+        warnings.warn(f"{scene.title or stem}: {len(res.unsettled)} of {len(ordered)} point(s) "
+                      "had not settled at t_end (their rows say settled False and name the "
+                      "outputs in unsettled). Run longer (simulation.t_end), ask analysis = "
+                      "\"steady\" for the settled points, or set transient_on_purpose = true",
+                      NotSettledWarning, stacklevel=3)
     if table is not None:
         for path in table.finish(ordered):
             folder.add(path)
@@ -364,7 +397,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                                                    stem))
         summary = {
             "scene": scene.path, "analysis": scene.analysis, "points": len(ordered),
-            "ok": len(res.ok), "failed": len(failures), "failures": failures,
+            "ok": len(res.ok), "not_settled": (len(res.unsettled)
+                                               if res.settling == "checked" else None),
+            "failed": len(failures), "failures": failures,
             "models_built": res.models_built,
             "resumed": res.resumed, "chunk_size": size, "point_s": point_s,
             "structures": [{"fidelity": k[0], "arguments": json.loads(k[1])}
@@ -380,6 +415,33 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     lap("write")
     res.wall_s = time.perf_counter() - wall
     return res
+
+
+def describe_points(res: SweepResult) -> str:
+    """The points of a sweep by outcome, as ``bearingsim sweep`` reports them: ``4 point(s): 3
+    settled, 1 not settled (values flagged: settled False), 0 failed`` when the sweep checks
+    settling (:attr:`SweepResult.settling`), otherwise ``4 point(s): 4 ok, 0 failed`` (a
+    transient reported on purpose says its values were not checked for settling).
+
+    Parameters
+    ----------
+    res : SweepResult
+        A sweep's result.
+
+    Returns
+    -------
+    str
+        The counts.
+    """
+    ok = len(res.ok)
+    if res.settling == "checked":
+        unsettled = len(res.unsettled)
+        outcome = (f"{ok - unsettled} settled, {unsettled} not settled"
+                   + (" (values flagged: settled False)" if unsettled else ""))
+    else:
+        outcome = f"{ok} ok" + (" (transient on purpose: not checked for settling)"
+                                if res.settling == "on purpose" else "")
+    return f"{len(res.rows)} point(s): {outcome}, {len(res.failures)} failed"
 
 
 def describe_failures(res: SweepResult) -> str:

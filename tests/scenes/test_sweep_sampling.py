@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -14,7 +15,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from bearingsim.cli import _parser
-from bearingsim.scenes.sampling import SweepError, check_key, parse_sample, sample_points
+from bearingsim.scenes.sampling import (
+    SampleBalanceWarning,
+    SweepError,
+    check_key,
+    parse_sample,
+    sample_points,
+)
 
 RANGES = {"parameters.shaft.J": (1e-4, 1e-3), "inputs.shaft_speed": (100.0, 600.0)}
 
@@ -59,6 +66,7 @@ def test_seeds_reproduce_and_differ():
 
 @given(lo=st.floats(-1e6, 1e6), width=st.floats(1e-6, 1e6), n=st.integers(1, 40))
 @settings(max_examples=40, deadline=None)
+@pytest.mark.filterwarnings("ignore::bearingsim.scenes.sampling.SampleBalanceWarning")
 def test_samples_stay_in_their_range(lo, width, n):
     hi = lo + width
     if not hi > lo:
@@ -67,6 +75,30 @@ def test_samples_stay_in_their_range(lo, width, n):
         values = np.array([p["inputs.x"] for p in sample_points({"inputs.x": (lo, hi)}, n,
                                                                   seed=1, method=method)])
         assert np.all(values >= lo) and np.all(values <= hi)
+
+
+@pytest.mark.parametrize(("n", "below", "above"), [(3, 2, 4), (100, 64, 128)])
+def test_a_sobol_sample_of_other_than_a_power_of_two_warns(n, below, above):
+    """Before, the count was taken silently (scipy's own warning filtered out): 100 Sobol
+    points fill only about 75-83 of the 100 equal intervals of a key, where 64 or 128 fill
+    every one; it still runs as asked."""
+    with pytest.warns(SampleBalanceWarning) as caught:
+        points = sample_points(RANGES, n, seed=5, method="sobol")
+    assert len(points) == n
+    assert [str(w.message) for w in caught] == [
+        f"--sampler sobol with --samples {n}: a Sobol sample of n points is balanced (one point "
+        f"in each of n equal intervals of every key's range) only when n is a power of two; "
+        f"the first {n} points of the sequence leave some intervals empty and crowd others. "
+        f"Use --samples {below} or {above}, or --sampler lhs (balanced for any n)"]
+    assert len(set(_cells(points, "inputs.shaft_speed", n))) < n  # the unfilled intervals
+
+
+@pytest.mark.parametrize(("n", "method"), [(1, "sobol"), (2, "sobol"), (64, "sobol"),
+                                           (100, "lhs"), (3, "lhs-optimal")])
+def test_balanced_samples_do_not_warn(n, method):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert len(sample_points(RANGES, n, seed=5, method=method)) == n
 
 
 def test_bad_specifications_are_named():
