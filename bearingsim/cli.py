@@ -371,28 +371,33 @@ def main(argv: list[str] | None = None) -> int:
     from bearingsim.errors import BearingsimError, SimulationError
 
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["export-fmu"]:  # its own parser, its own --help
-        from bearingsim.fmu import cli_export
-
-        return cli_export(argv[1:]) or 0
-    args = _parser().parse_args(argv)
-    handlers = {"list": _list, "demo": _demo, "run": _run,
-                "validate": _validate, "sweep": _sweep, "cache": _cache}
+    command = argv[0] if argv and not argv[0].startswith("-") else "bearingsim"
     try:
+        if command == "export-fmu":  # its own parser, its own --help
+            from bearingsim.fmu import cli_export
+
+            return cli_export(argv[1:]) or 0
+        args = _parser().parse_args(argv)
+        command = args.command
+        handlers = {"list": _list, "demo": _demo, "run": _run,
+                    "validate": _validate, "sweep": _sweep, "cache": _cache}
         with warnings.catch_warnings():  # warnings as lines of the command, each once
             warnings.showwarning = _warning_printer(args.command)
             return handlers[args.command](args)
+    except KeyboardInterrupt:  # Ctrl-C: outputs are written whole or not at all
+        _say(f"bearingsim {command}: interrupted", err=True)
+        return 130
     except SimulationError as exc:
-        _say(f"bearingsim {args.command}: simulation failed: {exc}", err=True)
+        _say(f"bearingsim {command}: simulation failed: {exc}", err=True)
         return 1
     except BearingsimError as exc:
-        _say(f"bearingsim {args.command}: {exc}", err=True)
+        _say(f"bearingsim {command}: {exc}", err=True)
         return 2
     except OSError as exc:  # a file the command reads or writes (folder missing, disk full)
         from bearingsim.files import os_reason
 
         where = f"{exc.filename}: " if exc.filename else ""
-        _say(f"bearingsim {args.command}: {where}{os_reason(exc)}", err=True)
+        _say(f"bearingsim {command}: {where}{os_reason(exc)}", err=True)
         return 2
 
 

@@ -326,3 +326,25 @@ def test_warnings_are_lines_of_the_command_each_once(tmp_path, capsys):
                                "reaches 50000 r/min")
     assert any(line.startswith("bearingsim run: warning: NotSettledWarning: ") for line in err)
     assert not any(".py:" in line or "return " in line for line in err)
+
+
+@pytest.mark.parametrize("command", ["run", "validate", "export-fmu"])
+def test_ctrl_c_is_one_line_of_the_command(command, tmp_path, capsys, monkeypatch):
+    """Ctrl-C while a command works (the scene still loading, the model assembling or
+    integrating) printed Python's traceback ending in KeyboardInterrupt, exit status 1; now
+    one line and the shell's status for SIGINT, 130 (a sweep says how to resume)."""
+    import bearingsim.cli
+    import bearingsim.fmu
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(bearingsim.cli, f"_{command}", interrupted, raising=False)
+    monkeypatch.setattr(bearingsim.fmu, "cli_export", interrupted)
+    scene = SCENES / "double_layer_friction.toml"
+    argv = ([command, "double_layer_bearing", str(tmp_path / "x.fmu")]
+            if command == "export-fmu" else [command, str(scene)])
+    assert main(argv) == 130
+    captured = capsys.readouterr()
+    assert captured.err == f"bearingsim {command}: interrupted\n"
+    assert not (tmp_path / "x.fmu").exists()
