@@ -313,8 +313,9 @@ def _parser() -> argparse.ArgumentParser:
                            "separate expressions with ';'")
     p_sw.add_argument("--sample", action="append", default=[], metavar="KEY=LOW:HIGH",
                       help="quasi-random sample of a numeric key (see --sampler)")
-    p_sw.add_argument("--samples", type=int, default=8, help="number of samples")
-    p_sw.add_argument("--seed", type=int, default=0, help="seed of the sample")
+    p_sw.add_argument("--samples", type=int, default=8,
+                      help="number of samples (default 8; Sobol: a power of two)")
+    p_sw.add_argument("--seed", type=int, default=0, help="seed of the sample (default 0)")
     p_sw.add_argument("--sampler", choices=SAMPLERS, default="lhs",
                       help="Latin hypercube (default), LHS with optimal permutations, or Sobol "
                            "(scipy.stats.qmc)")
@@ -332,7 +333,8 @@ def _parser() -> argparse.ArgumentParser:
                       help="points per task (default: sized from one point measured first)")
     p_sw.add_argument("--scheduler", help="address of a dask scheduler (default: a "
                                           "LocalCluster)")
-    p_sw.add_argument("--workers", type=int, default=2, help="LocalCluster workers")
+    p_sw.add_argument("--workers", type=int, default=2,
+                      help="LocalCluster workers (default 2)")
     p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
     p_sw.add_argument("--no-progress", action="store_true", help="no progress bar")
     p_cache = sub.add_parser("cache", help="size of the cache of assembled systems and "
@@ -346,7 +348,8 @@ def _parser() -> argparse.ArgumentParser:
     p_demo = sub.add_parser("demo", help="run the built-in demo scenes, one per study question "
                             "(double-layer Rs against speed and load, duplex-pair modes against "
                             "preload, deep-groove life per duty condition) and a PMSM spin-up")
-    p_demo.add_argument("--out", default="demo_output")
+    p_demo.add_argument("--out", default="demo_output",
+                        help="output folder (default demo_output)")
     p_demo.add_argument("--overwrite", action="store_true",
                         help="replace the files of an earlier demo run in the folder")
     p_demo.add_argument("--no-progress", action="store_true", help="no progress bar")

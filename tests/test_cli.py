@@ -348,3 +348,33 @@ def test_ctrl_c_is_one_line_of_the_command(command, tmp_path, capsys, monkeypatc
     captured = capsys.readouterr()
     assert captured.err == f"bearingsim {command}: interrupted\n"
     assert not (tmp_path / "x.fmu").exists()
+
+
+def _options_with_defaults(parser):
+    """(command, option, default, help) of every option of a parser and its sub-commands
+    whose default is a value (not None, not a switch's False, not a repeatable option's empty
+    list)."""
+    import argparse
+
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sub in action.choices.items():
+                for _, option, default, text in _options_with_defaults(sub):
+                    yield name, option, default, text
+        elif (action.option_strings
+              and action.default not in (None, False, [], argparse.SUPPRESS)
+              and action.help is not argparse.SUPPRESS):
+            yield parser.prog, action.option_strings[-1], action.default, action.help or ""
+
+
+def test_every_option_with_a_default_states_it_in_its_help():
+    """A new-user trial: `bearingsim sweep --help` did not say that --samples is 8, --seed 0
+    and --workers 2."""
+    from bearingsim.cli import _parser
+    from bearingsim.fmu.cli import build_parser
+
+    options = [*_options_with_defaults(_parser()), *_options_with_defaults(build_parser())]
+    assert len(options) >= 7
+    silent = [(cmd, opt, default) for cmd, opt, default, text in options
+              if "default" not in text]
+    assert silent == []
