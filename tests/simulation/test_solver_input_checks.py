@@ -178,6 +178,32 @@ def test_steady_ratio_evaluates_with_the_default_inputs():
     assert rs == pytest.approx(obs["Rs"], rel=1e-12)
 
 
+
+@pytest.mark.parametrize("speed", [0.0, -0.0])
+def test_steady_ratio_refuses_a_shaft_at_rest(torque_system, speed):
+    """Rs = w_middle / w_shaft is 0/0 at rest: steady_ratio returned Rs = 0 (the regularized
+    ratio's value there) as if it were an answer."""
+    with pytest.raises(ParameterError, match=r"steady_ratio: speed = 0 rad/s: the speed ratio "
+                       r"Rs = w_middle / w_shaft is 0/0 at rest.*valid range: a finite shaft "
+                       r"speed other than 0 \[rad/s\]"):
+        steady_ratio(torque_system, speed, loads=(200.0, 0.0))
+    with pytest.raises(ParameterError, match=r"steady_ratio: speed must be finite"):
+        steady_ratio(torque_system, float("nan"), loads=(200.0, 0.0))
+
+
+@pytest.mark.parametrize(("loads", "match"), [
+    ((200.0,), r"loads \(Fr, Fa\) must have 2 entries \[N\], got 1"),  # was IndexError
+    ((200.0, 0.0, 5.0), r"must have 2 entries \[N\], got 3"),  # was silently dropped
+    (200.0, r"must have 2 entries \[N\], got 1"),  # was TypeError: not subscriptable
+    (("0.2 kN", 0.0), r"loads \(Fr, Fa\) must be 2 numbers \[N\]"),  # was ValueError
+    ((float("nan"), 0.0), r"loads \(Fr, Fa\) must be finite"),
+])
+def test_steady_ratio_loads_are_two_finite_numbers(torque_system, loads, match):
+    with pytest.raises(ParameterError, match=match):
+        steady_ratio(torque_system, 100.0, loads=loads)
+    rs, _, _ = steady_ratio(torque_system, 100.0, loads=(200.0, 0.0))
+    assert rs == pytest.approx(0.2072, abs=1e-3)  # the torque level's Rs, measured
+
 # ------------------------------------------------------------------ between the output points
 @pytest.mark.parametrize(("name", "text", "match"), [
     ("shaft_speed", "tan(pi/2)", r"pole pi/2 \+ k pi of tan"),
