@@ -136,6 +136,37 @@ def test_statics_scene_matches_deep_groove_statics():
     assert life["1"] < life["3"] and life["2"] < life["1"] and life["4"] < life["3"]
 
 
+
+def test_statics_life_in_hours_at_rest_is_said_to_be_undefined(tmp_path, capsys):
+    """A load case at rest (shaft speed 0 or not given) has a life in revolutions but none in
+    hours. Old code: L10h = nan in the row and CSV, null in the summary, "L10h = None" on the
+    console."""
+    import csv
+    import json
+
+    from bearingsim.cli import main
+
+    scene = tmp_path / "rest.toml"
+    scene.write_text('analysis = "statics"\n[assembly]\nname = "deep_groove_ball_bearing"\n'
+                     'bearing = "6304"\nfidelity = "quasi-static"\n'
+                     '[[cases]]\nname = "at rest"\n"inputs.shaft_speed" = 0.0\n'
+                     '"inputs.load.Fx" = 938.0\n'
+                     '[[cases]]\nname = "no speed"\n"inputs.load.Fx" = 938.0\n'
+                     '[[cases]]\nname = "running"\n"inputs.shaft_speed" = "1730 rpm"\n'
+                     '"inputs.load.Fx" = 938.0\n[output]\nfolder = "out"\n')
+    assert main(["run", str(scene)]) == 0
+    console = capsys.readouterr().out
+    assert console.count("L10h = not defined at zero speed") == 2 and "None" not in console
+    rows = list(csv.DictReader((tmp_path / "out" / "rest.csv").open()))
+    summary = json.loads((tmp_path / "out" / "rest.summary.json").read_text())["rows"]
+    for table in (rows, summary):
+        assert [r["L10h [h]" if table is rows else "L10h"] for r in table[:2]] == [
+            "not defined at zero speed"] * 2
+        assert float(table[0]["L10r [Mrev]" if table is rows else "L10r"]) == pytest.approx(
+            3319.04, rel=1e-5)  # the life in revolutions is still given
+    running = summary[2]
+    assert running["L10h"] == pytest.approx(running["L10r"] * 1e6 / (1730 * 60), rel=1e-12)
+
 def test_statics_of_an_assembly_without_statics_is_refused():
     text = ('analysis = "statics"\n[assembly]\nname = "duplex_pair"\n'
             '[[cases]]\n"inputs.shaft.Fz" = 100.0\n')
