@@ -116,6 +116,47 @@ def test_a_structural_argument_in_a_grid_assembles_its_own_model():
     assert run.rows[1]["tilt about x"] > 1.1 * run.rows[0]["tilt about x"]
 
 
+
+_AT_REST = """
+analysis = "{analysis}"
+{outputs}
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+[inputs]
+Fa = 0.0
+Fr = 200.0
+{speed}
+[simulation]
+t_end = 0.05
+"""
+
+
+@pytest.mark.parametrize(("analysis", "speed", "outputs", "key"), [
+    ("steady", '[grid]\n"inputs.shaft_speed" = [0.0, "1000 rpm"]', 'outputs = ["Rs"]', "grid"),
+    ("transient", 'shaft_speed = "0 rpm"', "", "inputs.shaft_speed"),  # default outputs: Rs
+    ("steady", "shaft_speed = 0.0", 'outputs = ["M_shaft", "inner_layer.L10h"]',
+     "inputs.shaft_speed"),
+])
+def test_outputs_without_a_value_at_rest_are_refused(analysis, speed, outputs, key):
+    """Rs = w_middle / w_shaft is 0/0 and a life in hours undefined at rest. Old code: Rs = 0
+    (the regularized ratio) reported as the steady answer, or as settled at the end of a
+    transient, and inner_layer.L10h = inf ("None" / "inf/nan" on the console)."""
+    text = _AT_REST.format(analysis=analysis, speed=speed, outputs=outputs)
+    with pytest.raises(SceneError, match=r"input shaft_speed = 0 rad/s holds the shaft at rest, "
+                       r"where the outputs .* have no value: .*valid range of shaft_speed: other "
+                       r"than 0 \[rad/s\]") as err:
+        run_scene(parse_scene(text), write=False)
+    assert err.value.key == key
+    assert ("Rs = w_middle / w_shaft is 0/0" in str(err.value)) == ("L10h" not in outputs)
+
+
+def test_a_bearing_at_rest_answers_what_has_a_value_there():
+    text = _AT_REST.format(analysis="steady", speed="shaft_speed = 0.0",
+                           outputs='outputs = ["w_middle", "M_shaft"]')
+    row = run_scene(parse_scene(text), write=False).rows[0]
+    assert row["w_middle"] == 0.0 and row["M_shaft"] == 0.0
+
 # --------------------------------------------------------------------------- statics
 def test_statics_scene_matches_deep_groove_statics():
     """Each load case's row is deep_groove_statics of that load; the life in hours is the
