@@ -18,6 +18,7 @@ import numpy as np
 
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.symbolic import is_symbolic
+from bearingsim.units.registry import is_quantity, quantity_to_si
 
 __all__ = [
     "check_finite",
@@ -27,6 +28,7 @@ __all__ = [
     "check_choice",
     "check_count",
     "check_number",
+    "check_quantity",
     "check_options",
     "options_object",
     "check_range",
@@ -111,6 +113,45 @@ def check_range(
         raise ParameterError(f"{label} must be finite [{unit}]")
     return value
 
+
+
+def check_quantity(value: Any, name: str, unit: str, low: float | None = None,
+                   high: float | None = None, *, low_inclusive: bool = True,
+                   high_inclusive: bool = True, where: str = "") -> Any:
+    """A number in ``unit``, or a number with a unit converted to ``unit``, within its range:
+    the API's arguments take what scenes and ``simulate`` inputs take (docs/units.md).
+
+    Parameters
+    ----------
+    value : float or array_like or str or pint.Quantity
+        A bare number (taken as ``unit``), a number with a unit as text (``"3000 rpm"``,
+        ``"20 um"``) or a :class:`pint.Quantity`.
+    name : str
+        Name of the argument, used in the message.
+    unit : str
+        Its SI unit, model notation (``"rad/s"``, ``"m"``).
+    low, high : float, optional
+        Bounds [``unit``]; ``None`` means unbounded.
+    low_inclusive, high_inclusive : bool
+        Whether the bounds themselves are allowed.
+    where : str
+        Component path or function name, used in the message.
+
+    Returns
+    -------
+    The value in ``unit`` (a bare number unchanged).
+
+    Raises
+    ------
+    ParameterError
+        As :func:`check_range`; for text that is not a number with a unit, or a unit of another
+        quantity, :class:`~bearingsim.units.UnitError` (a ParameterError) naming the accepted
+        forms.
+    """
+    if isinstance(value, str) or is_quantity(value):
+        value = quantity_to_si(value, unit, f"{where}: {name}" if where else name)
+    return check_range(value, name, unit, low, high, low_inclusive=low_inclusive,
+                       high_inclusive=high_inclusive, where=where)
 
 _PLAIN_INT_LIMIT = 2**53
 """Largest magnitude of a Python ``int`` the fast path of :func:`check_range` takes (exact as a

@@ -236,6 +236,11 @@ class AssemblySpec:
     plots: Callable[[dict[str, Any], str], list[AssemblyPlot]] = _no_plots
     """``plots(args, fidelity)`` -> the figures that answer the assembly's question at that
     level (:class:`AssemblyPlot`; their ``needs`` must be variables of that level's model)."""
+    undefined_at_rest: dict[str, str] = field(default_factory=dict)
+    """Output name pattern -> why that output has no value while the input ``shaft_speed`` is
+    held at 0 (``Rs = w_middle / w_shaft`` is 0/0 at rest): a scene that asks for it with the
+    speed constant 0 is refused, rather than reporting the model's regularized value as an
+    answer (:func:`~bearingsim.scenes.scene_input_checks.rest_problems`)."""
     mode_names: dict[str, str] = field(default_factory=dict)
     """State name -> mode name ("radial x", ...) of the modes named after their dominant degree
     of freedom in a ``modes`` scene; other modes are named after the description of that

@@ -6,15 +6,18 @@ Units: V, A, ohm, H, Wb, N m, rad/s.
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Callable
 
 from bearingsim.components.blocks import PIController
 from bearingsim.components.connectors import Flange
+from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
-from bearingsim.validation import check_choice
+from bearingsim.units import is_quantity
+from bearingsim.validation import check_choice, check_quantity
 
 __all__ = ["DCMotor", "PMSM", "DCMotorDrive", "PMSMDrive", "MOTOR_DRIVES",
-           "speed_controlled_motor"]
+           "speed_controlled_motor", "speed_reference"]
 
 
 def _positive(value, unit, description):
@@ -143,7 +146,41 @@ class PMSM(_Machine):
         ]
 
 
-SpeedReference = Callable | float | None
+SpeedReference = Callable | float | str | None
+
+
+def speed_reference(speed_ref: SpeedReference, where: str) -> Callable | float | None:
+    """A drive's speed reference, checked: a function of time and None unchanged, a number
+    [rad/s] or a number with a unit (``"3000 rpm"``, a :class:`pint.Quantity`) as a finite
+    float in rad/s.
+
+    Parameters
+    ----------
+    speed_ref : callable or float or str or None
+        The speed reference as given.
+    where : str
+        The component or function, for the message.
+
+    Returns
+    -------
+    callable or float or None
+        ``f(t)``, the speed [rad/s] or None.
+
+    Raises
+    ------
+    ParameterError
+        For NaN or an infinity, text that is not a number with a unit of speed, or another
+        type, naming ``speed_ref``, its unit and the accepted forms.
+    """
+    if speed_ref is None or callable(speed_ref):
+        return speed_ref
+    if isinstance(speed_ref, bool) or not (isinstance(speed_ref, (numbers.Real, str))
+                                           or is_quantity(speed_ref)):
+        raise ParameterError(
+            f"{where}: speed_ref must be a number [rad/s], a number with a unit (e.g. "
+            f"'3000 rpm'), a function of time f(t) or None (an input w_ref), got "
+            f"{speed_ref!r:.60} ({type(speed_ref).__name__})")
+    return float(check_quantity(speed_ref, "speed_ref", "rad/s", where=where))
 
 
 class DCMotorDrive(Assembly):
@@ -151,8 +188,9 @@ class DCMotorDrive(Assembly):
 
     Parameters
     ----------
-    speed_ref : callable or float or None
-        Speed reference [rad/s]: ``f(t)`` (symbolic), a constant, or None for an input ``w_ref``.
+    speed_ref : callable or float or str or None
+        Speed reference [rad/s]: ``f(t)`` (symbolic), a constant (a number with a unit such as
+        ``"3000 rpm"`` is converted), or None for an input ``w_ref``.
     kp, ki : float
         Speed controller gains [V s/rad], [V/rad].
     **motor
@@ -185,8 +223,9 @@ class PMSMDrive(Assembly):
 
     Parameters
     ----------
-    speed_ref : callable or float or None
-        Speed reference [rad/s]: ``f(t)``, a constant, or None for an input ``w_ref``.
+    speed_ref : callable or float or str or None
+        Speed reference [rad/s]: ``f(t)``, a constant (a number with a unit such as
+        ``"3000 rpm"`` is converted), or None for an input ``w_ref``.
     kp_w, ki_w : float
         Speed controller gains [A s/rad], [A/rad].
     kp_i, ki_i : float
@@ -225,7 +264,7 @@ MOTOR_DRIVES = {"dc": DCMotorDrive, "pmsm": PMSMDrive}
 """Speed-controlled motor drives by the name assemblies and scenes use."""
 
 
-def speed_controlled_motor(motor: str, speed_ref: Callable | float | None,
+def speed_controlled_motor(motor: str, speed_ref: SpeedReference,
                            motor_options: dict | None, where: str) -> DCMotorDrive | PMSMDrive:
     """A speed-controlled motor drive of :data:`MOTOR_DRIVES` by name.
 
@@ -233,8 +272,9 @@ def speed_controlled_motor(motor: str, speed_ref: Callable | float | None,
     ----------
     motor : {"dc", "pmsm"}
         Motor type.
-    speed_ref : callable or float or None
-        Speed reference [rad/s]: ``f(t)``, constant, or None for the drive's input ``w_ref``.
+    speed_ref : callable or float or str or None
+        Speed reference [rad/s]: ``f(t)``, constant (or a number with a unit, ``"3000 rpm"``),
+        or None for the drive's input ``w_ref``.
     motor_options : dict, optional
         Keyword arguments of the drive (gains, motor constants).
     where : str
@@ -255,10 +295,11 @@ def speed_controlled_motor(motor: str, speed_ref: Callable | float | None,
 
 
 def _shaft_and_reference(drive: Assembly, speed_ref: SpeedReference) -> None:
-    """The drive's shaft flange (connected to its motor's) and its speed reference: kept for
-    :func:`_reference`, or an input ``w_ref`` [rad/s] when None."""
+    """The drive's shaft flange (connected to its motor's) and its speed reference
+    (:func:`speed_reference`): kept for :func:`_reference`, or an input ``w_ref`` [rad/s] when
+    None."""
     drive.flange = Flange()
-    drive._ref = speed_ref
+    drive._ref = speed_reference(speed_ref, type(drive).__name__)
     if speed_ref is None:
         drive.w_ref = Input(0.0, "rad/s", "speed reference")
     connect(drive.flange, drive.motor.flange)

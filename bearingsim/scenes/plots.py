@@ -283,9 +283,9 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         return []
     names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
     columns = [n for n in statics_of(prep).figure
-               if all(math.isfinite(row.get(n, math.nan)) for row in rows)]
+               if all(isinstance(row.get(n), float) and math.isfinite(row[n]) for row in rows)]
     if "L10h" in statics_of(prep).figure and "L10h" not in columns:
-        columns.insert(0, "L10r")  # no speed given: the life in revolutions
+        columns.insert(0, "L10r")  # a case at rest (LIFE_AT_REST): the life in revolutions
     fig = Figure(figsize=(7, 2.6 * len(columns) + 1.0))
     axes = np.atleast_1d(fig.subplots(len(columns), 1, sharex=True, squeeze=False)[:, 0])
     pos = np.arange(len(rows))

@@ -20,7 +20,11 @@ from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, line_of, scene_from_dict
-from bearingsim.scenes.scene_input_checks import input_range_problems, input_unit_mismatches
+from bearingsim.scenes.scene_input_checks import (
+    input_range_problems,
+    input_unit_mismatches,
+    rest_problems,
+)
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
@@ -339,7 +343,7 @@ def prepare(scene: Scene) -> Prepared:
                              "post-processed: " + (", ".join(post_all) or "none"),
                              scene.path) from None
     assemble_s = time.perf_counter() - t0
-    _check_names(scene, system)
+    _check_names(scene, system, requested)
     symmetry = spec.symmetry(args, scene_inputs(scene)) if scene.analysis != "modes" else []
     prep = Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
                     symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
@@ -370,7 +374,7 @@ def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
     return spec.plots(args, fidelity)
 
 
-def _check_names(scene: Scene, system: System) -> None:
+def _check_names(scene: Scene, system: System, outputs: list[str]) -> None:
     problems = []
 
     def add(key, msg, allowed):
@@ -413,6 +417,9 @@ def _check_names(scene: Scene, system: System) -> None:
     if not problems:  # every input named and given: their values within the inputs' ranges
         for key, message in input_range_problems(scene, system).items():
             add(key, message, "see the range in the message")
+        for key, message in rest_problems(scene, outputs).items():
+            add(key, message, "a shaft speed other than 0 (e.g. '1000 rpm', or an expression "
+                "of t that starts at 0), or outputs without these")
     if problems:
         first = problems[0]
         raise SceneError(first.reason, first.key, first.line, first.allowed, first.path,

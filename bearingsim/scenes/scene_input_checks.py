@@ -1,22 +1,26 @@
 """Checks of a scene's input values against its assembled model: the quantity of each value
-given with a unit, and (for the preparation of every run and sweep point) the ranges.
+given with a unit, (for the preparation of every run and sweep point) the ranges, and outputs
+asked for at a shaft speed held at 0 that have no value at rest.
 """
 
 from __future__ import annotations
 
+import fnmatch
 import re
 import warnings
+from typing import Any
 
 import numpy as np
 
 from bearingsim.assembler import System
 from bearingsim.errors import ParameterError
+from bearingsim.scenes.expressions import constant_value
 from bearingsim.scenes.scene import Scene
 from bearingsim.scenes.scene_types import simulate_inputs
 from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
 
-__all__ = ["input_range_problems", "input_unit_mismatches"]
+__all__ = ["input_range_problems", "input_unit_mismatches", "rest_problems"]
 
 
 def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
@@ -64,16 +68,8 @@ def input_range_problems(scene: Scene, system: System) -> dict[str, str]:
     span = (scene.simulation.t_start, scene.simulation.t_end)
     times = np.array(span if scene.analysis == "transient" else span[:1])
     where = "grid" if scene.grid else "cases"
-    swept = {key[len("inputs."):]: values for key, values in scene.grid.items()
-             if key.startswith("inputs.")}
-    first = {name: values[0] for name, values in swept.items()}
-    # every grid value with the first of the others, or every case (a scene's own inputs
-    # complete each)
-    points = [{k[len("inputs."):]: v for k, v in case.items() if k.startswith("inputs.")}
-              for case in scene.cases] or [first, *({**first, name: v} for name, values in
-                                                      swept.items() for v in values[1:])]
     problems: dict[str, str] = {}
-    for point in points:
+    for point in _points(scene):
         inputs = {n: v for n, v in {**scene.inputs, **point}.items() if n in names}
         try:
             with warnings.catch_warnings():
@@ -84,4 +80,50 @@ def input_range_problems(scene: Scene, system: System) -> dict[str, str]:
             name = named.group(1) if named else None
             problems.setdefault(where if name in point or name is None else f"inputs.{name}",
                                 str(exc))
+    return problems
+
+
+def _points(scene: Scene) -> list[dict[str, Any]]:
+    """The inputs each operating point gives beyond the scene's own ``[inputs]``: every grid
+    value with the first of the others, or every case."""
+    swept = {key[len("inputs."):]: values for key, values in scene.grid.items()
+             if key.startswith("inputs.")}
+    first = {name: values[0] for name, values in swept.items()}
+    return [{k[len("inputs."):]: v for k, v in case.items() if k.startswith("inputs.")}
+            for case in scene.cases] or [first, *({**first, name: v} for name, values in
+                                                    swept.items() for v in values[1:])]
+
+
+def rest_problems(scene: Scene, outputs: list[str]) -> dict[str, str]:
+    """The outputs asked for that have no value at rest
+    (:attr:`~bearingsim.assemblies.spec.AssemblySpec.undefined_at_rest`) while a point holds
+    the input ``shaft_speed`` at 0, by the key that gives that speed (``inputs.shaft_speed``,
+    ``grid`` or ``cases``).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    outputs : list of str
+        The outputs it asks for (its own or the assembly's defaults).
+
+    Returns
+    -------
+    dict of str to str
+        Key -> the message for it.
+    """
+    undefined = scene.spec.undefined_at_rest
+    why = {n: next(r for p, r in undefined.items() if fnmatch.fnmatchcase(n, p))
+           for n in outputs if any(fnmatch.fnmatchcase(n, p) for p in undefined)}
+    problems: dict[str, str] = {}
+    for point in _points(scene) if why else ():
+        speed = {**scene.inputs, **point}.get("shaft_speed")
+        if speed is None or constant_value(speed, "inputs.shaft_speed") != 0.0:
+            continue
+        key = ("grid" if scene.grid else "cases") if "shaft_speed" in point else \
+            "inputs.shaft_speed"
+        problems.setdefault(key, (
+            f"input shaft_speed = 0 rad/s holds the shaft at rest, where the outputs "
+            f"{', '.join(why)} have no value: " + "; ".join(dict.fromkeys(why.values()))
+            + "; valid range of shaft_speed: other than 0 [rad/s]"))
     return problems

@@ -17,7 +17,13 @@ import numpy as np
 from bearingsim.catalog import resolve_bearing
 from bearingsim.scenes.scene import SceneError, line_of
 
-__all__ = ["STATICS", "STATICS_INPUTS", "Statics", "statics_of"]
+__all__ = ["LIFE_AT_REST", "STATICS", "STATICS_INPUTS", "Statics", "statics_of"]
+
+LIFE_AT_REST = "not defined at zero speed"
+"""What a statics row gives for the life in hours ``L10h`` of a load case without a shaft speed
+(0 or not given): a bearing at rest turns no revolutions, so its life in hours has no value
+(the life in revolutions ``L10r`` still does). Text, so that no table shows a number
+(``nan``, ``inf``, ``null``) for it."""
 
 
 @dataclass(frozen=True)
@@ -29,7 +35,7 @@ class Statics:
     drawn per load case (bars); ``levels`` the fidelity levels it applies to (empty: all).
     """
 
-    solve: Callable[..., tuple[dict[str, float], np.ndarray]]
+    solve: Callable[..., tuple[dict[str, float | str], np.ndarray]]
     columns: dict[str, tuple[str, str]]
     figure: tuple[str, ...]
     levels: tuple[str, ...] = ()
@@ -43,12 +49,13 @@ _DEEP_GROOVE_COLUMNS = {
     "k_radial": ("N/m", "radial stiffness d Fx / d x"),
     "k_axial": ("N/m", "axial stiffness d Fz / d z"),
     "L10r": ("Mrev", "ISO/TS 16281 reference rating life L10r (10^6 revolutions)"),
-    "L10h": ("h", "ISO/TS 16281 reference rating life L10r in hours"),
+    "L10h": ("h", "ISO/TS 16281 reference rating life L10r in hours at the case's shaft "
+                  f"speed ({LIFE_AT_REST!r} without one)"),
 }
 
 
 def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
-                         guess: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
+                         guess: np.ndarray | None) -> tuple[dict[str, float | str], np.ndarray]:
     from bearingsim.studies.deep_groove_statics import LOAD_NAMES, deep_groove_statics
 
     loads = {k: float(inputs.get(f"load.{k}", 0.0)) for k in LOAD_NAMES}
@@ -58,7 +65,7 @@ def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, An
                               guess=guess)
     revolutions_per_hour = speed / (2.0 * math.pi) * 3600.0
     life_h = (res.reference_life * 1e6 / revolutions_per_hour if revolutions_per_hour > 0.0
-              else math.nan)
+              else LIFE_AT_REST)
     row = {"Q_max": float(np.max(res.ball_loads)), "p_max": float(res.max_pressure),
            "x": float(res.displacement[0]), "y": float(res.displacement[1]),
            "z": float(res.displacement[2]), "k_radial": float(res.stiffness[0, 0]),
@@ -110,7 +117,7 @@ bearing's load sharing at its quasi-static level
 (:func:`~bearingsim.studies.nested_equilibrium.nested_equilibrium`)."""
 STATICS_INPUTS = ("shaft_speed",)
 """Inputs a statics load case may give beyond the model's: the shaft speed [rad/s] turns the
-reference life in revolutions into hours."""
+reference life in revolutions into hours (:data:`LIFE_AT_REST` without it)."""
 
 
 def statics_of(prep: Any) -> Statics:

@@ -180,7 +180,9 @@ class Result:
             import difflib
 
             close = difflib.get_close_matches(name, self.names, n=5)
-            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            shown = ", ".join(self.names[:8]) + (", ..." if len(self.names) > 8 else "")
+            hint = (f"; did you mean {', '.join(close)}?" if close else
+                    f"; its variables are {shown} ({len(self.names)} in all, Result.names)")
             raise KeyError(f"no variable {name!r} in the result{hint}") from None
 
     def __getitem__(self, key: str | Sequence[str]):
@@ -305,13 +307,22 @@ class Result:
         Parameters
         ----------
         name : str
-            A variable's dotted name.
+            A variable's dotted name, or ``"t"`` (``"time"``) for the time.
 
         Returns
         -------
         str
             The label.
+
+        Raises
+        ------
+        KeyError
+            For a name that is not a variable of the result, with close matches (or some of its
+            variables), as ``result[name]``.
         """
+        if name in ("t", "time"):
+            return describe("t", "time", "s")
+        self._series(name)  # KeyError with close matches, ParameterError for non-text
         return describe(name, self.descriptions.get(name, ""), self.units.get(name, "1"))
 
     def plot(self, names: str | Sequence[str] | None = None, path: str | Path | None = None,

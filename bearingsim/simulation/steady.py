@@ -16,7 +16,7 @@ import numpy as np
 from bearingsim.assembler.numeric import thread_kept
 from bearingsim.assembler.system import System, as_system
 from bearingsim.entry_points import entry_point
-from bearingsim.errors import SimulationError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import kernel
@@ -69,7 +69,8 @@ def steady_state(
     inputs, parameters : dict, optional
         As for :func:`simulate`.
     p : array, optional
-        Parameter vector (overrides ``parameters``).
+        Parameter vector (overrides ``parameters``): one finite value per
+        ``system.parameter_names`` in its SI unit, each within its declared range.
     x_guess : array, optional
         Starting guess (default: start values).
     t : float
@@ -96,6 +97,9 @@ def steady_state(
 
     Raises
     ------
+    ParameterError
+        For an argument outside its range, or a ``p`` of the wrong length, not finite or with
+        a value outside a parameter's range.
     SimulationError
         If no steady state is found, or if it is not unique (the Jacobian is singular there,
         naming the states that stay undetermined).
@@ -110,7 +114,15 @@ def steady_state(
     signal = input_signal(system, inputs)
     check_input_ranges(system, signal, np.array([float(t)]))  # bounds, limiting speeds
     u = signal.at(t)[:, 0]
-    p = system.p0(parameters) if p is None else p
+    if p is None:
+        p = system.p0(parameters)
+    else:  # each value checked against its parameter's declaration, by name
+        names = system.parameter_names
+        values = check_vector(p, len(names), "p", "SI units of system.parameter_names", where)
+        try:
+            p = system.p0(dict(zip(names, values.tolist(), strict=True)))
+        except ParameterError as exc:
+            raise ParameterError(f"{where}: p: {exc}") from None
     x = (system.x0() if x_guess is None
          else check_vector(x_guess, system.n_states, "x_guess", "state units", where))
     free = _free_states(system)

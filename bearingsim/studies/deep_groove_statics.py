@@ -49,7 +49,7 @@ from bearingsim.physics.life import (
 )
 from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
-from bearingsim.validation import check_choice, check_range
+from bearingsim.validation import check_choice, check_quantity, check_range
 
 __all__ = ["DeepGrooveStatics", "LOAD_NAMES", "MAX_STATIC_PRESSURE", "METHODS",
            "STATIC_PRESSURE_LIMIT", "deep_groove_statics"]
@@ -101,9 +101,10 @@ class DeepGrooveStatics:
 
 def deep_groove_statics(bearing: str | BearingGeometry = "6304",
                         loads: Mapping[str, float] | None = None, *,
-                        clearance: float | None = None, ball_material: Material = STEEL,
-                        ring_material: Material = STEEL, method: str = "exact",
-                        guess=None, ball_position_angle: float = 0.0,
+                        clearance: float | str | None = None,
+                        ball_material: Material = STEEL, ring_material: Material = STEEL,
+                        method: str = "exact", guess=None,
+                        ball_position_angle: float | str = 0.0,
                         inner_rotating: bool = True,
                         dynamic_load_rating_n: float | None = None) -> DeepGrooveStatics:
     """Solve the quasi-static equilibrium of a deep-groove ball bearing.
@@ -115,8 +116,9 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     loads : dict, optional
         External loads on the inner ring, keys among ``Fx, Fy, Fz`` [N] and ``Mx, My`` [N m]
         (z is the axis); missing keys are 0. Finite numbers.
-    clearance : float, optional
-        Diametral clearance Pd [m], >= 0 (0 allowed); default: the geometry's.
+    clearance : float or str, optional
+        Diametral clearance Pd [m], >= 0 (0 allowed), or a number with a unit (``"20 um"``);
+        default: the geometry's.
     ball_material, ring_material : Material
         Materials of the balls and rings (Hertz constants; e.g.
         :data:`~bearingsim.physics.materials.SILICON_NITRIDE` balls).
@@ -124,8 +126,8 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
         bearingsim's exact kinematics or the form ISO/TS 16281 writes (module docstring).
     guess : array of 5, optional
         Start ``(x, y, z, tx, ty)`` [m, rad], e.g. the ``state`` of a nearby case.
-    ball_position_angle : float
-        Azimuth of ball 0 [rad].
+    ball_position_angle : float or str
+        Azimuth of ball 0 [rad], finite, or a number with a unit (``"10 deg"``).
     inner_rotating : bool
         Whether the inner ring rotates against the load (life: cubic mean of its ball loads).
     dynamic_load_rating_n : float, optional
@@ -140,7 +142,8 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     ------
     ParameterError
         For an unknown load name, a non-finite load, loads beyond the strength of bearing steel
-        (see below), a clearance outside ``[0, Pd(45 deg)]``,
+        (see below), a clearance outside ``[0, Pd(45 deg)]``, a ball position angle that is
+        not finite,
         a method other than the two above or a ``guess`` that is not 5 finite numbers.
     SimulationError
         If no equilibrium is found (the message names the load reached on the load path).
@@ -156,8 +159,10 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     check_choice(method, "method", METHODS, where)
     g = resolve_bearing(bearing)
     if clearance is not None:
-        check_range(clearance, "clearance", "m", 0.0, where=where)
+        clearance = check_quantity(clearance, "clearance", "m", 0.0, where=where)
         g = dataclasses.replace(g, diametral_clearance=float(clearance))
+    ball_position_angle = float(check_quantity(ball_position_angle, "ball_position_angle",
+                                               "rad", where=where))
     f_ext = _load_vector(loads, where)
     x0 = None if guess is None else _guess_vector(guess, where)
     problem = _Problem(g, method, ball_material, ring_material, ball_position_angle)

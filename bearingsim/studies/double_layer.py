@@ -13,7 +13,7 @@ from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double
 from bearingsim.checks import checked
 from bearingsim.errors import MultipleSteadyStatesWarning, ParameterError, SimulationError
 from bearingsim.simulation import simulate, steady_state
-from bearingsim.validation import check_range
+from bearingsim.validation import check_range, check_vector
 
 __all__ = ["SpeedRatioEstimate", "SpeedRatioSweep", "SteadyBranch", "speed_ratio",
            "speed_ratio_sweep", "steady_branches", "steady_ratio"]
@@ -117,9 +117,11 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
         ``Rs`` and ``M_shaft`` (:func:`double_layer_bearing` with ``drive="speed"``,
         ``speed=None``).
     speed : float
-        Shaft speed [rad/s].
+        Shaft speed [rad/s], finite and not 0 (either sign): at rest ``Rs = w_middle /
+        w_shaft`` is 0/0 (the model's regularized ``Rs`` is 0 there, which is no answer).
     loads : (float, float)
-        Radial and axial load [N], set when the system has the inputs ``Fr`` and ``Fa``.
+        Radial and axial load [N], finite, set when the system has the inputs ``Fr`` and
+        ``Fa``.
     parameters : dict, optional
         Parameter overrides.
     x_guess : array, optional
@@ -144,21 +146,31 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
 
     Raises
     ------
+    ParameterError
+        For a speed of 0 or not finite, or ``loads`` that are not two finite numbers.
     SimulationError
         If the steady state is not found or not unique (e.g. the SKF model at zero load: no
         friction in either layer, so nothing sets the middle ring's speed).
     """
-    system = as_system(system, "steady_ratio")
+    where = "steady_ratio"
+    system = as_system(system, where)
+    check_range(speed, "speed", "rad/s", where=where)
+    if speed == 0.0:
+        raise ParameterError(
+            f"{where}: speed = 0 rad/s: the speed ratio Rs = w_middle / w_shaft is 0/0 at rest, "
+            f"so it has no value there; valid range: a finite shaft speed other than 0 [rad/s] "
+            f"(either sign; 1000 r/min = 104.7 rad/s)")
+    loads = tuple(float(v) for v in check_vector(loads, 2, "loads (Fr, Fa)", "N", where))
     inputs = {"shaft_speed": float(speed)}
     if "Fr" in system.input_names:
-        inputs.update({"Fr": float(loads[0]), "Fa": float(loads[1])})
-    if system.n_states == 1 and speed != 0.0:
+        inputs.update({"Fr": loads[0], "Fa": loads[1]})
+    if system.n_states == 1:
         x_guess = _choose_branch(system, inputs, parameters, x_guess, loads)
     try:
         x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
     except SimulationError as exc:
         raise SimulationError(
-            f"steady_ratio at {speed:g} rad/s, loads Fr, Fa = {tuple(loads)} N: {exc}. Without "
+            f"{where} at {speed:g} rad/s, loads Fr, Fa = {loads} N: {exc}. Without "
             "load, a friction model with no load-independent torque (SKF without seals or "
             "drag) turns neither layer, so the middle ring's speed and Rs are undetermined: "
             "give a load, seals or an oil level") from None

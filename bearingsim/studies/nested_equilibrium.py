@@ -58,8 +58,15 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     Returns
     -------
     NestedEquilibrium
+
+    Raises
+    ------
+    ParameterError
+        For loads out of range, or a system that is not a nested quasi-static pair (another
+        level of the double-layer bearing, another assembly), naming what it lacks.
     """
     system = as_system(system, "nested_equilibrium")
+    _check_nested(system)
     check_range(radial, "radial", "N", 0.0, None, where="nested_equilibrium")
     check_range(axial, "axial", "N", where="nested_equilibrium")
     if radial == 0.0 and not axial:
@@ -107,6 +114,26 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
         series("inner_row", "alpha_i", zi), series("outer_row", "alpha_i", zo),
         stiff, x,
     )
+
+
+_NEEDS = {"input": ("shaft.Fx",), "state": ("shaft.x", "middle.x"),
+          "parameter": ("inner_row.Dw", "outer_row.Dw")}
+"""Names of each kind a :class:`NestedQuasiStatic` system has and :func:`nested_equilibrium`
+reads."""
+
+
+def _check_nested(system: System) -> None:
+    """Raise a named error when ``system`` lacks a name of :data:`_NEEDS`."""
+    have = {"input": system.input_names, "state": system.state_names,
+            "parameter": system.parameter_names}
+    missing = [f"{kind} {name}" for kind, names in _NEEDS.items() for name in names
+               if name not in have[kind]]
+    if missing:
+        raise ParameterError(
+            f"nested_equilibrium: expects an assembled quasi-static double-layer bearing "
+            f"(assemble(double_layer_bearing(inner, outer, fidelity='quasi-static')), a "
+            f"NestedQuasiStatic); the system {system.name} has no {', '.join(missing)} (its "
+            f"inputs: {', '.join(system.input_names) or 'none'})")
 
 
 def _load_path(system: System, start: dict[str, float], end: dict[str, float], x: np.ndarray,

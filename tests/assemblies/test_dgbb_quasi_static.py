@@ -139,3 +139,26 @@ def test_non_finite_variables_raise_a_named_simulation_error():
                       rootfinder="fast_newton")
     with pytest.raises(SimulationError, match=r"not finite at t = 0 s: row\..*nonlinear blocks"):
         simulate(system, 1e-3, n_points=3, inputs={"load.Fx": 500.0})
+
+
+@pytest.mark.parametrize("fidelity", ["quasi-static", "dynamic"])
+def test_clearance_takes_a_number_with_a_unit(fidelity):
+    """As simulate inputs and parameters do (docs/units.md); old code: TypeError: '<' not
+    supported between instances of 'str' and 'float' (from bearing_design)."""
+    def model(clearance):
+        bearing = deep_groove_ball_bearing("6304", fidelity, clearance=clearance,
+                                           **({"loads": {"Fx": 500.0}} if fidelity ==
+                                              "quasi-static" else {}))
+        system = assemble(bearing)
+        return system.p0(), system.x0()
+
+    for given, same in zip(model("20 um"), model(20e-6), strict=True):
+        np.testing.assert_array_equal(given, same)
+    assert deep_groove_ball_bearing("6304", "dynamic", clearance="20 um").design.clearance \
+        == pytest.approx(20e-6, rel=1e-15)
+    with pytest.raises(ParameterError, match=r"deep_groove_ball_bearing: clearance: '20' is not "
+                                             r"a number with a unit"):
+        deep_groove_ball_bearing("6304", fidelity, clearance="20")
+    with pytest.raises(ParameterError, match=r"clearance = 0.001 \[m\] is outside the valid "
+                                             r"range \[0, 9.52e-05\] \[m\]"):
+        deep_groove_ball_bearing("6304", fidelity, clearance="1 mm")

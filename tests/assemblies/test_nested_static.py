@@ -130,3 +130,14 @@ def test_study_fits_set_each_layers_operating_clearance():
     unmounted = nested_equilibrium(assemble(double_layer_bearing(
         "61905", "61907", fidelity="quasi-static")), 200.0)
     assert mounted.shaft_displacement[0] < unmounted.shaft_displacement[0] - 5e-6
+
+
+@pytest.mark.parametrize("fidelity", ["torque", "kinematic"])
+def test_a_system_of_another_level_is_named(fidelity):
+    """Old code: KeyError: 'inner_row.Dw' from deep inside (the seated guess)."""
+    other = assemble(double_layer_bearing("61905", "61907", fidelity=fidelity))
+    with pytest.raises(ParameterError, match=r"nested_equilibrium: expects an assembled "
+                       r"quasi-static double-layer bearing \(assemble\(double_layer_bearing\("
+                       r"inner, outer, fidelity='quasi-static'\)\).*has no input shaft.Fx, "
+                       r"state shaft.x, state middle.x"):
+        nested_equilibrium(other, 800.0)

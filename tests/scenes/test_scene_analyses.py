@@ -116,6 +116,47 @@ def test_a_structural_argument_in_a_grid_assembles_its_own_model():
     assert run.rows[1]["tilt about x"] > 1.1 * run.rows[0]["tilt about x"]
 
 
+
+_AT_REST = """
+analysis = "{analysis}"
+{outputs}
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+[inputs]
+Fa = 0.0
+Fr = 200.0
+{speed}
+[simulation]
+t_end = 0.05
+"""
+
+
+@pytest.mark.parametrize(("analysis", "speed", "outputs", "key"), [
+    ("steady", '[grid]\n"inputs.shaft_speed" = [0.0, "1000 rpm"]', 'outputs = ["Rs"]', "grid"),
+    ("transient", 'shaft_speed = "0 rpm"', "", "inputs.shaft_speed"),  # default outputs: Rs
+    ("steady", "shaft_speed = 0.0", 'outputs = ["M_shaft", "inner_layer.L10h"]',
+     "inputs.shaft_speed"),
+])
+def test_outputs_without_a_value_at_rest_are_refused(analysis, speed, outputs, key):
+    """Rs = w_middle / w_shaft is 0/0 and a life in hours undefined at rest. Old code: Rs = 0
+    (the regularized ratio) reported as the steady answer, or as settled at the end of a
+    transient, and inner_layer.L10h = inf ("None" / "inf/nan" on the console)."""
+    text = _AT_REST.format(analysis=analysis, speed=speed, outputs=outputs)
+    with pytest.raises(SceneError, match=r"input shaft_speed = 0 rad/s holds the shaft at rest, "
+                       r"where the outputs .* have no value: .*valid range of shaft_speed: other "
+                       r"than 0 \[rad/s\]") as err:
+        run_scene(parse_scene(text), write=False)
+    assert err.value.key == key
+    assert ("Rs = w_middle / w_shaft is 0/0" in str(err.value)) == ("L10h" not in outputs)
+
+
+def test_a_bearing_at_rest_answers_what_has_a_value_there():
+    text = _AT_REST.format(analysis="steady", speed="shaft_speed = 0.0",
+                           outputs='outputs = ["w_middle", "M_shaft"]')
+    row = run_scene(parse_scene(text), write=False).rows[0]
+    assert row["w_middle"] == 0.0 and row["M_shaft"] == 0.0
+
 # --------------------------------------------------------------------------- statics
 def test_statics_scene_matches_deep_groove_statics():
     """Each load case's row is deep_groove_statics of that load; the life in hours is the
@@ -135,6 +176,37 @@ def test_statics_scene_matches_deep_groove_statics():
     life = {r["name"][0]: r["L10h"] for r in run.rows}
     assert life["1"] < life["3"] and life["2"] < life["1"] and life["4"] < life["3"]
 
+
+
+def test_statics_life_in_hours_at_rest_is_said_to_be_undefined(tmp_path, capsys):
+    """A load case at rest (shaft speed 0 or not given) has a life in revolutions but none in
+    hours. Old code: L10h = nan in the row and CSV, null in the summary, "L10h = None" on the
+    console."""
+    import csv
+    import json
+
+    from bearingsim.cli import main
+
+    scene = tmp_path / "rest.toml"
+    scene.write_text('analysis = "statics"\n[assembly]\nname = "deep_groove_ball_bearing"\n'
+                     'bearing = "6304"\nfidelity = "quasi-static"\n'
+                     '[[cases]]\nname = "at rest"\n"inputs.shaft_speed" = 0.0\n'
+                     '"inputs.load.Fx" = 938.0\n'
+                     '[[cases]]\nname = "no speed"\n"inputs.load.Fx" = 938.0\n'
+                     '[[cases]]\nname = "running"\n"inputs.shaft_speed" = "1730 rpm"\n'
+                     '"inputs.load.Fx" = 938.0\n[output]\nfolder = "out"\n')
+    assert main(["run", str(scene)]) == 0
+    console = capsys.readouterr().out
+    assert console.count("L10h = not defined at zero speed") == 2 and "None" not in console
+    rows = list(csv.DictReader((tmp_path / "out" / "rest.csv").open()))
+    summary = json.loads((tmp_path / "out" / "rest.summary.json").read_text())["rows"]
+    for table in (rows, summary):
+        assert [r["L10h [h]" if table is rows else "L10h"] for r in table[:2]] == [
+            "not defined at zero speed"] * 2
+        assert float(table[0]["L10r [Mrev]" if table is rows else "L10r"]) == pytest.approx(
+            3319.04, rel=1e-5)  # the life in revolutions is still given
+    running = summary[2]
+    assert running["L10h"] == pytest.approx(running["L10r"] * 1e6 / (1730 * 60), rel=1e-12)
 
 def test_statics_of_an_assembly_without_statics_is_refused():
     text = ('analysis = "statics"\n[assembly]\nname = "duplex_pair"\n'

@@ -104,3 +104,18 @@ def test_xarray_carries_units(res):
     assert ds["time"].attrs["units"] == "s"
     assert float(ds["Rs"][-1]) == res.final("Rs")
     assert len(res.to_xarray(internal=True).data_vars) == len(res.names)
+
+
+def test_label_of_an_unknown_name_is_refused_with_close_matches(res):
+    """Old code: res.label("foo") returned "foo [-]" and res.label("Rss") "Rss [-]", labels of
+    variables the result does not have; res.label("t") "t [-]"."""
+    assert res.label("Rs") == "speed distribution ratio n_z / n_i [-]"
+    assert res.label("w_middle") == "middle ring speed [r/min]"
+    assert res.label("t") == res.label("time") == "time [s]"
+    with pytest.raises(KeyError, match=r"no variable 'Rss' in the result; did you mean Rs\?"):
+        res.label("Rss")
+    with pytest.raises(KeyError, match=r"no variable 'foo' in the result; its variables are "
+                                       r"Rs, .* in all, Result.names\)"):
+        res.label("foo")
+    with pytest.raises(ParameterError, match="a variable is named by text"):
+        res.label(3)

@@ -16,7 +16,7 @@ from bearingsim.assembler import assemble
 from bearingsim.assemblies import double_layer_bearing
 from bearingsim.assemblies.double_layer import DoubleLayerBearing, DoubleLayerOptions
 from bearingsim.errors import ParameterError, SimulationError
-from bearingsim.simulation import simulate
+from bearingsim.simulation import simulate, steady_state
 from bearingsim.studies.double_layer import speed_ratio_sweep, steady_ratio
 
 SPEED = {"shaft_speed": 100.0}
@@ -177,6 +177,51 @@ def test_steady_ratio_evaluates_with_the_default_inputs():
     assert torque == pytest.approx(obs["M_shaft"], rel=1e-12)
     assert rs == pytest.approx(obs["Rs"], rel=1e-12)
 
+
+
+@pytest.mark.parametrize("speed", [0.0, -0.0])
+def test_steady_ratio_refuses_a_shaft_at_rest(torque_system, speed):
+    """Rs = w_middle / w_shaft is 0/0 at rest: steady_ratio returned Rs = 0 (the regularized
+    ratio's value there) as if it were an answer."""
+    with pytest.raises(ParameterError, match=r"steady_ratio: speed = 0 rad/s: the speed ratio "
+                       r"Rs = w_middle / w_shaft is 0/0 at rest.*valid range: a finite shaft "
+                       r"speed other than 0 \[rad/s\]"):
+        steady_ratio(torque_system, speed, loads=(200.0, 0.0))
+    with pytest.raises(ParameterError, match=r"steady_ratio: speed must be finite"):
+        steady_ratio(torque_system, float("nan"), loads=(200.0, 0.0))
+
+
+@pytest.mark.parametrize(("loads", "match"), [
+    ((200.0,), r"loads \(Fr, Fa\) must have 2 entries \[N\], got 1"),  # was IndexError
+    ((200.0, 0.0, 5.0), r"must have 2 entries \[N\], got 3"),  # was silently dropped
+    (200.0, r"must have 2 entries \[N\], got 1"),  # was TypeError: not subscriptable
+    (("0.2 kN", 0.0), r"loads \(Fr, Fa\) must be 2 numbers \[N\]"),  # was ValueError
+    ((float("nan"), 0.0), r"loads \(Fr, Fa\) must be finite"),
+])
+def test_steady_ratio_loads_are_two_finite_numbers(torque_system, loads, match):
+    with pytest.raises(ParameterError, match=match):
+        steady_ratio(torque_system, 100.0, loads=loads)
+    rs, _, _ = steady_ratio(torque_system, 100.0, loads=(200.0, 0.0))
+    assert rs == pytest.approx(0.2072, abs=1e-3)  # the torque level's Rs, measured
+
+
+@pytest.mark.parametrize(("p", "match"), [
+    (np.ones(3), r"steady_state: p must have 14 entries \[SI units of "
+                 r"system.parameter_names\], got 3"),  # was ValueError: could not broadcast
+    ({"inner_layer.nu": 3e-5}, r"steady_state: p must be 14 numbers"),  # was TypeError
+    ("x", r"steady_state: p must be 14 numbers"),  # was ValueError: could not convert
+    (np.full(14, np.nan), r"steady_state: p must be finite"),  # was SimulationError
+    (np.ones(14), r"steady_state: p: inner_layer.nu = 1.0 \[m2/s\] is outside the valid "
+                  r"range"),  # was accepted
+])
+def test_steady_state_checks_the_parameter_vector(torque_system, p, match):
+    inputs = {"shaft_speed": 100.0, "Fr": 200.0}
+    with pytest.raises(ParameterError, match=match):
+        steady_state(torque_system, inputs=inputs, p=p)
+    given = steady_state(torque_system, inputs=inputs, p=list(torque_system.p0()))
+    np.testing.assert_array_equal(given, steady_state(torque_system, inputs=inputs))
+    assert given[torque_system.state_names.index("middle.sleeve.w")] == pytest.approx(
+        0.2072 * 100.0, rel=1e-3)
 
 # ------------------------------------------------------------------ between the output points
 @pytest.mark.parametrize(("name", "text", "match"), [

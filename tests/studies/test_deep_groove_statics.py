@@ -141,11 +141,32 @@ def test_no_load_leaves_the_rings_centred():
     (dict(loads={"Fx": 1.0}, clearance=1e-3), "free contact angle above 45 deg"),
     (dict(loads={"Fx": 1.0}, method="iso"), "method must be"),
     (dict(loads={"Fx": 1.0}, guess=[0.0, 0.0]), "guess must be 5 numbers"),
+    # old: SimulationError (no equilibrium found for 10 % of the load) without a load and
+    # ValueError (The function value at x=0.0 is NaN) with one
+    (dict(ball_position_angle=float("nan")),
+     r"deep_groove_statics: ball_position_angle must be finite, got nan \[rad\]"),
+    (dict(loads={"Fx": 1.0}, ball_position_angle=float("nan")), "ball_position_angle"),
+    # old: UFuncTypeError from numpy
+    (dict(loads={"Fx": 1.0}, ball_position_angle="east"),
+     r"ball_position_angle: 'east' is not a number with a unit"),
+    (dict(loads={"Fx": 1.0}, clearance="20 N"), r"clearance: 'N' is not a unit of m"),
 ])
 def test_bad_input_is_named(kwargs, match):
     with pytest.raises(ParameterError, match=match):
         deep_groove_statics(BEARING, **kwargs)
 
+
+
+def test_lengths_and_angles_take_units():
+    """As simulate inputs and parameters do (docs/units.md); old code: "clearance must be a
+    number in m" and numpy's UFuncTypeError for "10 deg"."""
+    si = deep_groove_statics(BEARING, {"Fx": 500.0}, clearance=20e-6,
+                             ball_position_angle=math.radians(10.0))
+    text = deep_groove_statics(BEARING, {"Fx": 500.0}, clearance="20 um",
+                               ball_position_angle="10 deg")
+    assert text.geometry.diametral_clearance == pytest.approx(20e-6, rel=1e-15)
+    np.testing.assert_allclose(text.ball_loads, si.ball_loads, rtol=1e-12, atol=1e-9)
+    assert text.azimuths[0] == pytest.approx(math.radians(10.0), rel=1e-15)
 
 def test_plastic_deformation_warns_beyond_the_static_rating():
     g = get_bearing(BEARING)

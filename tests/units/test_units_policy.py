@@ -191,6 +191,30 @@ def test_motor_reference_input_is_bounded_by_the_bearing():
     assert w_ref.high == pytest.approx(SPEED_LIMIT_MULTIPLE * 38000 * RPM)
 
 
+
+def test_motor_drive_speed_ref_takes_units_and_refuses_nan():
+    """Old code: motor_drive(speed_ref="3000 rpm") was built without a check and failed at
+    assemble with ValueError: could not convert string to float: '3000 rpm' (and "3000" ran at
+    3000 rad/s past the limiting-speed check); speed_ref=nan was built and failed in CVODES
+    with a SimulationError (NaN in the right-hand side)."""
+    def run(speed_ref):
+        return simulate(assemble(motor_drive(speed_ref=speed_ref)), 0.01, n_points=3)
+
+    si = run(3000 * RPM)
+    assert np.array_equal(run("3000 rpm").values, si.values)
+    assert np.array_equal(run(registry().Quantity(3000, "rpm")).values, si.values)
+    with pytest.raises(ParameterError, match=f"more than {SPEED_LIMIT_MULTIPLE:g} x"):
+        motor_drive(speed_ref="80000 rpm")  # beyond twice the 38000 r/min limit
+    for bad, match in [(float("nan"), r"motor_drive: speed_ref must be finite, got nan \[rad/s\]"),
+                       (float("inf"), r"motor_drive: speed_ref must be finite"),
+                       ("3000", r"motor_drive: speed_ref: '3000' is not a number with a unit; "
+                                r"write e.g. '10000 rpm' or a number in rad/s"),
+                       ("3 kN", r"motor_drive: speed_ref: 'kN' is not a unit of rad/s"),
+                       ([3000.0], r"motor_drive: speed_ref must be a number \[rad/s\], a number "
+                                  r"with a unit \(e.g. '3000 rpm'\), a function of time")]:
+        with pytest.raises(ParameterError, match=match):
+            motor_drive(speed_ref=bad)
+
 # ------------------------------------------------------------------ CLI grid values
 def test_grid_values_take_units_and_the_table_stores_si():
     """--grid inputs.shaft_speed=500rpm,1000rpm and rpm(500) give the same SI input; the sweep

@@ -13,12 +13,12 @@ from bearingsim.assemblies.deep_groove.quasi_static import QuasiStaticDeepGroove
 from bearingsim.errors import ParameterError
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
-from bearingsim.validation import check_options
+from bearingsim.validation import check_options, check_quantity
 
 
 def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
                              lubricant: Lubricant | str = "ISO VG 32",
-                             clearance: float | None = None, housing: str = "fixed",
+                             clearance: float | str | None = None, housing: str = "fixed",
                              speed: Callable | float | None = None,
                              loads: dict[str, Any] | None = None, **options: Any):
     """Build a single deep-groove ball bearing at a chosen fidelity.
@@ -37,8 +37,9 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     lubricant : Lubricant or str
         ``Oil``, ``Grease``, ``Dry`` or a name for
         :func:`~bearingsim.physics.lubricant.get_lubricant`.
-    clearance : float, optional
-        Diametral clearance Pd [m]; default: catalogue (at every fidelity).
+    clearance : float or str, optional
+        Diametral clearance Pd [m], or a number with a unit (``"20 um"``); default: catalogue
+        (at every fidelity).
     housing : {"fixed"}
         The outer ring is fixed to a rigid housing (the only option of the dynamic levels).
     speed : callable or float or None
@@ -82,6 +83,8 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         raise ParameterError(f"deep_groove_ball_bearing: the quasi-static level takes no "
                              f"options (they belong to the dynamic levels), got "
                              f"{', '.join(sorted(options))}")
+    if clearance is not None:  # its range is bearing_design's to check
+        clearance = check_quantity(clearance, "clearance", "m", where="deep_groove_ball_bearing")
     cage_keys = ("pocket_clearance", "guide_clearance")
     if options:
         check_options(options, DeepGrooveOptions.keyword_names() + ("name",) + cage_keys,

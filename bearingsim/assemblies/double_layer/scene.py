@@ -154,5 +154,9 @@ SCENE_SPEC = AssemblySpec(
     reference_fidelity=declared_errors("double_layer_bearing")[0],
     level_errors=declared_errors("double_layer_bearing")[1],
     plots=double_layer_plots,
+    undefined_at_rest={
+        "Rs": "the speed ratio Rs = w_middle / w_shaft is 0/0 (the model's regularized Rs "
+              "is 0 there, no answer)",
+        "*.L10h": "a life in hours is not defined (the model's value is inf)"},
 )
 """The double-layer bearing as a scene assembly (:mod:`bearingsim.scenes`)."""

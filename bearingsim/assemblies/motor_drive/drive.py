@@ -9,7 +9,7 @@ from bearingsim.assemblies.double_layer import DoubleLayerBearing, double_layer_
 from bearingsim.assemblies.double_layer.speed import LIMIT_TEXT, shaft_speed_limit
 from bearingsim.catalog.geometry import check_speed_limit, speed_input_bounds
 from bearingsim.checks import checked
-from bearingsim.components.motor import speed_controlled_motor
+from bearingsim.components.motor import SpeedReference, speed_controlled_motor, speed_reference
 from bearingsim.components.rotational import Inertia, TorqueSource
 from bearingsim.language import Assembly, Component, Input, Variable, connect
 
@@ -24,8 +24,10 @@ class MotorDrive(Assembly):
         double-layer bearing with ``drive="flange"``).
     motor : {"dc", "pmsm"}
         Motor type (each with its PI speed control).
-    speed_ref : callable or float or None
-        Speed reference [rad/s]: ``f(t)``, constant, or None for an input ``motor.w_ref``.
+    speed_ref : callable or float or str or None
+        Speed reference [rad/s]: ``f(t)``, a constant (a number with a unit such as
+        ``"3000 rpm"`` is converted; finite, within the bearing's limiting speed), or None for
+        an input ``motor.w_ref``.
     load_torque : callable or float or None
         Load torque on the shaft [N m] (positive drives the shaft): ``f(t)``, constant, or None
         for an input ``load.tau_in``.
@@ -38,10 +40,11 @@ class MotorDrive(Assembly):
     """
 
     def __init__(self, bearing: Component | None = None, motor: str = "dc",
-                 speed_ref: Callable | float | None = None,
+                 speed_ref: SpeedReference = None,
                  load_torque: Callable | float | None = 0.0, shaft_inertia: float = 1e-3,
                  motor_options: dict | None = None, name="drive"):
         super().__init__(name)
+        speed_ref = speed_reference(speed_ref, "motor_drive")
         self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "motor_drive")
         self.shaft = Inertia(shaft_inertia)
         self.bearing = bearing if bearing is not None else double_layer_bearing(drive="flange")
@@ -95,8 +98,9 @@ class MotorShaft(Assembly):
     motor : {"dc", "pmsm"}
         :class:`~bearingsim.components.motor.DCMotorDrive` or
         :class:`~bearingsim.components.motor.PMSMDrive` (with their PI speed control).
-    speed_ref : callable or float or None
-        Speed reference [rad/s]: ``f(t)``, constant, or None for the input ``w_ref``.
+    speed_ref : callable or float or str or None
+        Speed reference [rad/s]: ``f(t)``, a constant (a number with a unit such as
+        ``"3000 rpm"`` is converted), or None for the input ``w_ref``.
     shaft_inertia : float
         Shaft (and spindle) inertia [kg m^2], as in ``motor_drive``.
     motor_options : dict, optional
@@ -110,10 +114,11 @@ class MotorShaft(Assembly):
     (positive drives the shaft), w_shaft [rad/s]
     """
 
-    def __init__(self, motor: str = "dc", speed_ref: Callable | float | None = None,
+    def __init__(self, motor: str = "dc", speed_ref: SpeedReference = None,
                  shaft_inertia: float = 1e-3, motor_options: dict | None = None,
                  name="motor_shaft"):
         super().__init__(name)
+        speed_ref = speed_reference(speed_ref, "MotorShaft")
         self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "MotorShaft")
         self.shaft = Inertia(shaft_inertia)
         self.bearing_torque = TorqueSource(None)
