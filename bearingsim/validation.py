@@ -153,6 +153,7 @@ def check_quantity(value: Any, name: str, unit: str, low: float | None = None,
     return check_range(value, name, unit, low, high, low_inclusive=low_inclusive,
                        high_inclusive=high_inclusive, where=where)
 
+
 _PLAIN_INT_LIMIT = 2**53
 """Largest magnitude of a Python ``int`` the fast path of :func:`check_range` takes (exact as a
 float; larger ones, up to those beyond the float range, go through numpy)."""

@@ -13,7 +13,7 @@ from bearingsim.assemblies.double_layer import DynamicDoubleLayerBearing, double
 from bearingsim.checks import checked
 from bearingsim.errors import MultipleSteadyStatesWarning, ParameterError, SimulationError
 from bearingsim.simulation import simulate, steady_state
-from bearingsim.validation import check_range, check_vector
+from bearingsim.validation import check_quantity, check_range, check_vector
 
 __all__ = ["SpeedRatioEstimate", "SpeedRatioSweep", "SteadyBranch", "speed_ratio",
            "speed_ratio_sweep", "steady_branches", "steady_ratio"]
@@ -106,7 +106,7 @@ class SpeedRatioSweep:
 
 
 @checked(skip=("system",))
-def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None,
+def steady_ratio(system: System, speed: float | str, loads=(0.0, 0.0), parameters=None,
                  x_guess=None) -> tuple[float, float, np.ndarray]:
     """Steady ``Rs`` and shaft friction torque of an assembled double-layer bearing.
 
@@ -116,12 +116,14 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
         An assembled double-layer bearing with the input ``shaft_speed`` and the variables
         ``Rs`` and ``M_shaft`` (:func:`double_layer_bearing` with ``drive="speed"``,
         ``speed=None``).
-    speed : float
-        Shaft speed [rad/s], finite and not 0 (either sign): at rest ``Rs = w_middle /
-        w_shaft`` is 0/0 (the model's regularized ``Rs`` is 0 there, which is no answer).
+    speed : float or str
+        Shaft speed [rad/s] or a number with a unit (``"3000 rpm"``), finite and not 0
+        (either sign): at rest ``Rs = w_middle / w_shaft`` is 0/0 (the model's regularized
+        ``Rs`` is 0 there, which is no answer).
     loads : (float, float)
-        Radial and axial load [N], finite, set when the system has the inputs ``Fr`` and
-        ``Fa``.
+        Radial and axial load [N] (or numbers with a unit, ``"2 kN"``), finite, set when the
+        system has the inputs ``Fr`` and ``Fa`` (a kinematic level's Rs does not depend on
+        them).
     parameters : dict, optional
         Parameter overrides.
     x_guess : array, optional
@@ -154,12 +156,14 @@ def steady_ratio(system: System, speed: float, loads=(0.0, 0.0), parameters=None
     """
     where = "steady_ratio"
     system = as_system(system, where)
-    check_range(speed, "speed", "rad/s", where=where)
+    speed = check_quantity(speed, "speed", "rad/s", where=where)
     if speed == 0.0:
         raise ParameterError(
             f"{where}: speed = 0 rad/s: the speed ratio Rs = w_middle / w_shaft is 0/0 at rest, "
             f"so it has no value there; valid range: a finite shaft speed other than 0 [rad/s] "
             f"(either sign; 1000 r/min = 104.7 rad/s)")
+    if isinstance(loads, (tuple, list)):  # numbers with a unit: "2 kN"
+        loads = [check_quantity(v, f"loads[{k}]", "N", where=where) for k, v in enumerate(loads)]
     loads = tuple(float(v) for v in check_vector(loads, 2, "loads (Fr, Fa)", "N", where))
     inputs = {"shaft_speed": float(speed)}
     if "Fr" in system.input_names:

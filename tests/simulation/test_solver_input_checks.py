@@ -512,3 +512,18 @@ def test_scene_budgets_are_read_checked_and_end_the_run():
     assert scene.replace(title="again").simulation.timeout == 60.0  # survives to_dict
     with pytest.raises(BudgetExceededError, match=r"step budget of 30 steps"):
         run_simulation(prepare(scene))
+
+
+def test_steady_ratio_takes_numbers_with_units_as_simulate_does(torque_system):
+    """``steady_ratio(s, "1000 rpm")`` was refused ("speed must be float") and loads as text
+    too, while simulate's inputs and System.p0 convert them (docs/units.md)."""
+    with_units = steady_ratio(torque_system, "1000 rpm", ("0.2 kN", "0 N"))
+    in_si = steady_ratio(torque_system, 1000 * np.pi / 30, (200.0, 0.0))
+    assert with_units[0] == pytest.approx(in_si[0], rel=1e-12)
+    assert with_units[1] == pytest.approx(in_si[1], rel=1e-12)
+    with pytest.raises(ParameterError, match=r"steady_ratio: speed: 'kN' is not a unit of "
+                                             r"rad/s quantities"):
+        steady_ratio(torque_system, "3 kN")
+    with pytest.raises(ParameterError, match=r"steady_ratio: loads\[1\]: 'rpm' is not a unit "
+                                             r"of N quantities"):
+        steady_ratio(torque_system, 100.0, (200.0, "5 rpm"))
