@@ -3,6 +3,8 @@ model's own static solution, load trends, life trends and input errors."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -162,3 +164,18 @@ def test_clearance_takes_a_number_with_a_unit(fidelity):
     with pytest.raises(ParameterError, match=r"clearance = 0.001 \[m\] is outside the valid "
                                              r"range \[0, 9.52e-05\] \[m\]"):
         deep_groove_ball_bearing("6304", fidelity, clearance="1 mm")
+
+
+@pytest.mark.parametrize("fidelity", ["quasi-static", "dynamic"])
+def test_speed_takes_a_number_with_a_unit(fidelity):
+    """``speed="3000 rpm"`` was refused, at the dynamic level by the internal SpeedSource
+    ("SpeedSource: speed must be a number in rad/s"); now converted as clearance is."""
+    with_unit = deep_groove_ball_bearing("6304", fidelity, speed="3000 rpm")
+    in_si = deep_groove_ball_bearing("6304", fidelity, speed=3000 * math.pi / 30)
+    if fidelity == "quasi-static":  # the speed is in the ball row's parameters
+        np.testing.assert_allclose(assemble(with_unit).p0(), assemble(in_si).p0(), rtol=1e-15)
+    else:
+        assert with_unit.options.speed == pytest.approx(in_si.options.speed, rel=1e-15)
+    with pytest.raises(ParameterError, match=r"deep_groove_ball_bearing: speed: 'kN' is not a "
+                                             r"unit of rad/s quantities"):
+        deep_groove_ball_bearing("6304", fidelity, speed="3 kN")

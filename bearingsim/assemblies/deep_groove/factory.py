@@ -13,6 +13,7 @@ from bearingsim.assemblies.deep_groove.quasi_static import QuasiStaticDeepGroove
 from bearingsim.errors import ParameterError
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
+from bearingsim.units import is_quantity
 from bearingsim.validation import check_options, check_quantity
 
 
@@ -42,11 +43,12 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
         (at every fidelity).
     housing : {"fixed"}
         The outer ring is fixed to a rigid housing (the only option of the dynamic levels).
-    speed : callable or float or None
-        Inner-ring speed [rad/s]. Dynamic levels: a function of time, a constant or ``None``
-        (input ``shaft_speed``). Quasi-static level: a constant >= 0 (centrifugal and
-        gyroscopic ball loads when > 0) or ``None`` for a bearing at rest (no input); a
-        function of time raises :class:`~bearingsim.errors.ParameterError`.
+    speed : callable or float or str or None
+        Inner-ring speed [rad/s] (or a number with a unit, ``"3000 rpm"``). Dynamic levels:
+        a function of time, a constant or ``None`` (input ``shaft_speed``). Quasi-static
+        level: a constant >= 0 (centrifugal and gyroscopic ball loads when > 0) or ``None``
+        for a bearing at rest (no input); a function of time raises
+        :class:`~bearingsim.errors.ParameterError`.
     loads : dict, optional
         External loads on the inner ring, ``Fx, Fy, Fz`` [N], ``Mx, My`` [N m]; finite
         constants, functions of time or None (inputs); other keys raise
@@ -85,6 +87,8 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
                              f"{', '.join(sorted(options))}")
     if clearance is not None:  # its range is bearing_design's to check
         clearance = check_quantity(clearance, "clearance", "m", where="deep_groove_ball_bearing")
+    if isinstance(speed, str) or is_quantity(speed):  # a number with a unit: "3000 rpm"
+        speed = check_quantity(speed, "speed", "rad/s", where="deep_groove_ball_bearing")
     cage_keys = ("pocket_clearance", "guide_clearance")
     if options:
         check_options(options, DeepGrooveOptions.keyword_names() + ("name",) + cage_keys,
