@@ -168,12 +168,48 @@ def _same_as(x: np.ndarray, y: np.ndarray) -> bool:
     return x.shape == y.shape and bool(np.allclose(x, y, rtol=1e-9, atol=0.0))
 
 
-def _curves(rows: list[dict[str, Any]], keys: list[str]) -> list[tuple[dict, list[dict]]]:
-    """Rows grouped by the values of ``keys[1:]``: one curve over ``keys[0]`` each."""
+MAX_CURVES = 8
+"""Most curves a characteristic panel draws; beyond (a sampled sweep: every point its own
+combination of the other keys) the points are drawn as markers without lines."""
+
+
+def _curves(rows: list[dict[str, Any]], keys: list[str]
+            ) -> tuple[list[tuple[dict, list[dict]]], bool]:
+    """Rows grouped by the values of ``keys[1:]``: one curve over ``keys[0]`` each, its rows
+    in increasing ``keys[0]`` (a grid given out of order draws no zig-zag), and False; more
+    than :data:`MAX_CURVES` groups: one group of every row and True (draw markers only)."""
     groups: dict[tuple, list[dict]] = {}
     for row in rows:
         groups.setdefault(tuple(row.get(k) for k in keys[1:]), []).append(row)
-    return [(dict(zip(keys[1:], g, strict=True)), members) for g, members in groups.items()]
+    sampled = len(groups) > MAX_CURVES
+    if sampled:
+        groups, keys = {(): list(rows)}, keys[:1]
+    return [(dict(zip(keys[1:], g, strict=True)), sorted(members, key=lambda r: r[keys[0]]))
+            for g, members in groups.items()], sampled
+
+
+def value_axis(ax, values: np.ndarray, si_unit: str, unit: str) -> None:
+    """A value axis for the kind of quantity: a life (``h``, ``Mrev``), spanning decades
+    between operating points, on a logarithmic axis (when all values are positive); other
+    quantities linear, from 0 where :func:`include_zero` says so.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes (changed in place).
+    values : ndarray
+        The plotted values (display units).
+    si_unit : str
+        Their SI unit (model notation).
+    unit : str
+        Their display unit.
+    """
+    finite = values[np.isfinite(values)]
+    if si_unit in ("h", "Mrev") and finite.size and (finite > 0).all():
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        return
+    include_zero(ax, values, unit)
 
 
 def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
@@ -219,7 +255,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     per_panel = [shown] if what == "modes" else [[n] for n in shown]
     fig = Figure(figsize=(7, 2.8 * len(per_panel) + 0.9))
     axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
-    curves = _curves(rows, keys)
+    curves, markers_only = _curves(rows, keys)
     for ax, panel in zip(axes, per_panel, strict=True):
         all_y = []
         y_unit = ""
@@ -234,27 +270,28 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                 else:
                     label, color = _curve_label(values, units) or None, f"C{k % 10}"
                 ax.plot(x, y, label=label, color=color, marker=MARKERS[j % len(MARKERS)],
-                        linestyle=style, markersize=4)
+                        linestyle="none" if markers_only else style, markersize=4)
                 all_y.append(y)
             if len(panel) > 1 and len(curves) > 1:
                 ax.plot([], [], color="0.3", linestyle=style,
                         label=_curve_label(values, units))
-        include_zero(ax, np.concatenate(all_y), "Hz" if what == "modes" else y_unit)
+        value_axis(ax, np.concatenate(all_y), "Hz" if what == "modes" else
+                   units.get(panel[0], ""), "Hz" if what == "modes" else y_unit)
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
                       else axis_text(panel[0], prep, y_unit), fontsize=8)
-        if len(curves) > 1 or len(panel) > 1:
+        if (len(curves) > 1 or len(panel) > 1) and not markers_only:
             ax.legend(fontsize=7)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
     per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""
+    if markers_only:
+        per = f" ({len(rows)} points; {', '.join(keys[1:])} vary too)"
     question = ("natural frequencies by mode" if what == "modes"
                 else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
     fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}",
                  fontsize=9)
     fig.tight_layout()
     return [("modes" if what == "modes" else "steady", fig)]
-
-
 
 
 def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]):

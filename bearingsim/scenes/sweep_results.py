@@ -12,10 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
 from bearingsim.scenes.preparation import Prepared
-from bearingsim.units import display_unit
 
 __all__ = ["TRANSIENT_COLUMNS", "column_units", "result_columns", "sweep_figures", "table_row"]
 
@@ -127,10 +124,12 @@ def table_row(index: int, values: dict[str, Any], results: list[str],
 
 def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
                   results: list[str], units: dict[str, str], stem: str) -> list:
-    """``<stem>.png``: each result against the first numeric swept key (engineering units);
-    a transient's one panel per output, an analysis's one curve per value of the other keys
-    (:func:`~bearingsim.scenes.plots.characteristic_figures`, natural frequencies in one
-    panel); none when no swept key is numeric.
+    """``<stem>.png``: each result against the first numeric swept key (engineering units),
+    one panel per output (natural frequencies in one panel) and one curve per value of the
+    other keys, as an analysis scene draws them
+    (:func:`~bearingsim.scenes.plots.characteristic_figures`: points in order along the axis,
+    lives on a logarithmic axis, a sampled sweep as markers); none when no swept key is
+    numeric.
 
     Parameters
     ----------
@@ -152,7 +151,6 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     list of (str, matplotlib.figure.Figure)
         File name and figure (none or one).
     """
-    from matplotlib.figure import Figure
 
     from bearingsim.scenes.plots import characteristic_figures
 
@@ -162,24 +160,7 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
     if not numeric or not outputs:
         return []
-    kind = prep.scene.analysis
-    if kind != "transient":
-        order = [numeric[0], *(k for k in keys if k != numeric[0])]
-        what = "modes" if kind == "modes" else "steady"
-        figs = characteristic_figures(prep, ok, order, units, outputs, what)
-        return [(f"{stem}.png", fig) for _, fig in figs[:1]]
-    x_key = numeric[0]
-    x = np.array([r[x_key] for r in ok], dtype=float)
-    order = np.argsort(x)
-    x_factor, x_unit = display_unit(units.get(x_key, ""), x)
-    fig = Figure(figsize=(7, 1.9 * len(outputs) + 1))
-    axes = np.atleast_1d(fig.subplots(len(outputs), 1, sharex=True))
-    for ax, name in zip(axes, outputs, strict=True):
-        y = np.array([r[name] for r in ok], dtype=float)
-        factor, unit = display_unit(units[name], y)
-        ax.plot(x[order] * x_factor, y[order] * factor, "o-")
-        ax.set_ylabel(f"{name}\n[{unit}]", fontsize=8)
-        ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel(f"{x_key} [{x_unit}]")
-    fig.tight_layout()
-    return [(f"{stem}.png", fig)]
+    order = [numeric[0], *(k for k in keys if k != numeric[0])]
+    what = "modes" if prep.scene.analysis == "modes" else "steady"
+    figs = characteristic_figures(prep, ok, order, units, outputs, what)
+    return [(f"{stem}.png", fig) for _, fig in figs[:1]]

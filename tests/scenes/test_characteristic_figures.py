@@ -1,0 +1,71 @@
+"""The curves of an analysis or sweep figure (found by a new-user trial of the sweep figures):
+a sweep over load x speed drew every point as one line against speed, zig-zagging between the
+loads; a grid given out of order zig-zagged along its own axis; a life (L10h, spanning decades)
+sat on a linear axis; a sampled sweep drew a legend entry per point."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim.scenes import parse_scene, prepare
+from bearingsim.scenes.library import builtin_scene_path
+from bearingsim.scenes.plots import MAX_CURVES, characteristic_figures
+from bearingsim.scenes.sweep_results import sweep_figures
+
+UNITS = {"shaft_speed": "rad/s", "Fr": "N", "Rs": "1", "inner_layer.L10h": "h"}
+
+
+@pytest.fixture(scope="module")
+def prep():
+    return prepare(parse_scene(builtin_scene_path("double_layer_friction").read_text(
+        encoding="utf-8")))
+
+
+def _rows(speeds, loads):
+    return [{"shaft_speed": w, "Fr": f, "Rs": 1e-3 * w / (1 + f),
+             "inner_layer.L10h": 1e12 / (w * (1 + f) ** 3), "status": "ok"}
+            for f in loads for w in speeds]
+
+
+def _lines(fig):
+    return [[line for line in ax.get_lines() if len(line.get_xdata())] for ax in fig.axes]
+
+
+def test_one_curve_per_other_key_in_order_along_the_axis(prep):
+    speeds = [300.0, 100.0, 200.0]  # out of order, as a user's grid may be
+    [(_, fig)] = characteristic_figures(prep, _rows(speeds, [10.0, 100.0]), ["shaft_speed", "Fr"],
+                                        UNITS, ["Rs", "inner_layer.L10h"], "steady")
+    rs_lines, life_lines = _lines(fig)
+    assert len(rs_lines) == 2 and len(life_lines) == 2  # one per load
+    for line in rs_lines + life_lines:
+        x = np.asarray(line.get_xdata(), dtype=float)
+        assert np.all(np.diff(x) > 0) and line.get_linestyle() != "None"
+    assert fig.axes[0].get_yscale() == "linear" and fig.axes[1].get_yscale() == "log"
+    assert fig.axes[0].get_legend() is not None
+
+
+def test_a_sampled_sweep_is_drawn_as_markers_without_a_legend(prep):
+    rng = np.random.default_rng(1)
+    rows = _rows([], [])
+    for w, f in zip(rng.uniform(100, 1000, 20), rng.uniform(0, 500, 20), strict=True):
+        rows += _rows([float(w)], [float(f)])
+    assert len(rows) > MAX_CURVES
+    [(_, fig)] = characteristic_figures(prep, rows, ["shaft_speed", "Fr"], UNITS, ["Rs"],
+                                        "steady")
+    [[line]] = _lines(fig)
+    assert line.get_linestyle() == "None" and len(line.get_xdata()) == 20
+    assert np.all(np.diff(np.asarray(line.get_xdata(), dtype=float)) > 0)
+    assert fig.axes[0].get_legend() is None
+    assert "20 points; Fr vary too" in fig.texts[0].get_text()
+
+
+def test_a_transient_sweep_draws_the_same_curves(prep):
+    """The transient sweep figure had its own code: all points of a load x speed grid in one
+    line sorted by speed."""
+    rows = _rows([100.0, 200.0, 300.0], [10.0, 100.0])
+    [(name, fig)] = sweep_figures(prep, rows, ["shaft_speed", "Fr"], ["Rs", "inner_layer.L10h"],
+                                  UNITS, "sweep")
+    assert name == "sweep.png"
+    rs_lines, life_lines = _lines(fig)
+    assert len(rs_lines) == 2 and fig.axes[1].get_yscale() == "log"
