@@ -87,7 +87,7 @@ def test_sweep_through_the_command_line_on_a_tcp_scheduler(deployment, tmp_path)
          "--no-progress"], env={**os.environ, "PYTHONPATH": str(WORKTREE)},
         capture_output=True, text=True, timeout=240)
     assert done.returncode == 0, done.stderr[-2000:]
-    assert "4 point(s): 4 ok, 0 failed" in done.stdout
+    assert "4 point(s): 4 settled, 0 not settled, 0 failed" in done.stdout
     rows = list(csv.DictReader((out / "bearing.sweep.csv").open()))
     assert [r["status"] for r in rows] == ["ok"] * 4
     summary = json.loads((out / "bearing.sweep.json").read_text())
