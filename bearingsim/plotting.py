@@ -116,6 +116,32 @@ def axis_label(name: str, unit: str) -> str:
     return f"{name} [{unit_label(unit)}]"
 
 
+def wrapped_label(text: str, unit: str) -> str:
+    """An axis label ``"text [unit]"`` wrapped to about 36 characters a line, the unit never
+    split (a long description otherwise runs off a small panel).
+
+    Parameters
+    ----------
+    text : str
+        The quantity's description.
+    unit : str
+        Its display unit.
+
+    Returns
+    -------
+    str
+        The label, lines joined by newlines.
+    """
+    import textwrap
+
+    lines = textwrap.wrap(text, 32) or [""]
+    if len(lines[-1]) + len(unit) + 3 <= 36:
+        lines[-1] = f"{lines[-1]} [{unit}]".lstrip()
+    else:
+        lines.append(f"[{unit}]")
+    return "\n".join(lines)
+
+
 def render(spec: FigureSpec, title: str = ""):
     """The :class:`matplotlib.figure.Figure` of a :class:`FigureSpec` (made without pyplot),
     every axis in the display unit of its quantity (r/min, µm, deg, kN, N mm, ``-``:

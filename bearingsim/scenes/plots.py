@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec
+from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, wrapped_label
 from bearingsim.scenes.statics_table import STATICS, statics_of
 from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.units import to_display
@@ -119,14 +119,7 @@ def axis_text(name: str, prep: Any, unit: str) -> str:
     str
         The label.
     """
-    import textwrap
-
-    lines = textwrap.wrap(describe(name, prep), 32) or [""]
-    if len(lines[-1]) + len(unit) + 3 <= 36:  # the unit never split: "[N mm]"
-        lines[-1] = f"{lines[-1]} [{unit}]".lstrip()
-    else:
-        lines.append(f"[{unit}]")
-    return "\n".join(lines)
+    return wrapped_label(describe(name, prep), unit)
 
 
 _FROM_ZERO = ("N", "kN", "N m", "N mm", "MPa", "h", "10⁶ rev", "Hz", "W", "N/µm")

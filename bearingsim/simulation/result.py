@@ -13,6 +13,7 @@ import numpy as np
 from bearingsim.checks import checked
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path
+from bearingsim.plotting import wrapped_label
 from bearingsim.series_csv import write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
 
@@ -374,9 +375,9 @@ class Result:
             for n in group:
                 y, _ = to_display(self[n], self.units.get(n, "1"))
                 axis.plot(self.t, y, color=next(cycle), label=self.descriptions.get(n) or n)
-            text = ", ".join(self.descriptions.get(n) or n for n in group)
-            axis.set_ylabel(f"{text if len(text) <= 48 else text[:45] + '...'} [{unit}]",
-                            fontsize=8)
+            # several variables: the legend names them, the axis its unit
+            axis.set_ylabel(wrapped_label(self.descriptions.get(group[0]) or group[0], unit)
+                            if len(group) == 1 else f"[{unit}]", fontsize=8)
             if len(group) > 1 or ax is not None:
                 axis.legend(fontsize=7, loc="best")
             if ax is None or axis is ax:

@@ -50,7 +50,7 @@ def test_result_plot_keeps_the_backend_and_draws_into_a_given_axes(tmp_path):
     assert matplotlib.get_backend() == backend
     assert (tmp_path / "rs.png").is_file() and len(fig.axes) == 2
     # dimensionless: [-], not [1]; labels from the descriptions (issue 27)
-    assert fig.axes[0].get_ylabel() == "speed distribution ratio n_z / n_i [-]"
+    assert fig.axes[0].get_ylabel() == "speed distribution ratio n_z /\nn_i [-]"
     host = Figure()
     ax = host.add_subplot()
     assert res.plot(["Rs", "w_middle"], ax=ax) is host and len(ax.lines) == 1
@@ -255,3 +255,26 @@ def test_a_registered_assembly_declares_its_own_plots():
     assert ax.get_ylabel() == "speed [r/min]"
     assert ax.lines[0].get_ydata()[-1] == pytest.approx(run.result.final("w_middle") * 30
                                                          / np.pi)
+
+
+def test_result_plot_labels_stay_on_the_figure(tmp_path):
+    """The README's figure (shaft and middle-ring speed, then Rs) cut its first axis label
+    off at the top: one line "shaft (inner ring) speed, middle ring speed [r/min]" longer than
+    the panel. Several variables on one axis are named by the legend, the axis by its unit; a
+    long description is wrapped."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.simulation import simulate
+
+    res = simulate(assemble(double_layer_bearing()), 0.2, inputs={"shaft_speed": 100.0},
+                   n_points=11)
+    fig = res.plot(["w_shaft", "w_middle", "Rs"])
+    FigureCanvasAgg(fig).draw()
+    renderer = fig.canvas.get_renderer()
+    assert fig.axes[0].get_ylabel() == "[r/min]"
+    height = fig.bbox.height
+    for ax in fig.axes:
+        box = ax.yaxis.label.get_window_extent(renderer)
+        assert 0 <= box.y0 and box.y1 <= height, ax.get_ylabel()
