@@ -28,13 +28,11 @@ __all__ = ["build_parser", "cli_export", "scene_outputs"]
 
 
 def _assignment(text: str) -> tuple[str, float]:
-    name, sep, value = text.partition("=")
-    if not sep:
-        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
-    try:
-        return name.strip(), float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{name}: {value!r} is not a number") from None
+    """NAME=VALUE of a parameter start value: a number."""
+    name, value = _input_assignment(text)
+    if isinstance(value, str):
+        raise argparse.ArgumentTypeError(f"{name}: {value!r} is not a number")
+    return name, value
 
 
 def _input_assignment(text: str) -> tuple[str, float | str]:
