@@ -195,8 +195,8 @@ def test_steady_ratio_refuses_a_shaft_at_rest(torque_system, speed):
     ((200.0,), r"loads \(Fr, Fa\) must have 2 entries \[N\], got 1"),  # was IndexError
     ((200.0, 0.0, 5.0), r"must have 2 entries \[N\], got 3"),  # was silently dropped
     (200.0, r"must have 2 entries \[N\], got 1"),  # was TypeError: not subscriptable
-    (("0.2 kN", 0.0), r"loads \(Fr, Fa\) must be 2 numbers \[N\]"),  # was ValueError
-    ((float("nan"), 0.0), r"loads \(Fr, Fa\) must be finite"),
+    (("0.2 rpm", 0.0), r"loads\[0\]: 'rpm' is not a unit of N quantities"),  # ValueError
+    ((float("nan"), 0.0), r"loads\[0\] must be finite"),
 ])
 def test_steady_ratio_loads_are_two_finite_numbers(torque_system, loads, match):
     with pytest.raises(ParameterError, match=match):
