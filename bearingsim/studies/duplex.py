@@ -37,6 +37,7 @@ from bearingsim.assemblies.duplex import (
     preload_force,
     preload_offset,
 )
+from bearingsim.assemblies.duplex.limits import check_pair_loads
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import ParameterError, SimulationError
@@ -315,13 +316,25 @@ class DuplexModel:  # numpydoc ignore=PR02
         -------
         Equilibrium
 
+        Raises
+        ------
+        ParameterError
+            For loads that bring the pair's static equivalent load beyond 10 x its static load
+            rating (ISO 76 rules for pairs:
+            :func:`~bearingsim.assemblies.duplex.limits.check_pair_loads`), or a load input
+            beyond its bound.
+
         Warns
         -----
         RowUnloadedWarning
             If a row carries no load (its stiffness is then zero).
+        PlasticDeformationWarning
+            Above the pair's static load rating.
         """
         params = self.parameters(**config)
         inputs = _load_inputs(loads)
+        check_pair_loads(self.pair.options, {k.split(".")[1]: v for k, v in inputs.items()},
+                         f"DuplexModel({self.geometry.designation} {self.arrangement})")
         x = self._solve(inputs, params)
         return self._equilibrium(x, inputs, params)
 
