@@ -37,7 +37,7 @@ from bearingsim.assemblies.duplex import (
     preload_force,
     preload_offset,
 )
-from bearingsim.assemblies.duplex.limits import check_pair_loads
+from bearingsim.assemblies.duplex.limits import check_pair_loads, check_pair_speed
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import ParameterError, SimulationError
@@ -246,7 +246,8 @@ class DuplexModel:  # numpydoc ignore=PR02
             Free contact angle [rad]. Default: the pair's, or that of ``bearing`` when
             ``bearing`` is given.
         speed : float, optional
-            Shaft speed [rad/s] (default: the pair's).
+            Shaft speed [rad/s] (default: the pair's); warned above the pair's limiting speed,
+            refused beyond twice it.
         ball_position_angle : float, optional
             Azimuth of ball 0 of both rows [rad] (default: the pair's).
         bearing : str or BearingGeometry, optional
@@ -261,6 +262,7 @@ class DuplexModel:  # numpydoc ignore=PR02
         g = self._geometry(bearing)
         contact_angle = self._contact_angle(contact_angle, bearing)
         speed = pair.speed if speed is None else speed
+        check_pair_speed(g, speed, f"DuplexModel({g.designation})")
         if speed != 0.0 and not pair.row[0].speed_effects:
             raise ParameterError(
                 f"DuplexModel: speed = {speed:g} rad/s, but the pair was assembled without speed "

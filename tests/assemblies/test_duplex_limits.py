@@ -27,7 +27,7 @@ from bearingsim.assemblies.cylindrical_roller.spindle import spindle
 from bearingsim.assemblies.duplex import DuplexOptions, duplex_pair
 from bearingsim.assemblies.duplex.limits import pair_load_bounds, rated_geometry
 from bearingsim.catalog import get_bearing
-from bearingsim.errors import ParameterError, PlasticDeformationWarning
+from bearingsim.errors import ParameterError, PlasticDeformationWarning, SpeedLimitWarning
 from bearingsim.physics.life import pair_static_load_rating, static_load_factors
 from bearingsim.simulation import steady_state
 from bearingsim.studies.duplex import DuplexModel
@@ -118,4 +118,38 @@ def test_the_spindle_bounds_only_the_axial_load():
     shaft = spindle("7014C", "NU210", "DB").pair.shaft.declarations
     assert shaft["Fz"].warn_above == pytest.approx(46.0e3 / 0.46, rel=1e-12)
     assert all(shaft[k].warn_above is None for k in ("Fx", "Fy", "Mx", "My"))
+
+
+# --------------------------------------------------------------------------- limiting speed
+RPM = math.pi / 30.0
+
+
+def test_the_7020_rows_carry_nsks_limiting_speeds():
+    """NSK Super Precision Bearings (Russian ed.), p. 56, series 70 standard: 7020C 9 200 r/min
+    with grease, 14 000 r/min with oil; 7020A5 8 000 / 12 000; 7020A 6 000 / 8 000 (the oil
+    values are entered, as GMN's for 7014C)."""
+    for name, oil in (("7020C", 14000.0), ("7020A5", 12000.0), ("7020A", 8000.0)):
+        assert get_bearing(name).limiting_speed == pytest.approx(oil * RPM, rel=1e-12)
+
+
+def test_the_reported_speed_is_refused_before_the_solver():
+    """Before: speed=1e5 rad/s (955 000 r/min) was accepted and failed inside CasADi's
+    FastNewton. A pair runs at 0.8 x one bearing's limiting speed (SKF General Catalogue 6000
+    p. 414: about 20 % lower; NSK Super Precision p. 170, Table 5.1: DB, light preload 0.80):
+    11 200 r/min for 7020C; warned above it, refused beyond twice it."""
+    with pytest.raises(ParameterError, match=r"speed 100000 rad/s \(954930 r/min\) is more than "
+                                             r"2 x the limiting speed of a pair of 7020C .*"
+                                             r"11200 r/min; valid range \[0, 22400\] r/min"):
+        DuplexOptions("7020C", "DF", speed=1e5)
+    with pytest.warns(SpeedLimitWarning, match=r"12000 r/min\) exceeds the limiting speed of a "
+                                               r"pair of 7020C .*11200 r/min"):
+        DuplexOptions("7020C", "DF", speed=12000 * RPM)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SpeedLimitWarning)
+        DuplexOptions("7020C", "DF", speed=11000 * RPM)
+
+
+def test_a_study_configuration_speed_is_checked_too(df):
+    with pytest.raises(ParameterError, match=r"DuplexModel\(7020C\): speed 100000 rad/s"):
+        df.parameters(speed=1e5)
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from bearingsim.assemblies.duplex.limits import check_pair_speed
 from bearingsim.assemblies.duplex.preload import (
     ARRANGEMENTS,
     offset_preload,
@@ -40,7 +41,8 @@ class DuplexOptions:
         a bearing without catalogued classes a fraction of its C
         (:func:`~bearingsim.assemblies.duplex.preload_force`).
     speed : float
-        Shaft (inner ring) speed [rad/s], up to the bearing's limit.
+        Shaft (inner ring) speed [rad/s]; warned above the pair's limiting speed, refused
+        beyond twice it (:func:`~bearingsim.assemblies.duplex.limits.check_pair_speed`).
     shaft : ShaftSpec or dict, optional
         Resolved to ``shaft_spec`` (default: a solid steel shaft of the bearing's bore, four
         bores long, rows three bores apart).
@@ -132,7 +134,7 @@ class DuplexOptions:
                   else as_lubricant(self.lubricant, WHERE))
         self._resolve_preload()
         speed = float(self.speed)
-        g.check_speed(speed, f"duplex_pair({g.designation})")
+        check_pair_speed(g, speed, f"duplex_pair({g.designation})")
         for name in ("exact", "axisymmetric"):
             check_flag(getattr(self, name), name, WHERE)
         check_flag(self.speed_effects, "speed_effects", WHERE, allow_none=True)
