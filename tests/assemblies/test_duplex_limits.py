@@ -153,3 +153,26 @@ def test_a_study_configuration_speed_is_checked_too(df):
     with pytest.raises(ParameterError, match=r"DuplexModel\(7020C\): speed 100000 rad/s"):
         df.parameters(speed=1e5)
 
+
+# --------------------------------------------------------------------------- solver failures
+def test_a_newton_block_that_fails_says_so_without_casadis_dump(capfd):
+    """Before: a pair run beyond what its ball equations solve (here a 7020C without a
+    limiting speed at 1e5 rad/s, on CasADi's VM) printed CasADi's dump of the inputs of
+    newton0, ode and f (hundreds of numbers) on standard error, then failed with CasADi's
+    four-line chain ending "Set 'error_on_fail' option to false to ignore this error"."""
+    import dataclasses
+
+    from bearingsim.assembler import assemble
+    from bearingsim.errors import SimulationError
+    from bearingsim.simulation import simulate
+
+    unlimited = dataclasses.replace(get_bearing("7020C"), designation="7020X",
+                                    limiting_speed=None)
+    system = assemble(duplex_pair(unlimited, "DF", speed=1e5, damping_ratio=0.1))
+    with pytest.raises(SimulationError, match=r"LSODA failed near t = 0 s of 0\.01 s \(the "
+                                              r"Newton iteration of the nonlinear block newton0 "
+                                              r"did not converge"):
+        simulate(system, 0.01, method="LSODA", compiled=False, n_points=3)
+    printed = capfd.readouterr()
+    for text in (printed.out, printed.err):
+        assert "Input 0" not in text and "Function newton0" not in text
