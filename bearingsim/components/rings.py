@@ -14,7 +14,8 @@ body that owns the connector.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 from bearingsim.components.connectors import FRAME_FLOWS, FRAME_POTENTIALS, RingFrame
 from bearingsim.errors import ParameterError
@@ -246,6 +247,9 @@ class Shaft(Component):
         parameters ``c_x`` ... ``c_ty``.
     name : str
         Instance name (the prefix of its variables' dotted names).
+    bounds : dict, optional
+        Load name (``Fx`` ... ``My``) -> keywords of its input (``low``, ``high``,
+        ``warn_above``, ``limit``: e.g. a duplex pair's static load rating); default: unbounded.
 
     Variables
     ---------
@@ -261,7 +265,8 @@ class Shaft(Component):
     def __init__(self, mass: float = 10.0, transverse_inertia: float = 0.05,
                  polar_inertia: float = 0.02, positions: Sequence[float] = (0.05, -0.05),
                  speed: float = 0.0, exact: bool = True, q0: Sequence[float] = (0.0,) * 5,
-                 damping: Sequence[float] | None = None, name=None):
+                 damping: Sequence[float] | None = None, name=None,
+                 bounds: Mapping[str, Mapping[str, Any]] | None = None):
         super().__init__(name)
         if len(positions) < 1 or len(q0) != 5:
             raise ParameterError(f"{type(self).__name__}: positions [m] needs at least one entry "
@@ -287,7 +292,8 @@ class Shaft(Component):
                              strict=True):
             self.add(key, Variable(0.0, unit, f"rate {key}"))
         for key, unit in zip(FRAME_FLOWS, ("N",) * 3 + ("N.m",) * 2, strict=True):
-            self.add(key, Input(0.0, unit, f"external load {key} at the centre of mass"))
+            self.add(key, Input(0.0, unit, f"external load {key} at the centre of mass",
+                                **(bounds or {}).get(key, {})))
         units = ("N.s/m",) * 3 + ("N.m.s/rad",) * 2
         self._c = [] if damping is None else [
             self.add(f"c_{p}", Parameter(c, u, f"viscous damping of {p} against the ground",

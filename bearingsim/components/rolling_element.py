@@ -35,8 +35,8 @@ from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.errors import CatalogError, ParameterError, PlasticDeformationWarning
 from bearingsim.physics import line_contact
 from bearingsim.physics.contact_law import contact_load
+from bearingsim.physics.life import pair_static_load_rating, static_load_factors
 from bearingsim.physics.life import static_equivalent_load as ball_static_equivalent_load
-from bearingsim.physics.life import static_load_factors
 from bearingsim.validation import check_count, check_range
 
 __all__ = [
@@ -52,6 +52,7 @@ __all__ = [
     "magnitude_input_bounds",
     "resolve_geometry",
     "static_equivalent_load",
+    "static_load_bounds",
 ]
 
 
@@ -301,44 +302,101 @@ def friction_key(geometry: Any) -> str:
     return geometry.bearing_type
 
 
-def static_equivalent_load(Fr: Any, Fa: Any, geometry: Any) -> Any:  # noqa: N803
+def static_equivalent_load(Fr: Any, Fa: Any, geometry: Any,  # noqa: N803
+                           arrangement: str | None = None) -> Any:
     """ISO 76 static equivalent load [N] of a ball or roller geometry.
 
-    Ball bearings: :func:`bearingsim.physics.life.static_equivalent_load`. Radial roller
-    bearings with ``a = 0`` (cylindrical, NU type: no axial load path): ``P0 = Fr``
-    (ISO 76:2006, radial roller bearings).
+    Ball bearings: :func:`bearingsim.physics.life.static_equivalent_load` (of one bearing, or
+    of a DB, DF or DT pair of angular contact ball bearings). Radial roller bearings with
+    ``a = 0`` (cylindrical, NU type: no axial load path): ``P0 = Fr`` (ISO 76:2006, radial
+    roller bearings).
 
     Parameters
     ----------
     Fr, Fa : float, array or SX
         Radial and axial load [N], >= 0.
     geometry : ElementGeometry
+    arrangement : {"DB", "DF", "DT"}, optional
+        A pair of two such ball bearings rated as one (None: one bearing).
 
     Returns
     -------
     float, array or SX
         P0 [N].
+
+    Raises
+    ------
+    ParameterError
+        For an arrangement of roller bearings.
     """
     if element_of(geometry) == "ball":
-        return ball_static_equivalent_load(Fr, Fa, geometry)
+        return ball_static_equivalent_load(Fr, Fa, geometry, arrangement)
+    if arrangement is not None:
+        raise ParameterError(f"static_equivalent_load: ISO 76 rates pairs of angular contact "
+                             f"ball bearings, not {arrangement} pairs of {geometry.designation}")
     check_range(Fr, "Fr", "N", 0.0, where="static_equivalent_load")
     check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
     return Fr + 0.0 * Fa
 
 
-def load_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:
+def _rating(geometry: Any, arrangement: str | None) -> tuple[float, str] | None:
+    """The static load rating [N] of one bearing or of a pair of them, and its words for
+    messages ("C0 = 77000 N of 7020C", "C0 = 2 x 63570 N of a DF pair of 7020C"); None
+    without a rating. A rating the geometry lists as estimated says so."""
+    c0 = geometry.static_load_rating
+    if c0 is None:
+        return None
+    estimated = "C0" in geometry.estimated
+    if arrangement is None:
+        note = " (estimated: ISO 76 of its ball set)" if estimated else ""
+        return c0, f"C0 = {c0:.0f} N of {geometry.designation}{note}"
+    note = "; one bearing's C0 estimated by ISO 76 from its ball set" if estimated else ""
+    return (pair_static_load_rating(c0),
+            f"C0 = 2 x {c0:.0f} N of a {arrangement} pair of {geometry.designation} "
+            f"(ISO 76{note})")
+
+
+def static_load_bounds(load: float) -> dict[str, Any]:
+    """The :class:`~bearingsim.language.Input` keywords of a load input that warns above
+    ``load`` and is refused beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times it,
+    in either direction.
+
+    Parameters
+    ----------
+    load : float
+        The load [N, or N m for a moment] that alone brings the static equivalent load to the
+        static load rating, > 0.
+
+    Returns
+    -------
+    dict
+        ``low``, ``high``, ``warn_above`` and ``limit`` (``"static load"``).
+    """
+    check_range(load, "load", "N", 0.0, low_inclusive=False, where="static_load_bounds")
+    return {"low": -MAX_STATIC_LOAD_FACTOR * load, "high": MAX_STATIC_LOAD_FACTOR * load,
+            "warn_above": load, "limit": "static load"}
+
+
+def load_input_bounds(*geometries: Any, arrangement: str | None = None
+                      ) -> dict[str, dict[str, Any]]:
     """The bounds of the load inputs ``Fx``, ``Fy`` (radial) and ``Fz`` (axial) of bearings
     that each carry the whole load (one bearing, or the layers of a nested bearing in series),
     as :class:`~bearingsim.language.Input` keywords: each warns above the load that alone makes
     the ISO 76 static equivalent load of one of them reach its static load rating C0
     (``Fr = C0``; a ball bearing's ``Fa = C0 / Y0``; a radial roller bearing takes no axial
     load) and is refused beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times it, as
-    constant loads are.
+    constant loads are (:func:`static_load_bounds`). With ``arrangement`` each geometry is a
+    DB, DF or DT pair of angular contact ball bearings rated as one bearing by ISO 76: C0 of
+    the pair twice one bearing's, X0 and Y0 of the pair
+    (:func:`~bearingsim.physics.life.static_load_factors`): ``Fr = 2 C0`` and ``Fa = C0 / Y0``
+    (DB, DF: one bearing carries each axial direction) or ``2 C0 / Y0`` (DT: both share it).
 
     Parameters
     ----------
     *geometries : ElementGeometry
         The bearings; one without a static load rating bounds nothing.
+    arrangement : {"DB", "DF", "DT"}, optional
+        Each bearing is a pair in this arrangement (None: one bearing).
 
     Returns
     -------
@@ -347,19 +405,20 @@ def load_input_bounds(*geometries: Any) -> dict[str, dict[str, Any]]:
     """
     alone: dict[str, float] = {}
     for g in geometries:
-        c0 = g.static_load_rating
-        if c0 is None:
+        rating = _rating(g, arrangement)
+        if rating is None:
             continue
+        c0 = rating[0]
         loads = {"Fx": c0, "Fy": c0}
         if element_of(g) == "ball":
-            loads["Fz"] = c0 / static_load_factors(g)[1]
+            loads["Fz"] = c0 / static_load_factors(g, arrangement)[1]
         for key, load in loads.items():
             alone[key] = min(load, alone.get(key, math.inf))
-    return {key: {"low": -MAX_STATIC_LOAD_FACTOR * load, "high": MAX_STATIC_LOAD_FACTOR * load,
-                  "warn_above": load, "limit": "static load"} for key, load in alone.items()}
+    return {key: static_load_bounds(load) for key, load in alone.items()}
 
 
-def check_static_rating(geometry: Any, forces: Any, where: str) -> None:
+def check_static_rating(geometry: Any, forces: Any, where: str,
+                        arrangement: str | None = None) -> None:
     """Warn when the ISO 76 static equivalent load of constant forces ``(Fx, Fy, Fz)`` [N]
     exceeds the static load rating C0 (4 200 MPa at the most loaded ball contact, permanent
     deformation beyond); refuse it beyond :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR`
@@ -373,6 +432,9 @@ def check_static_rating(geometry: Any, forces: Any, where: str) -> None:
         ``(Fx, Fy, Fz)`` [N].
     where : str
         The model, for messages.
+    arrangement : {"DB", "DF", "DT"}, optional
+        The forces act on a pair of two such bearings in this arrangement, rated as one by
+        ISO 76 (:func:`load_input_bounds`); None: on one bearing.
 
     Raises
     ------
@@ -384,20 +446,20 @@ def check_static_rating(geometry: Any, forces: Any, where: str) -> None:
     PlasticDeformationWarning
         Above C0.
     """
-    if geometry.static_load_rating is None:
+    rating = _rating(geometry, arrangement)
+    if rating is None:
         return
+    c0, words = rating
     p0 = float(static_equivalent_load(math.hypot(forces[0], forces[1]), abs(forces[2]),
-                                      geometry))
-    if p0 > MAX_STATIC_LOAD_FACTOR * geometry.static_load_rating:
+                                      geometry, arrangement))
+    if p0 > MAX_STATIC_LOAD_FACTOR * c0:
         raise ParameterError(
             f"{where}: the static equivalent load {p0:.4g} N is more than "
-            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 = "
-            f"{geometry.static_load_rating:.0f} N of {geometry.designation}: beyond the "
+            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating {words}: beyond the "
             f"strength of bearing steel (N given for kN?)")
-    if p0 > geometry.static_load_rating:
+    if p0 > c0:
         warnings.warn(f"{where}: the static equivalent load {p0:.0f} N exceeds the static load "
-                      f"rating C0 = {geometry.static_load_rating:.0f} N of "
-                      f"{geometry.designation}: the raceways deform permanently",
+                      f"rating {words}: the raceways deform permanently",
                       PlasticDeformationWarning, stacklevel=3)
 
 

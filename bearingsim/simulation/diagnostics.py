@@ -1,12 +1,17 @@
-"""Messages about a failed integration: which states diverged."""
+"""Messages about a failed integration: which states diverged, what a failed CasADi evaluation
+means."""
 
 from __future__ import annotations
+
+import re
 
 import numpy as np
 
 from bearingsim.assembler.system import System
 
-__all__ = ["diverged"]
+__all__ = ["diverged", "evaluation_failure"]
+
+_FAILED_IN = re.compile(r"for '(\S+)' \[(\w+)\]")
 
 
 def diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
@@ -32,3 +37,31 @@ def diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
     return "largest growth: " + ", ".join(
         f"{system.state_names[k]}={x[k]:.3g}" for k in order
     )
+
+
+def evaluation_failure(exc: BaseException) -> str:
+    """What a failed evaluation of the model's CasADi functions means, in one line: a Newton
+    block that did not converge named as such, else the innermost CasADi message.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error CasADi raised (its text: one line per function in the call chain, then the
+        reason).
+
+    Returns
+    -------
+    str
+        E.g. ``"the Newton iteration of the nonlinear block newton0 did not converge (no
+        solution near its start: a speed or load beyond what the model carries?)"``.
+    """
+    text = str(exc)
+    chain = _FAILED_IN.findall(text)
+    reason = text.strip().splitlines()[-1] if text.strip() else type(exc).__name__
+    if "rootfinder process failed" in text:
+        block = next((name for name, kind in reversed(chain)
+                      if kind in ("FastNewton", "Newton")), "of the model")
+        return (f"the Newton iteration of the nonlinear block {block} did not converge (no "
+                "solution near its start: a speed or load beyond what the model carries?)")
+    where = f" in {chain[-1][0]}" if chain else ""
+    return f"{type(exc).__name__}{where}: {reason[:300]}"

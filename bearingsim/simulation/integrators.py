@@ -30,10 +30,11 @@ from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.budget import RunBudget
 from bearingsim.simulation.closed import ClosedModel
 from bearingsim.simulation.compiled_bdf import compiled_bdf_run
-from bearingsim.simulation.diagnostics import diverged
+from bearingsim.simulation.diagnostics import diverged, evaluation_failure
 from bearingsim.simulation.fastcall import buffered_function
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
+from bearingsim.simulation.native_streams import casadi_dumps_dropped
 from bearingsim.simulation.progress import progress_bar
 from bearingsim.simulation.sundials import observe_at, sundials_run
 
@@ -194,16 +195,20 @@ class ScipyIntegrator(Integrator):
         called = time.thread_time()
         budget = pb.budget or RunBudget(method=self.name, t_end=pb.t1)
         try:
-            sol = scipy.integrate.solve_ivp(
-                fun, (pb.t0, pb.t1), pb.x0, method=SCIPY_SOLVERS[self.name], t_eval=pb.t_eval,
-                rtol=pb.rtol, atol=pb.atol, max_step=pb.max_step, budget=budget, **kwargs,
-            )
+            with casadi_dumps_dropped():
+                sol = scipy.integrate.solve_ivp(
+                    fun, (pb.t0, pb.t1), pb.x0, method=SCIPY_SOLVERS[self.name],
+                    t_eval=pb.t_eval, rtol=pb.rtol, atol=pb.atol, max_step=pb.max_step,
+                    budget=budget, **kwargs,
+                )
         except (ArithmeticError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:
             if isinstance(exc, SimulationError):
                 raise
+            what = evaluation_failure(exc) if isinstance(exc, RuntimeError) else \
+                f"{type(exc).__name__}: {exc}"
             raise SimulationError(
-                f"{self.name} failed near t = {last[0]:.6g} s of {pb.t1:g} s "
-                f"({type(exc).__name__}: {exc}); {diverged(system, last[1], pb.x0)}"
+                f"{self.name} failed near t = {last[0]:.6g} s of {pb.t1:g} s ({what}); "
+                f"{diverged(system, last[1], pb.x0)}"
             ) from None
         finally:
             if bar is not None:

@@ -1,6 +1,7 @@
 """What native code writes and Ctrl-C during a native call: standard output sent to the null
-device (the MUMPS banner), standard error held aside while a run may be stopped on purpose, and
-SIGINT recorded while CVODES or IDAS run.
+device (the MUMPS banner), standard error held aside while a run may be stopped on purpose,
+CasADi's dump of a failed function's inputs dropped, and SIGINT recorded while CVODES or IDAS
+run.
 """
 
 from __future__ import annotations
@@ -9,6 +10,7 @@ import _signal
 import contextlib
 import io
 import os
+import re
 import signal
 import sys
 import tempfile
@@ -16,7 +18,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["Interrupted", "held_stderr", "interrupts", "quiet_stdout"]
+__all__ = ["Interrupted", "casadi_dumps_dropped", "held_stderr", "interrupts", "quiet_stdout"]
 
 
 @contextlib.contextmanager
@@ -38,6 +40,70 @@ def quiet_stdout() -> Iterator[None]:
         os.dup2(saved, 1)
         os.close(saved)
         os.close(devnull)
+
+
+_DUMP_LINE = re.compile(r"Function \S+ \(0x[0-9a-fA-F]+\)\n|Input \d+ \(\S*\): .*\n")
+"""A line of CasADi's dump of a failed function's inputs (``Function::operator()`` writes it to
+``sys.stderr`` before it raises, whatever the function's options)."""
+_DUMP_STARTS = ("Function ", "Input ")
+
+
+class _DumpFilter:
+    """``sys.stderr`` less CasADi's input dumps: a line that may be one is held until its end,
+    every other text passes at once (a progress bar's ``\r`` lines stay live)."""
+
+    def __init__(self, stream: Any) -> None:
+        self.stream = stream
+        self.line = ""
+
+    def write(self, text: str) -> int:
+        for piece in text.splitlines(keepends=True):
+            self.line += piece
+            if self.line.endswith("\n"):
+                if not _DUMP_LINE.fullmatch(self.line):
+                    self.stream.write(self.line)
+                self.line = ""
+            elif not any(self.line.startswith(s) or s.startswith(self.line)
+                         for s in _DUMP_STARTS):
+                self.stream.write(self.line)
+                self.line = ""
+        return len(text)
+
+    def flush(self) -> None:
+        if self.line:
+            self.stream.write(self.line)
+            self.line = ""
+        self.stream.flush()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.stream, name)
+
+
+_DUMP_LOCK = threading.Lock()
+_DUMP_USERS = [0, None]  # contexts open, the stream the first one replaced
+
+
+@contextlib.contextmanager
+def casadi_dumps_dropped() -> Iterator[None]:
+    """While the context lasts, drop from ``sys.stderr`` the inputs CasADi prints of every
+    function in the chain of a failed evaluation (a Newton block that did not converge prints
+    its own, the right-hand side's and the caller's inputs, hundreds of numbers); the error it
+    raises says what failed. Everything else written to standard error passes. Contexts in
+    several threads share one filter, removed when the last one ends."""
+    with _DUMP_LOCK:
+        if _DUMP_USERS[0] == 0:
+            _DUMP_USERS[1] = sys.stderr
+            sys.stderr = _DumpFilter(sys.stderr)
+        _DUMP_USERS[0] += 1
+    try:
+        yield
+    finally:
+        with _DUMP_LOCK:
+            _DUMP_USERS[0] -= 1
+            if _DUMP_USERS[0] == 0:
+                sys.stderr.flush()
+                sys.stderr = _DUMP_USERS[1]
+                _DUMP_USERS[1] = None
 
 
 @contextlib.contextmanager

@@ -37,6 +37,8 @@ from bearingsim.assemblies.duplex import (
     preload_force,
     preload_offset,
 )
+from bearingsim.assemblies.duplex.limits import check_pair_loads, check_pair_speed
+from bearingsim.assemblies.duplex.options import si_option
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
 from bearingsim.errors import ParameterError, SimulationError
@@ -241,13 +243,14 @@ class DuplexModel:  # numpydoc ignore=PR02
             for a DF/DB pair built with ``spacer_offset``, that spacer width difference [m]
             (kept as it is when the contact angle or bearing changes). A DT pair keeps its
             ``spacer_offset`` (spacer mismatch) in every configuration.
-        contact_angle : float, optional
-            Free contact angle [rad]. Default: the pair's, or that of ``bearing`` when
-            ``bearing`` is given.
-        speed : float, optional
-            Shaft speed [rad/s] (default: the pair's).
-        ball_position_angle : float, optional
-            Azimuth of ball 0 of both rows [rad] (default: the pair's).
+        contact_angle : float or str, optional
+            Free contact angle [rad], or with a unit ("15 deg"). Default: the pair's, or that
+            of ``bearing`` when ``bearing`` is given.
+        speed : float or str, optional
+            Shaft speed [rad/s], or with a unit ("3000 rpm") (default: the pair's); warned
+            above the pair's limiting speed, refused beyond twice it.
+        ball_position_angle : float or str, optional
+            Azimuth of ball 0 of both rows [rad], or with a unit (default: the pair's).
         bearing : str or BearingGeometry, optional
             A bearing of the same row geometry (default: the model's).
 
@@ -258,15 +261,19 @@ class DuplexModel:  # numpydoc ignore=PR02
         """
         pair = self.pair
         g = self._geometry(bearing)
+        if contact_angle is not None:
+            contact_angle = si_option(contact_angle, "contact_angle", "rad", "DuplexModel")
         contact_angle = self._contact_angle(contact_angle, bearing)
-        speed = pair.speed if speed is None else speed
+        speed = pair.speed if speed is None else si_option(speed, "speed", "rad/s",
+                                                           "DuplexModel")
+        check_pair_speed(g, speed, f"DuplexModel({g.designation})")
         if speed != 0.0 and not pair.row[0].speed_effects:
             raise ParameterError(
                 f"DuplexModel: speed = {speed:g} rad/s, but the pair was assembled without speed "
                 f"effects, so the speed would change nothing; build the model with "
                 f"pair_options={{'speed_effects': True}} (or a speed in pair_options)")
-        if ball_position_angle is None:
-            ball_position_angle = pair.ball_position_angle
+        ball_position_angle = pair.ball_position_angle if ball_position_angle is None else \
+            si_option(ball_position_angle, "ball_position_angle", "rad", "DuplexModel")
         rp = row_parameters(g, contact_angle, ball_position_angle, self._smooth())
         out = {"shaft.speed": float(speed)}
         for k in range(2):
@@ -307,7 +314,7 @@ class DuplexModel:  # numpydoc ignore=PR02
         ----------
         loads : dict, optional
             External loads at the shaft's centre of mass by name: "Fx", "Fy", "Fz" [N],
-            "Mx", "My" [N m].
+            "Mx", "My" [N m] (numbers, or numbers with a unit: "2 kN", "30 N m").
         **config
             Configuration, see :meth:`parameters`.
 
@@ -315,13 +322,25 @@ class DuplexModel:  # numpydoc ignore=PR02
         -------
         Equilibrium
 
+        Raises
+        ------
+        ParameterError
+            For loads that bring the pair's static equivalent load beyond 10 x its static load
+            rating (ISO 76 rules for pairs:
+            :func:`~bearingsim.assemblies.duplex.limits.check_pair_loads`), or a load input
+            beyond its bound.
+
         Warns
         -----
         RowUnloadedWarning
             If a row carries no load (its stiffness is then zero).
+        PlasticDeformationWarning
+            Above the pair's static load rating.
         """
         params = self.parameters(**config)
         inputs = _load_inputs(loads)
+        check_pair_loads(self.pair.options, {k.split(".")[1]: v for k, v in inputs.items()},
+                         f"DuplexModel({self.geometry.designation} {self.arrangement})")
         x = self._solve(inputs, params)
         return self._equilibrium(x, inputs, params)
 
@@ -409,7 +428,6 @@ def _load_inputs(loads: dict[str, float] | None) -> dict[str, float]:
         name = key if key.startswith("shaft.") else f"shaft.{key}"
         if name not in _LOADS:
             raise ParameterError(f"unknown load {key!r}; loads: Fx, Fy, Fz [N], Mx, My [N m]")
-        if not np.isfinite(val):
-            raise ParameterError(f"load {key} must be finite, got {val!r}")
-        out[name] = float(val)
+        unit = "N.m" if name[-2] == "M" else "N"
+        out[name] = si_option(val, f"load {key}", unit, "DuplexModel.equilibrium")
     return out

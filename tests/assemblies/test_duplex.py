@@ -24,7 +24,7 @@ from bearingsim.assemblies.duplex import (
 )
 from bearingsim.catalog import get_bearing
 from bearingsim.components.ball_row import row_parameters
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SpeedLimitWarning
 from bearingsim.physics.hertz import combined_load_deflection_constant
 from bearingsim.physics.shaft_modes import MODE_NAMES, modal_analysis
 from bearingsim.studies.duplex import DuplexModel, RowUnloadedWarning
@@ -226,8 +226,12 @@ def test_pair_options_configuration_is_the_default_and_explicit_arguments_overri
 
 
 def test_pair_options_speed_reaches_the_system_parameters():
-    fast = DuplexModel("7020C", "DF", pair_options={"speed": 2000.0, "speed_effects": True})
-    eq = fast.equilibrium()
+    # 2000 rad/s (19 100 r/min) lies above the pair's limiting speed, 0.8 x 14 000 r/min
+    with pytest.warns(SpeedLimitWarning, match="limiting speed of a pair of 7020C"):
+        fast = DuplexModel("7020C", "DF", pair_options={"speed": 2000.0,
+                                                        "speed_effects": True})
+    with pytest.warns(SpeedLimitWarning):
+        eq = fast.equilibrium()
     assert eq.parameters["shaft.speed"] == 2000.0
     at_rest = fast.equilibrium(speed=0.0)
     assert at_rest.parameters["shaft.speed"] == 0.0

@@ -52,11 +52,21 @@ def test_a_load_beyond_ten_c0_is_refused_by_its_pressure():
 
 def test_a_steady_state_not_found_is_reported_on_one_line():
     """scipy's message of a failed ``root`` wraps its line ("...measured by the \\n improvement
-    ..."): the error printed it across two lines. The 7020C has no limiting speed in the
-    catalogue, so 1e6 r/min reaches the solver."""
+    ..."): the error printed it across two lines. A 7020C without a limiting speed (the
+    catalogue's refuses 1e6 r/min before the solver), so 1e6 r/min reaches the solver."""
+    import dataclasses
+
+    from bearingsim.catalog import register_bearing, unregister_bearing
     from bearingsim.errors import SimulationError
 
-    prep = prepare(parse_scene(builtin_scene_path("duplex_modes").read_text(encoding="utf-8")))
-    with pytest.raises(SimulationError, match="steady state not found") as caught:
-        run_operating_point(prep, {"assembly.speed": 1e6 * RPM, "assembly.preload_force": 250.0})
+    register_bearing(dataclasses.replace(get_bearing("7020C"), designation="7020X",
+                                         limiting_speed=None))
+    try:
+        text = builtin_scene_path("duplex_modes").read_text(encoding="utf-8")
+        prep = prepare(parse_scene(text.replace('bearing = "7020C"', 'bearing = "7020X"')))
+        with pytest.raises(SimulationError, match="steady state not found") as caught:
+            run_operating_point(prep, {"assembly.speed": 1e6 * RPM,
+                                       "assembly.preload_force": 250.0})
+    finally:
+        unregister_bearing("7020X")
     assert "\n" not in str(caught.value)

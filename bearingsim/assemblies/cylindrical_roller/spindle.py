@@ -8,6 +8,10 @@ by an :class:`~bearingsim.components.rings.InnerRing` whose raceway lies ``rolle
 further back, and its outer ring in a rigid housing. The NU bearing carries radial load and
 the tilt of the shaft at its position (a misalignment that follows from the deflection of the
 pair), no axial load: the duplex pair locates the shaft.
+
+The axial load input ``pair.shaft.Fz`` is held to the pair's static load rating (it all passes
+through the pair); the radial forces and moments are shared by the pair and the NU bearing as
+their stiffnesses decide, so no one load bounds them and they are left unbounded.
 """
 
 from __future__ import annotations
@@ -64,7 +68,7 @@ class Spindle(Assembly):
                     where="spindle")
         self.pair = duplex_pair(bearing, arrangement, preload,
                                 shaft=DEFAULT_SHAFT if shaft is None else shaft, name="pair",
-                                **pair_options)
+                                shared_radial=True, **pair_options)
         self.roller_distance = float(roller_distance)
         self.nu_ring = InnerRing(groove_offset=-self.roller_distance)
         self.nu = RollerRow(roller_bearing, n_slices)

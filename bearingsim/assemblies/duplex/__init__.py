@@ -21,6 +21,8 @@ preloaded by a constant axial (spring) force on the shaft instead.
 
 * :mod:`.shaft`: :class:`ShaftSpec`;
 * :mod:`.preload`: arrangements, preload classes, offsets and preload stiffness;
+* :mod:`.limits`: the pair's static load rating (ISO 76 rules for pairs) as the bounds of the
+  shaft's load inputs and the check of constant loads, and its limiting speed;
 * :mod:`.options`: :class:`DuplexOptions`, everything a pair is built from, checked once;
 * :mod:`.pair`: :class:`DuplexPair` (built from a :class:`DuplexOptions`), :func:`duplex_pair`
   (from keywords);

@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from bearingsim.assemblies.duplex.limits import check_pair_speed
 from bearingsim.assemblies.duplex.preload import (
     ARRANGEMENTS,
     offset_preload,
@@ -16,12 +17,43 @@ from bearingsim.assemblies.duplex.shaft import ShaftSpec, _shaft_spec
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.errors import ParameterError
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
+from bearingsim.units import to_si
 from bearingsim.validation import check_flag, check_range
 
-__all__ = ["DuplexOptions"]
+__all__ = ["DuplexOptions", "si_option"]
 
 WHERE = "duplex_pair"
 """The name the option checks give in their messages."""
+
+
+def si_option(value: Any, name: str, unit: str, where: str = WHERE) -> float:
+    """An option given as a number in ``unit`` or as a number with a unit (``"3000 rpm"``, a
+    :class:`pint.Quantity`), in ``unit``, as every entry point takes them
+    (:func:`bearingsim.units.to_si`).
+
+    Parameters
+    ----------
+    value : float, str or pint.Quantity
+        The option's value.
+    name : str
+        The option, for messages.
+    unit : str
+        Its SI unit (model notation, ``"rad/s"``).
+    where : str
+        The model, for messages.
+
+    Returns
+    -------
+    float
+        The value in ``unit``.
+
+    Raises
+    ------
+    ParameterError
+        For a value that is not a finite number, a unit of another quantity
+        (:class:`~bearingsim.units.UnitError`), naming the option and its unit.
+    """
+    return float(check_range(to_si(value, unit, f"{where}: {name}"), name, unit, where=where))
 
 
 @dataclass(frozen=True)
@@ -34,13 +66,15 @@ class DuplexOptions:
     bearing : str or BearingGeometry
         Bearing of both rows; resolved to ``geometry``.
     arrangement : {"DF", "DB", "DT"}
-    preload : {"light", "medium", "heavy"} or float, optional
-        Preload class or axial preload [N], > 0 (default: "light", or for a DF/DB pair with
-        ``spacer_offset`` the preload that offset gives). A class is the catalogued one, or for
-        a bearing without catalogued classes a fraction of its C
+    preload : {"light", "medium", "heavy"} or float or str, optional
+        Preload class or axial preload [N] (or "500 N"), > 0 (default: "light", or for a
+        DF/DB pair with ``spacer_offset`` the preload that offset gives). A class is the
+        catalogued one, or for a bearing without catalogued classes a fraction of its C
         (:func:`~bearingsim.assemblies.duplex.preload_force`).
-    speed : float
-        Shaft (inner ring) speed [rad/s], up to the bearing's limit.
+    speed : float or str
+        Shaft (inner ring) speed [rad/s], or a number with a unit ("3000 rpm", as every length,
+        angle and force option here takes); warned above the pair's limiting speed, refused
+        beyond twice it (:func:`~bearingsim.assemblies.duplex.limits.check_pair_speed`).
     shaft : ShaftSpec or dict, optional
         Resolved to ``shaft_spec`` (default: a solid steel shaft of the bearing's bore, four
         bores long, rows three bores apart).
@@ -130,17 +164,21 @@ class DuplexOptions:
         self._set(geometry=g, shaft_spec=_shaft_spec(self.shaft, g),
                   lubricant=None if self.lubricant is None
                   else as_lubricant(self.lubricant, WHERE))
+        self._set(**{name: si_option(getattr(self, name), name, unit)
+                     for name, unit in (("contact_angle", "rad"), ("spacer_offset", "m"))
+                     if getattr(self, name) is not None})
         self._resolve_preload()
-        speed = float(self.speed)
-        g.check_speed(speed, f"duplex_pair({g.designation})")
+        speed = si_option(self.speed, "speed", "rad/s")
+        check_pair_speed(g, speed, f"duplex_pair({g.designation})")
         for name in ("exact", "axisymmetric"):
             check_flag(getattr(self, name), name, WHERE)
         check_flag(self.speed_effects, "speed_effects", WHERE, allow_none=True)
-        self._set(speed=speed, ball_position_angle=float(self.ball_position_angle),
+        self._set(speed=speed,
+                  ball_position_angle=si_option(self.ball_position_angle, "ball_position_angle",
+                                                "rad"),
+                  smooth=si_option(self.smooth, "smooth", "m"),
                   speed_effects=speed != 0.0 if self.speed_effects is None
                   else self.speed_effects,
-                  contact_angle=None if self.contact_angle is None else float(self.contact_angle),
-                  spacer_offset=None if self.spacer_offset is None else float(self.spacer_offset),
                   damping_ratio=None if self.damping_ratio is None
                   else float(self.damping_ratio))
 
@@ -155,13 +193,13 @@ class DuplexOptions:
                     f"({self.spacer_offset!r} m) for a {arrangement} pair: the spacer width "
                     "difference sets the preload"
                 )
-            offset = float(self.spacer_offset)
+            offset = self.spacer_offset
             self._set(preload_force=offset_preload(g, offset, arrangement, angle),
                       spacer_width_difference=offset)
             return
         force = preload_force(g, "light" if self.preload is None else self.preload)
         if arrangement == "DT":
-            offset = 0.0 if self.spacer_offset is None else float(self.spacer_offset)
+            offset = 0.0 if self.spacer_offset is None else self.spacer_offset
         else:
             offset = preload_offset(g, force, arrangement, angle)
         self._set(preload_force=force, spacer_width_difference=offset)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from bearingsim.assemblies.duplex.limits import pair_load_bounds
 from bearingsim.assemblies.duplex.options import DuplexOptions
 from bearingsim.assemblies.duplex.preload import ARRANGEMENTS, preload_stiffness
 from bearingsim.assemblies.duplex.shaft import ShaftSpec
@@ -33,6 +34,11 @@ class DuplexPair(Assembly):
         7020C DF pair at light preload, at rest.
     name : str
         Instance name.
+    shared_radial : bool
+        Further supports of the shaft (a spindle's rear bearing) share its radial loads and
+        moments: only the axial load input ``shaft.Fz`` is bounded by the pair's static load
+        rating (:func:`~bearingsim.assemblies.duplex.limits.pair_load_bounds`); default False:
+        every load input is.
 
     Notes
     -----
@@ -69,7 +75,8 @@ class DuplexPair(Assembly):
     shaft_spec : ShaftSpec
     """
 
-    def __init__(self, options: DuplexOptions | None = None, name="pair"):
+    def __init__(self, options: DuplexOptions | None = None, name="pair",
+                 shared_radial: bool = False):
         super().__init__(name)
         options = options_object(options, DuplexOptions, "duplex_pair")
         self.options = options
@@ -87,7 +94,7 @@ class DuplexPair(Assembly):
         self.spacer_offset = options.spacer_offset
         self.spacer_width_difference = options.spacer_width_difference
         self.damping_ratio = options.damping_ratio
-        self._build_shaft()
+        self._build_shaft(pair_load_bounds(options, radial=not shared_radial))
         self._build_rings_and_rows()
         self._connect()
 
@@ -100,9 +107,9 @@ class DuplexPair(Assembly):
                                   0.5 * self.preload_force)
         return 0.5 * abs(self.spacer_width_difference)
 
-    def _build_shaft(self) -> None:
+    def _build_shaft(self, bounds: dict[str, dict[str, Any]]) -> None:
         """The shaft at its preloaded start, damped against the housing with
-        ``damping_ratio``."""
+        ``damping_ratio``, its load inputs held to ``bounds``."""
         spec, options = self.shaft_spec, self.options
         delta0 = self._start_approach()
         damping = None
@@ -114,7 +121,7 @@ class DuplexPair(Assembly):
                        for k_i, m_i in zip(k, mass, strict=True)]
         self.shaft = Shaft(spec.m, spec.jt, spec.jp, spec.positions, options.speed,
                            options.exact, q0=(0.0, 0.0, self.directions[0] * delta0, 0.0, 0.0),
-                           damping=damping)
+                           damping=damping, bounds=bounds)
 
     def _build_rings_and_rows(self) -> None:
         """Housing, rings, spacers (the inner one with the width difference) and ball rows."""
@@ -153,7 +160,7 @@ def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str =
                 preload: str | float | None = None, speed: float = 0.0,
                 shaft: ShaftSpec | dict | None = None, lubricant=None,
                 ball_position_angle: float = 0.0, name: str = "pair",
-                **options: Any) -> DuplexPair:
+                shared_radial: bool = False, **options: Any) -> DuplexPair:
     """Build a duplex pair assembly from keywords.
 
     Parameters
@@ -164,6 +171,8 @@ def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str =
         As the fields of :class:`~bearingsim.assemblies.duplex.options.DuplexOptions`.
     name : str
         Instance name.
+    shared_radial : bool
+        As for :class:`DuplexPair`.
     **options
         The other fields of :class:`~bearingsim.assemblies.duplex.options.DuplexOptions`
         (``contact_angle``, ``spacer_offset``, ``speed_effects``, ``housing_stiffness``,
@@ -185,4 +194,4 @@ def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str =
         "bearing", "arrangement", "preload", "speed", "shaft", "lubricant",
         "ball_position_angle")), "duplex_pair", "option(s)")
     return DuplexPair(DuplexOptions(designation, arrangement, preload, speed, shaft, lubricant,
-                                    ball_position_angle, **options), name)
+                                    ball_position_angle, **options), name, shared_radial)

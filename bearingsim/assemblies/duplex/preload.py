@@ -8,7 +8,8 @@ import math
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_loads, row_parameters
 from bearingsim.errors import ParameterError
-from bearingsim.validation import check_choice, check_range
+from bearingsim.units import to_si
+from bearingsim.validation import check_range
 
 ARRANGEMENTS = {"DF": (1, -1), "DB": (-1, 1), "DT": (1, 1)}
 """Axial loading direction ``s`` of (row 0, row 1) for each arrangement."""
@@ -55,7 +56,8 @@ def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
     geometry : BearingGeometry
         The bearing of the pair.
     preload : str or float
-        Preload class ("light", "medium", "heavy") or axial preload [N], > 0.
+        Preload class ("light", "medium", "heavy") or axial preload [N], > 0, or a number
+        with a unit ("500 N", "0.5 kN").
 
     Returns
     -------
@@ -68,8 +70,12 @@ def preload_force(geometry: BearingGeometry, preload: str | float) -> float:
         For an unknown class, a class of a bearing with neither catalogued classes nor (angular
         contact with) C, or a preload <= 0.
     """
+    preload = to_si(preload, "N", "duplex_pair: preload")  # "500 N"; a class stays a name
     if isinstance(preload, str):
-        check_choice(preload, "preload class", PRELOAD_CLASSES, "duplex_pair")
+        if preload not in PRELOAD_CLASSES:
+            raise ParameterError(f"duplex_pair: preload class must be 'light', 'medium' or "
+                                 f"'heavy', or the preload an axial force in N (a number > 0, "
+                                 f"or e.g. '500 N'), got {preload!r}")
         if geometry.preload is not None:
             return geometry.preload[preload]
         if geometry.dynamic_load_rating is None or geometry.bearing_type != "angular_contact":

@@ -26,6 +26,8 @@ from __future__ import annotations
 
 from bearingsim.physics.life import iso_76, iso_281, iso_ts_16281, lundberg_palmgren, modified_life
 from bearingsim.physics.life.iso_76 import (  # noqa: F401 (in __all__)
+    PAIR_ARRANGEMENTS,
+    pair_static_load_rating,
     roller_static_load_rating,
     static_equivalent_load,
     static_factor,

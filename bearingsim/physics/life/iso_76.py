@@ -15,6 +15,7 @@ import numpy as np
 
 from bearingsim import symbolic as op
 from bearingsim.checks import guard_public_functions
+from bearingsim.errors import ParameterError
 from bearingsim.physical_checks import MAX_BALL_DIAMETER, check_diameter
 from bearingsim.physics.geometry import pitch_ratio
 from bearingsim.physics.life.tables import (
@@ -24,12 +25,14 @@ from bearingsim.physics.life.tables import (
     interp,
     within_table,
 )
-from bearingsim.validation import check_count, check_range
+from bearingsim.validation import check_choice, check_count, check_range
 
 if TYPE_CHECKING:
     from bearingsim.catalog import BearingGeometry
 
 __all__ = [
+    "PAIR_ARRANGEMENTS",
+    "pair_static_load_rating",
     "static_factor",
     "static_load_rating",
     "static_load_factors",
@@ -130,19 +133,54 @@ _X0_ANGULAR = 0.5
 _X0_DEEP_GROOVE, _Y0_DEEP_GROOVE = 0.6, 0.5
 
 
-def static_load_factors(geometry: BearingGeometry) -> tuple[float, float]:
-    """ISO 76:2006 static radial and axial load factors ``(X0, Y0)`` [-] of a single-row bearing.
+# Pairs of identical single-row angular contact ball bearings (ISO 76 rates a pair mounted side
+# by side as one bearing; the standard's text was not retrievable, the rules are the catalogues'):
+# * C0 of the pair = 2 x C0 of one bearing, in every arrangement: SKF General Catalogue 6000
+#   (Russian ed., 2006 data), p. 414, "load ratings of paired bearings" ("C0 = 2 x C0 of a single
+#   bearing"); NSK CAT. No. E1102e prints the matched pairs' C0 as twice the single one.
+# * DB or DF: X0 = 1, Y0 = 2 x the single row's; single and DT (tandem): the single row's X0, Y0
+#   and P0 = Fr if larger: NSK Super Precision Bearings (Russian ed.), p. 146, Table 2.1
+#   ("single, DT": 0.5/0.46 at 15 deg ... 0.5/0.26 at 40 deg; "DB or DF": 1/0.92 ... 1/0.52;
+#   "for single or DT arrangements, when Fr > 0.5 Fr + Y0 Fa, use P0 = Fr"); SKF General
+#   Catalogue 6000, p. 415 (72 B, 40 deg: single and tandem P0 = 0.5 Fr + 0.26 Fa, DB/DF
+#   P0 = Fr + 0.52 Fa); NSK E1102e pp. B50-B61 ("Single, DT" and "DB or DF" columns).
+PAIR_ARRANGEMENTS = ("DB", "DF", "DT")
+"""Arrangements of a pair of identical single-row angular contact ball bearings that ISO 76
+rates as one bearing: back-to-back, face-to-face, tandem."""
+_PAIR_BEARINGS = 2
+
+
+def _check_arrangement(arrangement: str | None, geometry: BearingGeometry, where: str) -> None:
+    """Refuse an arrangement that is not a pair's, or a pair of bearings that are not angular
+    contact ball bearings."""
+    if arrangement is None:
+        return
+    check_choice(arrangement, "arrangement", PAIR_ARRANGEMENTS, where)
+    if geometry.bearing_type == "deep_groove":
+        raise ParameterError(f"{where}: ISO 76 rates {arrangement} pairs of angular contact "
+                             f"ball bearings; {geometry.designation} is a deep groove bearing")
+
+
+def static_load_factors(geometry: BearingGeometry, arrangement: str | None = None
+                        ) -> tuple[float, float]:
+    """ISO 76:2006 static radial and axial load factors ``(X0, Y0)`` [-] of a single-row bearing
+    or of a pair of them.
 
     Deep groove: ``(0.6, 0.5)``. Angular contact: ``X0 = 0.5`` and ``Y0`` 0.46, 0.42, 0.38,
     0.33, 0.29, 0.26, 0.22 at 15, 20, 25, 30, 35, 40, 45 deg (ISO 76 Table 1), linear in the
     contact angle between these rows. Checked against NSK CAT. No. E1102e pp. B8-B11 and
     B50-B61 and SKF General Catalogue 6000 pp. 415, 440, 455; the 20 deg row is unverified
-    (see the comment above :data:`_Y0_ANGULAR` in the source).
+    (see the comment above :data:`_Y0_ANGULAR` in the source). A DB or DF pair of angular
+    contact bearings: ``X0 = 1`` and twice the single row's ``Y0``; a DT (tandem) pair: the
+    single row's (NSK Super Precision Bearings p. 146, Table 2.1; SKF General Catalogue 6000
+    p. 415; see the comment above :data:`PAIR_ARRANGEMENTS` in the source).
 
     Parameters
     ----------
     geometry : BearingGeometry
         The bearing; its nominal contact angle [rad] selects the row.
+    arrangement : {"DB", "DF", "DT"}, optional
+        The pair of two such bearings rated as one (None: the single bearing).
 
     Returns
     -------
@@ -152,29 +190,56 @@ def static_load_factors(geometry: BearingGeometry) -> tuple[float, float]:
     ------
     ParameterError
         For an angular contact bearing whose contact angle lies outside the ISO 76 rows,
-        [15, 45] deg.
+        [15, 45] deg, an arrangement other than those above, or a pair of deep groove bearings.
     """
+    _check_arrangement(arrangement, geometry, "static_load_factors")
     if geometry.bearing_type == "deep_groove":
         return _X0_DEEP_GROOVE, _Y0_DEEP_GROOVE
     alpha_deg = round(math.degrees(geometry.contact_angle), 9)
     check_range(alpha_deg, "contact_angle", "deg", _Y0_ANGLE_DEG[0], _Y0_ANGLE_DEG[-1],
                 where=f"static_load_factors ({geometry.designation}, ISO 76 angular contact)")
-    return _X0_ANGULAR, float(np.interp(alpha_deg, _Y0_ANGLE_DEG, _Y0_ANGULAR))
+    y0 = float(np.interp(alpha_deg, _Y0_ANGLE_DEG, _Y0_ANGULAR))
+    if arrangement in ("DB", "DF"):
+        return 1.0, _PAIR_BEARINGS * y0
+    return _X0_ANGULAR, y0
 
 
-def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
+def pair_static_load_rating(static_load_rating: float) -> float:
+    """ISO 76 basic static load rating of a DB, DF or DT pair of identical single-row angular
+    contact ball bearings [N]: twice one bearing's (SKF General Catalogue 6000 p. 414).
+
+    Parameters
+    ----------
+    static_load_rating : float
+        C0 of one bearing [N], > 0.
+
+    Returns
+    -------
+    float
+        C0 of the pair [N].
+    """
+    check_range(static_load_rating, "static_load_rating", "N", 0.0, low_inclusive=False,
+                where="pair_static_load_rating")
+    return _PAIR_BEARINGS * float(static_load_rating)
+
+
+def static_equivalent_load(Fr, Fa, geometry: BearingGeometry,  # noqa: N803
+                           arrangement: str | None = None):
     """ISO 76 static equivalent load ``P0 = max(Fr, X0 Fr + Y0 Fa)`` [N] (smooth maximum).
 
     ``X0, Y0`` from :func:`static_load_factors` (deep groove 0.6, 0.5; angular contact 0.5 and
-    Y0 from 0.46 at 15 deg to 0.22 at 45 deg, ISO 76:2006 Table 1). The maximum is smoothed
-    with a width of 1 N (:func:`bearingsim.symbolic.smooth_max0`) so that it can enter equations.
+    Y0 from 0.46 at 15 deg to 0.22 at 45 deg, ISO 76:2006 Table 1; a DB/DF pair 1 and twice
+    that, a DT pair as one bearing). The maximum is smoothed with a width of 1 N
+    (:func:`bearingsim.symbolic.smooth_max0`) so that it can enter equations.
 
     Parameters
     ----------
     Fr, Fa : float, array or casadi.SX
-        Radial and axial load [N], >= 0.
+        Radial and axial load [N], >= 0 (on the whole pair for a pair).
     geometry : BearingGeometry
         The bearing (single row).
+    arrangement : {"DB", "DF", "DT"}, optional
+        A pair of two such bearings rated as one (None: the single bearing).
 
     Returns
     -------
@@ -183,7 +248,7 @@ def static_equivalent_load(Fr, Fa, geometry: BearingGeometry):  # noqa: N803
     """
     check_range(Fr, "Fr", "N", 0.0, where="static_equivalent_load")
     check_range(Fa, "Fa", "N", 0.0, where="static_equivalent_load")
-    x0, y0 = static_load_factors(geometry)
+    x0, y0 = static_load_factors(geometry, arrangement)
     return Fr + op.smooth_max0((x0 - 1.0) * Fr + y0 * Fa, 1.0)
 
 
