@@ -42,8 +42,27 @@ _SIGNATURE = ("(const casadi_real** arg, casadi_real** res, casadi_int* iw, casa
               "int mem)")
 
 
+_NEWTON_LOOP = re.compile(
+    r"(  for \(iter=0; iter<(\d+); \+\+iter\) \{\n(?:(?!  \}\n).*\n)*?"
+    r"    if \(casadi_newton\(&m\)\) break;\n  \}\n)")
+"""The iteration loop of a ``fast_newton`` rootfinder in CasADi's C (3.8): ``max_iter`` Newton
+steps, left early when the residual or the step is below its tolerance."""
+
+
+def _newton_failures_reported(source: str) -> str:
+    """``source`` with every ``fast_newton`` loop that ends without converging reporting a
+    failure (``return 1``, as a failed evaluation): CasADi's generated C returns the last
+    iterate as if it were the root, where its virtual machine raises "failed to converge"
+    (a Newton block without a root gave a number and a run went on with it)."""
+    return _NEWTON_LOOP.sub(lambda m: m.group(1) + f"  if (iter>={m.group(2)}) return 1;"
+                            " /* bearingsim: no root found, as CasADi's VM reports */\n",
+                            source)
+
+
 def generate_source(functions: Sequence[ca.Function], name: str = "bsm") -> str:
-    """C source of ``functions`` in one file (``casadi.CodeGenerator``, no header).
+    """C source of ``functions`` in one file (``casadi.CodeGenerator``, no header); a Newton
+    block (``fast_newton``) that does not converge within its iterations fails the
+    evaluation, as on CasADi's virtual machine.
 
     Parameters
     ----------
@@ -60,7 +79,7 @@ def generate_source(functions: Sequence[ca.Function], name: str = "bsm") -> str:
     gen = ca.CodeGenerator(f"{name}.c", {"with_header": False})
     for fn in functions:
         gen.add(fn)
-    return gen.dump()
+    return _newton_failures_reported(gen.dump())
 
 
 def _large_dependencies(functions: Sequence[ca.Function], min_instructions: int

@@ -90,3 +90,29 @@ def test_split_flags_are_part_of_the_library_key(tmp_path):
     same = library_path("source", flags=("-O1",), cache_dir=tmp_path)
     assert library_path("source", flags=("-O1",), split_flags=("-O1",), cache_dir=tmp_path) == same
     assert library_path("source", flags=("-O1",), split_flags=("-Og",), cache_dir=tmp_path) != same
+
+
+def _newton_block():
+    """f(p) = the root z of z^2 = p, by CasADi's fast_newton from z = 0.5 (20 iterations): no
+    real root for p < 0."""
+    z, p = ca.SX.sym("z"), ca.SX.sym("p")
+    root = ca.rootfinder("root", "fast_newton", ca.Function("g", [z, p], [z ** 2 - p]),
+                         {"max_iter": 20})
+    x = ca.SX.sym("x")
+    return ca.Function("f", [x], [root(0.5, x)])
+
+
+def test_a_newton_block_without_a_root_fails_in_c_as_on_the_vm(tmp_path):
+    """CasADi's generated C returned the last Newton iterate as if it were the root (f(-1)
+    gave 0.4685, a number a run went on with) where its virtual machine raises; the generated
+    source now fails the evaluation after the last iteration, and a converged block is
+    unchanged."""
+    f = _newton_block()
+    [source] = generate_units([f], "newton_test")
+    assert source.count("if (iter>=20) return 1;") == 1
+    compiled = ca.external("f", str(compile_source([source], tmp_path / "newton.so")))
+    assert float(compiled(4.0)) == float(f(4.0)) == pytest.approx(2.0, rel=1e-12)
+    with pytest.raises(RuntimeError, match="failed"):
+        f(-1.0)  # the VM
+    with pytest.raises(RuntimeError, match="Evaluation failed"):
+        compiled(-1.0)
