@@ -33,7 +33,7 @@ INPUT_LIMITS = {
                         SpeedLimitWarning),
     "static load": InputLimit(
         "the load at which this component alone brings the static equivalent load to the "
-        "bearing's static load rating C0",
+        "static load rating C0",
         "the raceways deform permanently (ISO 76)", PlasticDeformationWarning),
 }
 """Kinds of input limits: a speed above a limiting speed

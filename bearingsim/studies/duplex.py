@@ -41,7 +41,7 @@ from bearingsim.assemblies.duplex.limits import check_pair_loads, check_pair_spe
 from bearingsim.assemblies.duplex.options import si_option
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.components.ball_row import axial_approach, row_parameters
-from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.errors import ParameterError, PlasticDeformationWarning, SimulationError
 from bearingsim.physics.shaft_modes import DOFS, LOSS_FACTOR, Modes, modal_analysis
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
@@ -341,7 +341,9 @@ class DuplexModel:  # numpydoc ignore=PR02
         inputs = _load_inputs(loads)
         check_pair_loads(self.pair.options, {k.split(".")[1]: v for k, v in inputs.items()},
                          f"DuplexModel({self.geometry.designation} {self.arrangement})")
-        x = self._solve(inputs, params)
+        with warnings.catch_warnings():  # the loads together were rated just above
+            warnings.filterwarnings("ignore", category=PlasticDeformationWarning)
+            x = self._solve(inputs, params)
         return self._equilibrium(x, inputs, params)
 
     def _solve(self, inputs: dict[str, float], params: dict[str, float]) -> np.ndarray:

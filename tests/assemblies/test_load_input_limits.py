@@ -62,8 +62,8 @@ def test_a_load_input_beyond_c0_warns_naming_it(quasi_static, name, value):
 def test_a_load_input_beyond_ten_c0_is_refused(quasi_static, load):
     with pytest.raises(ParameterError, match=r"input load\.Fx.*\[N\].*-79000.*the bound is 10 x "
                                              r"the load at which this component alone brings "
-                                             r"the static equivalent load to the bearing's "
-                                             r"static load rating C0: 7\.9 kN"):
+                                             r"the static equivalent load to the static "
+                                             r"load rating C0: 7\.9 kN"):
         simulate(quasi_static, 0.1, inputs={"load.Fx": load}, n_points=3)
 
 
