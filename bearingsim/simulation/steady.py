@@ -131,9 +131,14 @@ def steady_state(
     newton = _newton_call(_newton_function(kernel(system, "ode", compiled).function), free)
     newton.start(t, x, u, p)
     last: list = [None, None]  # the point last evaluated and its Jacobian
+    unsolved = [0]  # evaluations a nonlinear block of the model found no root in
 
     def res(z):
-        f, j = newton(z)
+        try:
+            f, j = newton(z)
+        except RuntimeError:  # no root of a Newton block there: no residual, try elsewhere
+            unsolved[0] += 1
+            f, j = np.full(free.size, np.nan), np.full((free.size, free.size), np.nan)
         last[0], last[1] = z.copy(), j
         return f
 
@@ -154,6 +159,8 @@ def steady_state(
                 + "; residual max "
                 f"{np.max(np.abs(res(sol.x))):.3g} for states "
                 + ", ".join(system.state_names[k] for k in free)
+                + (f"; at {unsolved[0]} of the points tried a nonlinear block of the model "
+                   "found no root (the model has no value there)" if unsolved[0] else "")
             )
         solution = sol.x
     if require_unique:
