@@ -266,7 +266,8 @@ class DuplexModel:  # numpydoc ignore=PR02
         contact_angle = self._contact_angle(contact_angle, bearing)
         speed = pair.speed if speed is None else si_option(speed, "speed", "rad/s",
                                                            "DuplexModel")
-        check_pair_speed(g, speed, f"DuplexModel({g.designation})")
+        check_pair_speed(g, speed, f"DuplexModel({g.designation})",
+                         self.preload_force(preload, bearing))
         if speed != 0.0 and not pair.row[0].speed_effects:
             raise ParameterError(
                 f"DuplexModel: speed = {speed:g} rad/s, but the pair was assembled without speed "

@@ -26,7 +26,12 @@ import pytest
 
 from bearingsim.assemblies.cylindrical_roller.spindle import spindle
 from bearingsim.assemblies.duplex import DuplexOptions, duplex_pair
-from bearingsim.assemblies.duplex.limits import pair_load_bounds, rated_geometry
+from bearingsim.assemblies.duplex.limits import (
+    pair_load_bounds,
+    pair_speed_factor,
+    rated_geometry,
+)
+from bearingsim.assemblies.duplex.preload import preload_force
 from bearingsim.catalog import get_bearing
 from bearingsim.errors import ParameterError, PlasticDeformationWarning, SpeedLimitWarning
 from bearingsim.physics.life import pair_static_load_rating, static_load_factors
@@ -152,6 +157,27 @@ def test_the_reported_speed_is_refused_before_the_solver():
     with warnings.catch_warnings():
         warnings.simplefilter("error", SpeedLimitWarning)
         DuplexOptions("7020C", "DF", speed=11000 * RPM)
+
+
+def test_a_higher_preload_lowers_the_pairs_limiting_speed(df):
+    """NSK Super Precision Bearings p. 170, Table 5.1 (DB): 0.80 of one bearing's limiting
+    speed at light preload, 0.65 medium, 0.55 heavy; between the classes interpolated in the
+    preload force (7020C: light 540 N, medium 1270 N, heavy 2550 N), beyond them held. The
+    pair was allowed 0.8 x 14 000 r/min at every preload."""
+    g = get_bearing("7020C")
+    light, medium, heavy = (preload_force(g, c) for c in ("light", "medium", "heavy"))
+    assert [pair_speed_factor(g, f) for f in (0.5 * light, light, medium, heavy, 2 * heavy)] \
+        == pytest.approx([0.80, 0.80, 0.65, 0.55, 0.55], abs=1e-12)
+    assert pair_speed_factor(g, 0.5 * (light + medium)) == pytest.approx(0.725, abs=1e-12)
+    with pytest.warns(SpeedLimitWarning, match=r"10000 r/min\) exceeds the limiting speed of a "
+                                               r"pair of 7020C at 2550 N preload \(0\.55 x"):
+        DuplexOptions("7020C", "DF", speed=10000 * RPM, preload="heavy")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SpeedLimitWarning)
+        DuplexOptions("7020C", "DF", speed=10000 * RPM, preload="light")
+    with pytest.warns(SpeedLimitWarning, match=r"at 1270 N preload"), \
+            pytest.raises(ParameterError, match="without speed effects"):  # checked first
+        df.parameters(speed=10000 * RPM, preload="medium")
 
 
 def test_a_study_configuration_speed_is_checked_too(df):

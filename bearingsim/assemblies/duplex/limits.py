@@ -16,11 +16,14 @@ bounds of the shaft's load inputs, the check of constant loads) and its limiting
   pressure centres cross (a DF pair closer than ``dm tan a``) carry a moment by their own tilt
   stiffness, which no catalogue rates: their moments are left unbounded, their forces rated as
   shared equally.
-* **Limiting speed.** A pair runs slower than one bearing: SKF General Catalogue 6000 (Russian
-  ed., 2006 data), p. 414, "speeds of paired bearings": the table's speeds reduced by about
-  20 %; NSK Super Precision Bearings (Russian ed.), p. 170, Table 5.1: a DB pair 0.80 x the
-  single bearing's at light preload (0.85 extra light, 0.65 medium, 0.55 heavy).
-  :data:`PAIR_SPEED_FACTOR` takes the 0.8 both give.
+* **Limiting speed.** A pair runs slower than one bearing, the more so the higher its
+  preload: SKF General Catalogue 6000 (Russian ed., 2006 data), p. 414, "speeds of paired
+  bearings": the table's speeds reduced by about 20 %; NSK Super Precision Bearings (Russian
+  ed.), p. 170, Table 5.1: a DB pair 0.80 x the single bearing's at light preload (0.85 extra
+  light, 0.65 medium, 0.55 heavy). :data:`PAIR_SPEED_FACTORS` holds the light, medium and
+  heavy factors; a preload between the bearing's class preloads is interpolated, one below
+  the light class takes the light factor (SKF's 20 % for every pair), one above the heavy the
+  heavy factor.
 """
 
 from __future__ import annotations
@@ -29,7 +32,9 @@ import dataclasses
 import math
 from typing import Any
 
-from bearingsim.assemblies.duplex.preload import ARRANGEMENTS
+import numpy as np
+
+from bearingsim.assemblies.duplex.preload import ARRANGEMENTS, preload_force
 from bearingsim.catalog import BearingGeometry
 from bearingsim.catalog.geometry import check_speed_limit
 from bearingsim.components.rolling_element import (
@@ -37,14 +42,15 @@ from bearingsim.components.rolling_element import (
     load_input_bounds,
     static_load_bounds,
 )
+from bearingsim.errors import ParameterError
 from bearingsim.physics.life import static_load_rating
 
-__all__ = ["PAIR_SPEED_FACTOR", "check_pair_loads", "check_pair_speed", "pair_load_bounds",
-           "pair_limiting_speed", "rated_geometry"]
+__all__ = ["PAIR_SPEED_FACTORS", "check_pair_loads", "check_pair_speed", "pair_load_bounds",
+           "pair_limiting_speed", "pair_speed_factor", "rated_geometry"]
 
-PAIR_SPEED_FACTOR = 0.8
-"""Limiting speed of a pair over one bearing's [-] (SKF General Catalogue 6000 p. 414; NSK Super
-Precision Bearings p. 170, Table 5.1, DB at light preload)."""
+PAIR_SPEED_FACTORS = {"light": 0.80, "medium": 0.65, "heavy": 0.55}
+"""Limiting speed of a pair over one bearing's [-] by preload class (NSK Super Precision
+Bearings p. 170, Table 5.1, DB; the light one also SKF General Catalogue 6000 p. 414)."""
 
 
 def rated_geometry(geometry: BearingGeometry) -> BearingGeometry:
@@ -152,14 +158,43 @@ def check_pair_loads(options: Any, loads: dict[str, float], where: str) -> None:
                         options.arrangement)
 
 
-def pair_limiting_speed(geometry: BearingGeometry) -> float | None:
-    """Limiting speed of a pair of the bearing [rad/s]: :data:`PAIR_SPEED_FACTOR` times the
+def pair_speed_factor(geometry: BearingGeometry, preload: float | None = None) -> float:
+    """The pair's limiting speed over one bearing's [-] at an axial preload
+    (:data:`PAIR_SPEED_FACTORS`, interpolated between the bearing's class preloads).
+
+    Parameters
+    ----------
+    geometry : BearingGeometry
+        A bearing of the pair.
+    preload : float, optional
+        Axial preload [N]; None: the light class.
+
+    Returns
+    -------
+    float
+        The factor, between the heavy and the light class's.
+    """
+    light = PAIR_SPEED_FACTORS["light"]
+    if preload is None:
+        return light
+    try:
+        forces = [preload_force(geometry, name) for name in PAIR_SPEED_FACTORS]
+    except ParameterError:  # no preload classes (nor C to derive them): the light factor
+        return light
+    return float(np.interp(preload, forces, list(PAIR_SPEED_FACTORS.values())))
+
+
+def pair_limiting_speed(geometry: BearingGeometry, preload: float | None = None
+                        ) -> float | None:
+    """Limiting speed of a pair of the bearing [rad/s]: :func:`pair_speed_factor` times the
     catalogue's (None without one).
 
     Parameters
     ----------
     geometry : BearingGeometry
         A bearing of the pair.
+    preload : float, optional
+        Axial preload [N]; None: the light class.
 
     Returns
     -------
@@ -167,11 +202,12 @@ def pair_limiting_speed(geometry: BearingGeometry) -> float | None:
         The pair's limiting speed [rad/s].
     """
     limit = geometry.limiting_speed
-    return None if limit is None else PAIR_SPEED_FACTOR * limit
+    return None if limit is None else pair_speed_factor(geometry, preload) * limit
 
 
-def check_pair_speed(geometry: BearingGeometry, speed: float, where: str) -> None:
-    """Warn above the pair's limiting speed, refuse beyond twice it
+def check_pair_speed(geometry: BearingGeometry, speed: float, where: str,
+                     preload: float | None = None) -> None:
+    """Warn above the pair's limiting speed at its preload, refuse beyond twice it
     (:func:`~bearingsim.catalog.geometry.check_speed_limit`).
 
     Parameters
@@ -182,6 +218,8 @@ def check_pair_speed(geometry: BearingGeometry, speed: float, where: str) -> Non
         Shaft speed [rad/s], either sign.
     where : str
         The model, for messages.
+    preload : float, optional
+        Axial preload [N]; None: the light class.
 
     Raises
     ------
@@ -193,6 +231,8 @@ def check_pair_speed(geometry: BearingGeometry, speed: float, where: str) -> Non
     SpeedLimitWarning
         Above it.
     """
-    check_speed_limit(speed, pair_limiting_speed(geometry), where,
-                      f"the limiting speed of a pair of {geometry.designation} "
-                      f"({PAIR_SPEED_FACTOR:g} x the single bearing's)")
+    check_speed_limit(speed, pair_limiting_speed(geometry, preload), where,
+                      f"the limiting speed of a pair of {geometry.designation} at "
+                      + ("light preload" if preload is None else f"{preload:g} N preload")
+                      + f" ({pair_speed_factor(geometry, preload):.3g} x the single "
+                        "bearing's)")

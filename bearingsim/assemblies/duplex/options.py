@@ -169,7 +169,7 @@ class DuplexOptions:
                      if getattr(self, name) is not None})
         self._resolve_preload()
         speed = si_option(self.speed, "speed", "rad/s")
-        check_pair_speed(g, speed, f"duplex_pair({g.designation})")
+        check_pair_speed(g, speed, f"duplex_pair({g.designation})", self.preload_force)
         for name in ("exact", "axisymmetric"):
             check_flag(getattr(self, name), name, WHERE)
         check_flag(self.speed_effects, "speed_effects", WHERE, allow_none=True)
