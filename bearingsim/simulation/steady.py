@@ -20,6 +20,7 @@ from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import kernel
+from bearingsim.simulation.native_streams import casadi_dumps_dropped
 from bearingsim.validation import check_flag, check_range, check_vector
 
 __all__ = ["steady_state", "integrator_states"]
@@ -147,26 +148,34 @@ def steady_state(
             res(z)
         return last[1]
 
-    solution = _newton(res, jac, x[free], tol, residual_tol)
-    if solution is None:  # Newton did not converge from this guess: the trust region's way
-        from scipy.optimize import root  # on use: importing scipy.optimize takes ~0.6 s
-
-        sol = root(res, x[free], jac=jac, method="hybr", tol=tol)
-        converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
-        if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
-            raise SimulationError(
-                "steady state not found: " + " ".join(str(sol.message).split())  # one line
-                + "; residual max "
-                f"{np.max(np.abs(res(sol.x))):.3g} for states "
-                + ", ".join(system.state_names[k] for k in free)
-                + (f"; at {unsolved[0]} of the points tried a nonlinear block of the model "
-                   "found no root (the model has no value there)" if unsolved[0] else "")
-            )
-        solution = sol.x
-    if require_unique:
-        _check_determined(system, jac(solution), free)
+    with casadi_dumps_dropped():  # a block without a root on the VM: said below, not dumped
+        solution = _solve(system, res, jac, x[free], tol, residual_tol, free, unsolved)
+        if require_unique:
+            _check_determined(system, jac(solution), free)
     x[free] = solution
     return x
+
+
+def _solve(system: System, res, jac, z: np.ndarray, tol: float, residual_tol: float,
+           free: np.ndarray, unsolved: list[int]) -> np.ndarray:
+    """The free states' steady values: Newton from ``z`` (:func:`_newton`), else MINPACK's
+    trust-region method (``hybr``) from ``z``; ``unsolved[0]`` counts the points where the
+    model had no value (a Newton block without a root), for the message."""
+    solution = _newton(res, jac, z, tol, residual_tol)
+    if solution is not None:
+        return solution
+    from scipy.optimize import root  # on use: importing scipy.optimize takes ~0.6 s
+
+    sol = root(res, z, jac=jac, method="hybr", tol=tol)
+    converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
+    if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
+        raise SimulationError(
+            "steady state not found: " + " ".join(str(sol.message).split())  # one line
+            + f"; residual max {np.max(np.abs(res(sol.x))):.3g} for states "
+            + ", ".join(system.state_names[k] for k in free)
+            + (f"; at {unsolved[0]} of the points tried a nonlinear block of the model found "
+               "no root (the model has no value there)" if unsolved[0] else ""))
+    return sol.x
 
 
 NEWTON_ITERATIONS = 12

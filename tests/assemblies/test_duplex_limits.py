@@ -207,3 +207,24 @@ def test_a_newton_block_that_fails_says_so_without_casadis_dump(capfd):
     printed = capfd.readouterr()
     for text in (printed.out, printed.err):
         assert "Input 0" not in text and "Function newton0" not in text
+
+
+def test_a_steady_state_without_a_root_says_so_without_casadis_dump(capfd):
+    """steady_state on CasADi's VM where the ball equations have no root (a 7020C without a
+    limiting speed at 1e5 rad/s) printed CasADi's dump of the Newton block's inputs on
+    standard error at every point it tried; now only the error, which says why."""
+    import dataclasses
+
+    from bearingsim.assembler import assemble
+    from bearingsim.errors import SimulationError
+    from bearingsim.simulation import steady_state
+
+    unlimited = dataclasses.replace(get_bearing("7020C"), designation="7020X",
+                                    limiting_speed=None)
+    system = assemble(duplex_pair(unlimited, "DF", speed=1e5, damping_ratio=0.1))
+    with pytest.raises(SimulationError, match=r"steady state not found: .*a nonlinear block of "
+                                              r"the model found no root"):
+        steady_state(system, compiled=False)
+    printed = capfd.readouterr()
+    for text in (printed.out, printed.err):
+        assert "Input 0" not in text and "Function newton0" not in text
