@@ -6,6 +6,7 @@ limiting speed, the static load rating), and a start value checked at export."""
 
 from __future__ import annotations
 
+import re
 from ctypes import c_double, c_size_t, c_uint
 
 import pytest
@@ -107,6 +108,33 @@ def test_fmi2_warns_once_above_the_static_load_rating(torque_fmus, tmp_path):
     fmu.exitInitializationMode()
     fmu.doStep(0.0, 1e-3)
     assert fmu.getReal([vr["Fr"]]) == [6000.0]
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+def test_an_input_extrapolated_out_of_its_range_is_held_at_the_bound(torque_fmus, tmp_path):
+    """Co-simulation inputs follow the polynomial of the derivatives a master sets
+    (fmi2SetRealInputDerivatives) within a step; Fr = 100 N falling at 1e6 N/s reached
+    -900 N at the end of a 1 ms step and the model ran there, where setting -900 N is
+    refused. The extrapolated input is held at its bound, with one warning."""
+    log = LogCapture()
+    fmu, _, vr = open_fmu(torque_fmus["2.0"], tmp_path, log=log)
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    fmu.setReal([vr["Fr"]], [100.0])
+    fmu.setRealInputDerivatives([vr["Fr"]], [1], [-1e6])
+    fmu.doStep(0.0, 1e-3)
+    assert fmu.getReal([vr["Fr"]]) == [0.0]
+    warnings = [m[2] for m in log.messages if m[0] == FMI2_WARNING]
+    assert len(warnings) == 1
+    assert re.fullmatch(r"input Fr extrapolated from its derivatives reaches -[0-9.e+-]+ \[N\] "
+                        r"at t = [0-9.e+-]+ s, outside its valid range; held at 0 \[N\] "
+                        r"\(warned once per instance\)", warnings[0])
+    fmu.setReal([vr["Fr"]], [100.0])
+    fmu.setRealInputDerivatives([vr["Fr"]], [1], [-1e6])
+    fmu.doStep(1e-3, 1e-3)  # once per instance
+    assert len([m for m in log.messages if m[0] == FMI2_WARNING]) == 1
     fmu.terminate()
     fmu.freeInstance()
 

@@ -35,6 +35,7 @@ void bsm_reset(BsmInstance *m) {
     m->s.rtol = 1e-6;
     m->w_valid = 0;
     memset(m->u_warned, 0, sizeof(m->u_warned));
+    memset(m->u_clamped, 0, sizeof(m->u_clamped));
     bsm_invalidate(m);
 }
 

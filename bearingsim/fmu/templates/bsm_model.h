@@ -185,6 +185,7 @@ typedef struct {
     bsm_logger logger;
     int debug_logging;
     unsigned char u_warned[BSM_DIM(NU)]; /* input k was warned about (bsm_u_warn_above) */
+    unsigned char u_clamped[BSM_DIM(NU)]; /* input k was extrapolated out of its range */
     bsm_inputs_fn inputs_between; /* NULL: inputs follow their derivatives' polynomial */
 } BsmInstance;
 

@@ -71,15 +71,44 @@
 #define BSM_INPUT_JUMP 1e-2  /* relative input change at a doStep start that renews J */
 #endif
 
+/* Input k extrapolated to v at time t, held within its range (a radial load extrapolated
+ * below 0 is 0: the model is not evaluated where a set value would be refused); the first
+ * time per input and instance it is logged. */
+static double held_in_range(int k, double v) {
+    unsigned char b = bsm_u_bounds[k];
+    if ((b & BSM_HAS_LOW) && v < bsm_u_low[k]) return bsm_u_low[k];
+    if ((b & BSM_HAS_HIGH) && v > bsm_u_high[k]) return bsm_u_high[k];
+    return v;
+}
+
+static double within_range(BsmInstance *m, int k, double v, double t) {
+    double held = held_in_range(k, v);
+    char num[32], bound[32];
+    if (held != v && !m->u_clamped[k]) {
+        m->u_clamped[k] = 1;
+        bsm_log(m, BSM_WARNING, "logStatusWarning",
+                "input %s extrapolated from its derivatives reaches %s [%s] at t = %g s, "
+                "outside its valid range; held at %s [%s] (warned once per instance)",
+                bsm_u_names[k], bsm_num(num, v), bsm_u_units[k], t, bsm_num(bound, held),
+                bsm_u_units[k]);
+    }
+    return held;
+}
+
+/* Input k at time t by the polynomial of its derivatives at the step start. */
+static double extrapolated(const BsmInstance *m, int k, double t) {
+    double tau = t - m->saved.time;
+    return m->saved.u[k] + tau * (m->saved.du[k] + tau * (m->saved.d2u[k] / 2.0
+                                                          + tau * m->saved.d3u[k] / 6.0));
+}
+
 /* Inputs at time t of the step into m->ut: from the API layer where it gives them (FMI 3.0
- * intermediate update), else the polynomial of the input derivatives at the step start. */
+ * intermediate update), else the polynomial of the input derivatives at the step start, held
+ * within the inputs' ranges. */
 static void inputs_at(BsmInstance *m, double t) {
     int i;
-    double tau = t - m->saved.time;
     if (m->inputs_between != NULL && m->inputs_between(m->host, t, m->ut)) return;
-    for (i = 0; i < NU; ++i)
-        m->ut[i] = m->saved.u[i] + tau * (m->saved.du[i] + tau * (m->saved.d2u[i] / 2.0
-                                                                  + tau * m->saved.d3u[i] / 6.0));
+    for (i = 0; i < NU; ++i) m->ut[i] = within_range(m, i, extrapolated(m, i, t), t);
 }
 
 static int all_finite(const double *v, int n) {
@@ -328,12 +357,15 @@ static int rhs(BsmInstance *m, double t, const double *y, double *f) {
 }
 
 /* df/dt = jac_t + jac_u * du/dt [unit of x / s^2] at time t of the step from the stepper's
- * Jacobians, du/dt the rate of the inputs' polynomial there. */
+ * Jacobians, du/dt the rate of the inputs' polynomial there (0 where it is held at a bound). */
 static void time_derivative(BsmInstance *m, double t) {
     int i, j;
     double tau = t - m->saved.time;
-    for (j = 0; j < NU; ++j)
-        m->rate_u[j] = m->saved.du[j] + tau * (m->saved.d2u[j] + tau * m->saved.d3u[j] / 2.0);
+    for (j = 0; j < NU; ++j) {
+        double v = extrapolated(m, j, t);
+        m->rate_u[j] = (held_in_range(j, v) != v) ? 0.0 :
+            m->saved.du[j] + tau * (m->saved.d2u[j] + tau * m->saved.d3u[j] / 2.0);
+    }
     for (i = 0; i < NX; ++i) {
         m->dfdt[i] = m->w_jt[i];
         for (j = 0; j < NU; ++j) m->dfdt[i] += m->w_ju[i * NU + j] * m->rate_u[j];
