@@ -241,10 +241,20 @@ def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), paramete
     Raises
     ------
     ParameterError
-        If ``system`` is given together with ``inner``, ``outer`` or bearing keywords (they
-        would be ignored: the system is already assembled).
+        For speeds that are not positive finite numbers (checked before anything is
+        assembled), or ``system`` given together with ``inner``, ``outer`` or bearing
+        keywords (they would be ignored: the system is already assembled).
     """
-    speeds = np.asarray(speeds, dtype=float)
+    where = "speed_ratio_sweep"
+    try:
+        speeds = np.asarray(speeds, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{where}: speeds must be numbers [rad/s], got "
+                             f"{speeds!r:.60}") from None
+    if speeds.ndim != 1 or speeds.size == 0:
+        raise ParameterError(f"{where}: speeds must be a non-empty list of shaft speeds "
+                             f"[rad/s], got shape {speeds.shape}")
+    check_range(speeds, "speeds", "rad/s", 0.0, None, low_inclusive=False, where=where)
     if system is None:
         inner = "61905" if inner is None else inner
         outer = "61907" if outer is None else outer
@@ -255,7 +265,7 @@ def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), paramete
                    + sorted(bearing))
         if ignored:
             raise ParameterError(
-                f"speed_ratio_sweep: {', '.join(ignored)} cannot be combined with system= "
+                f"{where}: {', '.join(ignored)} cannot be combined with system= "
                 "(the system is already assembled); give either the bearing or the system"
             )
     rs, torque = np.empty_like(speeds), np.empty_like(speeds)

@@ -527,3 +527,15 @@ def test_steady_ratio_takes_numbers_with_units_as_simulate_does(torque_system):
     with pytest.raises(ParameterError, match=r"steady_ratio: loads\[1\]: 'rpm' is not a unit "
                                              r"of N quantities"):
         steady_ratio(torque_system, 100.0, (200.0, "5 rpm"))
+
+
+@pytest.mark.parametrize(("speeds", "match"), [
+    ([100.0, 0.0], r"speed_ratio_sweep: speeds = array with min 0, max 100 \[rad/s\] is "
+                   r"outside the valid range \(0, inf\)"),  # was steady_ratio's message
+    (["fast"], r"speed_ratio_sweep: speeds must be numbers \[rad/s\]"),  # was ValueError
+    ([], r"speed_ratio_sweep: speeds must be a non-empty list"),  # was an empty sweep
+    ([100.0, float("nan")], r"speed_ratio_sweep: speeds must be finite"),
+])
+def test_speed_ratio_sweep_checks_its_speeds_before_assembling(speeds, match):
+    with pytest.raises(ParameterError, match=match):
+        speed_ratio_sweep(speeds)
