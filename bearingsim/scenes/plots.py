@@ -161,6 +161,19 @@ def _same_as(x: np.ndarray, y: np.ndarray) -> bool:
     return x.shape == y.shape and bool(np.allclose(x, y, rtol=1e-9, atol=0.0))
 
 
+INSIDE_LEGEND_ENTRIES = 4
+"""Most entries a legend keeps inside its axes; a longer one (the modes of a duplex pair and
+the line style of each speed) goes to the right of them, off the curves it would cover."""
+
+
+def _legend(ax) -> None:
+    """The axes' legend: inside (matplotlib's best place) when short, else to the right."""
+    if len(ax.get_legend_handles_labels()[1]) <= INSIDE_LEGEND_ENTRIES:
+        ax.legend(fontsize=7)
+    else:
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+
+
 MAX_CURVES = 8
 """Most curves a characteristic panel draws; beyond (a sampled sweep: every point its own
 combination of the other keys) the points are drawn as markers without lines."""
@@ -273,7 +286,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
                       else axis_text(panel[0], prep, y_unit), fontsize=8)
         if (len(curves) > 1 or len(panel) > 1) and not markers_only:
-            ax.legend(fontsize=7)
+            _legend(ax)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
     per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""

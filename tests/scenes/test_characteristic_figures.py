@@ -69,3 +69,23 @@ def test_a_transient_sweep_draws_the_same_curves(prep):
     assert name == "sweep.png"
     rs_lines, life_lines = _lines(fig)
     assert len(rs_lines) == 2 and fig.axes[1].get_yscale() == "log"
+
+
+def test_a_long_legend_stands_beside_the_curves_on_the_figure(prep):
+    """The duplex modes figure (5 modes and 2 speeds: 7 entries) put its legend over the
+    axial mode's curve; a legend of more than 4 entries now stands right of the axes, and
+    still on the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    modes = ["radial x", "radial y", "axial", "tilt about x", "tilt about y"]
+    rows = [{"shaft_speed": w, "Fr": f, **{m: (k + 1) * 100.0 + f for k, m in enumerate(modes)}}
+            for f in (0.0, 50.0) for w in (100.0, 200.0, 300.0)]
+    [(_, fig)] = characteristic_figures(prep, rows, ["shaft_speed", "Fr"],
+                                        {**UNITS, **dict.fromkeys(modes, "Hz")}, modes, "modes")
+    FigureCanvasAgg(fig).draw()
+    renderer = fig.canvas.get_renderer()
+    [ax] = fig.axes
+    legend = ax.get_legend().get_window_extent(renderer)
+    assert len(ax.get_legend().get_texts()) == 7
+    assert legend.x0 >= ax.get_window_extent(renderer).x1  # beside the curves
+    assert legend.x1 <= fig.bbox.width  # on the figure
