@@ -30,7 +30,8 @@ def test_options_take_numbers_with_units():
 @pytest.mark.parametrize("option, value, message", [
     ("speed", "3 kN", r"duplex_pair: speed: 'kN' is not a unit of rad/s quantities"),
     ("preload", "2 m", r"duplex_pair: preload: 'm' is not a unit of N quantities"),
-    ("speed", "fast", r"duplex_pair: speed must be a number in rad/s, got 'fast'"),
+    ("speed", "fast", r"duplex_pair: speed: 'fast' is not a number with a unit; write e\.g\. "
+                      r"'10000 rpm' or a number in rad/s"),
     ("preload", "strong", r"preload class must be 'light', 'medium' or 'heavy', or the preload "
                           r"an axial force in N \(a number > 0, or e.g. '500 N'\)"),
 ])

@@ -17,8 +17,7 @@ from bearingsim.assemblies.duplex.shaft import ShaftSpec, _shaft_spec
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.errors import ParameterError
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
-from bearingsim.units import to_si
-from bearingsim.validation import check_flag, check_range
+from bearingsim.validation import check_flag, check_quantity, check_range
 
 __all__ = ["DuplexOptions", "si_option"]
 
@@ -29,7 +28,7 @@ WHERE = "duplex_pair"
 def si_option(value: Any, name: str, unit: str, where: str = WHERE) -> float:
     """An option given as a number in ``unit`` or as a number with a unit (``"3000 rpm"``, a
     :class:`pint.Quantity`), in ``unit``, as every entry point takes them
-    (:func:`bearingsim.units.to_si`).
+    (:func:`bearingsim.validation.check_quantity`, with this model's name and as a float).
 
     Parameters
     ----------
@@ -53,7 +52,7 @@ def si_option(value: Any, name: str, unit: str, where: str = WHERE) -> float:
         For a value that is not a finite number, a unit of another quantity
         (:class:`~bearingsim.units.UnitError`), naming the option and its unit.
     """
-    return float(check_range(to_si(value, unit, f"{where}: {name}"), name, unit, where=where))
+    return float(check_quantity(value, name, unit, where=where))
 
 
 @dataclass(frozen=True)
