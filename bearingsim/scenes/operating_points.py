@@ -119,23 +119,40 @@ def filled_point(prep: Any, point: dict[str, Any]) -> dict[str, Any]:
         ``{key: value}``; a key whose value no one states (an input the model does not have)
         is left out.
     """
-    scene, system = prep.scene, prep.system
-    inputs, parameters, args = split_point(scene, point)
-    defaults = {f"inputs.{n}": float(u) for n, u in zip(system.input_names, system.u_default(),
-                                                          strict=True)}
-    defaults.update({f"parameters.{n}": float(v)
-                     for n, v in zip(system.parameter_names, system.p0(), strict=True)})
-    defaults.update({f"assembly.{n}": v for n, v in prep.spec.with_defaults(args).items()})
-    given = {**{f"inputs.{n}": v for n, v in inputs.items()},
-             **{f"parameters.{n}": v for n, v in parameters.items()},
-             **{f"assembly.{n}": v for n, v in args.items()}}
+    keys = dict.fromkeys([*point_keys(prep.scene), *(k for k in point if k != "name")])
+    used = _used_values(prep, point, [k for k in keys if k not in point])
     filled = {k: v for k, v in point.items() if k == "name"}
-    for key in [*point_keys(scene), *(k for k in point if k != "name")]:
-        if key in point:
-            filled[key] = point[key]
-        elif key in given or key in defaults:
-            filled[key] = given.get(key, defaults.get(key))
+    for key in keys:
+        if key in point or key in used:
+            filled[key] = point[key] if key in point else used[key]
     return filled
+
+
+def _used_values(prep: Any, point: dict[str, Any], keys: list[str]) -> dict[str, Any]:
+    """The values a run of ``point`` uses for ``keys`` it does not give: the scene's own, else
+    the model's or the assembly's default (none for a key without one). A grid point gives
+    every key: nothing is looked up."""
+    if not keys:
+        return {}
+    system = prep.system
+    inputs, parameters, args = split_point(prep.scene, point)
+    heads = {key.partition(".")[0] for key in keys}
+    sources = {"inputs": [inputs], "parameters": [parameters], "assembly": [args]}
+    if "inputs" in heads:
+        sources["inputs"].append(dict(zip(system.input_names, system.u_default().tolist(),
+                                          strict=True)))
+    if "parameters" in heads:
+        sources["parameters"].append(dict(zip(system.parameter_names, system.p0().tolist(),
+                                              strict=True)))
+    if "assembly" in heads:
+        sources["assembly"].append(prep.spec.with_defaults(args))
+    used = {}
+    for key in keys:
+        head, _, rest = key.partition(".")
+        found = [source[rest] for source in sources.get(head, ()) if rest in source]
+        if found:
+            used[key] = found[0]
+    return used
 
 
 def split_point(scene: Scene, point: dict[str, Any]
