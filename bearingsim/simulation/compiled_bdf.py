@@ -106,18 +106,18 @@ def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
     lib = source_library(units, headers=headers, flags=FLAGS, cache_dir=cache_dir,
                          prefix="bsm_bdf")
     dll = ctypes.CDLL(str(lib))
+    # arrays go in as addresses (:func:`_address_of`): cheaper than numpy's ctypes objects
     p, i, ll, d = ctypes.c_void_p, ctypes.c_int, ctypes.c_longlong, ctypes.c_double
-    dp = ctypes.POINTER(ctypes.c_double)
     dll.bsm_bdf_new.restype = p
-    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, ll, p, p, p, p, p, dp, dp, ll, ll, ll,
-                                ll, d, d, d, d, d, dp]
+    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, ll, p, p, p, p, p, p, p, ll, ll, ll,
+                                ll, d, d, d, d, d, p]
     dll.bsm_bdf_start.argtypes = [p]
-    dll.bsm_bdf_advance.argtypes = [p, i, dp, dp, i, ctypes.POINTER(i)]
+    dll.bsm_bdf_advance.argtypes = [p, i, p, p, i, ctypes.POINTER(i)]
     dll.bsm_bdf_free.argtypes = [p]
     dll.bsm_bdf_time.restype = d
     dll.bsm_bdf_time.argtypes = [p]
-    dll.bsm_bdf_state.argtypes = [p, dp]
-    dll.bsm_bdf_stats.argtypes = [p, ctypes.POINTER(ll)]
+    dll.bsm_bdf_state.argtypes = [p, p]
+    dll.bsm_bdf_stats.argtypes = [p, p]
     return dll
 
 
@@ -125,8 +125,9 @@ def _address(dll: ctypes.CDLL, name: str) -> int:
     return ctypes.cast(getattr(dll, name), ctypes.c_void_p).value
 
 
-def _pointer(a: np.ndarray):
-    return a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+def _address_of(a: np.ndarray) -> int:
+    """The address of a contiguous array's first element (the caller keeps ``a`` alive)."""
+    return a.__array_interface__["data"][0]
 
 
 @dataclass(frozen=True)
@@ -143,6 +144,9 @@ class _Prepared:
     n_u: int
     jac_nnz: int
     newton: NewtonPattern
+    newton_addresses: tuple[int, ...]
+    """The addresses of ``newton``'s arrays, in ``bsm_bdf_new``'s order (``newton`` keeps
+    them alive)."""
     sizes: tuple[int, int, int, int]
 
 
@@ -166,11 +170,13 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
         kernel_dll = ctypes.CDLL(str(kern.library))
         sparsity = jacobian.sparsity_out(1)
         fns = (function, jacobian, sig)
+        newton = newton_pattern(sparsity)
         found = _PREPARED[key] = _Prepared(
             dll, kernel_dll, _address(kernel_dll, function.name()),
             _address(kernel_dll, jacobian.name()),
-            _address(dll, "bsm_signal") if n_u else None, n_u,
-            sparsity.nnz(), newton_pattern(sparsity),
+            _address(dll, "bsm_signal") if n_u else None, n_u, sparsity.nnz(), newton,
+            tuple(_address_of(a) for a in (newton.order, newton.start, newton.index,
+                                           newton.jac_slot, newton.diag_slot)),
             tuple(max(int(getattr(f, name)()) for f in fns)
                   for name in ("sz_arg", "sz_res", "sz_iw", "sz_w")))
         return found
@@ -231,14 +237,11 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
     p = np.ascontiguousarray(p, dtype=float)
     q = np.ascontiguousarray(signal.q, dtype=float)
     x0 = np.ascontiguousarray(x0, dtype=float)
-    newton = prep.newton
     solver = dll.bsm_bdf_new(
         n, prep.n_u, p.size, q.size, prep.ode, prep.jac, prep.signal, prep.jac_nnz,
-        *[a.ctypes.data for a in (newton.order, newton.start, newton.index, newton.jac_slot,
-                                  newton.diag_slot)],
-        _pointer(p), _pointer(q), *prep.sizes, float(rtol), float(atol),
-        float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0), float(t1),
-        _pointer(x0))
+        *prep.newton_addresses, _address_of(p), _address_of(q), *prep.sizes, float(rtol),
+        float(atol), float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0),
+        float(t1), _address_of(x0))
     if not solver:
         raise MemoryError("compiled_bdf: out of memory allocating the integrator")
     bar = progress_bar(t0, t1, progress)
@@ -248,11 +251,12 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
     try:
         status = dll.bsm_bdf_start(solver)
         times = np.ascontiguousarray(t_out, dtype=float)
+        times_at, xs_at = _address_of(times), _address_of(xs)
         done, reached = 0, t0
+        written = ctypes.c_int(0)
         while status == 0 and done < times.size:
-            written = ctypes.c_int(0)
-            status = dll.bsm_bdf_advance(solver, times.size - done, _pointer(times[done:]),
-                                         _pointer(xs[done:]), STEPS_PER_CALL,
+            status = dll.bsm_bdf_advance(solver, times.size - done, times_at + 8 * done,
+                                         xs_at + 8 * n * done, STEPS_PER_CALL,
                                          ctypes.byref(written))
             done += written.value
             if budget is not None and status == 0 and done < times.size:
@@ -261,11 +265,11 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
                 now = min(dll.bsm_bdf_time(solver), t1)
                 bar.update(now - reached)
                 reached = now
-        dll.bsm_bdf_stats(solver, stats.ctypes.data_as(ctypes.POINTER(ctypes.c_longlong)))
+        dll.bsm_bdf_stats(solver, _address_of(stats))
         if status != 0:
             failed_at = dll.bsm_bdf_time(solver)
             state = np.empty(n)
-            dll.bsm_bdf_state(solver, _pointer(state))
+            dll.bsm_bdf_state(solver, _address_of(state))
             raise SimulationError(
                 f"compiled_bdf failed at t = {failed_at:.6g} s: {STATUS.get(status, status)}; "
                 f"{diverged(system, state, x0)}")
