@@ -223,11 +223,19 @@ def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
                      f"{k} = {display_text(v, units.get(k, ''))}" for k, v in values.items())
 
 
+def _varies(rows: list[dict[str, Any]], key: str) -> bool:
+    """Whether ``key`` takes more than one value over ``rows`` (a key every point sets alike
+    names no curve)."""
+    first = rows[0].get(key)
+    return any(row.get(key) != first for row in rows[1:])
+
+
 def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
                            units: dict[str, str], names: list[str], what: str):
     """Steady characteristics: each output against the grid's first key, one curve per value
-    of the other keys (the ``steady`` and ``modes`` figures); a series equal to the x axis
-    (the variable against itself) is left out.
+    of the other keys that vary (the ``steady`` and ``modes`` figures), named by one legend
+    on the first panel; a series equal to the x axis (the variable against itself) is left
+    out.
 
     Parameters
     ----------
@@ -253,15 +261,19 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     if not rows or not keys:
         return []
     xkey = keys[0]
+    keys = [xkey, *(k for k in keys[1:] if _varies(rows, k))]
     x_all = np.array([row[xkey] for row in rows], dtype=float)
     shown = [n for n in names if n != xkey
              and not _same_as(x_all, np.array([row.get(n, math.nan) for row in rows], float))]
     if not shown:
         return []
     per_panel = [shown] if what == "modes" else [[n] for n in shown]
-    fig = Figure(figsize=(7, 2.8 * len(per_panel) + 0.9))
-    axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
     curves, markers_only = _curves(rows, keys)
+    entries = (len(curves) if len(per_panel[0]) == 1
+               else len(per_panel[0]) + (len(curves) if len(curves) > 1 else 0))
+    beside = entries > INSIDE_LEGEND_ENTRIES and not markers_only  # widen for the legend
+    fig = Figure(figsize=(10 if beside else 7, 2.8 * len(per_panel) + 0.9))
+    axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
     for ax, panel in zip(axes, per_panel, strict=True):
         all_y = []
         y_unit = ""
@@ -285,8 +297,8 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                    units.get(panel[0], ""), "Hz" if what == "modes" else y_unit)
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
                       else axis_text(panel[0], prep, y_unit), fontsize=8)
-        if (len(curves) > 1 or len(panel) > 1) and not markers_only:
-            _legend(ax)
+        if (len(curves) > 1 or len(panel) > 1) and not markers_only and ax is axes[0]:
+            _legend(ax)  # once: every panel has the same curves
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
     per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""

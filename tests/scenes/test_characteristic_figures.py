@@ -89,3 +89,21 @@ def test_a_long_legend_stands_beside_the_curves_on_the_figure(prep):
     assert len(ax.get_legend().get_texts()) == 7
     assert legend.x0 >= ax.get_window_extent(renderer).x1  # beside the curves
     assert legend.x1 <= fig.bbox.width  # on the figure
+
+
+def test_one_legend_for_the_panels_and_no_key_every_point_sets_alike(prep):
+    """A sweep over load x speed with ``simulation.t_end`` in every point (the same value)
+    drew the same 8-entry legend beside each of its 4 panels, every entry ending in
+    ``simulation.t_end = 0.002``, and named t_end in the title as if it varied (found in the
+    sweep benchmark's figure; drawing the 32 legend entries took most of the sweep's write
+    time)."""
+    rows = [{**row, "simulation.t_end": 0.002} for row in _rows([100.0, 200.0], [10.0, 100.0])]
+    [(_, fig)] = characteristic_figures(prep, rows, ["shaft_speed", "Fr", "simulation.t_end"],
+                                        UNITS, ["Rs", "inner_layer.L10h"], "steady")
+    first, second = fig.axes
+    labels = [t.get_text() for t in first.get_legend().get_texts()]
+    assert len(labels) == 2 and all("Fr = " in label for label in labels)
+    assert not any("t_end" in label for label in labels)
+    assert second.get_legend() is None
+    assert len(_lines(fig)[1]) == 2  # the second panel still draws a curve per load
+    assert "one curve per Fr\n" in fig.texts[0].get_text() + "\n"
