@@ -20,9 +20,11 @@ Command: ``python -m bench.per_call [--baseline COMMIT] [--repeats N]``.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
+import statistics
 import subprocess
 import sys
 import time
@@ -32,7 +34,8 @@ from pathlib import Path
 
 from bench.common import ROOT, Section, exported_package, fmt, markdown_table
 
-__all__ = ["BASELINE", "cache_refill", "measure", "output_on_commit", "section"]
+__all__ = ["BASELINE", "clock_loop_penalty", "elapsed_time_penalty", "measure", "output_on_commit",
+           "section"]
 
 BASELINE = "da2b26e"
 """The commit before the fourth round of work on fixed costs (buffered integrator and observe
@@ -109,59 +112,142 @@ def _transient_scenes() -> Iterator[tuple[str, object, float, dict]]:
 
 
 PROBE_SIZE = 150
-"""Numbers the probe of :func:`cache_refill` checks (the states at two output times of the
-6304's 75-state model)."""
+"""Numbers the probe of :func:`elapsed_time_penalty` checks (the states at two output times of
+the 6304's 75-state model)."""
 
 
-def cache_refill(repeats: int = 20) -> list[dict]:
-    """The CPU time of one small numpy call (``numpy.isfinite(v).all()`` on
-    :data:`PROBE_SIZE` numbers, what :mod:`~bearingsim.simulation.sundials` checks the states
-    with) right after the integrator call of a CVODES scene's run, and the same call repeated
-    at once: how much of the Python after the integrator pays for filling the processor's
-    caches again after the integration.
+@contextlib.contextmanager
+def _after_integrator(hook):
+    """Call ``hook()`` right after every integrator call in C (CVODES and IDAS through
+    :class:`~bearingsim.simulation.integrator_calls.IntegratorCall`, and ``compiled_bdf``),
+    its CPU time counted as the integrator's (inside ``integrate_cpu_time``); undone at the
+    end."""
+    from bearingsim.simulation import integrator_calls, integrators
 
-    Every shipped transient scene whose runs call CVODES or IDAS is run as in :func:`measure`
-    (1 ms and 1 ns), with the probe hooked after the integrator call
-    (:class:`~bearingsim.simulation.integrator_calls.IntegratorCall`); the hook is removed
-    afterwards.
+    sundials_call, bdf_run = integrator_calls.IntegratorCall.__call__, integrators.compiled_bdf_run
+
+    def hooked_call(call, *args):
+        sundials_call(call, *args)
+        hook()
+
+    def hooked_run(*args, **kwargs):
+        run = bdf_run(*args, **kwargs)
+        start = time.thread_time()
+        hook()
+        run.stats["integrate_cpu_time"] += time.thread_time() - start
+        return run
+
+    integrator_calls.IntegratorCall.__call__ = hooked_call
+    integrators.compiled_bdf_run = hooked_run
+    try:
+        yield
+    finally:
+        integrator_calls.IntegratorCall.__call__ = sundials_call
+        integrators.compiled_bdf_run = bdf_run
+
+
+def _spin(seconds: float) -> None:
+    """Run the interpreter for ``seconds`` (wall) on almost no memory: a loop reading the
+    clock."""
+    end = time.perf_counter() + seconds
+    while time.perf_counter() < end:
+        pass
+
+
+def elapsed_time_penalty(repeats: int = 20) -> list[dict]:
+    """Whether the 1 ms run's larger per-call cost comes from its integration or from the time
+    it takes: per shipped scene with states integrated in C (CVODES, IDAS, compiled_bdf),
+    the per-call cost (as :func:`measure`) of the
+    1 ms run, of the 1 ns run, and of the 1 ns run followed by a loop that only reads the clock
+    for as long as the 1 ms run's integration took (its median CPU time; the loop touches
+    almost no memory, so it leaves the processor's caches as the 1 ns run left them; its time
+    is counted as the integrator's). And in each case the CPU time of one small numpy call
+    (``numpy.isfinite(v).all()`` on :data:`PROBE_SIZE` numbers, what the runs check states
+    with) right after the integrator, and the same call again at once.
 
     Returns
     -------
     list of dict
-        Per scene and run length: ``scene``, ``run_s``, ``first_us`` and ``again_us`` (the
-        fastest of ``repeats`` runs, microseconds).
+        Per scene and case (``"1 ms run"``, ``"1 ns run"``, ``"1 ns run + clock loop"``):
+        ``scene``, ``case``, ``spin_ms`` (the loop's length), ``overhead_ms``, ``first_us``
+        and ``again_us`` (the fastest of ``repeats`` runs).
     """
     import numpy as np
 
-    from bearingsim.simulation import integrator_calls, simulate
+    from bearingsim.simulation import simulate
 
     values = np.ones(PROBE_SIZE)
     timings: list[tuple[int, int]] = []
-    original = integrator_calls.IntegratorCall.__call__
+    spin_s = [0.0]
 
-    def probed(call, *args):
-        original(call, *args)
+    def probe():
+        _spin(spin_s[0])
         start = time.thread_time_ns()
         np.isfinite(values).all()
         middle = time.thread_time_ns()
         np.isfinite(values).all()
         timings.append((middle - start, time.thread_time_ns() - middle))
 
-    integrator_calls.IntegratorCall.__call__ = probed
     rows = []
-    try:
+    with _after_integrator(probe), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
         for scene, system, t_start, args in _transient_scenes():
-            for length in (RUN_S, SHORT_RUN_S):
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
-                    _time_runs(simulate, system, t_start + length, args, repeats,
-                               after_warm_up=timings.clear)
-                if timings:  # the run called CVODES or IDAS
-                    rows.append({"scene": scene, "run_s": length,
-                                 "first_us": min(t[0] for t in timings) / 1e3,
-                                 "again_us": min(t[1] for t in timings) / 1e3})
-    finally:
-        integrator_calls.IntegratorCall.__call__ = original
+            if system.n_states == 0:
+                continue
+            spin_s[0] = 0.0
+            long_run = [simulate(system, t_start + RUN_S, **args).stats["integrate_cpu_time"]
+                        for _ in range(5)]
+            cases = (("1 ms run", RUN_S, 0.0), ("1 ns run", SHORT_RUN_S, 0.0),
+                     ("1 ns run + clock loop", SHORT_RUN_S, statistics.median(long_run)))
+            for case, length, spin in cases:
+                spin_s[0] = spin
+                _, overheads, _ = _time_runs(simulate, system, t_start + length, args, repeats,
+                                             after_warm_up=timings.clear)
+                if not timings:  # scipy's integrators: no call in C to hook
+                    break
+                rows.append({"scene": scene, "case": case, "spin_ms": 1e3 * spin,
+                             "overhead_ms": 1e3 * min(overheads),
+                             "first_us": min(t[0] for t in timings) / 1e3,
+                             "again_us": min(t[1] for t in timings) / 1e3})
+    return rows
+
+
+CLOCK_LOOPS_MS = (0.1, 1.0, 4.0, 20.0)
+"""Lengths of the clock loops of :func:`clock_loop_penalty` [ms]."""
+
+
+def clock_loop_penalty(repeats: int = 20) -> list[dict]:
+    """The CPU time of one small numpy call (as in :func:`elapsed_time_penalty`) right after a
+    loop that only reads the clock, and of the same call again, by the loop's length
+    (:data:`CLOCK_LOOPS_MS`): what the machine charges code for the time since it last ran,
+    without bearingsim.
+
+    Returns
+    -------
+    list of dict
+        Per loop length: ``loop_ms``, ``first_min_us``, ``first_median_us``,
+        ``again_median_us`` and ``slow_share`` (the share of first calls above 5 times the
+        repeated call's median).
+    """
+    import numpy as np
+
+    values = np.ones(PROBE_SIZE)
+    rows = []
+    for loop_ms in CLOCK_LOOPS_MS:
+        first, again = [], []
+        for _ in range(2 * repeats):
+            _spin(loop_ms / 1e3)
+            start = time.thread_time_ns()
+            np.isfinite(values).all()
+            middle = time.thread_time_ns()
+            np.isfinite(values).all()
+            first.append((middle - start) / 1e3)
+            again.append((time.thread_time_ns() - middle) / 1e3)
+        again_median = statistics.median(again)
+        rows.append({"loop_ms": loop_ms, "first_min_us": min(first),
+                     "first_median_us": statistics.median(first),
+                     "again_median_us": again_median,
+                     "slow_share": sum(f > 5 * again_median for f in first) / len(first)})
     return rows
 
 
@@ -249,7 +335,8 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
                        if row["scene"] in shipped_then])
         _fastest(new_rows, measure(repeats))
     new = list(new_rows.values())
-    refill = cache_refill(repeats)
+    penalty = elapsed_time_penalty(repeats)
+    loops = clock_loop_penalty(repeats)
     rows = []
     for row in new:
         then_row = old.get(row["scene"], {})
@@ -276,33 +363,49 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "nothing: their whole call is the per-call cost plus the solve of the nonlinear blocks "
         "at the output points (*total*). *1 ns run*: the per-call cost of runs of "
         f"{SHORT_RUN_S:g} s (a few steps) timed the same way: the same Python, run right "
-        "after the Python before the call instead of after an integration of tens of "
-        "milliseconds (which leaves the processor's caches to be filled again: the difference "
-        "is largest for the largest model). Goal: per-call cost <= 0.3 ms.\n\n"
+        "after the Python before the call instead of after an integration of milliseconds. "
+        "Goal: per-call cost <= 0.3 ms.\n\n"
         f"Command: `python -m bench.per_call --baseline {baseline} --repeats {repeats}`\n\n"
         + markdown_table(["scene", "method before", "method now", "states",
                           "total before [ms]", "total now [ms]", "per-call cost before [ms]",
                           "per-call cost now [ms]", "1 ns run: per-call cost before [ms]",
                           "1 ns run: now [ms]"], rows)
         + f"\n\nLargest per-call cost now: {worst:.2f} ms.\n\n"
-        "**The caches after the integration.** The CPU time of one small numpy call "
-        f"(`numpy.isfinite(v).all()` on {PROBE_SIZE} numbers, the check the states get) hooked "
-        "right after the integrator call of the runs on CVODES, and the same call again at "
-        "once (the fastest of the repeats). After the 1 ms run's integration the first call "
-        "costs many times the second: the integration has filled the processor's caches with "
-        "the kernels' code and data, and every piece of Python or numpy that runs first after "
-        "it pays for loading its own again. The 1 ms run's per-call cost above is the 1 ns "
-        "run's plus that price over all the Python after the integrator.\n\n"
-        f"Command: `python -c 'from bench.per_call import cache_refill; "
-        f"print(cache_refill({repeats}))'`\n\n"
-        + markdown_table(["scene", "run", "first call after the integrator [us]",
+        "**Why the 1 ms run costs more than the 1 ns run: the time it takes, not what it "
+        "runs.** On this machine (a virtual machine sharing its processor) any code that runs "
+        "after a few milliseconds of anything pays for loading its code and data into the "
+        "processor's caches again, even after a loop that touches almost no memory. First, "
+        "per scene with states: the per-call cost of the 1 ms run, of the 1 ns run, and of the "
+        "1 ns run followed by a loop that only reads the clock for as long as the 1 ms run's "
+        "integration took (its time counted as the integrator's); in each case one small "
+        f"numpy call (`numpy.isfinite(v).all()` on {PROBE_SIZE} numbers) hooked right after "
+        "the integrator, and the same call again at once (the fastest of the repeats; the "
+        "hook's time is counted as the integrator's). The 1 ns run with the loop costs what "
+        "the 1 ms run costs: the difference comes from the elapsed time, not from the "
+        "integration's use of the caches.\n\n"
+        f"Command: `python -c 'from bench.per_call import elapsed_time_penalty; "
+        f"print(elapsed_time_penalty({repeats}))'`\n\n"
+        + markdown_table(["scene", "case", "clock loop [ms]", "per-call cost [ms]",
+                          "first numpy call after the integrator [us]",
                           "the same call again [us]"],
-                         [[row["scene"], f"{row['run_s']:g} s", fmt(row["first_us"]),
-                           fmt(row["again_us"])] for row in refill])
+                         [[row["scene"], row["case"], fmt(row["spin_ms"]),
+                           fmt(row["overhead_ms"]), fmt(row["first_us"]),
+                           fmt(row["again_us"])] for row in penalty])
+        + "\n\nSecond, without bearingsim: the same numpy call after a loop that only reads "
+        "the clock, by the loop's length (fastest and median of the repeats, and the share of "
+        "first calls above 5 times the repeated call's median).\n\n"
+        f"Command: `python -c 'from bench.per_call import clock_loop_penalty; "
+        f"print(clock_loop_penalty({repeats}))'`\n\n"
+        + markdown_table(["clock loop [ms]", "first call, fastest [us]",
+                          "first call, median [us]", "share above 5x", "call again, median [us]"],
+                         [[fmt(row["loop_ms"]), fmt(row["first_min_us"]),
+                           fmt(row["first_median_us"]), f"{row['slow_share']:.2f}",
+                           fmt(row["again_median_us"])] for row in loops])
         + f"\n\nLoad average at the end of the run: {os.getloadavg()[0]:.1f} on "
         f"{os.cpu_count()} cores.\n")
     return Section("Per-call cost of simulate", text,
-                   {"rows": new, "baseline": old, "cache_refill": refill})
+                   {"rows": new, "baseline": old, "elapsed_time_penalty": penalty,
+                    "clock_loops": loops})
 
 
 def main() -> None:
