@@ -37,6 +37,10 @@ __all__ = ["LOCK_NAME", "OutputFolder", "OutputFolderBusy", "command_line", "fil
 LOCK_NAME = ".bearingsim.lock"
 """The lock file of an output folder: the lock is the ``flock`` on it (a file left by a killed
 process locks nothing); removed when the holder ends normally."""
+PNG_COMPRESSION = 1
+"""zlib level of the figures' PNG files: 1 writes a sweep's four-panel figure in 0.29 s
+against 0.50 s at Pillow's default 6, for a file 9 % larger (``savefig`` of the 64-point
+sweep figure of ``deep_groove_duty1``, fastest of 3)."""
 _STRAY = re.compile(r"\..*\.(\d+)" + re.escape(PART) + r"(\.[^.]*)?")
 
 
@@ -246,7 +250,7 @@ class OutputFolder:
             path = self.folder / name
             try:
                 with atomic_path(path) as tmp:
-                    fig.savefig(tmp, dpi=110)
+                    fig.savefig(tmp, dpi=110, pil_kwargs={"compress_level": PNG_COMPRESSION})
             except FileAccessError:
                 raise
             except Exception as exc:  # noqa: BLE001

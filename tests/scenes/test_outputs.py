@@ -267,3 +267,23 @@ def test_the_cli_reports_file_errors_in_one_line_with_exit_2(tmp_path, monkeypat
     err = _errors(capsys.readouterr().err)
     assert err.count("\n") == 1 and "fast.csv: no space left on the device" in err
     assert not (tmp_path / "o" / "fast.summary.json").exists()
+
+
+def _zlib_level(png: bytes) -> int:
+    """FLEVEL of a PNG's image data (the zlib header's two top bits of its second byte:
+    0 fastest, 1 fast, 2 default, 3 best; RFC 1950, section 2.2)."""
+    at = png.index(b"IDAT") + 4
+    return png[at + 1] >> 6
+
+
+def test_figures_are_written_with_fast_png_compression(tmp_path):
+    """A sweep's four-panel figure took 0.5 s to write at Pillow's default zlib level 6, a
+    large share of a sweep's fixed cost; level 1 writes it in 0.3 s for a 9 % larger file."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(4, 3))
+    fig.subplots().plot(np.arange(100.0), np.sin(np.arange(100.0)))
+    with OutputFolder(tmp_path, "test") as folder:
+        folder.save_figures(lambda: [("f.png", fig)])
+    png = (tmp_path / "f.png").read_bytes()
+    assert png.startswith(b"\x89PNG") and _zlib_level(png) == 0
