@@ -267,7 +267,8 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     dict
         Plain names -> values in SI: the point's keys (``shaft_speed``, ...), ``name`` of a
         case, and by kind: ``transient`` the outputs' final values, ``settled`` (bool),
-        ``time_constant`` [s] and ``unsettled`` (names); ``steady`` the outputs;
+        ``time_constant`` [s] and ``unsettled`` (names), the last three not for a transient
+        on purpose (not checked for settling, as in a single run); ``steady`` the outputs;
         ``modes`` the natural frequency [Hz] by mode name; ``statics`` the columns of
         :class:`Statics`. ``_state`` holds the solved state (for continuation; not a
         table column).
@@ -296,10 +297,11 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     if scene.analysis == "transient":
         result = run_simulation(prep, parameters=parameters, inputs=inputs, progress=progress)
         series = output_series(prep, result)
-        check = settling_check(result.t, series, scene.settling)
         row.update({n: float(y[-1]) for n, y in series.items()})
-        row.update(settled=check["settled"], time_constant=check["time_constant"],
-                   unsettled=" ".join(check["unsettled"]))
+        if not scene.transient_on_purpose:  # as a single run, which does not check those
+            check = settling_check(result.t, series, scene.settling)
+            row.update(settled=check["settled"], time_constant=check["time_constant"],
+                       unsettled=" ".join(check["unsettled"]))
         return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names])}
     from bearingsim.simulation import linearize, steady_state
 

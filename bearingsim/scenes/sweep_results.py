@@ -26,8 +26,9 @@ def result_columns(prep: Prepared, probe: dict[str, Any] | None
                    ) -> tuple[list[str], dict[str, str]]:
     """The result columns of a sweep's rows and their SI units: those of the scene's own table
     row for its analysis (a transient's outputs with ``settled``, ``time_constant`` and
-    ``unsettled``; a steady point's outputs; a statics point's columns; a modes point's mode
-    names, read from the ``probe`` row of the first point).
+    ``unsettled``, without them for a transient on purpose; a steady point's outputs; a
+    statics point's columns; a modes point's mode names, read from the ``probe`` row of the
+    first point).
 
     Parameters
     ----------
@@ -49,8 +50,10 @@ def result_columns(prep: Prepared, probe: dict[str, Any] | None
         system = prep.system
         units = {**system.variable_units, **{n: q.unit for n, q in prep.post.items()},
                  **{p.name: p.unit for p in system.params}}
-        return ([*prep.outputs, *TRANSIENT_COLUMNS],
-                {**{n: units[n] for n in prep.outputs if n in units}, "time_constant": "s"})
+        output_units = {n: units[n] for n in prep.outputs if n in units}
+        if prep.scene.transient_on_purpose:  # not checked for settling: no such columns
+            return list(prep.outputs), output_units
+        return [*prep.outputs, *TRANSIENT_COLUMNS], {**output_units, "time_constant": "s"}
     if kind == "statics":
         names = list(statics_of(prep).columns)
     elif kind == "modes":

@@ -90,12 +90,20 @@ def test_settled_points_are_counted_as_settled_without_a_warning(tmp_path, clien
 
 
 def test_a_transient_on_purpose_is_not_checked_for_settling(tmp_path, client):
+    """Its rows had ``settled`` False (and which outputs had not) where a single run of the
+    scene says settled None, "not checked"; now they have no such columns."""
     path = tmp_path / "ramp.toml"
     path.write_text("transient_on_purpose = true\n" + RAMP)
-    res, said = _sweep(path, SHORT[:1], client)
+    res, said = _sweep(path, SHORT[:1], client, out=tmp_path / "out")
     assert res.settling == "on purpose" and res.unsettled == [] and said == []
     assert describe_points(res) == ("4 point(s): 4 ok (transient on purpose: not checked for "
                                     "settling), 0 failed")
+    header = (tmp_path / "out" / "ramp.sweep.csv").read_text().splitlines()[0].split(",")
+    names = {column.split(" [")[0] for column in header}
+    assert "Rs" in names and not {"settled", "time_constant", "unsettled"} & names
+    assert all("settled" not in row for row in res.rows)
+    single = run_scene(path, out=tmp_path / "single")
+    assert single.summary["settled"] is None
 
 
 def test_a_steady_sweep_counts_solved_points_as_ok(client):
