@@ -75,7 +75,13 @@ from bearingsim.scenes.sweep_cluster import (
 )
 from bearingsim.scenes.sweep_order import PointCosts, point_features
 from bearingsim.scenes.sweep_plan import plan_sweep
-from bearingsim.scenes.sweep_results import column_units, result_columns, sweep_figures, table_row
+from bearingsim.scenes.sweep_results import (
+    column_units,
+    point_warnings,
+    result_columns,
+    sweep_figures,
+    table_row,
+)
 from bearingsim.scenes.sweep_table import SweepTable, cell, from_cell, open_table
 from bearingsim.scenes.sweep_worker import run_point
 from bearingsim.sweep_server import start_worker_server
@@ -116,6 +122,10 @@ class SweepResult:
     ``points`` (first chunk out to last row in; the client imports what writing takes
     meanwhile), ``close`` (close the cluster), ``write`` (sorted table, Parquet copy, plot,
     summary)."""
+    warnings: list[dict[str, Any]] = field(default_factory=list)
+    """The warnings the points gave, one per kind, with the points that gave it
+    (:func:`~bearingsim.scenes.sweep_results.point_warnings`); each is also warned once on
+    the client (a worker's own standard error shows none)."""
     settling: str = ""
     """Whether the rows say if each point settled: ``"checked"`` (a transient scene: columns
     ``settled`` and ``unsettled``), ``"on purpose"`` (a transient scene that reports a
@@ -161,6 +171,16 @@ def _ready_to_write(units: dict[str, str]) -> None:
             step()
         except Exception:  # noqa: BLE001, S112 - writing the results reports it, if it recurs
             continue
+
+
+def _warn_again(text: str, category: type) -> None:
+    """Warn ``text`` as ``category`` on the client (a category that takes other arguments
+    than a message as a UserWarning naming it)."""
+    try:
+        warning = category(text)
+    except TypeError:
+        warning = UserWarning(f"{category.__name__}: {text}")
+    warnings.warn(warning, stacklevel=4)
 
 
 def _earlier_files(folder: Path, stem: str) -> list[str]:
@@ -384,6 +404,9 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                       point_cpu={k: r["cpu_s"] for k, r in results.items() if "cpu_s" in r},
                       settling=("" if scene.analysis != "transient" else
                                 "on purpose" if scene.transient_on_purpose else "checked"))
+    res.warnings = point_warnings(results, len(points))
+    for kind in res.warnings:
+        _warn_again(f"{scene.title or stem}: {kind['text']}", kind["category"])
     if res.unsettled:
         warnings.warn(f"{scene.title or stem}: {len(res.unsettled)} of {len(ordered)} point(s) "
                       "had not settled at t_end (their rows say settled False and name the "
@@ -409,6 +432,8 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                                               if "model_loads" in r}),
             "scheduler": scheduler or f"LocalCluster({n_workers} workers)",
             "timeout_s": timeout, "phases_s": {k: round(v, 3) for k, v in phases.items()},
+            "warnings": [{"category": k["category"].__name__, "points": k["points"],
+                          "message": k["message"]} for k in res.warnings],
         }
         folder.write_summary(f"{stem}.json", json.loads(json.dumps(summary, default=str)))
         res.files = list(folder.files)

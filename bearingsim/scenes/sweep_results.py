@@ -10,11 +10,13 @@ numeric swept key.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from bearingsim.scenes.preparation import Prepared
 
-__all__ = ["TRANSIENT_COLUMNS", "column_units", "result_columns", "sweep_figures", "table_row"]
+__all__ = ["TRANSIENT_COLUMNS", "column_units", "point_warnings", "result_columns",
+           "sweep_figures", "table_row"]
 
 
 TRANSIENT_COLUMNS = ("settled", "time_constant", "unsettled")
@@ -167,3 +169,46 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     what = "modes" if prep.scene.analysis == "modes" else "steady"
     figs = characteristic_figures(prep, ok, order, units, outputs, what)
     return [(f"{stem}.png", fig) for _, fig in figs[:1]]
+
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+SHOWN_POINTS = 8
+"""Most point numbers a warning of a sweep lists."""
+
+
+def point_warnings(results: dict[int, dict[str, Any]], n_points: int) -> list[dict[str, Any]]:
+    """The warnings the points of a sweep gave (their rows' ``warnings``,
+    :func:`~bearingsim.scenes.sweep_worker.run_job`), one per kind: a category and a message
+    alike but for its numbers (``shaft_speed reaches 58847 r/min`` and ``... 46027 r/min``
+    are one kind), with the points that gave it.
+
+    Parameters
+    ----------
+    results : dict of int to dict
+        The rows the points returned, by point number.
+    n_points : int
+        The points of the sweep.
+
+    Returns
+    -------
+    list of dict
+        Per kind, in the order first given: ``category`` (the Warning class), ``points``
+        (their numbers, increasing), ``message`` (the first point's) and ``text`` (one line
+        for the user: how many points, which, and the first point's message).
+    """
+    kinds: dict[tuple, dict[str, Any]] = {}
+    for index in sorted(results):
+        for category, message in results[index].get("warnings", ()):
+            kind = kinds.setdefault((category, _NUMBER.sub("#", message)),
+                                    {"category": category, "points": [], "message": message})
+            if not kind["points"] or kind["points"][-1] != index:
+                kind["points"].append(index)
+    for kind in kinds.values():
+        points = kind["points"]
+        listed = ", ".join(map(str, points[:SHOWN_POINTS])) + (
+            ", ..." if len(points) > SHOWN_POINTS else "")
+        kind["text"] = (f"{len(points)} of {n_points} point(s) ({listed}): {kind['message']}"
+                        + (f" (point {points[0]}; the others alike)" if len(points) > 1
+                           else f" (point {points[0]})"))
+    return list(kinds.values())

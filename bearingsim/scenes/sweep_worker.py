@@ -22,6 +22,7 @@ import dataclasses
 import os
 import threading
 import time
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -97,8 +98,10 @@ def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     row of :func:`~bearingsim.scenes.analyses.run_operating_point`, columns starting with
     ``_`` left out), ``error``, ``wall_s``, ``cpu_s`` (the CPU time of the thread that ran
     it [s]: below ``wall_s`` by the time it waited for a core), ``pid`` and ``started`` (the
-    epoch time [s] the point started, for a timeline of the workers). Never raises for a
-    failing point.
+    epoch time [s] the point started, for a timeline of the workers) and ``warnings``, the
+    warnings the point gave, each once (category, message), for the client to report
+    (:func:`~bearingsim.scenes.sweep_results.point_warnings`) instead of the worker's
+    standard error. Never raises for a failing point.
 
     Parameters
     ----------
@@ -114,15 +117,18 @@ def run_job(prep: Prepared, job: Job) -> dict[str, Any]:
     """
     t0, cpu0 = time.perf_counter(), time.thread_time()
     row: dict[str, Any] = {"index": job.index, "pid": os.getpid(), "started": time.time()}
-    try:
-        values = run_operating_point(dataclasses.replace(prep, scene=job.scene))
-        final = {k: v for k, v in values.items() if not k.startswith("_")}
-        for name in prep.outputs:
-            if isinstance(final.get(name), float) and np.isnan(final[name]):
-                raise ValueError(f"output {name} is NaN")
-        row.update(status="ok", final=final, error="")
-    except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
-        row.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
+    with warnings.catch_warnings(record=True) as caught:  # one point at a time per process
+        warnings.simplefilter("always")
+        try:
+            values = run_operating_point(dataclasses.replace(prep, scene=job.scene))
+            final = {k: v for k, v in values.items() if not k.startswith("_")}
+            for name in prep.outputs:
+                if isinstance(final.get(name), float) and np.isnan(final[name]):
+                    raise ValueError(f"output {name} is NaN")
+            row.update(status="ok", final=final, error="")
+        except Exception as exc:  # noqa: BLE001 - a failed point is reported, never fatal
+            row.update(status="failed", final={}, error=f"{type(exc).__name__}: {exc}")
+    row["warnings"] = list(dict.fromkeys((w.category, str(w.message)) for w in caught))
     row["wall_s"] = time.perf_counter() - t0
     row["cpu_s"] = time.thread_time() - cpu0
     return row
