@@ -223,6 +223,12 @@ def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
                      f"{k} = {display_text(v, units.get(k, ''))}" for k, v in values.items())
 
 
+def _numeric(rows: list[dict[str, Any]], key: str) -> bool:
+    """Whether every row holds a number (not a bool) under ``key``."""
+    return all(isinstance(row.get(key), (int, float)) and not isinstance(row.get(key), bool)
+               for row in rows)
+
+
 def _varies(rows: list[dict[str, Any]], key: str) -> bool:
     """Whether ``key`` takes more than one value over ``rows`` (a key every point sets alike
     names no curve)."""
@@ -234,8 +240,9 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                            units: dict[str, str], names: list[str], what: str):
     """Steady characteristics: each output against the grid's first key, one curve per value
     of the other keys that vary (the ``steady`` and ``modes`` figures), named by one legend
-    on the first panel; a series equal to the x axis (the variable against itself) is left
-    out.
+    on the first panel; a sample (more than :data:`MAX_CURVES` combinations) as markers,
+    coloured by the second key's value where it is a number; a series equal to the x axis
+    (the variable against itself) is left out.
 
     Parameters
     ----------
@@ -272,7 +279,10 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     entries = (len(curves) if len(per_panel[0]) == 1
                else len(per_panel[0]) + (len(curves) if len(curves) > 1 else 0))
     beside = entries > INSIDE_LEGEND_ENTRIES and not markers_only  # widen for the legend
-    fig = Figure(figsize=(10 if beside else 7, 2.8 * len(per_panel) + 0.9))
+    shade = (keys[1] if markers_only and len(per_panel[0]) == 1 and _numeric(rows, keys[1])
+             else None)  # a sample's points coloured by the second key's value
+    fig = Figure(figsize=(10 if beside else 7, 2.8 * len(per_panel) + 0.9),
+                 layout="constrained" if shade else None)
     axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
     for ax, panel in zip(axes, per_panel, strict=True):
         all_y = []
@@ -287,8 +297,12 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                     color = f"C{j % 10}"
                 else:
                     label, color = _curve_label(values, units) or None, f"C{k % 10}"
-                ax.plot(x, y, label=label, color=color, marker=MARKERS[j % len(MARKERS)],
-                        linestyle="none" if markers_only else style, markersize=4)
+                if shade is not None:
+                    c, c_unit = display([m[shade] for m in members], units.get(shade, ""))
+                    mappable = ax.scatter(x, y, c=c, s=16, cmap="viridis")
+                else:
+                    ax.plot(x, y, label=label, color=color, marker=MARKERS[j % len(MARKERS)],
+                            linestyle="none" if markers_only else style, markersize=4)
                 all_y.append(y)
             if len(panel) > 1 and len(curves) > 1:
                 ax.plot([], [], color="0.3", linestyle=style,
@@ -303,12 +317,18 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
     per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""
     if markers_only:
-        per = f" ({len(rows)} points; {', '.join(keys[1:])} vary too)"
+        others = keys[2:] if shade else keys[1:]
+        per = (f" ({len(rows)} points" + (f", coloured by {shade}" if shade else "")
+               + (f"; {', '.join(others)} vary too" if others else "") + ")")
+        if shade:
+            fig.colorbar(mappable, ax=list(axes)).set_label(
+                axis_text(shade, prep, c_unit), fontsize=8)
     question = ("natural frequencies by mode" if what == "modes"
                 else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
     fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}",
                  fontsize=9)
-    fig.tight_layout()
+    if not shade:  # the constrained layout places the colour bar itself
+        fig.tight_layout()
     return [("modes" if what == "modes" else "steady", fig)]
 
 

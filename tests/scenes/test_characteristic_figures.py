@@ -53,11 +53,17 @@ def test_a_sampled_sweep_is_drawn_as_markers_without_a_legend(prep):
     assert len(rows) > MAX_CURVES
     [(_, fig)] = characteristic_figures(prep, rows, ["shaft_speed", "Fr"], UNITS, ["Rs"],
                                         "steady")
-    [[line]] = _lines(fig)
-    assert line.get_linestyle() == "None" and len(line.get_xdata()) == 20
-    assert np.all(np.diff(np.asarray(line.get_xdata(), dtype=float)) > 0)
-    assert fig.axes[0].get_legend() is None
-    assert "20 points; Fr vary too" in fig.texts[0].get_text()
+    panel, bar = fig.axes  # the markers and their colour bar
+    [markers] = panel.collections
+    x = markers.get_offsets()[:, 0]
+    assert len(x) == 20 and np.all(np.diff(x) > 0) and not _lines(fig)[0]
+    assert panel.get_legend() is None
+    # coloured by the load in kN, as every force is shown (a sample showed nothing of its
+    # second key before)
+    loads = sorted((row["shaft_speed"], row["Fr"]) for row in rows)
+    assert np.allclose(markers.get_array(), [1e-3 * f for _, f in loads])
+    assert bar.get_ylabel().endswith("[kN]")
+    assert "20 points, coloured by Fr)" in fig.texts[0].get_text()
 
 
 def test_a_transient_sweep_draws_the_same_curves(prep):
