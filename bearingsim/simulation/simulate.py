@@ -137,7 +137,8 @@ def simulate(
         for the stiff ODE form when a C compiler exists (a short first run on a cold cache:
         ``"cvodes"`` on the VM while C compiles), ``"cvodes"`` without one, ``"idas"`` for
         models whose nonlinear blocks only the DAE form compiles; ``Result.stats["method"]``
-        and ``stats["method_reason"]`` say which and why.
+        and ``stats["method_reason"]`` say which and why (``"none"`` for a model without
+        states: nothing is integrated, whatever ``method`` says).
         Backend ``"scipy"``: ``"BDF"`` (its default), ``"Radau"``, ``"LSODA"`` (these with the
         exact sparse Jacobian), ``"RK45"``, ``"DOP853"``, ``"RK23"``; backend ``"casadi"``:
         ``"cvodes"`` (its default) or ``"idas"`` (SUNDIALS; any letter case); backend
@@ -215,7 +216,7 @@ def simulate(
     _check_work(system, t_start, t_end, t_eval.size, max_step)
     setup = _time.perf_counter()
     if method is None:
-        choice = (MethodChoice("cvodes", compiled, "no states: nothing to integrate")
+        choice = (MethodChoice("cvodes", compiled, NO_STATES)
                   if system.n_states == 0 else choose_method(system, t_end - t_start, compiled))
         method, compiled, reason = choice.method, choice.compiled, choice.reason
     else:
@@ -231,7 +232,9 @@ def simulate(
     wall = _time.perf_counter()
     budget.start()
     if system.n_states == 0:
-        traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {})
+        traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {"method": "none"})
+        if reason != NO_STATES:
+            reason = f"{reason}; {NO_STATES}"
     else:
         problem = IntegrationProblem(system, closed, inputs, p, x_start, t_start, t_end, t_eval,
                                      rtol, atol, max_step, progress, signal, compiled,
@@ -329,6 +332,10 @@ def _valid_methods() -> str:
     """Every backend with its methods, for messages."""
     return "; ".join(f"backend {b!r}: {', '.join(methods_of(b))}" for b in BACKENDS)
 
+
+NO_STATES = "no states: nothing to integrate, the variables solved at each output time"
+"""``Result.stats["method_reason"]`` of a model without states (``stats["method"]`` is
+``"none"``)."""
 
 MAX_OUTPUT_BYTES = 2 * 1024**3
 """Largest result a run may produce (output points x observed variables x 8 bytes)."""
