@@ -372,10 +372,11 @@ def console_lines(summary_data: dict[str, Any]) -> list[str]:
                 f"{n} = {display_text(v, units.get(n, ''))}" for n, v in row.items()))
         return lines
     stats = s.get("simulation", {}).get("stats", {})
-    lines = [f"  solver: {stats.get('method', '?')}"
-             + (f" ({stats['method_reason']})" if stats.get("method_reason") else "")
-             + (f"; evaluator {stats['backend']} ({stats['backend_reason']})"
-                if stats.get("backend_reason") else "")]
+    reason, backend_reason = stats.get("method_reason", ""), stats.get("backend_reason", "")
+    lines = [f"  solver: {stats.get('method', '?')}" + (f" ({reason})" if reason else "")
+             + (f"; evaluator {stats['backend']}" if backend_reason else "")
+             + (f" ({backend_reason})" if backend_reason and backend_reason not in reason
+                else "")]
     for name, o in s["outputs"].items():
         final = "inf/nan" if o["final"] is None else display_text(o["final"], o["unit"])
         note = ""

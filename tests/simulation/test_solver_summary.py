@@ -1,6 +1,7 @@
-"""A model without states integrates nothing: its run said ``solver: ?`` in ``bearingsim
-run``'s summary (``Result.stats`` had no ``method``), and a given method was reported as if
-it had run (found by a new-user run of the shipped cylindrical roller scene)."""
+"""What a run says about its solver. A model without states integrates nothing: its run said
+``solver: ?`` in ``bearingsim run``'s summary (``Result.stats`` had no ``method``), and a given
+method was reported as if it had run (found by a new-user run of the shipped cylindrical
+roller scene)."""
 
 from __future__ import annotations
 
@@ -36,3 +37,16 @@ def test_the_scene_summary_says_so(tmp_path):
                     out=tmp_path)
     assert run.summary["simulation"]["stats"]["method"] == "none"
     assert f"  solver: none ({NO_STATES})" in console_lines(run.summary)
+
+
+def test_the_solver_line_gives_a_reason_once():
+    """The motor drive's summary said the tiny-model reason twice: ``solver: cvodes (CVODES on
+    CasADi's VM (tiny model ...)); evaluator CasADi VM (tiny model ...)``."""
+    tiny = "tiny model (191 instructions): the VM costs less than compiling"
+    summary = {"simulation": {"stats": {
+        "method": "cvodes", "method_reason": f"CVODES on CasADi's VM ({tiny})",
+        "backend": "CasADi VM", "backend_reason": tiny}}, "outputs": {}}
+    assert console_lines(summary)[0] == (f"  solver: cvodes (CVODES on CasADi's VM ({tiny})); "
+                                         "evaluator CasADi VM")
+    summary["simulation"]["stats"]["method_reason"] = "method='cvodes' given"
+    assert console_lines(summary)[0].endswith(f"; evaluator CasADi VM ({tiny})")
