@@ -205,10 +205,17 @@ def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
     missing = sorted(k for k in scene.grid if k.startswith("inputs.") and k not in points[0]
                      and k.split(".", 1)[1] not in scene.inputs)
     if missing:
+        one = len(missing) == 1
+        strange = [k for k in points[0] if k.startswith("inputs.") and k not in scene.grid
+                   and k.split(".", 1)[1] not in scene.inputs]
         raise SweepError(
             f"the sweep replaces the grid of this {scene.analysis} scene, and "
-            f"{', '.join(missing)} then has no value: sweep it (--grid {missing[0]}=...) or "
-            f"give it under [inputs]")
+            f"{', '.join(missing)} then {'has' if one else 'have'} no value: "
+            f"sweep {'it' if one else 'them'} (--grid {missing[0]}=...) or "
+            f"give {'it' if one else 'them'} under [inputs]"
+            + (f" ({', '.join(strange)}: not in the scene's grid or [inputs]; check the "
+               f"spelling if {'it is' if len(strange) == 1 else 'they are'} meant for "
+               f"{'it' if one else 'them'})" if strange else ""))
 
 
 def si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any]:

@@ -112,6 +112,17 @@ def test_analysis_sweep_names_a_grid_input_left_without_value(client):
                   progress=False)
 
 
+def test_a_misspelt_input_is_pointed_at_beside_the_grid_inputs_left_without_value(client):
+    """A misspelt input (``Fx`` for the double-layer bearing's ``Fr``) was answered with
+    ``inputs.Fr, inputs.shaft_speed then has no value``, not pointing at the misspelling."""
+    scene = load_scene(SCENES[0].parent / "double_layer_rs.toml")
+    with pytest.raises(SweepError, match=r"inputs\.Fr, inputs\.shaft_speed then have no "
+                                         r"value: sweep them .* \(inputs\.Fx: not in the "
+                                         r"scene's grid or \[inputs\]; check the spelling"):
+        run_sweep(scene, grid_points(parse_grid(["inputs.Fx=100,200"])), client=client,
+                  progress=False)
+
+
 def test_modes_sweep_plots_one_curve_per_value_of_the_second_key(client, tmp_path):
     """A modes sweep over preload and speed: the mode frequencies as columns, and a figure
     with one curve per speed (natural frequencies in one panel)."""
