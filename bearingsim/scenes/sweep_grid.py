@@ -215,7 +215,7 @@ def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
             f"give {'it' if one else 'them'} under [inputs]"
             + (f" ({', '.join(strange)}: not in the scene's grid or [inputs]; check the "
                f"spelling if {'it is' if len(strange) == 1 else 'they are'} meant for "
-               f"{'it' if one else 'them'})" if strange else ""))
+               f"{'it' if one else 'one of them'})" if strange else ""))
 
 
 def si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any]:
