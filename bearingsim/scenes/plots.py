@@ -18,7 +18,7 @@ from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.units import to_display
 
 __all__ = ["analysis_figures", "axis_text", "characteristic_figures", "describe", "display",
-           "display_text", "include_zero", "render_report", "statics_figures"]
+           "display_text", "include_zero", "numeric_key", "render_report", "statics_figures"]
 
 
 
@@ -223,8 +223,21 @@ def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
                      f"{k} = {display_text(v, units.get(k, ''))}" for k, v in values.items())
 
 
-def _numeric(rows: list[dict[str, Any]], key: str) -> bool:
-    """Whether every row holds a number (not a bool) under ``key``."""
+def numeric_key(rows: list[dict[str, Any]], key: str) -> bool:
+    """Whether every row holds a number (not a bool) under ``key``.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Table rows.
+    key : str
+        A column.
+
+    Returns
+    -------
+    bool
+        True when each row's value is an int or float.
+    """
     return all(isinstance(row.get(key), (int, float)) and not isinstance(row.get(key), bool)
                for row in rows)
 
@@ -279,7 +292,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     entries = (len(curves) if len(per_panel[0]) == 1
                else len(per_panel[0]) + (len(curves) if len(curves) > 1 else 0))
     beside = entries > INSIDE_LEGEND_ENTRIES and not markers_only  # widen for the legend
-    shade = (keys[1] if markers_only and len(per_panel[0]) == 1 and _numeric(rows, keys[1])
+    shade = (keys[1] if markers_only and len(per_panel[0]) == 1 and numeric_key(rows, keys[1])
              else None)  # a sample's points coloured by the second key's value
     fig = Figure(figsize=(10 if beside else 7, 2.8 * len(per_panel) + 0.9),
                  layout="constrained" if shade else None)

@@ -157,11 +157,10 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         File name and figure (none or one).
     """
 
-    from bearingsim.scenes.plots import characteristic_figures
+    from bearingsim.scenes.plots import characteristic_figures, numeric_key
 
     ok = [r for r in rows if r["status"] == "ok"]
-    numeric = [k for k in keys if ok and all(isinstance(r.get(k), (int, float))
-                                             and not isinstance(r.get(k), bool) for r in ok)]
+    numeric = [k for k in keys if ok and numeric_key(ok, k)]
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
     if not numeric or not outputs:
         return []
