@@ -228,3 +228,23 @@ def test_a_steady_state_without_a_root_says_so_without_casadis_dump(capfd):
     printed = capfd.readouterr()
     for text in (printed.out, printed.err):
         assert "Input 0" not in text and "Function newton0" not in text
+
+
+def test_a_tandem_pair_warns_of_axial_load_against_its_loaded_direction():
+    """A DT pair takes axial load in one direction; the reverse beyond its spring preload
+    makes the rows separate. The row model (a full groove) carried it on the rows instead:
+    ``equilibrium({"Fz": -20000})`` of a 7020C DT pair gave -0.37 mm without a word (its spring
+    preload is 540 N, light class: 0.0085 C0 of one row's ball set at 15 deg, rounded)."""
+    from bearingsim.studies.duplex import RowUnloadedWarning
+
+    model = DuplexModel("7020C", "DT")
+    spring = model.parameters()["spring.Fz"]
+    assert spring == pytest.approx(540.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RowUnloadedWarning)
+        model.equilibrium({"Fz": 2000.0})  # the loaded direction: no warning
+        model.equilibrium({"Fz": -0.9 * spring})  # the spring still holds the rows
+    with pytest.warns(RowUnloadedWarning, match=r"Fz = -2000 N acts against the tandem pair's "
+                                                r"loaded direction beyond its spring preload "
+                                                r"of 540 N"):
+        model.equilibrium({"Fz": -2000.0})
