@@ -24,13 +24,6 @@ T_SHORT = 0.04
 """Simulated time of the points [s] (short: the test compares, it does not study)."""
 
 
-@pytest.fixture(scope="module")
-def client():
-    """One in-process dask worker (threads): the sweep machinery without process start-up."""
-    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
-                            dashboard_address=":0") as c:
-        yield c
-
 
 def _single(scene, t_end, **args):
     sim = dataclasses.replace(scene.simulation, t_end=t_end)

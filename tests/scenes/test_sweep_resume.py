@@ -47,12 +47,6 @@ PACKAGE_ROOT = Path(bearingsim.__file__).resolve().parents[1]
 """The folder of the bearingsim these tests import, for the commands they start."""
 
 
-@pytest.fixture(scope="module")
-def client():
-    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
-                            dashboard_address=":0") as c:
-        yield c
-
 
 @pytest.fixture()
 def scene(tmp_path):

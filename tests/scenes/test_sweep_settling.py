@@ -32,13 +32,6 @@ n_points = 21
 SHORT = ["simulation.t_end=0.01,0.02,0.03,0.05"]
 
 
-@pytest.fixture(scope="module")
-def client():
-    """One in-process dask worker (threads): the sweep machinery without process start-up."""
-    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
-                            dashboard_address=":0") as c:
-        yield c
-
 
 def _sweep(path, grid, client, **kwargs):
     """The sweep's result and the texts of the NotSettledWarnings it gave."""

@@ -23,13 +23,6 @@ from tests.scenes.sweep_scenes import torque_level_scene
 distributed = pytest.importorskip("distributed")
 
 
-@pytest.fixture(scope="module")
-def client():
-    """One in-process dask worker (threads): the sweep machinery without process start-up."""
-    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
-                            dashboard_address=":0") as c:
-        yield c
-
 
 def test_a_points_warning_is_warned_once_on_the_client_with_its_points(tmp_path, client):
     path = tmp_path / "torque.toml"
