@@ -146,6 +146,18 @@ def _after_integrator(hook):
         integrators.compiled_bdf_run = bdf_run
 
 
+def _numpy_call_twice(values) -> tuple[float, float]:
+    """CPU time [us] of ``numpy.isfinite(values).all()``, then of the same call again at
+    once."""
+    import numpy as np
+
+    start = time.thread_time_ns()
+    np.isfinite(values).all()
+    middle = time.thread_time_ns()
+    np.isfinite(values).all()
+    return (middle - start) / 1e3, (time.thread_time_ns() - middle) / 1e3
+
+
 def _spin(seconds: float) -> None:
     """Run the interpreter for ``seconds`` (wall) on almost no memory: a loop reading the
     clock."""
@@ -177,16 +189,12 @@ def elapsed_time_penalty(repeats: int = 20) -> list[dict]:
     from bearingsim.simulation import simulate
 
     values = np.ones(PROBE_SIZE)
-    timings: list[tuple[int, int]] = []
+    timings: list[tuple[float, float]] = []
     spin_s = [0.0]
 
     def probe():
         _spin(spin_s[0])
-        start = time.thread_time_ns()
-        np.isfinite(values).all()
-        middle = time.thread_time_ns()
-        np.isfinite(values).all()
-        timings.append((middle - start, time.thread_time_ns() - middle))
+        timings.append(_numpy_call_twice(values))
 
     rows = []
     with _after_integrator(probe), warnings.catch_warnings():
@@ -207,8 +215,8 @@ def elapsed_time_penalty(repeats: int = 20) -> list[dict]:
                     break
                 rows.append({"scene": scene, "case": case, "spin_ms": 1e3 * spin,
                              "overhead_ms": 1e3 * min(overheads),
-                             "first_us": min(t[0] for t in timings) / 1e3,
-                             "again_us": min(t[1] for t in timings) / 1e3})
+                             "first_us": min(t[0] for t in timings),
+                             "again_us": min(t[1] for t in timings)})
     return rows
 
 
@@ -237,12 +245,9 @@ def clock_loop_penalty(repeats: int = 20) -> list[dict]:
         first, again = [], []
         for _ in range(2 * repeats):
             _spin(loop_ms / 1e3)
-            start = time.thread_time_ns()
-            np.isfinite(values).all()
-            middle = time.thread_time_ns()
-            np.isfinite(values).all()
-            first.append((middle - start) / 1e3)
-            again.append((time.thread_time_ns() - middle) / 1e3)
+            one, two = _numpy_call_twice(values)
+            first.append(one)
+            again.append(two)
         again_median = statistics.median(again)
         rows.append({"loop_ms": loop_ms, "first_min_us": min(first),
                      "first_median_us": statistics.median(first),

@@ -173,16 +173,6 @@ def _ready_to_write(units: dict[str, str]) -> None:
             continue
 
 
-def _warn_again(text: str, category: type) -> None:
-    """Warn ``text`` as ``category`` on the client (a category that takes other arguments
-    than a message as a UserWarning naming it)."""
-    try:
-        warning = category(text)
-    except TypeError:
-        warning = UserWarning(f"{category.__name__}: {text}")
-    warnings.warn(warning, stacklevel=4)
-
-
 def _earlier_files(folder: Path, stem: str) -> list[str]:
     """Names of an earlier sweep's files of this scene in ``folder``."""
     names = [f"{stem}.{ext}" for ext in ("json", "csv", "parquet", "png")]
@@ -406,7 +396,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                                 "on purpose" if scene.transient_on_purpose else "checked"))
     res.warnings = point_warnings(results, len(points))
     for kind in res.warnings:
-        _warn_again(f"{scene.title or stem}: {kind['text']}", kind["category"])
+        warnings.warn(f"{scene.title or stem}: {kind['text']}", kind["category"], stacklevel=3)
     if res.unsettled:
         warnings.warn(f"{scene.title or stem}: {len(res.unsettled)} of {len(ordered)} point(s) "
                       "had not settled at t_end (their rows say settled False and name the "

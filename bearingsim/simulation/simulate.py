@@ -15,7 +15,7 @@ from bearingsim.checks import check_tolerance
 from bearingsim.entry_points import entry_point
 from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
-from bearingsim.simulation.choice import MethodChoice, choose_method
+from bearingsim.simulation.choice import choose_method
 from bearingsim.simulation.closed import close_inputs
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.input_ranges import check_input_ranges
@@ -215,9 +215,11 @@ def simulate(
     t_eval = _output_times(t_start, t_end, n_points, t_eval)
     _check_work(system, t_start, t_end, t_eval.size, max_step)
     setup = _time.perf_counter()
-    if method is None:
-        choice = (MethodChoice("cvodes", compiled, NO_STATES)
-                  if system.n_states == 0 else choose_method(system, t_end - t_start, compiled))
+    if system.n_states == 0:  # nothing to integrate, whatever the method
+        reason = NO_STATES if method is None else f"method={method!r} given; {NO_STATES}"
+        method = method or "cvodes"  # (its backend decides below whether inputs are closed)
+    elif method is None:
+        choice = choose_method(system, t_end - t_start, compiled)
         method, compiled, reason = choice.method, choice.compiled, choice.reason
     else:
         reason = f"method={method!r} given"
@@ -233,8 +235,6 @@ def simulate(
     budget.start()
     if system.n_states == 0:
         traj = Trajectory(t_eval, np.zeros((0, t_eval.size)), None, {"method": "none"})
-        if reason != NO_STATES:
-            reason = f"{reason}; {NO_STATES}"
     else:
         problem = IntegrationProblem(system, closed, inputs, p, x_start, t_start, t_end, t_eval,
                                      rtol, atol, max_step, progress, signal, compiled,
