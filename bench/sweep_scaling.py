@@ -344,7 +344,7 @@ def _scaling_row(label: str, sweep: dict) -> list[str]:
              f"{sweep['idle_end_s']:.2f}", f"{sweep['gap_s'] * 1e3:.1f}",
              f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}"]
             + [f"{ph.get(k, float('nan')):.2f}" for k in
-               ("plan", "cluster", "ship", "points", "close", "write")]
+               ("imports", "plan", "cluster", "ship", "points", "close", "write")]
             + [f"{sweep['load_after']:.1f}", f"{sweep.get('steal_s', float('nan')):.2f}"])
 
 
@@ -360,7 +360,7 @@ def _scaling_text(r: dict) -> list[str]:
     slowdown = first[1]["point_s"] / first[0]["point_s"]
     cpu_slowdown = first[1]["point_cpu_s"] / first[0]["point_cpu_s"]
     # Amdahl from the 1-worker sweep's own split: what does not run in the points phase
-    # (plan, cluster, ship, finish) is serial; the points phase is parallel
+    # (imports, plan, cluster, ship, finish) is serial; the points phase is parallel
     s = first[0]["fixed_s"] / first[0]["wall"]
     predict = {q: 1.0 / (s + (1.0 - s) / q) for q in (2, 4, 16)}
     rows = [_scaling_row("1 worker, fresh process", first[0]),
@@ -396,13 +396,14 @@ def _scaling_text(r: dict) -> list[str]:
         "`plan`); client CPU: CPU time of the client's process (client and scheduler) per "
         "point over the whole sweep; steal: processor time the virtual machine's host took "
         "from this machine during the sweep (`/proc/stat`, summed over its processors: time "
-        "the points may have waited for though no process here ran). Phases in seconds.",
+        "the points may have waited for though no process here ran). Phases in seconds "
+        "(imports: dask.distributed, in the first sweep of a process).",
         "",
         markdown_table(["sweep", "wall [s]", "points/task", "point [ms]", "point CPU [ms]",
                         "waiting", "last [ms]",
                         "workers busy",
                         "overhead [ms]", "idle at end [s]", "gap [ms]", "fixed [s]",
-                        "client CPU [ms/point]", "plan",
+                        "client CPU [ms/point]", "imports", "plan",
                         "cluster", "ship", "points", "close", "write", "load after",
                         "steal [s]"], rows),
         "",

@@ -117,7 +117,8 @@ class SweepResult:
     sweep ran; below the wall time in :attr:`spans` by the time the point waited for a core
     (other processes on the worker's machine)."""
     phases: dict[str, float] = field(default_factory=dict)
-    """Wall time [s] of the client's phases: ``plan`` (validate, prepare or load the models),
+    """Wall time [s] of the client's phases: ``imports`` (dask.distributed, the first sweep of
+    a process: about 0.5 s), ``plan`` (validate, prepare or load the models),
     ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
     ``points`` (first chunk out to last row in; the client imports what writing takes
     meanwhile), ``close`` (close the cluster), ``write`` (sorted table, Parquet copy, plot,
@@ -275,9 +276,6 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
            scheduler: str | None, n_workers: int, progress: bool, client, resume: bool,
            timeout: float | None, chunk: int | None, longest_first: bool) -> SweepResult:
     """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
-    distributed_module()  # a named error before anything starts when it is missing
-    from tqdm import tqdm
-
     wall = time.perf_counter()
     phases: dict[str, float] = {}
     clock = [wall]
@@ -287,6 +285,10 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         phases[name] = now - clock[0]
         clock[0] = now
 
+    distributed_module()  # a named error before anything starts when it is missing
+    from tqdm import tqdm
+
+    lap("imports")
     own = client is None
     starting = (concurrent.futures.ThreadPoolExecutor(1).submit(connect, scheduler, n_workers)
                 if own else None)  # the cluster starts while the client plans
