@@ -249,7 +249,7 @@ def _sweep(args: argparse.Namespace) -> int:
     out = args.out if args.out is not None else scene_output_folder(scene)
     try:
         res = run_sweep(scene, points, scheduler=args.scheduler, n_workers=args.workers,
-                        out=out, progress=not args.no_progress, resume=args.resume,
+                        out=out, progress=False if args.no_progress else None, resume=args.resume,
                         timeout=args.timeout, chunk=args.chunk, overwrite=args.overwrite)
     except KeyboardInterrupt:
         _say(f"bearingsim sweep: interrupted; the finished points are in {out}; add --resume "
@@ -336,7 +336,8 @@ def _parser() -> argparse.ArgumentParser:
     p_sw.add_argument("--workers", type=int, default=2,
                       help="LocalCluster workers (default 2)")
     p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
-    p_sw.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p_sw.add_argument("--no-progress", action="store_true",
+                      help="no progress bar (shown on a terminal)")
     p_cache = sub.add_parser("cache", help="size of the cache of assembled systems and "
                              "compiled kernels ($BEARINGSIM_CACHE), or clear it")
     p_cache.add_argument("action", nargs="?", default="show", choices=("show", "clear"))

@@ -167,6 +167,25 @@ def test_sweep_warns_of_a_sobol_sample_that_is_not_a_power_of_two(tmp_path, caps
     assert out.startswith("3 point(s): 3 settled, 0 not settled, 0 failed;")
 
 
+def test_sweep_draws_no_progress_bar_into_a_log(tmp_path, capsys):
+    """Standard error that is not a terminal (a log file, a pipe) gets no progress bar unless
+    asked, as ``bearingsim run`` does (before: the bar's carriage-return frames, ``0%| ...
+    | 0/3 [00:00<?, ?point/s]``, and its blanked line before the summary)."""
+    from distributed import Client
+
+    from tests.scenes.sweep_scenes import torque_level_scene
+
+    scene = tmp_path / "torque.toml"
+    scene.write_text(torque_level_scene())
+    with Client(processes=False, n_workers=1, threads_per_worker=1,
+                dashboard_address=":0") as client:
+        assert main(["sweep", str(scene), "--scheduler", client.scheduler.address, "--grid",
+                     "inputs.shaft_speed=100,200,300", "--out", str(tmp_path / "sw")]) == 0
+    out, err = capsys.readouterr()
+    assert "point/s" not in err and "\r" not in err
+    assert out.startswith("3 point(s): 3 settled, 0 not settled, 0 failed;")
+
+
 def test_demo_and_export_fmu_commands_are_kept():
     from bearingsim.cli import _parser
 

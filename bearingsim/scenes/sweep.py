@@ -182,7 +182,7 @@ def _earlier_files(folder: Path, stem: str) -> list[str]:
 
 def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
-              progress: bool = True, client=None, resume: bool = False,
+              progress: bool | None = None, client=None, resume: bool = False,
               timeout: float | None = None, chunk: int | None = None,
               overwrite: bool = False, longest_first: bool = True) -> SweepResult:
     """Run a scene at every point on dask.distributed; one table, appended as points finish.
@@ -204,8 +204,9 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         Folder for ``<scene>.sweep.csv`` (and ``.parquet``, ``.png``) and ``.sweep.json``,
         written through :class:`~bearingsim.scenes.outputs.OutputFolder` (locked for the
         sweep; the summary last); None: no files (and no ``resume``).
-    progress : bool
-        Show a progress bar.
+    progress : bool, optional
+        Show a progress bar of the points on standard error (``True``), never (``False``),
+        or by default only when standard error is a terminal (a log file gets no bar).
     client : distributed.Client, optional
         Use this client (and leave it open).
     resume : bool
@@ -273,7 +274,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
 
 
 def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | None, stem: str,
-           scheduler: str | None, n_workers: int, progress: bool, client, resume: bool,
+           scheduler: str | None, n_workers: int, progress: bool | None, client, resume: bool,
            timeout: float | None, chunk: int | None, longest_first: bool) -> SweepResult:
     """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
     wall = time.perf_counter()
@@ -352,8 +353,8 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
         lap("ship")
         feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in todo],
                              n_threads, timeout, chunk, point_s, plan.payloads, costs)
-        bar = tqdm(total=len(points), initial=len(rows), unit="point", disable=not progress,
-                   leave=False)
+        bar = tqdm(total=len(points), initial=len(rows), unit="point", leave=False,
+                   disable=None if progress is None else not progress)  # None: a terminal's
         preparing = concurrent.futures.ThreadPoolExecutor(1)
         if table is not None:
             preparing.submit(_ready_to_write, units)
