@@ -340,7 +340,9 @@ def _parser() -> argparse.ArgumentParser:
                       help="no progress bar (shown on a terminal)")
     p_cache = sub.add_parser("cache", help="size of the cache of assembled systems and "
                              "compiled kernels ($BEARINGSIM_CACHE), or clear it")
-    p_cache.add_argument("action", nargs="?", default="show", choices=("show", "clear"))
+    p_cache.add_argument("action", nargs="?", default="show", choices=("show", "clear"),
+                         help="show (the default): what the cache holds and its size budget; "
+                              "clear: delete it (rebuilt on the next runs)")
     p_list = sub.add_parser("list", help="assemblies, components, catalogue bearings, "
                             "lubricants and built-in scenes")
     p_list.add_argument("what", nargs="?", default="all", choices=("all", *LIST_SECTIONS),
