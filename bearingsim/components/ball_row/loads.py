@@ -212,9 +212,11 @@ def axial_approach(p: RowParameters, n_balls: int, force: float, *, reference="t
     check_range(force, "force", "N", 0.0, low_inclusive=False, where="axial_approach")
 
     def residual(dz):
-        loads = row_loads(p, [0.0, 0.0, dz, 0.0, 0.0], [0.0] * 5, n_balls, 1,
+        # a purely axial approach loads every ball alike: the row carries Z times one ball's
+        # load (the balls of the whole row differ only by the rounding of their azimuths)
+        loads = row_loads(p, [0.0, 0.0, dz, 0.0, 0.0], [0.0] * 5, 1, 1,
                           reference=reference, exact=exact)
-        return -float(loads.inner_load[2]) - force
+        return -n_balls * float(loads.inner_load[2]) - force
 
     hi = 1e-6 * p.Dw
     while residual(hi) < 0.0:
