@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 from bench import (
+    analysis_points,
     assembler_scaling,
     assembly_work_precision,
     backends,
@@ -143,6 +144,7 @@ def main(argv: list[str] | None = None) -> int:
         ("compiled BDF stepping core", lambda: compiled_bdf_core.section(args.quick)),
         ("compiled BDF Newton iteration", lambda: compiled_bdf_newton.section(args.quick)),
         ("start-up of a command", lambda: startup.section(args.quick)),
+        ("analysis scenes", lambda: analysis_points.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
