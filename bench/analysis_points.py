@@ -124,8 +124,10 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         "axial approach of a ball row solved one ball instead of all Z: a duplex pair's "
         "preload offset, solved per operating point) and this code alternating. *solve per "
         "point*: the scene's own solve time (its summary's `timings_s`) over its operating "
-        "points; *assemble*: the model built or loaded from the cache; *wall*, *CPU*: the "
-        "whole command, launch to exit (CPU of the process and its children).\n\n"
+        "points, with what the process pays once on first use (kernels loaded, modules "
+        "imported on use: most of it for the scenes of a few milliseconds a point); "
+        "*assemble*: the model built or loaded from the cache; *wall*, *CPU*: the whole "
+        "command, launch to exit (CPU of the process and its children).\n\n"
         f"Command: `python -m bench.analysis_points --baseline {baseline}`\n\n"
         + markdown_table(["scene", "points", "solve per point before [ms]",
                           "solve per point now [ms]", "solve before / now",
