@@ -120,6 +120,21 @@ def test_axial_approach_solves_one_ball_and_the_whole_row_carries_the_force(bear
     assert float(carried) == pytest.approx(force, rel=1e-9)
 
 
+def test_row_parameters_keeps_the_contact_constants_of_each_angle_and_method():
+    """The Hertz constants are kept per bearing, materials, angle and method: each call gives
+    what the constants' own function gives for its arguments."""
+    from bearingsim.physics.hertz import bearing_load_deflection_constants
+    from bearingsim.physics.materials import STEEL
+
+    g = get_bearing("7020C")
+    for angle in (math.radians(15.0), math.radians(25.0), math.radians(15.0)):
+        for method in ("exact", "hamrock_brewe"):
+            p = row_parameters(g, angle, method=method)
+            k_i, k_o, _ = bearing_load_deflection_constants(g, STEEL, STEEL, angle, method)
+            assert (p.K_i, p.K_o) == (float(k_i), float(k_o))
+    assert row_parameters(g, math.radians(15.0)).K_i != row_parameters(g, math.radians(25.0)).K_i
+
+
 def test_deep_groove_radial_load_follows_stribeck():
     g = dataclasses.replace(get_bearing("6204"), diametral_clearance=0.0)
     system = assemble(SingleRow(g, reference="centred"))

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -77,7 +78,17 @@ def row_parameters(bearing: str | BearingGeometry, contact_angle: float | None =
     check_range(alpha0, "contact_angle", "rad", 0.0, _MAX_ALPHA,
                 where=f"row_parameters({g.designation})")
     check_range(smooth, "smooth", "m", 0.0, low_inclusive=False, where="row_parameters")
-    k_i, k_o, _ = bearing_load_deflection_constants(g, ball, ring, alpha0, method)
+    k_i, k_o = _contact_constants(g, ball, ring, float(alpha0), method)
     return RowParameters(g.ball_diameter, g.pitch_diameter, g.fi, g.fo, float(alpha0),
-                         float(k_i), float(k_o), float(ball_position_angle), float(smooth),
+                         k_i, k_o, float(ball_position_angle), float(smooth),
                          max(-g.diametral_clearance, 0.0) / 2.0)
+
+
+@functools.lru_cache(maxsize=64)
+def _contact_constants(g: BearingGeometry, ball: Material, ring: Material, alpha0: float,
+                       method: str) -> tuple[float, float]:
+    """The inner and outer Hertz load-deflection constants of a row [N/m^1.5], once per
+    bearing, materials, free contact angle and method (a few milliseconds each: a duplex
+    pair's every operating point builds its two rows and solves its preload offset)."""
+    k_i, k_o, _ = bearing_load_deflection_constants(g, ball, ring, alpha0, method)
+    return float(k_i), float(k_o)
