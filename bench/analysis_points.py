@@ -16,17 +16,10 @@ Command: ``python -m bench.analysis_points [--baseline COMMIT]``.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import resource
 import statistics
-import subprocess
-import sys
-import tempfile
-import time
-from pathlib import Path
 
-from bench.common import ROOT, Section, exported_package, fmt, markdown_table
+from bench.common import ROOT, Section, exported_package, fmt, markdown_table, scene_command
 
 __all__ = ["BASELINE", "ROUNDS", "analysis_scenes", "measure", "section"]
 
@@ -36,7 +29,6 @@ instead of the whole row (a duplex pair's preload offset, solved per operating p
 ROUNDS = 3
 """Rounds of the baseline and this code, alternating."""
 ANALYSES = ("steady", "modes", "statics")
-RUN = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
 
 
 def analysis_scenes() -> list[str]:
@@ -56,39 +48,18 @@ def analysis_scenes() -> list[str]:
     return names
 
 
-def _child_cpu() -> float:
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
 def _run(env: dict, scene: str) -> dict[str, float]:
     """One ``bearingsim run scene`` in a new process: its summary's timings [s] and points,
     the command's wall and CPU time [s]."""
-    with tempfile.TemporaryDirectory() as out:
-        cpu0, t0 = _child_cpu(), time.perf_counter()
-        subprocess.run([sys.executable, "-c", RUN, "run", scene, "--out", out,
-                        "--no-progress"], check=True, capture_output=True, env=env, cwd=ROOT)
-        wall, cpu = time.perf_counter() - t0, _child_cpu() - cpu0
-        summary = json.loads((Path(out) / f"{scene}.summary.json").read_text())
+    wall, cpu, summary = scene_command(env, scene)
     return {**summary["timings_s"], "points": summary["points"], "wall": wall, "cpu": cpu}
 
 
 def measure(baseline: str = BASELINE, rounds: int = ROUNDS) -> dict:
-    """Medians over ``rounds`` alternating rounds, per package (``"baseline"``, ``"now"``)
-    and scene: ``assemble``, ``solve``, ``wall``, ``cpu`` [s] and ``points``.
-
-    Parameters
-    ----------
-    baseline : str
-        The commit to compare with.
-    rounds : int
-        Alternating rounds.
-
-    Returns
-    -------
-    dict
-        ``{"baseline" | "now": {scene: {quantity: median}}}``.
-    """
+    """Per package (``"baseline"``: the commit ``baseline``; ``"now"``: this checkout) and
+    analysis scene, the medians over ``rounds`` alternating rounds of ``assemble``,
+    ``solve``, ``wall``, ``cpu`` [s] and ``points``: ``{package: {scene: {quantity:
+    median}}}``."""
     scenes = analysis_scenes()
     runs: dict[str, dict[str, list[dict]]] = {"baseline": {}, "now": {}}
     with exported_package(baseline) as then_env:

@@ -36,6 +36,7 @@ __all__ = [
     "case_report",
     "case_text",
     "case_command_line",
+    "scene_command",
 ]
 
 
@@ -86,6 +87,40 @@ def exported_package(commit: str) -> Iterator[dict[str, str]]:
             tar.extractall(tmp, filter="data")
         yield {**os.environ, "PYTHONPATH": os.pathsep.join([tmp, str(ROOT)]),
                "PYTHONSAFEPATH": "1"}
+
+
+def scene_command(env: dict[str, str], scene: str) -> tuple[float, float, dict]:
+    """``bearingsim run scene --out <temporary folder> --no-progress`` in a new Python process.
+
+    Parameters
+    ----------
+    env : dict of str to str
+        The process's environment (:func:`exported_package` for a baseline's package).
+    scene : str
+        A shipped scene's name.
+
+    Returns
+    -------
+    tuple of (float, float, dict)
+        Wall time [s] from launch to exit, CPU time [s] of the process and its children, and
+        the run's summary (``<scene>.summary.json``).
+    """
+    import json
+    import resource
+    import sys
+
+    def children_cpu() -> float:
+        usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return usage.ru_utime + usage.ru_stime
+
+    run = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
+    with tempfile.TemporaryDirectory() as out:
+        cpu0, t0 = children_cpu(), time.perf_counter()
+        subprocess.run([sys.executable, "-c", run, "run", scene, "--out", out,
+                        "--no-progress"], check=True, capture_output=True, env=env, cwd=ROOT)
+        wall, cpu = time.perf_counter() - t0, children_cpu() - cpu0
+        summary = json.loads((Path(out) / f"{scene}.summary.json").read_text())
+    return wall, cpu, summary
 
 
 def machine_info() -> dict[str, str]:

@@ -22,14 +22,11 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import statistics
 import subprocess
 import sys
-import tempfile
-import time
 
-from bench.common import ROOT, Section, exported_package, fmt, markdown_table
+from bench.common import ROOT, Section, exported_package, fmt, markdown_table, scene_command
 
 __all__ = ["BASELINE", "ROUNDS", "SCENES", "measure", "section"]
 
@@ -46,12 +43,6 @@ scipy.optimize (nothing saved there)."""
 
 IMPORTS = ("import time; t0 = time.perf_counter(); import bearingsim.cli, "
            "bearingsim.scenes.runner; print(time.perf_counter() - t0)")
-RUN = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
-
-
-def _child_cpu() -> float:
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
 
 
 def _imports(env: dict) -> float:
@@ -62,11 +53,7 @@ def _imports(env: dict) -> float:
 
 def _command(env: dict, scene: str) -> tuple[float, float]:
     """Wall and CPU time [s] of ``bearingsim run scene`` in a new process."""
-    with tempfile.TemporaryDirectory() as out:
-        cpu0, t0 = _child_cpu(), time.perf_counter()
-        subprocess.run([sys.executable, "-c", RUN, "run", scene, "--out", out,
-                        "--no-progress"], check=True, capture_output=True, env=env, cwd=ROOT)
-        return time.perf_counter() - t0, _child_cpu() - cpu0
+    return scene_command(env, scene)[:2]
 
 
 def measure(baseline: str = BASELINE, rounds: int = ROUNDS) -> dict:
