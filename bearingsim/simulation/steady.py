@@ -179,32 +179,51 @@ def _solve(system: System, res, jac, z: np.ndarray, tol: float, residual_tol: fl
 
 
 NEWTON_ITERATIONS = 12
-"""Most full Newton steps :func:`steady_state` tries before it hands the problem to MINPACK's
+"""Most Newton steps :func:`steady_state` tries before it hands the problem to MINPACK's
 trust-region method (``hybr``) from the original guess."""
+SMALLEST_STEP_FRACTION = 2.0**-10
+"""Shortest fraction of a Newton step the line search of :func:`_newton` tries [-]."""
+SUFFICIENT_DECREASE = 1e-4
+"""Armijo's constant: a step of fraction ``lam`` is taken once it lowers the residual's
+2-norm by at least ``SUFFICIENT_DECREASE * lam`` of it [-]."""
 
 
 def _newton(res, jac, z: np.ndarray, tol: float, residual_tol: float) -> np.ndarray | None:
-    """Full Newton steps on ``res(z) = 0`` with the exact Jacobian: the solution once a step
-    is below ``tol`` relative to ``z`` (as MINPACK's ``xtol``) and the residual is below
-    ``residual_tol`` after it, else None (a singular Jacobian, a residual that is not finite,
-    no convergence in :data:`NEWTON_ITERATIONS` steps)."""
+    """Newton steps on ``res(z) = 0`` with the exact Jacobian, each shortened by halving until
+    it lowers the residual's 2-norm (Armijo's sufficient decrease; a full step wherever
+    Newton converges by itself): the solution once a step is below ``tol`` relative to ``z``
+    (as MINPACK's ``xtol``) and the residual is below ``residual_tol`` after it, else None (a
+    singular Jacobian, a residual that is not finite at the start, no step fraction down to
+    :data:`SMALLEST_STEP_FRACTION` that lowers it, no convergence in
+    :data:`NEWTON_ITERATIONS` steps). Full steps alone oscillated with a growing residual
+    from some start points of a steady sweep (a double-layer bearing's middle-ring speed),
+    which then fell back to MINPACK, importing scipy.optimize for it (~0.6 s)."""
     from scipy.linalg.lapack import dgesv  # on use: scipy.linalg, ~0.25 s of every command
 
     r = res(z)
+    if not np.isfinite(r).all():
+        return None
     for _ in range(NEWTON_ITERATIONS):
-        if not np.isfinite(r).all():
-            return None
         # LAPACK's gesv, as numpy.linalg.solve calls it, without numpy's per-call checks
         # (a tenth of a sweep point's time on the small models)
         _, _, step, info = dgesv(jac(z), -r)
         if info != 0:  # a singular Jacobian (an exact zero pivot)
             return None
-        z_new = z + step
-        r_new = res(z_new)
+        norm, lam = math.sqrt(r.dot(r)), 1.0
+        while True:
+            z_new = z + lam * step
+            r_new = res(z_new)
+            taken = lam * step
+            if (math.sqrt(taken.dot(taken)) <= tol * max(math.sqrt(z_new.dot(z_new)), tol)
+                    and np.abs(r_new).max() <= residual_tol):
+                return z_new
+            if (np.isfinite(r_new).all()
+                    and math.sqrt(r_new.dot(r_new)) <= (1.0 - SUFFICIENT_DECREASE * lam) * norm):
+                break
+            if lam <= SMALLEST_STEP_FRACTION:
+                return None
+            lam *= 0.5
         z, r = z_new, r_new
-        if (math.sqrt(step.dot(step)) <= tol * max(math.sqrt(z.dot(z)), tol)
-                and np.abs(r).max() <= residual_tol):
-            return z
     return None
 
 
