@@ -25,7 +25,9 @@ __all__ = ["BASELINE", "ROUNDS", "analysis_scenes", "measure", "section"]
 
 BASELINE = "101d468"
 """The commit before :func:`~bearingsim.components.ball_row.axial_approach` solved one ball
-instead of the whole row (a duplex pair's preload offset, solved per operating point)."""
+instead of the whole row (a duplex pair's preload offset, solved per operating point), a row's
+Hertz constants were kept and :func:`~bearingsim.simulation.steady_state` shortened its
+Newton steps."""
 ROUNDS = 3
 """Rounds of the baseline and this code, alternating."""
 ANALYSES = ("steady", "modes", "statics")
@@ -92,8 +94,11 @@ def section(quick: bool = False, baseline: str = BASELINE) -> Section:
         f"it: `bearingsim run <scene> --out <temporary folder> --no-progress`, a fresh Python "
         f"process on a warm cache (assembled systems and kernels stored by a first run of "
         f"each package); medians of {rounds} rounds, the baseline {baseline} (before the "
-        "axial approach of a ball row solved one ball instead of all Z: a duplex pair's "
-        "preload offset, solved per operating point) and this code alternating. *solve per "
+        "axial approach of a ball row solved one ball instead of all Z, a duplex pair's "
+        "preload offset solved per operating point; before a row's Hertz constants were "
+        "kept; and before steady_state's Newton steps were shortened where they would raise "
+        "the residual, which sent a point of double_layer_rs to MINPACK and its import) and "
+        "this code alternating. *solve per "
         "point*: the scene's own solve time (its summary's `timings_s`) over its operating "
         "points, with what the process pays once on first use (kernels loaded, modules "
         "imported on use: most of it for the scenes of a few milliseconds a point); "
