@@ -23,7 +23,9 @@ bounds of the shaft's load inputs, the check of constant loads) and its limiting
   light, 0.65 medium, 0.55 heavy). :data:`PAIR_SPEED_FACTORS` holds the light, medium and
   heavy factors; a preload between the bearing's class preloads is interpolated, one below
   the light class takes the light factor (SKF's 20 % for every pair), one above the heavy the
-  heavy factor.
+  heavy factor. NSK's table has rows DB, DBB and DBD, which its bearing-number key reads as
+  sets of two, four (quadruplex: DBB, DFF, DBT, DFT, DTT) and three bearings (triplex: DBD,
+  DFD, DTD), so its DB row stands for the pair; it is used for DF and DT as for DB.
 """
 
 from __future__ import annotations
@@ -50,7 +52,8 @@ __all__ = ["PAIR_SPEED_FACTORS", "check_pair_loads", "check_pair_speed", "pair_l
 
 PAIR_SPEED_FACTORS = {"light": 0.80, "medium": 0.65, "heavy": 0.55}
 """Limiting speed of a pair over one bearing's [-] by preload class (NSK Super Precision
-Bearings p. 170, Table 5.1, DB; the light one also SKF General Catalogue 6000 p. 414)."""
+Bearings p. 170, Table 5.1, row DB, the two-bearing set; the light one also SKF General
+Catalogue 6000 p. 414)."""
 
 
 def rated_geometry(geometry: BearingGeometry) -> BearingGeometry:
