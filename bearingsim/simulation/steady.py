@@ -211,9 +211,9 @@ def _newton(res, jac, z: np.ndarray, tol: float, residual_tol: float) -> np.ndar
             return None
         norm, lam = math.sqrt(r.dot(r)), 1.0
         while True:
-            z_new = z + lam * step
-            r_new = res(z_new)
             taken = lam * step
+            z_new = z + taken
+            r_new = res(z_new)
             if (math.sqrt(taken.dot(taken)) <= tol * max(math.sqrt(z_new.dot(z_new)), tol)
                     and np.abs(r_new).max() <= residual_tol):
                 return z_new
