@@ -117,6 +117,27 @@ def test_axial_stiffness_under_a_radial_load_is_the_geometric_one():
     assert res.stiffness[2, 2] == pytest.approx(np.sum(res.ball_loads / (a + delta)), rel=1e-5)
 
 
+@pytest.mark.parametrize("method", ["exact", "iso_ts_16281"])
+def test_directions_without_load_are_exactly_zero_not_round_off(method):
+    """Under a load along x alone, y and the tilts balance at zero. The solve used to report
+    the round-off of the balls' rounded azimuths as a displacement (y = -2.2e-18 m beside
+    x = 27 um, printed by deep_groove_statics.toml as ``y = -2.2167e-12 µm``)."""
+    for fx in (903.0, 266.0, 206.0, 1000.0):
+        res = deep_groove_statics(BEARING, {"Fx": fx}, method=method)
+        assert res.displacement[0] > 1e-6
+        assert res.displacement[1] == 0.0 and res.displacement[2] == 0.0
+        np.testing.assert_array_equal(res.tilt, 0.0)
+
+
+def test_a_small_real_load_still_moves_the_ring():
+    """Only values zero balances as well are set to zero: a 1 mN load along y beside 1 kN
+    along x moves the ring by its own compliance (about 1e-14 m, 1e-9 of x)."""
+    base = deep_groove_statics(BEARING, {"Fx": 1000.0})
+    res = deep_groove_statics(BEARING, {"Fx": 1000.0, "Fy": 1e-3})
+    expected = 1e-3 / base.stiffness[1, 1]
+    assert res.displacement[1] == pytest.approx(expected, rel=1e-3)
+
+
 def test_a_user_guess_is_used_and_gives_the_same_answer():
     first = deep_groove_statics(BEARING, CASES["all"])
     again = deep_groove_statics(BEARING, CASES["all"], guess=first.state)
