@@ -308,36 +308,39 @@ def finite_io(func: Callable, infinite_results: bool = False) -> Callable:
             bound = signature.bind(*args, **kwargs)
         except TypeError:
             return func(*args, **kwargs)  # the function's own argument error
-        extreme, nan_args, limits = [], [], False
-        for name, value in bound.arguments.items():
-            arr = _numbers(value)
-            if arr is None or not arr.size:
-                continue
-            if np.any(np.isnan(arr)):
-                nan_args.append(name)
-            limits |= bool(np.any((arr == 0) | np.isinf(arr)))
-            if np.any(~np.isfinite(arr)) or np.nanmax(np.abs(arr)) > 1e150 or np.any(
-                    (arr != 0) & (np.abs(arr) < 1e-150)):
-                extreme.append(f"{name} = {value!r:.40}")
+        given = [(name, arr) for name, value in bound.arguments.items()
+                 if (arr := _numbers(value)) is not None and arr.size]
+        nan_args = [name for name, arr in given if np.isnan(arr).any()]
+
+        def extreme() -> str:  # the arguments that are not ordinary numbers, for a message
+            with np.errstate(all="ignore"):
+                named = [f"{name} = {bound.arguments[name]!r:.40}" for name, arr in given
+                         if not np.isfinite(arr).all() or np.nanmax(np.abs(arr)) > 1e150
+                         or ((arr != 0) & (np.abs(arr) < 1e-150)).any()]
+            return ", ".join(named)
+
         with np.errstate(all="ignore"):
             try:
                 result = func(*args, **kwargs)  # its own checks name unit and range first
             except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
                 raise ParameterError(
                     f"{where}: {type(exc).__name__} ({exc}) for "
-                    f"{', '.join(extreme) or 'these arguments'}: the arguments are beyond "
+                    f"{extreme() or 'these arguments'}: the arguments are beyond "
                     f"the range the formula can represent") from None
         for label, arr in _result_numbers(result):
+            if np.isfinite(arr).all():
+                continue
+            nan = bool(np.isnan(arr).any())
             # an infinite answer is a limit (zero load, infinite capacity), not an overflow
-            limit_case = infinite_results and limits
-            if np.any(np.isnan(arr) if limit_case else ~np.isfinite(arr)):
-                what = f"the result {label}".rstrip()
-                kind = "nan" if np.any(np.isnan(arr)) else "inf"
-                raise ParameterError(
-                    f"{where}: {what} is not finite ({kind}) for "
-                    f"{', '.join(extreme) or 'these arguments'}: the arguments are beyond the "
-                    f"range the formula can represent; give each in its SI unit and plausible "
-                    f"range (docs/physics.md, 'Valid ranges')")
+            if not nan and infinite_results and any(((a == 0) | np.isinf(a)).any()
+                                                    for _, a in given):
+                continue
+            what = f"the result {label}".rstrip()
+            raise ParameterError(
+                f"{where}: {what} is not finite ({'nan' if nan else 'inf'}) for "
+                f"{extreme() or 'these arguments'}: the arguments are beyond the "
+                f"range the formula can represent; give each in its SI unit and plausible "
+                f"range (docs/physics.md, 'Valid ranges')")
         if nan_args:
             raise ParameterError(f"{where}: {', '.join(nan_args)} must not be NaN")
         return result
