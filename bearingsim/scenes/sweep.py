@@ -11,9 +11,10 @@ Sobol from :mod:`scipy.stats.qmc`, :mod:`bearingsim.scenes.sampling`) of keys:
 * ``assembly.<argument>`` (also ``assembly.bearing.lubrication`` and ``assembly.fidelity``).
 
 Every point is validated before anything runs (:mod:`bearingsim.scenes.sweep_grid` applies
-a point to the scene). The model is prepared on the client once per
-distinct structure (arguments that only change parameter values, such as the lubricant of a
-Palmgren friction model, become parameter overrides,
+a point to the scene), but for the limits an assembly sets on a parametric argument's value,
+checked where the point runs (:func:`~bearingsim.scenes.sweep_plan.plan_sweep`). The model
+is prepared on the client once per distinct structure (arguments that only change parameter
+values, such as the lubricant of a Palmgren friction model, become parameter overrides,
 :func:`~bearingsim.scenes.sweep_plan.plan_sweep`) through the on-disk cache of assembled
 systems (:mod:`bearingsim.assembler.cache`), and shipped to the workers as bytes; each worker
 process loads it once (:mod:`bearingsim.scenes.sweep_worker`). The LocalCluster's workers are

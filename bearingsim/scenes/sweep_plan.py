@@ -77,6 +77,14 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
     """Validate every point of a sweep, prepare one model per distinct structure and make
     the jobs.
 
+    Each point's scene, inputs, parameters and assembly arguments (kind, choices, range) are
+    checked here. The parameter overrides of an assembly's parametric arguments (a duplex
+    pair's preload: the assembly built to read them, tens of milliseconds) are derived here
+    for the first point of each structure only; every other point derives them where it
+    runs (:func:`~bearingsim.scenes.operating_points.point_model`), in parallel, and a value
+    the assembly refuses there (a preload no row can carry) fails that point, named in its
+    row, while the others run.
+
     Parameters
     ----------
     scene : Scene
@@ -104,11 +112,14 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
         pt = {key: coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
         try:
-            if key not in prepared:
+            first = key not in prepared
+            if first:
                 prepared[key] = prepare(sc)
                 payloads[key] = _payload(prepared[key])
             prep = prepared[key]
-            _, params = point_model(prep, sc.args)
+            # the overrides of parametric arguments build the assembly (tens of ms a point):
+            # the first point of a structure here, every other where it runs
+            params = point_model(prep, sc.args)[1] if first else {}
             prep.system.p0({**sc.parameters, **params})
         except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
@@ -120,7 +131,7 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
             if sc.analysis != "statics" and name not in prep.system.input_names:
                 raise SweepError(f"sweep point {pt}: the model has no input {name!r}; inputs: "
                                  + ", ".join(prep.system.input_names))
-        jobs.append(Job(k, sc, params))
+        jobs.append(Job(k, sc))
         structure[k] = key
         values.append(si_values(pt, converted))
     return SweepPlan(prepared, payloads, jobs, structure, values)

@@ -56,11 +56,8 @@ class Job:
     index: int
     scene: Scene
     """The scene with the point's values applied (inputs, parameters, initial values,
-    simulation settings)."""
-    parameters: dict[str, float]
-    """Parameter overrides from arguments that only change parameter values (checked on the
-    client; the point's run derives them again from its arguments,
-    :func:`~bearingsim.scenes.operating_points.point_model`)."""
+    simulation settings, assembly arguments: the run derives the parameter overrides of
+    parametric ones, :func:`~bearingsim.scenes.operating_points.point_model`)."""
 
 
 MODELS: dict[str, Prepared] = {}

@@ -25,6 +25,7 @@ from bearingsim.scenes import (
     prepare,
     run_scene,
 )
+from bearingsim.scenes.operating_points import point_model
 from bearingsim.scenes.scene import line_of
 from bearingsim.scenes.scene_simulation import output_series, run_simulation, simulate_inputs
 from bearingsim.scenes.sweep import (
@@ -365,10 +366,12 @@ def test_lubricant_swap_is_a_parameter_change_equal_to_reassembly():
     plan = plan_sweep(scene, grid_points(parse_grid(["assembly.lubrication=ISO VG 32,ISO VG 150"])))
     assert len(plan.prepared) == 1  # one model for both lubricants
     (payload,) = plan.payloads.values()
-    swapped = run_job(load_model(payload), plan.jobs[1])
+    model = load_model(payload)
+    swapped = run_job(model, plan.jobs[1])
     assert swapped["status"] == "ok"
     # the viscosity changes; Palmgren's f0 depends on the lubrication method, not the grade
-    assert set(plan.jobs[1].parameters) == {"inner_layer.nu", "outer_layer.nu"}
+    same, overrides = point_model(model, plan.jobs[1].scene.args)
+    assert same is model and set(overrides) == {"inner_layer.nu", "outer_layer.nu"}
     direct = run_scene(scene.replace(args={"lubrication": "ISO VG 150"}), write=False)
     for name in ("Rs", "M_shaft"):
         assert swapped["final"][name] == pytest.approx(direct.series[name][-1], rel=1e-9,

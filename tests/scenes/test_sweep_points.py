@@ -130,3 +130,41 @@ def test_modes_sweep_plots_one_curve_per_value_of_the_second_key(client, tmp_pat
     summary = json.loads((tmp_path / "duplex_modes.sweep.json").read_text())
     assert summary["analysis"] == "modes"
     assert {f["name"] for f in summary["files"]} >= {"duplex_modes.sweep.csv", png.name}
+
+
+def test_parametric_points_are_not_built_on_the_client(monkeypatch):
+    """A sweep over a parametric argument (a duplex pair's preload) builds the assembly on the
+    client for the first point of the structure only: each other point derives its parameter
+    overrides where it runs. Before, the plan built the pair for every point (27 ms a point
+    of duplex_modes, serial in the client: as long as the points themselves on 2 workers)."""
+    from bearingsim.scenes import sweep_plan
+    from bearingsim.scenes.operating_points import point_model
+
+    scene = load_scene(SCENES[0].parent / "duplex_modes.toml")
+    calls = []
+
+    def counted(prep, args):
+        calls.append(args)
+        return point_model(prep, args)
+
+    monkeypatch.setattr(sweep_plan, "point_model", counted)
+    points = grid_points(parse_grid(["assembly.preload_force=500,1000,1500,2000",
+                                     "assembly.speed=0,419"]))
+    plan = sweep_plan.plan_sweep(scene, points)
+    assert len(plan.jobs) == 8 and len(calls) == len(plan.prepared) == 1
+
+
+def test_a_parametric_value_the_assembly_refuses_fails_its_point_only(client, tmp_path):
+    """A preload no row can carry passes the argument's own range (> 0 N) and is refused by
+    the assembly where the point runs: that point fails naming why, the others run and equal
+    their single runs."""
+    scene = load_scene(SCENES[0].parent / "duplex_modes.toml")
+    points = [{"assembly.preload_force": 1000.0, "assembly.speed": 0.0},
+              {"assembly.preload_force": 1e9, "assembly.speed": 0.0}]
+    res = run_sweep(scene, points, client=client, out=tmp_path, progress=False)
+    assert [r["status"] for r in res.rows] == ["ok", "failed"]
+    assert "cannot carry 1e+09 N axially" in res.failures[0]["error"]
+    single = _single_point(scene, points[0])
+    for name, value in single.items():
+        if name in res.rows[0] and isinstance(value, float):
+            assert res.rows[0][name] == pytest.approx(value, rel=1e-12), name
