@@ -104,6 +104,12 @@ def _number(c: _Collector, key: str, v: Any, unit: str, low=None, high=None, str
     return v
 
 
+def _unit_text(spec: ArgSpec) -> str:
+    """The SI unit of a number argument as a message names it (``N``, ``rad/s``; ``-`` for a
+    dimensionless one)."""
+    return "-" if spec.unit == "1" else spec.unit
+
+
 def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
     from bearingsim.catalog import list_bearings
     from bearingsim.physics.lubricant import as_lubricant, known_lubricants
@@ -143,9 +149,10 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
                 c.add(key, str(exc).split(": ", 1)[1].split(". Allowed:")[0],
                       str(exc).split("Allowed: ", 1)[-1])
             return v
-        return _number(c, key, v, "SI units")
+        return _number(c, key, v, _unit_text(spec))
     if spec.kind == "float":
-        return _number(c, key, v, "SI units", low=spec.low, strict_low=spec.low is not None)
+        return _number(c, key, v, _unit_text(spec), low=spec.low,
+                       strict_low=spec.low is not None)
     if spec.kind == "floats":
         if not isinstance(v, dict):
             c.add(key, "must be a table of numbers", "a table name = number")

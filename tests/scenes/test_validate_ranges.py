@@ -44,3 +44,17 @@ def test_a_sweep_point_out_of_range_stops_the_sweep_before_it_runs():
     with pytest.raises(SweepError, match=r"sweep point \{'inputs\.Fa': 120000\}: .*input Fa = "
                                          r"120000 \[N\] is outside its valid range"):
         plan_sweep(parse_scene(TEXT), grid_points(parse_grid(["inputs.Fa=100,120000"])))
+
+
+@pytest.mark.parametrize("line, value, match", [
+    ('preload = "light"', "preload_force = -100.0",
+     r"assembly\.preload_force: -100\.0 is out of range; allowed: \(0\.0, inf\] N"),
+    ('preload = "light"', 'preload_force = "heavy"', r"must be a number in N, got the text"),
+    ("damping_ratio = 0.1", 'damping_ratio = "low"', r"must be a number in -, got the text"),
+])
+def test_an_assembly_argument_out_of_range_names_its_unit(line, value, match):
+    """The range of a number argument is stated in the argument's unit (it said "SI units")."""
+    text = builtin_scene_path("duplex_pair_axial").read_text(encoding="utf-8")
+    assert line in text
+    with pytest.raises(SceneError, match=match):
+        validate_scene(parse_scene(text.replace(line, value)))
