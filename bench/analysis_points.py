@@ -1,5 +1,5 @@
-"""Benchmark: what an operating point of a shipped analysis scene costs, this code against a
-baseline commit side by side.
+"""Benchmark: what an operating point of a shipped analysis scene costs, this code against
+baseline commits side by side, run alone and in a sweep.
 
 Every shipped scene whose analysis is ``steady``, ``modes`` or ``statics`` is run as a user
 runs it, ``bearingsim run <scene> --out <temporary folder> --no-progress``, each run a fresh
@@ -10,24 +10,40 @@ and its children. The baseline runs from a ``git archive`` export of its package
 alternate over :data:`ROUNDS` rounds and the table shows the medians (the machine is shared:
 compare the columns of one run, not runs of other days).
 
-Command: ``python -m bench.analysis_points [--baseline COMMIT]``.
+The same packages also run :data:`SWEEP`, ``bearingsim sweep`` of ``duplex_modes`` over its
+preload and speed on a LocalCluster of 2 workers (a fresh process each, alternating): the
+phases of its summary (``plan``: points validated, model loaded; ``points``) and the wall
+time of the command.
+
+Command: ``python -m bench.analysis_points [--baseline COMMIT ...]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import json
 import os
 import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
 
 from bench.common import ROOT, Section, exported_package, fmt, markdown_table, scene_command
 
-__all__ = ["BASELINE", "ROUNDS", "analysis_scenes", "measure", "section"]
+__all__ = ["BASELINES", "ROUNDS", "SWEEP", "analysis_scenes", "measure", "section"]
 
-BASELINE = "101d468"
-"""The commit before :func:`~bearingsim.components.ball_row.axial_approach` solved one ball
+BASELINES = ("101d468", "2c41f1d")
+"""``101d468``: before :func:`~bearingsim.components.ball_row.axial_approach` solved one ball
 instead of the whole row (a duplex pair's preload offset, solved per operating point), a row's
 Hertz constants were kept and :func:`~bearingsim.simulation.steady_state` shortened its
-Newton steps."""
+Newton steps. ``2c41f1d``: before the physics functions' finite checks were cut to one pass
+per argument and a sweep's plan stopped building the assembly for every parametric point."""
+SWEEP = ("duplex_modes", ["assembly.preload_force=250,500,1000,1500,2000,2500,3000,4000",
+                          "assembly.speed=0,419"], 2)
+"""The sweep timed: scene, grid (16 points) and workers."""
 ROUNDS = 3
 """Rounds of the baseline and this code, alternating."""
 ANALYSES = ("steady", "modes", "statics")
@@ -57,15 +73,35 @@ def _run(env: dict, scene: str) -> dict[str, float]:
     return {**summary["timings_s"], "points": summary["points"], "wall": wall, "cpu": cpu}
 
 
-def measure(baseline: str = BASELINE, rounds: int = ROUNDS) -> dict:
-    """Per package (``"baseline"``: the commit ``baseline``; ``"now"``: this checkout) and
-    analysis scene, the medians over ``rounds`` alternating rounds of ``assemble``,
-    ``solve``, ``wall``, ``cpu`` [s] and ``points``: ``{package: {scene: {quantity:
-    median}}}``."""
+def _sweep(env: dict) -> dict[str, float]:
+    """:data:`SWEEP` in a new process: its summary's ``plan`` and ``points`` phases and the
+    command's wall time [s]."""
+    scene, grid, workers = SWEEP
+    run = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
+    with tempfile.TemporaryDirectory() as out:
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", run, "sweep", scene,
+                        *(a for g in grid for a in ("--grid", g)), "--workers", str(workers),
+                        "--out", out, "--no-progress"],
+                       check=True, capture_output=True, env=env, cwd=ROOT)
+        wall = time.perf_counter() - t0
+        summary = json.loads((Path(out) / f"{scene}.sweep.json").read_text())
+    phases = summary["phases_s"]
+    return {"plan": phases["plan"], "points": phases["points"], "wall": wall,
+            "n": summary["points"], "ok": summary["ok"]}
+
+
+def measure(baselines: tuple[str, ...] = BASELINES, rounds: int = ROUNDS) -> dict:
+    """Per package (each baseline commit, and ``"now"``: this checkout) and analysis scene,
+    the medians over ``rounds`` alternating rounds of ``assemble``, ``solve``, ``wall``,
+    ``cpu`` [s] and ``points``, and of :data:`SWEEP` (key ``"sweep"``: ``plan``, ``points``,
+    ``wall`` [s], ``n``, ``ok``): ``{package: {scene: {quantity: median}}}``."""
     scenes = analysis_scenes()
-    runs: dict[str, dict[str, list[dict]]] = {"baseline": {}, "now": {}}
-    with exported_package(baseline) as then_env:
-        envs = {"baseline": then_env, "now": {**os.environ, "PYTHONPATH": str(ROOT)}}
+    names = [*baselines, "now"]
+    runs: dict[str, dict[str, list[dict]]] = {name: {} for name in names}
+    with contextlib.ExitStack() as stack:
+        envs = {b: stack.enter_context(exported_package(b)) for b in baselines}
+        envs["now"] = {**os.environ, "PYTHONPATH": str(ROOT)}
         for env in envs.values():  # warm: each package's systems and kernels stored
             for scene in scenes:
                 _run(env, scene)
@@ -73,52 +109,81 @@ def measure(baseline: str = BASELINE, rounds: int = ROUNDS) -> dict:
             for name, env in envs.items():
                 for scene in scenes:
                     runs[name].setdefault(scene, []).append(_run(env, scene))
+                runs[name].setdefault("sweep", []).append(_sweep(env))
     return {name: {scene: {k: statistics.median(r[k] for r in rs) for k in rs[0]}
                    for scene, rs in by_scene.items()} for name, by_scene in runs.items()}
 
 
-def section(quick: bool = False, baseline: str = BASELINE) -> Section:
-    """The run_all section: the analysis scenes, this code against ``baseline``."""
+def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Section:
+    """The run_all section: the analysis scenes and :data:`SWEEP`, this code against
+    ``baselines``."""
     rounds = 2 if quick else ROUNDS
-    m = measure(baseline, rounds)
-    then, now = m["baseline"], m["now"]
+    m = measure(baselines, rounds)
+    names = [*baselines, "now"]
+    head = [f"{b} [ms]" for b in baselines]
     rows = []
-    for scene in now:
-        a, b = then[scene], now[scene]
-        rows.append([f"`{scene}`", str(int(b["points"])), fmt(1e3 * a["solve"] / a["points"]),
-                     fmt(1e3 * b["solve"] / b["points"]), fmt(a["solve"] / b["solve"]),
-                     fmt(a["assemble"]), fmt(b["assemble"]), fmt(a["wall"]), fmt(b["wall"]),
-                     fmt(a["cpu"]), fmt(b["cpu"])])
+    for scene in m["now"]:
+        if scene == "sweep":
+            continue
+        per = [m[n][scene] for n in names]
+        rows.append([f"`{scene}`", str(int(per[-1]["points"])),
+                     *(fmt(1e3 * r["solve"] / r["points"]) for r in per),
+                     fmt(per[-2]["solve"] / per[-1]["solve"]),
+                     *(fmt(r["wall"]) for r in per), *(fmt(r["cpu"]) for r in per)])
+    scene, grid, workers = SWEEP
+    sweep_rows = [[n if n == "now" else f"`{n}`", f"{int(m[n]['sweep']['ok'])} of "
+                   f"{int(m[n]['sweep']['n'])}", fmt(m[n]["sweep"]["plan"]),
+                   fmt(m[n]["sweep"]["points"]), fmt(m[n]["sweep"]["wall"])] for n in names]
     body = (
         f"Each shipped scene whose analysis is steady, modes or statics, run as a user runs "
         f"it: `bearingsim run <scene> --out <temporary folder> --no-progress`, a fresh Python "
         f"process on a warm cache (assembled systems and kernels stored by a first run of "
-        f"each package); medians of {rounds} rounds, the baseline {baseline} (before the "
-        "axial approach of a ball row solved one ball instead of all Z, a duplex pair's "
-        "preload offset solved per operating point; before a row's Hertz constants were "
-        "kept; and before steady_state's Newton steps were shortened where they would raise "
-        "the residual, which sent a point of double_layer_rs to MINPACK and its import) and "
-        "this code alternating. *solve per "
-        "point*: the scene's own solve time (its summary's `timings_s`) over its operating "
-        "points, with what the process pays once on first use (kernels loaded, modules "
-        "imported on use: most of it for the scenes of a few milliseconds a point); "
-        "*assemble*: the model built or loaded from the cache; *wall*, *CPU*: the whole "
-        "command, launch to exit (CPU of the process and its children).\n\n"
-        f"Command: `python -m bench.analysis_points --baseline {baseline}`\n\n"
-        + markdown_table(["scene", "points", "solve per point before [ms]",
-                          "solve per point now [ms]", "solve before / now",
-                          "assemble before [s]", "assemble now [s]", "wall before [s]",
-                          "wall now [s]", "CPU before [s]", "CPU now [s]"], rows))
+        f"each package); medians of {rounds} rounds, the packages of the baselines "
+        f"({', '.join(baselines)}) and this code alternating. Baselines: "
+        + " ".join(f"{b}: {w}" for b, w in zip(BASELINES, BASELINE_WORDS, strict=True)
+                   if b in baselines) +
+        " *solve per point*: the scene's own solve time (its summary's `timings_s`) over its "
+        "operating points, with what the process pays once on first use (kernels loaded, "
+        "modules imported on use: most of it for the scenes of a few milliseconds a point); "
+        f"*ratio*: solve of {baselines[-1]} over now; *wall*, *CPU*: the whole command, launch "
+        "to exit (CPU of the process and its children).\n\n"
+        f"Command: `python -m bench.analysis_points --baseline {' --baseline '.join(baselines)}`"
+        "\n\n"
+        + markdown_table(["scene", "points", *(f"solve per point {h}" for h in head),
+                          "solve per point now [ms]", f"solve {baselines[-1]} / now",
+                          *(f"wall {b} [s]" for b in baselines), "wall now [s]",
+                          *(f"CPU {b} [s]" for b in baselines), "CPU now [s]"], rows)
+        + f"\n\n**A modes sweep**: `bearingsim sweep {scene} "
+        + " ".join(f"--grid {g}" for g in grid)
+        + f" --workers {workers}` ({len(grid[0].split(',')) * len(grid[1].split(','))} points), "
+        "a fresh process each, the same rounds (medians). *plan*: the summary's phase that "
+        "validates the points and loads the model (at both baselines it also built the pair "
+        "for every point, to read the preload's parameter values); *points*: the phase "
+        "the workers run them; *wall*: the command.\n\n"
+        + markdown_table(["package", "points ok", "plan [s]", "points [s]", "wall [s]"],
+                         sweep_rows))
     return Section("25. Analysis scenes: cost per operating point", body, m)
+
+
+BASELINE_WORDS = (
+    "before the axial approach of a ball row solved one ball instead of all Z (a duplex "
+    "pair's preload offset, solved per operating point), before a row's Hertz constants were "
+    "kept and before steady_state's Newton steps were shortened where they would raise the "
+    "residual (which sent a point of double_layer_rs to MINPACK and its import);",
+    "before the finite checks of the physics functions looked at each argument once and "
+    "worked out their message only when raising, and before a sweep's plan stopped building "
+    "the assembly for every point of a parametric argument.")
+"""What each of :data:`BASELINES` is before, for the section's text."""
 
 
 def main() -> None:
     """Print the section (``--baseline COMMIT``)."""
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--baseline", default=BASELINE)
+    parser.add_argument("--baseline", action="append",
+                        help=f"a baseline commit (repeat for more; default {BASELINES})")
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
-    print(section(args.quick, args.baseline).body)
+    print(section(args.quick, tuple(args.baseline or BASELINES)).body)
 
 
 if __name__ == "__main__":
