@@ -91,6 +91,30 @@ def _sweep(env: dict) -> dict[str, float]:
             "n": summary["points"], "ok": summary["ok"]}
 
 
+WARM_RUNS = 5
+"""Runs of each scene in one process after its first (:func:`_warm`)."""
+
+_WARM_SCRIPT = """
+import json, statistics, sys, warnings
+warnings.simplefilter("ignore")
+from bearingsim.scenes.runner import run_scene
+out = {}
+for scene in sys.argv[2:]:
+    run_scene(scene, write=False, progress=False)
+    runs = [run_scene(scene, write=False, progress=False).summary for _ in range(int(sys.argv[1]))]
+    out[scene] = statistics.median(r["timings_s"]["solve"] / r["points"] for r in runs)
+print(json.dumps(out))
+"""
+
+
+def _warm(env: dict, scenes: list[str]) -> dict[str, float]:
+    """Each scene run :data:`WARM_RUNS` times in one process after a first run (kernels
+    loaded, modules imported): the median solve time per operating point [s], by scene."""
+    done = subprocess.run([sys.executable, "-c", _WARM_SCRIPT, str(WARM_RUNS), *scenes],
+                          check=True, capture_output=True, text=True, env=env, cwd=ROOT)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
 def measure(baselines: tuple[str, ...] = BASELINES, rounds: int = ROUNDS) -> dict:
     """Per package (each baseline commit, and ``"now"``: this checkout) and analysis scene,
     the medians over ``rounds`` alternating rounds of ``assemble``, ``solve``, ``wall``,
@@ -110,6 +134,8 @@ def measure(baselines: tuple[str, ...] = BASELINES, rounds: int = ROUNDS) -> dic
                 for scene in scenes:
                     runs[name].setdefault(scene, []).append(_run(env, scene))
                 runs[name].setdefault("sweep", []).append(_sweep(env))
+                for scene, solve in _warm(env, scenes).items():
+                    runs[name][scene][-1]["warm"] = solve
     return {name: {scene: {k: statistics.median(r[k] for r in rs) for k in rs[0]}
                    for scene, rs in by_scene.items()} for name, by_scene in runs.items()}
 
@@ -129,6 +155,7 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
         rows.append([f"`{scene}`", str(int(per[-1]["points"])),
                      *(fmt(1e3 * r["solve"] / r["points"]) for r in per),
                      fmt(per[-2]["solve"] / per[-1]["solve"]),
+                     *(fmt(1e3 * r["warm"]) for r in per), fmt(per[-2]["warm"] / per[-1]["warm"]),
                      *(fmt(r["wall"]) for r in per), *(fmt(r["cpu"]) for r in per)])
     scene, grid, workers = SWEEP
     sweep_rows = [[n if n == "now" else f"`{n}`", f"{int(m[n]['sweep']['ok'])} of "
@@ -145,12 +172,17 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
         " *solve per point*: the scene's own solve time (its summary's `timings_s`) over its "
         "operating points, with what the process pays once on first use (kernels loaded, "
         "modules imported on use: most of it for the scenes of a few milliseconds a point); "
+        f"*warm process*: the same per point in one process that ran the scene before, the "
+        f"median of {WARM_RUNS} runs (what a point costs in a sweep or a repeated run, "
+        "without the first-use costs that dominate the fresh command); "
         f"*ratio*: solve of {baselines[-1]} over now; *wall*, *CPU*: the whole command, launch "
         "to exit (CPU of the process and its children).\n\n"
         f"Command: `python -m bench.analysis_points --baseline {' --baseline '.join(baselines)}`"
         "\n\n"
         + markdown_table(["scene", "points", *(f"solve per point {h}" for h in head),
                           "solve per point now [ms]", f"solve {baselines[-1]} / now",
+                          *(f"warm process: per point {h}" for h in head),
+                          "warm process: now [ms]", f"warm {baselines[-1]} / now",
                           *(f"wall {b} [s]" for b in baselines), "wall now [s]",
                           *(f"CPU {b} [s]" for b in baselines), "CPU now [s]"], rows)
         + f"\n\n**A modes sweep**: `bearingsim sweep {scene} "
