@@ -95,21 +95,22 @@ WARM_RUNS = 5
 """Runs of each scene in one process after its first (:func:`_warm`)."""
 
 _WARM_SCRIPT = """
-import json, statistics, sys, warnings
+import json, sys, warnings
 warnings.simplefilter("ignore")
 from bearingsim.scenes.runner import run_scene
 out = {}
 for scene in sys.argv[2:]:
     run_scene(scene, write=False, progress=False)
     runs = [run_scene(scene, write=False, progress=False).summary for _ in range(int(sys.argv[1]))]
-    out[scene] = statistics.median(r["timings_s"]["solve"] / r["points"] for r in runs)
+    out[scene] = min(r["timings_s"]["solve"] / r["points"] for r in runs)
 print(json.dumps(out))
 """
 
 
 def _warm(env: dict, scenes: list[str]) -> dict[str, float]:
     """Each scene run :data:`WARM_RUNS` times in one process after a first run (kernels
-    loaded, modules imported): the median solve time per operating point [s], by scene."""
+    loaded, modules imported): the least solve time per operating point [s] of the runs (the
+    cost itself; a slower run was interrupted by the machine's other work), by scene."""
     done = subprocess.run([sys.executable, "-c", _WARM_SCRIPT, str(WARM_RUNS), *scenes],
                           check=True, capture_output=True, text=True, env=env, cwd=ROOT)
     return json.loads(done.stdout.strip().splitlines()[-1])
@@ -173,7 +174,7 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
         "operating points, with what the process pays once on first use (kernels loaded, "
         "modules imported on use: most of it for the scenes of a few milliseconds a point); "
         f"*warm process*: the same per point in one process that ran the scene before, the "
-        f"median of {WARM_RUNS} runs (what a point costs in a sweep or a repeated run, "
+        f"fastest of {WARM_RUNS} runs, the median of the rounds (what a point costs in a sweep or a repeated run, "
         "without the first-use costs that dominate the fresh command); "
         f"*ratio*: solve of {baselines[-1]} over now; *wall*, *CPU*: the whole command, launch "
         "to exit (CPU of the process and its children).\n\n"
