@@ -41,6 +41,7 @@ from bearingsim.scenes.statics_table import statics_of
 __all__ = [
     "NotSettledWarning",
     "name_modes",
+    "output_resolution",
     "run_operating_point",
     "run_points",
     "settling_check",
@@ -52,13 +53,38 @@ class NotSettledWarning(UserWarning):
 
 
 # --------------------------------------------------------------------------- settling
-def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Settling
-                   ) -> dict[str, Any]:
+def output_resolution(prep: Any, series: dict[str, np.ndarray]) -> dict[str, float]:
+    """The change of each output a run resolves, for :func:`settling_check`: the scene's
+    absolute tolerance ``atol`` for an output that is a state (the integrator keeps a
+    state's error near ``atol`` where ``rtol`` times the value is smaller, so a smaller
+    change is not a result); none for the others.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene.
+    series : dict of str to numpy.ndarray
+        The run's outputs by name.
+
+    Returns
+    -------
+    dict of str to float
+        Absolute resolution [SI unit of the output] by output name.
+    """
+    states = set(prep.system.state_names)
+    return {n: float(prep.scene.simulation.atol) for n in series if n in states}
+
+
+def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Settling,
+                   resolution: dict[str, float] | None = None) -> dict[str, Any]:
     """Whether each output of a run has settled, and its time constant.
 
     An output has settled when its range over the last ``criterion.window`` of the run is at
     most ``criterion.tolerance`` times its final magnitude (its largest magnitude in the run
-    when it ends near zero, below 1e-3 of that); one that is not finite in the window (an
+    when it ends near zero, below 1e-3 of that), or at most its ``resolution``, the change
+    the run cannot tell from none (:func:`output_resolution`: a displacement that is zero by
+    symmetry moves by round-off, 1e-17 m, many times its own magnitude); one that is not
+    finite in the window (an
     infinite life at no load) has settled when it keeps one value there. The time constant
     [s] is that of an
     exponential approach through three equally spaced values of the window
@@ -76,6 +102,9 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
         Output values at those times.
     criterion : Settling
         Window and tolerance.
+    resolution : dict of str to float, optional
+        Absolute change [SI unit of the output] below which an output counts as settled, by
+        name (none: the relative criterion alone).
 
     Returns
     -------
@@ -110,15 +139,18 @@ def settling_check(t: np.ndarray, series: dict[str, np.ndarray], criterion: Sett
                 r = d2 / d1
                 tau = -h / math.log(r)
                 estimate = float(y3 + d2 * r / (1.0 - r))
-        outputs[name] = {"settled": change <= criterion.tolerance, "change": change,
-                         "time_constant": tau, "extrapolated": estimate}
+        settled = (change <= criterion.tolerance
+                   or float(np.ptp(window)) <= (resolution or {}).get(name, 0.0))
+        outputs[name] = {"settled": settled, "change": change, "time_constant": tau,
+                         "extrapolated": estimate}
     taus = [o["time_constant"] for o in outputs.values() if math.isfinite(o["time_constant"])]
     return {
         "settled": all(o["settled"] for o in outputs.values()),
         "time_constant": max(taus) if taus else math.nan,
         "unsettled": [n for n, o in outputs.items() if not o["settled"]],
         "criterion": (f"range over the last {criterion.window:.0%} of the run at most "
-                      f"{criterion.tolerance:g} of the final magnitude"),
+                      f"{criterion.tolerance:g} of the final magnitude"
+                      + (", or a state's at most the run's atol" if resolution else "")),
         "outputs": outputs,
     }
 
@@ -299,7 +331,8 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         series = output_series(prep, result)
         row.update({n: float(y[-1]) for n, y in series.items()})
         if not scene.transient_on_purpose:  # as a single run, which does not check those
-            check = settling_check(result.t, series, scene.settling)
+            check = settling_check(result.t, series, scene.settling,
+                                   output_resolution(prep, series))
             row.update(settled=check["settled"], time_constant=check["time_constant"],
                        unsettled=" ".join(check["unsettled"]))
         return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names])}

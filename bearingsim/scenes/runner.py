@@ -25,6 +25,7 @@ import numpy as np
 from bearingsim.errors import ModelError
 from bearingsim.scenes.analyses import (
     NotSettledWarning,
+    output_resolution,
     run_points,
     settling_check,
     steady_values,
@@ -104,7 +105,7 @@ def settling(prep: Prepared, result: Result, series: dict[str, np.ndarray]
     if scene.transient_on_purpose:
         return {"transient_on_purpose": True, "settled": None, "time_constant": None,
                 "criterion": "not checked: the scene reports a transient on purpose"}
-    check = settling_check(result.t, series, scene.settling)
+    check = settling_check(result.t, series, scene.settling, output_resolution(prep, series))
     check["transient_on_purpose"] = False
     check["steady"] = {}
     if check["settled"]:

@@ -151,6 +151,13 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
             return v
         return _number(c, key, v, _unit_text(spec))
     if spec.kind == "float":
+        if isinstance(v, str) and split_quantity(v) is not None:
+            try:  # "1.5 kN", "4000 rpm": in the argument's SI unit, a quantity of that kind
+                v = quantity_to_si(v, spec.unit, key)
+            except UnitError as exc:
+                c.add(key, str(exc).removeprefix(f"{key}: "), f"a number in "
+                      f"{_unit_text(spec)}, or a number with a unit of that quantity")
+                return None
         return _number(c, key, v, _unit_text(spec), low=spec.low,
                        strict_low=spec.low is not None)
     if spec.kind == "floats":
@@ -164,12 +171,14 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
         if not isinstance(v, dict):
             c.add(key, f"must be a table, got {v!r}", ", ".join(spec.table or {}))
             return v
+        checked = {}
         for k, item in v.items():
             if k not in (spec.table or {}):
                 _unknown(c, key, k, spec.table or {})
+                checked[k] = item
             else:
-                _check_arg(c, f"{key}.{k}", spec.table[k], item)
-        return v
+                checked[k] = _check_arg(c, f"{key}.{k}", spec.table[k], item)
+        return checked
     raise AssertionError(spec.kind)  # pragma: no cover
 
 
@@ -272,13 +281,6 @@ def _point_value(c: _Collector, key: str, where: str, v: Any, spec: AssemblySpec
         if arg is None:
             _unknown(c, where.rsplit(".", 1)[0], key, [f"assembly.{a}" for a in spec.args])
             return None
-        if arg.kind == "float" and isinstance(v, str) and split_quantity(v) is not None:
-            try:  # "4000 rpm": in the argument's documented SI unit, a quantity of that kind
-                v = quantity_to_si(v, arg.unit, key)
-            except UnitError as exc:
-                c.add(where, str(exc), f"a number in {arg.unit}, or a number with a unit of "
-                      f"that quantity")
-                return None
         return _check_arg(c, where, arg, v)
     if head == "inputs" and isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
         if units.setdefault(rest, quantity[1]) != quantity[1]:

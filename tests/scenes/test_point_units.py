@@ -60,9 +60,8 @@ def test_an_assembly_argument_takes_only_units_of_its_quantity():
     good = parse_scene(text.replace('"assembly.preload_force" = [250.0, 500.0',
                                     '"assembly.preload_force" = ["0.25 kN", "500 N"'))
     assert good.grid["assembly.preload_force"][:2] == pytest.approx([250.0, 500.0])
-    with pytest.raises(SceneError, match=r"grid\.assembly\.preload_force: "
-                                         r"assembly\.preload_force: 'furlong' is not a unit of "
-                                         r"N quantities"):
+    with pytest.raises(SceneError, match=r"grid\.assembly\.preload_force: 'furlong' is not a "
+                                         r"unit of N quantities"):
         parse_scene(text.replace('"assembly.preload_force" = [250.0',
                                  '"assembly.preload_force" = ["5 furlong"'))
     with pytest.raises(SceneError, match=r"'kN' is not a unit of rad/s"):

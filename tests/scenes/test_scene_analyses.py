@@ -290,6 +290,52 @@ def test_settling_check_of_constant_and_oscillating_outputs():
     assert not settling_check(t, {"life": late}, Settling())["settled"]
 
 
+def test_a_change_below_the_resolution_counts_as_settled():
+    """Round-off of a state that symmetry keeps at zero (1e-19 m, changing by many times
+    itself) has settled when its resolution (the run's atol, 1e-8 m) is given; a real drift
+    above the resolution has not."""
+    t = np.linspace(0.0, 1.0, 501)
+    noise = 3e-19 * np.sin(50.0 * t)
+    drift = 1e-6 * t
+    check = settling_check(t, {"x": noise, "z": drift}, Settling(), {"x": 1e-8, "z": 1e-8})
+    assert check["outputs"]["x"]["settled"] and check["outputs"]["x"]["change"] > 1.0
+    assert not check["outputs"]["z"]["settled"]
+    assert not settling_check(t, {"x": noise}, Settling())["settled"]
+
+
+DB_MOMENT = """
+title = "DB pair, axial load and a moment"
+outputs = ["shaft.z", "shaft.x"]
+[assembly]
+name = "duplex_pair"
+bearing = "7020C"
+arrangement = "DB"
+preload_force = "1.5 kN"
+damping_ratio = 0.1
+[inputs]
+"shaft.Fz" = "2 kN"
+"shaft.Mx" = "5 N m"
+[simulation]
+t_end = 0.05
+"""
+
+
+def test_a_displacement_zero_by_symmetry_does_not_make_a_run_unsettled():
+    """A moment about x tilts the shaft about x and moves it along y, never along x: shaft.x
+    is round-off (about 1e-19 m), which changed by several times itself over the last 20 %.
+    The run reported ``settled: NO`` and warned; the settled value it named was round-off
+    too. Also: an assembly argument with a unit (preload_force = "1.5 kN", which was refused:
+    "must be a number in SI units")."""
+    scene = parse_scene(DB_MOMENT)
+    assert scene.args["preload_force"] == 1500.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NotSettledWarning)
+        run = run_scene(scene, write=False)
+    assert run.summary["settled"] is True
+    assert abs(run.series["shaft.x"][-1]) < 1e-15
+    assert run.series["shaft.z"][-1] == pytest.approx(-16.207e-6, rel=1e-3)
+
+
 def test_a_transient_that_has_not_settled_says_so():
     """Issue 27: the spin-up scene ended at 1 s with Rs 0.172 against a settled 0.2095, and
     nothing warned. Now the warning names Rs with its steady value, and the summary and the
