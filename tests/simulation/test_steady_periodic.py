@@ -1,0 +1,54 @@
+"""steady_state on a model whose angles turn with a speed input: steady running is periodic,
+never a fixed point, and the error says so. It said ``steady state not found: The iteration
+is not making good progress ...; residual max 1.96e+04 for states`` followed by all 75 state
+names of the 6304's ball-level model (a scene with ``analysis = "steady"`` at 1730 r/min)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim import Component, Input, Variable, der
+from bearingsim.assembler import assemble
+from bearingsim.errors import SimulationError
+from bearingsim.simulation import steady_state
+from bearingsim.symbolic import sin
+
+
+class _Rotor(Component):
+    """A rotor spun up to the input speed (``w' = (speed - w) / tau``), its angle (``phi' = w``)
+    and a deflection that follows the angle (``y' = sin(phi) - y``): the angle matters, so
+    steady_state must solve for it."""
+
+    def __init__(self):
+        super().__init__("rotor")
+        self.speed = Input(0.0, "rad/s", "drive speed")
+        self.w = Variable(0.0, "rad/s")
+        self.phi = Variable(0.0, "rad")
+        self.y = Variable(0.0, "m")
+
+    def equations(self):
+        return [der(self.w) == (self.speed - self.w) / 0.01, der(self.phi) == self.w,
+                der(self.y) == 1e-3 * sin(self.phi) - self.y]
+
+
+@pytest.fixture(scope="module")
+def rotor():
+    return assemble(_Rotor())
+
+
+def test_a_turning_model_has_no_steady_state_and_the_error_says_why(rotor):
+    with pytest.raises(SimulationError, match=r"rotor: no steady state: the inputs turn it "
+                       r"\(speed = 100 rad/s\) and its angles turn with it \(phi: .*periodic, "
+                       r"not a fixed point; run it in time") as caught:
+        steady_state(rotor, inputs={"speed": 100.0})
+    assert "y" not in str(caught.value).split("(phi")[1].split(")")[0]
+
+
+def test_at_rest_the_same_model_has_its_steady_states(rotor):
+    """At rest any angle is steady (not unique: the guess's is kept on request)."""
+    x = steady_state(rotor, inputs={"speed": 0.0}, x_guess=np.array([0.0, 0.5, 0.0]),
+                     require_unique=False)
+    names = rotor.state_names
+    assert x[names.index("w")] == 0.0
+    assert x[names.index("y")] == pytest.approx(1e-3 * np.sin(x[names.index("phi")]), abs=1e-15)
