@@ -129,8 +129,12 @@ def settling(prep: Prepared, result: Result, series: dict[str, np.ndarray]
         f"{scene.title}: not settled at t_end = {result.t[-1]:g} s ({check['criterion']}): "
         + "; ".join(parts)
         + (f"; time constant about {tau:.3g} s" if math.isfinite(tau) else "")
-        + ". Run longer (simulation.t_end), ask analysis = \"steady\" for the settled "
-        "point, or set transient_on_purpose = true", NotSettledWarning, stacklevel=3)
+        + (". Run longer (simulation.t_end), ask analysis = \"steady\" for the settled "
+           "point, or set transient_on_purpose = true" if steady else
+           ". Run longer (simulation.t_end) or set transient_on_purpose = true (no steady "
+           "state was found from the final state under the final inputs, so analysis = "
+           "\"steady\" is no way round: a ball-level model at speed runs periodically)"),
+        NotSettledWarning, stacklevel=3)
     return check
 
 

@@ -336,6 +336,35 @@ def test_a_displacement_zero_by_symmetry_does_not_make_a_run_unsettled():
     assert run.series["shaft.z"][-1] == pytest.approx(-16.207e-6, rel=1e-3)
 
 
+BALLS_AT_SPEED = """
+title = "6304 balls at speed"
+outputs = ["w_cage", "inner[0].Q"]
+[assembly]
+name = "deep_groove_ball_bearing"
+bearing = "6304"
+fidelity = "dynamic_massive_balls"
+[inputs]
+shaft_speed = "1730 rpm"
+"load.Fx" = 938.0
+[simulation]
+t_end = 0.01
+rtol = 1e-5
+atol = 1e-8
+"""
+
+
+def test_a_run_without_a_steady_state_is_not_told_to_ask_for_one():
+    """A ball-level bearing at speed runs periodically (its balls and cage turn): the warning
+    of a run that had not settled told the user to ask analysis = "steady", which then failed
+    (steady state not found). Now it says that no steady state was found."""
+    with pytest.warns(NotSettledWarning) as caught:
+        run = run_scene(parse_scene(BALLS_AT_SPEED), write=False)
+    text = str(caught[0].message)
+    assert run.summary["settled"] is False
+    assert 'ask analysis = "steady"' not in text
+    assert "no steady state was found from the final state" in text
+
+
 def test_a_transient_that_has_not_settled_says_so():
     """Issue 27: the spin-up scene ended at 1 s with Rs 0.172 against a settled 0.2095, and
     nothing warned. Now the warning names Rs with its steady value, and the summary and the
