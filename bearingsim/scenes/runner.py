@@ -169,11 +169,14 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
     units = _units(prep, result)
     outs = {}
     checked = (settled or {}).get("outputs", {})
+    resolution = output_resolution(prep, series)
     for n, y in series.items():
         finite = y[np.isfinite(y)]
         outs[n] = {"unit": units.get(n, ""), "final": y[-1],
                    "min": finite.min() if finite.size else None,
                    "max": finite.max() if finite.size else None}
+        if n in resolution:
+            outs[n]["resolution"] = resolution[n]
         if n in checked:
             outs[n].update(settled=checked[n]["settled"], change=checked[n]["change"],
                            time_constant=checked[n]["time_constant"])
@@ -388,6 +391,9 @@ def console_lines(summary_data: dict[str, Any]) -> list[str]:
         if o.get("settled") is False:
             note = " (NOT settled" + (f"; steady {display_text(o['steady'], o['unit'])}"
                                       if o.get("steady") is not None else "") + ")"
+        if o["final"] and abs(o["final"]) <= o.get("resolution", 0.0):
+            note += (f" (zero to the run's resolution, atol = "
+                     f"{display_text(o['resolution'], o['unit'])})")
         lines.append(f"  {name} = {final} at t_end{note}")
     st = s.get("settling", {})
     if st.get("transient_on_purpose"):

@@ -334,6 +334,13 @@ def test_a_displacement_zero_by_symmetry_does_not_make_a_run_unsettled():
     assert run.summary["settled"] is True
     assert abs(run.series["shaft.x"][-1]) < 1e-15
     assert run.series["shaft.z"][-1] == pytest.approx(-16.207e-6, rel=1e-3)
+    # the printed value says it is zero to the run's resolution; shaft.z is a result
+    from bearingsim.scenes.runner import console_lines
+
+    lines = {line.split(" = ")[0].strip(): line for line in console_lines(run.summary)}
+    assert lines["shaft.x"].endswith("(zero to the run's resolution, atol = 0.01 µm)")
+    assert "resolution" not in lines["shaft.z"]
+    assert run.summary["outputs"]["shaft.x"]["resolution"] == 1e-8
 
 
 BALLS_AT_SPEED = """
