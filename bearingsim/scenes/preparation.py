@@ -164,7 +164,8 @@ def _check(scene: Scene) -> Scene:
     """Re-validate a scene built in Python (dataclass) through the TOML validator."""
     if scene.text is not None:
         return scene
-    return scene_from_dict(scene.to_dict(), path=scene.path, allow_paths=scene.allow_paths)
+    return scene_from_dict(scene.to_dict(), path=scene.path, allow_paths=scene.allow_paths,
+                           carried_units=scene.input_units)
 
 
 def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]

@@ -228,12 +228,17 @@ class Scene:  # numpydoc ignore=PR02
         """
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         d.update(changes)
-        return scene_from_dict(Scene(**d).to_dict(), path=self.path, text=None,
-                               allow_paths=self.allow_paths)
+        new = Scene(**d)
+        units = changes.get("input_units", {n: u for n, u in self.input_units.items()
+                                            if n in new.inputs and n in self.inputs
+                                            and new.inputs[n] == self.inputs[n]})
+        return scene_from_dict(new.to_dict(), path=self.path, text=None,
+                               allow_paths=self.allow_paths, carried_units=units)
 
 
 def scene_from_dict(d: dict[str, Any], path: str | None = None,
-                    text: str | None = None, allow_paths: Sequence[str | Path] = ()) -> Scene:
+                    text: str | None = None, allow_paths: Sequence[str | Path] = (),
+                    carried_units: dict[str, str] | None = None) -> Scene:
     """Validate a scene in its nested-dict (TOML) form and build a :class:`Scene`.
 
     Files it names (tables, ``bearings``, ``output.folder``) must be inside the folder of
@@ -249,6 +254,11 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         The file's text (for the line numbers in messages).
     allow_paths : sequence of path
         Folders outside the scene's folder that its files may be in.
+    carried_units : dict of str to str, optional
+        The SI unit an input's number was given in before (:attr:`Scene.input_units` of the
+        scene ``d`` was made from, whose :meth:`Scene.to_dict` holds SI numbers): kept for
+        the inputs ``d`` gives as a number or table, so that the model's check of their
+        quantity still applies (a copy of a scene, a sweep point).
 
     Returns
     -------
@@ -334,6 +344,9 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             inputs[k] = v
         elif _number(c, key, v, "SI units") is not None:
             inputs[k] = float(v)
+    for k, unit in (carried_units or {}).items():
+        if k in inputs and not isinstance(inputs[k], str):
+            input_units.setdefault(k, unit)
     # parameters and initial values
     values: dict[str, dict[str, float]] = {}
     for section in ("parameters", "initial"):

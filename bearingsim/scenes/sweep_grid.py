@@ -181,8 +181,9 @@ def point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
             d.setdefault(head, {})[rest] = value
     from bearingsim.scenes.scene import scene_from_dict
 
+    carried = {n: u for n, u in scene.input_units.items() if f"inputs.{n}" not in point}
     try:
-        return scene_from_dict(d, path=scene.path)
+        return scene_from_dict(d, path=scene.path, carried_units=carried)
     except SceneError as exc:
         shown = ", ".join(f"{k}={v!r}" for k, v in point.items())
         why = "; ".join(p.key + ": " + p.reason + (f"; allowed: {p.allowed}" if p.allowed else "")

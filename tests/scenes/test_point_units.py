@@ -75,3 +75,35 @@ def test_a_sweep_point_of_another_quantity_stops_the_sweep_before_it_runs(flag):
     with pytest.raises(SweepError, match=r"sweep point .*input shaft_speed is in rad/s, but its "
                                          r"value is given in (m|N)"):
         plan_sweep(scene, grid_points(parse_grid([flag])))
+
+
+def test_an_input_of_another_quantity_in_the_swept_scene_stops_the_sweep():
+    """``shaft_speed = "0.5 kN"`` in the scene itself: ``validate`` refused it, but a sweep
+    over another key ran every point at 500 rad/s (the scene's copy per point held SI numbers
+    only, so the model's check of the quantity was lost). A point that sets the input anew
+    does not inherit the old value's unit."""
+    text = builtin_scene_path("double_layer_friction").read_text(encoding="utf-8")
+    line = next(ln for ln in text.splitlines() if ln.startswith("shaft_speed"))
+    scene = parse_scene(text.replace(line, 'shaft_speed = "0.5 kN"'))
+    with pytest.raises(SweepError, match=r"input shaft_speed is in rad/s, but its value is "
+                                         r"given in N"):
+        plan_sweep(scene, grid_points(parse_grid(["inputs.Fa=10,20"])))
+    plan = plan_sweep(scene, grid_points(parse_grid(["inputs.shaft_speed=100,200rpm"])))
+    assert [j.scene.inputs["shaft_speed"] for j in plan.jobs] == pytest.approx(
+        [100.0, 200.0 * 2.0 * 3.141592653589793 / 60.0])
+
+
+def test_a_copy_of_a_scene_keeps_its_inputs_quantity_check():
+    """Scene.replace of another field keeps the unit an unchanged input was given in."""
+    from bearingsim.scenes.preparation import prepare
+
+    text = builtin_scene_path("double_layer_friction").read_text(encoding="utf-8")
+    line = next(ln for ln in text.splitlines() if ln.startswith("shaft_speed"))
+    scene = parse_scene(text.replace(line, 'shaft_speed = "0.5 kN"'))
+    copy = scene.replace(title="copy")
+    assert copy.input_units["shaft_speed"] == "N"
+    with pytest.raises(SceneError, match=r"input shaft_speed is in rad/s, but its value is "
+                                         r"given in N"):
+        prepare(copy)
+    assert "shaft_speed" not in scene.replace(inputs={**scene.inputs,
+                                                      "shaft_speed": 100.0}).input_units
