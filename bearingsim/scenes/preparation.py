@@ -24,6 +24,7 @@ from bearingsim.scenes.scene_input_checks import (
     input_range_problems,
     input_unit_mismatches,
     rest_problems,
+    value_unit_mismatches,
 )
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
 from bearingsim.simulation import steady_state
@@ -392,6 +393,9 @@ def _check_names(scene: Scene, system: System, outputs: list[str]) -> None:
     for n, message in input_unit_mismatches(scene, system).items():
         add(("grid" if scene.grid else "cases") if f"inputs.{n}" in swept else f"inputs.{n}",
             message, f"a number with a unit of {units[n]}, or a number in {units[n]}")
+    for key, message in value_unit_mismatches(scene, system).items():
+        add(("grid" if scene.grid else "cases") if key in swept else key, message,
+            "a number with a unit of the model's quantity, or a number in its SI unit")
     missing = [n for n in system.input_names
                if n not in given and not scene.spec.is_optional_input(n)]
     if missing:

@@ -42,6 +42,7 @@ from bearingsim.scenes.scene_checks import (
     _flatten,
     _number,
     _operating_points,
+    _quantity_value,
     _section,
     _settling,
     _table_input,
@@ -115,6 +116,10 @@ class Scene:  # numpydoc ignore=PR02
     input_units : dict
         SI unit of each input given as a number with a unit (``"10000 rpm"`` -> ``rad/s``),
         checked against the model's input when assembled.
+    value_units : dict
+        SI unit of each parameter and initial value given as a number with a unit, by key
+        (``parameters.spring.Fz``: ``"1.5 kN"`` -> ``N``; also from a grid or cases), checked
+        against the model's when assembled.
     analysis : str
         One of :data:`ANALYSES`.
     grid : dict
@@ -158,6 +163,7 @@ class Scene:  # numpydoc ignore=PR02
     title: str = ""
     tolerance: float = DEFAULT_TOLERANCE
     input_units: dict[str, str] = field(default_factory=dict)
+    value_units: dict[str, str] = field(default_factory=dict)
     analysis: str = "transient"
     grid: dict[str, list[Any]] = field(default_factory=dict)
     cases: list[dict[str, Any]] = field(default_factory=list)
@@ -207,11 +213,18 @@ class Scene:  # numpydoc ignore=PR02
             "tolerance": self.tolerance,
             "assembly": {"name": self.assembly, "fidelity": self.fidelity, **self.args},
             "inputs": inputs,
-            "parameters": dict(self.parameters),
-            "initial": dict(self.initial),
+            "parameters": self._with_units("parameters", self.parameters),
+            "initial": self._with_units("initial", self.initial),
             "simulation": sim,
             "output": out,
         }
+
+    def _with_units(self, section: str, values: dict[str, float]) -> dict[str, Any]:
+        """``values`` with each one given with a unit as ``"<SI value> <SI unit>"`` (exact:
+        the float's repr), so that the copy still checks its quantity."""
+        units = self.value_units
+        return {k: f"{v!r} {units[f'{section}.{k}']}" if f"{section}.{k}" in units else v
+                for k, v in values.items()}
 
     def replace(self, **changes) -> Scene:
         """A validated copy with some fields changed.
@@ -228,6 +241,11 @@ class Scene:  # numpydoc ignore=PR02
         """
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         d.update(changes)
+        if "value_units" not in changes:  # a value set anew is in SI (its own unit)
+            d["value_units"] = {
+                k: u for k, u in self.value_units.items()
+                if getattr(self, k.split(".")[0], {}).get(k.split(".", 1)[1])
+                == (d.get(k.split(".")[0]) or {}).get(k.split(".", 1)[1])}
         new = Scene(**d)
         units = changes.get("input_units", {n: u for n, u in self.input_units.items()
                                             if n in new.inputs and n in self.inputs
@@ -349,6 +367,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             input_units.setdefault(k, unit)
     # parameters and initial values
     values: dict[str, dict[str, float]] = {}
+    value_units: dict[str, str] = {}
     for section in ("parameters", "initial"):
         raw = d.get(section, {})
         values[section] = {}
@@ -356,8 +375,9 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             c.add(section, "must be a table", "dotted name = number")
             continue
         for k, v in _flatten(raw).items():
-            if _number(c, f"{section}.{k}", v, "SI units") is not None:
-                values[section][k] = float(v)
+            value = _quantity_value(c, f"{section}.{k}", f"{section}.{k}", v, value_units)
+            if value is not None:
+                values[section][k] = value
     # simulation
     sim = Simulation()
     for k, v, key in _section(c, d, "simulation", Simulation.__dataclass_fields__):
@@ -431,12 +451,13 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     if _number(c, "tolerance", tolerance, "[1] (relative error)", 0.0, 10.0, True) is None:
         tolerance = DEFAULT_TOLERANCE
     grid, cases = _operating_points(c, d, REGISTRY[name] if name is not None else None,
-                                    input_units)
+                                    input_units, value_units)
     settling = _settling(c, d)
     statics_method = _analysis_options(c, d, analysis, inputs)
     c.raise_if_any()
     return Scene(
         assembly=name, args=args, fidelity=fidelity, inputs=inputs, input_units=input_units,
+        value_units=value_units,
         parameters=values["parameters"], initial=values["initial"], outputs=list(outputs),
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
         tolerance=float(tolerance), analysis=analysis, grid=grid, cases=cases,

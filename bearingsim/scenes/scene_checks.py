@@ -267,8 +267,10 @@ def _check_signals(c: _Collector, inputs: dict[str, Any], sim: Simulation,
 
 
 def _point_value(c: _Collector, key: str, where: str, v: Any, spec: AssemblySpec | None,
-                 units: dict[str, str]) -> Any:
-    """One value of an operating grid or load case, checked against its key; inputs in SI."""
+                 units: dict[str, str], value_units: dict[str, str]) -> Any:
+    """One value of an operating grid or load case, checked against its key; inputs and
+    parameters in SI (the unit of one given with a unit recorded in ``units`` by input name,
+    in ``value_units`` by key)."""
     head, _, rest = key.partition(".")
     if head not in POINT_HEADS or not rest:
         c.add(where, f"{key!r} is not an operating-point key",
@@ -289,13 +291,32 @@ def _point_value(c: _Collector, key: str, where: str, v: Any, spec: AssemblySpec
                   f"quantity ({units[rest]}), or numbers in the input's unit")
             return None
         return quantity[0]
+    if head == "parameters":
+        return _quantity_value(c, where, key, v, value_units)
     value = _number(c, where, v, "SI units or a number with a unit ('10000 rpm')"
                     if head == "inputs" else "SI units")
     return None if value is None else float(value)
 
 
+def _quantity_value(c: _Collector, where: str, key: str, v: Any,
+                   value_units: dict[str, str]) -> float | None:
+    """A parameter's or an initial value: a number in SI units, or a number with a unit
+    (``"1.5 kN"``: its SI value; the SI unit recorded in ``value_units`` under ``key``, to
+    be checked against the model's when it is assembled); None when invalid."""
+    if isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
+        if value_units.setdefault(key, quantity[1]) != quantity[1]:
+            c.add(where, f"{key} is given in {value_units[key]} and, as {v!r}, in "
+                  f"{quantity[1]}: values of another quantity", "numbers with units of one "
+                  f"quantity ({value_units[key]})")
+            return None
+        return quantity[0]
+    value = _number(c, where, v, "SI units or a number with a unit ('1.5 kN')")
+    return None if value is None else float(value)
+
+
 def _operating_points(c: _Collector, d: dict[str, Any], spec: AssemblySpec | None,
-                      units: dict[str, str]) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
+                      units: dict[str, str], value_units: dict[str, str]
+                      ) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
     """The ``grid`` (key -> values) and ``cases`` (list of points) of a scene, checked."""
     grid: dict[str, list[Any]] = {}
     raw = d.get("grid", {})
@@ -307,7 +328,8 @@ def _operating_points(c: _Collector, d: dict[str, Any], spec: AssemblySpec | Non
         if not isinstance(values, list) or not values:
             c.add(where, "must be a non-empty list of values", "a list, e.g. [0, 200, 500]")
             continue
-        grid[key] = [_point_value(c, key, where, v, spec, units) for v in values]
+        grid[key] = [_point_value(c, key, where, v, spec, units, value_units)
+                     for v in values]
     cases: list[dict[str, Any]] = []
     raw_cases = d.get("cases", [])
     if not isinstance(raw_cases, list) or not all(isinstance(x, dict) for x in raw_cases):
@@ -322,7 +344,7 @@ def _operating_points(c: _Collector, d: dict[str, Any], spec: AssemblySpec | Non
                     c.add(where, f"case {k + 1}: the name must be text", "a string")
                 point["name"] = str(v)
             else:
-                point[key] = _point_value(c, key, where, v, spec, units)
+                point[key] = _point_value(c, key, where, v, spec, units, value_units)
         point.setdefault("name", f"case {k + 1}")
         cases.append(point)
     if grid and cases:

@@ -20,7 +20,8 @@ from bearingsim.scenes.scene_types import simulate_inputs
 from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
 
-__all__ = ["input_range_problems", "input_unit_mismatches", "rest_problems"]
+__all__ = ["input_range_problems", "input_unit_mismatches", "rest_problems",
+           "value_unit_mismatches"]
 
 
 def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
@@ -43,6 +44,34 @@ def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
     units = {sig.name: sig.unit for sig in system.inputs}
     return {n: f"input {n} is in {units[n]}, but its value is given in {si}"
             for n, si in scene.input_units.items() if n in units and units[n] != si}
+
+
+def value_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
+    """The parameters and initial values a scene gives as numbers with a unit of another
+    quantity than the model's (``"5 kg"`` for a force), each with its message.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its :attr:`~bearingsim.scenes.scene.Scene.value_units`).
+    system : System
+        The model.
+
+    Returns
+    -------
+    dict of str to str
+        Key (``parameters.<name>``, ``initial.<state>``) -> message.
+    """
+    units = {"parameters": {p.name: p.unit for p in system.params},
+             "initial": {x.name: x.unit for x in system.states}}
+    out = {}
+    for key, si in scene.value_units.items():
+        section, name = key.split(".", 1)
+        unit = units.get(section, {}).get(name)
+        if unit is not None and unit != si:
+            what = "parameter" if section == "parameters" else "state"
+            out[key] = f"{what} {name} is in {unit}, but its value is given in {si}"
+    return out
 
 
 def input_range_problems(scene: Scene, system: System) -> dict[str, str]:

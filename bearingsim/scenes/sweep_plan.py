@@ -22,7 +22,11 @@ from bearingsim.scenes.operating_points import point_model
 from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
-from bearingsim.scenes.scene_input_checks import input_range_problems, input_unit_mismatches
+from bearingsim.scenes.scene_input_checks import (
+    input_range_problems,
+    input_unit_mismatches,
+    value_unit_mismatches,
+)
 from bearingsim.scenes.sweep_grid import check_operating_points, coerce, point_scene, si_values
 from bearingsim.scenes.sweep_worker import Job, ModelPayload
 
@@ -124,6 +128,7 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
         except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
         problems = [*input_unit_mismatches(sc, prep.system).values(),
+                    *value_unit_mismatches(sc, prep.system).values(),
                     *input_range_problems(sc, prep.system).values()]
         if problems:
             raise SweepError(f"sweep point {pt}: {problems[0]}")

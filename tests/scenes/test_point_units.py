@@ -107,3 +107,54 @@ def test_a_copy_of_a_scene_keeps_its_inputs_quantity_check():
         prepare(copy)
     assert "shaft_speed" not in scene.replace(inputs={**scene.inputs,
                                                       "shaft_speed": 100.0}).input_units
+
+
+PARAMETER_SCENE = """
+title = "parameters with units"
+outputs = ["shaft.z"]
+[assembly]
+name = "duplex_pair"
+bearing = "7020C"
+arrangement = "DB"
+preload = "light"
+damping_ratio = 0.1
+[inputs]
+"shaft.Fz" = "2 kN"
+[parameters]
+"shaft.mass" = {mass}
+[initial]
+"shaft.z" = {z}
+[simulation]
+t_end = 0.02
+"""
+
+
+def test_parameters_and_initial_values_take_a_unit_of_their_quantity():
+    """Parameters and initial values were numbers in SI units only ("must be a number in SI
+    units, got the text '5 kg'") while inputs and assembly arguments took units."""
+    from bearingsim.scenes import run_scene
+
+    given = parse_scene(PARAMETER_SCENE.format(mass='"5000 g"', z='"1 um"'))
+    si = parse_scene(PARAMETER_SCENE.format(mass="5.0", z="1e-6"))
+    assert given.parameters == {"shaft.mass": 5.0} and given.initial == {"shaft.z": 1e-6}
+    assert run_scene(given, write=False).series["shaft.z"][-1] == \
+        run_scene(si, write=False).series["shaft.z"][-1]
+    with pytest.raises(SceneError, match=r"parameters\.shaft\.mass: parameter shaft\.mass is "
+                                         r"in kg, but its value is given in N"):
+        validate_scene(parse_scene(PARAMETER_SCENE.format(mass='"5 N"', z="0.0")))
+    with pytest.raises(SceneError, match=r"initial\.shaft\.z: state shaft\.z is in m, but its "
+                                         r"value is given in rad/s"):
+        validate_scene(parse_scene(PARAMETER_SCENE.format(mass="5.0", z='"1 rpm"')))
+    # a copy keeps the check of an unchanged value, not of one set anew (in SI)
+    wrong = parse_scene(PARAMETER_SCENE.format(mass='"5 N"', z="0.0"))
+    assert wrong.replace(title="copy").value_units == {"parameters.shaft.mass": "N"}
+    assert wrong.replace(parameters={"shaft.mass": 6.0}).value_units == {}
+
+
+def test_a_swept_parameter_takes_a_unit_of_its_quantity():
+    scene = parse_scene(PARAMETER_SCENE.format(mass="5.0", z="0.0"))
+    plan = plan_sweep(scene, grid_points(parse_grid(["parameters.shaft.mass=5kg,6000g"])))
+    assert [j.scene.parameters["shaft.mass"] for j in plan.jobs] == [5.0, 6.0]
+    with pytest.raises(SweepError, match=r"parameter shaft\.mass is in kg, but its value is "
+                                         r"given in N"):
+        plan_sweep(scene, grid_points(parse_grid(["parameters.shaft.mass=5N"])))
