@@ -93,6 +93,9 @@ def _sweep(env: dict) -> dict[str, float]:
 
 WARM_RUNS = 5
 """Runs of each scene in one process after its first (:func:`_warm`)."""
+WARM_PROCESSES = 7
+"""Processes per package that time the warm runs, alternating between the packages: on this
+virtual machine a whole process may run 1.5-1.8 times slower than the next one."""
 
 _WARM_SCRIPT = """
 import json, sys, warnings
@@ -135,10 +138,18 @@ def measure(baselines: tuple[str, ...] = BASELINES, rounds: int = ROUNDS) -> dic
                 for scene in scenes:
                     runs[name].setdefault(scene, []).append(_run(env, scene))
                 runs[name].setdefault("sweep", []).append(_sweep(env))
-                for scene, solve in _warm(env, scenes).items():
-                    runs[name][scene][-1]["warm"] = solve
-    return {name: {scene: {k: statistics.median(r[k] for r in rs) for k in rs[0]}
-                   for scene, rs in by_scene.items()} for name, by_scene in runs.items()}
+        warm: dict[str, list[dict[str, float]]] = {name: [] for name in names}
+        for _ in range(WARM_PROCESSES):
+            for name, env in envs.items():
+                warm[name].append(_warm(env, scenes))
+    out = {name: {scene: {k: statistics.median(r[k] for r in rs) for k in rs[0]}
+                  for scene, rs in by_scene.items()} for name, by_scene in runs.items()}
+    for name, per_process in warm.items():
+        for scene in scenes:
+            values = [w[scene] for w in per_process]
+            out[name][scene].update(warm=statistics.median(values), warm_low=min(values),
+                                    warm_high=max(values))
+    return out
 
 
 def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Section:
@@ -156,7 +167,9 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
         rows.append([f"`{scene}`", str(int(per[-1]["points"])),
                      *(fmt(1e3 * r["solve"] / r["points"]) for r in per),
                      fmt(per[-2]["solve"] / per[-1]["solve"]),
-                     *(fmt(1e3 * r["warm"]) for r in per), fmt(per[-2]["warm"] / per[-1]["warm"]),
+                     *(f"{fmt(1e3 * r['warm'])} ({fmt(1e3 * r['warm_low'])}-"
+                       f"{fmt(1e3 * r['warm_high'])})" for r in per),
+                     fmt(per[-2]["warm"] / per[-1]["warm"]),
                      *(fmt(r["wall"]) for r in per), *(fmt(r["cpu"]) for r in per)])
     scene, grid, workers = SWEEP
     sweep_rows = [[n if n == "now" else f"`{n}`", f"{int(m[n]['sweep']['ok'])} of "
@@ -174,7 +187,9 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
         "operating points, with what the process pays once on first use (kernels loaded, "
         "modules imported on use: most of it for the scenes of a few milliseconds a point); "
         f"*warm process*: the same per point in one process that ran the scene before, the "
-        f"fastest of {WARM_RUNS} runs, the median of the rounds (what a point costs in a "
+        f"fastest of {WARM_RUNS} runs; the median of {WARM_PROCESSES} such processes per "
+        "package, alternating, and in brackets the fastest and slowest process (a whole process "
+        "may run up to 1.8 times slower than the next here) (what a point costs in a "
         "sweep or a repeated run, without the first-use costs that dominate the fresh command); "
         f"*ratio*: solve of {baselines[-1]} over now; *wall*, *CPU*: the whole command, launch "
         "to exit (CPU of the process and its children).\n\n"
