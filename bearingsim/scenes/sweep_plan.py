@@ -18,7 +18,6 @@ from typing import Any
 
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
-from bearingsim.scenes.operating_points import point_model
 from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
@@ -82,12 +81,12 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
     the jobs.
 
     Each point's scene, inputs, parameters and assembly arguments (kind, choices, range) are
-    checked here. The parameter overrides of an assembly's parametric arguments (a duplex
-    pair's preload: the assembly built to read them, tens of milliseconds) are derived here
-    for the first point of each structure only; every other point derives them where it
-    runs (:func:`~bearingsim.scenes.operating_points.point_model`), in parallel, and a value
-    the assembly refuses there (a preload no row can carry) fails that point, named in its
-    row, while the others run.
+    checked here, and the first point of each structure builds its model. The parameter
+    overrides of an assembly's parametric arguments (a duplex pair's preload: the assembly
+    built to read them, tens of milliseconds) are derived where each point runs
+    (:func:`~bearingsim.scenes.operating_points.point_model`), in parallel; a value the
+    assembly refuses there (a preload no row can carry) fails that point, named in its row,
+    while the others run.
 
     Parameters
     ----------
@@ -116,15 +115,13 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
         pt = {key: coerce(scene, key, v) for key, v in raw.items()}
         key = _structure(sc)
         try:
-            first = key not in prepared
-            if first:
+            if key not in prepared:
                 prepared[key] = prepare(sc)
                 payloads[key] = _payload(prepared[key])
             prep = prepared[key]
-            # the overrides of parametric arguments build the assembly (tens of ms a point):
-            # the first point of a structure here, every other where it runs
-            params = point_model(prep, sc.args)[1] if first else {}
-            prep.system.p0({**sc.parameters, **params})
+            # not the overrides of parametric arguments (point_model builds the assembly to
+            # read them, tens of ms a point): each point derives them where it runs
+            prep.system.p0(sc.parameters)
         except (SceneError, ParameterError) as exc:
             raise SweepError(f"sweep point {pt}: {exc}") from None
         problems = [*input_unit_mismatches(sc, prep.system).values(),

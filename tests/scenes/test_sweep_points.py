@@ -134,24 +134,25 @@ def test_modes_sweep_plots_one_curve_per_value_of_the_second_key(client, tmp_pat
 
 def test_parametric_points_are_not_built_on_the_client(monkeypatch):
     """A sweep over a parametric argument (a duplex pair's preload) builds the assembly on the
-    client for the first point of the structure only: each other point derives its parameter
-    overrides where it runs. Before, the plan built the pair for every point (27 ms a point
-    of duplex_modes, serial in the client: as long as the points themselves on 2 workers)."""
-    from bearingsim.scenes import sweep_plan
-    from bearingsim.scenes.operating_points import point_model
+    client once, for the model of its structure: each point derives its parameter overrides
+    where it runs. Before, the plan built the pair for every point (27 ms a point of
+    duplex_modes, serial in the client: as long as the points themselves on 2 workers)."""
+    from bearingsim.scenes import preparation, registry, sweep_plan
 
     scene = load_scene(SCENES[0].parent / "duplex_modes.toml")
-    calls = []
+    builds = []
+    build = registry.build_component
 
-    def counted(prep, args):
-        calls.append(args)
-        return point_model(prep, args)
+    def counted(spec, args, fidelity):
+        builds.append(args)
+        return build(spec, args, fidelity)
 
-    monkeypatch.setattr(sweep_plan, "point_model", counted)
+    monkeypatch.setattr(registry, "build_component", counted)  # point_model's
+    monkeypatch.setattr(preparation, "build_component", counted)  # prepare's
     points = grid_points(parse_grid(["assembly.preload_force=500,1000,1500,2000",
                                      "assembly.speed=0,419"]))
     plan = sweep_plan.plan_sweep(scene, points)
-    assert len(plan.jobs) == 8 and len(calls) == len(plan.prepared) == 1
+    assert len(plan.jobs) == 8 and len(plan.prepared) == 1 and len(builds) == 1
 
 
 def test_a_parametric_value_the_assembly_refuses_fails_its_point_only(client, tmp_path):
