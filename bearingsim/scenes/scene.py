@@ -30,7 +30,6 @@ from bearingsim.files import (
     open_regular,
     os_reason,
 )
-from bearingsim.scenes.expressions import ExpressionError, compile_expression
 from bearingsim.scenes.library import builtin_scene_path, builtin_scenes
 from bearingsim.scenes.lubricant_table import load_lubricants_table
 from bearingsim.scenes.registry import REGISTRY
@@ -40,12 +39,12 @@ from bearingsim.scenes.scene_checks import (
     _check_signals,
     _Collector,
     _flatten,
+    _inputs,
     _number,
     _operating_points,
     _quantity_value,
     _section,
     _settling,
-    _table_input,
     _unknown,
 )
 from bearingsim.scenes.scene_types import (
@@ -67,7 +66,6 @@ from bearingsim.scenes.tables import (
 )
 from bearingsim.simulation.budget import MAX_TIMEOUT
 from bearingsim.simulation.integrators import METHODS
-from bearingsim.units import parse_quantity
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -336,35 +334,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         c.add("outputs", "must be a list of variable names", "a list of dotted names")
         outputs = []
     # inputs
-    inputs: dict[str, Any] = {}
-    input_units: dict[str, str] = {}
     base = scene_folder(path)
-    raw_inputs = d.get("inputs", {})
-    if not isinstance(raw_inputs, dict):
-        c.add("inputs", "must be a table", "name = number, expression or table")
-        raw_inputs = {}
-    for k, v in _flatten(raw_inputs, keep_tables=True).items():
-        key = f"inputs.{k}"
-        if isinstance(v, dict):
-            tab = _table_input(c, key, v, base, allowed, input_units)
-            if tab is not None:
-                inputs[k] = tab
-        elif isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
-            inputs[k], input_units[k] = quantity  # a number with a unit: SI from here on
-        elif isinstance(v, str):
-            try:
-                compile_expression(v, key)
-                inputs[k] = v
-            except ExpressionError as exc:
-                c.add(key, str(exc).split(": ", 1)[1].split(". Allowed:")[0],
-                      str(exc).split("Allowed: ", 1)[-1])
-        elif isinstance(v, TableInput):
-            inputs[k] = v
-        elif _number(c, key, v, "SI units") is not None:
-            inputs[k] = float(v)
-    for k, unit in (carried_units or {}).items():
-        if k in inputs and not isinstance(inputs[k], str):
-            input_units.setdefault(k, unit)
+    inputs, input_units = _inputs(c, d, base, allowed, carried_units)
     # parameters and initial values
     values: dict[str, dict[str, float]] = {}
     value_units: dict[str, str] = {}

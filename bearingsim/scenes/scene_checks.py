@@ -233,6 +233,43 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[st
     return TableInput(t.tolist(), y.tolist(), source)
 
 
+def _inputs(c: _Collector, d: dict[str, Any], base: Path, allowed: tuple[str, ...],
+            carried_units: dict[str, str] | None
+            ) -> tuple[dict[str, Any], dict[str, str]]:
+    """The ``[inputs]`` of a scene, checked (numbers and quantities in SI, expressions,
+    tables), and the SI unit of each given with a unit (also those ``carried_units`` names
+    for an input given as a number or table: the unit of a copy's SI value)."""
+    inputs: dict[str, Any] = {}
+    input_units: dict[str, str] = {}
+    raw_inputs = d.get("inputs", {})
+    if not isinstance(raw_inputs, dict):
+        c.add("inputs", "must be a table", "name = number, expression or table")
+        raw_inputs = {}
+    for k, v in _flatten(raw_inputs, keep_tables=True).items():
+        key = f"inputs.{k}"
+        if isinstance(v, dict):
+            tab = _table_input(c, key, v, base, allowed, input_units)
+            if tab is not None:
+                inputs[k] = tab
+        elif isinstance(v, str) and (quantity := parse_quantity(v)) is not None:
+            inputs[k], input_units[k] = quantity  # a number with a unit: SI from here on
+        elif isinstance(v, str):
+            try:
+                compile_expression(v, key)
+                inputs[k] = v
+            except ExpressionError as exc:
+                c.add(key, str(exc).split(": ", 1)[1].split(". Allowed:")[0],
+                      str(exc).split("Allowed: ", 1)[-1])
+        elif isinstance(v, TableInput):
+            inputs[k] = v
+        elif _number(c, key, v, "SI units") is not None:
+            inputs[k] = float(v)
+    for k, unit in (carried_units or {}).items():
+        if k in inputs and not isinstance(inputs[k], str):
+            input_units.setdefault(k, unit)
+    return inputs, input_units
+
+
 @functools.lru_cache(maxsize=1024)
 def _first_non_finite(text: str, t_start: float, t_end: float, n: int) -> float | None:
     """The first of ``n`` evenly spaced times in ``[t_start, t_end]`` [s] where the expression
