@@ -166,7 +166,7 @@ def _check(scene: Scene) -> Scene:
     if scene.text is not None:
         return scene
     return scene_from_dict(scene.to_dict(), path=scene.path, allow_paths=scene.allow_paths,
-                           carried_units=scene.input_units)
+                           carried_units=scene.given_units)
 
 
 def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuantity]

@@ -211,18 +211,26 @@ class Scene:  # numpydoc ignore=PR02
             "tolerance": self.tolerance,
             "assembly": {"name": self.assembly, "fidelity": self.fidelity, **self.args},
             "inputs": inputs,
-            "parameters": self._with_units("parameters", self.parameters),
-            "initial": self._with_units("initial", self.initial),
+            "parameters": dict(self.parameters),
+            "initial": dict(self.initial),
             "simulation": sim,
             "output": out,
         }
 
-    def _with_units(self, section: str, values: dict[str, float]) -> dict[str, Any]:
-        """``values`` with each one given with a unit as ``"<SI value> <SI unit>"`` (exact:
-        the float's repr), so that the copy still checks its quantity."""
-        units = self.value_units
-        return {k: f"{v!r} {units[f'{section}.{k}']}" if f"{section}.{k}" in units else v
-                for k, v in values.items()}
+    @property
+    def given_units(self) -> dict[str, str]:
+        """The SI unit of every value given as a number with a unit, by key:
+        ``inputs.<name>`` (:attr:`input_units`), ``parameters.<name>``, ``initial.<state>``
+        (:attr:`value_units`). A copy through :meth:`to_dict` holds SI numbers only;
+        :func:`scene_from_dict` takes these back as ``carried_units``.
+
+        Returns
+        -------
+        dict of str to str
+            SI unit by key.
+        """
+        return {**{f"inputs.{n}": u for n, u in self.input_units.items()},
+                **self.value_units}
 
     def replace(self, **changes) -> Scene:
         """A validated copy with some fields changed.
@@ -239,15 +247,14 @@ class Scene:  # numpydoc ignore=PR02
         """
         d = {k: getattr(self, k) for k in self.__dataclass_fields__}
         d.update(changes)
-        if "value_units" not in changes:  # a value set anew is in SI (its own unit)
-            d["value_units"] = {
-                k: u for k, u in self.value_units.items()
-                if getattr(self, k.split(".")[0], {}).get(k.split(".", 1)[1])
-                == (d.get(k.split(".")[0]) or {}).get(k.split(".", 1)[1])}
         new = Scene(**d)
-        units = changes.get("input_units", {n: u for n, u in self.input_units.items()
-                                            if n in new.inputs and n in self.inputs
-                                            and new.inputs[n] == self.inputs[n]})
+
+        def value(scene: Scene, key: str) -> Any:
+            section, name = key.split(".", 1)
+            return getattr(scene, section).get(name)
+
+        # a value set anew is in SI: only an unchanged one keeps the unit it was given in
+        units = {k: u for k, u in new.given_units.items() if value(new, k) == value(self, k)}
         return scene_from_dict(new.to_dict(), path=self.path, text=None,
                                allow_paths=self.allow_paths, carried_units=units)
 
@@ -271,10 +278,11 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     allow_paths : sequence of path
         Folders outside the scene's folder that its files may be in.
     carried_units : dict of str to str, optional
-        The SI unit an input's number was given in before (:attr:`Scene.input_units` of the
+        The SI unit a value was given in before, by key (:attr:`Scene.given_units` of the
         scene ``d`` was made from, whose :meth:`Scene.to_dict` holds SI numbers): kept for
-        the inputs ``d`` gives as a number or table, so that the model's check of their
-        quantity still applies (a copy of a scene, a sweep point).
+        the inputs, parameters and initial values ``d`` gives as numbers (or tables), so that
+        the model's check of their quantity still applies (a copy of a scene, a sweep
+        point).
 
     Returns
     -------
@@ -335,7 +343,9 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         outputs = []
     # inputs
     base = scene_folder(path)
-    inputs, input_units = _inputs(c, d, base, allowed, carried_units)
+    carried = carried_units or {}
+    inputs, input_units = _inputs(c, d, base, allowed, {
+        k.removeprefix("inputs."): u for k, u in carried.items() if k.startswith("inputs.")})
     # parameters and initial values
     values: dict[str, dict[str, float]] = {}
     value_units: dict[str, str] = {}
@@ -346,9 +356,12 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
             c.add(section, "must be a table", "dotted name = number")
             continue
         for k, v in _flatten(raw).items():
-            value = _quantity_value(c, f"{section}.{k}", f"{section}.{k}", v, value_units)
+            key = f"{section}.{k}"
+            value = _quantity_value(c, key, key, v, value_units)
             if value is not None:
                 values[section][k] = value
+                if key in carried:
+                    value_units.setdefault(key, carried[key])
     # simulation
     sim = Simulation()
     for k, v, key in _section(c, d, "simulation", Simulation.__dataclass_fields__):

@@ -237,8 +237,9 @@ def _inputs(c: _Collector, d: dict[str, Any], base: Path, allowed: tuple[str, ..
             carried_units: dict[str, str] | None
             ) -> tuple[dict[str, Any], dict[str, str]]:
     """The ``[inputs]`` of a scene, checked (numbers and quantities in SI, expressions,
-    tables), and the SI unit of each given with a unit (also those ``carried_units`` names
-    for an input given as a number or table: the unit of a copy's SI value)."""
+    tables), and the SI unit of each given with a unit (also those ``carried_units`` names,
+    by input name, for an input given as a number or table: the unit of a copy's SI
+    value)."""
     inputs: dict[str, Any] = {}
     input_units: dict[str, str] = {}
     raw_inputs = d.get("inputs", {})

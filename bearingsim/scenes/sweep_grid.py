@@ -181,7 +181,7 @@ def point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
             d.setdefault(head, {})[rest] = value
     from bearingsim.scenes.scene import scene_from_dict
 
-    carried = {n: u for n, u in scene.input_units.items() if f"inputs.{n}" not in point}
+    carried = {k: u for k, u in scene.given_units.items() if k not in point}
     try:
         return scene_from_dict(d, path=scene.path, carried_units=carried)
     except SceneError as exc:

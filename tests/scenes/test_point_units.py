@@ -158,3 +158,8 @@ def test_a_swept_parameter_takes_a_unit_of_its_quantity():
     with pytest.raises(SweepError, match=r"parameter shaft\.mass is in kg, but its value is "
                                          r"given in N"):
         plan_sweep(scene, grid_points(parse_grid(["parameters.shaft.mass=5N"])))
+    # the scene's own value in another quantity stops a sweep over another key
+    wrong = parse_scene(PARAMETER_SCENE.format(mass='"5 N"', z="0.0"))
+    with pytest.raises(SweepError, match=r"parameter shaft\.mass is in kg, but its value is "
+                                         r"given in N"):
+        plan_sweep(wrong, grid_points(parse_grid(["inputs.shaft.Fz=1000,2000"])))
