@@ -31,7 +31,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from bench.common import ROOT, Section, exported_package, fmt, markdown_table, scene_command
+from bench.common import CLI, ROOT, Section, exported_package, fmt, markdown_table, scene_command
 
 __all__ = ["BASELINES", "ROUNDS", "SWEEP", "analysis_scenes", "measure", "section"]
 
@@ -77,10 +77,9 @@ def _sweep(env: dict) -> dict[str, float]:
     """:data:`SWEEP` in a new process: its summary's ``plan`` and ``points`` phases and the
     command's wall time [s]."""
     scene, grid, workers = SWEEP
-    run = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
     with tempfile.TemporaryDirectory() as out:
         t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-c", run, "sweep", scene,
+        subprocess.run([sys.executable, "-c", CLI, "sweep", scene,
                         *(a for g in grid for a in ("--grid", g)), "--workers", str(workers),
                         "--out", out, "--no-progress"],
                        check=True, capture_output=True, env=env, cwd=ROOT)

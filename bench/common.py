@@ -89,6 +89,11 @@ def exported_package(commit: str) -> Iterator[dict[str, str]]:
                "PYTHONSAFEPATH": "1"}
 
 
+CLI = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
+"""``python -c CLI <arguments>`` runs ``bearingsim <arguments>`` with the package that the
+process's ``PYTHONPATH`` finds (a baseline's export, :func:`exported_package`)."""
+
+
 def scene_command(env: dict[str, str], scene: str) -> tuple[float, float, dict]:
     """``bearingsim run scene --out <temporary folder> --no-progress`` in a new Python process.
 
@@ -113,10 +118,9 @@ def scene_command(env: dict[str, str], scene: str) -> tuple[float, float, dict]:
         usage = resource.getrusage(resource.RUSAGE_CHILDREN)
         return usage.ru_utime + usage.ru_stime
 
-    run = "import sys; from bearingsim.cli import main; sys.exit(main(sys.argv[1:]))"
     with tempfile.TemporaryDirectory() as out:
         cpu0, t0 = children_cpu(), time.perf_counter()
-        subprocess.run([sys.executable, "-c", run, "run", scene, "--out", out,
+        subprocess.run([sys.executable, "-c", CLI, "run", scene, "--out", out,
                         "--no-progress"], check=True, capture_output=True, env=env, cwd=ROOT)
         wall, cpu = time.perf_counter() - t0, children_cpu() - cpu0
         summary = json.loads((Path(out) / f"{scene}.summary.json").read_text())
