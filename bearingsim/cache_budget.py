@@ -106,8 +106,8 @@ class _Entry:
 
 
 def _owner(path: Path) -> Path:
-    """The entry a file belongs to: a library with its companions (``x.so``, ``x.so.balls``)
-    is one entry, a system file its own."""
+    """The entry a file belongs to: a library with its companions (``x.so``, ``x.so.balls``,
+    ``x.so.order``) is one entry, a system file its own."""
     return path.with_name(entry_name(path.name))
 
 

@@ -71,8 +71,8 @@ def system_files(root: str | Path | None = None) -> list[Path]:
 
 def entry_name(file_name: str) -> str:
     """The name of the cache entry a file belongs to: a library's companions
-    (``x.so.balls``) and the library (``x.so``) share ``x``; a file without ``.so`` in its
-    name is its own entry.
+    (``x.so.balls``, ``x.so.order``) and the library (``x.so``) share ``x``; a file without
+    ``.so`` in its name is its own entry.
 
     Parameters
     ----------

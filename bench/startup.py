@@ -1,4 +1,4 @@
-"""Benchmark: the start-up of a command, this code against a baseline commit side by side.
+"""Benchmark: the start-up of a command, this code against baseline commits side by side.
 
 Two measurements, each in a fresh Python process:
 
@@ -9,17 +9,19 @@ Two measurements, each in a fresh Python process:
   package, not timed), from the launch of the process to its exit: wall time, and CPU time
   (user + system of the process and its children).
 
-The baseline (:data:`BASELINE`, the commit before the imports moved to where they are used)
-runs from a ``git archive`` export of its package; the two alternate over :data:`ROUNDS`
-rounds and the table shows the medians (the machine is shared: compare the columns of one
-run, not runs of other days).
+The baselines (:data:`BASELINES`: the commit before the imports moved to where they are
+used, and the one before a ball bearing's design and a compiled run stopped importing
+scipy.special and scipy.sparse) run from a ``git archive`` export of their package; the
+packages alternate over :data:`ROUNDS` rounds and the table shows the medians (the machine
+is shared: compare the columns of one run, not runs of other days).
 
-Command: ``python -m bench.startup [--baseline COMMIT]``.
+Command: ``python -m bench.startup [--baseline COMMIT ...]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import statistics
@@ -28,17 +30,22 @@ import sys
 
 from bench.common import ROOT, Section, exported_package, fmt, markdown_table, scene_command
 
-__all__ = ["BASELINE", "ROUNDS", "SCENES", "measure", "section"]
+__all__ = ["BASELINES", "BASELINE_WORDS", "ROUNDS", "SCENES", "measure", "section"]
 
-BASELINE = "fd189b3"
-"""The commit before scipy.optimize, scipy.integrate, networkx and the assembler's passes
-were imported where they are used, and before the units library kept pint's conversions on
-disk."""
+BASELINES = ("fd189b3", "8b21674")
+BASELINE_WORDS = (
+    "before scipy.optimize, scipy.integrate, networkx and the assembler's passes were "
+    "imported where they are used, and before pint's conversions were kept on disk",
+    "before a bearing's design computed the contacts' complete elliptic integrals by the "
+    "arithmetic-geometric mean of the generated models instead of scipy.special, and before "
+    "the fill-reducing order of a compiled kernel's Newton matrix was kept beside its library "
+    "instead of computed by SuperLU (scipy.sparse) in every process")
+"""What each of :data:`BASELINES` is before, for the section's text."""
 ROUNDS = 5
 """Rounds of the baseline and this code, alternating."""
 SCENES = ("deep_groove_duty1", "double_layer_friction", "spindle_radial")
-"""Shipped scenes whose whole command is timed: a ball-level model on CVODES, a torque-level
-model on CVODES, and a model run with LSODA (scipy.integrate) whose start point needs
+"""Shipped scenes whose whole command is timed: a ball-level model on compiled_bdf, a
+torque-level model on CVODES, and a model run with LSODA (scipy.integrate) whose start point needs
 scipy.optimize (nothing saved there)."""
 
 IMPORTS = ("import time; t0 = time.perf_counter(); import bearingsim.cli, "
@@ -56,27 +63,27 @@ def _command(env: dict, scene: str) -> tuple[float, float]:
     return scene_command(env, scene)[:2]
 
 
-def measure(baseline: str = BASELINE, rounds: int = ROUNDS) -> dict:
-    """Medians over ``rounds`` alternating rounds, for ``"baseline"`` and ``"now"``: the
+def measure(baselines: tuple[str, ...] = BASELINES, rounds: int = ROUNDS) -> dict:
+    """Medians over ``rounds`` alternating rounds, for each baseline and ``"now"``: the
     imports' wall time [s] and, per scene of :data:`SCENES`, the whole command's wall and CPU
     time [s].
 
     Parameters
     ----------
-    baseline : str
-        The commit to compare with.
+    baselines : tuple of str
+        The commits to compare with.
     rounds : int
         Alternating rounds.
 
     Returns
     -------
     dict
-        ``{"baseline" | "now": {"imports": s, scene: (wall s, cpu s), ...}}``.
+        ``{commit | "now": {"imports": s, scene: (wall s, cpu s), ...}}``.
     """
-    times: dict[str, dict] = {"baseline": {}, "now": {}}
-    with exported_package(baseline) as then_env:
-        now_env = {**os.environ, "PYTHONPATH": str(ROOT)}
-        envs = {"baseline": then_env, "now": now_env}
+    times: dict[str, dict] = {name: {} for name in (*baselines, "now")}
+    with contextlib.ExitStack() as stack:
+        envs = {b: stack.enter_context(exported_package(b)) for b in baselines}
+        envs["now"] = {**os.environ, "PYTHONPATH": str(ROOT)}
         for env in envs.values():  # warm: each package's systems and kernels stored
             for scene in SCENES:
                 _command(env, scene)
@@ -90,46 +97,49 @@ def measure(baseline: str = BASELINE, rounds: int = ROUNDS) -> dict:
                    for key, v in t.items()} for name, t in times.items()}
 
 
-def section(quick: bool = False, baseline: str = BASELINE) -> Section:
-    """The run_all section: imports and whole commands, this code against ``baseline``."""
+def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Section:
+    """The run_all section: imports and whole commands, this code against ``baselines``."""
     rounds = 3 if quick else ROUNDS
-    m = measure(baseline, rounds)
-    then, now = m["baseline"], m["now"]
-    rows = [["imports", fmt(then["imports"]), fmt(now["imports"]), "-", "-",
-             fmt(then["imports"] / now["imports"])]]
+    m = measure(baselines, rounds)
+    names = (*baselines, "now")
+    rows = [["imports", *(fmt(m[n]["imports"]) for n in names), *("-" for _ in names),
+             *(fmt(m[b]["imports"] / m["now"]["imports"]) for b in baselines)]]
     for scene in SCENES:
-        rows.append([f"`bearingsim run {scene}`", fmt(then[scene][0]), fmt(now[scene][0]),
-                     fmt(then[scene][1]), fmt(now[scene][1]),
-                     fmt(then[scene][0] / now[scene][0])])
+        rows.append([f"`bearingsim run {scene}`", *(fmt(m[n][scene][0]) for n in names),
+                     *(fmt(m[n][scene][1]) for n in names),
+                     *(fmt(m[b][scene][0] / m["now"][scene][0]) for b in baselines)])
+    words = "; ".join(f"{b}: {w}" for b, w in zip(BASELINES, BASELINE_WORDS, strict=True)
+                      if b in baselines)
     body = (
-        f"Each a fresh Python process; medians of {rounds} rounds, the baseline {baseline} "
-        "(before scipy.optimize, scipy.integrate, networkx and the assembler's passes were "
-        "imported where they are used, and before pint's conversions were kept on disk) and "
-        "this code alternating. *imports*: wall time of "
+        f"Each a fresh Python process; medians of {rounds} rounds, the baselines and this "
+        f"code alternating. Baselines: {words}. *imports*: wall time of "
         "`import bearingsim.cli, bearingsim.scenes.runner` inside the process; *run*: "
         "`bearingsim run <scene> --out <temporary folder> --no-progress` on a warm cache "
         "(assembled systems and kernels stored by a first run of each package), launch to "
         "exit, wall time and CPU time of the process and its children (plots, CSV and "
-        "summary written). A model loaded from the cache and run on SUNDIALS needs none of "
-        "the four, nor pint once its units' conversions are kept (the warm-up run keeps "
-        "them), nor, since 5d83818, scipy.linalg and scipy.sparse (imported on use too): "
-        "`double_layer_friction` imports no scipy at all, `deep_groove_duty1` scipy.special "
-        "(the contacts' elliptic integrals, with scipy's common base); `spindle_radial` runs "
-        "LSODA (scipy.integrate) from a start point solved by scipy.optimize, so it imports "
-        "them on use.\n\n"
-        f"Command: `python -m bench.startup --baseline {baseline}`\n\n"
-        + markdown_table(["", "wall before [s]", "wall now [s]", "CPU before [s]",
-                          "CPU now [s]", "wall before / now"], rows))
+        "summary written). A model loaded from the cache needs none of scipy.optimize, "
+        "scipy.integrate, networkx and the passes, nor pint once its units' conversions "
+        "are kept (the warm-up run keeps them), nor, since 5d83818, scipy.linalg and "
+        "scipy.sparse on SUNDIALS; at 8b21674 `deep_groove_duty1` (compiled_bdf) still "
+        "imported scipy.special for the contacts' elliptic integrals and scipy.sparse for "
+        "the order of its Newton matrix, and now imports no scipy at all, as "
+        "`double_layer_friction`; `spindle_radial` runs LSODA (scipy.integrate) from a "
+        "start point solved by scipy.optimize, so it imports them on use.\n\n"
+        f"Command: `python -m bench.startup --baseline {' --baseline '.join(baselines)}`\n\n"
+        + markdown_table(["", *(f"wall {n} [s]" for n in names),
+                          *(f"CPU {n} [s]" for n in names),
+                          *(f"wall {b} / now" for b in baselines)], rows))
     return Section("24. Start-up of a command", body, m)
 
 
 def main() -> None:
-    """Print the section (``--baseline COMMIT``)."""
+    """Print the section (``--baseline COMMIT``, repeated for more)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--baseline", default=BASELINE)
+    parser.add_argument("--baseline", action="append",
+                        help=f"a baseline commit (repeat for more; default {BASELINES})")
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
-    s = section(args.quick, args.baseline)
+    s = section(args.quick, tuple(args.baseline or BASELINES))
     print(json.dumps(s.data))
     print(s.body)
 

@@ -3,7 +3,8 @@ scipy.integrate (with what they pull in, ~0.8 s together on this machine's runs 
 ``python -X importtime``), and scipy.linalg and scipy.sparse (~0.35 s with scipy's common
 base) are imported where they are used, not by the command line, the
 scene runner or a sweep worker, nor by a run whose model loads from the cache and integrates
-on SUNDIALS; pint neither, once the conversions such a run needs are kept on disk
+on SUNDIALS or compiled_bdf; scipy.special (0.45 s) not even to build a ball bearing; pint
+neither, once the conversions such a run needs are kept on disk
 (:mod:`bearingsim.units.conversion_memo`). Each check runs in a fresh Python process."""
 
 from __future__ import annotations
@@ -17,10 +18,12 @@ from pathlib import Path
 
 import pytest
 
+from bearingsim.simulation.c_compiler import c_compiler
+
 ROOT = Path(__file__).resolve().parent.parent
 
 HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "scipy.linalg", "scipy.sparse",
-         "bearingsim.assembler.pipeline", "pint")
+         "scipy.special", "bearingsim.assembler.pipeline", "pint")
 
 
 def _imported_after(code: str, env: dict | None = None) -> list[str]:
@@ -55,6 +58,35 @@ def test_a_run_loaded_from_the_cache_imports_none_of_them(tmp_path):
     first = _imported_after(run, env)  # assembles (the passes) and stores the system
     assert "bearingsim.assembler.pipeline" in first
     assert _imported_after(run, env) == []  # loads it: no pass, no scipy solver
+
+
+def test_building_a_ball_bearing_imports_none_of_them():
+    """A bearing's design solves Hertz's ellipticity equation with complete elliptic
+    integrals: by the arithmetic-geometric mean of the generated models
+    (:func:`bearingsim.symbolic.ellipk`), not scipy.special (0.45 s to import, paid by every
+    process that built a bearing: a command, a sweep's client planning its points)."""
+    assert _imported_after("""
+        from bearingsim.assemblies import deep_groove_ball_bearing
+        deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0)
+        """) == []
+
+
+@pytest.mark.skipif(c_compiler() is None, reason="no C compiler")
+def test_a_compiled_bdf_run_loaded_from_the_cache_imports_none_of_them(tmp_path):
+    """The fill-reducing order of the compiled kernel's Newton matrix (SuperLU's, through
+    scipy.sparse) is kept beside the library: a later process, a sweep worker among them,
+    reads it instead of importing scipy.sparse (0.35-0.5 s)."""
+    run = """
+        from bearingsim.assembler import assemble_cached
+        from bearingsim.simulation import simulate
+        from tests.models import TwoInertiaDrive
+        result = simulate(assemble_cached(TwoInertiaDrive()), 0.01, method="compiled_bdf",
+                          compiled=True)
+        assert result.stats["method"] == "compiled_bdf"
+        """
+    env = {"PYTHONPATH": str(ROOT), "BEARINGSIM_CACHE": str(tmp_path / "cache")}
+    assert "scipy.sparse" in _imported_after(run, env)  # orders the kernel's unknowns
+    assert _imported_after(run, env) == []  # reads the order kept with the library
 
 
 @pytest.mark.parametrize("method", ["LSODA", "BDF"])

@@ -39,7 +39,7 @@ from bearingsim.simulation.compile import source_library
 from bearingsim.simulation.diagnostics import diverged
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import COMPILED, Kernel
-from bearingsim.simulation.ordering import NewtonPattern, newton_pattern
+from bearingsim.simulation.ordering import NewtonPattern, kept_order, newton_pattern
 from bearingsim.simulation.progress import progress_bar
 
 __all__ = ["DRIVER_SOURCE", "CompiledRun", "compiled_bdf_run"]
@@ -170,7 +170,7 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
         kernel_dll = ctypes.CDLL(str(kern.library))
         sparsity = jacobian.sparsity_out(1)
         fns = (function, jacobian, sig)
-        newton = newton_pattern(sparsity)
+        newton = newton_pattern(sparsity, kept_order(sparsity, kern.library))
         found = _PREPARED[key] = _Prepared(
             dll, kernel_dll, _address(kernel_dll, function.name()),
             _address(kernel_dll, jacobian.name()),

@@ -6,16 +6,32 @@ Used by CVODES with the sparse LU (:mod:`~bearingsim.simulation.sundials`); with
 of the Newton matrix in that order (:func:`newton_pattern`) by the sparse LU ``c/bsm_lu.c`` of
 the compiled BDF integrator (:mod:`~bearingsim.simulation.compiled_bdf`) and of the FMU's
 co-simulation stepper (:mod:`bearingsim.fmu.model_c`).
+
+The order is SuperLU's (scipy.sparse.linalg), and importing scipy.sparse costs a process
+0.35-0.5 s, more than a short run of a cached model or a sweep point. So the order of a
+compiled kernel's Jacobian is kept beside its library (:func:`kept_order`, the companion file
+``<library>.order``, removed with it): a later process, a sweep worker among them, reads it
+instead.
 """
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 from dataclasses import dataclass
+from pathlib import Path
 
 import casadi as ca
 import numpy as np
 
-__all__ = ["NewtonPattern", "fill_reducing_order", "newton_pattern"]
+from bearingsim.files import FileAccessError, atomic_path
+
+__all__ = ["ORDER_SUFFIX", "NewtonPattern", "fill_reducing_order", "kept_order",
+           "newton_pattern"]
+
+ORDER_SUFFIX = ".order"
+"""Suffix of the companion file of a kernel library that keeps its Jacobian's order."""
+_DIGEST_BYTES = 16
 
 
 def fill_reducing_order(pattern: ca.Sparsity) -> np.ndarray:
@@ -45,6 +61,53 @@ def fill_reducing_order(pattern: ca.Sparsity) -> np.ndarray:
     lu = splu(a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
               options={"SymmetricMode": True})
     return np.argsort(lu.perm_c)
+
+
+def _digest(pattern: ca.Sparsity) -> bytes:
+    """A digest of the pattern (its size and compressed columns)."""
+    parts = (np.array([pattern.size1(), pattern.size2()], dtype=np.int64),
+             np.asarray(pattern.colind(), dtype=np.int64),
+             np.asarray(pattern.row(), dtype=np.int64))
+    return hashlib.blake2b(b"".join(a.tobytes() for a in parts),
+                           digest_size=_DIGEST_BYTES).digest()
+
+
+def kept_order(pattern: ca.Sparsity, library: Path | None) -> np.ndarray:
+    """:func:`fill_reducing_order` of ``pattern``, kept in the companion file
+    ``<library>.order`` of a compiled kernel: read from it when it holds the order of this
+    pattern (a digest of the pattern, then the order as int32), else computed and written
+    there (atomically; a cache that cannot be written is only not kept). A file of another
+    pattern, of the wrong size or not a permutation is never used, but replaced.
+
+    Parameters
+    ----------
+    pattern : casadi.Sparsity
+        Structural non-zeros of ``A`` (``n x n``).
+    library : Path or None
+        The kernel library the pattern belongs to (None: computed, not kept).
+
+    Returns
+    -------
+    ndarray of int
+        ``order``: the permuted matrix is ``A[order][:, order]``.
+    """
+    if library is None:
+        return fill_reducing_order(pattern)
+    path = Path(library).with_name(Path(library).name + ORDER_SUFFIX)
+    n, digest = pattern.size1(), _digest(pattern)
+    try:
+        data = path.read_bytes()
+    except OSError:
+        data = b""
+    if len(data) == _DIGEST_BYTES + 4 * n and data[:_DIGEST_BYTES] == digest:
+        order = np.frombuffer(data, dtype=np.int32, offset=_DIGEST_BYTES).astype(np.int64)
+        if np.array_equal(np.sort(order), np.arange(n)):
+            return order
+    order = fill_reducing_order(pattern)
+    with contextlib.suppress(FileAccessError):
+        with atomic_path(path) as tmp:
+            tmp.write_bytes(digest + order.astype(np.int32).tobytes())
+    return order
 
 
 @dataclass(frozen=True)

@@ -56,7 +56,7 @@ from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.integrator_calls import IntegratorCall
 from bearingsim.simulation.kernels import Kernel
 from bearingsim.simulation.native_streams import quiet_stdout
-from bearingsim.simulation.ordering import fill_reducing_order
+from bearingsim.simulation.ordering import kept_order
 
 __all__ = ["CLOCK", "CLOCK_EVERY", "DENSE_LIMIT", "INTEGRATORS", "LINEAR_SOLVERS", "MAX_NUM_DIR",
            "Built", "Clock", "IntegratorCache", "build_integrator", "choose_linear_solver",
@@ -440,7 +440,7 @@ def _state_order(kernel: Kernel, linear_solver: str) -> np.ndarray | None:
     if linear_solver != "csparse" or kernel.form != "ode":
         return None
     jac = kernel.function.jacobian()
-    return fill_reducing_order(jac.sparsity_out(jac.name_out().index("jac_ode_x")))
+    return kept_order(jac.sparsity_out(jac.name_out().index("jac_ode_x")), kernel.library)
 
 
 def build_integrator(method: str, system: System, kernel: Kernel, signal: InputSignal,

@@ -208,6 +208,59 @@ def test_fill_reducing_order_finds_the_bearing_pattern_in_any_given_order(member
     assert _lu_fill(given_order[order][:, order].tocsc()) == 0
 
 
+def test_the_order_is_kept_beside_the_library_and_read_back(tmp_path, monkeypatch):
+    """A later process reads the order from the library's companion file instead of
+    importing scipy.sparse for SuperLU (0.35-0.5 s a process)."""
+    from bearingsim.simulation import ordering
+
+    a = _arrowhead(n_members=12, per_member=9, shared=10)
+    library = tmp_path / "bsm_ode_0123456789abcdef.so"
+    order = ordering.kept_order(_pattern(a), library)
+    np.testing.assert_array_equal(order, fill_reducing_order(_pattern(a)))
+    kept = tmp_path / ("bsm_ode_0123456789abcdef.so" + ordering.ORDER_SUFFIX)
+    assert kept.stat().st_size == 16 + 4 * a.shape[0]
+
+    def no_superlu(pattern):
+        raise AssertionError("computed again")
+
+    monkeypatch.setattr(ordering, "fill_reducing_order", no_superlu)
+    np.testing.assert_array_equal(ordering.kept_order(_pattern(a), library), order)
+
+
+@pytest.mark.parametrize("damage", ["another pattern", "truncated", "not a permutation",
+                                    "empty"])
+def test_a_kept_order_that_does_not_fit_is_replaced_never_used(tmp_path, damage):
+    from bearingsim.simulation import ordering
+
+    a = _arrowhead(n_members=5, per_member=4, shared=3)
+    library = tmp_path / "bsm_ode_0123456789abcdef.so"
+    kept = tmp_path / ("bsm_ode_0123456789abcdef.so" + ordering.ORDER_SUFFIX)
+    right = ordering.kept_order(_pattern(a), library)
+    data = kept.read_bytes()
+    if damage == "another pattern":
+        other = _arrowhead(n_members=5, per_member=4, shared=3)
+        other[0, a.shape[0] - 1] = 1.0  # one more nonzero, the same size
+        ordering.kept_order(_pattern(other.tocsc()), library)
+    elif damage == "truncated":
+        kept.write_bytes(data[:-4])
+    elif damage == "not a permutation":
+        kept.write_bytes(data[:16] + np.zeros(a.shape[0], dtype=np.int32).tobytes())
+    else:
+        kept.write_bytes(b"")
+    np.testing.assert_array_equal(ordering.kept_order(_pattern(a), library), right)
+    assert kept.read_bytes() == data  # rewritten for this pattern
+
+
+def test_an_order_that_cannot_be_kept_is_still_given(tmp_path):
+    from bearingsim.simulation import ordering
+
+    a = _arrowhead(n_members=5, per_member=4, shared=3)
+    blocked = tmp_path / "a file"
+    blocked.write_text("not a folder")
+    np.testing.assert_array_equal(ordering.kept_order(_pattern(a), blocked / "lib.so"),
+                                  fill_reducing_order(_pattern(a)))
+
+
 def test_sparse_lu_integrates_in_a_fill_reducing_order_and_returns_the_systems_order(
         kernel_cache):
     system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=100.0,
