@@ -45,7 +45,7 @@ from bench import (
     work_precision,
 )
 from bench import fmu as fmu_bench
-from bench.common import Section, machine_info, markdown_table
+from bench.common import ROOT, Section, byte_compiled, machine_info, markdown_table
 
 __all__ = ["main", "render"]
 
@@ -106,6 +106,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--large-chain", action="store_true",
                         help="assembler scaling also at N = 3000 and 10 000 (a few minutes)")
     args = parser.parse_args(argv)
+    byte_compiled(ROOT)
     out: Path = args.out
     img_dir = out.parent / "img"
     img_dir.mkdir(parents=True, exist_ok=True)

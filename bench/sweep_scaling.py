@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.common import Section, fmt, markdown_table
+from bench.common import ROOT, Section, byte_compiled, fmt, markdown_table
 
 __all__ = ["run", "section"]
 
@@ -318,6 +318,7 @@ def run(workers: int = 2) -> dict:
     from bearingsim.scenes.library import builtin_scene_path
     from bearingsim.scenes.sweep_plan import plan_sweep
 
+    byte_compiled(ROOT)  # each fresh process reads the modules' bytecode, as an install's
     load_before = os.getloadavg()
     nested = warm_load()
     scene = load_scene(builtin_scene_path("deep_groove_duty1"))
