@@ -161,8 +161,9 @@ class SweepResult:
 
 def _ready_to_write(units: dict[str, str]) -> None:
     """Import what writing the results takes (Parquet, the figure) and resolve the display
-    units of the columns: the client does it in a thread while the workers run the points
-    (it waits for them meanwhile), instead of after the last point."""
+    units of the columns: the client does it in a thread from the end of its plan, while the
+    cluster starts (the client waits for it, a core mostly idle) and then beside the points,
+    instead of after the last point."""
     steps = [SweepTable.ready,
              *(functools.partial(importlib.import_module, name) for name in (
                  "matplotlib.figure", "matplotlib.backends.backend_agg",
@@ -294,6 +295,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     own = client is None
     starting = (concurrent.futures.ThreadPoolExecutor(1).submit(connect, scheduler, n_workers)
                 if own else None)  # the cluster starts while the client plans
+    preparing = concurrent.futures.ThreadPoolExecutor(1)
     cluster = None
     try:
         plan = plan_sweep(scene, points)
@@ -342,6 +344,8 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             record(probe)
         lap("plan")
 
+        if table is not None:  # while the cluster starts, then beside the points
+            preparing.submit(_ready_to_write, units)
         if own:
             client, cluster = starting.result()
         client.wait_for_workers(1)
@@ -356,9 +360,6 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                              n_threads, timeout, chunk, point_s, plan.payloads, costs)
         bar = tqdm(total=len(points), initial=len(rows), unit="point", leave=False,
                    disable=None if progress is None else not progress)  # None: a terminal's
-        preparing = concurrent.futures.ThreadPoolExecutor(1)
-        if table is not None:
-            preparing.submit(_ready_to_write, units)
         try:
             for part, chunk_rows in feeder:
                 if isinstance(chunk_rows, BaseException):  # a chunk lost for good
@@ -373,10 +374,10 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             raise
         finally:
             bar.close()
-            preparing.shutdown()
         point_s, size = feeder.point_s, feeder.largest
         lap("points")
     finally:
+        preparing.shutdown()
         if own:
             if client is None and starting is not None:
                 try:
