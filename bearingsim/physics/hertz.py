@@ -121,7 +121,7 @@ def _exact_parameter(alpha_r):
     """
     target = (alpha_r - 1.0) / (alpha_r + 1.0)
     k0 = _hamrock_brewe(alpha_r)[0]
-    m = 1.0 - 1.0 / (k0 * k0)
+    m = op.fmin(1.0 - 1.0 / (k0 * k0), _M_MAX)  # the fit's k of a huge alpha_r rounds m to 1
     for _ in range(_NEWTON_STEPS):
         first, second = op.ellipk(m), op.ellipe(m)
         b_int = (second - (1.0 - m) * first) / m
