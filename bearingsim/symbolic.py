@@ -240,7 +240,7 @@ def _agm(m):
     ``c_n``; refuses a number ``m >= 1`` (K is infinite at 1, undefined above)."""
     if not is_symbolic(m) and np.any(np.asarray(m) >= 1.0):
         raise ValueError(f"elliptic integrals: the parameter m must be below 1 [1], got "
-                             f"{np.max(m)!r}")
+                         f"{float(np.max(m))!r}")
     a, b = 1.0, sqrt(1.0 - m)
     c2_sum = 0.5 * m  # sum of 2^(n-1) c_n^2 starting with c_0^2 = m
     scale = 0.5
