@@ -123,3 +123,19 @@ def test_planning_a_sweep_with_input_expressions_does_not_import_scipy_integrate
         assert features[0]["inputs.shaft_speed"] > 0
         """, {"PYTHONPATH": str(ROOT), "BEARINGSIM_CACHE": str(tmp_path / "cache")})
     assert "scipy.integrate" not in used
+
+
+def test_learning_the_cost_of_a_sweeps_points_does_not_import_scipy_optimize():
+    """The client refits the points' measured times as they come in
+    (:class:`~bearingsim.scenes.sweep_order.PointCosts`) with numpy: its robust fit through
+    scipy.optimize.least_squares imported scipy.optimize (about 0.8 s of CPU) while the
+    workers ran, taken from them on a machine with as many cores as workers."""
+    used = _imported_after("""
+        from bearingsim.scenes.sweep_order import PointCosts
+        costs = PointCosts({k: {"span": 0.1, "rotation": 10.0 * k, "inputs.Fr": 100.0 * (k % 3)}
+                            for k in range(1, 13)})
+        for k in range(1, 9):
+            costs.add(k, 0.1 + 0.01 * k + 1e-4 * (k % 3))
+        assert costs.estimate(12) > costs.estimate(11)
+        """)
+    assert used == []

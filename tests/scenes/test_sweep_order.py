@@ -10,11 +10,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from bearingsim.scenes import load_scene
 from bearingsim.scenes.sweep import grid_points, run_sweep
 from bearingsim.scenes.sweep_grid import parse_grid
-from bearingsim.scenes.sweep_order import PointCosts, point_features
+from bearingsim.scenes.sweep_order import PointCosts, point_features, trimmed_least_squares
 from bearingsim.scenes.sweep_plan import plan_sweep
 from tests.scenes.sweep_scenes import torque_level_scene
 
@@ -107,6 +109,24 @@ def test_swept_values_up_to_the_largest_float_give_finite_estimates():
                   + (0.002 if features[k]["initial.w"] else 0.0))
     assert costs.estimate(3) == pytest.approx(0.01 + 0.02 + 0.002, rel=0.01)
     assert costs.longest_first(list(features))[0] == 5
+
+
+@settings(max_examples=200, deadline=None)
+@given(coef=st.lists(st.floats(-10.0, 10.0), min_size=2, max_size=4),
+       n=st.integers(15, 40), seed=st.integers(0, 2**32 - 1),
+       disturbed=st.lists(st.floats(1.0, 100.0), max_size=3))
+def test_the_trimmed_fit_recovers_a_linear_law_past_a_few_disturbed_points(coef, n, seed,
+                                                                              disturbed):
+    """Times that follow a linear law in standardized features, up to 1e-6 of noise, with up
+    to 3 of at least 15 points (20 %) disturbed by 1-100 (another process took their core):
+    the coefficients come back within 1e-4, as a least-squares fit of the undisturbed points
+    alone gives them (the disturbed points are left out)."""
+    rng = np.random.default_rng(seed)
+    a = np.column_stack([np.ones(n), rng.standard_normal((n, len(coef) - 1))])
+    law = np.asarray(coef)
+    y = a @ law + 1e-6 * rng.standard_normal(n)
+    y[: len(disturbed)] += disturbed
+    assert trimmed_least_squares(a, y) == pytest.approx(law, abs=1e-4)
 
 
 def _table(folder: Path) -> list[list[str]]:
