@@ -201,13 +201,41 @@ def steal_seconds() -> float:
         return float("nan")
 
 
+class _GarbageCollections:
+    """Time this process spends in Python's cyclic garbage collector while the context is
+    open (:data:`gc.callbacks`): ``seconds`` in all collections, ``full`` the number of
+    collections of the oldest generation."""
+
+    def __init__(self):
+        self.seconds, self.full, self._start = 0.0, 0, 0.0
+
+    def _note(self, phase: str, info: dict) -> None:
+        if phase == "start":
+            self._start = time.perf_counter()
+            return
+        self.seconds += time.perf_counter() - self._start
+        self.full += info["generation"] == 2
+
+    def __enter__(self):
+        import gc
+
+        gc.callbacks.append(self._note)
+        return self
+
+    def __exit__(self, *exc):
+        import gc
+
+        gc.callbacks.remove(self._note)
+
+
 def _sweep(scene, points, workers: int, longest_first: bool = True) -> dict:
     """One sweep in this process: wall, phases, the workers' busy fraction, the overhead per
     point (and its parts: idle at the end, gaps between points), the CPU time of this process
     (the client and, with a LocalCluster, the scheduler)."""
     from bearingsim.scenes.sweep import run_sweep
 
-    with tempfile.TemporaryDirectory() as out:
+    collecting = _GarbageCollections()
+    with tempfile.TemporaryDirectory() as out, collecting:
         cpu0, t0, steal0 = time.process_time(), time.perf_counter(), steal_seconds()
         res = run_sweep(scene, points, n_workers=workers, out=out, progress=False,
                         longest_first=longest_first)
@@ -224,6 +252,7 @@ def _sweep(scene, points, workers: int, longest_first: bool = True) -> dict:
             "waiting": 1.0 - sum(cpu_of_points) / sum(on_workers),
             "overhead_s": (busy - sum(on_workers)) / len(on_workers),
             "fixed_s": wall - res.phases["points"], "client_cpu_s": cpu, "steal_s": steal,
+            "gc_s": collecting.seconds, "full_gc": collecting.full,
             **timeline(res.spans), "ended": time.time()}
 
 
@@ -343,7 +372,8 @@ def _scaling_row(label: str, sweep: dict) -> list[str]:
              f"{sweep['last_s'] * 1e3:.0f}",
              f"{sweep['busy']:.1%}", f"{sweep['overhead_s'] * 1e3:.1f}",
              f"{sweep['idle_end_s']:.2f}", f"{sweep['gap_s'] * 1e3:.1f}",
-             f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}"]
+             f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}",
+             f"{sweep.get('gc_s', float('nan')):.2f} ({sweep.get('full_gc', '-')})"]
             + [f"{ph.get(k, float('nan')):.2f}" for k in
                ("imports", "plan", "cluster", "ship", "points", "close", "write")]
             + [f"{sweep['load_after']:.1f}", f"{sweep.get('steal_s', float('nan')):.2f}"])
@@ -395,7 +425,10 @@ def _scaling_text(r: dict) -> list[str]:
         "start: a task's cost on the worker); fixed: wall of `run_sweep` outside the points "
         "phase (target <= 2 s + assembly; the model is loaded from the cache here, in "
         "`plan`); client CPU: CPU time of the client's process (client and scheduler) per "
-        "point over the whole sweep; steal: processor time the virtual machine's host took "
+        "point over the whole sweep; client GC: the client process's time in Python's "
+        "garbage collector over the sweep (in brackets: full collections; the sweep "
+        "freezes the objects alive before its points out of them); steal: processor time "
+        "the virtual machine's host took "
         "from this machine during the sweep (`/proc/stat`, summed over its processors: time "
         "the points may have waited for though no process here ran). Phases in seconds "
         "(imports: dask.distributed, in the first sweep of a process).",
@@ -404,7 +437,7 @@ def _scaling_text(r: dict) -> list[str]:
                         "waiting", "last [ms]",
                         "workers busy",
                         "overhead [ms]", "idle at end [s]", "gap [ms]", "fixed [s]",
-                        "client CPU [ms/point]", "imports", "plan",
+                        "client CPU [ms/point]", "client GC [s]", "imports", "plan",
                         "cluster", "ship", "points", "close", "write", "load after",
                         "steal [s]"], rows),
         "",
