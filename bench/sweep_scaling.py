@@ -27,6 +27,7 @@ Registered in ``bench/run_all.py`` ("sweep scaling"); ``python -m bench.sweep_sc
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import os
 import subprocess
@@ -217,14 +218,10 @@ class _GarbageCollections:
         self.full += info["generation"] == 2
 
     def __enter__(self):
-        import gc
-
         gc.callbacks.append(self._note)
         return self
 
     def __exit__(self, *exc):
-        import gc
-
         gc.callbacks.remove(self._note)
 
 
@@ -373,7 +370,7 @@ def _scaling_row(label: str, sweep: dict) -> list[str]:
              f"{sweep['busy']:.1%}", f"{sweep['overhead_s'] * 1e3:.1f}",
              f"{sweep['idle_end_s']:.2f}", f"{sweep['gap_s'] * 1e3:.1f}",
              f"{sweep['fixed_s']:.2f}", f"{sweep['client_cpu_s'] / N_POINTS * 1e3:.0f}",
-             f"{sweep.get('gc_s', float('nan')):.2f} ({sweep.get('full_gc', '-')})"]
+             f"{sweep['gc_s']:.2f} ({sweep['full_gc']})"]
             + [f"{ph.get(k, float('nan')):.2f}" for k in
                ("imports", "plan", "cluster", "ship", "points", "close", "write")]
             + [f"{sweep['load_after']:.1f}", f"{sweep.get('steal_s', float('nan')):.2f}"])

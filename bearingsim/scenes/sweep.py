@@ -278,12 +278,11 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
 
 
 @contextlib.contextmanager
-def _old_objects_left_alone():
-    """Python's cyclic garbage collector leaves the objects alive at the start, and those
-    :func:`gc.freeze` is called for again inside, alone until the end (then
-    :func:`gc.unfreeze`): the client holds the model, CasADi's and dask's objects (about
-    150 000), and each full collection scanned them all, about 0.1 s of the client's CPU
-    two to three times a sweep, one of them while it drew the figure."""
+def _old_objects_frozen():
+    """Keep the objects alive on entry (and those of each later :func:`gc.freeze`) out of
+    Python's cyclic garbage collector until the exit (:func:`gc.unfreeze`): a sweep's client
+    holds the model's, CasADi's and dask's objects (about 150 000), and each full collection
+    scanned them all, about 0.1 s of its CPU two or three times a sweep."""
     gc.freeze()
     try:
         yield
@@ -291,20 +290,11 @@ def _old_objects_left_alone():
         gc.unfreeze()
 
 
+@_old_objects_frozen()
 def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | None, stem: str,
            scheduler: str | None, n_workers: int, progress: bool | None, client, resume: bool,
            timeout: float | None, chunk: int | None, longest_first: bool) -> SweepResult:
     """:func:`run_sweep` after its checks, writing into ``folder`` (None: nothing)."""
-    with _old_objects_left_alone():
-        return _sweep_in(scene, points, folder, stem, scheduler, n_workers, progress, client,
-                         resume, timeout, chunk, longest_first)
-
-
-def _sweep_in(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | None,
-              stem: str, scheduler: str | None, n_workers: int, progress: bool | None,
-              client, resume: bool, timeout: float | None, chunk: int | None,
-              longest_first: bool) -> SweepResult:
-    """:func:`_sweep` with the objects alive at its start left to themselves."""
     wall = time.perf_counter()
     phases: dict[str, float] = {}
     clock = [wall]

@@ -179,7 +179,7 @@ def trimmed_least_squares(a: np.ndarray, y: np.ndarray, rounds: int = 10) -> np.
         return float(np.sum(np.sort((a @ coef - y) ** 2)[:size])), coef
 
     draw = np.random.default_rng(0)
-    starts = [fit(np.arange(n))] + [fit(draw.choice(n, min(width, n), replace=False))
+    starts = [fit(np.arange(n))] + [fit(draw.choice(n, width, replace=False))
                                     for _ in range(TRIM_STARTS if size < n else 0)]
     # two steps from each start, then the three best to the end (as FAST-LTS does)
     trials = sorted((concentrate(c, 2) for c in starts), key=lambda t: t[0])[:3]
