@@ -7,7 +7,8 @@ Usage::
 
 ``--only`` re-runs the named sections (labels as printed by a full run) and splices them into
 the existing report in place; the report's header then names the partial runs and their dates,
-so every figure still comes from a command in the report.
+so every figure still comes from a command in the report (a run's note names only the sections
+whose figures it still accounts for: a later run of the same section supersedes it).
 """
 
 from __future__ import annotations
@@ -47,7 +48,7 @@ from bench import (
 from bench import fmu as fmu_bench
 from bench.common import ROOT, Section, byte_compiled, machine_info, markdown_table
 
-__all__ = ["main", "render"]
+__all__ = ["main", "render", "superseded_notes_dropped"]
 
 
 def render(sections: list[Section], command: str, machine: dict[str, str], total_s: float,
@@ -91,6 +92,54 @@ def render(sections: list[Section], command: str, machine: dict[str, str], total
         title = re.sub(r"^\d+\.\s*", "", s.title)
         parts += ["", f"## {k}. {title}", "", s.body]
     return "\n".join(parts) + "\n"
+
+
+_NOTE = re.compile(r"(?m)^Sections? (.+?)( (?:re-)?run by `.*)\n\n?")
+"""A header line of a partial run: its section labels (``, ``-joined), then the command."""
+
+
+def _note(labels: list[str], rest: str) -> str:
+    """A header line of a partial run: ``Section(s) <labels><rest>`` and a blank line."""
+    return f"Section{'s' if len(labels) > 1 else ''} {', '.join(labels)}{rest}\n\n"
+
+
+def superseded_notes_dropped(head: str, rerun: list[str], labels: list[str]) -> str:
+    """The report's header without the partial runs' notes that a later one supersedes: a
+    note keeps the labels of the sections whose figures it still accounts for (neither being
+    re-run, ``rerun``, nor named by a note below it, a later run), and a note left with none
+    goes; so each section is named by the one run its figures come from.
+
+    Parameters
+    ----------
+    head : str
+        The report up to its first section.
+    rerun : list of str
+        Labels of the sections being re-run.
+    labels : list of str
+        Every section's label (a note's ``, ``-joined list is split on them: a label may hold a
+        comma).
+
+    Returns
+    -------
+    str
+        The header.
+    """
+    notes = list(_NOTE.finditer(head))
+    covered = set(rerun)
+    kept: list[str] = []
+    for note in reversed(notes):
+        found = {label: re.search(rf"(?:^|, ){re.escape(label)}(?:, |$)", note.group(1))
+                 for label in labels}
+        named = sorted((label for label, at in found.items() if at),
+                       key=lambda label: found[label].start())  # in the note's order
+        left = [label for label in named if label not in covered]
+        covered.update(named)
+        kept.append(_note(left, note.group(2)) if left else "")
+    parts, at = [], 0
+    for note, text in zip(notes, reversed(kept), strict=True):
+        parts += [head[at:note.start()], text]
+        at = note.end()
+    return "".join(parts) + head[at:]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -199,9 +248,10 @@ def _rerun_sections(out: Path, steps: list, only: list[str], command: str, start
         by_number[k] = f"## {k}. {title}\n\n{section.body}\n\n"
     total = time.perf_counter() - start
     stamp = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
-    note = (f"Sections {', '.join(only)} re-run by `{command}`"
-            f"{' (quick mode)' if quick else ''} on {stamp} ({total:.0f} s); other sections are "
-            "from the full run above or the lines here.\n\n")
+    note = _note(only, f" re-run by `{command}`{' (quick mode)' if quick else ''} on {stamp} "
+                       f"({total:.0f} s); other sections are from the full run above or the "
+                       "lines here.")
+    head = superseded_notes_dropped(head, only, [label for label, _ in steps])
     head = head.rstrip("\n") + "\n\n" + note if "## Machine" not in head else (
         head.replace("## Machine", note + "## Machine", 1))
     body = "".join(by_number[k] for k in sorted(by_number))
