@@ -21,7 +21,10 @@ over ``NUDGES`` step sequences rather than one (one steady run of the nested bea
   (``nniters`` per step; its CPU includes CasADi's integrator interface). And an experiment,
   ``KEPT_RATE``: the tree's core with the rate estimate kept at a new factorisation instead
   of reset to 1 (as CVODES resets it): the reset costs a second iteration at almost every
-  new factorisation; kept, the iteration may stop after one.
+  new factorisation; kept, the iteration may stop after one. And a second, ``LOOSE_TEST``:
+  the tree's core with the Newton iteration's stopping test ``LOOSE_COEF`` of the tolerance
+  instead of ``NEWTON_COEF`` (0.1, CVODES' ``nlscoef``): fewer iterations a step, at the
+  price of what the looser corrections leave in the error estimate.
 * ``histogram``: the same runs one step per call of the C loop: the share of steps that took
   1, 2, 3 and 4 or more Newton iterations (with those of attempts that failed), the share of
   steps with a Jacobian evaluation in them (after a failed attempt on an old one, or asked
@@ -121,26 +124,35 @@ RESET_LINE = "    h->c_lu = c;\n    h->crate = 1.0;\n"
 
 KEPT_RATE = "tree, rate kept at a new LU (experiment)"
 
+TEST_LINE = "#define NEWTON_COEF 0.1\n"
+"""The Newton iteration's stopping test in ``c/bsm_bdf.c`` (a share of the tolerance)."""
+LOOSE_COEF = 0.33
+"""The looser stopping test of the experiment ``LOOSE_TEST`` (IDA's ``epsNewt``)."""
+LOOSE_TEST = f"tree, Newton test {LOOSE_COEF:g} of the tolerance (experiment)"
 
-def _kept_rate_sources(folder: Path) -> Path:
-    """The tree's C sources with the rate estimate kept at a new factorisation (an
-    experiment: the iteration may then stop after one correction on a new Jacobian)."""
+
+def _variant_sources(folder: Path, line: str, replacement: str) -> Path:
+    """The tree's C sources in ``folder`` with ``line`` of ``bsm_bdf.c`` replaced (an
+    experiment)."""
     for name in SOURCES:
         (folder / name).write_text((compiled_bdf.C_DIR / name).read_text())
     core = (folder / "bsm_bdf.c").read_text()
-    if RESET_LINE not in core:
-        raise RuntimeError("bsm_bdf.c no longer resets the rate estimate where expected")
-    (folder / "bsm_bdf.c").write_text(core.replace(RESET_LINE, "    h->c_lu = c;\n"))
+    if line not in core:
+        raise RuntimeError(f"bsm_bdf.c no longer has {line.strip()!r}")
+    (folder / "bsm_bdf.c").write_text(core.replace(line, replacement))
     return folder
 
 
 def counts(case: Case) -> list[list]:
-    """The tree's core and ``BEFORE``'s, alternating, the experiment ``KEPT_RATE`` and
-    CVODES (``counts``)."""
+    """The tree's core and ``BEFORE``'s, alternating, the experiments ``KEPT_RATE`` and
+    ``LOOSE_TEST``, and CVODES (``counts``)."""
     runs: dict[tuple, tuple] = {}
-    with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as kept:
+    with (tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as kept,
+          tempfile.TemporaryDirectory() as loose):
         builds = {f"{BEFORE} (before)": sources_at(BEFORE, Path(tmp)), "tree": None,
-                  KEPT_RATE: _kept_rate_sources(Path(kept))}
+                  KEPT_RATE: _variant_sources(Path(kept), RESET_LINE, "    h->c_lu = c;\n"),
+                  LOOSE_TEST: _variant_sources(Path(loose), TEST_LINE,
+                                               f"#define NEWTON_COEF {LOOSE_COEF}\n")}
         for _ in range(REPEATS):
             for label, folder in builds.items():
                 with integrator_build(folder, _tree_flags()):
