@@ -226,6 +226,7 @@ def _sweep(args: argparse.Namespace) -> int:
         start_worker_server()
     from bearingsim.scenes.sweep import (
         SweepError,
+        crossed_points,
         describe_failures,
         describe_points,
         grid_points,
@@ -241,7 +242,7 @@ def _sweep(args: argparse.Namespace) -> int:
     if args.sample:
         samples = sample_points(parse_sample(args.sample), args.samples, args.seed,
                                 method=args.sampler, scramble=not args.no_scramble)
-        points = [{**p, **s} for p in points for s in samples]
+        points = crossed_points(points, samples)
     from bearingsim.scenes import load_scene
     from bearingsim.scenes.tables import scene_output_folder
 

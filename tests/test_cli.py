@@ -118,6 +118,13 @@ def test_sweep_bad_grid_key_is_exit_2(scene_file, capsys):
     assert "must start with" in capsys.readouterr().err
 
 
+def test_sweep_with_a_key_gridded_twice_is_exit_2(scene_file, capsys):
+    """Before: the second --grid of a key replaced the first's values and the sweep ran."""
+    assert main(["sweep", str(scene_file), "--grid", "inputs.Fr=1,2", "--grid",
+                 "inputs.Fr=3"]) == 2
+    assert "--grid inputs.Fr is given twice" in capsys.readouterr().err
+
+
 def test_sweep_needs_a_grid_or_sample(scene_file, capsys):
     assert main(["sweep", str(scene_file)]) == 2
     assert "--grid" in capsys.readouterr().err

@@ -20,7 +20,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.units import parse_quantity
 
 __all__ = ["SAMPLERS", "SIM_KEYS", "SampleBalanceWarning", "SweepError", "check_key",
-           "grid_points", "parse_sample", "sample_points"]
+           "crossed_points", "grid_points", "parse_sample", "sample_points"]
 
 SAMPLERS = ("lhs", "lhs-optimal", "sobol")
 """Names of the samplers :func:`sample_points` takes."""
@@ -75,8 +75,8 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
     Raises
     ------
     SweepError
-        For a key a sweep cannot set, a malformed item or a range that is not finite with
-        low < high.
+        For a key a sweep cannot set, a key given twice, a malformed item or a range that
+        is not finite with low < high.
     """
     ranges = {}
     for item in items:
@@ -85,6 +85,9 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
         key, rng = item.split("=", 1)
         key = key.strip()
         check_key(key)
+        if key in ranges:  # a second --sample of a key replaced the first one's range, unsaid
+            raise SweepError(f"--sample {key} is given twice; give one range: "
+                             f"--sample {key}=low:high")
         try:
             lo, hi = (_bound(x) for x in rng.split(":", 1))
         except (ValueError, ParameterError):
@@ -182,6 +185,34 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     box = qmc.scale(unit, lows, highs)
     keys = list(ranges)
     return [{k: float(row[j]) for j, k in enumerate(keys)} for row in box]
+
+
+def crossed_points(grid_points: list[dict[str, Any]], samples: list[dict[str, Any]]
+                   ) -> list[dict[str, Any]]:
+    """Every grid point with every sample point (the sample fastest).
+
+    Parameters
+    ----------
+    grid_points : list of dict
+        The grid's points (``[{}]``: no grid).
+    samples : list of dict
+        The sample's points.
+
+    Returns
+    -------
+    list of dict
+        The points.
+
+    Raises
+    ------
+    SweepError
+        For a key both in the grid and in the sample (one would overwrite the other).
+    """
+    both = sorted(set(grid_points[0]) & set(samples[0])) if grid_points and samples else []
+    if both:
+        raise SweepError(f"{', '.join(both)}: both gridded (--grid) and sampled (--sample); "
+                         "give each key one of them")
+    return [{**p, **s} for p in grid_points for s in samples]
 
 
 def _bound(text: str) -> float:

@@ -63,6 +63,7 @@ from bearingsim.scenes.analyses import NotSettledWarning
 from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.sampling import (
     SweepError,
+    crossed_points,
     grid_points,
     parse_sample,
     sample_points,
@@ -91,7 +92,7 @@ from bearingsim.sweep_server import start_worker_server
 from bearingsim.units import display_unit
 from bearingsim.validation import check_count
 
-__all__ = ["SweepError", "SweepResult", "parse_sample", "grid_points",
+__all__ = ["SweepError", "SweepResult", "parse_sample", "grid_points", "crossed_points",
            "sample_points", "run_sweep", "describe_failures", "describe_points", "chunk_size",
            "CHUNK_SECONDS"]
 

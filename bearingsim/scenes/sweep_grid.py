@@ -82,6 +82,12 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
     -------
     dict of str to list of str
         The values by key.
+
+    Raises
+    ------
+    SweepError
+        For a malformed item, a key a sweep cannot set, a key without values or a key given
+        twice.
     """
     grid: dict[str, list[Any]] = {}
     for item in items:
@@ -90,6 +96,9 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
         key, values = item.split("=", 1)
         key = key.strip()
         check_key(key)
+        if key in grid:  # a second --grid of a key replaced the first one's values, unsaid
+            raise SweepError(f"--grid {key} is given twice; give all its values in one: "
+                             f"--grid {key}=v1,v2,...")
         vals = _split_values(values)
         if not vals:
             raise SweepError(f"--grid {key}: no values")

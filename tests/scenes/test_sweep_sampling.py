@@ -19,9 +19,11 @@ from bearingsim.scenes.sampling import (
     SampleBalanceWarning,
     SweepError,
     check_key,
+    crossed_points,
     parse_sample,
     sample_points,
 )
+from bearingsim.scenes.sweep_grid import parse_grid
 
 RANGES = {"parameters.shaft.J": (1e-4, 1e-3), "inputs.shaft_speed": (100.0, 600.0)}
 
@@ -112,6 +114,28 @@ def test_bad_specifications_are_named():
         parse_sample(["x=1:2"])
     with pytest.raises(SweepError, match="allowed simulation settings"):
         check_key("simulation.solver")
+
+
+def test_a_key_given_twice_is_refused_not_overwritten():
+    """A new-user trial: `--grid inputs.Fr=1,2 --grid inputs.Fr=3` ran one point, Fr = 3 (the
+    second --grid replaced the first's values without a word); the same for --sample, and a
+    key both gridded and sampled ran with the sample's values only."""
+    with pytest.raises(SweepError, match=r"--grid inputs.Fr is given twice; give all its "
+                                         r"values in one: --grid inputs.Fr=v1,v2,..."):
+        parse_grid(["inputs.Fr=1,2", "inputs.Fa=0", "inputs.Fr=3"])
+    with pytest.raises(SweepError, match=r"--sample inputs.Fr is given twice"):
+        parse_sample(["inputs.Fr=1:2", " inputs.Fr =3:4"])
+    grid = [{"inputs.Fr": 1.0, "inputs.Fa": 0.0}, {"inputs.Fr": 2.0, "inputs.Fa": 0.0}]
+    with pytest.raises(SweepError, match=r"inputs.Fr: both gridded \(--grid\) and sampled"):
+        crossed_points(grid, [{"inputs.Fr": 5.0, "inputs.x": 1.0}])
+
+
+def test_grid_and_sample_points_cross_with_the_sample_fastest():
+    grid = [{"inputs.Fr": 1.0}, {"inputs.Fr": 2.0}]
+    samples = [{"inputs.x": 0.5}, {"inputs.x": 0.7}, {"inputs.x": 0.9}]
+    assert crossed_points(grid, samples) == [
+        {"inputs.Fr": fr, "inputs.x": x} for fr in (1.0, 2.0) for x in (0.5, 0.7, 0.9)]
+    assert crossed_points([{}], samples) == samples
 
 
 def test_cli_flags_kept_and_sampler_added():
