@@ -2,8 +2,9 @@
 
 ``--grid`` items parsed into values by key (:func:`parse_grid`), a swept value converted to the
 type its key expects (:func:`coerce`), the scene of one point, validated with errors that name
-the sweep key (:func:`point_scene`), the check that an analysis scene's own grid inputs still
-have values (:func:`check_operating_points`) and the swept values as the sweep's table stores
+the sweep key (:func:`point_scene`), the checks that every point sets the same keys
+(:func:`check_point_keys`) and that an analysis scene's own grid inputs still have values
+(:func:`check_operating_points`), and the swept values as the sweep's table stores
 them (:func:`si_values`). Running the points is :func:`bearingsim.scenes.sweep.run_sweep`.
 """
 
@@ -20,7 +21,8 @@ else:  # pragma: no cover - Python 3.10
 from bearingsim.scenes.sampling import SweepError, check_key
 from bearingsim.scenes.scene import Scene, SceneError
 
-__all__ = ["check_operating_points", "coerce", "parse_grid", "point_scene", "si_values"]
+__all__ = ["check_operating_points", "check_point_keys", "coerce", "parse_grid", "point_scene",
+           "si_values"]
 
 
 def _split_values(text: str) -> list[str]:
@@ -198,6 +200,25 @@ def point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
         why = "; ".join(p.key + ": " + p.reason + (f"; allowed: {p.allowed}" if p.allowed else "")
                         for p in exc.problems)
         raise SweepError(f"sweep point ({shown}): {why}") from None
+
+
+def check_point_keys(points: list[dict[str, Any]]) -> None:
+    """Raise :class:`SweepError` unless every point sets the same keys: they are the table's
+    columns, which name what each row ran (a point with other keys had its row say nothing of
+    them).
+
+    Parameters
+    ----------
+    points : list of dict
+        The sweep's points (values by sweep key).
+    """
+    keys = set(points[0])
+    for k, point in enumerate(points):
+        if set(point) != keys:
+            raise SweepError(
+                f"sweep point {k} sets {', '.join(sorted(point)) or 'no key'}, point 0 "
+                f"{', '.join(sorted(keys)) or 'no key'}: every point of a sweep sets the same "
+                "keys (the columns of its table)")
 
 
 def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:

@@ -26,7 +26,13 @@ from bearingsim.scenes.scene_input_checks import (
     input_unit_mismatches,
     value_unit_mismatches,
 )
-from bearingsim.scenes.sweep_grid import check_operating_points, coerce, point_scene, si_values
+from bearingsim.scenes.sweep_grid import (
+    check_operating_points,
+    check_point_keys,
+    coerce,
+    point_scene,
+    si_values,
+)
 from bearingsim.scenes.sweep_worker import Job, ModelPayload
 
 __all__ = ["SweepPlan", "plan_sweep"]
@@ -103,8 +109,10 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
     Raises
     ------
     SweepError
-        For a point whose values make an invalid scene or model, naming the point.
+        For a point whose values make an invalid scene or model, or that sets other keys than
+        the first point, naming the point.
     """
+    check_point_keys(points)
     scenes = [point_scene(scene, p) for p in points]
     if scene.analysis != "transient":
         check_operating_points(scene, points)

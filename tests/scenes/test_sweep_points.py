@@ -105,6 +105,22 @@ def test_analysis_sweep_names_a_grid_input_left_without_value(client):
                   progress=False)
 
 
+def test_points_that_set_other_keys_are_refused_before_anything_runs(tmp_path):
+    """Before: run_sweep(scene, [{"inputs.Fr": 100}, {"inputs.Fa": 20}]) ran both points and
+    wrote a table whose only swept column was inputs.Fr, empty in row 1: nothing said that
+    point 1 had run with Fa = 20 N."""
+    scene = SCENES[0].parent / "double_layer_friction.toml"
+    with pytest.raises(SweepError, match=r"sweep point 1 sets inputs\.Fa, point 0 inputs\.Fr: "
+                                         r"every point of a sweep sets the same keys"):
+        run_sweep(scene, [{"inputs.Fr": 100.0}, {"inputs.Fa": 20.0}], out=tmp_path / "o",
+                  progress=False)
+    with pytest.raises(SweepError, match=r"sweep point 2 sets inputs\.Fa, inputs\.Fr, point 0 "
+                                         r"inputs\.Fr"):
+        run_sweep(scene, [{"inputs.Fr": 100.0}, {"inputs.Fr": 200.0},
+                          {"inputs.Fr": 300.0, "inputs.Fa": 20.0}], progress=False)
+    assert not list((tmp_path / "o").glob("*.*"))  # no table, summary or figure
+
+
 def test_a_misspelt_input_is_pointed_at_beside_the_grid_inputs_left_without_value(client):
     """A misspelt input (``Fx`` for the double-layer bearing's ``Fr``) was answered with
     ``inputs.Fr, inputs.shaft_speed then has no value``, not pointing at the misspelling."""
