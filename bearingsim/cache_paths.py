@@ -3,8 +3,9 @@
 One root for every cache: assembled systems (``systems/``, :mod:`bearingsim.assembler.cache`),
 compiled kernel libraries (:func:`bearingsim.simulation.compile.default_cache_dir`), the names
 of the kernel libraries of loaded systems (``kernel_names/``,
-:mod:`bearingsim.simulation.kernel_names`) and the parsed unit definitions of the units library
-(``pint/``, :mod:`bearingsim.units.registry`).
+:mod:`bearingsim.simulation.kernel_names`), the modules sweep workers import
+(``sweep_preloads/``, :mod:`bearingsim.sweep_preloads`) and the parsed unit definitions of
+the units library (``pint/``, :mod:`bearingsim.units.registry`).
 ``bearingsim cache clear`` empties it; everything in it is rebuilt on demand. The systems and
 libraries keep to a size budget, the least recently used going first
 (:mod:`bearingsim.cache_budget`).
@@ -15,11 +16,14 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-__all__ = ["KERNEL_NAMES", "SYSTEM_SUFFIX", "cache_root", "entry_name", "library_files",
-           "system_files", "systems_dir"]
+__all__ = ["KERNEL_NAMES", "SWEEP_PRELOADS", "SYSTEM_SUFFIX", "cache_root", "entry_name",
+           "library_files", "system_files", "systems_dir"]
 
 KERNEL_NAMES = "kernel_names"
 """The folder of the remembered kernel library names in the cache root."""
+SWEEP_PRELOADS = "sweep_preloads"
+"""The folder of the modules learned for sweep workers (:mod:`bearingsim.sweep_preloads`) in
+the cache root."""
 SYSTEM_SUFFIX = ".bsys"
 """File suffix of an assembled system's entry (:mod:`bearingsim.assembler.cache`)."""
 

@@ -221,9 +221,10 @@ def _validate(args: argparse.Namespace) -> int:
 
 def _sweep(args: argparse.Namespace) -> int:
     if args.scheduler is None:  # the LocalCluster's workers import meanwhile, on another core
+        from bearingsim.sweep_preloads import learned_preloads, scene_file
         from bearingsim.sweep_server import start_worker_server
 
-        start_worker_server()
+        start_worker_server(learned_preloads(scene_file(args.scene)))
     from bearingsim.scenes.sweep import (
         SweepError,
         crossed_points,

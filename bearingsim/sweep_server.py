@@ -7,7 +7,9 @@ takes the server about as long as it takes the client (seconds), so the sooner t
 starts the less the sweep waits for it: ``bearingsim sweep`` and
 :func:`~bearingsim.scenes.sweep.run_sweep` call :func:`start_worker_server` before they import
 or load anything, and the server imports on another core while the client imports, reads the
-scene and plans the sweep. This module imports nothing else of bearingsim, so that it can.
+scene and plans the sweep. This module imports nothing else of bearingsim, so that it can. The
+server also imports the modules the swept scene's workers imported at their first point in
+its earlier sweeps (:mod:`bearingsim.sweep_preloads`), so that every worker starts with them.
 
 **Ctrl-C.** A terminal sends SIGINT to every process of the foreground process group: the
 client, the fork server and every worker forked from it. The client answers it (it cancels the
@@ -26,8 +28,9 @@ import multiprocessing
 import multiprocessing.forkserver
 import signal
 import threading
+from collections.abc import Sequence
 
-__all__ = ["WORKER_MODULE", "WORKER_MODULES", "start_worker_server"]
+__all__ = ["PRELOADED", "WORKER_MODULE", "WORKER_MODULES", "start_worker_server"]
 
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """The sweep worker's module (also preloaded by every worker of a sweep's cluster)."""
@@ -35,15 +38,31 @@ WORKER_MODULES = ("distributed", WORKER_MODULE)
 """Imported by the server before it forks the first worker."""
 
 
-def start_worker_server() -> None:
+PRELOADED: list[str] = []
+"""The modules this process's fork server imports (set by the first
+:func:`start_worker_server`; empty before)."""
+
+
+def start_worker_server(preload: Sequence[str] = ()) -> None:
     """Start the fork server of the sweep workers of this process, importing
-    :data:`WORKER_MODULES`; returns at once (the server imports them meanwhile). A server
-    already running is kept (it lives as long as this process).
+    :data:`WORKER_MODULES` and then ``preload``; returns at once (the server imports them
+    meanwhile). A server already running is kept (it lives as long as this process), with what
+    it imported (:data:`PRELOADED`).
 
     Called from the main thread, the server starts with SIGINT ignored, and so do the
     workers forked from it (see the module's docstring); this process ignores SIGINT only
-    while it spawns the server."""
-    multiprocessing.get_context("forkserver").set_forkserver_preload(list(WORKER_MODULES))
+    while it spawns the server.
+
+    Parameters
+    ----------
+    preload : sequence of str
+        More modules for the server to import: those the workers of the swept scene imported
+        at their first point in its earlier sweeps
+        (:func:`bearingsim.sweep_preloads.learned_preloads`; one that fails to import is
+        skipped)."""
+    if not PRELOADED:  # the first call of this process chooses what the server imports
+        PRELOADED.extend(dict.fromkeys([*WORKER_MODULES, *preload]))
+        multiprocessing.get_context("forkserver").set_forkserver_preload(list(PRELOADED))
     handler = signal.getsignal(signal.SIGINT)
     if handler is None or threading.current_thread() is not threading.main_thread():
         # only the main thread sets handlers; one set outside Python cannot be put back

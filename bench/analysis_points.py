@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import csv
 import json
 import os
 import statistics
@@ -85,9 +86,12 @@ def _sweep(env: dict) -> dict[str, float]:
                        check=True, capture_output=True, env=env, cwd=ROOT)
         wall = time.perf_counter() - t0
         summary = json.loads((Path(out) / f"{scene}.sweep.json").read_text())
+        with (Path(out) / f"{scene}.sweep.csv").open(encoding="utf-8") as table:
+            slowest = max(float(v) for row in csv.DictReader(table)
+                          for k, v in row.items() if k.startswith("wall_s") and v)
     phases = summary["phases_s"]
-    return {"plan": phases["plan"], "points": phases["points"], "wall": wall,
-            "n": summary["points"], "ok": summary["ok"]}
+    return {"plan": phases["plan"], "cluster": phases["cluster"], "points": phases["points"],
+            "slowest": slowest, "wall": wall, "n": summary["points"], "ok": summary["ok"]}
 
 
 WARM_RUNS = 5
@@ -132,6 +136,7 @@ def measure(baselines: tuple[str, ...] = BASELINES, rounds: int = ROUNDS) -> dic
         for env in envs.values():  # warm: each package's systems and kernels stored
             for scene in scenes:
                 _run(env, scene)
+            _sweep(env)  # (and the modules the sweep's workers import, where it keeps them)
         for _ in range(rounds):
             for name, env in envs.items():
                 for scene in scenes:
@@ -172,8 +177,9 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
                      *(fmt(r["wall"]) for r in per), *(fmt(r["cpu"]) for r in per)])
     scene, grid, workers = SWEEP
     sweep_rows = [[n if n == "now" else f"`{n}`", f"{int(m[n]['sweep']['ok'])} of "
-                   f"{int(m[n]['sweep']['n'])}", fmt(m[n]["sweep"]["plan"]),
-                   fmt(m[n]["sweep"]["points"]), fmt(m[n]["sweep"]["wall"])] for n in names]
+                   f"{int(m[n]['sweep']['n'])}",
+                   *(fmt(m[n]["sweep"][k]) for k in ("plan", "cluster", "points", "slowest",
+                                                      "wall"))] for n in names]
     body = (
         f"Each shipped scene whose analysis is steady, modes or statics, run as a user runs "
         f"it: `bearingsim run <scene> --out <temporary folder> --no-progress`, a fresh Python "
@@ -203,12 +209,16 @@ def section(quick: bool = False, baselines: tuple[str, ...] = BASELINES) -> Sect
         + f"\n\n**A modes sweep**: `bearingsim sweep {scene} "
         + " ".join(f"--grid {g}" for g in grid)
         + f" --workers {workers}` ({len(grid[0].split(',')) * len(grid[1].split(','))} points), "
-        "a fresh process each, the same rounds (medians). *plan*: the summary's phase that "
-        "validates the points and loads the model (at both baselines it also built the pair "
-        "for every point, to read the preload's parameter values); *points*: the phase "
-        "the workers run them; *wall*: the command.\n\n"
-        + markdown_table(["package", "points ok", "plan [s]", "points [s]", "wall [s]"],
-                         sweep_rows))
+        "a fresh process each, the same rounds (medians), after a sweep of each package to warm "
+        "its caches. *plan*: the summary's phase that validates the points and loads the model "
+        "(at both baselines it also built the pair for every point, to read the preload's "
+        "parameter values); *cluster*: the wait for the workers after it (the fork server's "
+        "imports: now also the modules the workers of the scene's earlier sweeps imported at "
+        "their first point, `bearingsim.sweep_preloads`); *points*: the phase the workers run "
+        "them; *slowest point*: the longest point's wall time (a worker's first, which at the "
+        "baselines imported scipy.linalg and scipy.optimize); *wall*: the command.\n\n"
+        + markdown_table(["package", "points ok", "plan [s]", "cluster [s]", "points [s]",
+                          "slowest point [s]", "wall [s]"], sweep_rows))
     return Section("25. Analysis scenes: cost per operating point", body, m)
 
 

@@ -50,6 +50,7 @@ from bearingsim.assembler.system import FunctionTable, System
 from bearingsim.cache_budget import budget_bytes, keep_to_budget, mark_used
 from bearingsim.cache_paths import (
     KERNEL_NAMES,
+    SWEEP_PRELOADS,
     SYSTEM_SUFFIX,
     cache_root,
     library_files,
@@ -393,7 +394,8 @@ def clear_cache(root: str | Path | None = None) -> CacheInfo:
     before = cache_info(root)
     if systems_dir(root).is_dir():
         shutil.rmtree(systems_dir(root))
-    for p in [*library_files(root), root / KERNEL_NAMES, root / PINT_CACHE]:
+    for p in [*library_files(root), root / KERNEL_NAMES, root / SWEEP_PRELOADS,
+              root / PINT_CACHE]:
         if p.is_dir():
             shutil.rmtree(p, ignore_errors=True)
         else:

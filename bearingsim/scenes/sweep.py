@@ -88,7 +88,8 @@ from bearingsim.scenes.sweep_results import (
 )
 from bearingsim.scenes.sweep_table import SweepTable, cell, from_cell, open_table
 from bearingsim.scenes.sweep_worker import run_point
-from bearingsim.sweep_server import start_worker_server
+from bearingsim.sweep_preloads import learned_preloads, remember_preloads, scene_file
+from bearingsim.sweep_server import PRELOADED, start_worker_server
 from bearingsim.units import display_unit
 from bearingsim.validation import check_count
 
@@ -250,10 +251,10 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     check_count(n_workers, "n_workers", 1, "run_sweep")
     if chunk is not None:
         check_count(chunk, "chunk (points per task, --chunk)", 1, "run_sweep")
-    if scheduler is None and client is None:  # the workers' imports begin, on another core
-        start_worker_server()
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
+    if scheduler is None and client is None:  # the workers' imports begin, on another core
+        start_worker_server(learned_preloads(scene_file(scene.path) if scene.path else None))
     if not points:
         raise SweepError("a sweep needs at least one point")
     if timeout is None:
@@ -407,6 +408,10 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             if cluster is not None:
                 cluster.close()
     lap("close")
+    imported = sorted({m for r in results.values() for m in r.get("imported", ())})
+    forked = own and scheduler is None  # a LocalCluster forked from this process's server
+    if forked and scene.path:  # what the workers' points imported, for the next sweep's server
+        remember_preloads(scene_file(scene.path), imported)
     ordered = [rows[k] for k in sorted(rows)]
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}
                 for r in ordered if r["status"] != "ok"]
@@ -445,6 +450,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                                               if "model_loads" in r}),
             "scheduler": scheduler or f"LocalCluster({n_workers} workers)",
             "timeout_s": timeout, "phases_s": {k: round(v, 3) for k, v in phases.items()},
+            "worker_preloads": PRELOADED if forked else None, "worker_imports": imported,
             "warnings": [{"category": k["category"].__name__, "points": k["points"],
                           "message": k["message"]} for k in res.warnings],
         }

@@ -20,6 +20,7 @@ from __future__ import annotations
 import ctypes
 import dataclasses
 import os
+import sys
 import threading
 import time
 import warnings
@@ -32,9 +33,10 @@ from bearingsim.assembler.cache import loads_system
 from bearingsim.scenes.analyses import run_operating_point
 from bearingsim.scenes.preparation import Prepared
 from bearingsim.scenes.scene import Scene
+from bearingsim.sweep_preloads import imported_since
 
-__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "guard_time", "load_model",
-           "run_chunk", "run_job", "run_point"]
+__all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "dask_setup", "guard_time",
+           "load_model", "run_chunk", "run_job", "run_point"]
 
 
 @dataclass
@@ -212,7 +214,9 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
     Returns
     -------
     list of dict
-        The rows (:func:`run_point`), in ``jobs`` order.
+        The rows (:func:`run_point`), in ``jobs`` order; the last also has ``imported``, the
+        modules this process imported since its last report (the first: since the fork
+        server's), when there are any.
     """
     prep = load_model(payload)
     rows = []
@@ -220,5 +224,28 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
         row = run_point(prep, job, timeout)
         row["model_loads"] = LOADS.get(payload.token, 0)
         rows.append(row)
+    imported = imported_since(_REPORTED[0])  # the modules the points needed, once each
+    if imported and rows:
+        _REPORTED[0] = frozenset(sys.modules)
+        rows[-1]["imported"] = imported
     return rows
+
+
+_REPORTED = [frozenset(sys.modules)]
+"""The modules of this process when they were last reported (:mod:`bearingsim.sweep_preloads`),
+first those of its start (:func:`dask_setup`), so that a worker reports what its points
+imported."""
+
+
+def dask_setup(worker: Any) -> None:
+    """Called by dask in every worker process that preloads this module (a sweep's LocalCluster,
+    ``dask worker --preload``) when it starts: the modules it has then (the fork server's
+    and dask's) are not the points' (:data:`_REPORTED`).
+
+    Parameters
+    ----------
+    worker : distributed.Worker
+        The worker (unused).
+    """
+    _REPORTED[0] = frozenset(sys.modules)
 
