@@ -24,13 +24,16 @@ instruction and end when the client closes the cluster.
 
 from __future__ import annotations
 
+import importlib
 import multiprocessing
 import multiprocessing.forkserver
+import os
 import signal
 import threading
 from collections.abc import Sequence
 
-__all__ = ["PRELOADED", "WORKER_MODULE", "WORKER_MODULES", "start_worker_server"]
+__all__ = ["PRELOADED", "PRELOAD_VARIABLE", "WORKER_MODULE", "WORKER_MODULES",
+           "import_learned", "start_worker_server"]
 
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """The sweep worker's module (also preloaded by every worker of a sweep's cluster)."""
@@ -41,6 +44,23 @@ WORKER_MODULES = ("distributed", WORKER_MODULE)
 PRELOADED: list[str] = []
 """The modules this process's fork server imports (set by the first
 :func:`start_worker_server`; empty before)."""
+PRELOAD_VARIABLE = "BEARINGSIM_SWEEP_PRELOAD"
+"""The environment variable that hands the server the learned modules (:func:`import_learned`):
+multiprocessing's server skips a preload that raises ImportError but dies of any other error,
+and a learned module is imported under the server's own guard instead."""
+
+
+def import_learned() -> None:
+    """Import the modules named in :data:`PRELOAD_VARIABLE` (separated by spaces), each on its
+    own: one that fails (a module gone, or one that raises as it is imported) is left to the
+    workers, which import it on use and report its error. The variable is removed, so that
+    the workers forked from the server do not see it. Run by the server as it imports this
+    module, its last preload."""
+    for name in os.environ.pop(PRELOAD_VARIABLE, "").split():
+        try:
+            importlib.import_module(name)
+        except Exception:  # noqa: BLE001, S112 - the workers meet it again on use, and say so
+            continue
 
 
 def start_worker_server(preload: Sequence[str] = ()) -> None:
@@ -62,14 +82,29 @@ def start_worker_server(preload: Sequence[str] = ()) -> None:
         skipped)."""
     if not PRELOADED:  # the first call of this process chooses what the server imports
         PRELOADED.extend(dict.fromkeys([*WORKER_MODULES, *preload]))
-        multiprocessing.get_context("forkserver").set_forkserver_preload(list(PRELOADED))
+        multiprocessing.get_context("forkserver").set_forkserver_preload(
+            [*WORKER_MODULES, __name__])  # this module last: it imports the learned ones
     handler = signal.getsignal(signal.SIGINT)
     if handler is None or threading.current_thread() is not threading.main_thread():
         # only the main thread sets handlers; one set outside Python cannot be put back
-        multiprocessing.forkserver.ensure_running()
+        _ensure_running()
         return
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
-        multiprocessing.forkserver.ensure_running()
+        _ensure_running()
     finally:
         signal.signal(signal.SIGINT, handler)
+
+
+def _ensure_running() -> None:
+    """Start the server if it is not running, handing it the learned modules
+    (:data:`PRELOAD_VARIABLE`, set only while it is spawned)."""
+    os.environ[PRELOAD_VARIABLE] = " ".join(PRELOADED[len(WORKER_MODULES):])
+    try:
+        multiprocessing.forkserver.ensure_running()
+    finally:
+        os.environ.pop(PRELOAD_VARIABLE, None)
+
+
+if os.environ.get(PRELOAD_VARIABLE):  # in the fork server, as its last preload
+    import_learned()

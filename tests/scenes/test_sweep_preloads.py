@@ -20,7 +20,7 @@ from bearingsim.sweep_preloads import (
     remember_preloads,
     scene_file,
 )
-from bearingsim.sweep_server import WORKER_MODULES
+from bearingsim.sweep_server import PRELOAD_VARIABLE, WORKER_MODULES, import_learned
 
 
 def test_the_scene_file_is_the_one_load_scene_reads(tmp_path, monkeypatch):
@@ -73,6 +73,19 @@ def test_imported_since_names_new_public_modules(tmp_path, monkeypatch):
     assert imported_since(baseline) == ["bsm_probe_pkg", "bsm_probe_pkg.inner"]
     for name in ("bsm_probe_pkg", "bsm_probe_pkg.inner", "bsm_probe_pkg._private"):
         monkeypatch.delitem(sys.modules, name)
+
+
+def test_the_server_imports_each_learned_module_on_its_own(tmp_path, monkeypatch):
+    """multiprocessing's fork server skips a preload that raises ImportError but dies of any
+    other error: a learned module that raises as it is imported must not stop the sweeps."""
+    (tmp_path / "bsm_probe_raises.py").write_text("raise RuntimeError('not today')\n")
+    (tmp_path / "bsm_probe_fine.py").write_text("")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setenv(PRELOAD_VARIABLE, "bsm_probe_raises bsm_probe_gone bsm_probe_fine")
+    import_learned()
+    assert "bsm_probe_fine" in sys.modules and "bsm_probe_raises" not in sys.modules
+    assert PRELOAD_VARIABLE not in os.environ  # the workers forked after it do not see it
+    monkeypatch.delitem(sys.modules, "bsm_probe_fine")
 
 
 def test_the_next_sweep_of_a_scene_preloads_what_its_workers_imported(tmp_path):
