@@ -53,6 +53,7 @@ import gc
 import importlib
 import json
 import math
+import os
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -408,7 +409,8 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             if cluster is not None:
                 cluster.close()
     lap("close")
-    imported = sorted({m for r in results.values() for m in r.get("imported", ())})
+    imported = sorted({m for r in results.values() if r.get("pid") != os.getpid()
+                       for m in r.get("imported", ())})  # (an in-process worker: the client's)
     forked = own and scheduler is None  # a LocalCluster forked from this process's server
     if forked and scene.path:  # what the workers' points imported, for the next sweep's server
         remember_preloads(scene_file(scene.path), imported)

@@ -215,8 +215,8 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
     -------
     list of dict
         The rows (:func:`run_point`), in ``jobs`` order; the last also has ``imported``, the
-        modules this process imported since its last report (the first: since the fork
-        server's), when there are any.
+        modules this process imported since its last report (the first: since the worker
+        started, :func:`dask_setup`), when there are any.
     """
     prep = load_model(payload)
     rows = []

@@ -12,6 +12,7 @@ from pathlib import Path
 import bearingsim
 from bearingsim.scenes import load_scene
 from bearingsim.scenes.library import FOLDER, builtin_scenes
+from bearingsim.scenes.sweep import run_sweep
 from bearingsim.sweep_preloads import (
     BUILTIN_SCENES,
     MAX_PRELOADS,
@@ -113,3 +114,22 @@ def test_the_next_sweep_of_a_scene_preloads_what_its_workers_imported(tmp_path):
     assert set(first["worker_imports"]) <= set(second["worker_preloads"])
     assert "scipy.linalg" not in second["worker_imports"]
     assert first["failed"] == second["failed"] == 0
+
+
+def test_an_in_process_worker_reports_no_imports_of_its_own(client, tmp_path, monkeypatch):
+    """A worker thread in the client's process shares its modules: what the client imported
+    meanwhile (the figure's matplotlib, a first-use scipy module) is not the points' and is
+    neither reported nor kept."""
+    monkeypatch.setenv("BEARINGSIM_CACHE", str(tmp_path / "cache"))
+    scene = tmp_path / "rs.toml"
+    scene.write_text((FOLDER / "double_layer_rs.toml").read_text())
+    (tmp_path / "bsm_probe_late.py").write_text("")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    import bsm_probe_late  # noqa: F401 - a module the process imports after the worker module
+
+    run_sweep(scene, [{"inputs.shaft_speed": 100.0, "inputs.Fr": 0.0}], client=client,
+              out=tmp_path / "out", progress=False)
+    summary = json.loads((tmp_path / "out" / "rs.sweep.json").read_text())
+    assert summary["worker_imports"] == [] and summary["worker_preloads"] is None
+    assert learned_preloads(scene.resolve()) == ()
+    monkeypatch.delitem(sys.modules, "bsm_probe_late")
