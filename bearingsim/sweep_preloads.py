@@ -45,20 +45,22 @@ _MODULE = re.compile(r"[A-Za-z][A-Za-z0-9_]*(\.[A-Za-z][A-Za-z0-9_]*)?")
 part (importing ``scipy.optimize`` imports its private modules)."""
 
 
-def scene_file(scene: str | os.PathLike) -> Path | None:
+def scene_file(scene: str | os.PathLike | None) -> Path | None:
     """The file :func:`~bearingsim.scenes.scene.load_scene` reads for ``scene`` (a path, else
     the name of a built-in scene, with or without ``.toml``), resolved; None if neither exists.
 
     Parameters
     ----------
-    scene : str or os.PathLike
-        As ``load_scene`` takes it.
+    scene : str or os.PathLike or None
+        As ``load_scene`` takes it, or a scene's ``path`` (None: a scene made without a file).
 
     Returns
     -------
     Path or None
         The scene file.
     """
+    if scene is None:
+        return None
     path = Path(scene)
     if not path.exists():
         name = str(scene)

@@ -255,7 +255,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     if scheduler is None and client is None:  # the workers' imports begin, on another core
-        start_worker_server(learned_preloads(scene_file(scene.path) if scene.path else None))
+        start_worker_server(learned_preloads(scene_file(scene.path)))
     if not points:
         raise SweepError("a sweep needs at least one point")
     if timeout is None:
@@ -412,7 +412,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     imported = sorted({m for r in results.values() if r.get("pid") != os.getpid()
                        for m in r.get("imported", ())})  # (an in-process worker: the client's)
     forked = own and scheduler is None  # a LocalCluster forked from this process's server
-    if forked and scene.path:  # what the workers' points imported, for the next sweep's server
+    if forked:  # what the workers' points imported, for the next sweep's server
         remember_preloads(scene_file(scene.path), imported)
     ordered = [rows[k] for k in sorted(rows)]
     failures = [{"point": r["point"], "values": plan.values[r["point"]], "error": r["error"]}

@@ -248,4 +248,3 @@ def dask_setup(worker: Any) -> None:
         The worker (unused).
     """
     _REPORTED[0] = frozenset(sys.modules)
-

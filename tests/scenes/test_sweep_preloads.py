@@ -35,6 +35,7 @@ def test_the_scene_file_is_the_one_load_scene_reads(tmp_path, monkeypatch):
     # a file of that name in the current folder comes first, as for load_scene
     assert scene_file("double_layer_rs.toml") == tmp_path / "double_layer_rs.toml"
     assert scene_file("no_such_scene") is None
+    assert scene_file(None) is None  # a scene made without a file
 
 
 def test_records_keep_the_union_of_valid_module_names(tmp_path, monkeypatch):
