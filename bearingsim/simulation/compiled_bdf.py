@@ -11,8 +11,8 @@ by the sparse LU ``c/bsm_lu.c`` (shared with the FMU's stepper) with the states 
 fill-reducing order, on the pattern of the Jacobian and the diagonal in that order
 (:func:`~bearingsim.simulation.ordering.newton_pattern`): the pivot order and the factors'
 pattern are found once and reused while the pivots stay acceptable. The inputs ``u(t, q)``
-are generated C in the integrator's library (compiled once per input structure and cached
-like the kernels).
+are generated C in a small library of their own, compiled once per input structure and cached
+like the kernels (a new structure compiles that file, not the integrator).
 
 It needs a C compiler; without one it raises
 :class:`~bearingsim.simulation.c_compiler.CompileError` (``method="cvodes"`` falls back to
@@ -61,6 +61,9 @@ FLAGS = ("-O3", f"-I{C_DIR}")
 vectorises the stepping core's loops over the states, which -O2 leaves scalar; no -march, so
 the library runs on any machine of the architecture)."""
 
+SIGNAL_FLAGS = ("-O2",)
+"""Compiler flags of the inputs' library (a few operations per input)."""
+
 STATUS = {
     1: "the step size fell below 10 ulp of t (a discontinuity or a blow-up here)",
     2: "the Newton matrix I - c J is singular",
@@ -97,11 +100,9 @@ def _signal_function(signal: InputSignal) -> ca.Function:
 
 
 @cache
-def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
-    """The integrator library with the input signal's C (compiled once per signal
-    structure, cached on disk by its source)."""
-    units = [DRIVER_SOURCE.read_text(), *[(C_DIR / name).read_text() for name in CORE_SOURCES],
-             signal_source]
+def _driver(cache_dir: str | None) -> ctypes.CDLL:
+    """The integrator library (compiled once, cached on disk by its source)."""
+    units = [DRIVER_SOURCE.read_text(), *[(C_DIR / name).read_text() for name in CORE_SOURCES]]
     headers = [(C_DIR / name).read_text() for name in CORE_HEADERS]
     lib = source_library(units, headers=headers, flags=FLAGS, cache_dir=cache_dir,
                          prefix="bsm_bdf")
@@ -121,6 +122,15 @@ def _driver(signal_source: str, cache_dir: str | None) -> ctypes.CDLL:
     return dll
 
 
+@cache
+def _signal_library(source: str, cache_dir: str | None) -> ctypes.CDLL:
+    """The inputs' generated C ``bsm_signal`` in a library of its own (compiled once per input
+    structure, cached on disk by its source): a sweep over input structures compiles this small
+    file per structure, not the integrator with it."""
+    return ctypes.CDLL(str(source_library([source], flags=SIGNAL_FLAGS, cache_dir=cache_dir,
+                                          prefix="bsm_signal")))
+
+
 def _address(dll: ctypes.CDLL, name: str) -> int:
     return ctypes.cast(getattr(dll, name), ctypes.c_void_p).value
 
@@ -138,6 +148,7 @@ class _Prepared:
 
     dll: ctypes.CDLL
     kernel_dll: ctypes.CDLL
+    signal_dll: ctypes.CDLL | None
     ode: int
     jac: int
     signal: int | None
@@ -166,15 +177,16 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
         jacobian = function.jacobian()
         sig = _signal_function(signal)
         n_u = sig.size1_out(0)
-        dll = _driver(generate_source([sig], "bsm_signal") if n_u else "", key[2])
+        dll = _driver(key[2])
+        signal_dll = _signal_library(generate_source([sig], "bsm_signal"), key[2]) if n_u else None
         kernel_dll = ctypes.CDLL(str(kern.library))
         sparsity = jacobian.sparsity_out(1)
         fns = (function, jacobian, sig)
         newton = newton_pattern(sparsity, kept_order(sparsity, kern.library))
         found = _PREPARED[key] = _Prepared(
-            dll, kernel_dll, _address(kernel_dll, function.name()),
+            dll, kernel_dll, signal_dll, _address(kernel_dll, function.name()),
             _address(kernel_dll, jacobian.name()),
-            _address(dll, "bsm_signal") if n_u else None, n_u, sparsity.nnz(), newton,
+            _address(signal_dll, "bsm_signal") if n_u else None, n_u, sparsity.nnz(), newton,
             tuple(_address_of(a) for a in (newton.order, newton.start, newton.index,
                                            newton.jac_slot, newton.diag_slot)),
             tuple(max(int(getattr(f, name)()) for f in fns)

@@ -53,7 +53,7 @@ def test_linear_chain_matches_the_matrix_exponential_and_the_error_follows_the_t
 
 def test_agrees_with_cvodes_on_the_6304_massive_ball_level_with_a_speed_ramp(kernel_cache):
     """The ball-level model the method is for: 76 states, the shaft speed a ramp input (C of
-    the input signal in the integrator's library), 2 ms of the start-up at tight tolerances."""
+    the input signal in a library of its own), 2 ms of the start-up at tight tolerances."""
     import casadi as ca
 
     from bearingsim.assemblies import deep_groove_ball_bearing
@@ -95,6 +95,28 @@ def test_outputs_are_the_same_however_the_c_loop_is_called(kernel_cache, monkeyp
                     progress=True)
     np.testing.assert_array_equal(_states(many, system), _states(one, system))
     assert many.stats["nsteps"] == one.stats["nsteps"]
+
+
+def test_a_new_input_structure_compiles_its_inputs_not_the_integrator(kernel_cache,
+                                                                        monkeypatch):
+    """Inputs of three structures (a constant, a ramp, a line) on one model: one integrator
+    library, and a small library of the inputs per structure. Before, the integrator was
+    compiled again with each structure's inputs (about 1 s a structure: a sweep over speed
+    expressions paid it per new expression)."""
+    import casadi as ca
+
+    from bearingsim.assemblies import double_layer_bearing
+
+    monkeypatch.setattr(compiled_bdf, "_PREPARED", {})  # nothing from other tests' caches
+    compiled_bdf._driver.cache_clear()
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="torque"))
+    speeds = (100.0, lambda t: 100.0 * ca.fmin(t / 0.01, 1.0), lambda t: 50.0 + 1e3 * t)
+    runs = [simulate(system, 0.02, inputs={"shaft_speed": s}, method="compiled_bdf",
+                     n_points=3) for s in speeds]
+    libraries = sorted(p.name.split("_")[1] for p in kernel_cache.rglob("bsm_*.so")
+                       if p.name.startswith(("bsm_bdf_", "bsm_signal_")))
+    assert libraries == ["bdf", "signal", "signal", "signal"]
+    np.testing.assert_allclose([r.inputs["shaft_speed"] for r in runs], [100.0, 100.0, 70.0])
 
 
 class Blowup(Component):
