@@ -23,11 +23,13 @@ a unit (``"nan N"``, ``"inf rpm"``, ``"1e999 N"``) are :class:`ExpressionError`.
 from __future__ import annotations
 
 import ast
+import copy
 import functools
 import math
 import operator
 import warnings
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import casadi as ca
@@ -36,7 +38,8 @@ import numpy as np
 from bearingsim.errors import ParameterError
 from bearingsim.units import parse_quantity, split_quantity
 
-__all__ = ["ExpressionError", "compile_expression", "constant_value", "FUNCTIONS", "CONSTANTS"]
+__all__ = ["ExpressionError", "LiftedExpression", "compile_expression", "constant_value",
+           "FUNCTIONS", "CONSTANTS"]
 
 
 class ExpressionError(ParameterError):
@@ -174,7 +177,56 @@ def _compiled(text: str, name: str) -> Callable[[Any], Any]:
 
     f(ca.SX.sym("t"))  # constant parts (tan(pi/2), 1/0) fail now, not at the first run
     f.expression = text  # type: ignore[attr-defined]
+    f.lifted = _lifted(tree, name, text)  # type: ignore[attr-defined]
     return f
+
+
+@dataclass(frozen=True)
+class LiftedExpression:
+    """An expression with its numbers lifted out: expressions that differ only in their numbers
+    (``rpm(1000) * ramp(0, 0.02)`` and ``rpm(2000) * ramp(0, 0.05)``) share ``template`` and
+    ``build``, so that a run's inputs keep one structure (one compiled function) for all of
+    them; the numbers become values of the run.
+
+    Attributes
+    ----------
+    template : str
+        The expression's text with each lifted number written ``_c<k>``.
+    numbers : tuple of float
+        The lifted numbers, ``_c0`` first.
+    build : callable
+        ``build(t, c)`` -> the expression, for a time ``t`` and numbers ``c`` (casadi
+        symbols or values; ``c`` indexable, ``len(numbers)`` of them).
+    """
+
+    template: str
+    numbers: tuple[float, ...]
+    build: Callable[[Any, Any], Any]
+
+
+def _lifted(tree: ast.Expression, name: str, text: str) -> LiftedExpression:
+    """The expression of a checked ``tree`` with its numbers lifted, except exponents (``t**2``
+    stays a square, whose derivative at ``t = 0`` and for ``t < 0`` a power of a symbol would
+    not give)."""
+    numbers: list[float] = []
+
+    class Lift(ast.NodeTransformer):
+        def visit_BinOp(self, node: ast.BinOp) -> ast.AST:
+            node.left = self.visit(node.left)
+            if not isinstance(node.op, ast.Pow):
+                node.right = self.visit(node.right)
+            return node
+
+        def visit_Constant(self, node: ast.Constant) -> ast.AST:
+            numbers.append(float(node.value))
+            return ast.Name(id=f"_c{len(numbers) - 1}", ctx=ast.Load())
+
+    body = Lift().visit(copy.deepcopy(tree.body))
+
+    def build(t, c):
+        return _eval(body, t, name, text, c)
+
+    return LiftedExpression(ast.unparse(body), tuple(numbers), build)
 
 
 def constant_value(value: Any, name: str = "input") -> float | None:
@@ -283,31 +335,36 @@ def _check_ramp(node: ast.Call, name: str, text: str) -> None:
                                 f"[s], got ramp({t0:g}, {t1:g}); use step(t0) for a jump")
 
 
-def _eval(node: ast.AST, t, name: str, text: str):
+def _eval(node: ast.AST, t, name: str, text: str, lifted=None):
+    """The expression of ``node`` at time ``t``; ``lifted``: the values of the names ``_c<k>``
+    of a :class:`LiftedExpression`'s tree."""
     if isinstance(node, ast.Constant):
         return float(node.value)
     if isinstance(node, ast.Name):
+        if node.id.startswith("_c"):  # (a user's text cannot name one: _check refuses it)
+            return lifted[int(node.id[2:])]
         return t if node.id == "t" else CONSTANTS[node.id]
     if isinstance(node, ast.BinOp):
-        a, b = _eval(node.left, t, name, text), _eval(node.right, t, name, text)
+        a, b = (_eval(node.left, t, name, text, lifted),
+                _eval(node.right, t, name, text, lifted))
         if isinstance(a, float) and isinstance(b, float):
             a = ca.DM(a)  # keep float arithmetic symbolic-friendly (no ZeroDivisionError)
         return _finite(_BINOPS[type(node.op)](a, b), node, name, text)
     if isinstance(node, ast.UnaryOp):
-        v = _eval(node.operand, t, name, text)
+        v = _eval(node.operand, t, name, text, lifted)
         return -v if isinstance(node.op, ast.USub) else v
     if isinstance(node, ast.Compare):
-        a = _eval(node.left, t, name, text)
-        b = _eval(node.comparators[0], t, name, text)
+        a = _eval(node.left, t, name, text, lifted)
+        b = _eval(node.comparators[0], t, name, text, lifted)
         return ca.if_else(_CMPOPS[type(node.ops[0])](ca.SX(a) if isinstance(a, float) else a, b),
                           1.0, 0.0)
     if isinstance(node, ast.IfExp):
-        cond = _eval(node.test, t, name, text)
-        return ca.if_else(cond, _eval(node.body, t, name, text),
-                          _eval(node.orelse, t, name, text))
+        cond = _eval(node.test, t, name, text, lifted)
+        return ca.if_else(cond, _eval(node.body, t, name, text, lifted),
+                          _eval(node.orelse, t, name, text, lifted))
     if isinstance(node, ast.Call):
         _, fn = FUNCTIONS[node.func.id]
-        args = [_eval(a, t, name, text) for a in node.args]
+        args = [_eval(a, t, name, text, lifted) for a in node.args]
         args = [ca.DM(a) if isinstance(a, float) else a for a in args]
         if node.func.id == "tan" and isinstance(args[0], ca.DM):
             x = float(args[0])

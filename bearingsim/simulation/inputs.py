@@ -156,7 +156,9 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
     """One input: its expression in ``t``, or None when its numbers were appended to
     ``lifted`` (a constant: one number; a table: its times, then its values), and its
     structure key. A number with a unit (text or :class:`pint.Quantity`) is converted to
-    ``unit`` first."""
+    ``unit`` first. A scene expression's numbers are appended to ``lifted`` too, its expression
+    written in ``t`` and the symbols of :data:`_LIFTED` (which :func:`_signal_function`
+    replaces by the numbers' places in ``q``)."""
     if type(spec) is float and abs(spec) <= sys.float_info.max:  # the common case, at once
         lifted.append(spec)
         return None, "const"
@@ -186,40 +188,51 @@ def _one(name: str, spec: Any, t: ca.SX, unit: str,
         lifted.extend(vals.tolist())
         return None, f"table[{times.size}]"
     if callable(spec):
-        return _function_of_time(name, spec, t)
+        expr, key, numbers = _function_of_time(name, spec, t)
+        lifted.extend(numbers)
+        return expr, key
     raise ParameterError(
         f"input {name}: expected a number, a function of time or a (times, values) table, "
         f"got {type(spec).__name__}"
     )
 
 
-_EXPRESSIONS: dict[str, tuple[ca.SX, str]] = {}
-"""Expressions of time and their structure keys by the text of a scene expression."""
+_EXPRESSIONS: dict[str, tuple[ca.SX, str, tuple[float, ...]]] = {}
+"""Expressions of time, their structure keys and lifted numbers by the text of a scene
+expression."""
 _EXPRESSIONS_LIMIT = 256
 
 
-def _function_of_time(name: str, spec: Any, t: ca.SX) -> tuple[ca.SX, str]:
-    """An input given as a function of time: its expression in ``t`` and structure key.
+def _function_of_time(name: str, spec: Any, t: ca.SX) -> tuple[ca.SX, str, tuple[float, ...]]:
+    """An input given as a function of time: its expression in ``t``, structure key and
+    lifted numbers.
 
     A function that carries its text as ``expression`` (a scene expression,
     :func:`~bearingsim.scenes.expressions.compile_expression`) is a pure function of that
-    text: it is evaluated once per text, not per run. Any other function is evaluated on
-    every call (it may read values that change between runs).
+    text: it is evaluated once per text, not per run, and its numbers are lifted (its
+    ``lifted`` form: the expression in ``t`` and :data:`_LIFTED`, keyed by the text with
+    the numbers left out), so that expressions that differ only in their numbers share one
+    structure. Any other function is evaluated on every call (it may read values that change
+    between runs) and its numbers are part of its structure.
     """
     text = getattr(spec, "expression", None)
     text = text if isinstance(text, str) and t is _T else None
     found = None if text is None else _EXPRESSIONS.get(text)
     if found is not None:
         return found
-    try:
-        out = spec(t)
-    except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
-        raise ParameterError(
-            f"input {name}: the function could not be evaluated symbolically ({exc}); "
-            "write it with casadi or bearingsim.symbolic math"
-        ) from None
-    expr = ca.SX(out)
-    found = (expr, f"f:{expr}")
+    form = getattr(spec, "lifted", None) if text is not None else None
+    if form is not None and len(form.numbers) <= _LIFTED.numel():
+        found = (ca.SX(form.build(t, _LIFTED)), f"e:{form.template}", form.numbers)
+    else:
+        try:
+            out = spec(t)
+        except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
+            raise ParameterError(
+                f"input {name}: the function could not be evaluated symbolically ({exc}); "
+                "write it with casadi or bearingsim.symbolic math"
+            ) from None
+        expr = ca.SX(out)
+        found = (expr, f"f:{expr}", ())
     if text is not None:
         if len(_EXPRESSIONS) >= _EXPRESSIONS_LIMIT:
             del _EXPRESSIONS[next(iter(_EXPRESSIONS))]
@@ -304,6 +317,7 @@ def _new_signal(system: System, inputs: dict[str, Any]) -> InputSignal:
     t = _T
     lifted: list[float] = []
     exprs, keys, slices = [], [], []
+    places = []
     for sig in system.inputs:
         first = len(lifted)
         expr, kind = _one(sig.name, inputs.get(sig.name, sig.start), t, sig.unit,
@@ -311,10 +325,11 @@ def _new_signal(system: System, inputs: dict[str, Any]) -> InputSignal:
         exprs.append(expr)
         keys.append(f"{sig.name}={kind}")
         slices.append((first, len(lifted)) if expr is None else None)
+        places.append(first)
     key = "|".join(keys)
     u = _SIGNALS.get(key)
     if u is None:
-        u = _signal_function(exprs, slices, len(lifted))
+        u = _signal_function(exprs, slices, places, len(lifted))
         if len(_SIGNALS) >= _SIGNALS_LIMIT:
             del _SIGNALS[next(iter(_SIGNALS))]
         _SIGNALS[key] = u
@@ -324,15 +339,24 @@ def _new_signal(system: System, inputs: dict[str, Any]) -> InputSignal:
 _T = ca.SX.sym("t")
 """The time symbol of every input expression (one symbol: equal expressions, equal keys)."""
 
+_LIFTED = ca.SX.sym("c", 64)
+"""The symbols of a scene expression's lifted numbers (an expression with more keeps its
+numbers in its structure)."""
+
 
 def _signal_function(exprs: list[ca.SX | None], slices: list[tuple[int, int] | None],
-                     n_q: int) -> ca.Function:
+                     places: list[int], n_q: int) -> ca.Function:
     """``u(t, q)`` from the inputs' expressions of ``t`` and the slices of ``q`` holding the
-    lifted constants and tables."""
+    lifted constants and tables; an expression's lifted numbers (:data:`_LIFTED`) start at its
+    place in ``q``."""
     q = ca.SX.sym("q", n_q)
     exprs = list(exprs)
     for k, piece in enumerate(slices):
         if piece is None:
+            if n_q and ca.depends_on(exprs[k], _LIFTED):
+                first = places[k]
+                n = min(_LIFTED.numel(), n_q - first)
+                exprs[k] = ca.substitute(exprs[k], _LIFTED[:n], q[first:first + n])
             continue
         first, last = piece
         if last - first == 1:
