@@ -34,6 +34,7 @@ from bench import (
     dgbb_long,
     double_layer_steady,
     duplex,
+    expression_sweep,
     first_run,
     fmu_stepper,
     per_call,
@@ -195,6 +196,7 @@ def main(argv: list[str] | None = None) -> int:
         ("compiled BDF Newton iteration", lambda: compiled_bdf_newton.section(args.quick)),
         ("start-up of a command", lambda: startup.section(args.quick)),
         ("analysis scenes", lambda: analysis_points.section(args.quick)),
+        ("expression sweep", lambda: expression_sweep.section(args.quick)),
     ]
     labels = [label for label, _ in steps]
     only = [x.strip() for x in args.only.split(",") if x.strip()]
