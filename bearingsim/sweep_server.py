@@ -20,6 +20,14 @@ is spawned with SIGINT ignored (an ignored signal stays ignored across ``exec``,
 leaves it so), which keeps the server quiet while it imports; the server hands its original
 handler, "ignore", to every process it forks, so the workers ignore SIGINT from their first
 instruction and end when the client closes the cluster.
+
+**One thread per worker.** A worker runs one point at a time (``threads_per_worker=1``), and
+dask's nannies start the workers they spawn with one thread for BLAS and OpenMP
+(``distributed.nanny.pre-spawn-environ``). A forked worker keeps the thread pool of its server,
+though: numpy's OpenBLAS sizes its pool when the server imports numpy, one thread per core. So
+the server is spawned with :data:`SINGLE_THREADED` set to 1 (each one the user has not set):
+otherwise every worker's linear algebra runs on as many threads as the machine has cores,
+beside the other workers.
 """
 
 from __future__ import annotations
@@ -32,14 +40,18 @@ import signal
 import threading
 from collections.abc import Sequence
 
-__all__ = ["PRELOADED", "PRELOAD_VARIABLE", "WORKER_MODULE", "WORKER_MODULES",
-           "import_learned", "start_worker_server"]
+__all__ = ["PRELOADED", "PRELOAD_VARIABLE", "SINGLE_THREADED", "WORKER_MODULE",
+           "WORKER_MODULES", "import_learned", "start_worker_server"]
 
 WORKER_MODULE = "bearingsim.scenes.sweep_worker"
 """The sweep worker's module (also preloaded by every worker of a sweep's cluster)."""
 WORKER_MODULES = ("distributed", WORKER_MODULE)
 """Imported by the server before it forks the first worker."""
 
+
+SINGLE_THREADED = ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")
+"""The thread-pool sizes the server starts with: 1 unless this process's environment sets
+them (see the module's docstring)."""
 
 PRELOADED: list[str] = []
 """The modules this process's fork server imports (set by the first
@@ -98,12 +110,17 @@ def start_worker_server(preload: Sequence[str] = ()) -> None:
 
 def _ensure_running() -> None:
     """Start the server if it is not running, handing it the learned modules
-    (:data:`PRELOAD_VARIABLE`, set only while it is spawned)."""
+    (:data:`PRELOAD_VARIABLE`) and one thread per pool (:data:`SINGLE_THREADED`), set only
+    while it is spawned."""
+    added = {name: "1" for name in SINGLE_THREADED if name not in os.environ}
+    os.environ.update(added)
     os.environ[PRELOAD_VARIABLE] = " ".join(PRELOADED[len(WORKER_MODULES):])
     try:
         multiprocessing.forkserver.ensure_running()
     finally:
         os.environ.pop(PRELOAD_VARIABLE, None)
+        for name in added:
+            os.environ.pop(name, None)
 
 
 if os.environ.get(PRELOAD_VARIABLE):  # in the fork server, as its last preload

@@ -52,6 +52,49 @@ def test_forked_workers_see_the_environment_of_their_sweep(monkeypatch):
     assert seen[0][0] == seen[1][0]  # one server for both sweeps
 
 
+_BLAS_THREADS = """
+import ctypes, json, numpy
+def blas_threads():
+    paths = {line.split()[-1] for line in open("/proc/self/maps") if "openblas" in line.lower()}
+    for path in sorted(paths):
+        lib = ctypes.CDLL(path)
+        for name in ("scipy_openblas_get_num_threads64_", "openblas_get_num_threads64_",
+                     "openblas_get_num_threads"):
+            if hasattr(lib, name):
+                return getattr(lib, name)()
+    return None
+if __name__ == "__main__":
+    from bearingsim.scenes.sweep_cluster import connect
+    client, cluster = connect(None, 1)
+    [worker] = client.run(blas_threads).values()
+    client.close()
+    cluster.close()
+    print(json.dumps({"worker": worker, "client": blas_threads()}))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux") or len(os.sched_getaffinity(0)) < 2,
+                    reason="/proc/self/maps is Linux's; on one core one BLAS thread anyway")
+def test_forked_workers_run_their_linear_algebra_on_one_thread(tmp_path):
+    """dask starts a worker with one BLAS thread, but a forked worker has its server's OpenBLAS
+    pool, sized when the server imported numpy: one thread per core before (each worker's
+    linear algebra on every core, beside the other workers). The client keeps its own."""
+    import json
+    import subprocess
+
+    script = tmp_path / "blas_threads.py"
+    script.write_text(_BLAS_THREADS)
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                         env=env, check=True, cwd=os.getcwd()).stdout
+    seen = json.loads(out.strip().splitlines()[-1])
+    if seen["worker"] is None:
+        pytest.skip("numpy's BLAS is not OpenBLAS")
+    assert seen["worker"] == 1
+    assert seen["client"] > 1  # the client's own pool, as OpenBLAS sized it: untouched
+
+
 def _worker_settings() -> dict:
     import dask
 
