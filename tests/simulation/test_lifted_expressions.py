@@ -95,3 +95,24 @@ def test_a_second_expression_compiles_nothing_and_runs_as_its_own_function(
         np.testing.assert_allclose(lifted[name], inline[name], rtol=1e-12, atol=1e-12,
                                    err_msg=name)
     assert lifted.inputs["shaft_speed"] == pytest.approx(3000 * 2 * math.pi / 60)
+
+
+def test_several_expressions_and_constants_take_their_own_numbers(torque_level):
+    """Each input's lifted numbers sit at its own place in q, between other inputs' numbers;
+    an expression with more numbers than the lifted symbols keeps them in its structure."""
+    many = "t * max(" + ", ".join(str(k) for k in range(1, 71)) + ")"  # 70 numbers: 70 t
+    inputs = {"Fr": compile_expression("100 + 50 * t"), "Fa": 20.0,
+              "shaft_speed": compile_expression("rpm(600) * ramp(0.5, 1.5)")}
+    sig = input_signal(torque_level, inputs)
+    other = input_signal(torque_level, {**inputs, "Fr": compile_expression("300 + 10 * t")})
+    assert other.u is sig.u
+    at = {n: k for k, n in enumerate(torque_level.input_names)}
+    times = np.array([0.0, 1.0, 2.0])
+    np.testing.assert_allclose(sig.at(times)[at["Fr"]], 100 + 50 * times, rtol=1e-15)
+    np.testing.assert_allclose(other.at(times)[at["Fr"]], 300 + 10 * times, rtol=1e-15)
+    np.testing.assert_allclose(sig.at(times)[at["Fa"]], 20.0)
+    np.testing.assert_allclose(sig.at(times)[at["shaft_speed"]], [0.0, 10 * math.pi,
+                                                                  20 * math.pi], rtol=1e-15)
+    long = input_signal(torque_level, {**inputs, "Fr": compile_expression(many)})
+    assert long.u is not sig.u
+    np.testing.assert_allclose(long.at(times)[at["Fr"]], 70 * times, rtol=1e-15)
