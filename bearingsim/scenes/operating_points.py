@@ -19,8 +19,8 @@ from bearingsim.errors import BearingsimError
 from bearingsim.scenes.preparation import point_keys, prepare
 from bearingsim.scenes.scene import Scene, SceneError, line_of
 
-__all__ = ["filled_point", "operating_points", "point_label", "point_model", "point_units",
-           "split_point"]
+__all__ = ["SIMULATION_UNITS", "filled_point", "key_unit", "operating_points", "point_label",
+           "point_model", "point_units", "split_point"]
 
 
 def operating_points(scene: Scene) -> list[dict[str, Any]]:
@@ -63,9 +63,52 @@ def point_label(key: str) -> str:
                                                               "assembly") else key
 
 
+SIMULATION_UNITS = {"t_end": "s", "t_start": "s", "max_step": "s", "timeout": "s",
+                    "rtol": "1", "n_points": "1"}
+"""SI units of the numeric ``simulation.*`` settings a point may set (``atol`` is in each
+state's own unit: none)."""
+
+
+def key_unit(prep: Any, scene: Scene, key: str) -> str:
+    """SI unit of the values of a point key: an input's, parameter's or state's from the model,
+    an assembly argument's from the ``[unit]`` of its description, a simulation setting's
+    (:data:`SIMULATION_UNITS`); ``""`` for text and for a key of no one unit.
+
+    Parameters
+    ----------
+    prep : Prepared or None
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`; None: no model).
+    scene : Scene
+        The loaded scene.
+    key : str
+        The point key (``inputs.Fr``, ``assembly.preload_force``, ``simulation.t_end``, ...).
+
+    Returns
+    -------
+    str
+        The SI unit (``"1"``: dimensionless).
+    """
+    system = prep.system if prep is not None else None
+    head, _, rest = key.partition(".")
+    if head == "inputs" and system is not None and rest in system.input_names:
+        return system.inputs[system.input_names.index(rest)].unit
+    if head == "inputs":
+        return scene.input_units.get(rest, "N" if re.search(r"\bF[xyzra]$", rest) else "")
+    if head == "parameters" and system is not None and rest in system.parameter_names:
+        return system.params[system.parameter_names.index(rest)].unit
+    if head == "initial" and system is not None:
+        return system.variable_units.get(rest, "")
+    if head == "assembly":
+        arg = scene.spec.args.get(rest)
+        m = re.search(r"\[([^\]]+)\]", arg.doc) if arg is not None else None
+        return m.group(1) if m else ""
+    if head == "simulation":
+        return SIMULATION_UNITS.get(rest, "")
+    return ""
+
+
 def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
-    """SI unit of each point key's column (inputs and parameters from the model, assembly
-    arguments from the ``[unit]`` of their description).
+    """SI unit of each point key's column (:func:`key_unit`).
 
     Parameters
     ----------
@@ -81,23 +124,7 @@ def point_units(prep: Any, scene: Scene, keys: list[str]) -> dict[str, str]:
     dict of str to str
         SI unit by column name.
     """
-    units = {}
-    system = prep.system if prep is not None else None
-    for key in keys:
-        head, _, rest = key.partition(".")
-        unit = ""
-        if head == "inputs" and system is not None and rest in system.input_names:
-            unit = system.inputs[system.input_names.index(rest)].unit
-        elif head == "inputs":
-            unit = scene.input_units.get(rest, "N" if re.search(r"\bF[xyzra]$", rest) else "")
-        elif head == "parameters" and system is not None and rest in system.parameter_names:
-            unit = system.params[system.parameter_names.index(rest)].unit
-        elif head == "assembly":
-            arg = scene.spec.args.get(rest)
-            m = re.search(r"\[([^\]]+)\]", arg.doc) if arg is not None else None
-            unit = m.group(1) if m else ""
-        units[point_label(key)] = unit
-    return units
+    return {point_label(key): key_unit(prep, scene, key) for key in keys}
 
 
 def filled_point(prep: Any, point: dict[str, Any]) -> dict[str, Any]:

@@ -13,9 +13,10 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from bearingsim.scenes.operating_points import key_unit
 from bearingsim.scenes.preparation import Prepared
 
-__all__ = ["TRANSIENT_COLUMNS", "column_units", "point_warnings", "result_columns",
+__all__ = ["END_SUFFIX", "TRANSIENT_COLUMNS", "column_units", "point_warnings", "result_columns",
            "sweep_figures", "table_row"]
 
 
@@ -68,9 +69,10 @@ def result_columns(prep: Prepared, probe: dict[str, Any] | None
 
 def column_units(prep: Prepared, keys: list[str], results: dict[str, str]
                  ) -> dict[str, str]:
-    """Unit of every numeric sweep column: the swept inputs, parameters and initial values
-    (from the first model; every model of a sweep has the same names), the results' and
-    ``wall_s``.
+    """Unit of every numeric sweep column: the swept keys' (inputs, parameters and initial
+    values from the first model, whose names every model of a sweep shares; assembly
+    arguments and simulation settings, :func:`~bearingsim.scenes.operating_points.key_unit`),
+    the results' and ``wall_s``.
 
     Parameters
     ----------
@@ -84,15 +86,13 @@ def column_units(prep: Prepared, keys: list[str], results: dict[str, str]
     Returns
     -------
     dict of str to str
-        SI unit by column name.
+        SI unit by column name (a key of text values, or of no one unit, has none).
     """
-    system = prep.system
-    units = {**system.variable_units, **{p.name: p.unit for p in system.params}}
     out = dict(results)
     for key in keys:
-        head, _, name = key.partition(".")
-        if head in ("inputs", "parameters", "initial") and name in units:
-            out[key] = units[name]
+        unit = key_unit(prep, prep.scene, key)
+        if unit:
+            out[key] = unit
     out["wall_s"] = "s"
     return out
 
@@ -160,14 +160,54 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     from bearingsim.scenes.plots import characteristic_figures, numeric_key
 
     ok = [r for r in rows if r["status"] == "ok"]
-    numeric = [k for k in keys if ok and numeric_key(ok, k)]
+    if ok and prep.scene.analysis == "transient":
+        ok, keys = _with_end_values(prep, ok, keys)
+    numeric = sorted((k for k in keys if ok and numeric_key(ok, k)),
+                     key=lambda k: len({r[k] for r in ok}) < 2)  # a key that varies first
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
     if not numeric or not outputs:
         return []
+    units = {**units, **{k: units.get(k.removesuffix(END_SUFFIX), "") for k in keys
+                         if k.endswith(END_SUFFIX)}}
     order = [numeric[0], *(k for k in keys if k != numeric[0])]
     what = "modes" if prep.scene.analysis == "modes" else "steady"
     figs = characteristic_figures(prep, ok, order, units, outputs, what)
     return [(f"{stem}.png", fig) for _, fig in figs[:1]]
+
+
+END_SUFFIX = " at t_end"
+"""Suffix of the figure's column of an input swept as expressions: their values at the end of
+each point's run."""
+
+
+def _with_end_values(prep: Prepared, rows: list[dict[str, Any]], keys: list[str]
+                     ) -> tuple[list[dict[str, Any]], list[str]]:
+    """``rows`` and ``keys`` with each input swept as expressions of ``t`` replaced by its
+    value at the end of each point's run (the time of the final values; key
+    ``<key> at t_end``), where distinct expressions end at distinct values (otherwise the
+    curves would merge): a sweep over ``rpm(N) * ramp(0, 0.02)`` is drawn against the speed
+    the run ended at."""
+    import casadi as ca
+
+    from bearingsim.scenes.expressions import compile_expression
+
+    t_end = prep.scene.simulation.t_end
+    for key in [k for k in keys if k.startswith("inputs.")]:
+        texts = {r[key] for r in rows}
+        if not all(isinstance(t, str) for t in texts):
+            continue
+        try:
+            ends = {(text, r.get("simulation.t_end", t_end)): float(ca.DM(
+                compile_expression(text, key)(float(r.get("simulation.t_end", t_end)))))
+                for r in rows for text in (r[key],)}
+        except Exception:  # noqa: BLE001 - a text that is no expression: drawn as it is
+            continue
+        if len(set(ends.values())) < len(ends):
+            continue
+        derived = key + END_SUFFIX
+        rows = [{**r, derived: ends[r[key], r.get("simulation.t_end", t_end)]} for r in rows]
+        keys = [derived if k == key else k for k in keys]
+    return rows, keys
 
 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")

@@ -113,3 +113,28 @@ def test_one_legend_for_the_panels_and_no_key_every_point_sets_alike(prep):
     assert second.get_legend() is None
     assert len(_lines(fig)[1]) == 2  # the second panel still draws a curve per load
     assert "one curve per Fr\n" in fig.texts[0].get_text() + "\n"
+
+
+def test_a_sweep_over_speed_expressions_is_drawn_against_the_speed_the_runs_end_at(prep):
+    """A sweep over ``rpm(N) * ramp(0, 0.5)`` with ``simulation.t_end`` one value drew every
+    point at t_end, on an axis labelled ``simulation.t_end [-]``, one single-point curve per
+    expression: the axis is now the speed at the end of each run (a key that varies before
+    one that does not), in r/min."""
+    speeds = (1000, 2000, 4000)
+    rows = [{"inputs.shaft_speed": f"rpm({n}) * ramp(0, 0.5)", "simulation.t_end": 0.25,
+             "Rs": 1e-6 * n, "status": "ok"} for n in speeds]
+    [(_, fig)] = sweep_figures(prep, rows, ["inputs.shaft_speed", "simulation.t_end"], ["Rs"],
+                               {"inputs.shaft_speed": "rad/s", "simulation.t_end": "s",
+                                "Rs": "1"}, "sweep")
+    [ax] = fig.axes
+    [line] = _lines(fig)[0]
+    np.testing.assert_allclose(line.get_xdata(), [n * 0.5 for n in speeds])  # r/min
+    assert ax.get_xlabel() == "inputs.shaft_speed at t_end [r/min]"
+    assert ax.get_legend() is None
+
+
+def test_a_numeric_key_that_varies_is_the_axis_before_one_that_does_not(prep):
+    rows = [{**row, "simulation.t_end": 0.002} for row in _rows([100.0, 200.0], [10.0, 100.0])]
+    [(_, fig)] = sweep_figures(prep, rows, ["simulation.t_end", "shaft_speed", "Fr"], ["Rs"],
+                               {**UNITS, "simulation.t_end": "s"}, "sweep")
+    assert fig.axes[0].get_xlabel() == "imposed shaft speed [r/min]"

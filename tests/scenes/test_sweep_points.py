@@ -141,6 +141,10 @@ def test_modes_sweep_plots_one_curve_per_value_of_the_second_key(client, tmp_pat
     res = run_sweep(scene, points, client=client, out=tmp_path, progress=False)
     assert len(res.ok) == 4, res.failures
     assert "shaft.x" not in res.rows[0] and "radial x" in res.rows[0]
+    with (tmp_path / "duplex_modes.sweep.csv").open(encoding="utf-8") as table:
+        header = next(csv.reader(table))
+    # the assembly arguments with their units (the header and the figure had none)
+    assert header[1:3] == ["assembly.preload_force [N]", "assembly.speed [rad/s]"]
     png = tmp_path / "duplex_modes.sweep.png"
     assert png.is_file()
     summary = json.loads((tmp_path / "duplex_modes.sweep.json").read_text())
