@@ -381,16 +381,17 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         elif k == "max_steps":
             if _number(c, key, v, "steps", 1, None, integer=True) is not None:
                 sim.max_steps = int(v)
-        elif k == "timeout":
-            if _number(c, key, v, "s", 0.0, MAX_TIMEOUT, strict_low=True) is not None:
+        elif k == "timeout":  # (a time with a unit, "50 ms", too)
+            if (v := _number(c, key, v, "s", 0.0, MAX_TIMEOUT, True, si_unit="s")) is not None:
                 sim.timeout = float(v)
         else:
             low, strict, high = {"t_end": (None, False, None), "t_start": (None, False, None),
                                  "rtol": (RTOL_RANGE[0], False, RTOL_RANGE[1]),
                                  "atol": (ATOL_RANGE[0], False, ATOL_RANGE[1]),
                                  "max_step": (0.0, True, None)}[k]
-            if _number(c, key, v, "s" if k in ("t_end", "t_start", "max_step") else "[1]", low,
-                       high, strict) is not None:
+            time = k in ("t_end", "t_start", "max_step")
+            if (v := _number(c, key, v, "s" if time else "[1]", low, high, strict,
+                             si_unit="s" if time else None)) is not None:
                 setattr(sim, k, float(v))
     if analysis != "transient":
         pass  # no time span: the operating points are solved directly

@@ -79,7 +79,17 @@ def _unknown(c: _Collector, section: str, key: str, allowed) -> None:
 
 
 def _number(c: _Collector, key: str, v: Any, unit: str, low=None, high=None, strict_low=False,
-            integer=False) -> float | None:
+            integer=False, si_unit: str | None = None) -> float | None:
+    """``v`` checked (a number, in range; ``unit`` names its unit in messages), or None with
+    the problem recorded. Given ``si_unit``, a number with a unit (``"1.5 kN"``, ``"50 ms"``)
+    is taken in that SI unit."""
+    if si_unit is not None and isinstance(v, str) and split_quantity(v) is not None:
+        try:
+            v = quantity_to_si(v, si_unit, key)
+        except UnitError as exc:
+            c.add(key, str(exc).removeprefix(f"{key}: "), f"a number in {unit}, or a number "
+                                                           "with a unit of that quantity")
+            return None
     if isinstance(v, str):
         c.add(key, f"must be a number in {unit}, got the text {v!r}",
               f"a number in {unit}" + ("; write r/min as a number in rad/s" if "rpm" in v.lower()
@@ -150,16 +160,9 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
                       str(exc).split("Allowed: ", 1)[-1])
             return v
         return _number(c, key, v, _unit_text(spec))
-    if spec.kind == "float":
-        if isinstance(v, str) and split_quantity(v) is not None:
-            try:  # "1.5 kN", "4000 rpm": in the argument's SI unit, a quantity of that kind
-                v = quantity_to_si(v, spec.unit, key)
-            except UnitError as exc:
-                c.add(key, str(exc).removeprefix(f"{key}: "), f"a number in "
-                      f"{_unit_text(spec)}, or a number with a unit of that quantity")
-                return None
+    if spec.kind == "float":  # "1.5 kN", "4000 rpm": in the argument's SI unit
         return _number(c, key, v, _unit_text(spec), low=spec.low,
-                       strict_low=spec.low is not None)
+                       strict_low=spec.low is not None, si_unit=spec.unit)
     if spec.kind == "floats":
         if not isinstance(v, dict):
             c.add(key, "must be a table of numbers", "a table name = number")

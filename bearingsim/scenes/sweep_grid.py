@@ -249,34 +249,56 @@ def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
                f"{'it' if one else 'one of them'})" if strange else ""))
 
 
-def si_values(point: dict[str, Any], memo: dict | None = None) -> dict[str, Any]:
+def si_values(point: dict[str, Any], memo: dict | None = None,
+              scene: Scene | None = None) -> dict[str, Any]:
     """The swept values as the table stores them: SI numbers for inputs that are constant
-    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``), others as given. ``memo``
-    keeps the converted values across the points of a sweep (a grid repeats each value).
+    (``"500 rpm"``, ``"rpm(500)"`` -> 52.36 under ``[rad/s]``) and, given the point's validated
+    ``scene``, for every other number with a unit (``"1.5 kN"`` as a preload -> 1500.0 under
+    ``[N]``, ``"50 ms"`` as ``simulation.t_end`` -> 0.05 under ``[s]``); others as given
+    (names, expressions of ``t``). ``memo`` keeps the converted inputs across the points of a
+    sweep (a grid repeats each value).
 
     Parameters
     ----------
     point : dict
         A point's values by sweep key.
     memo : dict, optional
-        Converted values by (key, value), shared by the points of a sweep.
+        Converted input values by (key, value), shared by the points of a sweep.
+    scene : Scene, optional
+        The point's scene (:func:`point_scene`), holding its values in SI units.
 
     Returns
     -------
     dict
-        The values by sweep key, constant inputs in SI units.
+        The values by sweep key, numbers in SI units.
     """
     from bearingsim.scenes.expressions import constant_value
+    from bearingsim.units import split_quantity
 
     memo = {} if memo is None else memo
     out = {}
     for key, value in point.items():
-        if not key.startswith("inputs."):
+        if key.startswith("inputs."):
+            seen = (key, repr(value))
+            if seen not in memo:
+                si = constant_value(value, key)
+                memo[seen] = value if si is None else si
+            out[key] = memo[seen]
+        elif scene is not None and isinstance(value, str) and split_quantity(value) is not None:
+            out[key] = _scene_value(scene, key, value)
+        else:
             out[key] = value
-            continue
-        seen = (key, repr(value))
-        if seen not in memo:
-            si = constant_value(value, key)
-            memo[seen] = value if si is None else si
-        out[key] = memo[seen]
     return out
+
+
+def _scene_value(scene: Scene, key: str, given: Any) -> Any:
+    """The value of a parameter, initial value, assembly argument or simulation setting
+    ``key`` in ``scene`` (validated: in SI units); ``given`` where the scene has none."""
+    head, _, name = key.partition(".")
+    held = {"parameters": scene.parameters, "initial": scene.initial,
+            "assembly": scene.args}.get(head)
+    if held is not None:
+        return held.get(name, given)
+    if head == "simulation":
+        return getattr(scene.simulation, name, given)
+    return given

@@ -143,5 +143,5 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
                                  + ", ".join(prep.system.input_names))
         jobs.append(Job(k, sc))
         structure[k] = key
-        values.append(si_values(pt, converted))
+        values.append(si_values(pt, converted, sc))
     return SweepPlan(prepared, payloads, jobs, structure, values)

@@ -10,7 +10,7 @@ was never compared with the model's units at all.
 
 import pytest
 
-from bearingsim.scenes import SceneError, parse_scene, validate_scene
+from bearingsim.scenes import SceneError, load_scene, parse_scene, validate_scene
 from bearingsim.scenes.library import builtin_scene_path
 from bearingsim.scenes.sweep import SweepError, grid_points
 from bearingsim.scenes.sweep_grid import parse_grid
@@ -163,3 +163,29 @@ def test_a_swept_parameter_takes_a_unit_of_its_quantity():
     with pytest.raises(SweepError, match=r"parameter shaft\.mass is in kg, but its value is "
                                          r"given in N"):
         plan_sweep(wrong, grid_points(parse_grid(["inputs.shaft.Fz=1000,2000"])))
+
+
+def test_swept_values_with_units_are_stored_as_si_numbers():
+    """``--grid "assembly.preload_force=1 kN,2 kN"`` ran at 1000 and 2000 N but the table held
+    the texts "1 kN", "2 kN" under its column (no figure: no numeric key); a time with a unit
+    was refused for a simulation setting (``must be a number in s``), in a scene as in a
+    sweep."""
+    modes = builtin_scene_path("duplex_modes")
+    plan = plan_sweep(load_scene(modes), grid_points(parse_grid(
+        ["assembly.preload_force=1 kN,2500 N"])))
+    assert [v["assembly.preload_force"] for v in plan.values] == [1000.0, 2500.0]
+    transient = builtin_scene_path("double_layer_friction")
+    plan = plan_sweep(load_scene(transient), grid_points(parse_grid(
+        ["simulation.t_end=50 ms,0.1", "assembly.lubrication=ISO VG 32"])))
+    assert [v["simulation.t_end"] for v in plan.values] == [0.05, 0.1]
+    assert plan.values[0]["assembly.lubrication"] == "ISO VG 32"  # names stay as given
+    with pytest.raises(SweepError, match=r"simulation\.t_end: 'N' is not a unit of s"):
+        plan_sweep(load_scene(transient), [{"simulation.t_end": "3 N"}])
+
+
+def test_a_scene_takes_its_times_with_a_unit():
+    text = builtin_scene_path("double_layer_friction").read_text(encoding="utf-8")
+    scene = parse_scene(text.replace("[simulation]", '[simulation]\nmax_step = "2 ms"'))
+    assert scene.simulation.max_step == pytest.approx(2e-3, rel=1e-15)
+    with pytest.raises(SceneError, match=r"simulation\.max_step: 'kN' is not a unit of s"):
+        parse_scene(text.replace("[simulation]", '[simulation]\nmax_step = "2 kN"'))
