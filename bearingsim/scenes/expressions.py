@@ -207,7 +207,8 @@ class LiftedExpression:
 def _lifted(tree: ast.Expression, name: str, text: str) -> LiftedExpression:
     """The expression of a checked ``tree`` with its numbers lifted, except exponents (``t**2``
     stays a square, whose derivative at ``t = 0`` and for ``t < 0`` a power of a symbol would
-    not give)."""
+    not give) and zeros (``0 * log(t)`` is 0 as CasADi simplifies it, where a lifted zero
+    would make 0 * -inf at ``t = 0``, not a number)."""
     numbers: list[float] = []
 
     class Lift(ast.NodeTransformer):
@@ -218,6 +219,8 @@ def _lifted(tree: ast.Expression, name: str, text: str) -> LiftedExpression:
             return node
 
         def visit_Constant(self, node: ast.Constant) -> ast.AST:
+            if float(node.value) == 0.0:
+                return node
             numbers.append(float(node.value))
             return ast.Name(id=f"_c{len(numbers) - 1}", ctx=ast.Load())
 
