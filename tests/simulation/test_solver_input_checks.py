@@ -502,10 +502,12 @@ def test_scene_budgets_are_read_checked_and_end_the_run():
 
     base = {"assembly": {"name": "double_layer_bearing", "fidelity": "torque"},
             "inputs": {"shaft_speed": 100.0}, "outputs": ["Rs"]}
-    for bad in ({"timeout": -1.0}, {"timeout": "10 s"}, {"max_steps": 0},
+    for bad in ({"timeout": -1.0}, {"timeout": "10 N"}, {"max_steps": 0},
                 {"max_steps": 2.5}, {"atol": 1e300}, {"rtol": 0.5}):
         with pytest.raises(SceneError, match=f"simulation.{next(iter(bad))}"):
             scene_from_dict({**base, "simulation": {"t_end": 1.0, **bad}})
+    assert scene_from_dict({**base, "simulation": {"t_end": 1.0, "timeout": "10 min"}}
+                           ).simulation.timeout == 600.0  # a time with a unit
     scene = scene_from_dict({**base, "simulation": {"t_end": 50.0, "max_step": 1e-3,
                                                     "max_steps": 30, "timeout": 60.0}})
     assert (scene.simulation.max_steps, scene.simulation.timeout) == (30, 60.0)
