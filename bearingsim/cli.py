@@ -257,10 +257,12 @@ def _sweep(args: argparse.Namespace) -> int:
         _say(f"bearingsim sweep: interrupted; the finished points are in {out}; add --resume "
              "to run the others", err=True)
         return 130
+    ran = len(res.rows) - res.resumed
     _say(describe_points(res)
          + (f" ({res.resumed} from the earlier run)" if res.resumed else "")
-         + f"; {res.models_built} model(s) built and shipped; {res.chunk_size} point(s) a task; "
-         f"{res.wall_s:.1f} s")
+         + (f"; {res.models_built} model(s) built and shipped; {res.chunk_size} point(s) a task"
+            if ran else "; nothing left to run")
+         + f"; {res.wall_s:.1f} s")
     if res.failures:
         _say(describe_failures(res), err=True)
     for f in res.files:

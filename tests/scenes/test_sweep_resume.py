@@ -218,3 +218,21 @@ def test_the_point_budget_comes_from_the_scene_unless_given(tmp_path, client):
     assert "budget of 1.5 s" in res.rows[0]["error"]
     res = run_sweep(path, long, client=client, progress=False, chunk=1, timeout=1.0)
     assert "budget of 1 s" in res.rows[0]["error"]
+
+
+def test_a_resumed_sweep_with_nothing_left_says_so(scene, tmp_path, capsys):
+    """``--resume`` of a finished sweep said "1 model(s) built and shipped; 0 point(s) a task":
+    nothing was shipped and no task ran."""
+    from bearingsim.cli import main
+
+    out = tmp_path / "out"
+    args = ["sweep", str(scene), "--grid", "inputs.shaft_speed=100,200", "--workers", "1",
+            "--out", str(out), "--no-progress"]
+    assert main(args) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "1 model(s) built and shipped" in first
+    assert main([*args, "--resume"]) == 0
+    again = capsys.readouterr().out.splitlines()[0]
+    assert again.startswith("2 point(s): 2 settled")
+    assert "(2 from the earlier run); nothing left to run; " in again
+    assert "shipped" not in again and "a task" not in again
