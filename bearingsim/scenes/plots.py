@@ -297,6 +297,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     fig = Figure(figsize=(10 if beside else 7, 2.8 * len(per_panel) + 0.9),
                  layout="constrained" if shade else None)
     axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
+    flagged = False  # a point not settled at t_end drawn hollow
     for ax, panel in zip(axes, per_panel, strict=True):
         all_y = []
         y_unit = ""
@@ -316,6 +317,12 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                 else:
                     ax.plot(x, y, label=label, color=color, marker=MARKERS[j % len(MARKERS)],
                             linestyle="none" if markers_only else style, markersize=4)
+                loose = [i for i, m in enumerate(members)
+                         if n in str(m.get("unsettled") or "").split()]
+                if loose:
+                    flagged = True
+                    ax.scatter(np.asarray(x)[loose], np.asarray(y)[loose], s=64, zorder=3,
+                               facecolors="white", edgecolors="0.2" if shade else color)
                 all_y.append(y)
             if len(panel) > 1 and len(curves) > 1:
                 ax.plot([], [], color="0.3", linestyle=style,
@@ -338,8 +345,9 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                 axis_text(shade, prep, c_unit), fontsize=8)
     question = ("natural frequencies by mode" if what == "modes"
                 else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
-    fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}",
-                 fontsize=9)
+    fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}"
+                 + ("\nhollow markers: not settled at t_end (the run's last value)"
+                    if flagged else ""), fontsize=9)
     if not shade:  # the constrained layout places the colour bar itself
         fig.tight_layout()
     return [("modes" if what == "modes" else "steady", fig)]

@@ -138,3 +138,23 @@ def test_a_numeric_key_that_varies_is_the_axis_before_one_that_does_not(prep):
     [(_, fig)] = sweep_figures(prep, rows, ["simulation.t_end", "shaft_speed", "Fr"], ["Rs"],
                                {**UNITS, "simulation.t_end": "s"}, "sweep")
     assert fig.axes[0].get_xlabel() == "imposed shaft speed [r/min]"
+
+
+def test_values_not_settled_at_t_end_are_drawn_hollow(prep):
+    """A transient sweep's table flags a point whose output had not settled by t_end
+    (``settled`` False, the output named in ``unsettled``); its figure drew that value as
+    every other. Now hollow, on the panels of the outputs that had not settled, and the title
+    says so."""
+    rows = _rows([100.0, 200.0, 300.0], [10.0])
+    rows[2]["unsettled"] = "Rs"
+    [(_, fig)] = sweep_figures(prep, rows, ["shaft_speed", "Fr"], ["Rs", "inner_layer.L10h"],
+                               UNITS, "sweep")
+    rs_panel, life_panel = fig.axes
+    [hollow] = rs_panel.collections
+    assert hollow.get_offsets().shape == (1, 2)
+    assert np.allclose(hollow.get_facecolor()[0], [1, 1, 1, 1])  # white inside
+    assert not life_panel.collections
+    assert "hollow markers: not settled at t_end" in fig.texts[0].get_text()
+    [(_, settled)] = sweep_figures(prep, _rows([100.0, 200.0, 300.0], [10.0]),
+                                   ["shaft_speed", "Fr"], ["Rs"], UNITS, "sweep")
+    assert "hollow" not in settled.texts[0].get_text()
