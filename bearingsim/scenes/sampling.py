@@ -91,8 +91,8 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
         try:
             lo, hi = (_bound(x) for x in rng.split(":", 1))
         except (ValueError, ParameterError):
-            raise SweepError(f"--sample {key}: low and high must be numbers, got {rng!r}"
-                             ) from None
+            raise SweepError(f"--sample {key}: low and high must be numbers (SI) or numbers "
+                             f"with a unit ('1000 rpm:2000 rpm'), got {rng!r}") from None
         if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
             raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
         ranges[key] = (lo, hi)

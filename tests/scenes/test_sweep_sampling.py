@@ -157,3 +157,13 @@ def test_a_sweep_imports_scipy_stats_only_to_sample() -> None:
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == ["False", "True"]
+
+
+def test_a_range_that_is_not_numbers_is_told_that_units_work():
+    """``rpm(1000):rpm(2000)`` was told "low and high must be numbers", though numbers with a
+    unit work (``1000 rpm:2000 rpm``)."""
+    with pytest.raises(SweepError, match=r"inputs\.shaft_speed: low and high must be numbers "
+                                         r"\(SI\) or numbers with a unit \('1000 rpm:2000 rpm'\)"):
+        parse_sample(["inputs.shaft_speed=rpm(1000):rpm(2000)"])
+    assert parse_sample(["inputs.shaft_speed=1000 rpm:2000 rpm"])["inputs.shaft_speed"] == \
+        pytest.approx((1000 * math.pi / 30, 2000 * math.pi / 30), rel=1e-12)
