@@ -313,10 +313,12 @@ def _parser() -> argparse.ArgumentParser:
     p_sw.add_argument("scene", help="scene TOML file")
     p_sw.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
                       help="grid values of a key (inputs.X, parameters.X, initial.X, "
-                           "simulation.X, assembly.X); repeat for a Cartesian product; "
-                           "separate expressions with ';'")
+                           "simulation.X, assembly.X): numbers in SI units or with a unit "
+                           "('2 kN'), names, expressions of t; repeat for a Cartesian "
+                           "product; separate expressions with ';'")
     p_sw.add_argument("--sample", action="append", default=[], metavar="KEY=LOW:HIGH",
-                      help="quasi-random sample of a numeric key (see --sampler)")
+                      help="quasi-random sample of a numeric key, low and high in SI units "
+                           "or with a unit ('1 kN:3 kN'; see --sampler)")
     p_sw.add_argument("--samples", type=int, default=8,
                       help="number of samples (default 8; Sobol: a power of two)")
     p_sw.add_argument("--seed", type=int, default=0, help="seed of the sample (default 0)")
