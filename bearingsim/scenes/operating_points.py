@@ -98,10 +98,9 @@ def key_unit(prep: Any, scene: Scene, key: str) -> str:
         return system.params[system.parameter_names.index(rest)].unit
     if head == "initial" and system is not None:
         return system.variable_units.get(rest, "")
-    if head == "assembly":
+    if head == "assembly":  # a number's unit, from its description (ArgSpec.unit)
         arg = scene.spec.args.get(rest)
-        m = re.search(r"\[([^\]]+)\]", arg.doc) if arg is not None else None
-        return m.group(1) if m else ""
+        return arg.unit if arg is not None and arg.kind in ("float", "signal") else ""
     if head == "simulation":
         return SIMULATION_UNITS.get(rest, "")
     return ""

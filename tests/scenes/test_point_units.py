@@ -189,3 +189,17 @@ def test_a_scene_takes_its_times_with_a_unit():
     assert scene.simulation.max_step == pytest.approx(2e-3, rel=1e-15)
     with pytest.raises(SceneError, match=r"simulation\.max_step: 'kN' is not a unit of s"):
         parse_scene(text.replace("[simulation]", '[simulation]\nmax_step = "2 kN"'))
+
+
+def test_an_assembly_argument_that_is_no_number_has_no_unit():
+    """The unit of an assembly argument was the first ``[...]`` of its description, so the
+    double-layer bearing's lubrication (``[inner, outer]``: one name per layer) was headed
+    ``lubrication [inner, outer]``; only numbers have units (ArgSpec.unit)."""
+    from bearingsim.scenes.operating_points import key_unit
+
+    scene = load_scene(builtin_scene_path("double_layer_friction"))
+    assert key_unit(None, scene, "assembly.lubrication") == ""
+    assert key_unit(None, scene, "assembly.oil_level") == "m"
+    modes = load_scene(builtin_scene_path("duplex_modes"))
+    assert [key_unit(None, modes, f"assembly.{k}") for k in
+            ("preload_force", "speed", "damping_ratio")] == ["N", "rad/s", "1"]
