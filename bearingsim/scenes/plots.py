@@ -18,7 +18,8 @@ from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.units import to_display
 
 __all__ = ["analysis_figures", "axis_text", "characteristic_figures", "describe", "display",
-           "display_text", "include_zero", "numeric_key", "render_report", "statics_figures"]
+           "display_text", "include_zero", "numeric_key", "render_report", "statics_figures",
+           "varies"]
 
 
 
@@ -242,9 +243,22 @@ def numeric_key(rows: list[dict[str, Any]], key: str) -> bool:
                for row in rows)
 
 
-def _varies(rows: list[dict[str, Any]], key: str) -> bool:
+def varies(rows: list[dict[str, Any]], key: str) -> bool:
     """Whether ``key`` takes more than one value over ``rows`` (a key every point sets alike
-    names no curve)."""
+    names no curve and is no axis).
+
+    Parameters
+    ----------
+    rows : list of dict
+        Table rows.
+    key : str
+        A column.
+
+    Returns
+    -------
+    bool
+        True when two rows differ under ``key``.
+    """
     first = rows[0].get(key)
     return any(row.get(key) != first for row in rows[1:])
 
@@ -281,7 +295,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     if not rows or not keys:
         return []
     xkey = keys[0]
-    keys = [xkey, *(k for k in keys[1:] if _varies(rows, k))]
+    keys = [xkey, *(k for k in keys[1:] if varies(rows, k))]
     x_all = np.array([row[xkey] for row in rows], dtype=float)
     shown = [n for n in names if n != xkey
              and not _same_as(x_all, np.array([row.get(n, math.nan) for row in rows], float))]

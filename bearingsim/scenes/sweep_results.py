@@ -16,7 +16,7 @@ from typing import Any
 from bearingsim.scenes.operating_points import key_unit
 from bearingsim.scenes.preparation import Prepared
 
-__all__ = ["END_SUFFIX", "TRANSIENT_COLUMNS", "column_units", "point_warnings", "result_columns",
+__all__ = ["TRANSIENT_COLUMNS", "column_units", "point_warnings", "result_columns",
            "sweep_figures", "table_row"]
 
 
@@ -157,57 +157,52 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         File name and figure (none or one).
     """
 
-    from bearingsim.scenes.plots import characteristic_figures, numeric_key
+    from bearingsim.scenes.plots import characteristic_figures, numeric_key, varies
 
     ok = [r for r in rows if r["status"] == "ok"]
     if ok and prep.scene.analysis == "transient":
-        ok, keys = _with_end_values(prep, ok, keys)
+        ok, keys, units = _with_end_values(prep, ok, keys, units)
     numeric = sorted((k for k in keys if ok and numeric_key(ok, k)),
-                     key=lambda k: len({r[k] for r in ok}) < 2)  # a key that varies first
+                     key=lambda k: not varies(ok, k))  # a key that varies first
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
     if not numeric or not outputs:
         return []
-    units = {**units, **{k: units.get(k.removesuffix(END_SUFFIX), "") for k in keys
-                         if k.endswith(END_SUFFIX)}}
     order = [numeric[0], *(k for k in keys if k != numeric[0])]
     what = "modes" if prep.scene.analysis == "modes" else "steady"
     figs = characteristic_figures(prep, ok, order, units, outputs, what)
     return [(f"{stem}.png", fig) for _, fig in figs[:1]]
 
 
-END_SUFFIX = " at t_end"
-"""Suffix of the figure's column of an input swept as expressions: their values at the end of
-each point's run."""
-
-
-def _with_end_values(prep: Prepared, rows: list[dict[str, Any]], keys: list[str]
-                     ) -> tuple[list[dict[str, Any]], list[str]]:
-    """``rows`` and ``keys`` with each input swept as expressions of ``t`` replaced by its
-    value at the end of each point's run (the time of the final values; key
-    ``<key> at t_end``), where distinct expressions end at distinct values (otherwise the
-    curves would merge): a sweep over ``rpm(N) * ramp(0, 0.02)`` is drawn against the speed
-    the run ended at."""
+def _with_end_values(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
+                     units: dict[str, str]
+                     ) -> tuple[list[dict[str, Any]], list[str], dict[str, str]]:
+    """``rows``, ``keys`` and ``units`` with each input swept as expressions of ``t`` replaced
+    by its value at the end of each point's run (the time of the final values; key
+    ``<key> at t_end``, the input's unit), where distinct expressions end at distinct values
+    (otherwise the curves would merge): a sweep over ``rpm(N) * ramp(0, 0.02)`` is drawn
+    against the speed the run ended at."""
     import casadi as ca
 
     from bearingsim.scenes.expressions import compile_expression
 
-    t_end = prep.scene.simulation.t_end
+    def end(row: dict[str, Any], key: str) -> tuple[str, float]:
+        return row[key], float(row.get("simulation.t_end", prep.scene.simulation.t_end))
+
     for key in [k for k in keys if k.startswith("inputs.")]:
-        texts = {r[key] for r in rows}
-        if not all(isinstance(t, str) for t in texts):
+        if not all(isinstance(r[key], str) for r in rows):
             continue
         try:
-            ends = {(text, r.get("simulation.t_end", t_end)): float(ca.DM(
-                compile_expression(text, key)(float(r.get("simulation.t_end", t_end)))))
-                for r in rows for text in (r[key],)}
+            ends = {(text, t): float(ca.DM(compile_expression(text, key)(t)))
+                    for text, t in {end(r, key) for r in rows}}
         except Exception:  # noqa: BLE001 - a text that is no expression: drawn as it is
             continue
         if len(set(ends.values())) < len(ends):
             continue
-        derived = key + END_SUFFIX
-        rows = [{**r, derived: ends[r[key], r.get("simulation.t_end", t_end)]} for r in rows]
+        derived = f"{key} at t_end"
+        rows = [{**r, derived: ends[end(r, key)]} for r in rows]
         keys = [derived if k == key else k for k in keys]
-    return rows, keys
+        units = {**units, derived: units.get(key, "")}
+    return rows, keys, units
 
 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")

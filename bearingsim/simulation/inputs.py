@@ -317,19 +317,19 @@ def _new_signal(system: System, inputs: dict[str, Any]) -> InputSignal:
     t = _T
     lifted: list[float] = []
     exprs, keys, slices = [], [], []
-    places = []
+    spans = []
     for sig in system.inputs:
         first = len(lifted)
         expr, kind = _one(sig.name, inputs.get(sig.name, sig.start), t, sig.unit,
                           lifted)
         exprs.append(expr)
         keys.append(f"{sig.name}={kind}")
-        slices.append((first, len(lifted)) if expr is None else None)
-        places.append(first)
+        spans.append((first, len(lifted)))
+        slices.append(spans[-1] if expr is None else None)
     key = "|".join(keys)
     u = _SIGNALS.get(key)
     if u is None:
-        u = _signal_function(exprs, slices, places, len(lifted))
+        u = _signal_function(exprs, slices, spans, len(lifted))
         if len(_SIGNALS) >= _SIGNALS_LIMIT:
             del _SIGNALS[next(iter(_SIGNALS))]
         _SIGNALS[key] = u
@@ -345,18 +345,17 @@ numbers in its structure)."""
 
 
 def _signal_function(exprs: list[ca.SX | None], slices: list[tuple[int, int] | None],
-                     places: list[int], n_q: int) -> ca.Function:
+                     spans: list[tuple[int, int]], n_q: int) -> ca.Function:
     """``u(t, q)`` from the inputs' expressions of ``t`` and the slices of ``q`` holding the
-    lifted constants and tables; an expression's lifted numbers (:data:`_LIFTED`) start at its
-    place in ``q``."""
+    lifted constants and tables; ``spans``: each input's numbers in ``q`` (an expression's
+    lifted numbers, the symbols :data:`_LIFTED`, there)."""
     q = ca.SX.sym("q", n_q)
     exprs = list(exprs)
     for k, piece in enumerate(slices):
         if piece is None:
-            if n_q and ca.depends_on(exprs[k], _LIFTED):
-                first = places[k]
-                n = min(_LIFTED.numel(), n_q - first)
-                exprs[k] = ca.substitute(exprs[k], _LIFTED[:n], q[first:first + n])
+            first, last = spans[k]
+            if last > first:
+                exprs[k] = ca.substitute(exprs[k], _LIFTED[:last - first], q[first:last])
             continue
         first, last = piece
         if last - first == 1:
