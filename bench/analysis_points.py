@@ -22,17 +22,21 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import csv
 import json
 import os
 import statistics
 import subprocess
 import sys
-import tempfile
-import time
-from pathlib import Path
 
-from bench.common import CLI, ROOT, Section, exported_package, fmt, markdown_table, scene_command
+from bench.common import (
+    ROOT,
+    Section,
+    exported_package,
+    fmt,
+    markdown_table,
+    scene_command,
+    sweep_command,
+)
 
 __all__ = ["BASELINES", "ROUNDS", "SWEEP", "analysis_scenes", "measure", "section"]
 
@@ -78,20 +82,12 @@ def _sweep(env: dict) -> dict[str, float]:
     """:data:`SWEEP` in a new process: its summary's ``plan`` and ``points`` phases and the
     command's wall time [s]."""
     scene, grid, workers = SWEEP
-    with tempfile.TemporaryDirectory() as out:
-        t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-c", CLI, "sweep", scene,
-                        *(a for g in grid for a in ("--grid", g)), "--workers", str(workers),
-                        "--out", out, "--no-progress"],
-                       check=True, capture_output=True, env=env, cwd=ROOT)
-        wall = time.perf_counter() - t0
-        summary = json.loads((Path(out) / f"{scene}.sweep.json").read_text())
-        with (Path(out) / f"{scene}.sweep.csv").open(encoding="utf-8") as table:
-            slowest = max(float(v) for row in csv.DictReader(table)
-                          for k, v in row.items() if k.startswith("wall_s") and v)
+    wall, summary, points = sweep_command(
+        env, scene, [*(a for g in grid for a in ("--grid", g)), "--workers", str(workers)])
     phases = summary["phases_s"]
     return {"plan": phases["plan"], "cluster": phases["cluster"], "points": phases["points"],
-            "slowest": slowest, "wall": wall, "n": summary["points"], "ok": summary["ok"]}
+            "slowest": max(points), "wall": wall, "n": summary["points"],
+            "ok": summary["ok"]}
 
 
 WARM_RUNS = 5

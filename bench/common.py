@@ -26,6 +26,7 @@ import numpy as np  # noqa: E402
 __all__ = [
     "Section",
     "machine_info",
+    "sweep_command",
     "median_call_time",
     "loglog_slope",
     "interp_loglog",
@@ -146,6 +147,42 @@ def scene_command(env: dict[str, str], scene: str) -> tuple[float, float, dict]:
         wall, cpu = time.perf_counter() - t0, children_cpu() - cpu0
         summary = json.loads((Path(out) / f"{scene}.summary.json").read_text())
     return wall, cpu, summary
+
+
+def sweep_command(env: dict[str, str], scene: str, arguments: list[str]
+                  ) -> tuple[float, dict, list[float]]:
+    """``bearingsim sweep scene <arguments> --out <temporary folder> --no-progress`` in a new
+    Python process.
+
+    Parameters
+    ----------
+    env : dict of str to str
+        The process's environment (:func:`exported_package` for a baseline's package).
+    scene : str
+        A shipped scene's name.
+    arguments : list of str
+        The sweep's arguments (``--grid``, ``--workers``, ...).
+
+    Returns
+    -------
+    tuple of (float, dict, list of float)
+        Wall time [s] from launch to exit, the sweep's summary (``<scene>.sweep.json``) and
+        each point's wall time [s] from its table.
+    """
+    import csv
+    import json
+    import sys
+
+    with tempfile.TemporaryDirectory() as out:
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", CLI, "sweep", scene, *arguments, "--out", out,
+                        "--no-progress"], check=True, capture_output=True, env=env, cwd=ROOT)
+        wall = time.perf_counter() - t0
+        summary = json.loads((Path(out) / f"{scene}.sweep.json").read_text())
+        with (Path(out) / f"{scene}.sweep.csv").open(encoding="utf-8") as table:
+            points = [float(v) for row in csv.DictReader(table)
+                      for k, v in row.items() if k.startswith("wall_s") and v]
+    return wall, summary, points
 
 
 def machine_info() -> dict[str, str]:

@@ -16,18 +16,12 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import csv
-import json
 import os
 import random
 import statistics
-import subprocess
-import sys
-import tempfile
 import time
-from pathlib import Path
 
-from bench.common import CLI, ROOT, Section, exported_package, fmt, markdown_table
+from bench.common import ROOT, Section, exported_package, fmt, markdown_table, sweep_command
 
 __all__ = ["BASELINE", "LOADS", "ROUNDS", "SPEEDS", "T_END", "measure", "section"]
 
@@ -61,18 +55,10 @@ def _sweep(env: dict, kind: str, rng: random.Random, loads=LOADS) -> dict[str, f
     """One ``bearingsim sweep`` in a new process: its points phase, the mean, median and
     slowest point's wall [s], the points over :data:`SLOW` times the median, the command's
     wall [s]."""
-    with tempfile.TemporaryDirectory() as out:
-        t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-c", CLI, "sweep", SCENE,
-                        "--grid", "inputs.load.Fx=" + ",".join(str(f) for f in loads),
-                        "--grid", _speeds(kind, rng), "--grid", f"simulation.t_end={T_END}",
-                        "--workers", str(WORKERS), "--out", out, "--no-progress"],
-                       check=True, capture_output=True, env=env, cwd=ROOT)
-        wall = time.perf_counter() - t0
-        summary = json.loads((Path(out) / f"{SCENE}.sweep.json").read_text())
-        with (Path(out) / f"{SCENE}.sweep.csv").open(encoding="utf-8") as table:
-            points = [float(v) for row in csv.DictReader(table)
-                      for k, v in row.items() if k.startswith("wall_s") and v]
+    wall, summary, points = sweep_command(env, SCENE, [
+        "--grid", "inputs.load.Fx=" + ",".join(str(f) for f in loads),
+        "--grid", _speeds(kind, rng), "--grid", f"simulation.t_end={T_END}",
+        "--workers", str(WORKERS)])
     median = statistics.median(points)
     return {"points": summary["phases_s"]["points"], "mean": statistics.fmean(points),
             "median": median, "slowest": max(points),
