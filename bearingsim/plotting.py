@@ -12,12 +12,29 @@ import numpy as np
 from bearingsim.units import display_label, to_display, unit_label
 
 __all__ = ["WIDE_RANGE", "Curve", "FigureSpec", "Panel", "axis_label", "is_wide_positive",
-           "render", "set_value_scale"]
+           "keep_tight_layout", "render", "set_value_scale"]
 
 WIDE_RANGE = 1e3
 """Ratio of the largest to the smallest value above which a positive series is drawn on a
 logarithmic axis (e.g. a rating life that falls from millions of hours at rest to a few
 thousand at speed)."""
+
+
+def keep_tight_layout(fig) -> None:
+    """Lay ``fig`` out tightly (``Figure.tight_layout``) and keep the positions it found.
+
+    ``tight_layout`` leaves a placeholder layout engine on the figure, and ``savefig`` then
+    draws a figure with an engine twice: once with rendering off (every text laid out, the
+    ticks placed) and once more to render it. Without an engine a save draws once; the pixels
+    are the same.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, its artists in place.
+    """
+    fig.tight_layout()
+    fig.set_layout_engine(None)
 
 
 def is_wide_positive(values: Sequence[np.ndarray]) -> bool:
@@ -182,5 +199,5 @@ def render(spec: FigureSpec, title: str = ""):
             ax.legend(fontsize=7)
         ax.grid(True, alpha=0.3)
     fig.suptitle(title or spec.title, fontsize=10)
-    fig.tight_layout()
+    keep_tight_layout(fig)
     return fig

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, wrapped_label
+from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, keep_tight_layout, wrapped_label
 from bearingsim.scenes.statics_table import STATICS, statics_of
 from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.units import to_display
@@ -363,7 +363,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                  + ("\nhollow markers: not settled at t_end (the run's last value)"
                     if flagged else ""), fontsize=9)
     if not shade:  # the constrained layout places the colour bar itself
-        fig.tight_layout()
+        keep_tight_layout(fig)
     return [("modes" if what == "modes" else "steady", fig)]
 
 
@@ -422,7 +422,7 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
 
     what = ", ".join(describe(n, prep) for n in columns) + " per load case"
     fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(what, 90)]), fontsize=9)
-    fig.tight_layout()
+    keep_tight_layout(fig)
     return [("statics", fig)]
 
 

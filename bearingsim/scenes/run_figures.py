@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.plotting import set_value_scale
+from bearingsim.plotting import keep_tight_layout, set_value_scale
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.plots import render_report
 from bearingsim.scenes.preparation import Prepared
@@ -118,7 +118,7 @@ def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
             ax.grid(True, alpha=0.3)
         axes[-1].set_xlabel("time [s]")
         fig.suptitle(title, fontsize=10)
-        fig.tight_layout()
+        keep_tight_layout(fig)
         figures.append((f"{stem}.png" if k == 0 else f"{stem}_{k // per_figure + 1}.png", fig))
     return figures
 

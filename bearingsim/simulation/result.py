@@ -13,7 +13,7 @@ import numpy as np
 from bearingsim.checks import checked
 from bearingsim.errors import ParameterError
 from bearingsim.files import atomic_path
-from bearingsim.plotting import wrapped_label
+from bearingsim.plotting import keep_tight_layout, wrapped_label
 from bearingsim.series_csv import write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
 
@@ -386,7 +386,7 @@ class Result:
         if title:
             fig.suptitle(title)
         if ax is None:
-            fig.tight_layout()
+            keep_tight_layout(fig)
         if path is not None:
             with atomic_path(path) as tmp:
                 fig.savefig(tmp, dpi=120)

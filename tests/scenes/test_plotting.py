@@ -278,3 +278,30 @@ def test_result_plot_labels_stay_on_the_figure(tmp_path):
     for ax in fig.axes:
         box = ax.yaxis.label.get_window_extent(renderer)
         assert 0 <= box.y0 and box.y1 <= height, ax.get_ylabel()
+
+
+@pytest.mark.parametrize("scene", ["double_layer_friction", "deep_groove_radial"])
+def test_a_saved_figure_is_drawn_once(tmp_path, monkeypatch, scene):
+    """``Figure.tight_layout`` left a placeholder layout engine behind, and ``savefig`` drew
+    every figure of a scene twice (once with rendering off, to lay it out again, then to
+    render it). The figures now keep the tight layout they found
+    (:func:`bearingsim.plotting.keep_tight_layout`): one draw a save, the same pixels."""
+    import matplotlib.figure
+
+    from bearingsim.scenes import load_scene, run_scene
+
+    draws, saves = [], []
+    real_draw, real_savefig = matplotlib.figure.Figure.draw, matplotlib.figure.Figure.savefig
+
+    def draw(fig, renderer):
+        draws.append(fig)
+        return real_draw(fig, renderer)
+
+    def savefig(fig, *args, **kwargs):
+        saves.append(fig)
+        return real_savefig(fig, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "draw", draw)
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", savefig)
+    run_scene(load_scene(scene), out=tmp_path)
+    assert saves and draws == saves
