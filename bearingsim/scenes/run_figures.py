@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.plotting import keep_tight_layout, set_value_scale
+from bearingsim.plotting import LINESTYLES, keep_tight_layout, set_value_scale
 from bearingsim.scenes.expressions import compile_expression
 from bearingsim.scenes.plots import render_report
 from bearingsim.scenes.preparation import Prepared
@@ -103,11 +103,13 @@ def time_figures(stem: str, t: np.ndarray, series: dict[str, np.ndarray],
         for row, (ax, group) in enumerate(zip(axes, chunk, strict=True)):
             unit = units.get(group[0], "")
             shown = []
-            for n in group:
+            for j, n in enumerate(group):
                 y, label_unit = display(data[n], unit)
                 shown.append(y)
                 ax.plot(t, np.where(np.isfinite(y), y, np.nan), label=describe(n, prep),
-                        color="0.35" if row < len(input_groups) else None)
+                        # inputs in grey, told apart by their line style
+                        **({"color": "0.35", "linestyle": LINESTYLES[j % len(LINESTYLES)]}
+                           if row < len(input_groups) else {}))
             if not include_zero(ax, np.concatenate(shown), label_unit):
                 set_value_scale(ax, shown)
             text = (axis_text(group[0], prep, label_unit) if len(group) == 1

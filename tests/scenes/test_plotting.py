@@ -305,3 +305,21 @@ def test_a_saved_figure_is_drawn_once(tmp_path, monkeypatch, scene):
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", savefig)
     run_scene(load_scene(scene), out=tmp_path)
     assert saves and draws == saves
+
+
+def test_inputs_sharing_a_panel_are_told_apart():
+    """The spindle scene's two load steps (Fx, Fz, both in kN) were drawn in one panel in the
+    same grey and the same solid line: its legend could not say which was which. Inputs
+    stay grey and take the line styles in turn."""
+    from bearingsim.plotting import LINESTYLES
+    from bearingsim.scenes.run_figures import time_figures
+
+    t = np.linspace(0.0, 0.08, 81)
+    inputs = {"Fx": 2000.0 * (t > 0.002), "Fz": 1000.0 * (t > 0.02)}
+    units = {"Fx": "N", "Fz": "N", "x": "m"}
+    ((_, fig),) = time_figures("s", t, {"x": 1e-5 * (t > 0.002)}, units, [], "steps",
+                               inputs=inputs)
+    lines = fig.axes[0].get_lines()
+    assert [line.get_linestyle() for line in lines] == list(LINESTYLES[:2])
+    assert {line.get_color() for line in lines} == {"0.35"}
+    assert len({line.get_linestyle() for line in fig.axes[0].get_legend().get_lines()}) == 2
