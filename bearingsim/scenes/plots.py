@@ -408,13 +408,18 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
         if units.get(n) in ("h", "Mrev"):  # lives span decades between load cases
             ax.set_yscale("log")
+            ax.set_ylim(top=float(np.max(y)) * 1.6)  # room for the values above the bars
             ax.grid(True, axis="y", which="both", alpha=0.3)
             continue
+        shown = y
         if units.get(n) == "Pa":
             limit, _ = display([STATIC_PRESSURE_LIMIT], "Pa")
-            ax.axhline(limit[0], color="0.2", linestyle="--", label="ISO 76 static limit")
-            ax.legend(fontsize=7)
-        include_zero(ax, y, unit)
+            ax.axhline(limit[0], color="0.2", linestyle="--")
+            ax.text(0.99, limit[0], f"ISO 76 static limit {limit[0]:,.0f} {unit}",
+                    transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=7)
+            shown = np.append(y, limit)  # the limit in view: the margin to it is the answer
+        include_zero(ax, shown, unit)
+        ax.set_ylim(top=ax.get_ylim()[1] * 1.08)  # room for the values above the bars
         ax.grid(True, axis="y", alpha=0.3)
     axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
     axes[-1].set_xlabel("load case", fontsize=8)

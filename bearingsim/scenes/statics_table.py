@@ -50,7 +50,7 @@ _DEEP_GROOVE_COLUMNS = {
     "k_axial": ("N/m", "axial stiffness d Fz / d z"),
     "L10r": ("Mrev", "ISO/TS 16281 reference rating life L10r (10^6 revolutions)"),
     "L10h": ("h", "ISO/TS 16281 reference rating life L10r in hours at the case's shaft "
-                  f"speed ({LIFE_AT_REST!r} without one)"),
+                  "speed"),  # a case at rest says LIFE_AT_REST in its cell
 }
 
 

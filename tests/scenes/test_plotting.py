@@ -323,3 +323,37 @@ def test_inputs_sharing_a_panel_are_told_apart():
     assert [line.get_linestyle() for line in lines] == list(LINESTYLES[:2])
     assert {line.get_color() for line in lines} == {"0.35"}
     assert len({line.get_linestyle() for line in fig.axes[0].get_legend().get_lines()}) == 2
+
+
+def test_statics_bars_show_the_pressure_limit_and_their_values(tmp_path, monkeypatch):
+    """The 6304 statics figure drew the ISO 76 limit (4200 MPa) outside its pressure panel,
+    whose axis stopped at the largest pressure (2109 MPa): the legend named a line that could
+    not be seen, and the margin to the limit, the panel's answer, was not shown. And the value
+    above the tallest bar of a panel ran into the panel's top edge."""
+    import matplotlib.figure
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Annotation
+
+    from bearingsim.scenes import load_scene, run_scene
+
+    figures = []
+    real_savefig = matplotlib.figure.Figure.savefig
+
+    def capture(fig, *args, **kwargs):
+        figures.append(fig)
+        return real_savefig(fig, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", capture)
+    run_scene(load_scene("deep_groove_statics"), out=tmp_path)
+    (fig,) = figures
+    FigureCanvasAgg(fig).draw()
+    renderer = fig.canvas.get_renderer()
+    pressure = next(ax for ax in fig.axes if ax.get_ylabel().endswith("[MPa]"))
+    assert pressure.get_ylim()[1] > 4200.0 and pressure.get_ylim()[0] == 0.0
+    assert [t.get_text() for t in pressure.texts if not isinstance(t, Annotation)] == [
+        "ISO 76 static limit 4,200 MPa"]
+    for ax in fig.axes:
+        top = ax.get_window_extent(renderer).y1
+        values = [t for t in ax.texts if isinstance(t, Annotation)]
+        assert len(values) == 4
+        assert all(t.get_window_extent(renderer).y1 <= top for t in values), ax.get_ylabel()
