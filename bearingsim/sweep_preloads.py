@@ -62,7 +62,7 @@ def scene_file(scene: str | os.PathLike | None) -> Path | None:
     if scene is None:
         return None
     path = Path(scene)
-    if not path.exists():
+    if not path.is_file():  # as load_scene: a folder is no scene file
         name = str(scene)
         path = BUILTIN_SCENES / (name if name.endswith(".toml") else f"{name}.toml")
     return path.resolve() if path.is_file() else None

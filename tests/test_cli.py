@@ -229,6 +229,23 @@ def test_built_in_scenes_are_package_data_and_run_by_name(tmp_path):
         load_scene(tmp_path / "missing.toml")
 
 
+def test_a_folder_named_like_a_built_in_scene_does_not_hide_it(tmp_path, monkeypatch, capsys):
+    """``bearingsim run double_layer_rs --out double_layer_rs`` wrote into a folder of the
+    scene's name; run again from there (``--overwrite``), the name resolved to that folder,
+    and the run stopped: "scene file double_layer_rs is not a regular file". A folder is no
+    scene file: the name is the built-in scene's."""
+    from bearingsim.scenes import load_scene
+    from bearingsim.sweep_preloads import scene_file
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["run", "double_layer_rs", "--out", "double_layer_rs"]) == 0
+    assert (tmp_path / "double_layer_rs").is_dir()
+    assert main(["run", "double_layer_rs", "--out", "double_layer_rs", "--overwrite"]) == 0
+    assert "not a regular file" not in capsys.readouterr().err
+    builtin = load_scene("double_layer_rs").path
+    assert Path(builtin).is_file() and scene_file("double_layer_rs") == Path(builtin).resolve()
+
+
 def test_a_second_run_into_the_same_folder_needs_overwrite(tmp_path, capsys):
     """Issue 16: runs overwrote their output folder silently."""
     scene = str(SCENES / "double_layer_rs.toml")

@@ -503,7 +503,7 @@ def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scen
         scene names.
     """
     p = Path(path)
-    if not p.exists():
+    if not p.is_file():  # a folder named like a built-in scene (its output, say) is not one
         p = builtin_scene_path(str(path)) or p
     if not p.exists():
         raise SceneError(f"scene file {str(p)!r} not found; built-in scenes: "
