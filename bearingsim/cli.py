@@ -307,10 +307,10 @@ def _parser() -> argparse.ArgumentParser:
         p.add_argument("--allow-path", action="append", default=[], metavar="DIR",
                        help="let the scene read and write in DIR too (by default only inside "
                             "the scene file's folder); repeat for several")
-    p_val.add_argument("scene", help="scene TOML file")
+    p_val.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_val.add_argument("--no-assemble", action="store_true",
                        help="only check the file, not its names against the model")
-    p_sw.add_argument("scene", help="scene TOML file")
+    p_sw.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_sw.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
                       help="grid values of a key (inputs.X, parameters.X, initial.X, "
                            "simulation.X, assembly.X): numbers in SI units or with a unit "

@@ -421,3 +421,14 @@ def test_every_option_with_a_default_states_it_in_its_help():
     silent = [(cmd, opt, default) for cmd, opt, default, text in options
               if "default" not in text]
     assert silent == []
+
+
+def test_every_command_of_a_scene_says_it_takes_a_built_in_scene_name(capsys):
+    """A new-user trial: ``bearingsim validate --help`` and ``bearingsim sweep --help`` said
+    "scene TOML file", though both run a built-in scene by name as ``bearingsim run`` does
+    (whose help said so)."""
+    for command in ("run", "validate", "sweep"):
+        with pytest.raises(SystemExit):
+            main([command, "--help"])
+        assert "built-in scene name" in " ".join(capsys.readouterr().out.split()), command
+    assert main(["validate", "double_layer_rs", "--no-assemble"]) == 0
