@@ -312,8 +312,11 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
 
     lap("imports")
     own = client is None
-    starting = (concurrent.futures.ThreadPoolExecutor(1).submit(connect, scheduler, n_workers)
-                if own else None)  # the cluster starts while the client plans
+    start = functools.partial(concurrent.futures.ThreadPoolExecutor(1).submit, connect,
+                              scheduler, n_workers)
+    resumed = resume and folder is not None and (folder.folder / f"{stem}.csv").is_file()
+    # the cluster starts while the client plans; a resumed sweep's once points are left
+    starting = start() if own and not resumed else None
     preparing = concurrent.futures.ThreadPoolExecutor(1)
     cluster = None
     try:
@@ -366,22 +369,25 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
 
         if table is not None:  # while the cluster starts, then beside the points
             preparing.submit(_ready_to_write, units)
-        if own:
+        if own and todo:
+            starting = starting or start()
             client, cluster = starting.result()
-        client.wait_for_workers(1)
+        if todo:  # (nothing left to run: no cluster)
+            client.wait_for_workers(1)
         lap("cluster")
         # every worker (scheduler_info may list a few); a LocalCluster's are all up
-        n_threads = sum(client.nthreads().values())
+        n_threads = sum(client.nthreads().values()) if todo else 1
         models = {key: ship(client, payload)
                   for key, payload in plan.payloads.items()
                   if any(plan.structure[j.index] == key for j in todo)}
         lap("ship")
         feeder = ChunkFeeder(client, models, [(plan.structure[j.index], j) for j in todo],
-                             n_threads, timeout, chunk, point_s, plan.payloads, costs)
+                             n_threads, timeout, chunk, point_s, plan.payloads,
+                             costs) if todo else None
         bar = tqdm(total=len(points), initial=len(rows), unit="point", leave=False,
                    disable=None if progress is None else not progress)  # None: a terminal's
         try:
-            for part, chunk_rows in feeder:
+            for part, chunk_rows in feeder or ():
                 if isinstance(chunk_rows, BaseException):  # a chunk lost for good
                     chunk_rows = [{"index": j.index, "status": "failed", "final": {},
                                    "error": f"{type(chunk_rows).__name__}: {chunk_rows}",
@@ -390,11 +396,12 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                     record(r)
                 bar.update(len(chunk_rows))
         except KeyboardInterrupt:
-            feeder.cancel()
+            if feeder:
+                feeder.cancel()
             raise
         finally:
             bar.close()
-        point_s, size = feeder.point_s, feeder.largest
+        point_s, size = (feeder.point_s, feeder.largest) if feeder else (point_s, 0)
         lap("points")
     finally:
         preparing.shutdown()

@@ -220,19 +220,38 @@ def test_the_point_budget_comes_from_the_scene_unless_given(tmp_path, client):
     assert "budget of 1 s" in res.rows[0]["error"]
 
 
-def test_a_resumed_sweep_with_nothing_left_says_so(scene, tmp_path, capsys):
+def test_a_resumed_sweep_with_nothing_left_says_so(scene, tmp_path, capsys, monkeypatch):
     """``--resume`` of a finished sweep said "1 model(s) built and shipped; 0 point(s) a task":
-    nothing was shipped and no task ran."""
+    nothing was shipped and no task ran. And it started a cluster for nothing (about 1 s): a
+    resumed sweep now starts one only when points are left."""
+    import bearingsim.scenes.sweep as sweep_module
     from bearingsim.cli import main
+
+    clusters = []
+
+    def counted(*args, **kwargs):
+        clusters.append(args)
+        return connect(*args, **kwargs)
+
+    connect = sweep_module.connect
+    monkeypatch.setattr(sweep_module, "connect", counted)
 
     out = tmp_path / "out"
     args = ["sweep", str(scene), "--grid", "inputs.shaft_speed=100,200", "--workers", "1",
             "--out", str(out), "--no-progress"]
     assert main(args) == 0
     first = capsys.readouterr().out.splitlines()[0]
-    assert "1 model(s) built and shipped" in first
+    assert "1 model(s) built and shipped" in first and len(clusters) == 1
     assert main([*args, "--resume"]) == 0
     again = capsys.readouterr().out.splitlines()[0]
     assert again.startswith("2 point(s): 2 settled")
     assert "(2 from the earlier run); nothing left to run; " in again
     assert "shipped" not in again and "a task" not in again
+    assert len(clusters) == 1
+    rows = list(csv.DictReader((out / f"{scene.stem}.sweep.csv").open()))
+    assert [r["status"] for r in rows] == ["ok", "ok"]
+    # a resumed sweep with a point left starts its cluster after planning, and runs it
+    assert main([*args[:3], "inputs.shaft_speed=100,200,300", *args[4:], "--resume"]) == 0
+    assert "(2 from the earlier run)" in capsys.readouterr().out and len(clusters) == 2
+    rows = list(csv.DictReader((out / f"{scene.stem}.sweep.csv").open()))
+    assert [r["status"] for r in rows] == ["ok", "ok", "ok"]
