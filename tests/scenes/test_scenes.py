@@ -326,6 +326,38 @@ def test_motor_drive_scene_runs_with_kinematic_bearing_when_only_speeds_are_aske
     assert output_series(prep, run_simulation(prep))["bearing.Rs"].shape == (11,)
 
 
+def test_the_motor_drive_load_torque_is_an_input_unless_built_in():
+    """The scene's motor drive took its load torque only as the argument load_torque, built
+    into the model (a comment said the input load.tau_in was not usable): a sweep over the
+    load built one model per value, and ``export-fmu motor_drive`` gave an FMU without a load
+    torque input. Left out, the load torque is now the input load.tau_in (optional, 0 by
+    default), with the same results as the built-in argument."""
+    from bearingsim.assembler import assemble
+    from bearingsim.assemblies.registry import REGISTRY
+    from bearingsim.scenes.sweep_plan import plan_sweep
+
+    built_in = parse_scene((SCENES / "motor_drive_spinup.toml").read_text()).replace(
+        outputs=["shaft.w", "motor.motor.tau_em"], simulation=Simulation(t_end=3.5, n_points=8))
+    args = {k: v for k, v in built_in.args.items() if k != "load_torque"}
+    as_input = built_in.replace(args=args, inputs={**built_in.inputs,
+                                                   "load.tau_in": "-0.05 * step(3.0)"})
+    a, b = (run_scene(s, write=False).series for s in (built_in, as_input))
+    assert b["motor.motor.tau_em"][-1] > 0.06  # the motor carries the load after the step
+    for name in ("shaft.w", "motor.motor.tau_em"):
+        np.testing.assert_allclose(b[name], a[name], rtol=1e-6, atol=1e-9)
+    # left out of [inputs] too: a load of 0, not an error
+    unloaded = run_scene(as_input.replace(inputs=built_in.inputs), write=False).series
+    zero = run_scene(as_input.replace(inputs={**built_in.inputs, "load.tau_in": 0.0}),
+                     write=False).series
+    np.testing.assert_array_equal(unloaded["motor.motor.tau_em"], zero["motor.motor.tau_em"])
+    assert b["motor.motor.tau_em"][-1] - unloaded["motor.motor.tau_em"][-1] > 0.03
+    plan = plan_sweep(as_input, [{"inputs.load.tau_in": v} for v in (-0.02, -0.05, -0.1)])
+    assert len(plan.prepared) == 1  # one model for the three loads
+    spec = REGISTRY["motor_drive"]  # what export-fmu motor_drive builds
+    model = spec.build(spec.with_defaults({}), "torque")
+    assert "load.tau_in" in assemble(model).input_names
+
+
 # ----------------------------------------------------------------------------- portability, sweeps
 def test_packed_system_gives_identical_results():
     prep = prepare(_scene(["Rs", "M_shaft"], fidelity="torque"))

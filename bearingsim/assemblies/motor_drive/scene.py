@@ -15,11 +15,9 @@ from bearingsim.components.motor import MOTOR_DRIVES
 def _motor_drive_from_scene(args: dict[str, Any], fidelity: str) -> MotorDrive:
     """Build the drive from the scene arguments of :data:`SCENE_SPEC` (defaults filled in)."""
     bearing = double_layer.double_layer_from_scene(args["bearing"], fidelity, drive="flange")
-    # motor_drive(load_torque=None) does not yet give a usable input load.tau_in (see
-    # tests/stress/test_stress_inputs.py), so the load is an argument: a number or f(t)
-    load = args["load_torque"]
+    load = args["load_torque"]  # None: the model's input load.tau_in
     return motor_drive(bearing, motor=args["motor"], speed_ref=None,
-                       load_torque=load if callable(load) else float(load),
+                       load_torque=load if load is None or callable(load) else float(load),
                        shaft_inertia=args["shaft_inertia"],
                        motor_options=dict(args["motor_options"] or {}) or None)
 
@@ -29,15 +27,17 @@ _BEARING = double_layer.SCENE_SPEC
 SCENE_SPEC = AssemblySpec(
     name="motor_drive",
     description="speed-controlled DC or PMSM motor -> shaft inertia -> double-layer bearing; "
-                "inputs motor.w_ref [rad/s], bearing.Fr, bearing.Fa [N] (torque level); the "
-                "load torque is the argument load_torque",
+                "inputs motor.w_ref [rad/s], bearing.Fr, bearing.Fa [N] (torque level) and "
+                "the load torque load.tau_in [N m] unless the argument load_torque builds it in",
     build=_motor_drive_from_scene,
     args={
         "motor": ArgSpec("choice", factory_default(MotorDrive, "motor"),
                          "motor type with its PI speed control", choices=tuple(MOTOR_DRIVES)),
-        "load_torque": ArgSpec("signal", factory_default(MotorDrive, "load_torque"),
-                               "load torque on the shaft [N m] (positive drives it): a number "
-                               "or an expression of t"),
+        "load_torque": ArgSpec("signal", None,
+                               "load torque on the shaft [N m] (positive drives it) built into "
+                               "the model: a number or an expression of t; left out, the "
+                               "model's input load.tau_in (0 unless [inputs] give it: one "
+                               "model for a sweep over it, an input of an exported FMU)"),
         "shaft_inertia": ArgSpec("float", factory_default(MotorDrive, "shaft_inertia"),
                                  "shaft and spindle inertia [kg m^2]", low=0.0),
         "motor_options": ArgSpec("floats", factory_default(MotorDrive, "motor_options"),
@@ -48,14 +48,14 @@ SCENE_SPEC = AssemblySpec(
     fidelities=_BEARING.fidelities,
     auto_fidelities=_BEARING.auto_fidelities,
     output_fidelity=[("bearing." + pattern, fid) for pattern, fid in _BEARING.output_fidelity]
-    + [("motor.w_ref", _BEARING.auto_fidelities[0])],
+    + [(name, _BEARING.auto_fidelities[0]) for name in ("motor.w_ref", "load.tau_in")],
     default_outputs=["shaft.w", "bearing.w_middle", "bearing.Rs", "bearing.M_shaft"],
     post=lambda args: nested_post(_BEARING.post(args["bearing"]), "bearing."),
     parametric_args={"bearing." + name: (lambda args, holds=holds: holds(args["bearing"]))
                      for name, holds in _BEARING.parametric_args.items()},
-    optional_inputs=tuple("bearing." + p for p in _BEARING.optional_inputs),
+    optional_inputs=("load.tau_in", *("bearing." + p for p in _BEARING.optional_inputs)),
     reference_fidelity=_BEARING.reference_fidelity,
-    level_errors={level: {"motor.w_ref": 0.0,  # an input: exact at every level
+    level_errors={level: {"motor.w_ref": 0.0, "load.tau_in": 0.0,  # inputs: exact at every level
                           **{"bearing." + pattern: error for pattern, error in errors.items()}}
                   for level, errors in _BEARING.level_errors.items()},
     plots=motor_drive_plots,
