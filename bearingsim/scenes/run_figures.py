@@ -9,7 +9,6 @@ during the run drawn on top. An analysis scene's figures are
 
 from __future__ import annotations
 
-import re
 from typing import Any
 
 import numpy as np
@@ -39,8 +38,7 @@ def _varying_inputs(prep: Prepared, result: Result
         if arg.kind == "signal" and isinstance(text, str):
             values = compile_expression(text, f"assembly.{name}")(result.t)
             out[name] = np.broadcast_to(np.asarray(values, dtype=float).ravel(), result.t.shape)
-            m = re.search(r"\[([^\]]+)\]", arg.doc)
-            units[name] = m.group(1).replace(" ", ".") if m else ""
+            units[name] = arg.unit
     keep = {n: y for n, y in out.items()
             if y.size and np.ptp(y[np.isfinite(y)]) > 0.0}
     return keep, {n: units[n] for n in keep}
