@@ -49,6 +49,7 @@ from bearingsim.physics.life import (
 )
 from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
+from bearingsim.units import is_quantity
 from bearingsim.validation import check_choice, check_quantity, check_range
 
 __all__ = ["DeepGrooveStatics", "LOAD_NAMES", "MAX_STATIC_PRESSURE", "METHODS",
@@ -203,10 +204,12 @@ def _load_vector(loads, where: str) -> np.ndarray:
     out = np.zeros(5)
     for k, name in enumerate(LOAD_NAMES):
         value = loads.get(name, 0.0)
-        if isinstance(value, (bool, str, bytes)) or not isinstance(value, (int, float)):
-            raise ParameterError(f"{where}: loads[{name!r}] must be a number, got {value!r}")
-        out[k] = check_range(value, f"loads[{name!r}]", "N" if name[0] == "F" else "N.m",
-                             where=where)
+        if isinstance(value, (bool, bytes)) or not (isinstance(value, (int, float, str))
+                                                    or is_quantity(value)):
+            raise ParameterError(f"{where}: loads[{name!r}] must be a number or a number with a "
+                                 f"unit ('2 kN'), got {value!r}")
+        out[k] = check_quantity(value, f"loads[{name!r}]", "N" if name[0] == "F" else "N.m",
+                                where=where)
     return out
 
 

@@ -60,8 +60,13 @@ def test_non_finite_constant_loads_are_rejected(value):
 
 
 def test_a_non_numeric_constant_load_is_rejected():
-    with pytest.raises(ParameterError, match=r"loads\['Fx'\] must be a number"):
+    # text is a number with a unit ("1 kN"); text without one is refused, saying so
+    with pytest.raises(ParameterError, match=r"loads\['Fx'\]: '1000' is not a number with a "
+                                             r"unit; write e.g. '2 kN' or a number in N"):
         RingLoad({"Fx": "1000"})
+    with pytest.raises(ParameterError, match=r"loads\['Fx'\] must be a number in N or a "
+                                             r"number with a unit"):
+        RingLoad({"Fx": True})
 
 
 def test_a_non_finite_constant_signal_is_rejected_when_its_equation_is_built():

@@ -145,6 +145,34 @@ def test_api_takes_numbers_with_units(torque_system):
         simulate(torque_system, 0.05, inputs={"shaft_speed": "fast"})
 
 
+def test_api_load_arguments_take_numbers_with_units():
+    """A new-user trial: ``deep_groove_ball_bearing("6304", ..., speed="1730 rpm",
+    loads={"Fx": "938 N"})`` took the speed with its unit and refused the load ("must be a
+    number in N"), and ``deep_groove_statics`` did the same. Loads now take what inputs take;
+    the cylindrical roller bearing converts them before its Newton start and static check."""
+    from bearingsim.assemblies import cylindrical_roller_bearing, deep_groove_ball_bearing
+    from bearingsim.studies.deep_groove_statics import deep_groove_statics
+
+    for text in ("938 N", "0.938 kN", registry().Quantity(938.0, "N")):
+        assert deep_groove_statics("6304", {"Fx": text}).max_pressure == pytest.approx(
+            deep_groove_statics("6304", {"Fx": 938.0}).max_pressure, rel=1e-12)
+        with_unit = assemble(deep_groove_ball_bearing("6304", "quasi-static",
+                                                      loads={"Fx": text}))
+        assert with_unit.u_default().tolist() == assemble(deep_groove_ball_bearing(
+            "6304", "quasi-static", loads={"Fx": 938.0})).u_default().tolist()
+    roller = cylindrical_roller_bearing("NU206", loads={"Fx": "10 kN"})
+    assert roller.options.loads == {"Fx": 10000.0}
+    assert roller.start.inner.tolist() == cylindrical_roller_bearing(
+        "NU206", loads={"Fx": 10000.0}).start.inner.tolist()
+    dynamic = deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed="1730 rpm",
+                                       loads={"Fx": "938 N", "Fz": "0.1 kN"}, n_slices=0)
+    assert dynamic.options.loads == {"Fx": 938.0, "Fz": 100.0}
+    with pytest.raises(ParameterError, match=r"loads\['Fx'\]: 'rpm' is not a unit of N"):
+        deep_groove_ball_bearing("6304", "quasi-static", loads={"Fx": "938 rpm"})
+    with pytest.raises(ParameterError, match="not a number with a unit; write e.g. '2 kN'"):
+        deep_groove_statics("6304", {"Fx": "heavy"})
+
+
 # ------------------------------------------------------------------ limiting speeds
 def test_bare_number_speed_in_a_scene_is_refused_far_above_the_limit():
     """Old code: shaft_speed = 10000 (rad/s, 95 493 r/min; limiting speeds 22 000 and 16 000

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from bearingsim.catalog.rollers import RollerBearingGeometry, resolve_roller_bearing
+from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.errors import ParameterError
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
 from bearingsim.validation import check_choice, check_count, check_range
@@ -85,7 +86,7 @@ class CylindricalRollerOptions:
             raise ParameterError(f"{where}: loads may have the keys Fx, Fy [N] (the bearing "
                                  f"carries no axial load; the misalignment sets the tilt), got "
                                  f"{', '.join(unknown)}")
-        object.__setattr__(self, "loads", loads)
+        object.__setattr__(self, "loads", check_loads(loads, where))  # "2 kN" -> 2000.0
 
     @property
     def clearance_value(self) -> float:

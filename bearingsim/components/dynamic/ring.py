@@ -13,7 +13,7 @@ from bearingsim.components.rotational import _signal
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Variable, der
 from bearingsim.symbolic import is_symbolic
-from bearingsim.validation import check_range
+from bearingsim.validation import check_quantity
 
 __all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide", "check_loads", "load_unit"]
 
@@ -48,8 +48,9 @@ def check_loads(loads: Mapping[str, Any] | None, where: str = "RingLoad") -> dic
     Parameters
     ----------
     loads : dict or None
-        ``{"Fx": ..., "Fy": ..., "Fz": ..., "Mx": ..., "My": ...}`` [N, N m]: constants,
-        symbolic functions of time or ``None`` (inputs).
+        ``{"Fx": ..., "Fy": ..., "Fz": ..., "Mx": ..., "My": ...}`` [N, N m]: constants
+        (numbers, or numbers with a unit: ``"2 kN"``), symbolic functions of time or ``None``
+        (inputs).
     where : str
         Component or function name for the messages.
 
@@ -82,11 +83,12 @@ def check_loads(loads: Mapping[str, Any] | None, where: str = "RingLoad") -> dic
         if value is None or callable(value) or is_symbolic(value):
             checked[key] = value
         else:
-            if isinstance(value, (bool, str, bytes)):
+            if isinstance(value, (bool, bytes)):
                 raise ParameterError(f"{where}: loads[{key!r}] must be a number in "
-                                     f"{load_unit(key)}, got {value!r}")
-            checked[key] = float(check_range(value, f"loads[{key!r}]", load_unit(key),
-                                             where=where))
+                                     f"{load_unit(key)} or a number with a unit ('2 kN'), "
+                                     f"got {value!r}")
+            checked[key] = float(check_quantity(value, f"loads[{key!r}]", load_unit(key),
+                                                where=where))
     return checked
 
 
