@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, keep_tight_layout, wrapped_label
+from bearingsim.scenes.operating_points import point_label
 from bearingsim.scenes.statics_table import STATICS, statics_of
 from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.units import to_display
@@ -90,8 +91,11 @@ def describe(name: str, prep: Any = None) -> str:
     if prep is not None:
         if name in prep.post:
             return prep.post[name].doc.split(" (")[0].split(";")[0]
+        if point_label(name) != name:  # a swept key ("assembly.preload_force"), or a value
+            key, space, derived = point_label(name).partition(" ")  # from one ("... at t_end")
+            return describe(key, prep) + space + derived
         system = prep.system
-        for sig in (*system.inputs, *system.states, *system.outputs):
+        for sig in (*system.inputs, *system.states, *system.outputs, *system.params):
             if sig.name == name and sig.description:
                 return sig.description
         if system.observed_descriptions.get(name):
@@ -305,7 +309,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
     curves, markers_only = _curves(rows, keys)
     entries = (len(curves) if len(per_panel[0]) == 1
                else len(per_panel[0]) + (len(curves) if len(curves) > 1 else 0))
-    beside = entries > INSIDE_LEGEND_ENTRIES and not markers_only  # widen for the legend
+    beside = entries > INSIDE_LEGEND_ENTRIES  # widen for the legend
     shade = (keys[1] if markers_only and len(per_panel[0]) == 1 and numeric_key(rows, keys[1])
              else None)  # a sample's points coloured by the second key's value
     fig = Figure(figsize=(10 if beside else 7, 2.8 * len(per_panel) + 0.9),
@@ -345,15 +349,16 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                    units.get(panel[0], ""), "Hz" if what == "modes" else y_unit)
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
                       else axis_text(panel[0], prep, y_unit), fontsize=8)
-        if (len(curves) > 1 or len(panel) > 1) and not markers_only and ax is axes[0]:
-            _legend(ax)  # once: every panel has the same curves
+        if (len(curves) > 1 or len(panel) > 1) and ax is axes[0]:
+            _legend(ax)  # once: every panel has the same curves (a sample: one, its series)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
     per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""
     if markers_only:
         others = keys[2:] if shade else keys[1:]
         per = (f" ({len(rows)} points" + (f", coloured by {shade}" if shade else "")
-               + (f"; {', '.join(others)} vary too" if others else "") + ")")
+               + (f"; {', '.join(others)} {'vary' if len(others) > 1 else 'varies'} too"
+                  if others else "") + ")")
         if shade:
             fig.colorbar(mappable, ax=list(axes)).set_label(
                 axis_text(shade, prep, c_unit), fontsize=8)

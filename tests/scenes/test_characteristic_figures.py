@@ -129,7 +129,7 @@ def test_a_sweep_over_speed_expressions_is_drawn_against_the_speed_the_runs_end_
     [ax] = fig.axes
     [line] = _lines(fig)[0]
     np.testing.assert_allclose(line.get_xdata(), [n * 0.5 for n in speeds])  # r/min
-    assert ax.get_xlabel() == "inputs.shaft_speed at t_end [r/min]"
+    assert ax.get_xlabel() == "imposed shaft speed at t_end [r/min]"  # the input's words
     assert ax.get_legend() is None
 
 
@@ -158,3 +158,26 @@ def test_values_not_settled_at_t_end_are_drawn_hollow(prep):
     [(_, settled)] = sweep_figures(prep, _rows([100.0, 200.0, 300.0], [10.0]),
                                    ["shaft_speed", "Fr"], ["Rs"], UNITS, "sweep")
     assert "hollow" not in settled.texts[0].get_text()
+
+
+def test_a_sampled_modes_sweep_names_its_modes_and_its_keys():
+    """A new-user trial: ``bearingsim sweep duplex_modes --sample assembly.preload_force=...
+    --sample assembly.speed=...`` drew the five modes in five colours with no legend (a
+    sample's markers had none, and the modes' names were in it), its axis and title said
+    ``assembly.preload_force`` where the scene's own figure says "axial preload", and the
+    title read "assembly.speed vary too"."""
+    modes = prepare(parse_scene(builtin_scene_path("duplex_modes").read_text(encoding="utf-8")))
+    names = ["radial x", "radial y", "axial", "tilt about x", "tilt about y"]
+    rng = np.random.default_rng(2)
+    rows = [{"assembly.preload_force": float(f), "assembly.speed": float(w), "status": "ok",
+             **{n: 300.0 + 100.0 * k + 1e-3 * f for k, n in enumerate(names)}}
+            for f, w in zip(rng.uniform(500, 3000, 16), rng.uniform(0, 600, 16), strict=True)]
+    units = {"assembly.preload_force": "N", "assembly.speed": "rad/s", **dict.fromkeys(names,
+                                                                                  "Hz")}
+    [(_, fig)] = characteristic_figures(modes, rows, ["assembly.preload_force",
+                                                      "assembly.speed"], units, names, "modes")
+    legend = fig.axes[0].get_legend()
+    assert legend is not None and [t.get_text() for t in legend.get_texts()] == names
+    assert fig.axes[0].get_xlabel() == "axial preload [kN]"
+    title = fig.texts[0].get_text() if fig.texts else fig._suptitle.get_text()
+    assert "against axial preload (16 points; assembly.speed varies too)" in title
