@@ -224,8 +224,10 @@ def value_axis(ax, values: np.ndarray, si_unit: str, unit: str) -> None:
 
 
 def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
-    return ", ".join(f"{k} = {v}" if isinstance(v, str) else
-                     f"{k} = {display_text(v, units.get(k, ''))}" for k, v in values.items())
+    """``Fr = 0.5 kN``: the values of a curve's keys, named as the table names them."""
+    return ", ".join(f"{point_label(k)} = {v}" if isinstance(v, str) else
+                     f"{point_label(k)} = {display_text(v, units.get(k, ''))}"
+                     for k, v in values.items())
 
 
 def numeric_key(rows: list[dict[str, Any]], key: str) -> bool:
@@ -353,10 +355,11 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
             _legend(ax)  # once: every panel has the same curves (a sample: one, its series)
         ax.grid(True, alpha=0.3)
     axes[-1].set_xlabel(axis_text(xkey, prep, x_unit), fontsize=8)
-    per = f", one curve per {', '.join(keys[1:])}" if len(keys) > 1 else ""
+    named = [point_label(k) for k in keys]  # "Fr", as an analysis scene's table names it
+    per = f", one curve per {', '.join(named[1:])}" if len(keys) > 1 else ""
     if markers_only:
-        others = keys[2:] if shade else keys[1:]
-        per = (f" ({len(rows)} points" + (f", coloured by {shade}" if shade else "")
+        others = named[2:] if shade else named[1:]
+        per = (f" ({len(rows)} points" + (f", coloured by {named[1]}" if shade else "")
                + (f"; {', '.join(others)} {'vary' if len(others) > 1 else 'varies'} too"
                   if others else "") + ")")
         if shade:

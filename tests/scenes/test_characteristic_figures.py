@@ -165,7 +165,8 @@ def test_a_sampled_modes_sweep_names_its_modes_and_its_keys():
     --sample assembly.speed=...`` drew the five modes in five colours with no legend (a
     sample's markers had none, and the modes' names were in it), its axis and title said
     ``assembly.preload_force`` where the scene's own figure says "axial preload", and the
-    title read "assembly.speed vary too"."""
+    title read "assembly.speed vary too". A sweep's legend and title name its keys as an
+    analysis scene's figures do: ``Fr = 0.5 kN``, not ``inputs.Fr = 0.5 kN``."""
     modes = prepare(parse_scene(builtin_scene_path("duplex_modes").read_text(encoding="utf-8")))
     names = ["radial x", "radial y", "axial", "tilt about x", "tilt about y"]
     rng = np.random.default_rng(2)
@@ -178,6 +179,14 @@ def test_a_sampled_modes_sweep_names_its_modes_and_its_keys():
                                                       "assembly.speed"], units, names, "modes")
     legend = fig.axes[0].get_legend()
     assert legend is not None and [t.get_text() for t in legend.get_texts()] == names
+    rows = [{"inputs.shaft_speed": w, "inputs.Fr": f, "Rs": 1e-3 * w / (1 + f), "status": "ok"}
+            for f in (0.0, 500.0) for w in (100.0, 200.0)]
+    [(_, curves)] = characteristic_figures(
+        modes, rows, ["inputs.shaft_speed", "inputs.Fr"],
+        {"inputs.shaft_speed": "rad/s", "inputs.Fr": "N", "Rs": "1"}, ["Rs"], "steady")
+    assert [t.get_text() for t in curves.axes[0].get_legend().get_texts()] == [
+        "Fr = 0 kN", "Fr = 0.5 kN"]
+    assert "one curve per Fr" in curves._suptitle.get_text()
     assert fig.axes[0].get_xlabel() == "axial preload [kN]"
     title = fig.texts[0].get_text() if fig.texts else fig._suptitle.get_text()
-    assert "against axial preload (16 points; assembly.speed varies too)" in title
+    assert "against axial preload (16 points; speed varies too)" in title
