@@ -95,11 +95,11 @@ def describe(name: str, prep: Any = None) -> str:
             key, space, derived = point_label(name).partition(" ")  # from one ("... at t_end")
             return describe(key, prep) + space + derived
         system = prep.system
-        for sig in (*system.inputs, *system.states, *system.outputs, *system.params):
-            if sig.name == name and sig.description:
-                return sig.description
-        if system.observed_descriptions.get(name):
-            return system.observed_descriptions[name]
+        said = system.observed_descriptions.get(name) or next(
+            (sig.description for sig in (*system.inputs, *system.states, *system.outputs,
+                                         *system.params) if sig.name == name), "")
+        if said:  # one of an array's elements says which: "normal contact load, inner[0]"
+            return ", ".join([said, *(part for part in name.split(".") if "[" in part)])
         arg = prep.spec.args.get(name)
         if arg is not None and arg.doc:  # up to its unit: "axial preload [N] instead of ..."
             return re.split(r"\s*[\[(]", arg.doc)[0]

@@ -357,3 +357,22 @@ def test_statics_bars_show_the_pressure_limit_and_their_values(tmp_path, monkeyp
         values = [t for t in ax.texts if isinstance(t, Annotation)]
         assert len(values) == 4
         assert all(t.get_window_extent(renderer).y1 <= top for t in values), ax.get_ylabel()
+
+
+def test_elements_of_an_array_are_told_apart_on_a_figure():
+    """``inner[0].Q`` and ``inner[1].Q`` (the contact loads of balls 0 and 1) were both
+    labelled "normal contact load": one axis label said nothing of which ball, and two
+    elements in one panel had the same legend entry. An element's label names it."""
+    from bearingsim.scenes import load_scene, prepare
+    from bearingsim.scenes.plots import describe
+    from bearingsim.scenes.run_figures import time_figures
+
+    prep = prepare(load_scene("deep_groove_duty1"))
+    assert describe("inner[0].Q", prep) == "normal contact load, inner[0]"
+    assert describe("w_cage", prep) == "cage speed"  # a scalar as before
+    t = np.linspace(0.0, 0.01, 11)
+    series = {"inner[0].Q": 100.0 + t, "inner[1].Q": 200.0 + t}
+    ((_, fig),) = time_figures("s", t, series, {n: "N" for n in series},
+                               [["inner[0].Q", "inner[1].Q"]], "loads", prep=prep)
+    labels = [text.get_text() for text in fig.axes[0].get_legend().get_texts()]
+    assert labels == ["normal contact load, inner[0]", "normal contact load, inner[1]"]
