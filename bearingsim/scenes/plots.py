@@ -16,7 +16,7 @@ from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, keep_tight_layo
 from bearingsim.scenes.operating_points import point_label
 from bearingsim.scenes.statics_table import STATICS, statics_of
 from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
-from bearingsim.units import to_display
+from bearingsim.units import engineering, to_display
 
 __all__ = ["analysis_figures", "axis_text", "characteristic_figures", "describe", "display",
            "display_text", "include_zero", "numeric_key", "render_report", "statics_figures",
@@ -41,10 +41,7 @@ def display(values, unit: str) -> tuple[np.ndarray, str]:
     (numpy.ndarray, str)
         The converted values and the display unit.
     """
-    values = np.asarray(values, dtype=float)
-    if unit == "Mrev":  # a life in millions of revolutions, as ISO 281 states it
-        return values, "10⁶ rev"
-    return to_display(values, unit)
+    return to_display(np.asarray(values, dtype=float), unit)
 
 
 def display_text(value: float, unit: str) -> str:
@@ -64,8 +61,7 @@ def display_text(value: float, unit: str) -> str:
     """
     if value is None or not math.isfinite(value):
         return f"{value}"
-    shown, label = display(np.array([value]), unit)
-    return f"{shown[0]:.5g}" + ("" if label == "-" else f" {label}")
+    return engineering(value, unit, mark_dimensionless=False)
 
 
 def describe(name: str, prep: Any = None) -> str:

@@ -46,6 +46,10 @@ DISPLAY_UNITS: dict[str, str] = {
 
 _PINT_SPELLING = {"mm²/s": "mm**2/s", "N/µm": "N/micrometer"}
 
+_SHOWN_AS = {"Mrev": "10⁶ rev"}
+"""Units a person reads under another name, the value unchanged: a life in millions of
+revolutions as ISO 281 states it."""
+
 
 def unit_label(unit: str) -> str:
     """A unit as shown to users: ``-`` for dimensionless (``"1"`` or ``""``), ``µm`` for
@@ -69,6 +73,8 @@ def _display(unit: str) -> tuple[str, float, float]:
     """(label, factor, offset) to show values of ``unit``: ``shown = factor * x + offset``."""
     if unit in ("", "1", "-"):
         return "-", 1.0, 0.0
+    if unit in _SHOWN_AS:
+        return _SHOWN_AS[unit], 1.0, 0.0
     try:
         exps = base_exponents(unit)[0]
     except UnitError:
@@ -141,7 +147,8 @@ def _number(x: float) -> str:
     return f"{x:.5g}" if abs(x) < 1e5 else f"{x:.6g}"
 
 
-def engineering(value: float, unit: str, *, both: bool = False) -> str:
+def engineering(value: float, unit: str, *, both: bool = False,
+                mark_dimensionless: bool = True) -> str:
     """A value of ``unit`` as a person reads it (:data:`DISPLAY_UNITS`), optionally followed by
     the value in ``unit`` itself.
 
@@ -151,6 +158,8 @@ def engineering(value: float, unit: str, *, both: bool = False) -> str:
     unit : str
     both : bool
         Also give the value in ``unit`` (used where a bare number was given in SI).
+    mark_dimensionless : bool
+        Write ``[-]`` after a dimensionless value (False: the number alone, ``Rs = 0.2095``).
 
     Returns
     -------
@@ -168,7 +177,8 @@ def engineering(value: float, unit: str, *, both: bool = False) -> str:
     if not math.isfinite(value):
         return f"{value} {unit_label(unit)}"
     shown, label = to_display(float(value), unit)
-    text = f"{_number(shown)} {label}" if label != "-" else f"{_number(shown)} [-]"
+    text = (f"{_number(shown)} {label}" if label != "-" else
+            f"{_number(shown)} [-]" if mark_dimensionless else _number(shown))
     if both and label != unit_label(unit):
         text += f" ({value:.6g} {si_label(unit)})"
     return text

@@ -337,3 +337,20 @@ def test_console_echoes_a_bare_number_in_both_units(tmp_path, capsys):
                      encoding="utf-8")
     assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
     assert "input shaft_speed = 9549.3 r/min (1000 rad/s) at t_end" in capsys.readouterr().out
+
+
+def test_one_formatter_for_a_value_in_its_display_unit():
+    """The console's values (``scenes.plots.display_text``) and the echoes of inputs
+    (``units.engineering``) were formatted by two functions: the console printed a life of
+    801 863 h as ``8.0186e+05 h``, and ``engineering`` showed a life in millions of
+    revolutions as ``Mrev`` where the figures and the console say ``10⁶ rev``. One formatter
+    now; the console leaves ``[-]`` off a dimensionless value."""
+    from bearingsim.scenes.plots import display_text
+    from bearingsim.units import engineering
+
+    assert display_text(801863.0, "h") == "801863 h"
+    assert engineering(3319.0, "Mrev") == display_text(3319.0, "Mrev") == "3319 10⁶ rev"
+    assert display_text(0.20948, "1") == "0.20948" and engineering(0.20948, "1") == "0.20948 [-]"
+    for value, unit in [(104.72, "rad/s"), (2.108e9, "Pa"), (-0.0055, "N.m"), (1e-7, "N"),
+                        (42.0, "Hz"), (1.7e-5, "m")]:
+        assert display_text(value, unit) == engineering(value, unit)
