@@ -36,6 +36,7 @@ import numpy as np
 from bearingsim.catalog import BearingGeometry, resolve_bearing
 from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.ball_row import row_loads, row_parameters
+from bearingsim.components.dynamic.ring import load_value
 from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.physics import iso_ts_16281 as iso
 from bearingsim.physics.contact_curvature import raceway_radii
@@ -49,7 +50,6 @@ from bearingsim.physics.life import (
 )
 from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
-from bearingsim.units import is_quantity
 from bearingsim.validation import check_choice, check_quantity, check_range
 
 __all__ = ["DeepGrooveStatics", "LOAD_NAMES", "MAX_STATIC_PRESSURE", "METHODS",
@@ -203,13 +203,7 @@ def _load_vector(loads, where: str) -> np.ndarray:
                              f"is the bearing axis)")
     out = np.zeros(5)
     for k, name in enumerate(LOAD_NAMES):
-        value = loads.get(name, 0.0)
-        if isinstance(value, (bool, bytes)) or not (isinstance(value, (int, float, str))
-                                                    or is_quantity(value)):
-            raise ParameterError(f"{where}: loads[{name!r}] must be a number or a number with a "
-                                 f"unit ('2 kN'), got {value!r}")
-        out[k] = check_quantity(value, f"loads[{name!r}]", "N" if name[0] == "F" else "N.m",
-                                where=where)
+        out[k] = load_value(loads.get(name, 0.0), name, where)
     return out
 
 

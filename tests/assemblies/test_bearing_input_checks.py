@@ -67,6 +67,11 @@ def test_a_non_numeric_constant_load_is_rejected():
     with pytest.raises(ParameterError, match=r"loads\['Fx'\] must be a number in N or a "
                                              r"number with a unit"):
         RingLoad({"Fx": True})
+    # a sequence: a named error (it was a TypeError from float() deep inside)
+    for fidelity in ("quasi-static", "dynamic"):
+        with pytest.raises(ParameterError, match=r"loads\['Fx'\] must be a number in N or a "
+                                                 r"number with a unit \('2 kN'\), got \[100"):
+            deep_groove_ball_bearing("6304", fidelity, loads={"Fx": [100.0]})
 
 
 def test_a_non_finite_constant_signal_is_rejected_when_its_equation_is_built():

@@ -158,7 +158,8 @@ def test_no_load_leaves_the_rings_centred():
     (dict(loads={"Fr": 100.0}), "unknown load.*'Fr'"),
     (dict(loads={"Fx": float("nan")}), r"loads\['Fx'\].*finite"),
     (dict(loads={"Fx": "100"}), r"loads\['Fx'\]: '100' is not a number with a unit"),
-    (dict(loads={"Fx": [100.0]}), r"loads\['Fx'\] must be a number or a number with a unit"),
+    (dict(loads={"Fx": [100.0]}), r"loads\['Fx'\] must be a number in N or a number with a "
+                                   r"unit"),
     (dict(loads={"Fx": 1.0}, clearance=-1e-6), "clearance.*outside"),
     (dict(loads={"Fx": 1.0}, clearance=1e-3), "free contact angle above 45 deg"),
     (dict(loads={"Fx": 1.0}, method="iso"), "method must be"),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import difflib
+import numbers
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
@@ -13,9 +14,11 @@ from bearingsim.components.rotational import _signal
 from bearingsim.errors import ParameterError
 from bearingsim.language import Component, Input, Variable, der
 from bearingsim.symbolic import is_symbolic
+from bearingsim.units import is_quantity
 from bearingsim.validation import check_quantity
 
-__all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide", "check_loads", "load_unit"]
+__all__ = ["RingBody", "FixedFrame", "RingLoad", "TiltGuide", "check_loads", "load_unit",
+           "load_value"]
 
 
 _LOAD_HINTS = {
@@ -40,6 +43,37 @@ def load_unit(key: str) -> str:
         Its unit.
     """
     return "N" if key.startswith("F") else "N.m"
+
+
+def load_value(value: Any, key: str, where: str) -> float:
+    """One constant ring load in SI units: a number in :func:`load_unit` or a number with a
+    unit (``"2 kN"``, a :class:`pint.Quantity`), finite.
+
+    Parameters
+    ----------
+    value : float or str or pint.Quantity
+        The load.
+    key : str
+        Its name ("Fx", ..., "My").
+    where : str
+        Component or function name for the messages.
+
+    Returns
+    -------
+    float
+        The load [N or N m].
+
+    Raises
+    ------
+    ParameterError
+        For anything else (a bool, a sequence, text that is no number with a unit of that
+        quantity), naming the load and its unit.
+    """
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, str)) and not (
+            is_quantity(value)):
+        raise ParameterError(f"{where}: loads[{key!r}] must be a number in {load_unit(key)} or "
+                             f"a number with a unit ('2 kN'), got {value!r:.60}")
+    return float(check_quantity(value, f"loads[{key!r}]", load_unit(key), where=where))
 
 
 def check_loads(loads: Mapping[str, Any] | None, where: str = "RingLoad") -> dict[str, Any]:
@@ -83,12 +117,7 @@ def check_loads(loads: Mapping[str, Any] | None, where: str = "RingLoad") -> dic
         if value is None or callable(value) or is_symbolic(value):
             checked[key] = value
         else:
-            if isinstance(value, (bool, bytes)):
-                raise ParameterError(f"{where}: loads[{key!r}] must be a number in "
-                                     f"{load_unit(key)} or a number with a unit ('2 kN'), "
-                                     f"got {value!r}")
-            checked[key] = float(check_quantity(value, f"loads[{key!r}]", load_unit(key),
-                                                where=where))
+            checked[key] = load_value(value, key, where)
     return checked
 
 
