@@ -87,8 +87,9 @@ def describe(name: str, prep: Any = None) -> str:
     if prep is not None:
         if name in prep.post:
             return prep.post[name].doc.split(" (")[0].split(";")[0]
-        if point_label(name) != name:  # a swept key ("assembly.preload_force"), or a value
-            key, space, derived = point_label(name).partition(" ")  # from one ("... at t_end")
+        label = point_label(name)
+        if label != name:  # a swept key ("assembly.preload_force"), or a value from one
+            key, space, derived = label.partition(" ")  # ("inputs.shaft_speed at t_end")
             return describe(key, prep) + space + derived
         system = prep.system
         said = system.observed_descriptions.get(name) or next(
