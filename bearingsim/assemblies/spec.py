@@ -83,7 +83,8 @@ class ArgSpec:  # numpydoc ignore=PR02
     Parameters
     ----------
     kind : str
-        One of :data:`ARG_KINDS`: ``"bearing"`` (catalogue designation), ``"lubricant"`` (name,
+        One of :data:`ARG_KINDS`: ``"bearing"`` (catalogue designation, written as the
+        catalogue's look-up ``find`` reads it), ``"lubricant"`` (name,
         or a list of one name per layer), ``"choice"`` (one of ``choices``), ``"float"`` (a
         number, optionally > ``low``), ``"bool"``, ``"table"`` (a TOML table validated by the
         specs in ``table``), ``"floats"`` (a table of named numbers) or ``"signal"`` (a number
@@ -94,11 +95,17 @@ class ArgSpec:  # numpydoc ignore=PR02
     doc : str
         One line for ``bearingsim list`` and error messages, with the unit.
     choices : tuple
-        Allowed values of a ``"choice"``.
+        Allowed values of a ``"choice"``; of a ``"bearing"`` from another catalogue than the
+        ball bearings', its designations (listed in messages).
     low : float, optional
         Lower bound of a ``"float"`` (exclusive).
     table : dict of str to ArgSpec, optional
         Entries of a ``"table"``.
+    find : callable, optional
+        Of a ``"bearing"``: the catalogue's look-up, a designation as written -> the
+        designation as the catalogue spells it, or None when it knows none (default: the ball
+        bearing catalogue with the registered bearings,
+        :meth:`bearingsim.catalog.BEARINGS.find <bearingsim.registry.Registry.find>`).
 
     Raises
     ------
@@ -112,6 +119,7 @@ class ArgSpec:  # numpydoc ignore=PR02
     choices: tuple = ()
     low: float | None = None
     table: dict[str, ArgSpec] | None = None
+    find: Callable[[Any], str | None] | None = None
 
     @property
     def unit(self) -> str:

@@ -22,8 +22,8 @@ from bearingsim.physical_checks import check_diameter
 from bearingsim.units import mm
 from bearingsim.validation import check_count, check_range
 
-__all__ = ["RollerBearingGeometry", "get_roller_bearing", "list_roller_bearings",
-           "resolve_roller_bearing"]
+__all__ = ["RollerBearingGeometry", "find_roller_bearing", "get_roller_bearing",
+           "list_roller_bearings", "resolve_roller_bearing"]
 
 _SPECIFIC_RATING = (10.0, 200.0)
 """Valid range of a roller bearing's C and C0 per projected roller area, C / (Z Lwe Dw) [N/mm^2]
@@ -179,6 +179,22 @@ def list_roller_bearings() -> list[str]:
 
 def _key(designation: str) -> str:
     return re.sub(r"\s+", "", str(designation)).upper()
+
+
+def find_roller_bearing(name: object) -> str | None:
+    """The catalogue designation that ``name`` stands for (case and spaces ignored), or None.
+
+    Parameters
+    ----------
+    name : object
+        A designation as written ("NU 206", "nu206"); anything but text stands for none.
+
+    Returns
+    -------
+    str or None
+        The designation as the catalogue spells it ("NU206"), or None.
+    """
+    return _key(name) if isinstance(name, str) and _key(name) in _catalogue() else None
 
 
 def get_roller_bearing(designation: str) -> RollerBearingGeometry:

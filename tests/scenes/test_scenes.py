@@ -157,6 +157,27 @@ def test_unknown_designation_and_assembly_list_the_allowed_values():
         parse_scene('[assembly]\nname = "triple_layer"\n[simulation]\nt_end = 1\n')
 
 
+def test_designations_are_read_as_the_catalogues_read_them():
+    """A scene takes a designation as the API does (case, and for the roller catalogue spaces,
+    ignored: SKF writes "NU 208") and keeps it as the catalogue spells it; an unknown one lists
+    the designations of its own catalogue."""
+    def assembly(name, **args):
+        text = "".join(f'{k} = "{v}"\n' for k, v in args.items())
+        return parse_scene(f'[assembly]\nname = "{name}"\n{text}[simulation]\nt_end = 1\n')
+
+    assert assembly("cylindrical_roller_bearing", bearing="nu 208").args == {
+        "bearing": "NU208"}
+    assert assembly("duplex_pair", bearing="7020c").args == {"bearing": "7020C"}
+    assert assembly("spindle", roller_bearing="NU 210",
+                    bearing="7014c").args == {"roller_bearing": "NU210",
+                                                       "bearing": "7014C"}
+    with pytest.raises(SceneError, match="'NU 999'; allowed: NU204, NU205") as info:
+        assembly("cylindrical_roller_bearing", bearing="NU 999")
+    assert "6204" not in str(info.value)
+    with pytest.raises(SceneError, match="'NU208'; allowed: 6204"):
+        assembly("duplex_pair", bearing="NU208")
+
+
 def test_malformed_toml_reports_the_line():
     with pytest.raises(SceneError, match="not valid TOML") as info:
         parse_scene('[assembly]\nname = "double_layer_bearing"\nfidelity = auto\n', "x.toml")

@@ -13,7 +13,11 @@ import numpy as np
 from bearingsim.assemblies.cylindrical_roller.factory import cylindrical_roller_bearing
 from bearingsim.assemblies.cylindrical_roller.options import FIDELITIES, FRICTION_MODELS
 from bearingsim.assemblies.spec import ArgSpec, AssemblyPlot, AssemblySpec, PostQuantity
-from bearingsim.catalog.rollers import list_roller_bearings, resolve_roller_bearing
+from bearingsim.catalog.rollers import (
+    find_roller_bearing,
+    list_roller_bearings,
+    resolve_roller_bearing,
+)
 from bearingsim.components.roller_row import roller_row_loads, roller_row_parameters
 from bearingsim.physics.life import line_load_integrals, roller_reference_rating_life
 from bearingsim.plotting import Curve, FigureSpec, Panel
@@ -134,8 +138,8 @@ SCENE_SPEC = AssemblySpec(
                 "friction torque (Palmgren/SKF; inputs drive.w_in [rad/s], bearing.Fr, Fa [N])",
     build=_build,
     args={
-        "bearing": ArgSpec("choice", "NU206", "catalogue designation",
-                           choices=tuple(list_roller_bearings())),
+        "bearing": ArgSpec("bearing", "NU206", "catalogue designation",
+                           choices=tuple(list_roller_bearings()), find=find_roller_bearing),
         "clearance": ArgSpec("float", None, "diametral clearance [m] (default: catalogue, "
                              "normal group)", low=-1e-12),
         "tilt_x": ArgSpec("float", 0.0, "misalignment about x [rad], -0.01 to 0.01", low=-1.0),

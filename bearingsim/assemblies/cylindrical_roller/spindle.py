@@ -20,7 +20,7 @@ from typing import Any
 
 from bearingsim.assemblies.duplex import ARRANGEMENTS, PRELOAD_CLASSES, ShaftSpec, duplex_pair
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, given_args, single_level
-from bearingsim.catalog.rollers import list_roller_bearings
+from bearingsim.catalog.rollers import find_roller_bearing, list_roller_bearings
 from bearingsim.components.dynamic import FixedFrame
 from bearingsim.components.rings import InnerRing
 from bearingsim.components.roller_row import RollerRow
@@ -123,8 +123,9 @@ SPINDLE_SCENE_SPEC = AssemblySpec(
     build=_spindle_from_scene,
     args={
         "bearing": ArgSpec("bearing", "7014C", "angular contact bearing of the pair"),
-        "roller_bearing": ArgSpec("choice", "NU210", "the NU bearing",
-                                  choices=tuple(list_roller_bearings())),
+        "roller_bearing": ArgSpec("bearing", "NU210", "the NU bearing",
+                                  choices=tuple(list_roller_bearings()),
+                                  find=find_roller_bearing),
         "arrangement": ArgSpec("choice", "DB", "arrangement of the pair",
                                choices=tuple(ARRANGEMENTS)),
         "preload": ArgSpec("choice", "light", "preload class of the pair",
