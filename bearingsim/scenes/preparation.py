@@ -35,6 +35,7 @@ __all__ = [
     "choose_fidelity",
     "point_keys",
     "prepare",
+    "reduced_args",
     "scene_inputs",
     "validate_scene",
 ]
@@ -253,6 +254,37 @@ def point_keys(scene: Scene) -> list[str]:
     return keys
 
 
+def _reducible(scene: Scene) -> bool:
+    """Whether a scene may run the reduced model its loads allow (``symmetric_args``): a run
+    in time only. The steady and modes analyses solve for every state and need each degree of
+    freedom's load path, which the reduction leaves out (a duplex pair's representative balls
+    carry no radial load or moment: its radial and tilt states would have no steady value and
+    no stiffness)."""
+    return scene.analysis == "transient"
+
+
+def reduced_args(scene: Scene, args: dict[str, Any], inputs: dict[str, Any]
+                 ) -> dict[str, Any]:
+    """The assembly arguments of the reduced model a scene runs (empty: the full model).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its analysis and assembly).
+    args : dict
+        Its assembly arguments, defaults filled in.
+    inputs : dict
+        The inputs it sets (:func:`scene_inputs`, or a sweep point's).
+
+    Returns
+    -------
+    dict
+        Arguments to merge into ``args``: the assembly's ``symmetric_args`` for a run in time,
+        else none.
+    """
+    return scene.spec.symmetric_args(args, inputs) if _reducible(scene) else {}
+
+
 def scene_inputs(scene: Scene) -> dict[str, Any]:
     """The inputs a scene sets: its ``inputs`` and those of its grid or cases (the text
     ``"varies"`` for one that is not 0 at every point).
@@ -303,8 +335,7 @@ def prepare(scene: Scene) -> Prepared:
     scene = _check(scene)
     spec = scene.spec
     args = spec.with_defaults(scene.args)
-    if scene.analysis != "modes":  # modes need every degree of freedom
-        args.update(spec.symmetric_args(args, scene_inputs(scene)))
+    args.update(reduced_args(scene, args, scene_inputs(scene)))
     post_all = spec.post(args)
     # a statics scene solves its own equilibrium: no default outputs to keep
     requested = list(scene.outputs or ([] if scene.analysis == "statics"
@@ -346,7 +377,7 @@ def prepare(scene: Scene) -> Prepared:
                              scene.path) from None
     assemble_s = time.perf_counter() - t0
     _check_names(scene, system, requested)
-    symmetry = spec.symmetry(args, scene_inputs(scene)) if scene.analysis != "modes" else []
+    symmetry = spec.symmetry(args, scene_inputs(scene)) if _reducible(scene) else []
     prep = Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
                     symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
     if scene.analysis == "statics":

@@ -18,7 +18,7 @@ from typing import Any
 
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
-from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare
+from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare, reduced_args
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
 from bearingsim.scenes.scene_input_checks import (
@@ -44,7 +44,7 @@ def _structure(sc: Scene) -> tuple[str, str]:
     uses)."""
     spec = sc.spec
     args = spec.with_defaults(sc.args)
-    args.update(spec.symmetric_args(args, sc.inputs))
+    args.update(reduced_args(sc, args, sc.inputs))
     post_all = spec.post(args)
     post = {n: post_all[n] for n in (sc.outputs or spec.default_outputs) if n in post_all}
     fidelity, _, _ = choose_fidelity(sc, spec, post)
