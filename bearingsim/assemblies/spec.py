@@ -135,6 +135,24 @@ class ArgSpec:  # numpydoc ignore=PR02
         stated = re.search(r"\[([^\]]+)\]", self.doc)
         return stated.group(1) if stated and stated.group(1) != "-" else "1"
 
+    def designation(self, name: Any) -> str | None:
+        """A ``"bearing"`` argument's value as its catalogue spells it (``"7020c"`` ->
+        ``"7020C"``, ``"NU 206"`` -> ``"NU206"``), or None when the catalogue knows none.
+
+        Parameters
+        ----------
+        name : object
+            The value as written (anything but text stands for none).
+
+        Returns
+        -------
+        str or None
+            The designation, or None.
+        """
+        from bearingsim.catalog import BEARINGS  # on use: a spec is read without the catalogue
+
+        return (self.find or BEARINGS.find)(name) if isinstance(name, str) else None
+
     def __post_init__(self) -> None:
         check_choice(self.kind, "kind", ARG_KINDS, "ArgSpec")
         if self.kind == "choice" and not self.choices:

@@ -121,13 +121,13 @@ def _unit_text(spec: ArgSpec) -> str:
 
 
 def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
-    from bearingsim.catalog import BEARINGS, list_bearings
+    from bearingsim.catalog import list_bearings
     from bearingsim.physics.lubricant import as_lubricant, known_lubricants
 
     if v is None:
         return None
     if spec.kind == "bearing":  # as the catalogue reads it ("7020c", "NU 206"), spelled its way
-        found = (spec.find or BEARINGS.find)(v) if isinstance(v, str) else None
+        found = spec.designation(v)
         if found is None:
             c.add(key, f"unknown bearing designation {v!r}",
                   ", ".join(spec.choices or list_bearings()))

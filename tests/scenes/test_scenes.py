@@ -35,7 +35,7 @@ from bearingsim.scenes.sweep import (
     run_sweep,
     sample_points,
 )
-from bearingsim.scenes.sweep_grid import parse_grid
+from bearingsim.scenes.sweep_grid import coerce, parse_grid
 from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_worker import load_model, run_job
 from bearingsim.simulation import simulate
@@ -176,6 +176,9 @@ def test_designations_are_read_as_the_catalogues_read_them():
     assert "6204" not in str(info.value)
     with pytest.raises(SceneError, match="'NU208'; allowed: 6204"):
         assembly("duplex_pair", bearing="NU208")
+    roller = assembly("cylindrical_roller_bearing")  # a sweep's values, as its table has them
+    assert coerce(roller, "assembly.bearing", "nu 208") == "NU208"
+    assert coerce(roller, "assembly.bearing", "NU 999") == "NU 999"  # refused by its point
 
 
 def test_malformed_toml_reports_the_line():
