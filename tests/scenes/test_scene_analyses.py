@@ -99,6 +99,29 @@ def test_modes_scene_matches_the_duplex_study():
     assert run.rows[1]["axial"] > run.rows[0]["axial"]  # preload stiffens the pair
 
 
+def test_spindle_modes_are_named_as_the_duplex_pairs():
+    """The spindle's modes are named after the pair's shaft degrees of freedom ("radial x",
+    "tilt about y"), as a duplex pair's are; they were "x of the centre of mass". Without a
+    radial load the NU bearing's clearance leaves it unloaded: the modes are the same at every
+    roller distance, radial x and y equal; a radial load in x loads it in x only."""
+    scene = parse_scene("""
+analysis = "modes"
+[assembly]
+name = "spindle"
+[grid]
+"assembly.roller_distance" = [0.2, 0.4]
+"inputs.pair.shaft.Fx" = [0.0, 2000.0]
+""")
+    rows = run_scene(scene, write=False).rows
+    names = ("radial x", "radial y", "axial", "tilt about x", "tilt about y")
+    assert all(set(names) <= set(row) for row in rows)
+    free, loaded = rows[:2], rows[2:]
+    for name in names:
+        assert free[0][name] == pytest.approx(free[1][name], rel=1e-6), name
+    assert free[0]["radial x"] == pytest.approx(free[0]["radial y"], rel=1e-6)
+    assert all(row["radial x"] > 2.0 * row["radial y"] for row in loaded)
+
+
 def test_a_structural_argument_in_a_grid_assembles_its_own_model():
     """A preload is a parameter of the assembled pair; an arrangement is not (it changes the
     equations' signs): a grid over it assembles each arrangement's model instead of running

@@ -19,6 +19,7 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.assemblies.duplex import ARRANGEMENTS, PRELOAD_CLASSES, ShaftSpec, duplex_pair
+from bearingsim.assemblies.duplex.figures import MODE_NAMES_BY_STATE
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec, given_args, single_level
 from bearingsim.catalog.rollers import find_roller_bearing, list_roller_bearings
 from bearingsim.components.dynamic import FixedFrame
@@ -138,5 +139,6 @@ SPINDLE_SCENE_SPEC = AssemblySpec(
     **single_level("quasi-static"),
     default_outputs=["pair.shaft.x", "pair.shaft.ty", "nu.Q[0]"],
     optional_inputs=("pair.shaft.*",),
+    mode_names={f"pair.{state}": name for state, name in MODE_NAMES_BY_STATE.items()},
 )
 """The spindle as a scene assembly (:mod:`bearingsim.scenes`)."""
