@@ -18,7 +18,7 @@ from bearingsim.language import (
     Variable,
     der,
 )
-from bearingsim.validation import check_range
+from bearingsim.validation import check_quantity, check_range
 
 __all__ = [
     "Flange",
@@ -344,10 +344,11 @@ class TorqueSensor(PartialTwoFlanges):
 
 
 def _check_signal(source, name: str, unit: str, component: Component):
-    """Validate a constant signal argument (callables are checked when simulated)."""
+    """Validate a constant signal argument, a number in ``unit`` or with a unit ("0.05 N m"),
+    as a float in ``unit`` (callables are checked when simulated)."""
     if source is None or callable(source):
         return source
-    return float(check_range(source, name, unit, where=f"{type(component).__name__}"))
+    return float(check_quantity(source, name, unit, where=f"{type(component).__name__}"))
 
 
 def _signal(source, component: Component, input_name: str, unit: str = "-"):

@@ -14,6 +14,7 @@ import casadi as ca
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.input_limits import INPUT_LIMITS
 from bearingsim.language.symbols import new_symbol
+from bearingsim.units import is_quantity, quantity_to_si
 from bearingsim.units.fmi import derivative_unit
 from bearingsim.validation import check_range
 
@@ -331,6 +332,8 @@ class Parameter(Declaration):
         """
         name = self.path if self.owner is not None else (self.attr or "value")
         label = f"{name} ({where})" if where else name
+        if isinstance(value, str) or is_quantity(value):  # "5 kg", "0.002 kg m^2"
+            value = quantity_to_si(value, self.unit, label)
         if isinstance(value, bool) or not isinstance(value, (int, float)) and not hasattr(
             value, "__float__"
         ):

@@ -38,8 +38,11 @@ def test_out_of_range_parameter_names_path_unit_and_range():
 
 
 def test_wrongly_typed_parameter_is_rejected():
+    with pytest.raises(ParameterError, match=r"'heavy' is not a number with a unit; write e\.g\. "
+                                             r"'10 kg\.m2' or a number in kg\.m2"):
+        Inertia(J="heavy")  # text is read as a number with a unit ("3 g m^2")
     with pytest.raises(ParameterError, match="must be a real number"):
-        Inertia(J="heavy")
+        Inertia(J=[1.0])
     with pytest.raises(ParameterError, match="NaN|finite"):
         Inertia(J=float("nan"))
 

@@ -86,8 +86,15 @@ def test_speed_with_units_in_a_scene_gets_a_hint():
 
 
 def test_speed_given_as_text_to_the_assembly_names_the_argument():
-    with pytest.raises(ParameterError, match="speed"):
-        assemble(double_layer_bearing(speed="1000 rpm"))
+    """A speed with a unit is converted, as the API's other arguments are (docs/units.md);
+    text that is no number with a unit names the argument."""
+    with_unit = simulate(assemble(double_layer_bearing(speed="1000 rpm")), 0.1, **FAST)
+    si = simulate(assemble(double_layer_bearing(speed=1000 * np.pi / 30)), 0.1, **FAST)
+    np.testing.assert_allclose(with_unit.values, si.values, rtol=1e-12)
+    with pytest.raises(ParameterError, match="speed: 'fast' is not a number with a unit"):
+        double_layer_bearing(speed="fast")
+    with pytest.raises(ParameterError, match=r"speed 10472 rad/s \(100000 r/min\) is more than"):
+        double_layer_bearing(speed="100000 rpm")  # converted before the limit's check
 
 
 def test_nan_speed_given_to_the_assembly_names_the_argument():

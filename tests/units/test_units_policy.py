@@ -173,6 +173,42 @@ def test_api_load_arguments_take_numbers_with_units():
         deep_groove_statics("6304", {"Fx": "heavy"})
 
 
+def test_every_assembly_argument_with_a_unit_takes_a_number_with_a_unit():
+    """A new-user trial: the API took a speed, a load or a deep-groove clearance with its
+    unit, and refused the roller bearing's clearance and misalignment, the spindle's roller
+    distance, the double-layer bearing's oil level and middle-ring gap, the motor drive's
+    shaft inertia and constant load torque, and any component's parameter ("must be a number
+    in m"). Each now gives the model of the same SI number."""
+    from bearingsim.assemblies import (
+        cylindrical_roller_bearing,
+        double_layer_bearing,
+        motor_drive,
+        spindle,
+    )
+    from bearingsim.components.rotational import Inertia
+
+    def same(build, with_unit, si):
+        a, b = assemble(build(**with_unit)), assemble(build(**si))
+        assert a.parameter_names == b.parameter_names and a.input_names == b.input_names
+        np.testing.assert_allclose(a.p0(), b.p0(), rtol=1e-14, err_msg=str(with_unit))
+        np.testing.assert_allclose(a.u_default(), b.u_default(), rtol=1e-14)
+
+    same(cylindrical_roller_bearing, {"clearance": "20 um", "misalignment": ("0.5 mrad", 0)},
+         {"clearance": 20e-6, "misalignment": (0.5e-3, 0.0)})
+    same(spindle, {"roller_distance": "250 mm"}, {"roller_distance": 0.25})
+    same(motor_drive, {"shaft_inertia": "2e-3 kg m^2", "load_torque": "-50 N mm"},
+         {"shaft_inertia": 2e-3, "load_torque": -0.05})
+    gap = {"radius": "30 mm", "gap": "0.1 mm", "length": "10 mm"}
+    same(double_layer_bearing, {"middle_ring_drag": gap},
+         {"middle_ring_drag": {"radius": 0.03, "gap": 1e-4, "length": 0.01}})
+    assert Inertia(registry().Quantity(3.0, "g m^2")).parameter("J").value == pytest.approx(
+        3e-3, rel=1e-15)
+    with pytest.raises(ParameterError, match=r"motor_drive: shaft_inertia: 'kg' is not a unit"):
+        motor_drive(shaft_inertia="0.002 kg")
+    with pytest.raises(ParameterError, match=r"misalignment\[0\] = 0.05 \[rad\] is outside"):
+        cylindrical_roller_bearing(misalignment=("50 mrad", 0.0))
+
+
 # ------------------------------------------------------------------ limiting speeds
 def test_bare_number_speed_in_a_scene_is_refused_far_above_the_limit():
     """Old code: shaft_speed = 10000 (rad/s, 95 493 r/min; limiting speeds 22 000 and 16 000

@@ -9,7 +9,7 @@ from bearingsim.catalog.rollers import RollerBearingGeometry, resolve_roller_bea
 from bearingsim.components.dynamic.ring import check_loads
 from bearingsim.errors import ParameterError
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
-from bearingsim.validation import check_choice, check_count, check_range
+from bearingsim.validation import check_choice, check_count, check_quantity
 
 __all__ = ["FIDELITIES", "FRICTION_MODELS", "CylindricalRollerOptions"]
 
@@ -68,16 +68,17 @@ class CylindricalRollerOptions:
         object.__setattr__(self, "geometry", resolve_roller_bearing(self.bearing))
         check_choice(self.fidelity, "fidelity", FIDELITIES, where)
         check_choice(self.friction_model, "friction_model", FRICTION_MODELS, where)
-        if self.clearance is not None:
-            check_range(self.clearance, "clearance", "m", 0.0,
-                        0.1 * self.geometry.roller_diameter, where=where)
-        tilt = tuple(self.misalignment)
+        if self.clearance is not None:  # "20 um" -> 2e-05
+            object.__setattr__(self, "clearance", float(check_quantity(
+                self.clearance, "clearance", "m", 0.0, 0.1 * self.geometry.roller_diameter,
+                where=where)))
+        tilt = tuple(self.misalignment) if isinstance(self.misalignment, (tuple, list)) else ()
         if len(tilt) != 2:
             raise ParameterError(f"{where}: misalignment must be (tx, ty) [rad], got "
                                  f"{self.misalignment!r}")
-        for name, value in zip(("misalignment[0]", "misalignment[1]"), tilt, strict=True):
-            check_range(value, name, "rad", -_MAX_TILT, _MAX_TILT, where=where)
-        object.__setattr__(self, "misalignment", (float(tilt[0]), float(tilt[1])))
+        object.__setattr__(self, "misalignment", tuple(
+            float(check_quantity(value, f"misalignment[{k}]", "rad", -_MAX_TILT, _MAX_TILT,
+                                 where=where)) for k, value in enumerate(tilt)))
         check_count(self.n_slices, "n_slices", 1, where=where)
         object.__setattr__(self, "lubricant", as_lubricant(self.lubricant, where))
         loads = dict(self.loads or {})

@@ -26,7 +26,7 @@ from bearingsim.components.dynamic import FixedFrame
 from bearingsim.components.rings import InnerRing
 from bearingsim.components.roller_row import RollerRow
 from bearingsim.language import Assembly, connect
-from bearingsim.validation import check_range
+from bearingsim.validation import check_quantity
 
 __all__ = ["SPINDLE_SCENE_SPEC", "Spindle", "spindle"]
 
@@ -65,8 +65,8 @@ class Spindle(Assembly):
                  roller_distance: float = 0.330, n_slices: int = 5,
                  shaft: ShaftSpec | dict | None = None, name="spindle", **pair_options: Any):
         super().__init__(name)
-        check_range(roller_distance, "roller_distance", "m", 0.0, low_inclusive=False,
-                    where="spindle")
+        roller_distance = check_quantity(roller_distance, "roller_distance", "m", 0.0,
+                                         low_inclusive=False, where="spindle")
         self.pair = duplex_pair(bearing, arrangement, preload,
                                 shaft=DEFAULT_SHAFT if shaft is None else shaft, name="pair",
                                 shared_radial=True, **pair_options)

@@ -27,6 +27,7 @@ from bearingsim.validation import (
     check_flag,
     check_mapping,
     check_options,
+    check_quantity,
     check_range,
     keyword_names,
 )
@@ -157,6 +158,8 @@ class LayerPairOptions:
 
     def _check_speed(self) -> None:
         if self.drive == "speed" and self.speed is not None:
+            if not callable(self.speed):  # "10000 rpm" -> rad/s, then against the limit
+                self._set(speed=float(check_quantity(self.speed, "speed", "rad/s", where=WHERE)))
             _check_shaft_speed(self.speed, *self.geometries)
 
     def _set(self, **values: Any) -> None:
@@ -428,7 +431,7 @@ def _bath_options(gi, go, lubricants, oil_level, friction_model: str, fidelity: 
     """Each layer's layer options with its own oil level (see :class:`DoubleLayerOptions`)."""
     if oil_level is None:
         return options, options
-    check_range(oil_level, "oil_level", "m", 0.0, None, where=WHERE)
+    oil_level = float(check_quantity(oil_level, "oil_level", "m", 0.0, None, where=WHERE))
     if fidelity != "torque":  # checked, but the kinematic levels have no friction (as lubrication)
         return options, options
     if friction_model != "skf":
@@ -461,7 +464,8 @@ def _middle_ring_gap(options: Any, lubricant: Lubricant) -> tuple[float, ...]:
                              f"layer, got {lubricant.describe()}")
     eta, nu = float(lubricant.dynamic_viscosity()), float(lubricant.kinematic_viscosity())
     wetted = opts.get("wetted", 1.0)
-    couette_damping(opts["radius"], opts["gap"], opts["length"], eta, wetted)  # checks them
-    return (float(opts["radius"]), float(opts["gap"]), float(opts["length"]), float(wetted),
-            eta, nu)
+    radius, gap, length = (float(check_quantity(opts[k], f"middle_ring_drag[{k!r}]", "m",
+                                                where=WHERE)) for k in ("radius", "gap", "length"))
+    couette_damping(radius, gap, length, eta, wetted)  # checks them
+    return radius, gap, length, float(wetted), eta, nu
 

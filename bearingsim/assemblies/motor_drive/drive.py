@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 from bearingsim.assemblies.double_layer import DoubleLayerBearing, double_layer_bearing
 from bearingsim.assemblies.double_layer.speed import LIMIT_TEXT, shaft_speed_limit
@@ -12,6 +13,7 @@ from bearingsim.checks import checked
 from bearingsim.components.motor import SpeedReference, speed_controlled_motor, speed_reference
 from bearingsim.components.rotational import Inertia, TorqueSource
 from bearingsim.language import Assembly, Component, Input, Variable, connect
+from bearingsim.validation import check_quantity
 
 
 class MotorDrive(Assembly):
@@ -46,12 +48,18 @@ class MotorDrive(Assembly):
         super().__init__(name)
         speed_ref = speed_reference(speed_ref, "motor_drive")
         self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "motor_drive")
-        self.shaft = Inertia(shaft_inertia)
+        self.shaft = Inertia(_inertia(shaft_inertia, "motor_drive"))
         self.bearing = bearing if bearing is not None else double_layer_bearing(drive="flange")
         _limit_reference(self.motor, speed_ref, self.bearing)
         self.load = TorqueSource(load_torque)
         connect(self.motor.flange, self.shaft.flange_a)
         connect(self.shaft.flange_b, self.bearing.shaft, self.load.flange)
+
+
+def _inertia(shaft_inertia: Any, where: str) -> float:
+    """The shaft inertia [kg m^2], > 0: a number, or a number with a unit ("0.002 kg m^2")."""
+    return float(check_quantity(shaft_inertia, "shaft_inertia", "kg.m2", 0.0,
+                                low_inclusive=False, where=where))
 
 
 def _limit_reference(motor: Component, speed_ref, bearing: Component) -> None:
@@ -120,7 +128,7 @@ class MotorShaft(Assembly):
         super().__init__(name)
         speed_ref = speed_reference(speed_ref, "MotorShaft")
         self.motor = speed_controlled_motor(motor, speed_ref, motor_options, "MotorShaft")
-        self.shaft = Inertia(shaft_inertia)
+        self.shaft = Inertia(_inertia(shaft_inertia, "MotorShaft"))
         self.bearing_torque = TorqueSource(None)
         self.M_bearing = Input(0.0, "N.m", "friction torque of the bearing on the shaft")
         self.w_shaft = Variable(unit="rad/s", description="shaft speed")
