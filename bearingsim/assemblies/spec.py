@@ -97,10 +97,13 @@ class ArgSpec:  # numpydoc ignore=PR02
     choices : tuple
         Allowed values of a ``"choice"``; of a ``"bearing"`` from another catalogue than the
         ball bearings', its designations (listed in messages).
-    low : float, optional
-        Lower bound of a ``"float"`` (exclusive).
+    low, high : float, optional
+        Bounds of a ``"float"`` [its unit]: ``low`` exclusive unless ``low_inclusive``, ``high``
+        inclusive.
     table : dict of str to ArgSpec, optional
         Entries of a ``"table"``.
+    low_inclusive : bool
+        Whether ``low`` itself is allowed (an oil level of 0, a clearance of 0).
     find : callable, optional
         Of a ``"bearing"``: the catalogue's look-up, a designation as written -> the
         designation as the catalogue spells it, or None when it knows none (default: the ball
@@ -119,6 +122,8 @@ class ArgSpec:  # numpydoc ignore=PR02
     choices: tuple = ()
     low: float | None = None
     table: dict[str, ArgSpec] | None = None
+    high: float | None = None
+    low_inclusive: bool = False
     find: Callable[[Any], str | None] | None = None
 
     @property

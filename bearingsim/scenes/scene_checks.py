@@ -163,8 +163,9 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
             return v
         return _number(c, key, v, _unit_text(spec))
     if spec.kind == "float":  # "1.5 kN", "4000 rpm": in the argument's SI unit
-        return _number(c, key, v, _unit_text(spec), low=spec.low,
-                       strict_low=spec.low is not None, si_unit=spec.unit)
+        return _number(c, key, v, _unit_text(spec), low=spec.low, high=spec.high,
+                       strict_low=spec.low is not None and not spec.low_inclusive,
+                       si_unit=spec.unit)
     if spec.kind == "floats":
         if not isinstance(v, dict):
             c.add(key, "must be a table of numbers", "a table name = number")

@@ -181,6 +181,25 @@ def test_designations_are_read_as_the_catalogues_read_them():
     assert coerce(roller, "assembly.bearing", "NU 999") == "NU 999"  # refused by its point
 
 
+def test_argument_bounds_are_those_of_the_api():
+    """An oil level of 0 (the oil at the lowest ball's centre) and a clearance of 0 are valid
+    in the API and were refused by a scene (an exclusive bound of 0); a misalignment beyond
+    the API's 0.01 rad passed the file check and failed later at the assembly without its key.
+    """
+    def scene(name, key, value):
+        return parse_scene(f'[assembly]\nname = "{name}"\n{key} = {value}\n'
+                           f'[simulation]\nt_end = 1\n')
+
+    assert scene("double_layer_bearing", "oil_level", 0.0).args["oil_level"] == 0.0
+    assert scene("cylindrical_roller_bearing", "clearance", '"0 um"').args["clearance"] == 0.0
+    with pytest.raises(SceneError, match=r"assembly.tilt_y: 0.05 is out of range; allowed: "
+                                         r"\[-0.01, 0.01\] rad") as info:
+        scene("cylindrical_roller_bearing", "tilt_y", 0.05)
+    assert info.value.line == 3
+    with pytest.raises(SceneError, match=r"oil_level: -0.001 is out of range; allowed: \[0.0, "):
+        scene("double_layer_bearing", "oil_level", -0.001)
+
+
 def test_malformed_toml_reports_the_line():
     with pytest.raises(SceneError, match="not valid TOML") as info:
         parse_scene('[assembly]\nname = "double_layer_bearing"\nfidelity = auto\n', "x.toml")

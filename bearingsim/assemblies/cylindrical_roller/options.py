@@ -11,14 +11,15 @@ from bearingsim.errors import ParameterError
 from bearingsim.physics.lubricant import Lubricant, as_lubricant
 from bearingsim.validation import check_choice, check_count, check_quantity
 
-__all__ = ["FIDELITIES", "FRICTION_MODELS", "CylindricalRollerOptions"]
+__all__ = ["FIDELITIES", "FRICTION_MODELS", "MAX_TILT", "CylindricalRollerOptions"]
 
 FIDELITIES = ("torque", "quasi-static")
 """Levels, lowest first: the friction torque between the rings (no rollers resolved), and the
 rollers' load distribution (sliced line contacts)."""
 FRICTION_MODELS = ("palmgren", "skf")
 """Friction torque models of the torque level."""
-_MAX_TILT = 0.01  # rad
+MAX_TILT = 0.01
+"""Largest misalignment about either axis [rad]."""
 
 
 @dataclass(frozen=True)
@@ -77,7 +78,7 @@ class CylindricalRollerOptions:
             raise ParameterError(f"{where}: misalignment must be (tx, ty) [rad], got "
                                  f"{self.misalignment!r}")
         object.__setattr__(self, "misalignment", tuple(
-            float(check_quantity(value, f"misalignment[{k}]", "rad", -_MAX_TILT, _MAX_TILT,
+            float(check_quantity(value, f"misalignment[{k}]", "rad", -MAX_TILT, MAX_TILT,
                                  where=where)) for k, value in enumerate(tilt)))
         check_count(self.n_slices, "n_slices", 1, where=where)
         object.__setattr__(self, "lubricant", as_lubricant(self.lubricant, where))

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.assemblies.cylindrical_roller.factory import cylindrical_roller_bearing
-from bearingsim.assemblies.cylindrical_roller.options import FIDELITIES, FRICTION_MODELS
+from bearingsim.assemblies.cylindrical_roller.options import FIDELITIES, FRICTION_MODELS, MAX_TILT
 from bearingsim.assemblies.spec import ArgSpec, AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.catalog.rollers import (
     find_roller_bearing,
@@ -141,9 +141,11 @@ SCENE_SPEC = AssemblySpec(
         "bearing": ArgSpec("bearing", "NU206", "catalogue designation",
                            choices=tuple(list_roller_bearings()), find=find_roller_bearing),
         "clearance": ArgSpec("float", None, "diametral clearance [m] (default: catalogue, "
-                             "normal group)", low=-1e-12),
-        "tilt_x": ArgSpec("float", 0.0, "misalignment about x [rad], -0.01 to 0.01", low=-1.0),
-        "tilt_y": ArgSpec("float", 0.0, "misalignment about y [rad], -0.01 to 0.01", low=-1.0),
+                             "normal group)", low=0.0, low_inclusive=True),
+        "tilt_x": ArgSpec("float", 0.0, "misalignment about x [rad]", low=-MAX_TILT,
+                          high=MAX_TILT, low_inclusive=True),
+        "tilt_y": ArgSpec("float", 0.0, "misalignment about y [rad]", low=-MAX_TILT,
+                          high=MAX_TILT, low_inclusive=True),
         "lubricant": ArgSpec("lubricant", "ISO VG 32", "lubricant name (torque level)"),
         "friction_model": ArgSpec("choice", "palmgren", "friction model (torque level)",
                                   choices=FRICTION_MODELS),

@@ -129,7 +129,8 @@ SCENE_SPEC = AssemblySpec(
                                       "(default: the lubricant's own)",
                                       choices=LUBRICATION_METHODS),
         "oil_level": ArgSpec("float", None, "oil bath level above the outer layer's lowest ball "
-                             "centre [m] (SKF friction model)", low=0.0),
+                             "centre [m] (SKF friction model)", low=0.0,
+                             low_inclusive=True),
         "middle_ring_drag": ArgSpec("table", None, "the middle ring's laminar drag in the oil "
                                     "(torque level)", table={
             "radius": ArgSpec("float", None, "radius of the turning cylinder [m]", low=0.0),
