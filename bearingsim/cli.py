@@ -198,7 +198,7 @@ def _run(args: argparse.Namespace) -> int:
     for failure in s.get("plot_failures", []):
         _say(f"bearingsim run: plot failed: {failure['plot']}: {failure['error']} (the "
              f"simulation succeeded; its CSV and summary are written)", err=True)
-    return 1 if s.get("plot_failures") else 0
+    return 1 if s.get("plot_failures") or s.get("failed") else 0
 
 
 def _validate(args: argparse.Namespace) -> int:

@@ -40,6 +40,7 @@ from bearingsim.scenes.statics_table import statics_of
 
 __all__ = [
     "NotSettledWarning",
+    "PointFailedWarning",
     "name_modes",
     "output_resolution",
     "run_operating_point",
@@ -50,6 +51,11 @@ __all__ = [
 
 class NotSettledWarning(UserWarning):
     """A transient scene reports final values of outputs that had not settled."""
+
+
+class PointFailedWarning(UserWarning):
+    """Operating points of an analysis scene found no solution: their rows say why (``error``)
+    and the other points ran."""
 
 
 # --------------------------------------------------------------------------- settling
@@ -316,7 +322,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     point = dict(point or {})
     scene = prep.scene
     inputs, parameters, args = split_point(scene, point)
-    row = {point_label(k): v for k, v in filled_point(prep, point).items()}
+    row = _point_row(prep, point)
     point.pop("name", None)
     if scene.analysis == "statics":
         statics = statics_of(prep)
@@ -352,10 +358,19 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     return {**row, "_state": x}
 
 
+def _point_row(prep: Any, point: dict[str, Any]) -> dict[str, Any]:
+    """The columns a point's row starts with: its keys by plain name (``Fr``), every key of the
+    grid or cases filled in, and a case's ``name``."""
+    return {point_label(k): v for k, v in filled_point(prep, point).items()}
+
+
 def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """:func:`run_operating_point` for each point in order, each solve started from the
     solution of the previous point (continuation along the grid; a new curve starts from the
-    first point of the previous curve).
+    first point of the previous curve). A point whose solve fails
+    (:class:`~bearingsim.errors.SimulationError`: no steady state, not a unique one) is a row
+    of its keys and ``error`` (the message), and the next point starts from the last solution
+    found: one point without an answer does not cost the others theirs.
 
     Parameters
     ----------
@@ -369,7 +384,7 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
     list of dict
         The rows (``_state`` removed).
     """
-    rows = []
+    rows: list[dict[str, Any]] = []
     first_key = next(iter(points[0]), None) if points else None
     guess, curve_start = None, None
     for k, point in enumerate(points):
@@ -377,11 +392,15 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
                      and point[first_key] == points[0][first_key])
         if new_curve:
             guess = curve_start
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", NotSettledWarning)
-            row = run_operating_point(prep, point, guess)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", NotSettledWarning)
+                row = run_operating_point(prep, point, guess)
+        except SimulationError as exc:
+            rows.append({**_point_row(prep, point), "error": str(exc)})
+            continue
         guess = row.pop("_state")
-        if k == 0 or new_curve:
+        if k == 0 or new_curve or curve_start is None:
             curve_start = guess
         rows.append(row)
     return rows

@@ -41,7 +41,7 @@ def analysis_units(prep: Prepared, rows: list[dict[str, Any]]) -> dict[str, str]
     elif scene.analysis == "statics":
         units.update({n: unit for n, (unit, _) in statics_of(prep).columns.items()})
     else:
-        point = set(units) | {"name"}
+        point = set(units) | {"name", "error"}
         units.update({n: "Hz" for row in rows for n in row if n not in point})
     return units
 
@@ -71,6 +71,7 @@ def write_table(path: Path, rows: list[dict[str, Any]], units: dict[str, str]) -
         names += [n for n in row if n not in names and not n.startswith("_")]
     with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow([n if n == "name" else column_name(n, units.get(n, "")) for n in names])
+        w.writerow([n if n in ("name", "error") else column_name(n, units.get(n, ""))
+                    for n in names])
         w.writerows([[row.get(n, "") for n in names] for row in rows])
     return path

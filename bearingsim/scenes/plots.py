@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import re
+import textwrap
 from typing import Any
 
 import numpy as np
@@ -21,7 +22,6 @@ from bearingsim.units import engineering, to_display
 __all__ = ["analysis_figures", "axis_text", "characteristic_figures", "describe", "display",
            "display_text", "include_zero", "numeric_key", "render_report", "statics_figures",
            "varies"]
-
 
 
 # --------------------------------------------------------------------------- display
@@ -267,7 +267,8 @@ def varies(rows: list[dict[str, Any]], key: str) -> bool:
 
 
 def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
-                           units: dict[str, str], names: list[str], what: str):
+                           units: dict[str, str], names: list[str], what: str,
+                           failed: int = 0):
     """Steady characteristics: each output against the grid's first key, one curve per value
     of the other keys that vary (the ``steady`` and ``modes`` figures), named by one legend
     on the first panel; a sample (more than :data:`MAX_CURVES` combinations) as markers,
@@ -288,6 +289,8 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
         The columns to draw.
     what : {"steady", "modes"}
         The analysis (figure name).
+    failed : int
+        Points without an answer, not in ``rows`` (the title says how many).
 
     Returns
     -------
@@ -366,13 +369,20 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                 else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
     fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}"
                  + ("\nhollow markers: not settled at t_end (the run's last value)"
-                    if flagged else ""), fontsize=9)
+                    if flagged else "") + _failed_note(failed), fontsize=9)
     if not shade:  # the constrained layout places the colour bar itself
         keep_tight_layout(fig)
     return [("modes" if what == "modes" else "steady", fig)]
 
 
-def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]):
+def _failed_note(failed: int) -> str:
+    """A figure title's line on the points that found no answer (none: no line)."""
+    return (f"\nnot drawn: {failed} point(s) without an answer (the table's error column)"
+            if failed else "")
+
+
+def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str],
+                    failed: int = 0):
     """The assembly's statics columns (:attr:`~bearingsim.scenes.statics_table.Statics.figure`:
     life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
     bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
@@ -386,6 +396,8 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         The analysis table's rows, one per operating point.
     units : dict of str to str
         SI unit of each column or series by name.
+    failed : int
+        Load cases without an answer, not in ``rows`` (the title says how many).
 
     Returns
     -------
@@ -428,10 +440,9 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         ax.grid(True, axis="y", alpha=0.3)
     axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
     axes[-1].set_xlabel("load case", fontsize=8)
-    import textwrap
-
     what = ", ".join(describe(n, prep) for n in columns) + " per load case"
-    fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(what, 90)]), fontsize=9)
+    fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(what, 90)]) + _failed_note(failed),
+                 fontsize=9)
     keep_tight_layout(fig)
     return [("statics", fig)]
 
@@ -447,7 +458,8 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
     prep : Prepared
         The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
     rows : list of dict
-        The analysis table's rows, one per operating point.
+        The analysis table's rows, one per operating point; those of points without an answer
+        (an ``error``) are not drawn, and the title counts them.
     keys : list of str
         The grid or case keys.
     units : dict of str to str
@@ -459,11 +471,13 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
         Figure name (``steady``, ``modes``, ``statics``) and figure.
     """
     analysis = prep.scene.analysis
+    solved = [row for row in rows if "error" not in row]
+    failed = len(rows) - len(solved)
     if analysis == "statics":
-        return statics_figures(prep, rows, units)
+        return statics_figures(prep, solved, units, failed)
     point = set(keys) | {"name"}
-    names = [n for n in rows[0] if n not in point and not n.startswith("_")] if rows else []
-    return characteristic_figures(prep, rows, keys, units, names, analysis)
+    names = [n for n in solved[0] if n not in point and not n.startswith("_")] if solved else []
+    return characteristic_figures(prep, solved, keys, units, names, analysis, failed)
 
 
 def render_report(spec: FigureSpec, title: str = ""):

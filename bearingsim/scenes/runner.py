@@ -25,6 +25,7 @@ import numpy as np
 from bearingsim.errors import ModelError
 from bearingsim.scenes.analyses import (
     NotSettledWarning,
+    PointFailedWarning,
     output_resolution,
     run_points,
     settling_check,
@@ -319,15 +320,23 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
     points = operating_points(scene)
     rows = run_points(prep, points)
     solve_s = time.perf_counter() - t0
+    solved = [row for row in rows if "error" not in row]
+    failed = [{"point": k, "error": row["error"]} for k, row in enumerate(rows) if "error" in row]
     units = analysis_units(prep, rows)
+    if failed:
+        warnings.warn(f"{len(failed)} of {len(rows)} operating point(s) found no solution; "
+                      f"their rows say why (column error), the others are answered. First: "
+                      f"{_point_text(rows[failed[0]['point']], units)}: {failed[0]['error']}",
+                      PointFailedWarning, stacklevel=3)
+    names = list(dict.fromkeys(n for row in rows for n in row))
     columns = {n: np.array([row.get(n, math.nan) for row in rows])
-               for n in rows[0] if n != "name"} if rows else {}
+               for n in names if n not in ("name", "error")}
     keys = [point_label(k) for k in point_keys(scene)]
     if lock is not None:
         lock.retire(f"{stem}.summary.json")
         if scene.output.csv:
             lock.add(write_table(lock.folder / f"{stem}.csv", rows, units))
-        if scene.output.plots:
+        if scene.output.plots and solved:
             lock.save_figures(lambda: [(f"{stem}.{name}.png", fig) for name, fig in
                                        analysis_figures(prep, rows, keys, units)])
     data = _json_safe({
@@ -341,6 +350,7 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
                      "tolerance": scene.tolerance, "rejected": prep.fidelity_rejected},
         "system": {"states": prep.system.n_states, "inputs": prep.system.input_names},
         "points": len(rows),
+        "failed": failed,
         "keys": keys,
         "units": units,
         "rows": rows,
@@ -352,6 +362,15 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
         data = json.loads(path.read_text())
         files = lock.files
     return SceneRun(prep, None, columns, data, files, rows)
+
+
+def _point_text(row: dict[str, Any], units: dict[str, str]) -> str:
+    """A point's keys as a message names them, in display units (``Fr = 0.5 kN``)."""
+    from bearingsim.scenes.plots import display_text
+
+    return ", ".join(f"{n} = {v}" if isinstance(v, str) else
+                     f"{n} = {display_text(v, units.get(n, ''))}"
+                     for n, v in row.items() if n != "error")
 
 
 def console_lines(summary_data: dict[str, Any]) -> list[str]:
@@ -375,9 +394,8 @@ def console_lines(summary_data: dict[str, Any]) -> list[str]:
         units = s["units"]
         lines = [f"  {s['analysis']}: {s['points']} operating point(s)"]
         for row in s["rows"]:
-            lines.append("  " + ", ".join(
-                f"{n} = {v}" if isinstance(v, str) else
-                f"{n} = {display_text(v, units.get(n, ''))}" for n, v in row.items()))
+            lines.append(f"  {_point_text(row, units)}"
+                         + (f": FAILED: {row['error']}" if "error" in row else ""))
         return lines
     stats = s.get("simulation", {}).get("stats", {})
     reason, backend_reason = stats.get("method_reason", ""), stats.get("backend_reason", "")

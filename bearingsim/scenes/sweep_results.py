@@ -169,7 +169,7 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         return []
     order = [numeric[0], *(k for k in keys if k != numeric[0])]
     what = "modes" if prep.scene.analysis == "modes" else "steady"
-    figs = characteristic_figures(prep, ok, order, units, outputs, what)
+    figs = characteristic_figures(prep, ok, order, units, outputs, what, len(rows) - len(ok))
     return [(f"{stem}.png", fig) for _, fig in figs[:1]]
 
 

@@ -122,6 +122,51 @@ name = "spindle"
     assert all(row["radial x"] > 2.0 * row["radial y"] for row in loaded)
 
 
+_SKF_STEADY = """
+title = "SKF friction at zero load"
+analysis = "steady"
+outputs = ["Rs"]
+[assembly]
+name = "double_layer_bearing"
+friction_model = "skf"
+[inputs]
+shaft_speed = "6000 rpm"
+[grid]
+"inputs.Fr" = {loads}
+"""
+
+
+def test_a_point_without_an_answer_is_a_row_that_says_why(tmp_path, capsys):
+    """SKF's rolling and sliding friction vanish without load: at Fr = 0 no torque acts on the
+    middle ring, and its steady speed is not determined. The steady scene stopped at that
+    point with no table and no word of which point failed. Now that point's row carries the
+    message (column ``error``), the other points are answered as if solved alone, the
+    figure leaves it out and says so, a PointFailedWarning names it, and ``bearingsim run``
+    writes everything and exits with 1."""
+    from bearingsim.cli import main
+    from bearingsim.scenes.analyses import PointFailedWarning
+
+    with pytest.warns(PointFailedWarning, match=r"1 of 3 operating point\(s\).*First: Fr = 0 "
+                                                r"kN: steady state not unique"):
+        run = run_scene(parse_scene(_SKF_STEADY.format(loads="[0.0, 500.0, 1000.0]")),
+                        write=False)
+    assert set(run.rows[0]) == {"Fr", "error"} and "middle.sleeve.w" in run.rows[0]["error"]
+    assert run.summary["failed"] == [{"point": 0, "error": run.rows[0]["error"]}]
+    alone = run_scene(parse_scene(_SKF_STEADY.format(loads="[500.0, 1000.0]")), write=False)
+    assert [row["Rs"] for row in run.rows[1:]] == pytest.approx(
+        [row["Rs"] for row in alone.rows], rel=1e-9)
+    assert 0.2 < alone.rows[0]["Rs"] < 0.3
+    scene = tmp_path / "skf.toml"
+    scene.write_text(_SKF_STEADY.format(loads="[0.0, 500.0]"))
+    assert main(["run", str(scene), "--out", str(tmp_path / "out")]) == 1
+    said = capsys.readouterr()
+    assert "  Fr = 0 kN: FAILED: steady state not unique" in said.out
+    assert "warning: PointFailedWarning: 1 of 2 operating point(s)" in said.err
+    table = (tmp_path / "out" / "skf.csv").read_text().splitlines()
+    assert table[0] == "Fr [N],error,Rs [-]" and table[1].startswith("0.0,\"steady state not")
+    assert (tmp_path / "out" / "skf.steady.png").is_file()
+
+
 def test_a_structural_argument_in_a_grid_assembles_its_own_model():
     """A preload is a parameter of the assembled pair; an arrangement is not (it changes the
     equations' signs): a grid over it assembles each arrangement's model instead of running
