@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import ModelError
+from bearingsim.errors import ModelError, SimulationError
 from bearingsim.scenes.analyses import (
     NotSettledWarning,
     PointFailedWarning,
@@ -323,6 +323,9 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
     solved = [row for row in rows if "error" not in row]
     failed = [{"point": k, "error": row["error"]} for k, row in enumerate(rows) if "error" in row]
     units = analysis_units(prep, rows)
+    if rows and not solved:  # nothing answered (e.g. a model whose steady running is periodic)
+        raise SimulationError(f"no operating point found an answer; the first, "
+                              f"{_point_text(rows[0], units)}: {rows[0]['error']}")
     if failed:
         warnings.warn(f"{len(failed)} of {len(rows)} operating point(s) found no solution; "
                       f"their rows say why (column error), the others are answered. First: "

@@ -13,6 +13,7 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from bearingsim.errors import SimulationError
 from bearingsim.scenes import SceneError, load_scene, parse_scene, run_scene
 from bearingsim.scenes.analyses import NotSettledWarning, run_operating_point, settling_check
 from bearingsim.scenes.library import DEMO_SCENES, builtin_scenes
@@ -165,6 +166,9 @@ def test_a_point_without_an_answer_is_a_row_that_says_why(tmp_path, capsys):
     table = (tmp_path / "out" / "skf.csv").read_text().splitlines()
     assert table[0] == "Fr [N],error,Rs [-]" and table[1].startswith("0.0,\"steady state not")
     assert (tmp_path / "out" / "skf.steady.png").is_file()
+    with pytest.raises(SimulationError, match=r"no operating point found an answer; the first, "
+                                              r"Fr = 0 kN: steady state not unique"):
+        run_scene(parse_scene(_SKF_STEADY.format(loads="[0.0]")), write=False)
 
 
 def test_a_structural_argument_in_a_grid_assembles_its_own_model():
