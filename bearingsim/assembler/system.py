@@ -17,7 +17,7 @@ from bearingsim.entry_points import value_key
 from bearingsim.errors import ParameterError
 from bearingsim.language.component import Component
 from bearingsim.units import to_si, unit_label
-from bearingsim.validation import check_mapping, check_range
+from bearingsim.validation import check_mapping, check_quantity
 
 __all__ = ["Signal", "FunctionTable", "System", "as_system"]
 
@@ -219,7 +219,8 @@ class System:
         Parameters
         ----------
         overrides : dict of str to float, optional
-            Start values by state name (SI units).
+            Start values by state name: numbers in SI units, or with a unit (``"100 rpm"``,
+            a :class:`pint.Quantity`).
 
         Returns
         -------
@@ -243,8 +244,8 @@ class System:
                     f"initial value given for {name!r}, which is not a state; states: "
                     + ", ".join(index)
                 )
-            x[k] = float(check_range(val, name, self.states[k].unit,
-                                     where=f"{self.name}: initial value"))
+            x[k] = float(check_quantity(val, name, self.states[k].unit,
+                                        where=f"{self.name}: initial value"))
         return x
 
     def p0(self, overrides: dict[str, float] | None = None) -> np.ndarray:

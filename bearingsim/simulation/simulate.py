@@ -30,6 +30,7 @@ from bearingsim.simulation.integrators import (
 from bearingsim.simulation.result import Result, ResultLayout
 from bearingsim.simulation.steady import steady_state
 from bearingsim.simulation.sundials_integrators import LINEAR_SOLVERS
+from bearingsim.units import is_quantity, quantity_to_si
 from bearingsim.validation import check_choice, check_flag, check_range
 
 __all__ = ["simulate", "initial_state"]
@@ -92,9 +93,9 @@ def initial_state(
 @entry_point
 def simulate(
     system: System,
-    t_end: float,
+    t_end: float | str,
     *,
-    t_start: float = 0.0,
+    t_start: float | str = 0.0,
     inputs: dict[str, Any] | None = None,
     parameters: dict[str, float] | None = None,
     x0: dict[str, float] | None = None,
@@ -105,12 +106,12 @@ def simulate(
     atol: float = 1e-8,
     n_points: int = 501,
     t_eval: np.ndarray | None = None,
-    max_step: float = np.inf,
+    max_step: float | str = np.inf,
     progress: bool | None = None,
     compiled: bool | str = "auto",
     linear_solver: str | None = None,
     max_steps: int = DEFAULT_MAX_STEPS,
-    timeout: float | None = None,
+    timeout: float | str | None = None,
 ) -> Result:
     """Integrate a system and return every variable as a named series.
 
@@ -118,9 +119,9 @@ def simulate(
     ----------
     system : System
         From :func:`bearingsim.assembler.assemble`.
-    t_end : float
-        End time [s].
-    t_start : float
+    t_end : float or str
+        End time [s] (this and the other times also as a time with a unit: ``"50 ms"``).
+    t_start : float or str
         Start time [s].
     inputs : dict, optional
         Input name -> constant, ``f(t)`` (symbolic) or ``(times, values)`` table (linear
@@ -128,7 +129,8 @@ def simulate(
     parameters : dict, optional
         Parameter name -> value (validated; no recompilation).
     x0 : dict, optional
-        State name -> initial value, overriding start values.
+        State name -> initial value (SI, or with a unit: ``"100 rpm"``), overriding start
+        values.
     initial : {"start", "steady"}
         ``"steady"`` starts from the steady state at ``t_start``.
     method : str, optional
@@ -157,7 +159,7 @@ def simulate(
         (ignored when ``t_eval`` is given).
     t_eval : array_like, optional
         Output times [s]: finite, strictly increasing, within ``[t_start, t_end]``.
-    max_step : float
+    max_step : float or str
         Largest step [s], > 0 (``inf``: no limit); CVODES and IDAS get it as
         ``max_step_size``.
     progress : bool, optional
@@ -183,7 +185,7 @@ def simulate(
         Step budget of the run [-], >= 1 (default
         :data:`~bearingsim.simulation.budget.DEFAULT_MAX_STEPS`; CVODES and IDAS get it as
         ``max_num_steps`` per call).
-    timeout : float, optional
+    timeout : float or str, optional
         Wall-time budget of the integration [s], > 0 (``None``: none). Exceeding either budget
         raises :class:`~bearingsim.errors.BudgetExceededError` with the time reached.
 
@@ -205,6 +207,9 @@ def simulate(
         When the run uses up ``max_steps`` or ``timeout``, with the time reached.
     """
     system = as_system(system, "simulate")
+    t_start, t_end, max_step, timeout = (  # "50 ms" -> 0.05
+        _seconds(v, name) for v, name in ((t_start, "t_start"), (t_end, "t_end"),
+                                          (max_step, "max_step"), (timeout, "timeout")))
     settings = (t_start, t_end, rtol, atol, max_step, method, backend, initial, progress,
                 compiled, linear_solver)
     try:
@@ -255,6 +260,14 @@ def simulate(
                 f"{str(exc).splitlines()[0][:300]}") from None
     _check_finite(system, ts, values)
     return Result.of_run(ts, values, _result_layout(system), stats, signal.at(ts)[:, -1], p)
+
+
+def _seconds(value: Any, name: str) -> Any:
+    """A time argument of :func:`simulate` in s: a number with a unit converted (``"50 ms"``),
+    anything else as given (checked with the other settings)."""
+    if isinstance(value, str) or is_quantity(value):
+        return quantity_to_si(value, "s", f"simulate: {name}")
+    return value
 
 
 def _check_settings(t_start: Any, t_end: Any, rtol: Any, atol: Any, max_step: Any,

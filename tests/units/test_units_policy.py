@@ -28,6 +28,7 @@ from bearingsim.units import (
     UnitError,
     engineering,
     parse_quantity,
+    quantity_to_si,
     registry,
     rpm_to_rad_s,
     to_display,
@@ -143,6 +144,23 @@ def test_api_takes_numbers_with_units(torque_system):
     assert table.final("shaft_speed") == pytest.approx(1000 * RPM, rel=1e-12)
     with pytest.raises(ParameterError, match="not a number with a unit"):
         simulate(torque_system, 0.05, inputs={"shaft_speed": "fast"})
+
+
+def test_simulate_times_and_start_values_take_numbers_with_units(torque_system):
+    """A scene took ``t_end = "50 ms"`` and ``[initial]`` values with a unit; ``simulate``
+    refused both ("t_end must be a number in s", "must be a number in rad/s")."""
+    w = quantity_to_si("100 rpm", "rad/s", "w")
+    with_units = simulate(torque_system, "10 ms", t_start="0 s", max_step="1 ms", timeout="1 min",
+                          inputs={"shaft_speed": "1000 rpm"}, n_points=3,
+                          x0={"middle.sleeve.w": registry().Quantity(100.0, "rpm")})
+    si = simulate(torque_system, 0.01, t_start=0.0, max_step=1e-3, timeout=60.0,
+                  inputs={"shaft_speed": "1000 rpm"}, n_points=3, x0={"middle.sleeve.w": w})
+    assert with_units.t.tolist() == [0.0, 0.005, 0.01]
+    assert np.array_equal(with_units.values, si.values)
+    with pytest.raises(ParameterError, match=r"simulate: t_end: 'rpm' is not a unit of s"):
+        simulate(torque_system, "10 rpm", inputs={"shaft_speed": 1.0})
+    with pytest.raises(ParameterError, match=r"initial value: middle.sleeve.w: 'm' is not a unit"):
+        simulate(torque_system, 0.01, inputs={"shaft_speed": 1.0}, x0={"middle.sleeve.w": "3 m"})
 
 
 def test_api_load_arguments_take_numbers_with_units():
