@@ -132,7 +132,12 @@ def _list(args: argparse.Namespace) -> int:
             print(f"  {spec.name}: {spec.description}")
             if spec.fidelity_arg is not None:
                 print(f"    fidelity: auto, {', '.join(spec.fidelities)}")
-            print(f"    arguments: {', '.join(spec.args)}")
+            print("    arguments:")
+            for name, arg in spec.args.items():
+                value = arg.default
+                default = ("" if value is None else "; default " + (
+                    ", ".join(map(str, value)) if isinstance(value, (list, tuple)) else str(value)))
+                print(f"      {name}: {arg.doc}; {arg.allowed}{default}")
             print(f"    default outputs: {', '.join(spec.default_outputs)}")
             post = spec.post(spec.with_defaults({}))
             if post:

@@ -332,6 +332,23 @@ def test_list_bearings_with_ratings_speeds_and_a_filter(capsys):
     assert "double_layer_rs" in capsys.readouterr().out
 
 
+def test_list_states_each_assembly_arguments_unit_range_and_default(capsys):
+    """`bearingsim list` named the arguments only, while the scene docs send a reader there
+    for an argument's unit; each argument is now a line with what it takes."""
+    assert main(["list", "assemblies", "--filter", "roller"]) == 0
+    out = capsys.readouterr().out
+    assert ("      tilt_y: misalignment about y [rad]; a number in rad (or with a unit), -0.01 "
+            "to 0.01; default 0.0") in out
+    assert ("      clearance: diametral clearance [m] (default: catalogue, normal group); a "
+            "number in m (or with a unit), >= 0") in out
+    assert "      friction_model: friction model (torque level); one of palmgren, skf" in out
+    assert main(["list", "assemblies", "--filter", "double_layer"]) == 0
+    out = capsys.readouterr().out
+    assert "; default ISO VG 32, ISO VG 32\n" in out
+    assert "middle_ring_drag: the middle ring's laminar drag in the oil (torque level); a table" \
+           " of radius, gap, length, wetted" in out
+
+
 def test_the_core_install_pulls_no_test_tool():
     """Issue 16: pip install bearingsim installed pytest, hypothesis, ruff, libcosimpy and
     pythonfmu; they are extras now ([test], [fmu-cosim]), and make demo installs the core only."""

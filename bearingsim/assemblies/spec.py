@@ -140,6 +140,35 @@ class ArgSpec:  # numpydoc ignore=PR02
         stated = re.search(r"\[([^\]]+)\]", self.doc)
         return stated.group(1) if stated and stated.group(1) != "-" else "1"
 
+    @property
+    def allowed(self) -> str:
+        """What the argument takes, for ``bearingsim list`` (``"one of DF, DB, DT"``,
+        ``"a number in m, or with a unit, >= 0"``).
+
+        Returns
+        -------
+        str
+            The text.
+        """
+        if self.kind == "bearing":
+            return "a designation (any letter case; bearingsim list bearings)"
+        if self.kind == "lubricant":
+            return "a lubricant name (bearingsim list lubricants)"
+        if self.kind == "choice":
+            return "one of " + ", ".join(map(str, self.choices))
+        if self.kind == "bool":
+            return "true or false"
+        if self.kind in ("table", "floats"):
+            return ("a table of " + ", ".join(self.table) if self.table
+                    else "a table of named numbers")
+        unit = "" if self.unit == "1" else f" in {self.unit} (or with a unit)"
+        text = f"a number{unit}" + (" or an expression of t" if self.kind == "signal" else "")
+        if self.low is not None and self.high is not None:
+            return f"{text}, {self.low:g} to {self.high:g}"
+        if self.low is not None:
+            return f"{text}, {'>=' if self.low_inclusive else '>'} {self.low:g}"
+        return text
+
     def designation(self, name: Any) -> str | None:
         """A ``"bearing"`` argument's value as its catalogue spells it (``"7020c"`` ->
         ``"7020C"``, ``"NU 206"`` -> ``"NU206"``), or None when the catalogue knows none.

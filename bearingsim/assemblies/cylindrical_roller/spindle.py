@@ -134,7 +134,8 @@ SPINDLE_SCENE_SPEC = AssemblySpec(
         "roller_distance": ArgSpec("float", 0.330, "rear duplex row to NU bearing [m]",
                                    low=0.0),
         "damping_ratio": ArgSpec("float", None, "damping ratio of the shaft against the "
-                                 "housing [-], 0 to 1 (default: none)"),
+                                 "housing [-] (default: none)", low=0.0, high=1.0,
+                                 low_inclusive=True),
     },
     **single_level("quasi-static"),
     default_outputs=["pair.shaft.x", "pair.shaft.ty", "nu.Q[0]"],

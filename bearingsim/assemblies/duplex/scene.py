@@ -67,13 +67,13 @@ SCENE_SPEC = AssemblySpec(
                            choices=PRELOAD_CLASSES),
         "preload_force": ArgSpec("float", None, "axial preload [N] instead of a class",
                                  low=0.0),
-        "speed": ArgSpec("float", factory_default(duplex_pair, "speed"), "shaft speed [rad/s]",
-                         low=-1e9),
+        "speed": ArgSpec("float", factory_default(duplex_pair, "speed"), "shaft speed [rad/s]"),
         "speed_effects": ArgSpec("bool", factory_default(DuplexOptions, "speed_effects"),
                                  "centrifugal and gyroscopic ball loads"),
         "damping_ratio": ArgSpec("float", factory_default(DuplexOptions, "damping_ratio"),
-                                 "damping ratio of the shaft against the housing [-], 0 to 1 "
-                                 "(default: none, a load step rings for ever)"),
+                                 "damping ratio of the shaft against the housing [-] "
+                                 "(default: none, a load step rings for ever)", low=0.0,
+                                 high=1.0, low_inclusive=True),
     },
     **single_level("quasi-static"),
     default_outputs=["shaft.x", "shaft.z", "shaft.ty"],
