@@ -72,7 +72,7 @@ def test_a_plugin_assembly_is_listed_runs_in_a_scene_and_is_found_by_name(site, 
     assert main(["list", "assemblies"]) == 0
     out = capsys.readouterr().out
     assert "  flywheel: a free flywheel (plug-in)" in out
-    assert "arguments: J, w0" in out
+    assert "      w0: start speed [rad/s]; a number in rad/s (or with a unit); default 100.0" in out
     assert get_spec("flywheel") is REGISTRY.plugins["flywheel"]
     run = run_scene(parse_scene('[assembly]\nname = "flywheel"\nw0 = 50.0\n'
                                 '[simulation]\nt_end = 0.5\n', None), write=False)
