@@ -9,7 +9,9 @@ from __future__ import annotations
 import argparse
 import inspect
 import math
+import os
 import re
+import signal
 import sys
 import warnings
 
@@ -209,6 +211,8 @@ def _run(args: argparse.Namespace) -> int:
 def _validate(args: argparse.Namespace) -> int:
     from bearingsim.scenes import validate_scene
 
+    if args.variables:
+        return _variables(args)
     prep = validate_scene(args.scene, assemble_model=not args.no_assemble,
                           allow_paths=args.allow_path)
     if args.no_assemble:
@@ -221,6 +225,23 @@ def _validate(args: argparse.Namespace) -> int:
         _say(f"  pruned: {item}")
     for name in prep.post:
         _say(f"  post-processed after the integration: {name}")
+    return 0
+
+
+def _variables(args: argparse.Namespace) -> int:
+    """``bearingsim validate --variables``: the names a scene's outputs may ask for."""
+    from bearingsim.scenes import load_scene
+    from bearingsim.scenes.scene_variables import model_variables
+
+    scene = load_scene(args.scene, args.allow_path)
+    listed = model_variables(scene)
+    _say(f"{scene.assembly} at fidelity {listed.fidelity}: {len(listed.variables)} variables")
+    for name, unit, description in listed.variables:
+        _say(f"  {name} [{unit or '-'}]: {description}")
+    if listed.post:
+        _say("post-processed (computed after the run):")
+        for name, unit, description in listed.post:
+            _say(f"  {name} [{unit or '-'}]: {description}")
     return 0
 
 
@@ -315,6 +336,10 @@ def _parser() -> argparse.ArgumentParser:
     p_val.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_val.add_argument("--no-assemble", action="store_true",
                        help="only check the file, not its names against the model")
+    p_val.add_argument("--variables", action="store_true",
+                       help="list every variable of the scene's model (name [unit]: "
+                            "description) and the post-processed quantities, the names "
+                            "'outputs' may ask for; the scene's outputs are not checked")
     p_sw.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_sw.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
                       help="grid values of a key (inputs.X, parameters.X, initial.X, "
@@ -400,7 +425,9 @@ def main(argv: list[str] | None = None) -> int:
                     "validate": _validate, "sweep": _sweep, "cache": _cache}
         with warnings.catch_warnings():  # warnings as lines of the command, each once
             warnings.showwarning = _warning_printer(args.command)
-            return handlers[args.command](args)
+            status = handlers[args.command](args)
+        sys.stdout.flush()  # here, where a closed pipe is caught, not at the exit
+        return status
     except KeyboardInterrupt:  # Ctrl-C: outputs are written whole or not at all
         _say(f"bearingsim {command}: interrupted", err=True)
         return 130
@@ -410,6 +437,9 @@ def main(argv: list[str] | None = None) -> int:
     except BearingsimError as exc:
         _say(f"bearingsim {command}: {exc}", err=True)
         return 2
+    except BrokenPipeError:  # a reader that stopped early (| head): quiet, as other tools
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 128 + signal.SIGPIPE
     except OSError as exc:  # a file the command reads or writes (folder missing, disk full)
         from bearingsim.files import os_reason
 

@@ -449,3 +449,41 @@ def test_every_command_of_a_scene_says_it_takes_a_built_in_scene_name(capsys):
             main([command, "--help"])
         assert "built-in scene name" in " ".join(capsys.readouterr().out.split()), command
     assert main(["validate", "double_layer_rs", "--no-assemble"]) == 0
+
+
+def test_a_reader_that_stops_early_ends_the_command_quietly():
+    """`bearingsim list | head -1` ended with "bearingsim list: Broken pipe" on standard error
+    (a BrokenPipeError taken for a file error); now the command stops quietly with the status
+    of a process a closed pipe stops (128 + SIGPIPE), as other tools do."""
+    import signal
+
+    proc = subprocess.Popen([sys.executable, "-m", "bearingsim.cli", "list"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()  # the reader is gone before the first line
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == 128 + signal.SIGPIPE
+    assert err == ""
+
+
+def test_validate_lists_the_variables_outputs_may_ask_for(tmp_path, capsys):
+    """An unknown output sent the reader to "the CSV of a run without 'outputs'", which holds
+    the default outputs only; `bearingsim validate --variables` lists every variable of the
+    scene's model, and works on the scene with the unknown output."""
+    scene = tmp_path / "pair.toml"
+    scene.write_text('outputs = ["Fa_inner"]\n[assembly]\nname = "duplex_pair"\n'
+                     '[simulation]\nt_end = 1\n')
+    assert main(["validate", str(scene)]) == 2
+    assert "the model's variables (bearingsim validate --variables lists them)" in \
+        capsys.readouterr().err
+    assert main(["validate", "--variables", str(scene)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert re.fullmatch(r"duplex_pair at fidelity quasi-static: \d+ variables", lines[0])
+    assert "  shaft.x [m]: x of the centre of mass" in lines
+    assert "  shaft.Mx [N.m]: external load Mx at the centre of mass" in lines
+    assert int(lines[0].split(": ")[1].split()[0]) == len(lines) - 1 > 100
+    roller = tmp_path / "roller.toml"
+    roller.write_text('[assembly]\nname = "cylindrical_roller_bearing"\n[simulation]\nt_end = 1\n')
+    assert main(["validate", "--variables", str(roller)]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("cylindrical_roller_bearing at fidelity quasi-static: ")  # auto's top
+    assert "post-processed (computed after the run):\n  Q_max [N]: " in out

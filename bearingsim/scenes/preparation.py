@@ -372,8 +372,8 @@ def prepare(scene: Scene) -> Prepared:
             key = "outputs"
             raise SceneError(str(exc).replace("unknown output variable", "unknown output"),
                              key, line_of(scene.text, key),
-                             "model variables (see the CSV of a run without 'outputs') or "
-                             "post-processed: " + (", ".join(post_all) or "none"),
+                             "the model's variables (bearingsim validate --variables lists "
+                             "them) or post-processed: " + (", ".join(post_all) or "none"),
                              scene.path) from None
     assemble_s = time.perf_counter() - t0
     _check_names(scene, system, requested)
