@@ -50,5 +50,13 @@ def test_without_outputs_nothing_is_pruned():
 
 def test_an_unknown_output_name_is_refused_with_a_suggestion():
     model, matched = _two_subsystems()
-    with pytest.raises(ModelError, match=r"unknown output variable 'y1x'; did you mean y1\?"):
+    with pytest.raises(ModelError, match=r"unknown output variable 'y1x' \(did you mean y1\?\)"):
         pruning.run(state_of(model, ["y1x"], matching=matched))
+
+
+def test_every_unknown_output_name_is_named_at_once():
+    """Two misspelt outputs were refused one at a time (fix one, run again, meet the next)."""
+    model, matched = _two_subsystems()
+    with pytest.raises(ModelError, match=r"^unknown output variable 'y1x' \(did you mean y1\?\); "
+                                         r"unknown output variable 'qqq'$"):
+        pruning.run(state_of(model, ["y1x", "y1", "qqq"], matching=matched))

@@ -34,6 +34,7 @@ def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
     """
     by_path = {v.name: v for v in dae.vars}
     out: list[Var] = []
+    unknown = []
     for name in names:
         if name in by_path:
             out.append(by_path[name])
@@ -44,8 +45,10 @@ def resolve_names(dae: DAE, names: list[str]) -> list[Var]:
         else:
             known = list(by_path) + list(dae.aliases)
             close = difflib.get_close_matches(name, known, n=5)
-            hint = f"; did you mean {', '.join(close)}?" if close else ""
-            raise ModelError(f"unknown output variable {name!r}{hint}")
+            unknown.append(f"unknown output variable {name!r}"
+                           + (f" (did you mean {', '.join(close)}?)" if close else ""))
+    if unknown:  # every one at once
+        raise ModelError("; ".join(unknown))
     return out
 
 
