@@ -30,6 +30,7 @@ Loads and geometry in SI; floats and CasADi SX alike (:func:`roller_row_loads`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -55,6 +56,7 @@ __all__ = [
     "roller_row_loads",
     "roller_row_stiffness",
     "roller_row_equilibrium",
+    "roller_row_life",
     "slice_positions",
 ]
 
@@ -379,3 +381,35 @@ def roller_row_equilibrium(p: RollerRowParameters, n_rollers: int, n_slices: int
     moment = -np.array(numeric.inner_load[3:5])
     return RollerEquilibrium(inner, numeric, moment)
 
+
+def roller_row_life(bearing: str | RollerBearingGeometry, clearance: float | None, inner,
+                    n_slices: int) -> float:
+    """ISO/TS 16281 roller-form reference rating life L10r [10^6 rev] of a catalogue bearing's
+    row whose inner ring (rotating) sits at ``inner`` against the outer ring, from the slice
+    loads of the exact contact law (unloaded slices carry nothing: a bearing without load has
+    an infinite life, not the huge one of the regularized slices' tiny loads).
+
+    Parameters
+    ----------
+    bearing : str or RollerBearingGeometry
+        Designation or geometry.
+    clearance : float or None
+        Diametral clearance [m] (None: the catalogue's).
+    inner : sequence of 5
+        Inner ring displacement (x, y, z, tx, ty) [m, rad].
+    n_slices : int
+        Slices per roller.
+
+    Returns
+    -------
+    float
+        L10r [10^6 revolutions] (inf without load).
+    """
+    from bearingsim.physics.life import roller_reference_rating_life
+
+    g = resolve_roller_bearing(bearing)
+    exact = dataclasses.replace(roller_row_parameters(g, clearance), smooth=None)
+    contacts = roller_row_loads(exact, [float(v) for v in inner], [0.0] * 5, g.roller_count,
+                                n_slices)
+    q = [[float(v) for v in r] for r in contacts.q]
+    return float(roller_reference_rating_life(q, q, g.dynamic_load_rating, g.gamma))

@@ -4,7 +4,6 @@ figure."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Any
 
@@ -18,8 +17,8 @@ from bearingsim.catalog.rollers import (
     list_roller_bearings,
     resolve_roller_bearing,
 )
-from bearingsim.components.roller_row import roller_row_loads, roller_row_parameters
-from bearingsim.physics.life import line_load_integrals, roller_reference_rating_life
+from bearingsim.components.roller_row import roller_row_life
+from bearingsim.physics.life import line_load_integrals
 from bearingsim.plotting import Curve, FigureSpec, Panel
 
 __all__ = ["SCENE_SPEC", "N_SLICES", "roller_loads_figure", "reference_life"]
@@ -56,17 +55,10 @@ def reference_life(args: dict[str, Any], series: dict[str, np.ndarray]) -> np.nd
     numpy.ndarray
         L10r [10^6 revolutions] (inf without load).
     """
-    g = resolve_roller_bearing(args["bearing"])
-    # the exact contact law (no regularization): unloaded slices carry nothing, so a bearing
-    # at rest has an infinite life, not the huge one of the regularized slices' tiny loads
-    rp = dataclasses.replace(roller_row_parameters(g, args["clearance"]), smooth=None)
-    out = []
-    for x, y, tx, ty in zip(*(np.asarray(series[n], dtype=float) for n in _DISPLACEMENT),
-                            strict=True):
-        c = roller_row_loads(rp, [x, y, 0.0, tx, ty], [0.0] * 5, g.roller_count, N_SLICES)
-        q = [[float(v) for v in r] for r in c.q]
-        out.append(float(roller_reference_rating_life(q, q, g.dynamic_load_rating, g.gamma)))
-    return np.asarray(out)
+    return np.asarray([roller_row_life(args["bearing"], args["clearance"], [x, y, 0.0, tx, ty],
+                                       N_SLICES)
+                       for x, y, tx, ty in zip(*(np.asarray(series[n], dtype=float)
+                                                 for n in _DISPLACEMENT), strict=True)])
 
 
 def _post(args: dict[str, Any]) -> dict[str, PostQuantity]:
