@@ -16,7 +16,6 @@ import numpy as np
 from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, keep_tight_layout, wrapped_label
 from bearingsim.scenes.operating_points import point_label
 from bearingsim.scenes.statics_table import STATICS, statics_of
-from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
 from bearingsim.units import engineering, to_display
 
 __all__ = ["analysis_figures", "axis_text", "characteristic_figures", "describe", "display",
@@ -430,7 +429,7 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
             continue
         shown = y
         if units.get(n) == "Pa":
-            limit, _ = display([STATIC_PRESSURE_LIMIT], "Pa")
+            limit, _ = display([statics_of(prep).pressure_limit], "Pa")
             ax.axhline(limit[0], color="0.2", linestyle="--")
             ax.text(0.99, limit[0], f"ISO 76 static limit {limit[0]:,.0f} {unit}",
                     transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=7)

@@ -16,6 +16,8 @@ import numpy as np
 
 from bearingsim.catalog import resolve_bearing
 from bearingsim.scenes.scene import SceneError, line_of
+from bearingsim.studies.deep_groove_statics import STATIC_PRESSURE_LIMIT
+from bearingsim.studies.roller_statics import ROLLER_PRESSURE_LIMIT
 
 __all__ = ["LIFE_AT_REST", "STATICS", "STATICS_INPUTS", "Statics", "statics_of"]
 
@@ -32,13 +34,16 @@ class Statics:
 
     ``solve(prep, inputs, args, guess) -> (row, state)`` solves one load case (inputs by
     name, SI); ``columns`` are the row's names -> (unit, description); ``figure`` the columns
-    drawn per load case (bars); ``levels`` the fidelity levels it applies to (empty: all).
+    drawn per load case (bars); ``levels`` the fidelity levels it applies to (empty: all);
+    ``pressure_limit`` the contact pressure of the static load rating [Pa] (ISO 76), drawn
+    on a pressure panel.
     """
 
     solve: Callable[..., tuple[dict[str, float | str], np.ndarray]]
     columns: dict[str, tuple[str, str]]
     figure: tuple[str, ...]
     levels: tuple[str, ...] = ()
+    pressure_limit: float = STATIC_PRESSURE_LIMIT
 
 
 _DEEP_GROOVE_COLUMNS = {
@@ -54,6 +59,13 @@ _DEEP_GROOVE_COLUMNS = {
 }
 
 
+def _hours(life_mrev: float, inputs: dict[str, float]) -> float | str:
+    """A life of ``life_mrev`` 10^6 revolutions in hours at the case's shaft speed
+    (:data:`LIFE_AT_REST` without one)."""
+    revolutions_per_hour = abs(float(inputs.get("shaft_speed", 0.0))) / (2.0 * math.pi) * 3600.0
+    return life_mrev * 1e6 / revolutions_per_hour if revolutions_per_hour > 0.0 else LIFE_AT_REST
+
+
 def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
                          guess: np.ndarray | None) -> tuple[dict[str, float | str], np.ndarray]:
     from bearingsim.studies.deep_groove_statics import LOAD_NAMES, deep_groove_statics
@@ -63,14 +75,44 @@ def _deep_groove_statics(prep: Any, inputs: dict[str, float], args: dict[str, An
     resolve_bearing(args["bearing"]).check_speed(speed, "statics: inputs.shaft_speed")
     res = deep_groove_statics(args["bearing"], loads, method=prep.scene.statics_method,
                               guess=guess)
-    revolutions_per_hour = speed / (2.0 * math.pi) * 3600.0
-    life_h = (res.reference_life * 1e6 / revolutions_per_hour if revolutions_per_hour > 0.0
-              else LIFE_AT_REST)
+    life_h = _hours(res.reference_life, inputs)
     row = {"Q_max": float(np.max(res.ball_loads)), "p_max": float(res.max_pressure),
            "x": float(res.displacement[0]), "y": float(res.displacement[1]),
            "z": float(res.displacement[2]), "k_radial": float(res.stiffness[0, 0]),
            "k_axial": float(res.stiffness[2, 2]), "L10r": float(res.reference_life),
            "L10h": life_h}
+    return row, res.state
+
+
+_ROLLER_COLUMNS = {
+    "Q_max": ("N", "largest roller load"),
+    "p_max": ("Pa", "largest contact pressure (inner raceway)"),
+    "x": ("m", "inner ring displacement x"), "y": ("m", "inner ring displacement y"),
+    "k_radial": ("N/m", "radial stiffness d Fx / d x"),
+    "Mx": ("N.m", "moment about x holding the misalignment"),
+    "My": ("N.m", "moment about y holding the misalignment"),
+    "L10r": ("Mrev", "ISO/TS 16281 roller-form reference rating life L10r (10^6 revolutions)"),
+    "L10h": ("h", "ISO/TS 16281 roller-form reference rating life L10r in hours at the case's "
+                  "shaft speed"),  # a case at rest says LIFE_AT_REST in its cell
+}
+
+
+def _roller_statics(prep: Any, inputs: dict[str, float], args: dict[str, Any],
+                    guess: np.ndarray | None) -> tuple[dict[str, float | str], np.ndarray]:
+    from bearingsim.assemblies.cylindrical_roller.scene import N_SLICES
+    from bearingsim.catalog.rollers import resolve_roller_bearing
+    from bearingsim.studies.roller_statics import LOAD_NAMES, roller_statics
+
+    resolve_roller_bearing(args["bearing"]).check_speed(
+        abs(float(inputs.get("shaft_speed", 0.0))), "statics: inputs.shaft_speed")
+    res = roller_statics(args["bearing"], {k: float(inputs.get(f"load.{k}", 0.0))
+                                           for k in LOAD_NAMES},
+                         (args["tilt_x"], args["tilt_y"]), args["clearance"], N_SLICES)
+    row = {"Q_max": float(np.max(res.roller_loads)), "p_max": res.max_pressure,
+           "x": float(res.displacement[0]), "y": float(res.displacement[1]),
+           "k_radial": float(res.stiffness[0, 0]), "Mx": float(res.moment[0]),
+           "My": float(res.moment[1]), "L10r": res.reference_life,
+           "L10h": _hours(res.reference_life, inputs)}
     return row, res.state
 
 
@@ -109,12 +151,17 @@ STATICS = {
     "double_layer_bearing": Statics(_nested_statics, _NESTED_COLUMNS,
                                     ("Q_max_inner", "Q_max_outer", "x_shaft", "x_middle"),
                                     ("quasi-static",)),
+    "cylindrical_roller_bearing": Statics(_roller_statics, _ROLLER_COLUMNS,
+                                          ("L10h", "Q_max", "p_max"), ("quasi-static",),
+                                          ROLLER_PRESSURE_LIMIT),
 }
 """Assembly name -> its :class:`Statics`: the deep-groove ball bearing's ball loads, Hertz
 pressure, stiffness and ISO/TS 16281 life
 (:func:`~bearingsim.studies.deep_groove_statics.deep_groove_statics`), the double-layer
 bearing's load sharing at its quasi-static level
-(:func:`~bearingsim.studies.nested_equilibrium.nested_equilibrium`)."""
+(:func:`~bearingsim.studies.nested_equilibrium.nested_equilibrium`), the cylindrical roller
+bearing's roller loads, contact pressure, stiffness, holding moment and roller-form life
+(:func:`~bearingsim.studies.roller_statics.roller_statics`)."""
 STATICS_INPUTS = ("shaft_speed",)
 """Inputs a statics load case may give beyond the model's: the shaft speed [rad/s] turns the
 reference life in revolutions into hours (:data:`LIFE_AT_REST` without it)."""
