@@ -293,7 +293,10 @@ def _sweep(args: argparse.Namespace) -> int:
         _say(describe_failures(res), err=True)
     for f in res.files:
         _say(f"  wrote {f}")
-    return 1 if res.failures else 0
+    for failure in res.plot_failures:
+        _say(f"bearingsim sweep: plot failed: {failure['plot']}: {failure['error']} (the "
+             f"table and summary are written)", err=True)
+    return 1 if res.failures or res.plot_failures else 0
 
 
 def _cache(args: argparse.Namespace) -> int:

@@ -138,6 +138,8 @@ class SweepResult:
     ``settled`` and ``unsettled``), ``"on purpose"`` (a transient scene that reports a
     transient on purpose: not checked, as ``bearingsim run`` does not) or ``""`` (a steady,
     modes or statics point is solved, not run in time)."""
+    plot_failures: list[dict[str, str]] = field(default_factory=list)
+    """The figures that failed (``plot``, ``error``); the table and summary are written."""
 
     @property
     def ok(self) -> list[dict[str, Any]]:
@@ -464,7 +466,7 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
                           "message": k["message"]} for k in res.warnings],
         }
         folder.write_summary(f"{stem}.json", json.loads(json.dumps(summary, default=str)))
-        res.files = list(folder.files)
+        res.files, res.plot_failures = list(folder.files), list(folder.plot_failures)
     lap("write")
     res.wall_s = time.perf_counter() - wall
     return res

@@ -164,7 +164,8 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         ok, keys, units = _with_end_values(prep, ok, keys, units)
     numeric = sorted((k for k in keys if ok and numeric_key(ok, k)),
                      key=lambda k: not varies(ok, k))  # a key that varies first
-    outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS]
+    outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS
+               and all(isinstance(r[n], float) for r in ok)]  # not a statics life at rest
     if not numeric or not outputs:
         return []
     order = [numeric[0], *(k for k in keys if k != numeric[0])]

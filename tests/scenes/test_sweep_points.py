@@ -77,6 +77,33 @@ def test_every_shipped_scene_sweeps_as_it_runs(path, client, tmp_path):
     table = list(csv.DictReader((tmp_path / f"{path.stem}.sweep.csv").open()))
     assert [r["point"] for r in table] == ["0", "1"]
     assert (tmp_path / f"{path.stem}.sweep.json").is_file()
+    assert res.plot_failures == []
+
+
+def test_a_statics_sweep_at_rest_draws_its_figure(client, tmp_path, monkeypatch, capsys):
+    """A statics sweep whose cases are at rest has the text "not defined at zero speed" in
+    its L10h column: its figure failed ("could not convert string to float"), and `bearingsim
+    sweep` said nothing (the failure only in the summary) and exited 0. The figure now leaves
+    the text column out; a figure that fails is printed and the command exits with 1."""
+    from bearingsim.cli import main
+    from bearingsim.scenes import sweep as sweep_module
+
+    scene = load_scene("deep_groove_statics")
+    points = grid_points(parse_grid(["inputs.load.Fx=500,1000", "inputs.shaft_speed=0"]))
+    res = run_sweep(scene, points, client=client, out=tmp_path / "rest", progress=False)
+    assert [r["L10h"] for r in res.rows] == ["not defined at zero speed"] * 2
+    assert res.plot_failures == []
+    assert (tmp_path / "rest" / "deep_groove_statics.sweep.png").is_file()
+
+    def broken(*args):
+        raise ValueError("no figure today")
+
+    monkeypatch.setattr(sweep_module, "sweep_figures", broken)
+    assert main(["sweep", "deep_groove_statics", "--grid", "inputs.load.Fx=500,1000",
+                 "--workers", "1", "--out", str(tmp_path / "cli"), "--no-progress"]) == 1
+    assert ("bearingsim sweep: plot failed: all figures: ValueError: no figure today (the table "
+            "and summary are written)") in capsys.readouterr().err
+    assert (tmp_path / "cli" / "deep_groove_statics.sweep.csv").is_file()
 
 
 def test_issue_32_structural_grid_with_post_processed_quantities(client, tmp_path):
