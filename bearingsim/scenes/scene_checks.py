@@ -229,9 +229,16 @@ def _table_input(c: _Collector, key: str, v: dict, base: Path, allowed: tuple[st
             c.add(key, str(exc))
             return None
     t, y = np.asarray(times, dtype=float), np.asarray(vals, dtype=float)
-    if t.size < 2 or t.size != y.size or np.any(np.diff(t) <= 0):
-        c.add(key, "a table needs at least two rows, equally many times and values, times "
-              "strictly increasing")
+    rule = "at least two rows, equally many times and values, times strictly increasing"
+    if t.size < 2 or t.size != y.size:
+        c.add(key, f"a table needs at least two rows and a value per time; got {t.size} "
+              f"time(s) and {y.size} value(s)", rule)
+        return None
+    back = np.flatnonzero(np.diff(t) <= 0)
+    if back.size:  # rows counted from 1 among the data rows (a file's header not counted)
+        k = int(back[0])
+        c.add(key, f"times must increase strictly: data row {k + 2} has t = {t[k + 1]:g} s after "
+              f"t = {t[k]:g} s in row {k + 1}", rule)
         return None
     if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))):
         c.add(key, "table values must be finite")

@@ -232,6 +232,9 @@ def test_a_unit_row_still_works_and_a_typo_in_the_first_row_is_an_error(tmp_path
     ("time [N],w\n0,0\n1,1\n", "column 'time' is in N, not a time unit"),
     ("time,w\n0,0\n1,nan\n", "line 3, column 'w': not finite"),
     ("", "no header row"),
+    ("time,w\n0,0\n2,1\n1,2\n", "times must increase strictly: data row 3 has t = 1 s after "
+                                 "t = 2 s in row 2"),  # was "a table needs ..." with no row
+    ("time,w\n0,0\n", "a table needs at least two rows and a value per time; got 1 time(s)"),
 ])
 def test_malformed_tables_are_errors_naming_the_row_or_column(tmp_path, text, words):
     message = _problems(_scene(tmp_path, _table(tmp_path, text)))
