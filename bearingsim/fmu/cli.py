@@ -164,8 +164,8 @@ def _from_registry(name: str, kwargs: dict[str, Any]):
                              "expression of t is for scenes; the FMU's inputs vary in time)")
         model = spec.build(spec.with_defaults(kwargs), fidelity)
         return model, scene_outputs(spec, model, fidelity)
-    except BearingsimError as exc:
-        raise SystemExit(f"export-fmu: {name}: {exc}") from None
+    except BearingsimError as exc:  # the assembly's own name said once
+        raise SystemExit(f"export-fmu: {name}: {str(exc).removeprefix(f'{name}: ')}") from None
 
 
 def _load(spec: str, kwargs: dict[str, Any]):

@@ -36,6 +36,34 @@ def test_scene_name_exports_its_outputs_and_inputs(tmp_path):
     assert inputs == ["shaft.Fx", "shaft.Fy", "shaft.Fz", "shaft.Mx", "shaft.My"]
 
 
+def test_assembly_arguments_of_an_export_take_numbers_with_units(tmp_path):
+    """``bearingsim export-fmu duplex_pair x.fmu --arg 'preload_force="1 kN"'`` ended in a
+    traceback (``float('1 kN')``); the arguments take what a scene takes: numbers with units,
+    designations in any letter case, and text that is no quantity is a named error."""
+    path = tmp_path / "pair.fmu"
+    assert cli_export(["duplex_pair", str(path), "--arg", 'preload_force="1 kN"',
+                       "--kinds", "CS"]) == 0
+    si = tmp_path / "si.fmu"
+    assert cli_export(["duplex_pair", str(si), "--arg", "preload_force=1000.0",
+                       "--kinds", "CS"]) == 0
+
+    def parameters(fmu):
+        return {v.name: v.start for v in read_model_description(str(fmu)).modelVariables
+                if v.causality == "parameter"}
+
+    assert parameters(path) == parameters(si)
+    with pytest.raises(SystemExit, match=r"^export-fmu: duplex_pair: preload_force: 'light' is "
+                                         r"not a number with a unit"):
+        cli_export(["duplex_pair", str(path), "--arg", 'preload_force="light"'])
+    roller = tmp_path / "nu.fmu"
+    assert cli_export(["cylindrical_roller_bearing", str(roller), "--arg", 'bearing="nu 208"',
+                       "--arg", 'tilt_y="0.5 mrad"', "--arg", 'clearance="20 um"',
+                       "--kinds", "CS"]) == 0
+    started = parameters(roller)
+    assert float(started["guide.ty"]) == pytest.approx(5e-4, rel=1e-12)
+    assert float(started["row.Pd"]) == pytest.approx(20e-6, rel=1e-12)
+
+
 def test_only_state_derivatives_are_derivatives(tmp_path):
     """Every variable of the kinematic double-layer bearing: the rate of the outer ring's angle
     (fixed, not a state) is no state derivative, so it is left out of the default outputs; the

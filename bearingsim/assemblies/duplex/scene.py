@@ -17,6 +17,7 @@ from bearingsim.assemblies.spec import (
     single_level,
 )
 from bearingsim.errors import ParameterError
+from bearingsim.validation import check_quantity
 
 # --------------------------------------------------------------------------- scene spec
 _RADIAL_INPUTS = ("shaft.Fx", "shaft.Fy", "shaft.Mx", "shaft.My")
@@ -31,7 +32,9 @@ def _duplex_from_scene(args: dict[str, Any], fidelity: str) -> DuplexPair:
             raise ParameterError(
                 f"duplex_pair: give either preload ({args['preload']!r}, a class) or "
                 f"preload_force ({args['preload_force']!r} N), not both")
-        keywords["preload"] = float(args["preload_force"])
+        keywords["preload"] = float(check_quantity(  # "1 kN" from export-fmu --arg
+            args["preload_force"], "preload_force", "N", 0.0, low_inclusive=False,
+            where="duplex_pair"))
     return duplex_pair(args["bearing"], **keywords)
 
 
