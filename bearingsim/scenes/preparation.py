@@ -29,6 +29,7 @@ from bearingsim.scenes.scene_input_checks import (
 from bearingsim.scenes.statics_table import STATICS_INPUTS, statics_of
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
+from bearingsim.simulation.steady import turning_angles
 
 __all__ = [
     "Prepared",
@@ -377,6 +378,7 @@ def prepare(scene: Scene) -> Prepared:
                              scene.path) from None
     assemble_s = time.perf_counter() - t0
     _check_names(scene, system, requested)
+    _check_fixed_point(scene, system, fidelity)
     symmetry = spec.symmetry(args, scene_inputs(scene)) if _reducible(scene) else []
     prep = Prepared(scene, spec, args, fidelity, reason, system, model_outputs, post,
                     symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
@@ -405,6 +407,27 @@ def assembly_plots(spec: AssemblySpec, args: dict[str, Any], fidelity: str
         The figures.
     """
     return spec.plots(args, fidelity)
+
+
+def _check_fixed_point(scene: Scene, system: System, fidelity: str) -> None:
+    """A steady or modes scene needs a fixed point: a model whose angles turn with a speed
+    input (balls and cage of a ball-level model) runs periodically (SceneError at
+    ``analysis``, before any point is solved)."""
+    if scene.analysis not in ("steady", "modes"):
+        return
+    units = system.variable_units
+    speeds = [n for n, v in scene_inputs(scene).items()
+              if units.get(n) == "rad/s" and v != 0.0]
+    angles = turning_angles(system) if speeds else []
+    if angles:
+        shown = ", ".join(angles[:4]) + (f" and {len(angles) - 4} more" if len(angles) > 4
+                                        else "")
+        raise SceneError(
+            f"{scene.assembly} at fidelity {fidelity} has no steady state "
+            f"while {', '.join(speeds)} turns it: its angles turn with it ({shown}), so its "
+            "steady running is periodic, not a fixed point", "analysis",
+            line_of(scene.text, "analysis"), "a transient scene (analysis left out), or a "
+            "level without these angles (fidelity)", scene.path)
 
 
 def _check_names(scene: Scene, system: System, outputs: list[str]) -> None:

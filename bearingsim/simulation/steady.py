@@ -25,7 +25,7 @@ from bearingsim.simulation.native_streams import casadi_dumps_dropped
 from bearingsim.units.fmi import derivative_unit
 from bearingsim.validation import check_flag, check_range, check_vector
 
-__all__ = ["steady_state", "integrator_states"]
+__all__ = ["steady_state", "integrator_states", "turning_angles"]
 
 
 def integrator_states(system: System) -> list[int]:
@@ -44,6 +44,31 @@ def integrator_states(system: System) -> list[int]:
     sp = system.functions["ode"].jac_sparsity(0, 1)  # d ode / d x, without building it
     cols = set(sp.get_col())
     return [k for k in range(system.n_states) if k not in cols]
+
+
+def turning_angles(system: System) -> list[str]:
+    """States that make the model's steady running periodic when a speed input turns it:
+    angles (in rad) whose derivative is one other state (their speed) and that some
+    derivative depends on (a ball's or cage's position, which the contact geometry reads).
+    A free rotor's angle, which nothing reads, is not one (:func:`integrator_states`).
+
+    Parameters
+    ----------
+    system : System
+        The closed system.
+
+    Returns
+    -------
+    list of str
+        Their names (empty: the model may have a fixed point).
+    """
+    sp = system.functions["ode"].jac_sparsity(0, 1)  # d ode / d x, without building it
+    rows, cols = np.asarray(sp.get_triplet()[0]), np.asarray(sp.get_triplet()[1])
+    read = set(cols.tolist())
+    units = system.variable_units
+    return [name for k, name in enumerate(system.state_names)
+            if units.get(name) == "rad" and k in read and np.count_nonzero(rows == k) == 1
+            and units.get(system.state_names[int(cols[rows == k][0])]) == "rad/s"]
 
 
 @entry_point

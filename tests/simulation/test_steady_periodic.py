@@ -52,3 +52,29 @@ def test_at_rest_the_same_model_has_its_steady_states(rotor):
     names = rotor.state_names
     assert x[names.index("w")] == 0.0
     assert x[names.index("y")] == pytest.approx(1e-3 * np.sin(x[names.index("phi")]), abs=1e-15)
+
+
+def test_the_turning_angles_are_found_from_the_structure(rotor):
+    """phi is read by y's derivative and its own derivative is the speed w: a turning angle.
+    A free rotor's angle, which nothing reads, is not one (it has no steady value to solve)."""
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.simulation.steady import turning_angles
+
+    assert turning_angles(rotor) == ["phi"]
+    assert turning_angles(assemble(double_layer_bearing())) == []  # middle.sleeve.phi: free
+
+
+def test_a_steady_scene_of_a_turning_model_is_refused_before_it_runs():
+    """A steady scene of a ball-level bearing at speed passed `bearingsim validate` and failed
+    at every point when run; the check is now the scene's, at its analysis key."""
+    from bearingsim.scenes import SceneError, parse_scene, validate_scene
+
+    text = ('analysis = "steady"\noutputs = ["cage.w"]\n[assembly]\n'
+            'name = "deep_groove_ball_bearing"\nbearing = "6205"\n'
+            'fidelity = "dynamic_massive_balls"\n[inputs]\nshaft_speed = "3000 rpm"\n'
+            '[grid]\n"inputs.load.Fx" = [100.0, 500.0]\n')
+    with pytest.raises(SceneError, match=r"analysis: deep_groove_ball_bearing at fidelity "
+                       r"dynamic_massive_balls has no steady state while shaft_speed turns it: "
+                       r"its angles turn with it \(cage.phi, ball\[0\].theta") as caught:
+        validate_scene(parse_scene(text))
+    assert caught.value.line == 1
