@@ -39,6 +39,7 @@ from bearingsim.scenes.scene_simulation import output_series, run_simulation
 from bearingsim.scenes.statics_table import statics_of
 
 __all__ = [
+    "NoModesWarning",
     "NotSettledWarning",
     "PointFailedWarning",
     "name_modes",
@@ -51,6 +52,10 @@ __all__ = [
 
 class NotSettledWarning(UserWarning):
     """A transient scene reports final values of outputs that had not settled."""
+
+
+class NoModesWarning(UserWarning):
+    """A modes scene whose linearized model has no oscillating mode at any operating point."""
 
 
 class PointFailedWarning(UserWarning):

@@ -24,6 +24,7 @@ import numpy as np
 
 from bearingsim.errors import ModelError, SimulationError
 from bearingsim.scenes.analyses import (
+    NoModesWarning,
     NotSettledWarning,
     PointFailedWarning,
     output_resolution,
@@ -335,6 +336,11 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
     columns = {n: np.array([row.get(n, math.nan) for row in rows])
                for n in names if n not in ("name", "error")}
     keys = [point_label(k) for k in point_keys(scene)]
+    if scene.analysis == "modes" and not any(set(row) - {*keys, "name"} for row in solved):
+        warnings.warn(f"{scene.title or stem}: no oscillating mode at any operating point: every "
+                      f"eigenvalue of the linearized model is real (its {prep.system.n_states} "
+                      "state(s) settle without oscillating), so there is no natural "
+                      "frequency to report", NoModesWarning, stacklevel=3)
     if lock is not None:
         lock.retire(f"{stem}.summary.json")
         if scene.output.csv:
@@ -396,9 +402,11 @@ def console_lines(summary_data: dict[str, Any]) -> list[str]:
     if s.get("analysis", "transient") != "transient":
         units = s["units"]
         lines = [f"  {s['analysis']}: {s['points']} operating point(s)"]
+        keys = {*s["keys"], "name"}
         for row in s["rows"]:
             lines.append(f"  {_point_text(row, units)}"
-                         + (f": FAILED: {row['error']}" if "error" in row else ""))
+                         + (f": FAILED: {row['error']}" if "error" in row else
+                            ": no oscillating mode" if set(row) <= keys else ""))
         return lines
     stats = s.get("simulation", {}).get("stats", {})
     reason, backend_reason = stats.get("method_reason", ""), stats.get("backend_reason", "")

@@ -171,6 +171,27 @@ def test_a_point_without_an_answer_is_a_row_that_says_why(tmp_path, capsys):
         run_scene(parse_scene(_SKF_STEADY.format(loads="[0.0]")), write=False)
 
 
+def test_a_modes_scene_without_oscillating_modes_says_so(tmp_path, capsys):
+    """The double-layer bearing's torque level has one state (the middle ring's speed): its
+    linearized model has one real eigenvalue and no natural frequency. The modes scene printed
+    its grid points and nothing else; now each row says so and a NoModesWarning explains."""
+    from bearingsim.cli import main
+    from bearingsim.scenes.analyses import NoModesWarning
+
+    text = ('analysis = "modes"\n[assembly]\nname = "double_layer_bearing"\n[inputs]\n'
+            'shaft_speed = "3000 rpm"\n[grid]\n"inputs.Fr" = [100.0, 500.0]\n')
+    with pytest.warns(NoModesWarning, match="no oscillating mode at any operating point: every "
+                                            "eigenvalue of the linearized model is real"):
+        run = run_scene(parse_scene(text), write=False)
+    assert [set(row) for row in run.rows] == [{"Fr"}, {"Fr"}]
+    scene = tmp_path / "modes.toml"
+    scene.write_text(text)
+    assert main(["run", str(scene), "--out", str(tmp_path / "out")]) == 0
+    said = capsys.readouterr()
+    assert "  Fr = 0.1 kN: no oscillating mode\n  Fr = 0.5 kN: no oscillating mode" in said.out
+    assert "NoModesWarning" in said.err
+
+
 def test_a_structural_argument_in_a_grid_assembles_its_own_model():
     """A preload is a parameter of the assembled pair; an arrangement is not (it changes the
     equations' signs): a grid over it assembles each arrangement's model instead of running
