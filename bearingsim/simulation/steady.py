@@ -28,6 +28,13 @@ from bearingsim.validation import check_flag, check_range, check_vector
 __all__ = ["steady_state", "integrator_states", "turning_angles"]
 
 
+def _dependencies(system: System) -> tuple[np.ndarray, np.ndarray]:
+    """(derivative, state) index pairs of every structural nonzero of ``d ode / d x``, from
+    its sparsity (the Jacobian itself not built)."""
+    rows, cols = system.functions["ode"].jac_sparsity(0, 1).get_triplet()
+    return np.asarray(rows, dtype=int), np.asarray(cols, dtype=int)
+
+
 def integrator_states(system: System) -> list[int]:
     """States no derivative depends on (angles of free rotors): they have no steady value.
 
@@ -41,29 +48,28 @@ def integrator_states(system: System) -> list[int]:
     list of int
         Indices of those states.
     """
-    sp = system.functions["ode"].jac_sparsity(0, 1)  # d ode / d x, without building it
-    cols = set(sp.get_col())
+    cols = set(_dependencies(system)[1].tolist())
     return [k for k in range(system.n_states) if k not in cols]
 
 
 def turning_angles(system: System) -> list[str]:
-    """States that make the model's steady running periodic when a speed input turns it:
-    angles (in rad) whose derivative is one other state (their speed) and that some
-    derivative depends on (a ball's or cage's position, which the contact geometry reads).
-    A free rotor's angle, which nothing reads, is not one (:func:`integrator_states`).
+    """Names of the states that make the model's steady running periodic when a speed input
+    turns it (empty: the model may have a fixed point): angles (in rad) whose derivative is
+    one other state (their speed) and that some derivative depends on (a ball's or cage's
+    position, which the contact geometry reads). A free rotor's angle, which nothing reads,
+    is not one (:func:`integrator_states`).
 
     Parameters
     ----------
     system : System
-        The closed system.
+        The closed system, its ``ode`` function's structure read.
 
     Returns
     -------
     list of str
-        Their names (empty: the model may have a fixed point).
+        The angles' names.
     """
-    sp = system.functions["ode"].jac_sparsity(0, 1)  # d ode / d x, without building it
-    rows, cols = np.asarray(sp.get_triplet()[0]), np.asarray(sp.get_triplet()[1])
+    rows, cols = _dependencies(system)
     read = set(cols.tolist())
     units = system.variable_units
     return [name for k, name in enumerate(system.state_names)
