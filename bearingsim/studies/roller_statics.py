@@ -11,12 +11,14 @@ reference rating life.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from bearingsim.catalog.rollers import RollerBearingGeometry, resolve_roller_bearing
+from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.dynamic.ring import load_value
 from bearingsim.components.roller_row import (
     roller_row_equilibrium,
@@ -24,16 +26,21 @@ from bearingsim.components.roller_row import (
     roller_row_parameters,
     roller_row_stiffness,
 )
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.validation import check_count, check_quantity
 
-__all__ = ["LOAD_NAMES", "ROLLER_PRESSURE_LIMIT", "RollerStatics", "roller_statics"]
+__all__ = ["LOAD_NAMES", "MAX_ROLLER_PRESSURE", "ROLLER_PRESSURE_LIMIT", "RollerStatics",
+           "roller_statics"]
 
 LOAD_NAMES = ("Fx", "Fy")
 """External loads on the inner ring [N]: radial (an NU bearing carries no axial load)."""
 ROLLER_PRESSURE_LIMIT = 4.0e9
 """Contact pressure [Pa] at which ISO 76 sets the basic static radial load rating of roller
-bearings (4 000 MPa; 4 200 MPa for ball bearings)."""
+bearings (4 000 MPa; 4 200 MPa for ball bearings); above it a warning is given."""
+MAX_ROLLER_PRESSURE = ROLLER_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** 0.5
+"""Contact pressure [Pa] of :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times C0 (a line
+contact's pressure grows as the load to the power 1/2: about 12 600 MPa); above it loads are
+refused."""
 
 
 @dataclass(frozen=True)
@@ -95,9 +102,15 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     Raises
     ------
     ParameterError
-        For an unknown load name, or a value outside its range (naming it, with its unit).
+        For an unknown load name, a value outside its range (naming it, with its unit), or
+        loads whose contact pressure exceeds :data:`MAX_ROLLER_PRESSURE`.
     SimulationError
         If no equilibrium is found.
+
+    Warns
+    -----
+    PlasticDeformationWarning
+        Above :data:`ROLLER_PRESSURE_LIMIT`.
     """
     where = "roller_statics"
     g = resolve_roller_bearing(bearing)
@@ -117,11 +130,23 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     check_count(n_slices, "n_slices", 1, where=where)
     p = roller_row_parameters(g, clearance)
     eq = roller_row_equilibrium(p, g.roller_count, n_slices, force, tilt)
+    p_max = float(max(eq.contacts.p_max))
+    if p_max > MAX_ROLLER_PRESSURE:
+        raise ParameterError(
+            f"{where}({g.designation}): the loads {dict(zip(LOAD_NAMES, force, strict=True))} [N] "
+            f"give a largest contact pressure of {p_max / 1e6:.0f} MPa, above the "
+            f"{MAX_ROLLER_PRESSURE / 1e6:.0f} MPa of {MAX_STATIC_LOAD_FACTOR:g} x the static load "
+            f"rating C0: beyond the strength of bearing steel (N given for kN?)")
+    if p_max > ROLLER_PRESSURE_LIMIT:
+        warnings.warn(f"{where}({g.designation}): the largest contact pressure is "
+                      f"{p_max / 1e6:.0f} MPa, above the 4000 MPa of ISO 76's static load "
+                      f"rating of roller bearings: the raceways deform permanently",
+                      PlasticDeformationWarning, stacklevel=2)
     k = roller_row_stiffness(p, g.roller_count, n_slices, eq.inner)
     moment = np.asarray(eq.moment, dtype=float)
     # a moment that symmetry makes 0 comes out as round-off of the slice sums (1e-16 N m):
     # below 1e-9 of the load's moment over the pitch diameter it is 0
     moment[np.abs(moment) < 1e-9 * np.hypot(*force) * g.pitch_diameter] = 0.0
-    return RollerStatics(np.asarray(eq.contacts.Q), float(max(eq.contacts.p_max)),
+    return RollerStatics(np.asarray(eq.contacts.Q), p_max,
                          eq.inner[:2].copy(), moment, k[:2, :2],
                          roller_row_life(g, clearance, eq.inner, n_slices), eq.inner[:2].copy())

@@ -43,6 +43,21 @@ def test_misalignment_is_held_by_a_moment_odd_in_the_tilt_and_costs_life():
     assert math.isinf(roller_statics("NU206").reference_life)  # no load, no fatigue
 
 
+def test_a_load_beyond_the_static_rating_warns_and_one_beyond_steel_is_refused():
+    """As the deep-groove statics: above ISO 76's pressure of the static load rating (4 000
+    MPa for roller bearings) the raceways deform permanently (a warning); a load that would
+    press far beyond the strength of steel is a unit slip, refused."""
+    from bearingsim.catalog.rollers import get_roller_bearing
+    from bearingsim.errors import PlasticDeformationWarning
+
+    c0 = get_roller_bearing("NU206").static_load_rating
+    with pytest.warns(PlasticDeformationWarning, match="above the 4000 MPa of ISO 76"):
+        assert roller_statics("NU206", {"Fx": 1.5 * c0}).max_pressure > 4.0e9
+    with pytest.raises(ParameterError, match=r"beyond the strength of bearing steel \(N given "
+                                             r"for kN\?\)"):
+        roller_statics("NU206", {"Fx": 20.0 * c0})
+
+
 def test_bad_input_is_named():
     with pytest.raises(ParameterError, match="loads may have the keys Fx, Fy"):
         roller_statics("NU206", {"Fz": 100.0})
