@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim import symbolic as op
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, PlasticDeformationWarning
 from bearingsim.validation import check_range
 
 __all__ = [
@@ -25,6 +25,7 @@ __all__ = [
     "check_modulus",
     "check_radii",
     "check_regularization",
+    "check_static_pressure",
 ]
 
 MIN_LENGTH = 1e-9
@@ -165,3 +166,54 @@ def check_modulus(value: Any, name: str, where: str) -> Any:
     except ParameterError as exc:
         raise ParameterError(f"{exc} (bearing materials: polymers about 3e9 Pa, steel "
                              f"2.08e11 Pa, ceramics 3.1e11 Pa; did you pass GPa?)") from None
+
+
+def check_static_pressure(p_max: float, limit: float, exponent: str, where: str,
+                          loads: str) -> None:
+    """A quasi-static solution's largest contact pressure against ISO 76: refused above that of
+    :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times the static load rating C0 (beyond
+    the strength of bearing steel: a unit slip), warned about above ``limit`` (the pressure
+    of C0: the raceways deform permanently).
+
+    Parameters
+    ----------
+    p_max : float
+        Largest contact pressure [Pa].
+    limit : float
+        ISO 76's pressure at C0 [Pa] (4.2e9 ball bearings, 4.0e9 roller bearings).
+    exponent : str
+        The power of the load the pressure grows as ("1/3" point contact, "1/2" line
+        contact), which gives the pressure of 10 C0.
+    where : str
+        The function and bearing, for the messages.
+    loads : str
+        The loads, as the messages name them.
+
+    Raises
+    ------
+    ParameterError
+        Above the pressure of 10 C0.
+
+    Warns
+    -----
+    PlasticDeformationWarning
+        Above ``limit``.
+    """
+    import warnings
+
+    from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
+
+    numerator, denominator = (float(v) for v in exponent.split("/"))
+    highest = limit * MAX_STATIC_LOAD_FACTOR ** (numerator / denominator)
+    if p_max > highest:
+        raise ParameterError(
+            f"{where}: the loads {loads} give a largest contact pressure of {p_max / 1e6:.0f} "
+            f"MPa, above the {highest / 1e6:.0f} MPa of {MAX_STATIC_LOAD_FACTOR:g} x the static "
+            f"load rating C0 (ISO 76's {limit / 1e6:.0f} MPa at C0; the pressure grows as the "
+            f"load to the power {exponent}): beyond the strength of bearing steel (N given for "
+            f"kN?)")
+    if p_max > limit:
+        warnings.warn(f"{where}: the largest contact pressure is {p_max / 1e6:.0f} MPa, above "
+                      f"the {limit / 1e6:.0f} MPa of ISO 76's static load rating: the raceways "
+                      f"deform permanently (loads {loads})", PlasticDeformationWarning,
+                      stacklevel=3)

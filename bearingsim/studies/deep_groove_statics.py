@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -34,10 +33,10 @@ import casadi as ca
 import numpy as np
 
 from bearingsim.catalog import BearingGeometry, resolve_bearing
-from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.ball_row import row_loads, row_parameters
 from bearingsim.components.dynamic.ring import load_value
-from bearingsim.errors import ParameterError, PlasticDeformationWarning
+from bearingsim.errors import ParameterError
+from bearingsim.physical_checks import check_static_pressure
 from bearingsim.physics import iso_ts_16281 as iso
 from bearingsim.physics.contact_curvature import raceway_radii
 from bearingsim.physics.hertz import max_pressure
@@ -52,7 +51,7 @@ from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
 from bearingsim.validation import check_choice, check_quantity, check_range
 
-__all__ = ["DeepGrooveStatics", "LOAD_NAMES", "MAX_STATIC_PRESSURE", "METHODS",
+__all__ = ["DeepGrooveStatics", "LOAD_NAMES", "METHODS",
            "STATIC_PRESSURE_LIMIT", "deep_groove_statics"]
 
 LOAD_NAMES = ("Fx", "Fy", "Fz", "Mx", "My")
@@ -61,9 +60,6 @@ METHODS = ("exact", "iso_ts_16281")
 STATIC_PRESSURE_LIMIT = 4.2e9
 """Hertz pressure [Pa] at which ISO 76 sets the static load rating of ball bearings (the onset of
 a permanent deformation of 1e-4 Dw); above it a warning is given."""
-MAX_STATIC_PRESSURE = STATIC_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** (1.0 / 3.0)
-"""Hertz pressure [Pa] of :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times C0 (the
-pressure grows as the load to the power 1/3: about 9 050 MPa); above it loads are refused."""
 
 _SCALE = np.array([1e-5, 1e-5, 1e-5, 1e-4, 1e-4])
 """Typical magnitudes of the unknowns [m, m, m, rad, rad], for the iteration."""
@@ -171,19 +167,8 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
     q, alpha = problem.balls(state)
     stiffness = -np.asarray(problem.jacobian(state), dtype=float)
     p_max = problem.max_pressure(q, alpha)
-    if p_max > MAX_STATIC_PRESSURE:
-        raise ParameterError(
-            f"{where}({g.designation}): the loads {dict(loads or {})} [N, N.m] give a largest "
-            f"Hertz pressure of {p_max / 1e6:.0f} MPa, above the "
-            f"{MAX_STATIC_PRESSURE / 1e6:.0f} MPa of "
-            f"{MAX_STATIC_LOAD_FACTOR:g} x the static load rating C0 (ISO 76's "
-            f"{STATIC_PRESSURE_LIMIT / 1e6:.0f} MPa at C0; the pressure grows as the load to the "
-            f"power 1/3): beyond the strength of bearing steel (N given for kN?)")
-    if p_max > STATIC_PRESSURE_LIMIT:
-        warnings.warn(f"{where}({g.designation}): the largest Hertz pressure is "
-                      f"{p_max / 1e6:.0f} MPa, above the 4200 MPa of ISO 76's static load "
-                      f"rating: the raceways deform permanently (load {dict(loads or {})})",
-                      PlasticDeformationWarning, stacklevel=2)
+    check_static_pressure(p_max, STATIC_PRESSURE_LIMIT, "1/3", f"{where}({g.designation})",
+                          f"{dict(loads or {})} [N, N.m]")
     c = dynamic_load_rating_n or g.dynamic_load_rating or float(dynamic_load_rating(
         g.ball_diameter, g.pitch_diameter, g.ball_count, g.contact_angle))
     life = problem.life(q, c, inner_rotating) if np.any(f_ext) else math.inf

@@ -11,14 +11,12 @@ reference rating life.
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from bearingsim.catalog.rollers import RollerBearingGeometry, resolve_roller_bearing
-from bearingsim.checks import MAX_STATIC_LOAD_FACTOR
 from bearingsim.components.dynamic.ring import load_value
 from bearingsim.components.roller_row import (
     roller_row_equilibrium,
@@ -26,21 +24,18 @@ from bearingsim.components.roller_row import (
     roller_row_parameters,
     roller_row_stiffness,
 )
-from bearingsim.errors import ParameterError, PlasticDeformationWarning
+from bearingsim.errors import ParameterError
+from bearingsim.physical_checks import check_static_pressure
 from bearingsim.validation import check_count, check_quantity
 
-__all__ = ["LOAD_NAMES", "MAX_ROLLER_PRESSURE", "ROLLER_PRESSURE_LIMIT", "RollerStatics",
-           "roller_statics"]
+__all__ = ["LOAD_NAMES", "ROLLER_PRESSURE_LIMIT", "RollerStatics", "roller_statics"]
 
 LOAD_NAMES = ("Fx", "Fy")
 """External loads on the inner ring [N]: radial (an NU bearing carries no axial load)."""
 ROLLER_PRESSURE_LIMIT = 4.0e9
 """Contact pressure [Pa] at which ISO 76 sets the basic static radial load rating of roller
 bearings (4 000 MPa; 4 200 MPa for ball bearings); above it a warning is given."""
-MAX_ROLLER_PRESSURE = ROLLER_PRESSURE_LIMIT * MAX_STATIC_LOAD_FACTOR ** 0.5
-"""Contact pressure [Pa] of :data:`~bearingsim.checks.MAX_STATIC_LOAD_FACTOR` times C0 (a line
-contact's pressure grows as the load to the power 1/2: about 12 600 MPa); above it loads are
-refused."""
+
 
 
 @dataclass(frozen=True)
@@ -103,7 +98,8 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     ------
     ParameterError
         For an unknown load name, a value outside its range (naming it, with its unit), or
-        loads whose contact pressure exceeds :data:`MAX_ROLLER_PRESSURE`.
+        loads whose contact pressure exceeds that of 10 x C0
+        (:func:`~bearingsim.physical_checks.check_static_pressure`).
     SimulationError
         If no equilibrium is found.
 
@@ -131,17 +127,8 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     p = roller_row_parameters(g, clearance)
     eq = roller_row_equilibrium(p, g.roller_count, n_slices, force, tilt)
     p_max = float(max(eq.contacts.p_max))
-    if p_max > MAX_ROLLER_PRESSURE:
-        raise ParameterError(
-            f"{where}({g.designation}): the loads {dict(zip(LOAD_NAMES, force, strict=True))} [N] "
-            f"give a largest contact pressure of {p_max / 1e6:.0f} MPa, above the "
-            f"{MAX_ROLLER_PRESSURE / 1e6:.0f} MPa of {MAX_STATIC_LOAD_FACTOR:g} x the static load "
-            f"rating C0: beyond the strength of bearing steel (N given for kN?)")
-    if p_max > ROLLER_PRESSURE_LIMIT:
-        warnings.warn(f"{where}({g.designation}): the largest contact pressure is "
-                      f"{p_max / 1e6:.0f} MPa, above the 4000 MPa of ISO 76's static load "
-                      f"rating of roller bearings: the raceways deform permanently",
-                      PlasticDeformationWarning, stacklevel=2)
+    check_static_pressure(p_max, ROLLER_PRESSURE_LIMIT, "1/2", f"{where}({g.designation})",
+                          f"{dict(zip(LOAD_NAMES, force, strict=True))} [N]")
     k = roller_row_stiffness(p, g.roller_count, n_slices, eq.inner)
     moment = np.asarray(eq.moment, dtype=float)
     # a moment that symmetry makes 0 comes out as round-off of the slice sums (1e-16 N m):
