@@ -194,7 +194,8 @@ def find_roller_bearing(name: object) -> str | None:
     str or None
         The designation as the catalogue spells it ("NU206"), or None.
     """
-    return _key(name) if isinstance(name, str) and _key(name) in _catalogue() else None
+    key = _key(name) if isinstance(name, str) else None
+    return key if key in _catalogue() else None
 
 
 def get_roller_bearing(designation: str) -> RollerBearingGeometry:

@@ -56,7 +56,7 @@ __all__ = [
     "roller_row_loads",
     "roller_row_stiffness",
     "roller_row_equilibrium",
-    "roller_row_life",
+    "roller_row_lives",
     "slice_positions",
 ]
 
@@ -382,10 +382,10 @@ def roller_row_equilibrium(p: RollerRowParameters, n_rollers: int, n_slices: int
     return RollerEquilibrium(inner, numeric, moment)
 
 
-def roller_row_life(bearing: str | RollerBearingGeometry, clearance: float | None, inner,
-                    n_slices: int) -> float:
+def roller_row_lives(bearing: str | RollerBearingGeometry, clearance: float | None, positions,
+                     n_slices: int) -> np.ndarray:
     """ISO/TS 16281 roller-form reference rating life L10r [10^6 rev] of a catalogue bearing's
-    row whose inner ring (rotating) sits at ``inner`` against the outer ring, from the slice
+    row at each position of its inner ring (rotating) against the outer ring, from the slice
     loads of the exact contact law (unloaded slices carry nothing: a bearing without load has
     an infinite life, not the huge one of the regularized slices' tiny loads).
 
@@ -395,21 +395,24 @@ def roller_row_life(bearing: str | RollerBearingGeometry, clearance: float | Non
         Designation or geometry.
     clearance : float or None
         Diametral clearance [m] (None: the catalogue's).
-    inner : sequence of 5
-        Inner ring displacement (x, y, z, tx, ty) [m, rad].
+    positions : sequence of sequences of 5
+        Inner ring displacements (x, y, z, tx, ty) [m, rad].
     n_slices : int
         Slices per roller.
 
     Returns
     -------
-    float
-        L10r [10^6 revolutions] (inf without load).
+    numpy.ndarray
+        L10r [10^6 revolutions] at each position (inf without load).
     """
     from bearingsim.physics.life import roller_reference_rating_life
 
     g = resolve_roller_bearing(bearing)
     exact = dataclasses.replace(roller_row_parameters(g, clearance), smooth=None)
-    contacts = roller_row_loads(exact, [float(v) for v in inner], [0.0] * 5, g.roller_count,
-                                n_slices)
-    q = [[float(v) for v in r] for r in contacts.q]
-    return float(roller_reference_rating_life(q, q, g.dynamic_load_rating, g.gamma))
+    lives = []
+    for inner in positions:
+        contacts = roller_row_loads(exact, [float(v) for v in inner], [0.0] * 5,
+                                    g.roller_count, n_slices)
+        q = [[float(v) for v in r] for r in contacts.q]
+        lives.append(float(roller_reference_rating_life(q, q, g.dynamic_load_rating, g.gamma)))
+    return np.asarray(lives)

@@ -144,8 +144,9 @@ def coerce(scene: Scene, key: str, value: Any) -> Any:
             value = _value(value)
         if isinstance(value, list):
             return [str(v) for v in value]
-        if arg is not None and arg.kind == "bearing" and arg.designation(value) is not None:
-            return arg.designation(value)  # the table says "NU206" for "nu 206"
+        if arg is not None and arg.kind == "bearing" and (
+                found := arg.designation(value)) is not None:
+            return found  # the table says "NU206" for "nu 206"
         if rest == "fidelity" or (arg is not None and arg.kind in text_kinds):
             return str(value) if not isinstance(value, str) else value
         if arg is not None and arg.kind == "signal" and isinstance(value, str):

@@ -70,11 +70,12 @@ def turning_angles(system: System) -> list[str]:
         The angles' names.
     """
     rows, cols = _dependencies(system)
+    names, units = system.state_names, system.variable_units
+    alone = np.bincount(rows, minlength=len(names)) == 1  # a derivative of one state only
+    rate = dict(zip(rows[alone[rows]].tolist(), cols[alone[rows]].tolist(), strict=True))
     read = set(cols.tolist())
-    units = system.variable_units
-    return [name for k, name in enumerate(system.state_names)
-            if units.get(name) == "rad" and k in read and np.count_nonzero(rows == k) == 1
-            and units.get(system.state_names[int(cols[rows == k][0])]) == "rad/s"]
+    return [name for k, name in enumerate(names) if units.get(name) == "rad" and k in read
+            and k in rate and units.get(names[rate[k]]) == "rad/s"]
 
 
 @entry_point

@@ -16,22 +16,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from bearingsim.catalog.rollers import RollerBearingGeometry, resolve_roller_bearing
+from bearingsim.assemblies.cylindrical_roller.options import CylindricalRollerOptions
+from bearingsim.catalog.rollers import RollerBearingGeometry
 from bearingsim.components.dynamic.ring import load_value
 from bearingsim.components.roller_row import (
     roller_row_equilibrium,
-    roller_row_life,
+    roller_row_lives,
     roller_row_parameters,
     roller_row_stiffness,
 )
-from bearingsim.errors import ParameterError
 from bearingsim.physical_checks import check_static_pressure
-from bearingsim.validation import check_count, check_quantity
 
 __all__ = ["LOAD_NAMES", "ROLLER_PRESSURE_LIMIT", "RollerStatics", "roller_statics"]
 
 LOAD_NAMES = ("Fx", "Fy")
-"""External loads on the inner ring [N]: radial (an NU bearing carries no axial load)."""
+"""External loads on the inner ring [N]: radial (an NU bearing carries no axial load; the
+product's options refuse any other)."""
 ROLLER_PRESSURE_LIMIT = 4.0e9
 """Contact pressure [Pa] at which ISO 76 sets the basic static radial load rating of roller
 bearings (4 000 MPa; 4 200 MPa for ball bearings); above it a warning is given."""
@@ -109,21 +109,12 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
         Above :data:`ROLLER_PRESSURE_LIMIT`.
     """
     where = "roller_statics"
-    g = resolve_roller_bearing(bearing)
-    loads = dict(loads or {})
-    unknown = sorted(set(loads) - set(LOAD_NAMES))
-    if unknown:
-        raise ParameterError(f"{where}: loads may have the keys Fx, Fy [N] (the bearing carries "
-                             f"no axial load), got {', '.join(unknown)}")
-    force = [float(load_value(loads.get(k, 0.0), k, where)) for k in LOAD_NAMES]
-    if not isinstance(misalignment, (tuple, list)) or len(misalignment) != 2:
-        raise ParameterError(f"{where}: misalignment must be (tx, ty) [rad], got "
-                             f"{misalignment!r}")
-    tilt = [float(check_quantity(v, f"misalignment[{k}]", "rad", -0.01, 0.01, where=where))
-            for k, v in enumerate(misalignment)]
-    if clearance is not None:
-        clearance = float(check_quantity(clearance, "clearance", "m", 0.0, where=where))
-    check_count(n_slices, "n_slices", 1, where=where)
+    # checked (units converted) as the product's quasi-static level checks them
+    opts = CylindricalRollerOptions(bearing, "quasi-static", clearance=clearance,
+                                    misalignment=misalignment, n_slices=n_slices,
+                                    loads=dict(loads or {}))
+    g, clearance, tilt = opts.geometry, opts.clearance, list(opts.misalignment)
+    force = [load_value(opts.loads.get(k, 0.0), k, where) for k in LOAD_NAMES]  # constants
     p = roller_row_parameters(g, clearance)
     eq = roller_row_equilibrium(p, g.roller_count, n_slices, force, tilt)
     p_max = float(max(eq.contacts.p_max))
@@ -136,4 +127,5 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     moment[np.abs(moment) < 1e-9 * np.hypot(*force) * g.pitch_diameter] = 0.0
     return RollerStatics(np.asarray(eq.contacts.Q), p_max,
                          eq.inner[:2].copy(), moment, k[:2, :2],
-                         roller_row_life(g, clearance, eq.inner, n_slices), eq.inner[:2].copy())
+                         float(roller_row_lives(g, clearance, [eq.inner], n_slices)[0]),
+                         eq.inner[:2].copy())

@@ -17,7 +17,7 @@ from bearingsim.catalog.rollers import (
     list_roller_bearings,
     resolve_roller_bearing,
 )
-from bearingsim.components.roller_row import roller_row_life
+from bearingsim.components.roller_row import roller_row_lives
 from bearingsim.physics.life import line_load_integrals
 from bearingsim.plotting import Curve, FigureSpec, Panel
 
@@ -55,10 +55,9 @@ def reference_life(args: dict[str, Any], series: dict[str, np.ndarray]) -> np.nd
     numpy.ndarray
         L10r [10^6 revolutions] (inf without load).
     """
-    return np.asarray([roller_row_life(args["bearing"], args["clearance"], [x, y, 0.0, tx, ty],
-                                       N_SLICES)
-                       for x, y, tx, ty in zip(*(np.asarray(series[n], dtype=float)
-                                                 for n in _DISPLACEMENT), strict=True)])
+    x, y, tx, ty = (np.asarray(series[n], dtype=float) for n in _DISPLACEMENT)
+    return roller_row_lives(args["bearing"], args["clearance"],
+                            np.column_stack([x, y, np.zeros_like(x), tx, ty]), N_SLICES)
 
 
 def _post(args: dict[str, Any]) -> dict[str, PostQuantity]:

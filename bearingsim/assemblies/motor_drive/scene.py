@@ -15,9 +15,8 @@ from bearingsim.components.motor import MOTOR_DRIVES
 def _motor_drive_from_scene(args: dict[str, Any], fidelity: str) -> MotorDrive:
     """Build the drive from the scene arguments of :data:`SCENE_SPEC` (defaults filled in)."""
     bearing = double_layer.double_layer_from_scene(args["bearing"], fidelity, drive="flange")
-    load = args["load_torque"]  # None: the model's input load.tau_in
     return motor_drive(bearing, motor=args["motor"], speed_ref=None,
-                       load_torque=load if load is None or callable(load) else float(load),
+                       load_torque=args["load_torque"],  # None: the model's input load.tau_in
                        shaft_inertia=args["shaft_inertia"],
                        motor_options=dict(args["motor_options"] or {}) or None)
 
