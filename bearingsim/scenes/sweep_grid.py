@@ -225,9 +225,9 @@ def check_point_keys(points: list[dict[str, Any]]) -> None:
 
 
 def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
-    """Raise :class:`SweepError` when an input the analysis scene takes from its own grid
-    (which a sweep replaces) has no value at the sweep's points (a load case leaves out the
-    inputs it does not set: those keep the scene's value or none).
+    """Raise :class:`SweepError` when an input the analysis scene takes from its own grid or
+    load cases (which a sweep replaces) has no value at the sweep's points (a load case leaves
+    out the inputs it does not set: those keep the scene's value or none).
 
     Parameters
     ----------
@@ -236,18 +236,20 @@ def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
     points : list of dict
         The sweep's points (values by sweep key).
     """
-    missing = sorted(k for k in scene.grid if k.startswith("inputs.") and k not in points[0]
+    varied = list(dict.fromkeys([*scene.grid, *(k for case in scene.cases for k in case)]))
+    missing = sorted(k for k in varied if k.startswith("inputs.") and k not in points[0]
                      and k.split(".", 1)[1] not in scene.inputs)
     if missing:
         one = len(missing) == 1
-        strange = [k for k in points[0] if k.startswith("inputs.") and k not in scene.grid
+        own = "grid" if scene.grid else "load cases"
+        strange = [k for k in points[0] if k.startswith("inputs.") and k not in varied
                    and k.split(".", 1)[1] not in scene.inputs]
         raise SweepError(
-            f"the sweep replaces the grid of this {scene.analysis} scene, and "
+            f"the sweep replaces the {own} of this {scene.analysis} scene, and "
             f"{', '.join(missing)} then {'has' if one else 'have'} no value: "
             f"sweep {'it' if one else 'them'} (--grid {missing[0]}=...) or "
             f"give {'it' if one else 'them'} under [inputs]"
-            + (f" ({', '.join(strange)}: not in the scene's grid or [inputs]; check the "
+            + (f" ({', '.join(strange)}: not in the scene's {own} or [inputs]; check the "
                f"spelling if {'it is' if len(strange) == 1 else 'they are'} meant for "
                f"{'it' if one else 'one of them'})" if strange else ""))
 

@@ -100,7 +100,8 @@ def test_a_statics_sweep_at_rest_draws_its_figure(client, tmp_path, monkeypatch,
 
     monkeypatch.setattr(sweep_module, "sweep_figures", broken)
     assert main(["sweep", "deep_groove_statics", "--grid", "inputs.load.Fx=500,1000",
-                 "--workers", "1", "--out", str(tmp_path / "cli"), "--no-progress"]) == 1
+                 "--grid", "inputs.shaft_speed=0", "--workers", "1",
+                 "--out", str(tmp_path / "cli"), "--no-progress"]) == 1
     assert ("bearingsim sweep: plot failed: all figures: ValueError: no figure today (the table "
             "and summary are written)") in capsys.readouterr().err
     assert (tmp_path / "cli" / "deep_groove_statics.sweep.csv").is_file()
@@ -130,6 +131,26 @@ def test_analysis_sweep_names_a_grid_input_left_without_value(client):
     with pytest.raises(SweepError, match=r"inputs\.shaft_speed then has no value"):
         run_sweep(scene, grid_points(parse_grid(["inputs.Fr=0,100"])), client=client,
                   progress=False)
+
+
+def test_analysis_sweep_names_an_input_only_the_load_cases_gave(client, tmp_path):
+    """A sweep replaces a statics scene's load cases too. Before, a sweep of
+    deep_groove_statics over the bearing (6304, 6305), the loads left to the cases,
+    ran every point at zero load (loads of ~1e-6 N from the regularisation, life "inf") and
+    said nothing; now the inputs only the cases set are named, as the grid's are."""
+    scene = load_scene("deep_groove_statics")
+    with pytest.raises(SweepError, match=r"the sweep replaces the load cases of this statics "
+                                         r"scene, and inputs\.load\.Fx, inputs\.shaft_speed then "
+                                         r"have no value"):
+        run_sweep(scene, grid_points(parse_grid(["assembly.bearing=6304,6305"])),
+                  client=client, out=tmp_path, progress=False)
+    assert not list(tmp_path.glob("*.*"))
+    # given under [inputs], the scene's values stand for the cases' (as for a grid)
+    given = scene.replace(inputs={"load.Fx": 900.0, "shaft_speed": 300.0})
+    res = run_sweep(given, grid_points(parse_grid(["assembly.bearing=6304,6305"])),
+                    client=client, out=tmp_path, progress=False)
+    assert len(res.ok) == 2, res.failures
+    assert all(row["Q_max"] > 200.0 for row in res.rows)  # 900 N shared by a few balls
 
 
 def test_points_that_set_other_keys_are_refused_before_anything_runs(tmp_path):
