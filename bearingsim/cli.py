@@ -286,8 +286,8 @@ def _sweep(args: argparse.Namespace) -> int:
     ran = len(res.rows) - res.resumed
     _say(describe_points(res)
          + (f" ({res.resumed} from the earlier run)" if res.resumed else "")
-         + (f"; {res.models_built} model(s) built and shipped; {res.chunk_size} point(s) a task"
-            if ran else "; nothing left to run")
+         + (f"; {res.models_built} model(s) built and sent to the workers, up to "
+            f"{res.chunk_size} point(s) per batch" if ran else "; nothing left to run")
          + f"; {res.wall_s:.1f} s")
     if res.failures:
         _say(describe_failures(res), err=True)

@@ -241,12 +241,12 @@ def test_a_resumed_sweep_with_nothing_left_says_so(scene, tmp_path, capsys, monk
             "--out", str(out), "--no-progress"]
     assert main(args) == 0
     first = capsys.readouterr().out.splitlines()[0]
-    assert "1 model(s) built and shipped" in first and len(clusters) == 1
+    assert "1 model(s) built and sent to the workers, up to" in first and len(clusters) == 1
     assert main([*args, "--resume"]) == 0
     again = capsys.readouterr().out.splitlines()[0]
     assert again.startswith("2 point(s): 2 settled")
     assert "(2 from the earlier run); nothing left to run; " in again
-    assert "shipped" not in again and "a task" not in again
+    assert "sent to the workers" not in again and "per batch" not in again
     assert len(clusters) == 1
     rows = list(csv.DictReader((out / f"{scene.stem}.sweep.csv").open()))
     assert [r["status"] for r in rows] == ["ok", "ok"]
