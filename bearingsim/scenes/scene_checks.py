@@ -13,6 +13,7 @@ import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.scenes.expression_units import expression_unit
 from bearingsim.scenes.expressions import ExpressionError, compile_expression, constant_value
 from bearingsim.scenes.scene_types import (
     POINT_HEADS,
@@ -271,6 +272,8 @@ def _inputs(c: _Collector, d: dict[str, Any], base: Path, allowed: tuple[str, ..
             try:
                 compile_expression(v, key)
                 inputs[k] = v
+                if (unit := expression_unit(v, key)) is not None:
+                    input_units[k] = unit  # rpm(), deg(): the unit the model must read
             except ExpressionError as exc:
                 c.add(key, str(exc).split(": ", 1)[1].split(". Allowed:")[0],
                       str(exc).split("Allowed: ", 1)[-1])

@@ -26,7 +26,8 @@ __all__ = ["input_range_problems", "input_unit_mismatches", "rest_problems",
 
 def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
     """The inputs a scene gives as numbers with a unit of another quantity than the model's
-    input (``"5 kN"`` for a speed), each with its message.
+    input (``"5 kN"`` for a speed, or an expression whose ``rpm()`` or ``deg()`` give another
+    unit: ``"rpm(100)"`` for a force), each with its message.
 
     Parameters
     ----------
@@ -43,6 +44,8 @@ def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
     """
     units = {sig.name: sig.unit for sig in system.inputs}
     return {n: f"input {n} is in {units[n]}, but its value is given in {si}"
+            + (f" (the expression {scene.inputs[n]!r}: rpm() converts r/min to rad/s, deg() "
+               "degrees to rad)" if isinstance(scene.inputs.get(n), str) else "")
             for n, si in scene.input_units.items() if n in units and units[n] != si}
 
 
