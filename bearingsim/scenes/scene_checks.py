@@ -31,7 +31,7 @@ from bearingsim.scenes.tables import (
     read_table_file,
 )
 from bearingsim.units import parse_quantity
-from bearingsim.units.registry import UnitError, quantity_to_si, split_quantity
+from bearingsim.units.registry import UnitError, quantity_to_si, same_quantity, split_quantity
 
 
 # --------------------------------------------------------------------------- validation
@@ -154,15 +154,21 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
         if not isinstance(v, bool):
             c.add(key, f"must be true or false, got {v!r}", "true, false")
         return v
-    if spec.kind == "signal":
-        if isinstance(v, str):
+    if spec.kind == "signal":  # "0.1 N m" in its SI unit, or an expression of t
+        if isinstance(v, str) and split_quantity(v) is None:
             try:
                 compile_expression(v, key)
+                unit = expression_unit(v, key)
             except ExpressionError as exc:
                 c.add(key, str(exc).split(": ", 1)[1].split(". Allowed:")[0],
                       str(exc).split("Allowed: ", 1)[-1])
+                return v
+            if unit is not None and not same_quantity(unit, spec.unit):
+                c.add(key, f"{key} is in {_unit_text(spec)}, but its expression {v!r} gives "
+                      f"{unit} (rpm() converts r/min to rad/s, deg() degrees to rad)",
+                      f"an expression of t in {_unit_text(spec)}")
             return v
-        return _number(c, key, v, _unit_text(spec))
+        return _number(c, key, v, _unit_text(spec), si_unit=spec.unit)
     if spec.kind == "float":  # "1.5 kN", "4000 rpm": in the argument's SI unit
         return _number(c, key, v, _unit_text(spec), low=spec.low, high=spec.high,
                        strict_low=spec.low is not None and not spec.low_inclusive,

@@ -17,7 +17,7 @@ from bearingsim.cache_paths import cache_root
 from bearingsim.errors import ParameterError
 
 __all__ = ["PINT_CACHE", "UnitError", "registry", "pint_unit", "si_factor", "base_exponents",
-           "split_quantity", "quantity_to_si", "is_quantity"]
+           "split_quantity", "quantity_to_si", "is_quantity", "same_quantity"]
 
 
 class UnitError(ParameterError):
@@ -243,6 +243,26 @@ def split_quantity(text: str) -> tuple[float, str] | None:
     except (ValueError, OverflowError):
         return None
     return value, unit
+
+
+def same_quantity(a: str, b: str) -> bool:
+    """Whether two units measure the same quantity (the same powers of the SI base units,
+    radian counted as one: ``rad/s`` and ``r/min`` do, ``rad/s`` and ``N`` do not).
+
+    Parameters
+    ----------
+    a, b : str
+        Units (model notation or pint's).
+
+    Returns
+    -------
+    bool
+        For units pint does not know: whether they are spelt alike.
+    """
+    try:
+        return base_exponents(a)[0] == base_exponents(b)[0]
+    except UnitError:
+        return a == b
 
 
 def is_quantity(value: Any) -> bool:

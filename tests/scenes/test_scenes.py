@@ -401,6 +401,23 @@ def test_the_motor_drive_load_torque_is_an_input_unless_built_in():
     assert "load.tau_in" in assemble(model).input_names
 
 
+def test_the_motor_drive_load_torque_takes_a_unit_and_refuses_a_speed():
+    """``load_torque = "100 N mm"`` was refused ("a number with a unit is a value of its own,
+    not an expression"), though the API took it; and ``load_torque = "rpm(100)"`` was read as
+    10.47 N m. The first is now 0.1 N m, the second refused at its key."""
+    base = (SCENES / "motor_drive_spinup.toml").read_text()
+    text = base.replace('"-0.05 * step(3.0)"', '"-50 N mm"')
+    scene = parse_scene(text)
+    assert scene.args["load_torque"] == pytest.approx(-0.05, rel=1e-15)
+    short = Simulation(t_end=0.2, n_points=5)
+    a, b = (run_scene(s.replace(outputs=["shaft.w"], simulation=short), write=False).series
+            for s in (scene, parse_scene(base.replace('"-0.05 * step(3.0)"', "-0.05"))))
+    np.testing.assert_array_equal(a["shaft.w"], b["shaft.w"])
+    with pytest.raises(SceneError, match=r":16: assembly\.load_torque: assembly\.load_torque is "
+                                         r"in N\.m, but its expression 'rpm\(100\)' gives rad/s"):
+        parse_scene(base.replace('"-0.05 * step(3.0)"', '"rpm(100)"'))
+
+
 # ----------------------------------------------------------------------------- portability, sweeps
 def test_packed_system_gives_identical_results():
     prep = prepare(_scene(["Rs", "M_shaft"], fidelity="torque"))

@@ -33,7 +33,7 @@ SCENE_SPEC = AssemblySpec(
         "motor": ArgSpec("choice", factory_default(MotorDrive, "motor"),
                          "motor type with its PI speed control", choices=tuple(MOTOR_DRIVES)),
         "load_torque": ArgSpec("signal", None,
-                               "load torque on the shaft [N m] (positive drives it) built into "
+                               "load torque on the shaft [N.m] (positive drives it) built into "
                                "the model: a number or an expression of t; left out, the "
                                "model's input load.tau_in (0 unless [inputs] give it: one "
                                "model for a sweep over it, an input of an exported FMU)"),
