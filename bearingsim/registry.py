@@ -120,6 +120,7 @@ class Registry(MutableMapping):
         self._replace_builtin = replace_builtin
         self._builtin: dict[str, Any] | None = None
         self._entries: dict[str, Any] = {}
+        self._registered: dict[str, Any] = {}
         self._loaded = False
         self._error: PluginError | None = None
         self.plugins: dict[str, Any] = {}
@@ -274,7 +275,21 @@ class Registry(MutableMapping):
                                  f"{taken!r}); give replace=True to replace it")
         if taken is not None:
             del self._entries[taken]
+            self._registered.pop(taken, None)
         self._entries[name] = entry
+        self._registered[name] = entry
+
+    def registered(self) -> dict[str, Any]:
+        """The entries :meth:`register` added in this process (a scene's bearings and
+        lubricants among them), by name, in the order they were registered: what another
+        process (a sweep's worker) registers to know the same names.
+
+        Returns
+        -------
+        dict of str to object
+            Name -> entry.
+        """
+        return dict(self._registered)
 
     # ---- mapping -----------------------------------------------------------------------------
     def __getitem__(self, name: str) -> Any:
@@ -291,6 +306,7 @@ class Registry(MutableMapping):
         if known is None:
             raise self.unknown(name)
         del self._entries[known]
+        self._registered.pop(known, None)
 
     def __iter__(self) -> Iterator[str]:
         self._load()

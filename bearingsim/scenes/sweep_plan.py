@@ -33,7 +33,7 @@ from bearingsim.scenes.sweep_grid import (
     point_scene,
     si_values,
 )
-from bearingsim.scenes.sweep_worker import Job, ModelPayload
+from bearingsim.scenes.sweep_worker import Job, ModelPayload, registrations
 
 __all__ = ["SweepPlan", "plan_sweep"]
 
@@ -66,7 +66,7 @@ def _payload(prep: Prepared) -> ModelPayload:
     if data is None:
         data = system_cache.dumps_system(prep.system)
     token = hashlib.sha256(data).hexdigest()
-    return ModelPayload(token, dataclasses.replace(prep, system=None), data)
+    return ModelPayload(token, dataclasses.replace(prep, system=None), data, registrations())
 
 
 @dataclass

@@ -36,7 +36,8 @@ from bearingsim.scenes.scene import Scene
 from bearingsim.sweep_preloads import imported_since
 
 __all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "dask_setup", "guard_time",
-           "load_model", "run_chunk", "run_job", "run_point"]
+           "load_model", "registrations", "restore_registrations", "run_chunk", "run_job",
+           "run_point"]
 
 
 @dataclass
@@ -49,6 +50,45 @@ class ModelPayload:
     prepared: Prepared
     """The prepared scene of the model's structure, ``system`` None."""
     system: bytes
+    registered: dict[str, dict[str, Any]] = dataclasses.field(default_factory=dict)
+    """The bearings and lubricants registered in the client's process (a scene's
+    ``bearings`` and ``[lubricants]``, or the API's ``register_bearing``), by registry:
+    :func:`registrations`. A worker, another process, registers them before its points run
+    (:func:`restore_registrations`): a statics point looks its bearing up by name, and a
+    point of another lubricant builds the assembly to read its parameters."""
+
+
+def registrations() -> dict[str, dict[str, Any]]:
+    """The bearings and lubricants registered in this process, by registry
+    (:meth:`bearingsim.registry.Registry.registered`).
+
+    Returns
+    -------
+    dict
+        ``{"bearing": {designation: geometry}, "lubricant": {name: factory}}``.
+    """
+    from bearingsim.catalog import BEARINGS
+    from bearingsim.physics.lubricant import LUBRICANTS
+
+    return {"bearing": BEARINGS.registered(), "lubricant": LUBRICANTS.registered()}
+
+
+def restore_registrations(registered: dict[str, dict[str, Any]]) -> None:
+    """Register in this process what :func:`registrations` gave in another, replacing entries
+    of the same names (a persistent worker may hold those of an earlier sweep).
+
+    Parameters
+    ----------
+    registered : dict
+        From :func:`registrations`.
+    """
+    from bearingsim.catalog import BEARINGS
+    from bearingsim.physics.lubricant import LUBRICANTS
+
+    for registry in (BEARINGS, LUBRICANTS):
+        for name, entry in registered.get(registry.kind, {}).items():
+            if registry.registered().get(name) is not entry:
+                registry.register(name, entry, replace=True)
 
 
 @dataclass
@@ -218,6 +258,7 @@ def run_chunk(payload: ModelPayload, jobs: list[Job], timeout: float | None = No
         modules this process imported since its last report (the first: since the worker
         started, :func:`dask_setup`), when there are any.
     """
+    restore_registrations(payload.registered)
     prep = load_model(payload)
     rows = []
     for job in jobs:

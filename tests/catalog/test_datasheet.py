@@ -89,3 +89,20 @@ def test_registration_does_not_shadow_the_catalogue(registered):
         register_bearing(get_bearing("6304"))
     with pytest.raises(CatalogError, match="already registered"):
         register_bearing(get_bearing("MY6005"))
+
+
+def test_the_registered_bearings_are_listed_for_other_processes(registered):
+    """What a sweep ships to its workers (:meth:`Registry.registered`): the bearings registered
+    in this process, not the catalogue's; an unregistered one leaves the list."""
+    from bearingsim.catalog import BEARINGS
+    from bearingsim.scenes.sweep_worker import registrations, restore_registrations
+
+    shipped = registrations()
+    assert "MY6005" in shipped["bearing"] and "6304" not in shipped["bearing"]
+    geometry = shipped["bearing"]["MY6005"]
+    unregister_bearing("MY6005")
+    assert "MY6005" not in BEARINGS.registered() and "MY6005" not in list_bearings()
+    restore_registrations(shipped)  # as a worker does
+    assert get_bearing("my6005") is geometry
+    restore_registrations(shipped)  # again: the same entry, nothing replaced
+    assert BEARINGS.registered()["MY6005"] is geometry

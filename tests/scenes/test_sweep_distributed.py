@@ -122,3 +122,75 @@ def test_a_worker_killed_mid_sweep_loses_nothing(deployment, tmp_path):
     assert before < len(points), "the worker must be killed mid-sweep"
     assert len(res.rows) == len(points) and len(res.ok) == len(points), res.failures
     assert [r["point"] for r in res.rows] == list(range(len(points)))
+
+
+_DATASHEET = """
+[[bearing]]
+designation = "MY6304"
+d_mm = 20.0
+D_mm = 52.0
+B_mm = 15.0
+Z = 7
+Dw_mm = 9.52
+dm_mm = 36.0
+C_kN = 15.9
+C0_kN = 7.9
+"""
+
+
+def test_workers_know_the_scenes_own_bearings_and_lubricants(deployment, tmp_path):
+    """A scene's ``bearings`` and ``[lubricants]`` are registered in the process that reads it;
+    the workers, other processes, did not know them. Every point of a statics sweep of a
+    scene's own bearing failed ("unknown bearing 'MY6304'"), and in a sweep over the
+    lubricant every point but the scene's own failed ("unknown lubricant 'my oil'": a point
+    builds the assembly to read the parameters of its lubricant and of the scene's). The
+    payload now carries the client's registrations; each row equals the single run."""
+    address, _ = deployment
+    (tmp_path / "my.toml").write_text(_DATASHEET)
+    statics = tmp_path / "own_bearing.toml"
+    statics.write_text("""
+title = "own bearing"
+analysis = "statics"
+bearings = "my.toml"
+[assembly]
+name = "deep_groove_ball_bearing"
+bearing = "MY6304"
+fidelity = "quasi-static"
+[inputs]
+shaft_speed = "1730 rpm"
+""")
+    res = run_sweep(statics, grid_points(parse_grid(["inputs.load.Fx=500,900"])),
+                    scheduler=address, out=tmp_path / "o1", progress=False)
+    assert len(res.ok) == 2, res.failures
+    scene = load_scene(statics)
+    single = run_scene(scene.replace(inputs={**scene.inputs, "load.Fx": 900.0}),
+                       write=False).rows[0]
+    assert res.rows[1]["Q_max"] == pytest.approx(single["Q_max"], rel=1e-12)
+    assert res.rows[1]["L10h"] == pytest.approx(single["L10h"], rel=1e-12)
+
+    steady = tmp_path / "own_oil.toml"
+    steady.write_text("""
+title = "own oil"
+analysis = "steady"
+outputs = ["Rs", "M_shaft"]
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+lubrication = "my oil"
+[lubricants."my oil"]
+base = "ISO VG 68"
+temperature = "80 degC"
+[inputs]
+shaft_speed = "6000 rpm"
+Fr = "500 N"
+Fa = 50.0
+""")
+    res = run_sweep(steady, [{"assembly.lubrication": n} for n in ("my oil", "ISO VG 68")],
+                    scheduler=address, out=tmp_path / "o2", progress=False)
+    assert len(res.ok) == 2, res.failures
+    scene = load_scene(steady)
+    for row, oil in zip(res.rows, ("my oil", "ISO VG 68"), strict=True):
+        one = run_scene(scene.replace(args={**scene.args, "lubrication": oil}),
+                        write=False).rows[0]
+        assert row["M_shaft"] == pytest.approx(one["M_shaft"], rel=1e-9)
+    assert res.rows[0]["M_shaft"] != pytest.approx(res.rows[1]["M_shaft"], rel=1e-3)
