@@ -8,19 +8,18 @@ from __future__ import annotations
 
 import math
 import re
-import textwrap
 from typing import Any
 
 import numpy as np
 
 from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, keep_tight_layout, wrapped_label
 from bearingsim.scenes.operating_points import point_label
-from bearingsim.scenes.statics_table import STATICS, statics_of
+from bearingsim.scenes.statics_table import STATICS
 from bearingsim.units import engineering, to_display
 
-__all__ = ["analysis_figures", "axis_text", "characteristic_figures", "describe", "display",
-           "display_text", "include_zero", "numeric_key", "render_report", "statics_figures",
-           "varies"]
+__all__ = ["analysis_figures", "axis_text", "characteristic_figures", "curve_label", "describe",
+           "display", "display_text", "failed_note", "include_zero", "numeric_key",
+           "render_report", "varies"]
 
 
 # --------------------------------------------------------------------------- display
@@ -219,8 +218,21 @@ def value_axis(ax, values: np.ndarray, si_unit: str, unit: str) -> None:
     include_zero(ax, values, unit)
 
 
-def _curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
-    """``Fr = 0.5 kN``: the values of a curve's keys, named as the table names them."""
+def curve_label(values: dict[str, Any], units: dict[str, str]) -> str:
+    """``Fr = 0.5 kN``: the values of a curve's keys, named as the table names them.
+
+    Parameters
+    ----------
+    values : dict
+        Value by key (SI numbers, or text such as a lubricant's name).
+    units : dict of str to str
+        SI unit by key.
+
+    Returns
+    -------
+    str
+        The keys' names and values in display units, comma separated.
+    """
     return ", ".join(f"{point_label(k)} = {v}" if isinstance(v, str) else
                      f"{point_label(k)} = {display_text(v, units.get(k, ''))}"
                      for k, v in values.items())
@@ -329,7 +341,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                     label = n if k == 0 else None
                     color = f"C{j % 10}"
                 else:
-                    label, color = _curve_label(values, units) or None, f"C{k % 10}"
+                    label, color = curve_label(values, units) or None, f"C{k % 10}"
                 if shade is not None:
                     c, c_unit = display([m[shade] for m in members], units.get(shade, ""))
                     mappable = ax.scatter(x, y, c=c, s=16, cmap="viridis")
@@ -345,7 +357,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                 all_y.append(y)
             if len(panel) > 1 and len(curves) > 1:
                 ax.plot([], [], color="0.3", linestyle=style,
-                        label=_curve_label(values, units))
+                        label=curve_label(values, units))
         value_axis(ax, np.concatenate(all_y), "Hz" if what == "modes" else
                    units.get(panel[0], ""), "Hz" if what == "modes" else y_unit)
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
@@ -368,82 +380,27 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                 else ", ".join(shown[:3]) + (" ..." if len(shown) > 3 else ""))
     fig.suptitle(f"{prep.scene.title}\n{question} against {describe(xkey, prep)}{per}"
                  + ("\nhollow markers: not settled at t_end (the run's last value)"
-                    if flagged else "") + _failed_note(failed), fontsize=9)
+                    if flagged else "") + failed_note(failed), fontsize=9)
     if not shade:  # the constrained layout places the colour bar itself
         keep_tight_layout(fig)
     return [("modes" if what == "modes" else "steady", fig)]
 
 
-def _failed_note(failed: int) -> str:
-    """A figure title's line on the points that found no answer (none: no line)."""
-    return (f"\nnot drawn: {failed} point(s) without an answer (the table's error column)"
-            if failed else "")
-
-
-def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str],
-                    failed: int = 0):
-    """The assembly's statics columns (:attr:`~bearingsim.scenes.statics_table.Statics.figure`:
-    life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
-    bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
-    drawn on a pressure panel.
+def failed_note(failed: int) -> str:
+    """A figure title's line on the points that found no answer (none: no line).
 
     Parameters
     ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    rows : list of dict
-        The analysis table's rows, one per operating point.
-    units : dict of str to str
-        SI unit of each column or series by name.
     failed : int
-        Load cases without an answer, not in ``rows`` (the title says how many).
+        Points without an answer.
 
     Returns
     -------
-    list of (str, matplotlib.figure.Figure)
-        File name and figure of each.
+    str
+        The line with its leading newline, or empty.
     """
-    from matplotlib.figure import Figure
-
-    if not rows:
-        return []
-    names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
-    columns = [n for n in statics_of(prep).figure
-               if all(isinstance(row.get(n), float) and math.isfinite(row[n]) for row in rows)]
-    if "L10h" in statics_of(prep).figure and "L10h" not in columns:
-        columns.insert(0, "L10r")  # a case at rest (LIFE_AT_REST): the life in revolutions
-    fig = Figure(figsize=(7, 2.6 * len(columns) + 1.0))
-    axes = np.atleast_1d(fig.subplots(len(columns), 1, sharex=True, squeeze=False)[:, 0])
-    pos = np.arange(len(rows))
-    for ax, n in zip(axes, columns, strict=True):
-        y, unit = display([row[n] for row in rows], units.get(n, ""))
-        ax.bar(pos, y, color="0.55")
-        for p, v in zip(pos, y, strict=True):
-            ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
-                        va="bottom", fontsize=7)
-        ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
-        if units.get(n) in ("h", "Mrev"):  # lives span decades between load cases
-            ax.set_yscale("log")
-            ax.set_ylim(top=float(np.max(y)) * 1.6)  # room for the values above the bars
-            ax.grid(True, axis="y", which="both", alpha=0.3)
-            continue
-        shown = y
-        if units.get(n) == "Pa":
-            limit, _ = display([statics_of(prep).pressure_limit], "Pa")
-            ax.axhline(limit[0], color="0.2", linestyle="--")
-            ax.text(0.99, limit[0], f"ISO 76 static limit {limit[0]:,.0f} {unit}",
-                    transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=7)
-            shown = np.append(y, limit)  # the limit in view: the margin to it is the answer
-        include_zero(ax, shown, unit)
-        ax.set_ylim(top=ax.get_ylim()[1] * 1.08)  # room for the values above the bars
-        ax.grid(True, axis="y", alpha=0.3)
-    axes[-1].set_xticks(pos, names, rotation=15, fontsize=7)
-    axes[-1].set_xlabel("load case", fontsize=8)
-    what = ", ".join(describe(n, prep) for n in columns) + " per load case"
-    fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(what, 90)]) + _failed_note(failed),
-                 fontsize=9)
-    keep_tight_layout(fig)
-    return [("statics", fig)]
+    return (f"\nnot drawn: {failed} point(s) without an answer (the table's error column)"
+            if failed else "")
 
 
 def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
@@ -473,6 +430,8 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
     solved = [row for row in rows if "error" not in row]
     failed = len(rows) - len(solved)
     if analysis == "statics":
+        from bearingsim.scenes.bar_figures import statics_figures
+
         return statics_figures(prep, solved, units, failed)
     point = set(keys) | {"name"}
     names = [n for n in solved[0] if n not in point and not n.startswith("_")] if solved else []
