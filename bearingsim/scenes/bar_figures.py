@@ -1,5 +1,7 @@
 """Bar figures of an analysis scene's answers per operating point: the statics columns per load
-case (:func:`statics_figures`).
+case (:func:`statics_figures`), and the steady outputs or natural frequencies of points that
+differ by a name rather than a number (:func:`category_figures`: a lubricant, a bearing, an
+arrangement), which have no axis to draw a curve along.
 """
 
 from __future__ import annotations
@@ -11,10 +13,31 @@ from typing import Any
 import numpy as np
 
 from bearingsim.plotting import keep_tight_layout
-from bearingsim.scenes.plots import axis_text, describe, display, failed_note, include_zero
+from bearingsim.scenes.operating_points import point_label
+from bearingsim.scenes.plots import (
+    axis_text,
+    curve_label,
+    describe,
+    display,
+    display_text,
+    failed_note,
+    include_zero,
+    value_axis,
+    varies,
+)
 from bearingsim.scenes.statics_table import statics_of
 
-__all__ = ["statics_figures"]
+__all__ = ["category_figures", "statics_figures"]
+
+
+def _value_bars(ax, pos: np.ndarray, y: np.ndarray, width: float = 0.8, color: str = "0.55",
+                label: str | None = None) -> None:
+    """Bars of ``y`` at ``pos``, each with its value written at its end."""
+    ax.bar(pos, y, width=width, color=color, label=label)
+    for p, v in zip(pos, y, strict=True):
+        if math.isfinite(v):
+            ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
+                        va="bottom" if v >= 0 else "top", fontsize=7)
 
 
 def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str],
@@ -54,10 +77,7 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
     pos = np.arange(len(rows))
     for ax, n in zip(axes, columns, strict=True):
         y, unit = display([row[n] for row in rows], units.get(n, ""))
-        ax.bar(pos, y, color="0.55")
-        for p, v in zip(pos, y, strict=True):
-            ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
-                        va="bottom", fontsize=7)
+        _value_bars(ax, pos, y)
         ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
         if units.get(n) in ("h", "Mrev"):  # lives span decades between load cases
             ax.set_yscale("log")
@@ -81,3 +101,90 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
                  fontsize=9)
     keep_tight_layout(fig)
     return [("statics", fig)]
+
+
+def _point_names(rows: list[dict[str, Any]], keys: list[str], units: dict[str, str]
+                 ) -> list[str]:
+    """A bar's label: the case's name, else the values of the keys that vary (the value
+    alone when one key varies: the axis names it)."""
+    if all(row.get("name") for row in rows):
+        return [str(row["name"]) for row in rows]
+    if len(keys) == 1:
+        return [v if isinstance(v, str) else display_text(v, units.get(keys[0], ""))
+                for v in (row.get(keys[0]) for row in rows)]
+    return [curve_label({k: row.get(k) for k in keys}, units) for row in rows]
+
+
+def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
+                     units: dict[str, str], names: list[str], what: str, failed: int = 0):
+    """Steady outputs (one panel each) or natural frequencies (one panel, a bar per mode) as
+    bars, one per operating point, named by its case or by the values of the keys that vary:
+    the figure of points that differ by text (``assembly.lubrication``), which give no axis
+    to draw a characteristic along.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
+    rows : list of dict
+        The rows of the points that found an answer.
+    keys : list of str
+        The grid, case or sweep keys.
+    units : dict of str to str
+        SI unit of each column by name.
+    names : list of str
+        The columns to draw (those that are a number at every point are).
+    what : {"steady", "modes"}
+        The analysis (figure name).
+    failed : int
+        Points without an answer, not in ``rows`` (the title says how many).
+
+    Returns
+    -------
+    list of (str, matplotlib.figure.Figure)
+        Figure name and figure (none without a column to draw).
+    """
+    from matplotlib.figure import Figure
+
+    names = [n for n in names if rows and all(
+        isinstance(row.get(n), (int, float)) and not isinstance(row.get(n), bool)
+        for row in rows)]
+    if not names:
+        return []
+    shown = [k for k in keys if varies(rows, k)] or keys
+    labels = _point_names(rows, shown, units)
+    per_panel = [names] if what == "modes" else [[n] for n in names]
+    fig = Figure(figsize=(max(7.0, 0.8 * len(rows) * len(per_panel[0]) + 2.0),
+                          2.6 * len(per_panel) + 1.1))
+    axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
+    pos = np.arange(len(rows), dtype=float)
+    for ax, panel in zip(axes, per_panel, strict=True):
+        width = 0.8 / len(panel)
+        drawn = []
+        for j, n in enumerate(panel):
+            y, unit = display([row[n] for row in rows], units.get(n, ""))
+            several = len(panel) > 1
+            _value_bars(ax, pos + (j - (len(panel) - 1) / 2) * width, y, width,
+                        f"C{j % 10}" if several else "0.55", n if several else None)
+            drawn.append(y)
+        modes = what == "modes"
+        value_axis(ax, np.concatenate(drawn), "Hz" if modes else units.get(panel[0], ""),
+                   "Hz" if modes else unit)
+        ax.set_ylabel("natural frequency [Hz]" if modes else axis_text(panel[0], prep, unit),
+                      fontsize=8)
+        if len(panel) > 1:
+            ax.legend(fontsize=7)
+        ax.grid(True, axis="y", alpha=0.3)
+    long = max(len(label) for label in labels) > 12
+    axes[-1].set_xticks(pos, labels, rotation=15 if long else 0, fontsize=7)
+    named = ", ".join(point_label(k) for k in shown)
+    by_case = all(row.get("name") for row in rows)
+    axes[-1].set_xlabel("case" if by_case else named, fontsize=8)
+    question = ("natural frequencies by mode" if what == "modes"
+                else ", ".join(describe(n, prep) for n in names[:3])
+                + (" ..." if len(names) > 3 else ""))
+    per = "case" if by_case else named
+    fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(f"{question} per {per}", 90)])
+                 + failed_note(failed), fontsize=9)
+    keep_tight_layout(fig)
+    return [("modes" if what == "modes" else "steady", fig)]

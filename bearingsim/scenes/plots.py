@@ -19,7 +19,7 @@ from bearingsim.units import engineering, to_display
 
 __all__ = ["analysis_figures", "axis_text", "characteristic_figures", "curve_label", "describe",
            "display", "display_text", "failed_note", "include_zero", "numeric_key",
-           "render_report", "varies"]
+           "render_report", "value_axis", "varies"]
 
 
 # --------------------------------------------------------------------------- display
@@ -406,8 +406,10 @@ def failed_note(failed: int) -> str:
 def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
                      units: dict[str, str]):
     """The figures that answer a ``steady``, ``modes`` or ``statics`` scene: steady outputs
-    against the first grid key (one curve per value of the second), natural frequency against
-    the first key per mode, or life, ball load and pressure per load case.
+    against the first grid key that is a number and varies (one curve per value of the
+    others), natural frequency against it per mode, or life, ball load and pressure per load
+    case; points that differ only by text (a lubricant) or by their case's name as bars
+    (:func:`~bearingsim.scenes.bar_figures.category_figures`).
 
     Parameters
     ----------
@@ -435,6 +437,13 @@ def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
         return statics_figures(prep, solved, units, failed)
     point = set(keys) | {"name"}
     names = [n for n in solved[0] if n not in point and not n.startswith("_")] if solved else []
+    axis = [k for k in keys if numeric_key(solved, k) and varies(solved, k)]
+    if solved and not axis and (any(varies(solved, k) for k in keys)
+                                or (len(solved) > 1 and all(r.get("name") for r in solved))):
+        from bearingsim.scenes.bar_figures import category_figures
+
+        return category_figures(prep, solved, keys, units, names, analysis, failed)
+    keys = [*axis, *(k for k in keys if k not in axis)]  # along a number that varies
     return characteristic_figures(prep, solved, keys, units, names, analysis, failed)
 
 

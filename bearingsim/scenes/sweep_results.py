@@ -133,8 +133,9 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
     one panel per output (natural frequencies in one panel) and one curve per value of the
     other keys, as an analysis scene draws them
     (:func:`~bearingsim.scenes.plots.characteristic_figures`: points in order along the axis,
-    lives on a logarithmic axis, a sampled sweep as markers); none when no swept key is
-    numeric.
+    lives on a logarithmic axis, a sampled sweep as markers); when no swept key is a number
+    that varies (a sweep over lubricants), one bar per point
+    (:func:`~bearingsim.scenes.bar_figures.category_figures`).
 
     Parameters
     ----------
@@ -157,6 +158,7 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         File name and figure (none or one).
     """
 
+    from bearingsim.scenes.bar_figures import category_figures
     from bearingsim.scenes.plots import characteristic_figures, numeric_key, varies
 
     ok = [r for r in rows if r["status"] == "ok"]
@@ -166,10 +168,15 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
                      key=lambda k: not varies(ok, k))  # a key that varies first
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS
                and all(isinstance(r[n], float) for r in ok)]  # not a statics life at rest
-    if not numeric or not outputs:
+    if not outputs:
         return []
-    order = [numeric[0], *(k for k in keys if k != numeric[0])]
     what = "modes" if prep.scene.analysis == "modes" else "steady"
+    if not numeric or not varies(ok, numeric[0]):  # points named by text: bars
+        if not any(varies(ok, k) for k in keys):
+            return []
+        figs = category_figures(prep, ok, keys, units, outputs, what, len(rows) - len(ok))
+        return [(f"{stem}.png", fig) for _, fig in figs[:1]]
+    order = [numeric[0], *(k for k in keys if k != numeric[0])]
     figs = characteristic_figures(prep, ok, order, units, outputs, what, len(rows) - len(ok))
     return [(f"{stem}.png", fig) for _, fig in figs[:1]]
 

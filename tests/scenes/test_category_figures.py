@@ -1,0 +1,93 @@
+"""Figures of points that differ by text (a lubricant comparison, the product's own question:
+"swap lubrication without rewriting anything"). Before, a steady scene whose grid or cases set
+``assembly.lubrication`` ran, then its figure failed ("could not convert string to float:
+'ISO VG 32'"; the command exited 1), and a sweep over lubricants wrote no figure and said
+nothing. Such points are now bars, one per point; with a number that varies besides (a
+speed), the number is the axis and each lubricant a curve."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim.scenes import parse_scene, run_scene
+from bearingsim.scenes.analysis_table import analysis_units
+from bearingsim.scenes.plots import analysis_figures
+from bearingsim.scenes.sweep import run_sweep
+
+SCENE = """
+title = "oils"
+analysis = "{analysis}"
+{outputs}
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+{points}
+[inputs]
+{inputs}
+Fr = "500 N"
+Fa = 50.0
+"""
+OILS = ["ISO VG 32", "ISO VG 68", "lithium grease"]
+
+
+def _scene(points: str, analysis: str = "steady", speed: bool = True):
+    return parse_scene(SCENE.format(
+        analysis=analysis, points=points, inputs='shaft_speed = "6000 rpm"' if speed else "",
+        outputs='outputs = ["Rs", "M_shaft"]' if analysis == "steady" else ""))
+
+
+def _figures(run):
+    return analysis_figures(run.prepared, run.rows, run.summary["keys"],
+                            analysis_units(run.prepared, run.rows))
+
+
+def _bars(ax):
+    return [p.get_height() for p in ax.patches]
+
+
+def test_a_grid_of_lubricants_is_drawn_as_bars_of_the_table_values():
+    run = run_scene(_scene(f'[grid]\n"assembly.lubrication" = {OILS!r}'.replace("'", '"')),
+                    write=False)
+    [(name, fig)] = _figures(run)
+    assert name == "steady" and len(fig.axes) == 2
+    rs, torque = fig.axes
+    assert _bars(rs) == pytest.approx([row["Rs"] for row in run.rows], rel=1e-12)
+    # the friction torque in N mm, as every figure shows it
+    assert _bars(torque) == pytest.approx([1e3 * row["M_shaft"] for row in run.rows],
+                                          rel=1e-12)
+    assert [t.get_text() for t in torque.get_xticklabels()] == OILS
+    assert torque.get_xlabel() == "lubrication" and "[N mm]" in torque.get_ylabel()
+    assert len({round(h, 6) for h in _bars(torque)}) == 3  # the oils differ
+    assert "per lubrication" in fig.texts[0].get_text()
+
+
+def test_named_cases_are_the_bars_names():
+    cases = "".join(f'[[cases]]\nname = "oil {k}"\n"assembly.lubrication" = "{oil}"\n'
+                    for k, oil in enumerate(OILS[:2]))
+    run = run_scene(_scene(cases), write=False)
+    [(_, fig)] = _figures(run)
+    assert [t.get_text() for t in fig.axes[-1].get_xticklabels()] == ["oil 0", "oil 1"]
+    assert fig.axes[-1].get_xlabel() == "case"
+
+
+def test_with_a_speed_besides_the_speed_is_the_axis_and_each_oil_a_curve():
+    grid = ('[grid]\n"assembly.lubrication" = ["ISO VG 32", "ISO VG 68"]\n'
+            '"inputs.shaft_speed" = ["3000 rpm", "6000 rpm", "9000 rpm"]')
+    run = run_scene(_scene(grid, speed=False), write=False)
+    assert run.summary["keys"] == ["lubrication", "shaft_speed"]  # lubrication first
+    [(_, fig)] = _figures(run)
+    lines = [line for line in fig.axes[0].get_lines() if len(line.get_xdata())]
+    assert len(lines) == 2
+    for line in lines:
+        np.testing.assert_allclose(line.get_xdata(), [3000.0, 6000.0, 9000.0], rtol=1e-9)
+    assert "r/min" in fig.axes[-1].get_xlabel()
+
+
+def test_a_sweep_over_lubricants_draws_its_bars(client, tmp_path):
+    scene = _scene("")
+    res = run_sweep(scene, [{"assembly.lubrication": oil} for oil in OILS], client=client,
+                    out=tmp_path, progress=False)
+    assert len(res.ok) == 3 and res.plot_failures == []
+    [png] = tmp_path.glob("*.sweep.png")
+    assert png.stat().st_size > 0
