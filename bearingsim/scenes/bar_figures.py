@@ -154,8 +154,9 @@ def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
     shown = [k for k in keys if varies(rows, k)] or keys
     labels = _point_names(rows, shown, units)
     per_panel = [names] if what == "modes" else [[n] for n in names]
-    fig = Figure(figsize=(max(7.0, 0.8 * len(rows) * len(per_panel[0]) + 2.0),
-                          2.6 * len(per_panel) + 1.1))
+    bars = len(rows) * len(per_panel[0])
+    fig = Figure(figsize=(min(12.0, max(7.0, 0.35 * bars + 3.0)),
+                          (3.4 if len(per_panel[0]) > 1 else 2.6) * len(per_panel) + 1.1))
     axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
     pos = np.arange(len(rows), dtype=float)
     for ax, panel in zip(axes, per_panel, strict=True):
@@ -172,8 +173,9 @@ def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
                    "Hz" if modes else unit)
         ax.set_ylabel("natural frequency [Hz]" if modes else axis_text(panel[0], prep, unit),
                       fontsize=8)
-        if len(panel) > 1:
-            ax.legend(fontsize=7)
+        if len(panel) > 1:  # beside the bars, off their values
+            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                      borderaxespad=0.0)
         ax.grid(True, axis="y", alpha=0.3)
     long = max(len(label) for label in labels) > 12
     axes[-1].set_xticks(pos, labels, rotation=15 if long else 0, fontsize=7)

@@ -91,3 +91,26 @@ def test_a_sweep_over_lubricants_draws_its_bars(client, tmp_path):
     assert len(res.ok) == 3 and res.plot_failures == []
     [png] = tmp_path.glob("*.sweep.png")
     assert png.stat().st_size > 0
+
+
+def test_modes_per_arrangement_are_grouped_bars_named_by_one_legend():
+    run = run_scene(parse_scene("""
+title = "arrangements"
+analysis = "modes"
+[assembly]
+name = "duplex_pair"
+bearing = "7020C"
+preload_force = "1 kN"
+[grid]
+"assembly.arrangement" = ["DF", "DB"]
+"""), write=False)
+    [(name, fig)] = _figures(run)
+    [ax] = fig.axes
+    modes = [n for n in run.rows[0] if n != "arrangement"]
+    assert name == "modes" and len(ax.patches) == 2 * len(modes)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == modes
+    # bars in point order, each mode's bar of a point: its frequency in Hz
+    heights = {(round(p.get_x() + p.get_width() / 2), round(p.get_height(), 6))
+               for p in ax.patches}
+    assert (0, round(run.rows[0]["tilt about x"], 6)) in heights
+    assert (1, round(run.rows[1]["tilt about x"], 6)) in heights
