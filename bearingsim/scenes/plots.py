@@ -17,7 +17,7 @@ from bearingsim.scenes.operating_points import point_label
 from bearingsim.scenes.statics_table import STATICS
 from bearingsim.units import engineering, to_display
 
-__all__ = ["analysis_figures", "axis_text", "characteristic_figures", "curve_label", "describe",
+__all__ = ["axis_text", "characteristic_figures", "curve_label", "describe",
            "display", "display_text", "failed_note", "include_zero", "numeric_key",
            "render_report", "value_axis", "varies"]
 
@@ -401,50 +401,6 @@ def failed_note(failed: int) -> str:
     """
     return (f"\nnot drawn: {failed} point(s) without an answer (the table's error column)"
             if failed else "")
-
-
-def analysis_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
-                     units: dict[str, str]):
-    """The figures that answer a ``steady``, ``modes`` or ``statics`` scene: steady outputs
-    against the first grid key that is a number and varies (one curve per value of the
-    others), natural frequency against it per mode, or life, ball load and pressure per load
-    case; points that differ only by text (a lubricant) or by their case's name as bars
-    (:func:`~bearingsim.scenes.bar_figures.category_figures`).
-
-    Parameters
-    ----------
-    prep : Prepared
-        The prepared scene (:class:`~bearingsim.scenes.preparation.Prepared`).
-    rows : list of dict
-        The analysis table's rows, one per operating point; those of points without an answer
-        (an ``error``) are not drawn, and the title counts them.
-    keys : list of str
-        The grid or case keys.
-    units : dict of str to str
-        SI unit of each column or series by name.
-
-    Returns
-    -------
-    list of (str, matplotlib.figure.Figure)
-        Figure name (``steady``, ``modes``, ``statics``) and figure.
-    """
-    analysis = prep.scene.analysis
-    solved = [row for row in rows if "error" not in row]
-    failed = len(rows) - len(solved)
-    if analysis == "statics":
-        from bearingsim.scenes.bar_figures import statics_figures
-
-        return statics_figures(prep, solved, units, failed)
-    point = set(keys) | {"name"}
-    names = [n for n in solved[0] if n not in point and not n.startswith("_")] if solved else []
-    axis = [k for k in keys if numeric_key(solved, k) and varies(solved, k)]
-    if solved and not axis and (any(varies(solved, k) for k in keys)
-                                or (len(solved) > 1 and all(r.get("name") for r in solved))):
-        from bearingsim.scenes.bar_figures import category_figures
-
-        return category_figures(prep, solved, keys, units, names, analysis, failed)
-    keys = [*axis, *(k for k in keys if k not in axis)]  # along a number that varies
-    return characteristic_figures(prep, solved, keys, units, names, analysis, failed)
 
 
 def render_report(spec: FigureSpec, title: str = ""):

@@ -4,7 +4,7 @@
 (:func:`assembly_figures`, :attr:`~bearingsim.assemblies.spec.AssemblySpec.plots`) and the
 time traces of the requested outputs (:func:`time_figures`), with the inputs that change
 during the run drawn on top. An analysis scene's figures are
-:func:`bearingsim.scenes.plots.analysis_figures`.
+:func:`bearingsim.scenes.analysis_figures.analysis_figures`.
 """
 
 from __future__ import annotations

@@ -32,10 +32,10 @@ from bearingsim.scenes.analyses import (
     settling_check,
     steady_values,
 )
+from bearingsim.scenes.analysis_figures import analysis_figures
 from bearingsim.scenes.analysis_table import analysis_units, write_table
 from bearingsim.scenes.operating_points import operating_points, point_label
 from bearingsim.scenes.outputs import OutputFolder, command_line
-from bearingsim.scenes.plots import analysis_figures
 from bearingsim.scenes.preparation import Prepared, point_keys, prepare
 from bearingsim.scenes.run_figures import scene_figures
 from bearingsim.scenes.scene import Scene, SceneError, line_of

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from bearingsim.scenes import parse_scene, run_scene
+from bearingsim.scenes.analysis_figures import analysis_figures
 from bearingsim.scenes.analysis_table import analysis_units
-from bearingsim.scenes.plots import analysis_figures
 from bearingsim.scenes.sweep import run_sweep
 
 SCENE = """
