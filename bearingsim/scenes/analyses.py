@@ -289,8 +289,8 @@ def name_modes(linear: Any, names: dict[str, str], descriptions: dict[str, str]
 
 # --------------------------------------------------------------------------- one point
 def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
-                        x_guess: np.ndarray | None = None, progress: bool | None = False,
-                        guess_model: Any = None) -> dict[str, Any]:
+                        x_guess: np.ndarray | None = None, progress: bool | None = False
+                        ) -> dict[str, Any]:
     """Run ONE operating point of a prepared scene's analysis and return its table row.
 
     Parameters
@@ -301,13 +301,10 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         Keys ``inputs.<name>``, ``parameters.<name>``, ``assembly.<argument>`` (values in SI)
         and an optional ``name``, on top of the scene's own values.
     x_guess : numpy.ndarray, optional
-        Start of the steady or equilibrium solve (e.g. the state of the previous point).
+        Start of the steady or equilibrium solve (e.g. the state of the previous point); a
+        steady solve that fails from it is made again from the model's own start.
     progress : bool or None
         Progress bar of a transient run.
-    guess_model : System, optional
-        The model ``x_guess`` is a state of (the previous point's ``_model``); a guess of
-        another model (a grid over the arrangement: DB's state is no start for DT) is not
-        used. None: a state of the point's own model.
 
     Returns
     -------
@@ -317,8 +314,8 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         ``time_constant`` [s] and ``unsettled`` (names), the last three not for a transient
         on purpose (not checked for settling, as in a single run); ``steady`` the outputs;
         ``modes`` the natural frequency [Hz] by mode name; ``statics`` the columns of
-        :class:`Statics`. ``_state`` holds the solved state and ``_model`` the model it is a
-        state of (for continuation; not table columns).
+        :class:`Statics`. ``_state`` holds the solved state (for continuation; not a
+        table column).
 
     Raises
     ------
@@ -339,9 +336,8 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
         return {**row, **values, "_state": state}
     prep, overrides = point_model(prep, args)
     parameters.update(overrides)
-    if x_guess is not None and (np.size(x_guess) != prep.system.n_states or (
-            guess_model is not None and guess_model is not prep.system)):
-        x_guess = None  # a state of the previous point's model, another one
+    if x_guess is not None and np.size(x_guess) != prep.system.n_states:
+        x_guess = None  # the previous point's model had other states
     if scene.analysis == "transient":
         result = run_simulation(prep, parameters=parameters, inputs=inputs, progress=progress)
         series = output_series(prep, result)
@@ -351,15 +347,20 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
                                    output_resolution(prep, series))
             row.update(settled=check["settled"], time_constant=check["time_constant"],
                        unsettled=" ".join(check["unsettled"]))
-        return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names]),
-                "_model": prep.system}
+        return {**row, "_state": np.array([result.final(n) for n in prep.system.state_names])}
     from bearingsim.simulation import linearize, steady_state
 
     system = prep.system
-    x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+    try:
+        x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+    except SimulationError:
+        if x_guess is None:
+            raise
+        # the previous point's state led nowhere (a point of another arrangement: DB's state
+        # is no start for DT): from the model's own start, as the point alone
+        x = steady_state(system, inputs=inputs, parameters=parameters)
     if scene.analysis == "steady":
-        return {**row, **_observed_outputs(prep, x, inputs, parameters), "_state": x,
-                "_model": system}
+        return {**row, **_observed_outputs(prep, x, inputs, parameters), "_state": x}
     linear = linearize(system, x, inputs=inputs, parameters=parameters)
     known = prep.spec.mode_names
     names = name_modes(linear, known, {s.name: s.description for s in system.states})
@@ -367,7 +368,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     modes = sorted(zip(names, linear.natural_frequencies, strict=True),
                    key=lambda m: order.index(m[0]) if m[0] in order else len(order))
     row.update({n: float(f) for n, f in modes})
-    return {**row, "_state": x, "_model": system}
+    return {**row, "_state": x}
 
 
 def _point_row(prep: Any, point: dict[str, Any]) -> dict[str, Any]:
@@ -398,7 +399,7 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """
     rows: list[dict[str, Any]] = []
     first_key = next(iter(points[0]), None) if points else None
-    guess, curve_start = (None, None), (None, None)  # (state, its model)
+    guess, curve_start = None, None
     for k, point in enumerate(points):
         new_curve = (prep.scene.grid and first_key is not None and k > 0
                      and point[first_key] == points[0][first_key])
@@ -407,12 +408,12 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", NotSettledWarning)
-                row = run_operating_point(prep, point, guess[0], guess_model=guess[1])
+                row = run_operating_point(prep, point, guess)
         except SimulationError as exc:
             rows.append({**_point_row(prep, point), "error": str(exc)})
             continue
-        guess = row.pop("_state"), row.pop("_model", None)
-        if k == 0 or new_curve or curve_start[0] is None:
+        guess = row.pop("_state")
+        if k == 0 or new_curve or curve_start is None:
             curve_start = guess
         rows.append(row)
     return rows

@@ -530,8 +530,8 @@ _SHORT = {"deep_groove_duty1": 0.002, "deep_groove_radial": 1.5, "double_layer_f
 
 
 def _figures(name):
+    from bearingsim.scenes.analysis_figures import analysis_figures
     from bearingsim.scenes.analysis_table import analysis_units
-    from bearingsim.scenes.plots import analysis_figures
     from bearingsim.scenes.run_figures import scene_figures
 
     scene = load_scene(name)
@@ -657,8 +657,8 @@ def test_a_steady_figure_never_plots_a_variable_against_itself():
     """w_shaft is the imposed shaft speed, the x axis: its panel would be the identity
     (issue 27: one sweep panel plotted w_shaft against itself); the figure leaves it out and
     keeps the table column."""
+    from bearingsim.scenes.analysis_figures import analysis_figures
     from bearingsim.scenes.analysis_table import analysis_units
-    from bearingsim.scenes.plots import analysis_figures
 
     scene = parse_scene('analysis = "steady"\noutputs = ["w_shaft", "Rs"]\n[assembly]\n'
                         'name = "double_layer_bearing"\nfidelity = "torque"\n[grid]\n'
@@ -671,11 +671,12 @@ def test_a_steady_figure_never_plots_a_variable_against_itself():
     assert len(labels) == 1 and labels[0].startswith("speed distribution ratio")
 
 
-def test_a_point_of_another_structure_does_not_start_from_the_previous_models_state():
+def test_a_point_whose_solve_fails_from_the_previous_state_starts_again_from_its_own():
     """A modes grid over the arrangement (DB, then DT): the DT point started its steady solve
     from the DB pair's solved state, a state of another model with as many states, and failed
-    ("steady state not found", shaft.vz 40.5 m/s2) though DT alone solves. A state is now a
-    start only for the model it was solved on; each row equals its arrangement alone."""
+    ("steady state not found", shaft.vz 40.5 m/s2) though DT alone solves. A solve that fails
+    from the previous point's state is now made again from the model's own start; each row
+    equals its arrangement alone."""
     text = """
 title = "arrangements"
 analysis = "modes"
