@@ -226,8 +226,9 @@ def check_point_keys(points: list[dict[str, Any]]) -> None:
 
 def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
     """Raise :class:`SweepError` when an input the analysis scene takes from its own grid or
-    load cases (which a sweep replaces) has no value at the sweep's points (a load case leaves
-    out the inputs it does not set: those keep the scene's value or none).
+    from every one of its load cases (which a sweep replaces) has no value at the sweep's
+    points. An input only some cases set (an axial load in the last case) is one the scene
+    leaves at the model's default in the others, as the sweep's points then do.
 
     Parameters
     ----------
@@ -236,13 +237,16 @@ def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
     points : list of dict
         The sweep's points (values by sweep key).
     """
-    varied = list(dict.fromkeys([*scene.grid, *(k for case in scene.cases for k in case)]))
+    every_case = [k for k in (scene.cases[0] if scene.cases else {})
+                  if all(k in case for case in scene.cases)]
+    varied = list(dict.fromkeys([*scene.grid, *every_case]))
     missing = sorted(k for k in varied if k.startswith("inputs.") and k not in points[0]
                      and k.split(".", 1)[1] not in scene.inputs)
     if missing:
         one = len(missing) == 1
         own = "grid" if scene.grid else "load cases"
-        strange = [k for k in points[0] if k.startswith("inputs.") and k not in varied
+        known = {*scene.grid, *(k for case in scene.cases for k in case)}
+        strange = [k for k in points[0] if k.startswith("inputs.") and k not in known
                    and k.split(".", 1)[1] not in scene.inputs]
         raise SweepError(
             f"the sweep replaces the {own} of this {scene.analysis} scene, and "
