@@ -325,8 +325,11 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
     failed = [{"point": k, "error": row["error"]} for k, row in enumerate(rows) if "error" in row]
     units = analysis_units(prep, rows)
     if rows and not solved:  # nothing answered (e.g. a model whose steady running is periodic)
-        raise SimulationError(f"no operating point found an answer; the first, "
-                              f"{_point_text(rows[0], units)}: {rows[0]['error']}")
+        first = _point_text(rows[0], units)  # (empty for a scene of [inputs] alone)
+        head = (f"no operating point found an answer; the first, {first}" if len(rows) > 1
+                else "the operating point" + (f" ({first})" if first else "")
+                + " found no answer")
+        raise SimulationError(f"{head}: {rows[0]['error']}")
     if failed:
         warnings.warn(f"{len(failed)} of {len(rows)} operating point(s) found no solution; "
                       f"their rows say why (column error), the others are answered. First: "

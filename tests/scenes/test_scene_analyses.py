@@ -121,6 +121,18 @@ name = "spindle"
         assert free[0][name] == pytest.approx(free[1][name], rel=1e-6), name
     assert free[0]["radial x"] == pytest.approx(free[0]["radial y"], rel=1e-6)
     assert all(row["radial x"] > 2.0 * row["radial y"] for row in loaded)
+    # alone, the last point solves from the spindle's unloaded start (Newton needs 14 steps;
+    # 12 were allowed, then MINPACK stalled: "steady state not found"), as the grid found it
+    [alone] = run_scene(parse_scene("""
+analysis = "modes"
+[assembly]
+name = "spindle"
+roller_distance = 0.4
+[inputs]
+"pair.shaft.Fx" = 2000.0
+"""), write=False).rows
+    for name in names:
+        assert alone[name] == pytest.approx(rows[3][name], rel=1e-6), name
 
 
 _SKF_STEADY = """
@@ -168,7 +180,16 @@ def test_a_point_without_an_answer_is_a_row_that_says_why(tmp_path, capsys):
     assert (tmp_path / "out" / "skf.steady.png").is_file()
     with pytest.raises(SimulationError, match=r"no operating point found an answer; the first, "
                                               r"Fr = 0 kN: steady state not unique"):
+        run_scene(parse_scene(_SKF_STEADY.format(loads="[0.0, 0.0]")), write=False)
+    with pytest.raises(SimulationError, match=r"^the operating point \(Fr = 0 kN\) found no "
+                                              r"answer: steady state not unique"):
         run_scene(parse_scene(_SKF_STEADY.format(loads="[0.0]")), write=False)
+    # a scene of [inputs] alone: its one point has no keys to name (it said "the first, :")
+    alone = _SKF_STEADY.format(loads="[0.0]").replace('[grid]\n"inputs.Fr" = [0.0]', "Fr = 0.0")
+    assert "[grid]" not in alone
+    with pytest.raises(SimulationError, match=r"^the operating point found no answer: steady "
+                                              r"state not unique"):
+        run_scene(parse_scene(alone), write=False)
 
 
 def test_a_modes_scene_without_oscillating_modes_says_so(tmp_path, capsys):
