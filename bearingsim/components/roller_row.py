@@ -31,6 +31,7 @@ Loads and geometry in SI; floats and CasADi SX alike (:func:`roller_row_loads`).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -302,6 +303,33 @@ class RollerRow(Component):
         return eqs
 
 
+@functools.lru_cache(maxsize=32)
+def _row_function(p: RollerRowParameters, n_rollers: int, n_slices: int) -> ca.Function:
+    """:func:`roller_row_loads` of the inner ring's displacement (outer ring fixed) as one
+    CasADi function, built once per row (a statics sweep's points share it; building the
+    row's expressions is most of a solve): ``q5 -> (inner_load, Q, delta, p_max, q (Z x ns,
+    row by row), d inner_load / d q5)``."""
+    q = ca.SX.sym("q", 5)
+    c = roller_row_loads(p, [q[k] for k in range(5)], [0.0] * 5, n_rollers, n_slices)
+    load = ca.vertcat(*c.inner_load)
+    return ca.Function("roller_row", [q], [load, ca.vertcat(*c.Q), ca.vertcat(*c.delta),
+                                           ca.vertcat(*c.p_max),
+                                           ca.vertcat(*[v for r in c.q for v in r]),
+                                           ca.jacobian(load, q)])
+
+
+def _numeric_contacts(p: RollerRowParameters, n_rollers: int, n_slices: int,
+                      inner) -> tuple[RollerContacts, np.ndarray]:
+    """:func:`roller_row_loads` at a numeric displacement of the inner ring (outer ring
+    fixed), in floats, and the Jacobian of its load on the inner ring."""
+    out = [np.asarray(v.full(), dtype=float).ravel()
+           for v in _row_function(p, n_rollers, n_slices)(ca.DM([float(v) for v in inner]))]
+    load, jacobian = out[0].tolist(), out[5].reshape(5, 5)
+    slices = out[4].reshape(n_rollers, n_slices).tolist()
+    return RollerContacts(slices, out[1].tolist(), out[2].tolist(), out[3].tolist(), load,
+                          [-v for v in load]), jacobian
+
+
 def roller_row_stiffness(p: RollerRowParameters, n_rollers: int, n_slices: int,
                          inner=(0.0,) * 5) -> np.ndarray:
     """5x5 stiffness of a roller row from the exact CasADi Jacobian.
@@ -320,10 +348,7 @@ def roller_row_stiffness(p: RollerRowParameters, n_rollers: int, n_slices: int,
     -------
     numpy.ndarray of shape (5, 5)
     """
-    q = ca.SX.sym("q", 5)
-    loads = roller_row_loads(p, [q[k] for k in range(5)], [0.0] * 5, n_rollers, n_slices)
-    jac = ca.Function("roller_jac", [q], [ca.jacobian(ca.vertcat(*loads.inner_load), q)])
-    return -np.asarray(jac(ca.DM(list(inner))).full(), dtype=float)
+    return -_numeric_contacts(p, n_rollers, n_slices, inner)[1]
 
 
 @dataclass(frozen=True)
@@ -365,19 +390,14 @@ def roller_row_equilibrium(p: RollerRowParameters, n_rollers: int, n_slices: int
     check_range(tilt[0], "tilt[0]", "rad", -0.01, 0.01, where="roller_row_equilibrium")
     check_range(tilt[1], "tilt[1]", "rad", -0.01, 0.01, where="roller_row_equilibrium")
     v = ca.SX.sym("v", 2)
-    ring = [v[0], v[1], 0.0, float(tilt[0]), float(tilt[1])]
-    row = roller_row_loads(p, ring, [0.0] * 5, n_rollers, n_slices)
-    problem = EquilibriumProblem(ca.Function("roller_row", [v], [ca.vertcat(*row.inner_load[:2])]),
+    ring = ca.vertcat(v, 0.0, float(tilt[0]), float(tilt[1]))
+    load = _row_function(p, n_rollers, n_slices)(ring)[0]
+    problem = EquilibriumProblem(ca.Function("roller_row", [v], [load[:2]]),
                                  2, [1e-5, 1e-5], [1.0, 1.0],
                                  name=f"roller_row_equilibrium({n_rollers} rollers)")
     xy = problem.solve(np.asarray(loads, dtype=float))
     inner = np.array([xy[0], xy[1], 0.0, float(tilt[0]), float(tilt[1])])
-    numeric = roller_row_loads(p, inner.tolist(), [0.0] * 5, n_rollers, n_slices)
-    numeric = RollerContacts([[float(v) for v in r] for r in numeric.q],
-                             [float(v) for v in numeric.Q], [float(v) for v in numeric.delta],
-                             [float(v) for v in numeric.p_max],
-                             [float(v) for v in numeric.inner_load],
-                             [float(v) for v in numeric.outer_load])
+    numeric = _numeric_contacts(p, n_rollers, n_slices, inner)[0]
     moment = -np.array(numeric.inner_load[3:5])
     return RollerEquilibrium(inner, numeric, moment)
 
@@ -411,8 +431,6 @@ def roller_row_lives(bearing: str | RollerBearingGeometry, clearance: float | No
     exact = dataclasses.replace(roller_row_parameters(g, clearance), smooth=None)
     lives = []
     for inner in positions:
-        contacts = roller_row_loads(exact, [float(v) for v in inner], [0.0] * 5,
-                                    g.roller_count, n_slices)
-        q = [[float(v) for v in r] for r in contacts.q]
+        q = _numeric_contacts(exact, g.roller_count, n_slices, inner)[0].q
         lives.append(float(roller_reference_rating_life(q, q, g.dynamic_load_rating, g.gamma)))
     return np.asarray(lives)
