@@ -92,7 +92,9 @@ def steady_state(
     require_unique: bool = True,
     compiled: bool | str = "auto",
 ) -> np.ndarray:
-    """Solve ``dx/dt = 0`` for every state that some derivative depends on.
+    """Solve ``dx/dt = 0`` for every state that some derivative depends on: Newton with a line
+    search from the guess, then MINPACK's ``hybr``, then the loads raised from 0 in steps
+    (each step's Newton started from the last one's solution).
 
     States that nothing depends on (pure integrators such as free rotor angles) keep their guess;
     their derivatives (the speeds) are still set to zero by the other equations when the model
@@ -182,9 +184,19 @@ def steady_state(
             res(z)
         return last[1]
 
+    def load_at(u_now: np.ndarray) -> None:  # the residual of other inputs from here on
+        newton.start(t, x, u_now, p)
+        last[0] = None
+
     with casadi_dumps_dropped():  # a block without a root on the VM: said below, not dumped
-        solution = _solve(system, res, jac, x[free], tol, residual_tol, free, unsolved,
-                          _speed_inputs(system, u))
+        try:
+            solution = _solve(system, res, jac, x[free], tol, residual_tol, free, unsolved,
+                              _speed_inputs(system, u))
+        except SimulationError:
+            solution = _load_continuation(system, u, load_at, res, jac, x[free], tol,
+                                          residual_tol)
+            if solution is None:
+                raise
         if require_unique:
             _check_determined(system, jac(solution), free)
     x[free] = solution
@@ -208,6 +220,46 @@ def _solve(system: System, res, jac, z: np.ndarray, tol: float, residual_tol: fl
         raise SimulationError(_not_found(system, sol, res(sol.x), jac(sol.x), free, speeds,
                                          unsolved[0]))
     return sol.x
+
+
+LOAD_UNITS = ("N", "N.m")
+"""Units of the inputs :func:`_load_continuation` scales: forces and moments."""
+LOAD_FRACTION_STEP = (0.25, 2.0**-6)
+"""First and smallest step of the load fraction in :func:`_load_continuation` [-]."""
+
+
+def _load_continuation(system: System, u: np.ndarray, load_at, res, jac, z: np.ndarray,
+                       tol: float, residual_tol: float) -> np.ndarray | None:
+    """The steady state under the inputs ``u`` reached through a rising load: the inputs in
+    :data:`LOAD_UNITS` scaled by a fraction that rises from 0 to 1, each fraction's Newton
+    started from the last one's solution (a step that fails is halved, down to the smallest
+    of :data:`LOAD_FRACTION_STEP`; one that succeeds is doubled, up to 0.5). A heavy load
+    can put the full problem out of Newton's reach from the unloaded start (a spindle under
+    15 kN), while each small rise stays within it. None when no such path is found, or the
+    inputs hold no load; ``load_at(u)`` sets the inputs of ``res`` and ``jac``, left at
+    ``u``."""
+    units = system.variable_units
+    loads = np.array([units.get(n) in LOAD_UNITS for n in system.input_names], dtype=bool)
+    loads &= u != 0.0
+    if not loads.any():
+        return None
+    first, smallest = LOAD_FRACTION_STEP
+    fraction, step, found = 0.0, first, None
+    try:
+        while fraction < 1.0 and step >= smallest:
+            trial = min(1.0, fraction + step)
+            scaled = u.copy()
+            scaled[loads] *= trial
+            load_at(scaled)
+            solution = _newton(res, jac, z, tol, residual_tol)
+            if solution is None:
+                step *= 0.5
+                continue
+            fraction, z, step = trial, solution, min(2.0 * step, 0.5)
+        found = z if fraction == 1.0 else None
+    finally:
+        load_at(u)
+    return found
 
 
 def _speed_inputs(system: System, u: np.ndarray) -> list[str]:
