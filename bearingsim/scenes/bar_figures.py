@@ -44,8 +44,9 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
                     failed: int = 0):
     """The assembly's statics columns (:attr:`~bearingsim.scenes.statics_table.Statics.figure`:
     life, ball load and contact pressure of a deep-groove ball bearing) per load case, as
-    bars; lives on a log axis (they span decades between load cases), the 4200 MPa of ISO 76
-    drawn on a pressure panel.
+    bars; lives on a log axis (they span decades between load cases), ISO 76's static limit
+    of the assembly (:attr:`~bearingsim.scenes.statics_table.Statics.pressure_limit`: 4200
+    MPa for ball bearings, 4000 MPa for roller bearings) drawn on a pressure panel.
 
     Parameters
     ----------
