@@ -242,6 +242,14 @@ def _variables(args: argparse.Namespace) -> int:
         _say("post-processed (computed after the run):")
         for name, unit, description in listed.post:
             _say(f"  {name} [{unit or '-'}]: {description}")
+    if listed.parameters:
+        from bearingsim.units import engineering
+
+        _say("parameters ([parameters] sets them, a sweep varies them as parameters.<name>):")
+        for name, unit, value, allowed, description in listed.parameters:
+            shown = unit if unit not in ("", "1") else "-"
+            _say(f"  {name} [{shown}]: {description}; {engineering(value, unit, both=True)}"
+                 + (f"; {allowed}" + (f" {shown}" if shown != "-" else "") if allowed else ""))
     return 0
 
 
@@ -342,7 +350,8 @@ def _parser() -> argparse.ArgumentParser:
     p_val.add_argument("--variables", action="store_true",
                        help="list every variable of the scene's model (name [unit]: "
                             "description) and the post-processed quantities, the names "
-                            "'outputs' may ask for; the scene's outputs are not checked")
+                            "'outputs' may ask for, and the parameters [parameters] may set "
+                            "(value and range); the scene's outputs are not checked")
     p_sw.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
     p_sw.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
                       help="grid values of a key (inputs.X, parameters.X, initial.X, "

@@ -480,10 +480,33 @@ def test_validate_lists_the_variables_outputs_may_ask_for(tmp_path, capsys):
     assert re.fullmatch(r"duplex_pair at fidelity quasi-static: \d+ variables", lines[0])
     assert "  shaft.x [m]: x of the centre of mass" in lines
     assert "  shaft.Mx [N.m]: external load Mx at the centre of mass" in lines
-    assert int(lines[0].split(": ")[1].split()[0]) == len(lines) - 1 > 100
+    listed = lines[1:lines.index(next(x for x in lines if x.startswith("parameters (")))]
+    assert int(lines[0].split(": ")[1].split()[0]) == len(listed) > 100
     roller = tmp_path / "roller.toml"
     roller.write_text('[assembly]\nname = "cylindrical_roller_bearing"\n[simulation]\nt_end = 1\n')
     assert main(["validate", "--variables", str(roller)]) == 0
     out = capsys.readouterr().out
     assert out.startswith("cylindrical_roller_bearing at fidelity quasi-static: ")  # auto's top
     assert "post-processed (computed after the run):\n  Q_max [N]: " in out
+
+
+def test_validate_variables_lists_the_parameters_a_scene_may_set(tmp_path, capsys):
+    """Nothing listed the parameters a scene's [parameters] or a sweep's parameters.<name>
+    may set: a user had to read the component reference for the dotted names. They follow
+    the variables, each with its unit, the value the scene runs with (its own [parameters]
+    included) and its range."""
+    scene = tmp_path / "oil.toml"
+    scene.write_text('[assembly]\nname = "double_layer_bearing"\nfidelity = "torque"\n'
+                     '[parameters]\n"inner_layer.nu" = "46 mm^2/s"\n'
+                     '[simulation]\nt_end = 1\n')
+    assert main(["validate", "--variables", str(scene)]) == 0
+    out = capsys.readouterr().out
+    head = "parameters ([parameters] sets them, a sweep varies them as parameters.<name>):\n"
+    assert head in out
+    listed = out.split(head)[1].splitlines()
+    assert ("  inner_layer.nu [m2/s]: kinematic viscosity of the (base) oil at operating "
+            "temperature; 46 mm²/s (4.6e-05 m2/s); 0 to 0.01 m2/s") in listed
+    assert "  outer_layer.nu [m2/s]: kinematic viscosity of the (base) oil at operating " \
+           "temperature; 32 mm²/s (3.2e-05 m2/s); 0 to 0.01 m2/s" in listed
+    assert any(x.startswith("  inner_layer.f0 [-]: Palmgren") and x.endswith("; >= 0")
+               for x in listed)

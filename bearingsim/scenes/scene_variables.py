@@ -1,6 +1,6 @@
 """The variables a scene may ask for as outputs: every variable of its model, unpruned, with
-unit and description (``bearingsim validate --variables``), and its assembly's post-processed
-quantities.
+unit and description (``bearingsim validate --variables``), its assembly's post-processed
+quantities, and the parameters its ``[parameters]`` may set.
 """
 
 from __future__ import annotations
@@ -27,11 +27,27 @@ class ModelVariables:
         connectors' fields, the algebraic variables), in the model's order.
     post : list of (str, str, str)
         The same of the assembly's post-processed quantities.
+    parameters : list of (str, str, float, str, str)
+        Name, SI unit, value (with the scene's ``[parameters]``), allowed range (``"> 0"``,
+        ``"0 to 0.01"``, ``""`` for any number) and description of each parameter of the
+        model: what ``[parameters]`` may set and a sweep may vary as ``parameters.<name>``.
     """
 
     fidelity: str
     variables: list[tuple[str, str, str]]
     post: list[tuple[str, str, str]]
+    parameters: list[tuple[str, str, float, str, str]]
+
+
+def _range_text(declaration) -> str:
+    """A parameter's allowed range as ``bearingsim list`` states an argument's."""
+    low, high = getattr(declaration, "low", None), getattr(declaration, "high", None)
+    inclusive = getattr(declaration, "low_inclusive", True)
+    if low is not None and high is not None:
+        return f"{low:g} to {high:g}" if inclusive else f"> {low:g}, <= {high:g}"
+    if low is not None:
+        return f"{'>=' if inclusive else '>'} {low:g}"
+    return f"<= {high:g}" if high is not None else ""
 
 
 def model_variables(scene: Scene) -> ModelVariables:
@@ -68,7 +84,14 @@ def model_variables(scene: Scene) -> ModelVariables:
         raise SceneError(str(exc), "assembly", line_of(scene.text, "assembly"),
                          path=scene.path) from None
     units, descriptions = system.variable_units, dict(system.observed_descriptions)
+    try:
+        values = system.p0(scene.parameters)
+    except ParameterError as exc:
+        raise SceneError(str(exc), "parameters", line_of(scene.text, "parameters"),
+                         path=scene.path) from None
     return ModelVariables(
         fidelity,
         [(n, units.get(n, ""), descriptions.get(n, "")) for n in system.observed_names],
-        [(n, q.unit, q.doc) for n, q in spec.post(args).items()])
+        [(n, q.unit, q.doc) for n, q in spec.post(args).items()],
+        [(q.name, q.unit, float(v), _range_text(q.declaration), q.description)
+         for q, v in zip(system.params, values, strict=True)])
