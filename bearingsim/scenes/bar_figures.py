@@ -31,9 +31,14 @@ __all__ = ["category_figures", "statics_figures"]
 
 
 def _value_bars(ax, pos: np.ndarray, y: np.ndarray, width: float = 0.8, color: str = "0.55",
-                label: str | None = None) -> None:
-    """Bars of ``y`` at ``pos``, each with its value written at its end."""
-    ax.bar(pos, y, width=width, color=color, label=label)
+                label: str | None = None, hatched: list[bool] | None = None) -> None:
+    """Bars of ``y`` at ``pos``, each with its value written at its end; ``hatched`` bars
+    (values not settled at t_end) hatched."""
+    drawn = ax.bar(pos, y, width=width, color=color, label=label)
+    for patch, hatch in zip(drawn, hatched or [], strict=False):
+        if hatch:
+            patch.set_hatch("///")
+            patch.set_edgecolor("white")
     for p, v in zip(pos, y, strict=True):
         if math.isfinite(v):
             ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
@@ -160,18 +165,26 @@ def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
                           (3.4 if len(per_panel[0]) > 1 else 2.6) * len(per_panel) + 1.1))
     axes = np.atleast_1d(fig.subplots(len(per_panel), 1, sharex=True, squeeze=False)[:, 0])
     pos = np.arange(len(rows), dtype=float)
+    flagged = False  # a value not settled at t_end (a transient sweep's) hatched
     for ax, panel in zip(axes, per_panel, strict=True):
         width = 0.8 / len(panel)
         drawn = []
         for j, n in enumerate(panel):
             y, unit = display([row[n] for row in rows], units.get(n, ""))
             several = len(panel) > 1
+            loose = [n in str(row.get("unsettled") or "").split() for row in rows]
+            flagged = flagged or any(loose)
             _value_bars(ax, pos + (j - (len(panel) - 1) / 2) * width, y, width,
-                        f"C{j % 10}" if several else "0.55", n if several else None)
+                        f"C{j % 10}" if several else "0.55", n if several else None, loose)
             drawn.append(y)
         modes = what == "modes"
-        value_axis(ax, np.concatenate(drawn), "Hz" if modes else units.get(panel[0], ""),
+        values = np.concatenate(drawn)
+        value_axis(ax, values, "Hz" if modes else units.get(panel[0], ""),
                    "Hz" if modes else unit)
+        finite = values[np.isfinite(values)]
+        if ax.get_yscale() == "log" and finite.size:  # from a decade below the least
+            ax.set_ylim(bottom=10.0 ** (math.floor(math.log10(np.min(finite))) - 1),
+                        top=float(np.max(finite)) * 3.0)  # (heights compare, values fit)
         ax.set_ylabel("natural frequency [Hz]" if modes else axis_text(panel[0], prep, unit),
                       fontsize=8)
         if len(panel) > 1:  # beside the bars, off their values
@@ -188,6 +201,7 @@ def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
                 + (" ..." if len(names) > 3 else ""))
     per = "case" if by_case else named
     fig.suptitle("\n".join([prep.scene.title, *textwrap.wrap(f"{question} per {per}", 90)])
+                 + ("\nhatched: not settled at t_end (the run's last value)" if flagged else "")
                  + failed_note(failed), fontsize=9)
     keep_tight_layout(fig)
     return [("modes" if what == "modes" else "steady", fig)]

@@ -114,3 +114,22 @@ preload_force = "1 kN"
                for p in ax.patches}
     assert (0, round(run.rows[0]["tilt about x"], 6)) in heights
     assert (1, round(run.rows[1]["tilt about x"], 6)) in heights
+
+
+def test_values_not_settled_are_hatched_and_lives_start_a_decade_below():
+    """A transient sweep over lubricants: its final values had not settled (the row's
+    ``unsettled``), which the bars did not say; and the lives' log axis started just below the
+    least value, so that 221 861 h and 229 328 h looked like a bar and nothing."""
+    from bearingsim.scenes import prepare
+    from bearingsim.scenes.bar_figures import category_figures
+
+    prep = prepare(_scene('[grid]\n"assembly.lubrication" = ["ISO VG 32", "ISO VG 68"]'))
+    rows = [{"lubrication": "ISO VG 32", "Rs": 0.067, "L10h": 221861.0, "unsettled": "Rs"},
+            {"lubrication": "ISO VG 68", "Rs": 0.097, "L10h": 229328.0, "unsettled": ""}]
+    [(_, fig)] = category_figures(prep, rows, ["lubrication"], {"Rs": "1", "L10h": "h"},
+                                  ["Rs", "L10h"], "steady")
+    rs, life = fig.axes
+    assert [p.get_hatch() for p in rs.patches] == ["///", None]
+    assert life.get_yscale() == "log" and life.get_ylim()[0] == pytest.approx(1e4)
+    assert _bars(life) == pytest.approx([221861.0, 229328.0])
+    assert "hatched: not settled at t_end" in fig.texts[0].get_text()
