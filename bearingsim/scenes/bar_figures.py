@@ -87,7 +87,7 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         ax.set_ylabel(axis_text(n, prep, unit), fontsize=8)
         if units.get(n) in ("h", "Mrev"):  # lives span decades between load cases
             ax.set_yscale("log")
-            ax.set_ylim(top=float(np.max(y)) * 1.6)  # room for the values above the bars
+            _log_bar_limits(ax, y)
             ax.grid(True, axis="y", which="both", alpha=0.3)
             continue
         shown = y
@@ -107,6 +107,16 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
                  fontsize=9)
     keep_tight_layout(fig)
     return [("statics", fig)]
+
+
+def _log_bar_limits(ax, values: np.ndarray) -> None:
+    """A log axis of bars from a decade below the least value (a bar's height then compares
+    with the others': from just below the least, 221 861 h and 229 328 h looked like nothing
+    and a bar) to room for the values written above them."""
+    finite = values[np.isfinite(values) & (values > 0)]
+    if finite.size:
+        ax.set_ylim(bottom=10.0 ** (math.floor(math.log10(np.min(finite))) - 1),
+                    top=float(np.max(finite)) * 3.0)
 
 
 def _point_names(rows: list[dict[str, Any]], keys: list[str], units: dict[str, str]
@@ -181,10 +191,8 @@ def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
         values = np.concatenate(drawn)
         value_axis(ax, values, "Hz" if modes else units.get(panel[0], ""),
                    "Hz" if modes else unit)
-        finite = values[np.isfinite(values)]
-        if ax.get_yscale() == "log" and finite.size:  # from a decade below the least
-            ax.set_ylim(bottom=10.0 ** (math.floor(math.log10(np.min(finite))) - 1),
-                        top=float(np.max(finite)) * 3.0)  # (heights compare, values fit)
+        if ax.get_yscale() == "log":
+            _log_bar_limits(ax, values)
         ax.set_ylabel("natural frequency [Hz]" if modes else axis_text(panel[0], prep, unit),
                       fontsize=8)
         if len(panel) > 1:  # beside the bars, off their values
