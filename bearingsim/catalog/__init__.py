@@ -28,6 +28,11 @@ from importlib import resources
 
 from bearingsim.catalog.datasheet import read_datasheet
 from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
+from bearingsim.catalog.rollers import (
+    RollerBearingGeometry,
+    find_roller_bearing,
+    register_roller_bearing,
+)
 from bearingsim.catalog.table_rows import row_to_geometry
 from bearingsim.errors import CatalogError
 from bearingsim.registry import Registry
@@ -125,7 +130,9 @@ def unregister_bearing(designation: str) -> None:
 
 def load_datasheet(path, *, replace: bool = False) -> list[str]:
     """Read a datasheet file (:func:`~bearingsim.catalog.datasheet.read_datasheet`, CSV or TOML
-    in catalogue units) and register its bearings; returns their designations.
+    in catalogue units) and register its bearings (ball bearings with :func:`register_bearing`,
+    cylindrical roller bearings with
+    :func:`~bearingsim.catalog.rollers.register_roller_bearing`); returns their designations.
 
     Parameters
     ----------
@@ -140,9 +147,15 @@ def load_datasheet(path, *, replace: bool = False) -> list[str]:
         Designations of the registered bearings, in file order.
     """
     bearings = read_datasheet(path)
+    names = []
     for g in bearings:
-        register_bearing(g, replace=replace)
-    return [g.designation.strip().upper() for g in bearings]
+        if isinstance(g, RollerBearingGeometry):
+            register_roller_bearing(g, replace=replace)
+            names.append(find_roller_bearing(g.designation))
+        else:
+            register_bearing(g, replace=replace)
+            names.append(g.designation.strip().upper())
+    return names
 
 
 def get_bearing(designation: str) -> BearingGeometry:

@@ -19,11 +19,13 @@ from bearingsim.catalog.geometry import CatalogueBearing, check_elements_fit
 from bearingsim.catalog.table_rows import optional_value, shared_columns
 from bearingsim.errors import CatalogError, ParameterError
 from bearingsim.physical_checks import check_diameter
+from bearingsim.registry import Registry
 from bearingsim.units import mm
 from bearingsim.validation import check_count, check_range
 
-__all__ = ["RollerBearingGeometry", "find_roller_bearing", "get_roller_bearing",
-           "list_roller_bearings", "resolve_roller_bearing"]
+__all__ = ["ROLLER_BEARINGS", "RollerBearingGeometry", "find_roller_bearing",
+           "get_roller_bearing", "list_roller_bearings", "register_roller_bearing",
+           "resolve_roller_bearing", "roller_row_to_geometry", "unregister_roller_bearing"]
 
 _SPECIFIC_RATING = (10.0, 200.0)
 """Valid range of a roller bearing's C and C0 per projected roller area, C / (Z Lwe Dw) [N/mm^2]
@@ -148,7 +150,28 @@ class RollerBearingGeometry(CatalogueBearing):
         return number[:-2]
 
 
-def _row_to_geometry(row: dict[str, str]) -> RollerBearingGeometry:
+def roller_row_to_geometry(row: dict[str, str]) -> RollerBearingGeometry:
+    """A cylindrical roller bearing from one table row in catalogue units (the columns of
+    ``cylindrical_rollers.csv``, also those of a roller in a user's datasheet).
+
+    Parameters
+    ----------
+    row : dict of str to str
+        Column name -> text: those of
+        :func:`~bearingsim.catalog.table_rows.shared_columns` and ``Z``, ``Dw_mm``,
+        ``Lwe_mm``, ``Pu_kN`` (may be blank), ``explorer`` (``1`` for an SKF Explorer
+        bearing).
+
+    Returns
+    -------
+    RollerBearingGeometry
+        The bearing in SI units.
+
+    Raises
+    ------
+    ParameterError
+        For a value its geometry checks refuse.
+    """
     return RollerBearingGeometry(
         **shared_columns(row),
         roller_count=int(row["Z"]),
@@ -164,21 +187,79 @@ def _catalogue() -> dict[str, RollerBearingGeometry]:
     text = resources.files("bearingsim.catalog").joinpath("cylindrical_rollers.csv").read_text(
         encoding="utf-8")
     lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
-    return {row["designation"]: _row_to_geometry(row) for row in csv.DictReader(lines)}
+    return {row["designation"]: roller_row_to_geometry(row) for row in csv.DictReader(lines)}
+
+
+def _key(designation: str) -> str:
+    return re.sub(r"\s+", "", str(designation)).upper()
+
+
+ROLLER_BEARINGS = Registry("cylindrical roller bearing", _catalogue, normalize=_key,
+                           builtin_label="catalogue bearing", replace_builtin=False)
+"""Designation -> geometry: the catalogue (``cylindrical_rollers.csv``) and the registered
+bearings (:func:`register_roller_bearing`, a datasheet's rollers:
+:func:`~bearingsim.catalog.load_datasheet`, a scene's ``bearings`` key)."""
 
 
 def list_roller_bearings() -> list[str]:
-    """Designations of the catalogued cylindrical roller bearings, in table order.
+    """Designations of the catalogued cylindrical roller bearings, in table order, then the
+    registered ones.
 
     Returns
     -------
     list of str
     """
-    return list(_catalogue())
+    return list(ROLLER_BEARINGS)
 
 
-def _key(designation: str) -> str:
-    return re.sub(r"\s+", "", str(designation)).upper()
+def register_roller_bearing(geometry: RollerBearingGeometry, *, replace: bool = False
+                            ) -> RollerBearingGeometry:
+    """Make a cylindrical roller bearing known by its designation to the roller assemblies,
+    scenes and ``bearingsim list``; returns it.
+
+    Parameters
+    ----------
+    geometry : RollerBearingGeometry
+        The bearing, known by its ``designation`` (spaces and case ignored).
+    replace : bool
+        Replace a bearing registered before under the same designation.
+
+    Returns
+    -------
+    RollerBearingGeometry
+        The registered geometry.
+
+    Raises
+    ------
+    CatalogError
+        For a designation already known (a catalogue bearing, or registered without
+        ``replace``).
+    """
+    if not isinstance(geometry, RollerBearingGeometry):
+        raise CatalogError(f"register_roller_bearing: expected a RollerBearingGeometry, got "
+                           f"{type(geometry).__name__}")
+    ROLLER_BEARINGS.register(_key(geometry.designation), geometry, replace=replace)
+    return geometry
+
+
+def unregister_roller_bearing(designation: str) -> None:
+    """Forget a registered cylindrical roller bearing.
+
+    Parameters
+    ----------
+    designation : str
+        As registered (spaces and case ignored).
+
+    Raises
+    ------
+    CatalogError
+        For a designation not registered (a catalogue bearing cannot be removed).
+    """
+    key = ROLLER_BEARINGS.find(designation)
+    if key is None or key not in ROLLER_BEARINGS.registered():
+        raise CatalogError(f"unregister_roller_bearing: {designation!r} is not a registered "
+                           "cylindrical roller bearing")
+    del ROLLER_BEARINGS[key]
 
 
 def find_roller_bearing(name: object) -> str | None:
@@ -194,8 +275,7 @@ def find_roller_bearing(name: object) -> str | None:
     str or None
         The designation as the catalogue spells it ("NU206"), or None.
     """
-    key = _key(name) if isinstance(name, str) else None
-    return key if key in _catalogue() else None
+    return ROLLER_BEARINGS.find(name) if isinstance(name, str) else None
 
 
 def get_roller_bearing(designation: str) -> RollerBearingGeometry:
@@ -215,12 +295,7 @@ def get_roller_bearing(designation: str) -> RollerBearingGeometry:
     CatalogError
         For an unknown designation (the message lists the known ones).
     """
-    table = _catalogue()
-    key = _key(designation)
-    if key not in table:
-        raise CatalogError(f"unknown cylindrical roller bearing {designation!r}; known "
-                           f"designations: {', '.join(table)}")
-    return table[key]
+    return ROLLER_BEARINGS[designation]
 
 
 def resolve_roller_bearing(bearing: str | RollerBearingGeometry) -> RollerBearingGeometry:

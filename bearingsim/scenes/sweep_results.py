@@ -168,7 +168,7 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
                      key=lambda k: not varies(ok, k))  # a key that varies first
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS
                and all(isinstance(r[n], float) for r in ok)]  # not a statics life at rest
-    if not outputs:
+    if not ok or not outputs:  # (every point failed: the table says why)
         return []
     what = "modes" if prep.scene.analysis == "modes" else "steady"
     if not numeric or not varies(ok, numeric[0]):  # points named by text: bars

@@ -59,18 +59,25 @@ class ModelPayload:
 
 
 def registrations() -> dict[str, dict[str, Any]]:
-    """The bearings and lubricants registered in this process, by registry
+    """The bearings (ball and roller) and lubricants registered in this process, by registry
     (:meth:`bearingsim.registry.Registry.registered`).
 
     Returns
     -------
     dict
-        ``{"bearing": {designation: geometry}, "lubricant": {name: factory}}``.
+        ``{"bearing": {designation: geometry}, "cylindrical roller bearing": {...},
+        "lubricant": {name: factory}}``.
     """
+    return {registry.kind: registry.registered() for registry in _registries()}
+
+
+def _registries() -> tuple:
+    """The registries of names a point may look up: ball and roller bearings, lubricants."""
     from bearingsim.catalog import BEARINGS
+    from bearingsim.catalog.rollers import ROLLER_BEARINGS
     from bearingsim.physics.lubricant import LUBRICANTS
 
-    return {"bearing": BEARINGS.registered(), "lubricant": LUBRICANTS.registered()}
+    return BEARINGS, ROLLER_BEARINGS, LUBRICANTS
 
 
 def restore_registrations(registered: dict[str, dict[str, Any]]) -> None:
@@ -82,10 +89,7 @@ def restore_registrations(registered: dict[str, dict[str, Any]]) -> None:
     registered : dict
         From :func:`registrations`.
     """
-    from bearingsim.catalog import BEARINGS
-    from bearingsim.physics.lubricant import LUBRICANTS
-
-    for registry in (BEARINGS, LUBRICANTS):
+    for registry in _registries():
         for name, entry in registered.get(registry.kind, {}).items():
             if registry.registered().get(name) is not entry:
                 registry.register(name, entry, replace=True)

@@ -138,6 +138,22 @@ C0_kN = 7.9
 """
 
 
+_ROLLER_DATASHEET = """
+[[bearing]]
+designation = "MYNU206"
+d_mm = 30
+D_mm = 62
+B_mm = 16
+Z = 12
+Dw_mm = 9.0
+Lwe_mm = 9.52
+dm_mm = 46.5
+Pd_um = 32.5
+C_kN = 44
+C0_kN = 36.5
+"""
+
+
 def test_workers_know_the_scenes_own_bearings_and_lubricants(deployment, tmp_path):
     """A scene's ``bearings`` and ``[lubricants]`` are registered in the process that reads it;
     the workers, other processes, did not know them. Every point of a statics sweep of a
@@ -194,3 +210,16 @@ Fa = 50.0
                         write=False).rows[0]
         assert row["M_shaft"] == pytest.approx(one["M_shaft"], rel=1e-9)
     assert res.rows[0]["M_shaft"] != pytest.approx(res.rows[1]["M_shaft"], rel=1e-3)
+
+    # a roller bearing of the scene's datasheet (its own registry: ROLLER_BEARINGS)
+    (tmp_path / "nu.toml").write_text(_ROLLER_DATASHEET)
+    roller = tmp_path / "own_roller.toml"
+    roller.write_text('title = "own NU"\nanalysis = "statics"\nbearings = "nu.toml"\n'
+                      '[assembly]\nname = "cylindrical_roller_bearing"\nbearing = "MYNU206"\n'
+                      'fidelity = "quasi-static"\n')
+    res = run_sweep(roller, grid_points(parse_grid(["inputs.load.Fx=2000,8000"])),
+                    scheduler=address, out=tmp_path / "o3", progress=False)
+    assert len(res.ok) == 2, res.failures
+    scene = load_scene(roller)
+    single = run_scene(scene.replace(inputs={"load.Fx": 8000.0}), write=False).rows[0]
+    assert res.rows[1]["Q_max"] == pytest.approx(single["Q_max"], rel=1e-12)

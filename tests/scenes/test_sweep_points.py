@@ -237,3 +237,21 @@ def test_a_parametric_value_the_assembly_refuses_fails_its_point_only(client, tm
     for name, value in single.items():
         if name in res.rows[0] and isinstance(value, float):
             assert res.rows[0][name] == pytest.approx(value, rel=1e-12), name
+
+
+def test_a_sweep_whose_every_point_failed_writes_its_table_without_a_figure(client, tmp_path):
+    """Every point failed (SKF friction without load: no torque holds the middle ring): the
+    figure failed with "IndexError: list index out of range", which the command printed as a
+    plot failure and counted in its exit status. There is nothing to draw: the table and
+    summary say why each point failed."""
+    from bearingsim.scenes import parse_scene
+
+    scene = parse_scene('title = "skf"\nanalysis = "steady"\noutputs = ["Rs"]\n[assembly]\n'
+                        'name = "double_layer_bearing"\nfriction_model = "skf"\n[inputs]\n'
+                        'shaft_speed = "6000 rpm"\n')
+    res = run_sweep(scene, grid_points(parse_grid(["inputs.Fr=0,0"])), client=client,
+                    out=tmp_path, progress=False)
+    assert [r["status"] for r in res.rows] == ["failed", "failed"]
+    assert "steady state not unique" in res.rows[0]["error"]
+    assert res.plot_failures == []
+    assert not list(tmp_path.glob("*.png")) and list(tmp_path.glob("*.sweep.csv"))
