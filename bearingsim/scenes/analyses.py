@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from bearingsim.errors import BearingsimError, SimulationError
+from bearingsim.errors import BearingsimError, ParameterError, SimulationError
 from bearingsim.scenes.operating_points import (
     filled_point,
     point_label,
@@ -381,9 +381,11 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """:func:`run_operating_point` for each point in order, each solve started from the
     solution of the previous point (continuation along the grid; a new curve starts from the
     first point of the previous curve). A point whose solve fails
-    (:class:`~bearingsim.errors.SimulationError`: no steady state, not a unique one) is a row
-    of its keys and ``error`` (the message), and the next point starts from the last solution
-    found: one point without an answer does not cost the others theirs.
+    (:class:`~bearingsim.errors.SimulationError`: no steady state, not a unique one) or that
+    its solver refuses (:class:`~bearingsim.errors.ParameterError`: a nested bearing with
+    clearance at zero load, whose balls nothing seats) is a row of its keys and ``error``
+    (the message), and the next point starts from the last solution found: one point without
+    an answer does not cost the others theirs.
 
     Parameters
     ----------
@@ -409,7 +411,7 @@ def run_points(prep: Any, points: list[dict[str, Any]]) -> list[dict[str, Any]]:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", NotSettledWarning)
                 row = run_operating_point(prep, point, guess)
-        except SimulationError as exc:
+        except (SimulationError, ParameterError) as exc:
             rows.append({**_point_row(prep, point), "error": str(exc)})
             continue
         guess = row.pop("_state")

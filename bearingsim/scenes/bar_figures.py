@@ -22,12 +22,13 @@ from bearingsim.scenes.plots import (
     display_text,
     failed_note,
     include_zero,
+    pressure_limit_line,
     value_axis,
     varies,
 )
 from bearingsim.scenes.statics_table import statics_of
 
-__all__ = ["category_figures", "statics_figures"]
+__all__ = ["category_figures", "statics_columns", "statics_figures"]
 
 
 def _value_bars(ax, pos: np.ndarray, y: np.ndarray, width: float = 0.8, color: str = "0.55",
@@ -39,10 +40,38 @@ def _value_bars(ax, pos: np.ndarray, y: np.ndarray, width: float = 0.8, color: s
         if hatch:
             patch.set_hatch("///")
             patch.set_edgecolor("white")
+    finite = np.abs(y[np.isfinite(y)])
+    zero = 1e-9 * float(finite.max()) if finite.size else 0.0  # round-off of a zero: 0
     for p, v in zip(pos, y, strict=True):
         if math.isfinite(v):
-            ax.annotate(f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}", (p, v), ha="center",
-                        va="bottom" if v >= 0 else "top", fontsize=7)
+            text = ("0" if abs(v) <= zero else f"{v:,.0f}" if abs(v) >= 100 else f"{v:.3g}")
+            ax.annotate(text, (p, v), ha="center", va="bottom" if v >= 0 else "top",
+                        fontsize=7)
+
+
+def statics_columns(prep: Any, rows: list[dict[str, Any]]) -> list[str]:
+    """The statics columns a figure draws
+    (:attr:`~bearingsim.scenes.statics_table.Statics.figure`): those that are a finite number
+    at every point, and the life in revolutions where one at rest has no life in hours.
+
+    Parameters
+    ----------
+    prep : Prepared
+        The prepared scene.
+    rows : list of dict
+        The rows of the points that found an answer.
+
+    Returns
+    -------
+    list of str
+        The columns.
+    """
+    figure = statics_of(prep).figure
+    columns = [n for n in figure
+               if all(isinstance(row.get(n), float) and math.isfinite(row[n]) for row in rows)]
+    if "L10h" in figure and "L10h" not in columns:
+        columns.insert(0, "L10r")  # a case at rest (LIFE_AT_REST): the life in revolutions
+    return columns
 
 
 def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str],
@@ -74,10 +103,7 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
     if not rows:
         return []
     names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
-    columns = [n for n in statics_of(prep).figure
-               if all(isinstance(row.get(n), float) and math.isfinite(row[n]) for row in rows)]
-    if "L10h" in statics_of(prep).figure and "L10h" not in columns:
-        columns.insert(0, "L10r")  # a case at rest (LIFE_AT_REST): the life in revolutions
+    columns = statics_columns(prep, rows)
     fig = Figure(figsize=(7, 2.6 * len(columns) + 1.0))
     axes = np.atleast_1d(fig.subplots(len(columns), 1, sharex=True, squeeze=False)[:, 0])
     pos = np.arange(len(rows))
@@ -91,12 +117,8 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
             ax.grid(True, axis="y", which="both", alpha=0.3)
             continue
         shown = y
-        if units.get(n) == "Pa":
-            limit, _ = display([statics_of(prep).pressure_limit], "Pa")
-            ax.axhline(limit[0], color="0.2", linestyle="--")
-            ax.text(0.99, limit[0], f"ISO 76 static limit {limit[0]:,.0f} {unit}",
-                    transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=7)
-            shown = np.append(y, limit)  # the limit in view: the margin to it is the answer
+        if units.get(n) == "Pa":  # the limit in view: the margin to it is the answer
+            shown = np.append(y, pressure_limit_line(ax, prep, unit))
         include_zero(ax, shown, unit)
         ax.set_ylim(top=ax.get_ylim()[1] * 1.08)  # room for the values above the bars
         ax.grid(True, axis="y", alpha=0.3)
@@ -212,4 +234,4 @@ def category_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str],
                  + ("\nhatched: not settled at t_end (the run's last value)" if flagged else "")
                  + failed_note(failed), fontsize=9)
     keep_tight_layout(fig)
-    return [("modes" if what == "modes" else "steady", fig)]
+    return [(what, fig)]

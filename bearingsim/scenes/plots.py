@@ -14,11 +14,11 @@ import numpy as np
 
 from bearingsim.plotting import LINESTYLES, MARKERS, FigureSpec, keep_tight_layout, wrapped_label
 from bearingsim.scenes.operating_points import point_label
-from bearingsim.scenes.statics_table import STATICS
+from bearingsim.scenes.statics_table import STATICS, statics_of
 from bearingsim.units import engineering, to_display
 
-__all__ = ["axis_text", "characteristic_figures", "curve_label", "describe",
-           "display", "display_text", "failed_note", "include_zero", "numeric_key",
+__all__ = ["axis_text", "characteristic_figures", "curve_label", "describe", "display",
+           "display_text", "failed_note", "include_zero", "numeric_key", "pressure_limit_line",
            "render_report", "value_axis", "varies"]
 
 
@@ -154,6 +154,32 @@ def include_zero(ax, values: np.ndarray, unit: str) -> bool:
     elif finite.size and np.max(finite) <= 0.0:
         ax.set_ylim(top=0.0, bottom=min(float(np.min(finite)) * 1.05, -1e-300))
     return True
+
+
+def pressure_limit_line(ax, prep: Any, unit: str) -> float:
+    """ISO 76's static limit of the scene's assembly
+    (:attr:`~bearingsim.scenes.statics_table.Statics.pressure_limit`) drawn across a
+    contact pressure panel, labelled; returns it in the display unit.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The pressure panel (changed in place).
+    prep : Prepared
+        The prepared statics scene.
+    unit : str
+        The panel's display unit of pressure (MPa).
+
+    Returns
+    -------
+    float
+        The limit in ``unit``.
+    """
+    limit = float(display([statics_of(prep).pressure_limit], "Pa")[0][0])
+    ax.axhline(limit, color="0.2", linestyle="--")
+    ax.text(0.99, limit, f"ISO 76 static limit {limit:,.0f} {unit}",
+            transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=7)
+    return limit
 
 
 def _same_as(x: np.ndarray, y: np.ndarray) -> bool:
@@ -298,8 +324,8 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
         SI unit of each column or series by name.
     names : list of str
         The columns to draw.
-    what : {"steady", "modes"}
-        The analysis (figure name).
+    what : {"steady", "modes", "statics"}
+        The analysis (figure name; a statics scene's grid is drawn as a steady one's).
     failed : int
         Points without an answer, not in ``rows`` (the title says how many).
 
@@ -358,6 +384,8 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
             if len(panel) > 1 and len(curves) > 1:
                 ax.plot([], [], color="0.3", linestyle=style,
                         label=curve_label(values, units))
+        if what == "statics" and units.get(panel[0]) == "Pa":
+            all_y.append(np.array([pressure_limit_line(ax, prep, y_unit)]))
         value_axis(ax, np.concatenate(all_y), "Hz" if what == "modes" else
                    units.get(panel[0], ""), "Hz" if what == "modes" else y_unit)
         ax.set_ylabel("natural frequency [Hz]" if what == "modes"
@@ -383,7 +411,7 @@ def characteristic_figures(prep: Any, rows: list[dict[str, Any]], keys: list[str
                     if flagged else "") + failed_note(failed), fontsize=9)
     if not shade:  # the constrained layout places the colour bar itself
         keep_tight_layout(fig)
-    return [("modes" if what == "modes" else "steady", fig)]
+    return [(what, fig)]
 
 
 def failed_note(failed: int) -> str:

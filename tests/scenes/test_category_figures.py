@@ -133,3 +133,16 @@ def test_values_not_settled_are_hatched_and_lives_start_a_decade_below():
     assert life.get_yscale() == "log" and life.get_ylim()[0] == pytest.approx(1e4)
     assert _bars(life) == pytest.approx([221861.0, 229328.0])
     assert "hatched: not settled at t_end" in fig.texts[0].get_text()
+
+
+def test_a_round_off_zero_is_written_as_0():
+    """A displacement that symmetry makes 0 comes out as round-off (-1.89e-12 µm) and was
+    written so above its bar; below 1e-9 of the panel's largest value it reads 0."""
+    from bearingsim.scenes import prepare
+    from bearingsim.scenes.bar_figures import category_figures
+
+    prep = prepare(_scene('[grid]\n"assembly.lubrication" = ["ISO VG 32", "ISO VG 68"]'))
+    rows = [{"lubrication": "ISO VG 32", "Rs": -1.89e-18},
+            {"lubrication": "ISO VG 68", "Rs": 0.25}]
+    [(_, fig)] = category_figures(prep, rows, ["lubrication"], {"Rs": "1"}, ["Rs"], "steady")
+    assert [t.get_text() for t in fig.axes[0].texts] == ["0", "0.25"]

@@ -717,3 +717,55 @@ preload_force = "1 kN"
         for mode in ("radial x", "axial", "tilt about x"):
             assert row[mode] == pytest.approx(single[mode], rel=1e-9), (row["arrangement"], mode)
     assert rows[0]["tilt about x"] != pytest.approx(rows[1]["tilt about x"], rel=1e-3)
+
+
+def test_a_statics_grid_is_drawn_along_its_load_with_the_iso_76_limit():
+    """A statics scene with a grid drew one bar per point labelled 1, 2, 3 ... "load case"
+    (the values of its keys nowhere); it is now drawn as a steady grid is: against its first
+    load that varies, one curve per value of the others, the contact pressure with ISO 76's
+    limit of the assembly."""
+    from bearingsim.scenes.analysis_figures import analysis_figures
+    from bearingsim.scenes.analysis_table import analysis_units
+
+    run = run_scene(parse_scene("""
+title = "6304 over load"
+analysis = "statics"
+[assembly]
+name = "deep_groove_ball_bearing"
+bearing = "6304"
+fidelity = "quasi-static"
+[inputs]
+shaft_speed = "3000 rpm"
+[grid]
+"inputs.load.Fx" = ["0.5 kN", "2 kN", "5 kN"]
+"inputs.load.Fz" = [0.0, 1000.0]
+"""), write=False)
+    [(name, fig)] = analysis_figures(run.prepared, run.rows, run.summary["keys"],
+                                     analysis_units(run.prepared, run.rows))
+    life, ball, pressure = fig.axes
+    assert name == "statics" and not pressure.patches  # curves, no bars
+    curves = [line for line in ball.get_lines() if len(line.get_xdata()) == 3]
+    assert len(curves) == 2  # one per axial load, along the radial one (the first key)
+    np.testing.assert_allclose(curves[0].get_xdata(), [0.5, 2.0, 5.0])  # [kN]
+    np.testing.assert_allclose(curves[0].get_ydata(),
+                               [r["Q_max"] / 1e3 for r in run.rows if r["load.Fz"] == 0.0])
+    limit = [line for line in pressure.get_lines() if len(line.get_xdata()) == 2]
+    assert [line.get_ydata()[0] for line in limit] == [pytest.approx(4200.0)]
+    assert life.get_yscale() == "log"
+
+
+def test_a_nested_bearing_without_load_is_a_point_without_an_answer():
+    """The double layer's load sharing at zero load: nothing seats the balls of a bearing with
+    clearance, and its solver refuses the point (a ParameterError). That stopped the whole
+    statics scene, every other point lost; now that point's row says why."""
+    run = run_scene(parse_scene("""
+title = "load sharing"
+analysis = "statics"
+[assembly]
+name = "double_layer_bearing"
+fidelity = "quasi-static"
+[grid]
+"inputs.shaft.Fx" = [0.0, 500.0]
+"""), write=False)
+    assert "needs an axial load" in run.rows[0]["error"]
+    assert "error" not in run.rows[1] and run.rows[1]["Q_max_inner"] > 100.0
