@@ -158,7 +158,7 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         File name and figure (none or one).
     """
 
-    from bearingsim.scenes.bar_figures import category_figures
+    from bearingsim.scenes.bar_figures import category_figures, statics_columns
     from bearingsim.scenes.plots import characteristic_figures, numeric_key, varies
 
     ok = [r for r in rows if r["status"] == "ok"]
@@ -170,7 +170,9 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
                and all(isinstance(r[n], float) for r in ok)]  # not a statics life at rest
     if not ok or not outputs:  # (every point failed: the table says why)
         return []
-    what = "modes" if prep.scene.analysis == "modes" else "steady"
+    if prep.scene.analysis == "statics":  # the columns a statics scene draws
+        outputs = [n for n in statics_columns(prep, ok) if n in outputs] or outputs
+    what = prep.scene.analysis if prep.scene.analysis in ("modes", "statics") else "steady"
     if not numeric or not varies(ok, numeric[0]):  # points named by text: bars
         if not any(varies(ok, k) for k in keys):
             return []

@@ -190,3 +190,24 @@ def test_a_sampled_modes_sweep_names_its_modes_and_its_keys():
     assert fig.axes[0].get_xlabel() == "axial preload [kN]"
     title = fig.texts[0].get_text() if fig.texts else fig._suptitle.get_text()
     assert "against axial preload (16 points; speed varies too)" in title
+
+
+def test_a_statics_sweep_draws_the_statics_columns_with_the_iso_76_limit():
+    """A statics sweep drew every column of its table (displacements, stiffness, moments: a
+    roller bearing's eight panels, three of them flat at 0) and no ISO 76 limit; it draws the
+    columns a statics scene draws, the pressure with its assembly's limit (4000 MPa for
+    roller bearings)."""
+    prep = prepare(parse_scene('analysis = "statics"\n[assembly]\n'
+                               'name = "cylindrical_roller_bearing"\nfidelity = "quasi-static"\n'
+                               '[inputs]\n"load.Fx" = 2000.0\n'))
+    columns = ["Q_max", "p_max", "x", "y", "k_radial", "Mx", "My", "L10r", "L10h"]
+    units = {"load.Fx": "N", "Q_max": "N", "p_max": "Pa", "x": "m", "y": "m", "k_radial": "N/m",
+             "Mx": "N.m", "My": "N.m", "L10r": "Mrev", "L10h": "h"}
+    rows = [{"load.Fx": f, "status": "ok", "Q_max": 0.5 * f, "p_max": 1e9 + 1e5 * f,
+             "x": 1e-8 * f, "y": 0.0, "k_radial": 4e8, "Mx": 0.0, "My": 0.0,
+             "L10r": 1e12 / f ** 3, "L10h": "not defined at zero speed"}
+            for f in (2000.0, 8000.0, 20000.0)]
+    [(_, fig)] = sweep_figures(prep, rows, ["load.Fx"], columns, units, "sweep")
+    assert len(fig.axes) == 3  # L10r (at rest), Q_max, p_max
+    limit = [line for line in fig.axes[2].get_lines() if len(line.get_xdata()) == 2]
+    assert [line.get_ydata()[0] for line in limit] == [pytest.approx(4000.0)]
