@@ -429,8 +429,9 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if command == "export-fmu":  # its own parser, its own --help
             from bearingsim.fmu import cli_export
+            from bearingsim.scenes.scene_fmu import scene_fmu
 
-            return cli_export(argv[1:]) or 0
+            return cli_export(argv[1:], scene_fmu) or 0
         args = _parser().parse_args(argv)
         command = args.command
         handlers = {"list": _list, "demo": _demo, "run": _run,

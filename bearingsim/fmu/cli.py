@@ -5,7 +5,9 @@ The factory is ``pkg.module:callable`` (importable, the current folder included)
 built-in or a plug-in's); ``--arg NAME=VALUE`` passes keyword arguments to it (values read as
 TOML values: numbers, true/false, quoted or bare text, lists). For an assembly name the
 arguments are its scene arguments, plus ``fidelity`` (default: its highest automatic level),
-and the FMU's outputs default to the ones its scenes report.
+and the FMU's outputs default to the ones its scenes report. ``bearingsim export-fmu`` also
+takes a scene file or built-in scene (:mod:`bearingsim.scenes.scene_fmu`, given as
+``cli_export``'s ``scene_fmu``).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import importlib
 import importlib.util
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -77,8 +79,10 @@ def build_parser() -> argparse.ArgumentParser:
         description="Export an assembly as an FMU (FMI 2.0 or 3.0, Linux x86_64).",
     )
     parser.add_argument("factory", help="pkg.module:callable or path/to/file.py:callable "
-                                        "returning an assembly or a System, or an assembly "
-                                        "name (bearingsim list)")
+                                        "returning an assembly or a System, an assembly "
+                                        "name (bearingsim list), or a scene file or built-in "
+                                        "scene (its assembly, level, outputs, parameters and "
+                                        "constant inputs)")
     parser.add_argument("output", help="path of the .fmu to write")
     parser.add_argument("--outputs", type=_csv, default=None,
                         help="comma-separated dotted names of the outputs (default: for an "
@@ -211,13 +215,19 @@ def _load(spec: str, kwargs: dict[str, Any]):
                          f" failed: {exc}") from None
 
 
-def cli_export(argv: Sequence[str] | None = None) -> int:
+def cli_export(argv: Sequence[str] | None = None,
+               scene_fmu: Callable[[str], Any] | None = None) -> int:
     """Run ``export-fmu`` with command-line arguments.
 
     Parameters
     ----------
     argv : sequence of str, optional
         Arguments without the program name; default ``sys.argv[1:]``.
+    scene_fmu : callable, optional
+        ``scene_fmu(factory)`` -> the model, outputs, input and parameter start values and
+        notes of a scene file or built-in scene, or None for any other factory
+        (:func:`bearingsim.scenes.scene_fmu.scene_fmu`, given by ``bearingsim export-fmu``:
+        the scenes are a layer above the FMU export).
 
     Returns
     -------
@@ -228,12 +238,27 @@ def cli_export(argv: Sequence[str] | None = None) -> int:
     from bearingsim.fmu.export import export_fmu
 
     args = build_parser().parse_args(argv)
-    model, default_outputs = _load(args.factory, dict(args.arg))
+    inputs, parameters = dict(args.input), dict(args.param)
+    try:
+        scene = scene_fmu(args.factory) if scene_fmu is not None else None
+    except BearingsimError as exc:
+        print(f"export-fmu: {exc}", file=sys.stderr)
+        return 2
+    if scene is not None:
+        if args.arg:
+            raise SystemExit("export-fmu: a scene's assembly takes its arguments from the "
+                             "scene's [assembly]; --arg is for a factory or an assembly name")
+        model, default_outputs = scene.model, scene.outputs
+        inputs, parameters = {**scene.inputs, **inputs}, {**scene.parameters, **parameters}
+        for note in scene.notes:
+            print(f"export-fmu: {note}", file=sys.stderr)
+    else:
+        model, default_outputs = _load(args.factory, dict(args.arg))
     try:
         path = export_fmu(
-            model, args.output, inputs=dict(args.input),
+            model, args.output, inputs=inputs,
             outputs=args.outputs if args.outputs is not None else default_outputs,
-            parameters=dict(args.param), fmi_version=args.fmi_version, kinds=args.kinds,
+            parameters=parameters, fmi_version=args.fmi_version, kinds=args.kinds,
             model_name=args.name, stepper=args.stepper, platforms=args.platforms,
         )
     except BearingsimError as exc:

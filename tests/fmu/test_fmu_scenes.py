@@ -93,3 +93,61 @@ def test_model_exchange_terminate_is_silent_about_the_stepper(drive_fmu, tmp_pat
         fmu.terminate()
         fmu.freeInstance()
         assert ("internal steps" in log.text()) is says, (kind, log.text())
+
+
+_SCENE = """
+title = "friction"
+transient_on_purpose = true
+outputs = ["Rs", "M_shaft", "P_loss_total"]
+[assembly]
+name = "double_layer_bearing"
+fidelity = "torque"
+lubrication = "VG 46 at 60 degC"
+[lubricants."VG 46 at 60 degC"]
+base = "ISO VG 46"
+temperature = "60 degC"
+[inputs]
+shaft_speed = "3000 rpm"
+Fr = 200.0
+Fa = "10 + 10"          # a constant expression
+[parameters]
+"inner_layer.f0" = 2.0
+[simulation]
+t_end = 2.0
+rtol = 1e-8
+atol = 1e-10
+"""
+
+
+def test_a_scene_exports_the_model_it_runs(tmp_path, capsys):
+    """``bearingsim export-fmu scene.toml model.fmu``: the scene's assembly at its level with
+    its own lubricant, its outputs (a post-processed quantity said to be left out), its
+    [parameters] and constant inputs as start values; stepped over the scene's span, the
+    FMU ends where the scene's run ends. Before, only an assembly name or a factory could be
+    exported, without the scene's lubricant, parameters or inputs."""
+    from fmpy import simulate_fmu
+
+    from bearingsim.cli import main
+    from bearingsim.scenes import parse_scene, run_scene
+
+    scene = tmp_path / "friction.toml"
+    scene.write_text(_SCENE)
+    path = tmp_path / "friction.fmu"
+    assert main(["export-fmu", str(scene), str(path), "--kinds", "CS"]) == 0
+    assert "not FMU outputs: P_loss_total" in capsys.readouterr().err
+    variables = {v.name: v for v in read_model_description(str(path)).modelVariables}
+    assert [n for n, v in variables.items() if v.causality == "output"] == ["Rs", "M_shaft"]
+    assert float(variables["shaft_speed"].start) == pytest.approx(314.1592653589793)
+    assert float(variables["Fa"].start) == 20.0 and float(variables["Fr"].start) == 200.0
+    assert float(variables["inner_layer.f0"].start) == 2.0
+    viscosity = float(variables["inner_layer.nu"].start)
+    assert viscosity < 3e-5  # ISO VG 46 at 60 degC, thinner than at 40 degC (46 mm^2/s)
+    result = simulate_fmu(str(path), stop_time=2.0, output_interval=0.5)
+    single = run_scene(parse_scene(_SCENE, str(scene)), write=False).series
+    assert result["Rs"][-1] == pytest.approx(float(single["Rs"][-1]), rel=1e-4)
+    assert result["M_shaft"][-1] == pytest.approx(float(single["M_shaft"][-1]), rel=1e-4)
+    with pytest.raises(SystemExit, match="takes its arguments from the scene's"):
+        main(["export-fmu", str(scene), str(path), "--arg", "inner=61905"])
+    scene.write_text(_SCENE.replace('fidelity = "torque"', 'fidelity = "fast"'))
+    assert main(["export-fmu", str(scene), str(path)]) == 2
+    assert "assembly.fidelity" in capsys.readouterr().err
