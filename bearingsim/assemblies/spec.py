@@ -95,8 +95,7 @@ class ArgSpec:  # numpydoc ignore=PR02
     doc : str
         One line for ``bearingsim list`` and error messages, with the unit.
     choices : tuple
-        Allowed values of a ``"choice"``; of a ``"bearing"`` from another catalogue than the
-        ball bearings', its designations (listed in messages).
+        Allowed values of a ``"choice"``.
     low, high : float, optional
         Bounds of a ``"float"`` [its unit]: ``low`` exclusive unless ``low_inclusive``, ``high``
         inclusive.
@@ -109,6 +108,10 @@ class ArgSpec:  # numpydoc ignore=PR02
         designation as the catalogue spells it, or None when it knows none (default: the ball
         bearing catalogue with the registered bearings,
         :meth:`bearingsim.catalog.BEARINGS.find <bearingsim.registry.Registry.find>`).
+    known : callable, optional
+        Of a ``"bearing"`` from another catalogue than the ball bearings': its designations
+        when a message lists them, the registered ones included (default: the ball
+        bearings', :func:`bearingsim.catalog.list_bearings`).
 
     Raises
     ------
@@ -125,6 +128,7 @@ class ArgSpec:  # numpydoc ignore=PR02
     high: float | None = None
     low_inclusive: bool = False
     find: Callable[[Any], str | None] | None = None
+    known: Callable[[], list[str]] | None = None
 
     @property
     def unit(self) -> str:

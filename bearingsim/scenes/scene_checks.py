@@ -131,7 +131,7 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
         found = spec.designation(v)
         if found is None:
             c.add(key, f"unknown bearing designation {v!r}",
-                  ", ".join(spec.choices or list_bearings()))
+                  ", ".join(spec.known() if spec.known is not None else list_bearings()))
             return v
         return found
     if spec.kind == "lubricant":

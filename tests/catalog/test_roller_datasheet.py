@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import pytest
 
+import bearingsim.assemblies.cylindrical_roller.scene  # noqa: F401 - its specs made first
 from bearingsim.catalog import load_datasheet
 from bearingsim.catalog.datasheet import read_datasheet
 from bearingsim.catalog.rollers import (
@@ -97,3 +98,19 @@ def test_bad_roller_entries_are_named(tmp_path, change, match):
     path.write_text(NU206_AS_MINE.replace(*change))
     with pytest.raises(CatalogError, match=match):
         read_datasheet(path)
+
+
+def test_a_misspelt_designation_lists_the_registered_rollers_too(mine):
+    """The scene's message listed the roller catalogue as it was when the assembly was
+    registered (a tuple made at import): a bearing of the scene's datasheet was accepted but
+    never listed."""
+    from bearingsim.scenes import parse_scene
+    from bearingsim.scenes.scene import SceneError
+
+    path, _ = mine
+    scene = path.with_name("scene.toml")
+    scene.write_text('bearings = "mine.toml"\n[assembly]\nname = "cylindrical_roller_bearing"\n'
+                     'bearing = "MY NU 207"\n[simulation]\nt_end = 0.1\n')
+    with pytest.raises(SceneError, match=r"unknown bearing designation 'MY NU 207'; allowed: "
+                                         r"NU204, .*NU312, MYNU206"):
+        parse_scene(scene.read_text(), str(scene))

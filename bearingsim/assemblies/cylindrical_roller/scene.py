@@ -130,7 +130,7 @@ SCENE_SPEC = AssemblySpec(
     build=_build,
     args={
         "bearing": ArgSpec("bearing", "NU206", "catalogue designation",
-                           choices=tuple(list_roller_bearings()), find=find_roller_bearing),
+                           known=list_roller_bearings, find=find_roller_bearing),
         "clearance": ArgSpec("float", None, "diametral clearance [m] (default: catalogue, "
                              "normal group)", low=0.0, low_inclusive=True),
         "tilt_x": ArgSpec("float", 0.0, "misalignment about x [rad]", low=-MAX_TILT,

@@ -125,7 +125,7 @@ SPINDLE_SCENE_SPEC = AssemblySpec(
     args={
         "bearing": ArgSpec("bearing", "7014C", "angular contact bearing of the pair"),
         "roller_bearing": ArgSpec("bearing", "NU210", "the NU bearing",
-                                  choices=tuple(list_roller_bearings()),
+                                  known=list_roller_bearings,
                                   find=find_roller_bearing),
         "arrangement": ArgSpec("choice", "DB", "arrangement of the pair",
                                choices=tuple(ARRANGEMENTS)),
