@@ -279,6 +279,25 @@ class Registry(MutableMapping):
         self._entries[name] = entry
         self._registered[name] = entry
 
+    def unregister(self, name: str) -> None:
+        """Forget an entry :meth:`register` added (a built-in entry or a plug-in's stays).
+
+        Parameters
+        ----------
+        name : str
+            Its name (through ``normalize``).
+
+        Raises
+        ------
+        CatalogError
+            For a name that no registered entry has (an unknown name, a built-in entry).
+        """
+        known = self.find(name)
+        if known is None or known not in self._registered:
+            raise CatalogError(f"unregister {self.kind}: {name!r} is not a registered "
+                               f"{self.kind}")
+        del self[known]
+
     def registered(self) -> dict[str, Any]:
         """The entries :meth:`register` added in this process (a scene's bearings and
         lubricants among them), by name, in the order they were registered: what another

@@ -122,10 +122,7 @@ def unregister_bearing(designation: str) -> None:
     designation : str
         Designation of a registered bearing.
     """
-    key = _designation(designation)
-    if key in _catalogue() or BEARINGS.find(key) is None:
-        raise CatalogError(f"unregister_bearing: {designation!r} is not registered")
-    del BEARINGS[key]
+    BEARINGS.unregister(designation)
 
 
 def load_datasheet(path, *, replace: bool = False) -> list[str]:

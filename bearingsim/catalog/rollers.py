@@ -255,11 +255,7 @@ def unregister_roller_bearing(designation: str) -> None:
     CatalogError
         For a designation not registered (a catalogue bearing cannot be removed).
     """
-    key = ROLLER_BEARINGS.find(designation)
-    if key is None or key not in ROLLER_BEARINGS.registered():
-        raise CatalogError(f"unregister_roller_bearing: {designation!r} is not a registered "
-                           "cylindrical roller bearing")
-    del ROLLER_BEARINGS[key]
+    ROLLER_BEARINGS.unregister(designation)
 
 
 def find_roller_bearing(name: object) -> str | None:
