@@ -91,5 +91,11 @@ def scene_fmu(name: str) -> SceneFMU | None:
     if varying:
         notes.append(f"inputs the scene varies in time, left to the importer (no start "
                      f"value): {', '.join(varying)}")
+    keys = list(dict.fromkeys([*scene.grid, *(k for case in scene.cases for k in case
+                                              if k != "name")]))
+    if keys:
+        notes.append(f"the scene's {'grid' if scene.grid else 'load cases'} ({', '.join(keys)}) "
+                     "are operating points of its runs, not of the FMU: one model with the "
+                     "scene's own [assembly] (its inputs and parameters set by the importer)")
     return SceneFMU(model, prep.fidelity, [n for n in prep.outputs if n not in prep.post],
                     inputs, dict(scene.parameters), notes)

@@ -151,3 +151,16 @@ def test_a_scene_exports_the_model_it_runs(tmp_path, capsys):
     scene.write_text(_SCENE.replace('fidelity = "torque"', 'fidelity = "fast"'))
     assert main(["export-fmu", str(scene), str(path)]) == 2
     assert "assembly.fidelity" in capsys.readouterr().err
+
+
+def test_a_built_in_steady_scene_exports_its_model_and_says_its_grid_is_not_in_it(tmp_path,
+                                                                                 capsys):
+    from bearingsim.cli import main
+
+    path = tmp_path / "rs.fmu"
+    assert main(["export-fmu", "double_layer_rs", str(path), "--kinds", "CS"]) == 0
+    assert ("the scene's grid (inputs.shaft_speed, inputs.Fr) are operating points of its "
+            "runs, not of the FMU") in capsys.readouterr().err
+    variables = read_model_description(str(path)).modelVariables
+    assert [v.name for v in variables if v.causality == "output"] == ["Rs", "w_middle", "M_shaft"]
+    assert {v.name for v in variables if v.causality == "input"} == {"shaft_speed", "Fr", "Fa"}
