@@ -4,10 +4,12 @@ The FMU holds the model the scene runs: its assembly with the scene's arguments,
 the scene's fidelity chooses (``auto``: the cheapest within the scene's tolerance for its
 outputs), the scene's own bearings and lubricants (registered when the scene is read), its
 outputs (those of the model; post-processed quantities such as a life are computed after a
-run, so they are no FMU output) and its ``[parameters]`` and constant inputs as start values.
-An input the scene gives as an expression of ``t`` or a table stays an FMU input without a
-start value: the importer drives it. The axisymmetric reduction of a transient scene is not
-applied (it holds only for the scene's own loads, and the FMU's inputs are free).
+run, so they are no FMU output; a statics scene's columns come from its statics solver, and
+its FMU outputs the assembly's own) and its ``[parameters]`` and constant inputs as start
+values. An input the scene gives as an expression of ``t`` or a table stays an FMU input
+without a start value: the importer drives it. The axisymmetric reduction of a transient
+scene is not applied (it holds only for the scene's own loads, and the FMU's inputs are
+free).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from bearingsim.fmu.cli import scene_outputs
 from bearingsim.scenes.expressions import constant_value
 from bearingsim.scenes.library import builtin_scene_path
 from bearingsim.scenes.preparation import prepare
@@ -97,5 +100,10 @@ def scene_fmu(name: str) -> SceneFMU | None:
         notes.append(f"the scene's {'grid' if scene.grid else 'load cases'} ({', '.join(keys)}) "
                      "are operating points of its runs, not of the FMU: one model with the "
                      "scene's own [assembly] (its inputs and parameters set by the importer)")
-    return SceneFMU(model, prep.fidelity, [n for n in prep.outputs if n not in prep.post],
-                    inputs, dict(scene.parameters), notes)
+    known = set(prep.system.observed_names)
+    outputs = [n for n in prep.outputs if n in known]
+    if scene.analysis == "statics":  # its columns come from the statics solver
+        notes.append(f"the statics columns ({', '.join(prep.outputs)}) are solved after the "
+                     "model, not FMU outputs: the FMU outputs the model's own")
+        outputs = scene_outputs(prep.spec, model, prep.fidelity)
+    return SceneFMU(model, prep.fidelity, outputs, inputs, dict(scene.parameters), notes)

@@ -164,3 +164,17 @@ def test_a_built_in_steady_scene_exports_its_model_and_says_its_grid_is_not_in_i
     variables = read_model_description(str(path)).modelVariables
     assert [v.name for v in variables if v.causality == "output"] == ["Rs", "w_middle", "M_shaft"]
     assert {v.name for v in variables if v.causality == "input"} == {"shaft_speed", "Fr", "Fa"}
+
+
+def test_a_statics_scene_exports_the_models_own_outputs(tmp_path, capsys):
+    """A statics scene's outputs are its statics columns (Q_max, L10h ...), which its solver
+    computes from the model: the export asked the model for them and failed ("unknown output
+    variable 'Q_max'"). Its FMU outputs what the assembly's scenes report at that level."""
+    from bearingsim.cli import main
+
+    path = tmp_path / "statics.fmu"
+    assert main(["export-fmu", "deep_groove_statics", str(path), "--kinds", "CS"]) == 0
+    assert "the statics columns (Q_max, p_max" in capsys.readouterr().err
+    variables = read_model_description(str(path)).modelVariables
+    assert [v.name for v in variables if v.causality == "output"] == \
+        ["row.Q_i[0]", "row.alpha_i[0]"]
