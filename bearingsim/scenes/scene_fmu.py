@@ -90,7 +90,10 @@ def scene_fmu(name: str) -> SceneFMU | None:
             inputs[n] = constant
     notes = []
     if post:
-        notes.append(f"post-processed after a run, not FMU outputs: {', '.join(post)}")
+        needs = list(dict.fromkeys(n for q in post for n in prep.post[q].needs))
+        shown = ", ".join(needs[:4]) + (f" and {len(needs) - 4} more" if len(needs) > 4 else "")
+        notes.append(f"post-processed after a run, not FMU outputs: {', '.join(post)} "
+                     f"(computed from {shown}: --outputs exports those)")
     if varying:
         notes.append(f"inputs the scene varies in time, left to the importer (no start "
                      f"value): {', '.join(varying)}")
