@@ -84,7 +84,8 @@ def list_bearings() -> list[str]:
     return list(BEARINGS)
 
 
-def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> BearingGeometry:
+def register_bearing(geometry: BearingGeometry | RollerBearingGeometry, *, replace: bool = False
+                     ) -> BearingGeometry | RollerBearingGeometry:
     """Make a bearing known by its designation to every assembly, scene and ``bearingsim
     list``; returns it.
 
@@ -106,9 +107,11 @@ def register_bearing(geometry: BearingGeometry, *, replace: bool = False) -> Bea
         For a designation already known (a catalogue bearing, or registered without
         ``replace``: :class:`~bearingsim.registry.NameTakenError`).
     """
+    if isinstance(geometry, RollerBearingGeometry):  # the roller catalogue's registry
+        return register_roller_bearing(geometry, replace=replace)
     if not isinstance(geometry, BearingGeometry):
-        raise CatalogError(f"register_bearing: expected a BearingGeometry, got "
-                           f"{type(geometry).__name__}")
+        raise CatalogError(f"register_bearing: expected a BearingGeometry or a "
+                           f"RollerBearingGeometry, got {type(geometry).__name__}")
     BEARINGS.register(_designation(geometry.designation), geometry, replace=replace)
     return geometry
 
@@ -127,9 +130,8 @@ def unregister_bearing(designation: str) -> None:
 
 def load_datasheet(path, *, replace: bool = False) -> list[str]:
     """Read a datasheet file (:func:`~bearingsim.catalog.datasheet.read_datasheet`, CSV or TOML
-    in catalogue units) and register its bearings (ball bearings with :func:`register_bearing`,
-    cylindrical roller bearings with
-    :func:`~bearingsim.catalog.rollers.register_roller_bearing`); returns their designations.
+    in catalogue units) and register its bearings (:func:`register_bearing`: cylindrical roller
+    bearings in the roller catalogue's registry); returns their designations.
 
     Parameters
     ----------
@@ -144,15 +146,10 @@ def load_datasheet(path, *, replace: bool = False) -> list[str]:
         Designations of the registered bearings, in file order.
     """
     bearings = read_datasheet(path)
-    names = []
     for g in bearings:
-        if isinstance(g, RollerBearingGeometry):
-            register_roller_bearing(g, replace=replace)
-            names.append(find_roller_bearing(g.designation))
-        else:
-            register_bearing(g, replace=replace)
-            names.append(g.designation.strip().upper())
-    return names
+        register_bearing(g, replace=replace)
+    return [find_roller_bearing(g.designation) if isinstance(g, RollerBearingGeometry)
+            else _designation(g.designation) for g in bearings]
 
 
 def get_bearing(designation: str) -> BearingGeometry:

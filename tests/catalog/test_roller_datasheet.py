@@ -114,3 +114,18 @@ def test_a_misspelt_designation_lists_the_registered_rollers_too(mine):
     with pytest.raises(SceneError, match=r"unknown bearing designation 'MY NU 207'; allowed: "
                                          r"NU204, .*NU312, MYNU206"):
         parse_scene(scene.read_text(), str(scene))
+
+
+def test_register_bearing_takes_a_roller_bearing_as_its_docstring_says():
+    """register_bearing's docstring took a RollerBearingGeometry; the function refused one
+    ("expected a BearingGeometry"). It registers it in the roller catalogue's registry."""
+    import dataclasses
+
+    from bearingsim.catalog import register_bearing
+
+    mine = dataclasses.replace(get_roller_bearing("NU206"), designation="NU206 B")
+    assert register_bearing(mine) is mine
+    try:
+        assert get_roller_bearing("nu 206 b") is mine
+    finally:
+        unregister_roller_bearing("NU206B")
