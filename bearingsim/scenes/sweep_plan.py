@@ -13,6 +13,7 @@ import copy
 import dataclasses
 import hashlib
 import json
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -58,15 +59,30 @@ def _structure(sc: Scene) -> tuple[str, str]:
     return fidelity, json.dumps(stripped, sort_keys=True, default=str)
 
 
-def _payload(prep: Prepared) -> ModelPayload:
+def _texts(value: Any) -> Iterator[str]:
+    """Every text in a scene's value, nested tables and lists included (the names a sweep's
+    points may look up: designations, lubricants)."""
+    if isinstance(value, str):
+        yield value
+    elif isinstance(value, dict):
+        for item in value.values():
+            yield from _texts(item)
+    elif isinstance(value, (list, tuple)):
+        for item in value:
+            yield from _texts(item)
+
+
+def _payload(prep: Prepared, names: set[str]) -> ModelPayload:
     """The prepared model as bytes for the workers: the cache entry just used by ``prepare``
-    (no second serialization), else the system serialized now."""
+    (no second serialization), else the system serialized now; with the client's registered
+    bearings and lubricants that ``names`` name."""
     last = system_cache.LAST
     data = system_cache.read_payload(last["path"], last["key"]) if last.get("path") else None
     if data is None:
         data = system_cache.dumps_system(prep.system)
     token = hashlib.sha256(data).hexdigest()
-    return ModelPayload(token, dataclasses.replace(prep, system=None), data, registrations())
+    return ModelPayload(token, dataclasses.replace(prep, system=None), data,
+                        registrations(names))
 
 
 @dataclass
@@ -114,6 +130,7 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
     """
     check_point_keys(points)
     scenes = [point_scene(scene, p) for p in points]
+    names = {text for sc in scenes for text in _texts(sc.args)}  # what points look up
     if scene.analysis != "transient":
         check_operating_points(scene, points)
     prepared: dict[tuple, Prepared] = {}
@@ -125,7 +142,7 @@ def plan_sweep(scene: Scene, points: list[dict[str, Any]]) -> SweepPlan:
         try:
             if key not in prepared:
                 prepared[key] = prepare(sc)
-                payloads[key] = _payload(prepared[key])
+                payloads[key] = _payload(prepared[key], names)
             prep = prepared[key]
             # not the overrides of parametric arguments (point_model builds the assembly to
             # read them, tens of ms a point): each point derives them where it runs

@@ -24,6 +24,7 @@ import sys
 import threading
 import time
 import warnings
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -50,25 +51,12 @@ class ModelPayload:
     prepared: Prepared
     """The prepared scene of the model's structure, ``system`` None."""
     system: bytes
-    registered: dict[str, dict[str, Any]] = dataclasses.field(default_factory=dict)
-    """The bearings and lubricants registered in the client's process (a scene's
-    ``bearings`` and ``[lubricants]``, or the API's ``register_bearing``), by registry:
-    :func:`registrations`. A worker, another process, registers them before its points run
-    (:func:`restore_registrations`): a statics point looks its bearing up by name, and a
-    point of another lubricant builds the assembly to read its parameters."""
-
-
-def registrations() -> dict[str, dict[str, Any]]:
-    """The bearings (ball and roller) and lubricants registered in this process, by registry
-    (:meth:`bearingsim.registry.Registry.registered`).
-
-    Returns
-    -------
-    dict
-        ``{"bearing": {designation: geometry}, "cylindrical roller bearing": {...},
-        "lubricant": {name: factory}}``.
-    """
-    return {registry.kind: registry.registered() for registry in _registries()}
+    registered: bytes = b""
+    """The bearings and lubricants registered in the client's process that the sweep names
+    (a scene's ``bearings`` and ``[lubricants]``, or the API's ``register_bearing``),
+    serialized: :func:`registrations`. A worker, another process, registers them before its
+    points run (:func:`restore_registrations`): a statics point looks its bearing up by name,
+    and a point of another lubricant builds the assembly to read its parameters."""
 
 
 def _registries() -> tuple:
@@ -80,19 +68,63 @@ def _registries() -> tuple:
     return BEARINGS, ROLLER_BEARINGS, LUBRICANTS
 
 
-def restore_registrations(registered: dict[str, dict[str, Any]]) -> None:
-    """Register in this process what :func:`registrations` gave in another, replacing entries
-    of the same names (a persistent worker may hold those of an earlier sweep).
+def registrations(names: Iterable[str]) -> bytes:
+    """The registered bearings (ball and roller) and lubricants of this process that
+    ``names`` name (:meth:`bearingsim.registry.Registry.registered`), serialized with
+    cloudpickle (a scene's lubricant is a closure); empty when it names none. Only those:
+    whatever else the process registered (a test's, another scene's) stays here, so an entry
+    the workers could not load never reaches them.
 
     Parameters
     ----------
-    registered : dict
-        From :func:`registrations`.
+    names : iterable of str
+        The texts a sweep's scene and points give (designations, lubricant names ...).
+
+    Returns
+    -------
+    bytes
+        ``{registry kind: {name: entry}}`` pickled, or ``b""``.
     """
+    names = set(names)
+    shipped = {}
     for registry in _registries():
-        for name, entry in registered.get(registry.kind, {}).items():
-            if registry.registered().get(name) is not entry:
-                registry.register(name, entry, replace=True)
+        registered = registry.registered()
+        used = {registry.find(n) for n in names} & set(registered)
+        if used:
+            shipped[registry.kind] = {n: registered[n] for n in sorted(used)}
+    if not shipped:
+        return b""
+    import cloudpickle  # (a dependency of dask, which sweeps need)
+
+    return cloudpickle.dumps(shipped)
+
+
+def restore_registrations(data: bytes) -> None:
+    """Register in this process what :func:`registrations` serialized in another, replacing
+    entries of the same names (a persistent worker may hold those of an earlier sweep).
+
+    Parameters
+    ----------
+    data : bytes
+        From :func:`registrations`.
+
+    Raises
+    ------
+    RuntimeError
+        When they cannot be loaded here (each point of the chunk then fails with why).
+    """
+    if not data:
+        return
+    import pickle
+
+    try:
+        shipped = pickle.loads(data)  # noqa: S301 - the sweep's own client sent it
+    except Exception as exc:  # noqa: BLE001 - named for every point of the chunk
+        raise RuntimeError(f"the client's registered bearings and lubricants cannot be loaded "
+                           f"in this worker: {type(exc).__name__}: {exc}") from None
+    for registry in _registries():
+        for name, entry in shipped.get(registry.kind, {}).items():
+            registry.register(name, entry, replace=True)
 
 
 @dataclass

@@ -91,18 +91,51 @@ def test_registration_does_not_shadow_the_catalogue(registered):
         register_bearing(get_bearing("MY6005"))
 
 
-def test_the_registered_bearings_are_listed_for_other_processes(registered):
-    """What a sweep ships to its workers (:meth:`Registry.registered`): the bearings registered
-    in this process, not the catalogue's; an unregistered one leaves the list."""
+def test_a_sweep_ships_the_registered_bearings_its_points_name(registered):
+    """What a sweep ships to its workers: the bearings registered in this process that its
+    scene and points name (:meth:`Registry.registered`), not the catalogue's; an unregistered
+    one leaves the list; a worker registers what it gets."""
+    import pickle
+
     from bearingsim.catalog import BEARINGS
     from bearingsim.scenes.sweep_worker import registrations, restore_registrations
 
-    shipped = registrations()
-    assert "MY6005" in shipped["bearing"] and "6304" not in shipped["bearing"]
-    geometry = shipped["bearing"]["MY6005"]
+    assert registrations(["6304", "ISO VG 32"]) == b""  # catalogue names: nothing to ship
+    shipped = registrations(["my6005", "6304"])
+    assert pickle.loads(shipped) == {"bearing": {"MY6005": get_bearing("MY6005")}}
     unregister_bearing("MY6005")
     assert "MY6005" not in BEARINGS.registered() and "MY6005" not in list_bearings()
     restore_registrations(shipped)  # as a worker does
-    assert get_bearing("my6005") is geometry
-    restore_registrations(shipped)  # again: the same entry, nothing replaced
-    assert BEARINGS.registered()["MY6005"] is geometry
+    assert get_bearing("my6005") == pickle.loads(shipped)["bearing"]["MY6005"]
+
+
+def test_a_registration_the_sweep_does_not_name_stays_in_the_client():
+    """A sweep shipped every registration of the client's process, the unrelated ones too:
+    one the workers could not load (a lubricant whose factory lives in a module only the
+    client can import, as a test's or a plug-in's in a temporary folder) stopped the sweep's
+    model from reaching the workers, and the sweep waited for ever. Only the entries its
+    points name travel now; one that cannot load fails its points with why."""
+    import types
+
+    from bearingsim.physics.lubricant import register_lubricant, unregister_lubricant
+    from bearingsim.scenes.sweep_worker import registrations, restore_registrations
+
+    module = types.ModuleType("client_only_oils")  # importable nowhere but here
+    exec("from bearingsim.physics.lubricant import Oil\n"
+         "def oil(**kw):\n    return Oil.from_iso_vg(46, name='client only oil')\n",
+         module.__dict__)
+    module.oil.__module__ = "client_only_oils"
+    import sys
+
+    sys.modules["client_only_oils"] = module
+    register_lubricant("client only oil", module.oil)
+    try:
+        assert registrations(["ISO VG 32", "6304"]) == b""
+        data = registrations(["client only oil"])
+        del sys.modules["client_only_oils"]  # a worker, where that module is not
+        with pytest.raises(RuntimeError, match="cannot be loaded in this worker: "
+                                               "ModuleNotFoundError"):
+            restore_registrations(data)
+    finally:
+        sys.modules.pop("client_only_oils", None)
+        unregister_lubricant("client only oil")
