@@ -20,6 +20,7 @@ import pytest
 from bearingsim.scenes import load_scene, run_scene
 from bearingsim.scenes.sweep import grid_points, run_sweep
 from bearingsim.scenes.sweep_grid import parse_grid
+from tests.catalog.datasheets import NU206_AS_MINE
 from tests.scenes.sweep_scenes import torque_level_scene
 
 distributed = pytest.importorskip("distributed")
@@ -138,20 +139,6 @@ C0_kN = 7.9
 """
 
 
-_ROLLER_DATASHEET = """
-[[bearing]]
-designation = "MYNU206"
-d_mm = 30
-D_mm = 62
-B_mm = 16
-Z = 12
-Dw_mm = 9.0
-Lwe_mm = 9.52
-dm_mm = 46.5
-Pd_um = 32.5
-C_kN = 44
-C0_kN = 36.5
-"""
 
 
 def test_workers_know_the_scenes_own_bearings_and_lubricants(deployment, tmp_path):
@@ -212,7 +199,7 @@ Fa = 50.0
     assert res.rows[0]["M_shaft"] != pytest.approx(res.rows[1]["M_shaft"], rel=1e-3)
 
     # a roller bearing of the scene's datasheet (its own registry: ROLLER_BEARINGS)
-    (tmp_path / "nu.toml").write_text(_ROLLER_DATASHEET)
+    (tmp_path / "nu.toml").write_text(NU206_AS_MINE)
     roller = tmp_path / "own_roller.toml"
     roller.write_text('title = "own NU"\nanalysis = "statics"\nbearings = "nu.toml"\n'
                       '[assembly]\nname = "cylindrical_roller_bearing"\nbearing = "MYNU206"\n'
