@@ -122,8 +122,7 @@ def _complete_roller(entry: dict[str, Any], where: str) -> dict[str, str]:
     row = _checked_row(entry, where, ROLLER_REQUIRED_KEYS, _ROLLER_OPTIONAL_KEYS,
                        _ROLLER_NUMBER_KEYS, "roller bearing")
     filled = _filled(row, {"Pd_um": "0"}, _ROLLER_OPTIONAL_KEYS)
-    filled["explorer"] = "1" if filled["explorer"].strip() in ("1", "1.0", "True", "true") \
-        else "0"
+    filled["explorer"] = "1" if float(filled["explorer"] or 0.0) == 1.0 else "0"  # (checked)
     return filled
 
 

@@ -361,6 +361,9 @@ class RollerEquilibrium:
     """Slice and roller loads there (floats)."""
     moment: np.ndarray
     """(Mx, My) [N m] the shaft must apply to hold the imposed tilt."""
+    stiffness: np.ndarray
+    """5x5 stiffness of the row there (:func:`roller_row_stiffness`, from the same
+    evaluation as ``contacts``)."""
 
 
 def roller_row_equilibrium(p: RollerRowParameters, n_rollers: int, n_slices: int,
@@ -397,9 +400,9 @@ def roller_row_equilibrium(p: RollerRowParameters, n_rollers: int, n_slices: int
                                  name=f"roller_row_equilibrium({n_rollers} rollers)")
     xy = problem.solve(np.asarray(loads, dtype=float))
     inner = np.array([xy[0], xy[1], 0.0, float(tilt[0]), float(tilt[1])])
-    numeric = _numeric_contacts(p, n_rollers, n_slices, inner)[0]
+    numeric, jacobian = _numeric_contacts(p, n_rollers, n_slices, inner)
     moment = -np.array(numeric.inner_load[3:5])
-    return RollerEquilibrium(inner, numeric, moment)
+    return RollerEquilibrium(inner, numeric, moment, -jacobian)
 
 
 def roller_row_lives(bearing: str | RollerBearingGeometry, clearance: float | None, positions,

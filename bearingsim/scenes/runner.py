@@ -377,12 +377,11 @@ def _run_analysis(prep: Prepared, stem: str, lock: OutputFolder | None) -> Scene
 
 
 def _point_text(row: dict[str, Any], units: dict[str, str]) -> str:
-    """A point's keys as a message names them, in display units (``Fr = 0.5 kN``)."""
-    from bearingsim.scenes.plots import display_text
+    """A point's row as a message names it, in display units (``Fr = 0.5 kN``), its error
+    left out."""
+    from bearingsim.scenes.plots import curve_label
 
-    return ", ".join(f"{n} = {v}" if isinstance(v, str) else
-                     f"{n} = {display_text(v, units.get(n, ''))}"
-                     for n, v in row.items() if n != "error")
+    return curve_label({n: v for n, v in row.items() if n != "error"}, units)
 
 
 def console_lines(summary_data: dict[str, Any]) -> list[str]:

@@ -20,7 +20,7 @@ from typing import Any
 from bearingsim.fmu.cli import scene_outputs
 from bearingsim.scenes.expressions import constant_value
 from bearingsim.scenes.library import builtin_scene_path
-from bearingsim.scenes.preparation import prepare
+from bearingsim.scenes.preparation import point_keys, prepare
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import load_scene
 
@@ -97,8 +97,7 @@ def scene_fmu(name: str) -> SceneFMU | None:
     if varying:
         notes.append(f"inputs the scene varies in time, left to the importer (no start "
                      f"value): {', '.join(varying)}")
-    keys = list(dict.fromkeys([*scene.grid, *(k for case in scene.cases for k in case
-                                              if k != "name")]))
+    keys = point_keys(scene)
     if keys:
         notes.append(f"the scene's {'grid' if scene.grid else 'load cases'} ({', '.join(keys)}) "
                      "are operating points of its runs, not of the FMU: one model with the "

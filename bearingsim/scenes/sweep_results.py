@@ -158,28 +158,23 @@ def sweep_figures(prep: Prepared, rows: list[dict[str, Any]], keys: list[str],
         File name and figure (none or one).
     """
 
-    from bearingsim.scenes.bar_figures import category_figures, statics_columns
-    from bearingsim.scenes.plots import characteristic_figures, numeric_key, varies
+    from bearingsim.scenes.analysis_figures import curves_or_bars
+    from bearingsim.scenes.bar_figures import statics_columns
+    from bearingsim.scenes.plots import varies
 
     ok = [r for r in rows if r["status"] == "ok"]
     if ok and prep.scene.analysis == "transient":
         ok, keys, units = _with_end_values(prep, ok, keys, units)
-    numeric = sorted((k for k in keys if ok and numeric_key(ok, k)),
-                     key=lambda k: not varies(ok, k))  # a key that varies first
     outputs = [n for n in results if n in units and n not in TRANSIENT_COLUMNS
                and all(isinstance(r[n], float) for r in ok)]  # not a statics life at rest
     if not ok or not outputs:  # (every point failed: the table says why)
         return []
     if prep.scene.analysis == "statics":  # the columns a statics scene draws
         outputs = [n for n in statics_columns(prep, ok) if n in outputs] or outputs
+    if not any(varies(ok, k) for k in keys):  # (the same point again and again)
+        return []
     what = prep.scene.analysis if prep.scene.analysis in ("modes", "statics") else "steady"
-    if not numeric or not varies(ok, numeric[0]):  # points named by text: bars
-        if not any(varies(ok, k) for k in keys):
-            return []
-        figs = category_figures(prep, ok, keys, units, outputs, what, len(rows) - len(ok))
-        return [(f"{stem}.png", fig) for _, fig in figs[:1]]
-    order = [numeric[0], *(k for k in keys if k != numeric[0])]
-    figs = characteristic_figures(prep, ok, order, units, outputs, what, len(rows) - len(ok))
+    figs = curves_or_bars(prep, ok, keys, units, outputs, what, len(rows) - len(ok))
     return [(f"{stem}.png", fig) for _, fig in figs[:1]]
 
 

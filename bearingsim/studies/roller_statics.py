@@ -23,7 +23,6 @@ from bearingsim.components.roller_row import (
     roller_row_equilibrium,
     roller_row_lives,
     roller_row_parameters,
-    roller_row_stiffness,
 )
 from bearingsim.physical_checks import check_static_pressure
 
@@ -120,12 +119,11 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     p_max = float(max(eq.contacts.p_max))
     check_static_pressure(p_max, ROLLER_PRESSURE_LIMIT, "1/2", f"{where}({g.designation})",
                           f"{dict(zip(LOAD_NAMES, force, strict=True))} [N]")
-    k = roller_row_stiffness(p, g.roller_count, n_slices, eq.inner)
     moment = np.asarray(eq.moment, dtype=float)
     # a moment that symmetry makes 0 comes out as round-off of the slice sums (1e-16 N m):
     # below 1e-9 of the load's moment over the pitch diameter it is 0
     moment[np.abs(moment) < 1e-9 * np.hypot(*force) * g.pitch_diameter] = 0.0
     return RollerStatics(np.asarray(eq.contacts.Q), p_max,
-                         eq.inner[:2].copy(), moment, k[:2, :2],
+                         eq.inner[:2].copy(), moment, eq.stiffness[:2, :2],
                          float(roller_row_lives(g, clearance, [eq.inner], n_slices)[0]),
                          eq.inner[:2].copy())
