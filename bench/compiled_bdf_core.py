@@ -104,7 +104,6 @@ def split(case: Case) -> list[list]:
     -O2), the two alternating."""
     with tempfile.TemporaryDirectory() as tmp:
         older = sources_at(BEFORE, Path(tmp))
-        (older / "bdf.c").write_text((compiled_bdf.C_DIR / "bdf.c").read_text())
         builds = {"tree": (None, _tree_flags()),
                   f"{BEFORE}'s core (-O2)": (older, BEFORE_FLAGS)}
         plain: dict[tuple[str, str], list[float]] = {}
@@ -145,7 +144,9 @@ def _tree_flags() -> tuple[str, ...]:
 
 @contextlib.contextmanager
 def _profiles():
-    """Collect ``bsm_bdf_profile`` of every solver freed in the block (a list, in order)."""
+    """Collect ``bsm_bdf_profile`` of every run in the block (a list, in order): read when the
+    run takes its counters (``bsm_bdf_stats``, right after its last step; a kept solver's
+    profile starts anew with each run)."""
     found: list[list[float]] = []
     originals = {}
 
@@ -153,16 +154,16 @@ def _profiles():
         prep = original_prepare(kern, signal, cache_dir)
         dll = prep.dll
         if id(dll) not in originals:
-            originals[id(dll)] = (dll, dll.bsm_bdf_free)
+            originals[id(dll)] = (dll, dll.bsm_bdf_stats)
             dll.bsm_bdf_profile.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
-            free = dll.bsm_bdf_free
+            stats = dll.bsm_bdf_stats
 
-            def profiled_free(solver):
+            def profiled_stats(solver, out_at):
                 out = (ctypes.c_double * 14)()
                 dll.bsm_bdf_profile(solver, out)
                 found.append(list(out))
-                free(solver)
-            dll.bsm_bdf_free = profiled_free
+                stats(solver, out_at)
+            dll.bsm_bdf_stats = profiled_stats
         return prep
 
     original_prepare = compiled_bdf._prepare
@@ -171,23 +172,8 @@ def _profiles():
         yield found
     finally:
         compiled_bdf._prepare = original_prepare
-        for dll, free in originals.values():
-            dll.bsm_bdf_free = free
-
-
-# ------------------------------------------------------------------------------ before
-BEFORE_HEADER = ["build", "rtol", "CPU / step [us]", "steps", "rhs", "iterations / step",
-                 "error / tol"]
-
-
-def sources_at(commit: str, folder: Path) -> Path:
-    """The integrator's C sources (``SOURCES``) of ``commit``, written into ``folder``."""
-    for name in SOURCES:
-        text = subprocess.run(["git", "show", f"{commit}:bearingsim/simulation/c/{name}"],
-                              cwd=Path(__file__).parent, capture_output=True, text=True,
-                              check=True).stdout
-        (folder / name).write_text(text)
-    return folder
+        for dll, stats in originals.values():
+            dll.bsm_bdf_stats = stats
 
 
 def before_after(case: Case) -> list[list]:

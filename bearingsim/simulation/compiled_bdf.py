@@ -12,7 +12,9 @@ fill-reducing order, on the pattern of the Jacobian and the diagonal in that ord
 (:func:`~bearingsim.simulation.ordering.newton_pattern`): the pivot order and the factors'
 pattern are found once and reused while the pivots stay acceptable. The inputs ``u(t, q)``
 are generated C in a small library of their own, compiled once per input structure and cached
-like the kernels (a new structure compiles that file, not the integrator).
+like the kernels (a new structure compiles that file, not the integrator). The observed
+variables at the output times come from the kernel library's ``observe``, called by the
+driver too. Each thread keeps its solver of a model between runs (reset to new at each run).
 
 It needs a C compiler; without one it raises
 :class:`~bearingsim.simulation.c_compiler.CompileError` (``method="cvodes"`` falls back to
@@ -24,7 +26,7 @@ from __future__ import annotations
 import ctypes
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
@@ -86,10 +88,12 @@ _LOCK = threading.Lock()
 
 @dataclass
 class CompiledRun:
-    """States at the output times and the run's statistics."""
+    """States and observed variables at the output times (one column per time) and the run's
+    statistics."""
 
     t: np.ndarray
     x: np.ndarray
+    values: np.ndarray
     stats: dict
 
 
@@ -110,8 +114,8 @@ def _driver(cache_dir: str | None) -> ctypes.CDLL:
     # arrays go in as addresses (:func:`_address_of`): cheaper than numpy's ctypes objects
     p, i, ll, d = ctypes.c_void_p, ctypes.c_int, ctypes.c_longlong, ctypes.c_double
     dll.bsm_bdf_new.restype = p
-    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, ll, p, p, p, p, p, p, p, ll, ll, ll,
-                                ll, d, d, d, d, d, p]
+    dll.bsm_bdf_new.argtypes = [i, i, i, i, p, p, p, p, ll, p, p, p, p, p, ll, ll, ll, ll]
+    dll.bsm_bdf_reset.argtypes = [p, p, d, d, d, d, d]
     dll.bsm_bdf_start.argtypes = [p]
     dll.bsm_bdf_advance.argtypes = [p, i, p, p, i, ctypes.POINTER(i)]
     dll.bsm_bdf_free.argtypes = [p]
@@ -119,6 +123,7 @@ def _driver(cache_dir: str | None) -> ctypes.CDLL:
     dll.bsm_bdf_time.argtypes = [p]
     dll.bsm_bdf_state.argtypes = [p, p]
     dll.bsm_bdf_stats.argtypes = [p, p]
+    dll.bsm_bdf_observe.argtypes = [p, i, p, p, i, p]
     return dll
 
 
@@ -152,6 +157,8 @@ class _Prepared:
     ode: int
     jac: int
     signal: int | None
+    observe: int
+    n_y: int
     n_u: int
     jac_nnz: int
     newton: NewtonPattern
@@ -159,6 +166,58 @@ class _Prepared:
     """The addresses of ``newton``'s arrays, in ``bsm_bdf_new``'s order (``newton`` keeps
     them alive)."""
     sizes: tuple[int, int, int, int]
+    solvers: threading.local = field(default_factory=threading.local, compare=False,
+                                     repr=False)
+    """Each thread's :class:`_Solver` of these functions, by the sizes of ``p`` and ``q``
+    (attribute ``by_size``), made on first use."""
+
+    def solver(self, n: int, n_p: int, n_q: int) -> _Solver:
+        """This thread's solver for ``n`` states, ``n_p`` parameters and ``n_q`` input
+        parameters, made on first use and kept."""
+        kept = getattr(self.solvers, "by_size", None)
+        if kept is None:
+            kept = self.solvers.by_size = {}
+        found = kept.get((n, n_p, n_q))
+        if found is None:
+            found = kept[n, n_p, n_q] = _Solver(self, n, n_p, n_q)
+        return found
+
+
+class _Solver:
+    """A solver of ``c/bdf.c`` kept between the runs of one thread on one model: a run resets
+    it (``bsm_bdf_reset``: as new, so that its result does not depend on the runs before)
+    instead of allocating it, and passes its values and takes its outputs through arrays whose
+    addresses are found once (allocation and address look-ups cost a run of a millisecond
+    tens of microseconds). Freed with the last reference."""
+
+    def __init__(self, prep: _Prepared, n: int, n_p: int, n_q: int):
+        self.dll, self.newton, self.n, self.n_y = prep.dll, prep.newton, n, prep.n_y
+        self.pointer = prep.dll.bsm_bdf_new(
+            n, prep.n_u, n_p, n_q, prep.ode, prep.jac, prep.signal, prep.observe, prep.jac_nnz,
+            *prep.newton_addresses, *prep.sizes)
+        if not self.pointer:
+            raise MemoryError("compiled_bdf: out of memory allocating the integrator")
+        self.values = np.empty(n_p + n_q + n)
+        """``(p, q, x0)`` of a run, one after the other."""
+        self.values_at = _address_of(self.values)
+        self.stats = np.zeros(len(STAT_NAMES), dtype=np.int64)
+        self.stats_at = _address_of(self.stats)
+        self.written = ctypes.c_int(0)
+        self.written_at = ctypes.byref(self.written)
+        self._outputs: tuple[np.ndarray, ...] = ()
+        self._addresses: tuple[int, ...] = ()
+
+    def outputs(self, m: int) -> tuple[tuple[np.ndarray, ...], tuple[int, ...]]:
+        """Arrays for ``m`` output times (times, states and observed variables, a row per
+        time) and their addresses, grown when a run has more output times than any before."""
+        if not self._outputs or self._outputs[0].size < m:
+            self._outputs = (np.empty(m), np.empty((m, self.n)), np.empty((m, self.n_y)))
+            self._addresses = tuple(_address_of(a) for a in self._outputs)
+        return tuple(a[:m] for a in self._outputs), self._addresses
+
+    def __del__(self) -> None:
+        if getattr(self, "pointer", None):
+            self.dll.bsm_bdf_free(self.pointer)
 
 
 _PREPARED: dict[tuple, _Prepared] = {}
@@ -181,12 +240,15 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
         signal_dll = _signal_library(generate_source([sig], "bsm_signal"), key[2]) if n_u else None
         kernel_dll = ctypes.CDLL(str(kern.library))
         sparsity = jacobian.sparsity_out(1)
-        fns = (function, jacobian, sig)
+        observe = kern.observe
+        fns = (function, jacobian, sig, observe)
         newton = newton_pattern(sparsity, kept_order(sparsity, kern.library))
         found = _PREPARED[key] = _Prepared(
             dll, kernel_dll, signal_dll, _address(kernel_dll, function.name()),
             _address(kernel_dll, jacobian.name()),
-            _address(signal_dll, "bsm_signal") if n_u else None, n_u, sparsity.nnz(), newton,
+            _address(signal_dll, "bsm_signal") if n_u else None,
+            _address(kernel_dll, observe.name()), observe.size1_out(0), n_u, sparsity.nnz(),
+            newton,
             tuple(_address_of(a) for a in (newton.order, newton.start, newton.index,
                                            newton.jac_slot, newton.diag_slot)),
             tuple(max(int(getattr(f, name)()) for f in fns)
@@ -198,7 +260,8 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
                      x0: np.ndarray, t0: float, t1: float, t_out: np.ndarray, rtol: float,
                      atol: float, max_step: float = np.inf, progress: bool | None = False,
                      cache_dir: str | Path | None = None, budget=None) -> CompiledRun:
-    """Integrate ``x' = ode(t, x, u(t), p)`` from ``t0`` to ``t1`` in C.
+    """Integrate ``x' = ode(t, x, u(t), p)`` from ``t0`` to ``t1`` in C, and evaluate the
+    observed variables at the output times.
 
     Parameters
     ----------
@@ -246,49 +309,46 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
     n = system.n_states
     prep = _prepare(kern, signal, cache_dir)
     dll = prep.dll
-    p = np.ascontiguousarray(p, dtype=float)
-    q = np.ascontiguousarray(signal.q, dtype=float)
-    x0 = np.ascontiguousarray(x0, dtype=float)
-    solver = dll.bsm_bdf_new(
-        n, prep.n_u, p.size, q.size, prep.ode, prep.jac, prep.signal, prep.jac_nnz,
-        *prep.newton_addresses, _address_of(p), _address_of(q), *prep.sizes, float(rtol),
-        float(atol), float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0),
-        float(t1), _address_of(x0))
-    if not solver:
-        raise MemoryError("compiled_bdf: out of memory allocating the integrator")
+    p, q = np.asarray(p, dtype=float), np.asarray(signal.q, dtype=float)
+    solver = prep.solver(n, p.size, q.size)
+    values = solver.values
+    values[:p.size], values[p.size:p.size + q.size], values[p.size + q.size:] = p, q, x0
+    dll.bsm_bdf_reset(solver.pointer, solver.values_at, float(rtol), float(atol),
+                      float(max_step) if np.isfinite(max_step) else float(t1 - t0), float(t0),
+                      float(t1))
+    (times, xs, ys), (times_at, xs_at, ys_at) = solver.outputs(t_out.size)
+    times[:] = t_out
     bar = progress_bar(t0, t1, progress)
-    xs = np.empty((t_out.size, n))
-    stats = np.zeros(len(STAT_NAMES), dtype=np.int64)
     start = time.thread_time()
     try:
-        status = dll.bsm_bdf_start(solver)
-        times = np.ascontiguousarray(t_out, dtype=float)
-        times_at, xs_at = _address_of(times), _address_of(xs)
+        status = dll.bsm_bdf_start(solver.pointer)
         done, reached = 0, t0
-        written = ctypes.c_int(0)
         while status == 0 and done < times.size:
-            status = dll.bsm_bdf_advance(solver, times.size - done, times_at + 8 * done,
+            status = dll.bsm_bdf_advance(solver.pointer, times.size - done, times_at + 8 * done,
                                          xs_at + 8 * n * done, STEPS_PER_CALL,
-                                         ctypes.byref(written))
-            done += written.value
+                                         solver.written_at)
+            done += solver.written.value
             if budget is not None and status == 0 and done < times.size:
-                budget.step(dll.bsm_bdf_time(solver), STEPS_PER_CALL)
+                budget.step(dll.bsm_bdf_time(solver.pointer), STEPS_PER_CALL)
             if bar is not None:
-                now = min(dll.bsm_bdf_time(solver), t1)
+                now = min(dll.bsm_bdf_time(solver.pointer), t1)
                 bar.update(now - reached)
                 reached = now
-        dll.bsm_bdf_stats(solver, _address_of(stats))
+        dll.bsm_bdf_stats(solver.pointer, solver.stats_at)
+        integrate_cpu_time = time.thread_time() - start  # (the observed variables apart)
         if status != 0:
-            failed_at = dll.bsm_bdf_time(solver)
+            failed_at = dll.bsm_bdf_time(solver.pointer)
             state = np.empty(n)
-            dll.bsm_bdf_state(solver, _address_of(state))
+            dll.bsm_bdf_state(solver.pointer, _address_of(state))
             raise SimulationError(
                 f"compiled_bdf failed at t = {failed_at:.6g} s: {STATUS.get(status, status)}; "
-                f"{diverged(system, state, x0)}")
+                f"{diverged(system, state, np.asarray(x0, dtype=float))}")
+        if dll.bsm_bdf_observe(solver.pointer, times.size, times_at, xs_at, prep.n_y, ys_at):
+            raise SimulationError(f"{system.name}: the variables could not be evaluated at the "
+                                  "output times (a model function reported an error)")
     finally:
-        dll.bsm_bdf_free(solver)
         if bar is not None:
             bar.close()
-    run_stats = {name: int(v) for name, v in zip(STAT_NAMES, stats, strict=True)}
-    run_stats["integrate_cpu_time"] = time.thread_time() - start
-    return CompiledRun(t_out, xs.T.copy(), run_stats)
+    run_stats = dict(zip(STAT_NAMES, solver.stats.tolist(), strict=True))
+    run_stats["integrate_cpu_time"] = integrate_cpu_time
+    return CompiledRun(t_out, xs.T.copy(), ys.T.copy(), run_stats)

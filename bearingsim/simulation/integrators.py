@@ -36,7 +36,7 @@ from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.native_streams import casadi_dumps_dropped
 from bearingsim.simulation.progress import progress_bar
-from bearingsim.simulation.sundials import observe_at, sundials_run
+from bearingsim.simulation.sundials import sundials_run
 
 __all__ = [
     "BACKENDS",
@@ -311,11 +311,10 @@ class CompiledIntegrator(Integrator):
         run = compiled_bdf_run(system, kern, pb.signal, pb.p, pb.x0, pb.t0, pb.t1, pb.t_eval,
                                pb.rtol, pb.atol, pb.max_step, pb.progress,
                                budget=pb.budget)
-        values = observe_at(kern, pb.signal, pb.p, run.t, run.x, None)
         stats = {"method": self.name, "form": "ode", **kern.describe(),
                  "linear_solver": "sparse-skipping LU, fill-reducing order", **run.stats,
                  "kernel_time": kernel_time}
-        return Trajectory(run.t, run.x, values, stats)
+        return Trajectory(run.t, run.x, run.values, stats)
 
 
 METHODS: dict[str, Integrator] = {

@@ -145,3 +145,76 @@ def test_the_vm_is_refused_and_a_missing_compiler_named(kernel_cache, monkeypatc
     monkeypatch.setattr("bearingsim.simulation.kernels.c_compiler", lambda: None)
     with pytest.raises(CompileError, match="no C compiler on PATH"):
         simulate(system, 0.1, method="compiled_bdf")
+
+
+def test_a_kept_solver_repeats_a_new_ones_run_bit_for_bit(kernel_cache, monkeypatch):
+    """A thread keeps its solver of a model between runs (``bsm_bdf_reset`` instead of a new
+    allocation): a run after other runs on it (another start, tolerance, span and output
+    count, and a failed run) gives the states, observed variables and counts of the same run
+    on a new solver, bit for bit; so a sweep's result does not depend on the order of its
+    points."""
+    system = assemble(Pendulum())
+    blowup = assemble(Blowup())
+
+    def run(**kw):
+        return simulate(system, 0.7, method="compiled_bdf", rtol=1e-7, atol=1e-10,
+                        n_points=9, **kw)
+
+    monkeypatch.setattr(compiled_bdf, "_PREPARED", {})  # new solvers
+    first = run()
+    simulate(system, 1.3, method="compiled_bdf", rtol=1e-4, atol=1e-6, n_points=301,
+             x0={"x": 0.6, "vx": 0.1})
+    with pytest.raises(SimulationError):
+        simulate(blowup, 2.0, method="compiled_bdf", rtol=1e-6, atol=1e-9)
+    again = run()
+    monkeypatch.setattr(compiled_bdf, "_PREPARED", {})
+    fresh = run()
+    for other in (again, fresh):
+        for name in system.observed_names:
+            np.testing.assert_array_equal(other[name], first[name], err_msg=name)
+        assert {k: v for k, v in other.stats.items() if k.startswith("n")} == \
+            {k: v for k, v in first.stats.items() if k.startswith("n")}
+
+
+def test_the_observed_variables_are_the_kernels_at_the_output_states(kernel_cache):
+    """The driver evaluates the kernel library's ``observe`` at the output times (instead of
+    a mapped CasADi call after the run): the same numbers as that call on the run's states
+    and inputs, on the 6304's ball level with a ramp input (951 observed variables)."""
+    import casadi as ca
+
+    from bearingsim.assemblies import deep_groove_ball_bearing
+    from bearingsim.simulation.inputs import input_signal
+    from bearingsim.simulation.kernels import kernel
+    from bearingsim.simulation.sundials import observe_at
+
+    system = assemble(deep_groove_ball_bearing("6304", "dynamic_massive_balls", speed=None,
+                                               loads={"Fx": 500.0}, n_slices=0))
+    inputs = {"shaft_speed": lambda t: 300.0 * ca.fmin(t / 0.005, 1.0)}
+    res = simulate(system, 2e-3, method="compiled_bdf", n_points=5, inputs=inputs)
+    kern = kernel(system, "ode", True)
+    states = np.array([res[name] for name in system.state_names])
+    expected = observe_at(kern, input_signal(system, inputs), system.p0(), res.t, states,
+                          None)
+    assert expected.shape == (len(system.observed_names), 5)
+    got = np.array([res[name] for name in system.observed_names])
+    np.testing.assert_allclose(got, expected, rtol=1e-13, atol=1e-300)
+    assert np.ptp(res["cage.w"]) > 0  # the observed values move with the run
+
+
+def test_threads_run_on_solvers_of_their_own(kernel_cache):
+    """Runs in two threads at once (each thread its own kept solver) give what the same runs
+    give one after the other."""
+    import concurrent.futures
+
+    system = assemble(SpringMassChain(phi0=0.1))
+    settings = [{"rtol": 10.0 ** -k, "atol": 10.0 ** -(k + 3), "n_points": 50 + 10 * k}
+                for k in (4, 5, 6, 7, 8, 9)]
+
+    def run(kw):
+        return _states(simulate(system, 1.0, method="compiled_bdf", **kw), system)
+
+    alone = [run(kw) for kw in settings]
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        together = list(pool.map(run, settings * 3))
+    for k, states in enumerate(together):
+        np.testing.assert_array_equal(states, alone[k % len(settings)])

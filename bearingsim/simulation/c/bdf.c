@@ -4,7 +4,8 @@
  *
  * The model functions are CasADi-generated C, called through pointers: ode(t, x, u, p) ->
  * xdot, jac(t, x, u, p, out) -> (d/dt, d/dx, d/du, d/dp) of which d/dx (compressed columns) is
- * used, and the input signal signal(t, q) -> u. The LU of I - c J is bsm_lu.c's sparse one,
+ * used, the input signal signal(t, q) -> u, and observe(t, x, u, p) -> the observed variables
+ * at the output times (bsm_bdf_observe). The LU of I - c J is bsm_lu.c's sparse one,
  * on the unknowns in a fill-reducing order: the matrix in compressed columns on the pattern
  * of J and the diagonal in that order (bearingsim.simulation.ordering.newton_pattern, passed
  * in), the pivot order and fill pattern found once and reused while the pivots stay
@@ -30,7 +31,7 @@ typedef struct {
   BsmBdf core;
   BsmBdfHistory history;
   int n, n_u, n_p, n_q;
-  bsm_fn ode, jac, signal;
+  bsm_fn ode, jac, signal, observe;
   bsm_int jac_nnz;
   const int *diag_slot; /* the diagonal's entries in a_val */
   int *a_jac; /* the nonzero of J in each entry of a_val (jac_nnz: none, jac_nz[jac_nnz] = 0) */
@@ -203,24 +204,22 @@ void bsm_bdf_free(bsm_bdf *b) {
   free(b);
 }
 
-/* A solver at (t0, x0) integrating towards t_bound; NULL if out of memory. sz_*: the largest
- * work sizes of the three functions; order: the unknowns in the order of the LU (a
- * permutation of 0 .. n-1); a_start, a_index: the pattern of I - c J in that order
- * (compressed columns); jac_slot, diag_slot: where J's nnz nonzeros and the diagonal are in
- * it (the pattern and slots are kept by the caller for the solver's life). */
+/* A solver of a model with n states, n_u inputs, n_p parameters and n_q input parameters,
+ * kept for many runs (bsm_bdf_reset starts each); NULL if out of memory. sz_*: the largest
+ * work sizes of the four functions; order: the unknowns in the order of the LU (a permutation
+ * of 0 .. n-1); a_start, a_index: the pattern of I - c J in that order (compressed columns);
+ * jac_slot, diag_slot: where J's nnz nonzeros and the diagonal are in it (the pattern and
+ * slots are kept by the caller for the solver's life). */
 bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, bsm_fn signal,
-                     bsm_int nnz, const int *order, const int *a_start, const int *a_index,
-                     const int *jac_slot, const int *diag_slot, const double *p, const double *q,
-                     bsm_int sz_arg, bsm_int sz_res, bsm_int sz_iw, bsm_int sz_w,
-                     double rtol, double atol, double max_step, double t0, double t_bound,
-                     const double *x0) {
+                     bsm_fn observe, bsm_int nnz, const int *order, const int *a_start,
+                     const int *a_index, const int *jac_slot, const int *diag_slot,
+                     bsm_int sz_arg, bsm_int sz_res, bsm_int sz_iw, bsm_int sz_w) {
   bsm_bdf *b = calloc(1, sizeof(bsm_bdf));
   if (!b) return 0;
   b->n = n; b->n_u = n_u; b->n_p = n_p; b->n_q = n_q;
-  b->ode = ode; b->jac = jac; b->signal = signal;
+  b->ode = ode; b->jac = jac; b->signal = signal; b->observe = observe;
   b->jac_nnz = nnz;
   b->diag_slot = diag_slot;
-  b->t_bound = t_bound;
   size_t nn = (size_t)n * n;
   b->p = malloc(sizeof(double) * (n_p + 1));
   b->q = malloc(sizeof(double) * (n_q + 1));
@@ -265,22 +264,45 @@ bsm_bdf *bsm_bdf_new(int n, int n_u, int n_p, int n_q, bsm_fn ode, bsm_fn jac, b
     bsm_bdf_free(b);
     return 0;
   }
-  memcpy(b->p, p, sizeof(double) * n_p);
-  memcpy(b->q, q, sizeof(double) * n_q);
-  memcpy(b->x0, x0, sizeof(double) * n);
   memcpy(b->lu_order, order, sizeof(int) * n);
   for (int s = 0; s < a_start[n]; ++s) b->a_jac[s] = (int)nnz;
   for (bsm_int k = 0; k < nnz; ++k) b->a_jac[jac_slot[k]] = (int)k;
   core->n = n;
-  core->rtol = rtol;
-  core->atol = atol;
-  core->max_step = max_step;
   core->ops = &KERNEL_OPS;
   core->model = b;
   core->h = &b->history;
   bsm_bdf_init(core);
-  b->history.t = t0;
   return b;
+}
+
+/* Start a run at (t0, x0) towards t_bound with the parameters p and input parameters q, given
+ * one after the other in values = (p, q, x0), and the tolerances and largest step [s]: the
+ * solver as bsm_bdf_new left it (history, counters and work zero; the LU finds a fresh pivot
+ * order at its first factorisation), so that a run's result does not depend on the runs the
+ * solver made before. */
+void bsm_bdf_reset(bsm_bdf *b, const double *values, double rtol, double atol,
+                   double max_step, double t0, double t_bound) {
+  int n = b->n;
+  memcpy(b->p, values, sizeof(double) * b->n_p);
+  memcpy(b->q, values + b->n_p, sizeof(double) * b->n_q);
+  memcpy(b->x0, values + b->n_p + b->n_q, sizeof(double) * n);
+  memset(b->u, 0, sizeof(double) * (b->n_u + 1));
+  memset(b->jac_nz, 0, sizeof(double) * (b->jac_nnz + 1));
+  memset(b->a_val, 0, sizeof(double) * (b->factors.a_start[n] + 1));
+  memset(b->permuted, 0, sizeof(double) * n);
+  memset(b->core.D, 0, sizeof(double) * BSM_BDF_D_ROWS * n);
+  memset(b->core.work, 0, sizeof(double) * BSM_BDF_WORK_VECTORS * n);
+  memset(&b->history, 0, sizeof(b->history));
+  b->factors.pivoted = 0;
+  b->factors.pivotings = 0;
+#ifdef BSM_BDF_PROFILE
+  memset(b->profile, 0, sizeof(b->profile));
+#endif
+  b->core.rtol = rtol;
+  b->core.atol = atol;
+  b->core.max_step = max_step;
+  b->t_bound = t_bound;
+  b->history.t = t0;
 }
 
 /* First step size and the start of D; status code. */
@@ -310,6 +332,20 @@ static int advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, in
 int bsm_bdf_advance(bsm_bdf *b, int n_out, const double *t_out, double *x_out, int max_steps,
                     int *n_done) {
   PROFILE_RUN(advance(b, n_out, t_out, x_out, max_steps, n_done));
+}
+
+/* y_out[k*n_y + i] = observed variable i = observe(t, x, u(t), p) at t = t_out[k], x =
+ * x_out[k*n .. k*n + n-1], for k < n_out: the output times' variables of the run. Returns a
+ * status code. */
+int bsm_bdf_observe(bsm_bdf *b, int n_out, const double *t_out, const double *x_out, int n_y,
+                    double *y_out) {
+  for (int k = 0; k < n_out; ++k) {
+    double t = t_out[k];
+    if (model_args(b, &t, x_out + (size_t)k * b->n)) return BSM_BDF_MODEL_FAILED;
+    b->res[0] = y_out + (size_t)k * n_y;
+    if (b->observe(b->arg, b->res, b->iw, b->w, 0)) return BSM_BDF_MODEL_FAILED;
+  }
+  return BSM_BDF_OK;
 }
 
 double bsm_bdf_time(const bsm_bdf *b) { return b->history.t; }
