@@ -176,6 +176,23 @@ def _profiles():
             dll.bsm_bdf_stats = stats
 
 
+BEFORE_HEADER = ["build", "rtol", "CPU / step [us]", "steps", "rhs", "iterations / step",
+                 "error / tol"]
+
+
+def sources_at(commit: str, folder: Path) -> Path:
+    """The integrator's C sources (``SOURCES``) written into ``folder``: the stepping core and
+    the LU (``bsm_bdf.c``, ``bsm_lu.c`` and their headers) of ``commit``, the driver
+    ``bdf.c`` of the tree (its functions are the ones the tree's Python calls; the cores of
+    ``BEFORE`` and of :data:`bench.compiled_bdf_newton.BEFORE` share the tree's header)."""
+    for name in SOURCES:
+        text = (compiled_bdf.DRIVER_SOURCE.read_text() if name == "bdf.c" else subprocess.run(
+            ["git", "show", f"{commit}:bearingsim/simulation/c/{name}"],
+            cwd=Path(__file__).parent, capture_output=True, text=True, check=True).stdout)
+        (folder / name).write_text(text)
+    return folder
+
+
 def before_after(case: Case) -> list[list]:
     """The start-up run at each of ``TOLERANCES`` on commit ``BEFORE``'s core and the tree's
     (``before``)."""
