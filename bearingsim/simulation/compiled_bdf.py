@@ -256,6 +256,23 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
         return found
 
 
+def _not_finite_there(system: System, solver: _Solver, t: float, state: np.ndarray) -> str:
+    """For a failure message: the variables that are not finite at the state the run reached
+    (``""`` when all are: the integrator failed at a state it tried, not at this one), and,
+    for a model with nonlinear blocks, that a block without a solution gives NaN."""
+    times, values = np.array([t]), np.empty(solver.n_y)
+    status = solver.dll.bsm_bdf_observe(solver.pointer, 1, _address_of(times),
+                                        _address_of(state), solver.n_y, _address_of(values))
+    bad = [name for name, v in zip(system.observed_names, values, strict=True)
+           if not np.isfinite(v)]
+    if status or not bad:
+        return ""
+    names = ", ".join(bad[:8]) + (", ..." if len(bad) > 8 else "")
+    blocks = ("; a nonlinear block (algebraic loop) without a solution there gives NaN"
+              if system.rootfinder else "")
+    return f": {names} not finite at the state reached{blocks}"
+
+
 def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.ndarray,
                      x0: np.ndarray, t0: float, t1: float, t_out: np.ndarray, rtol: float,
                      atol: float, max_step: float = np.inf, progress: bool | None = False,
@@ -341,7 +358,8 @@ def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.nd
             state = np.empty(n)
             dll.bsm_bdf_state(solver.pointer, _address_of(state))
             raise SimulationError(
-                f"compiled_bdf failed at t = {failed_at:.6g} s: {STATUS.get(status, status)}; "
+                f"compiled_bdf failed at t = {failed_at:.6g} s: {STATUS.get(status, status)}"
+                f"{_not_finite_there(system, solver, failed_at, state)}; "
                 f"{diverged(system, state, np.asarray(x0, dtype=float))}")
         if dll.bsm_bdf_observe(solver.pointer, times.size, times_at, xs_at, prep.n_y, ys_at):
             raise SimulationError(f"{system.name}: the variables could not be evaluated at the "

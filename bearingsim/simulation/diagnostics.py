@@ -9,9 +9,29 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 
-__all__ = ["diverged", "evaluation_failure"]
+__all__ = ["diverged", "evaluation_failure", "sundials_failure"]
 
 _FAILED_IN = re.compile(r"for '(\S+)' \[(\w+)\]")
+
+_SUNDIALS_FLAG = re.compile(r'returned "((?:CV|IDA)_[A-Z_]+)"')
+"""The return flag of CVode or IDASolve in CasADi's error text."""
+
+SUNDIALS_FLAGS: tuple[tuple[tuple[str, ...], str], ...] = (
+    (("RHSFUNC", "RES_ERR", "RES_FAIL"),
+     "the right-hand side was not finite or failed at the states the integrator tried, "
+     "repeatedly (NaN or inf: a square root or logarithm of a negative value, or a division "
+     "by zero, as a state crosses zero?)"),
+    (("CONV_FAIL",), "the Newton iteration of the implicit steps failed repeatedly, down to "
+                     "the smallest step (a discontinuity or a blow-up?)"),
+    (("ERR_FAIL",), "the local error test failed repeatedly, down to the smallest step (a "
+                    "discontinuity or a blow-up?)"),
+    (("TOO_MUCH_ACC",), "the tolerances are tighter than the arithmetic allows (raise rtol "
+                        "and atol)"),
+    (("LINIT_FAIL", "LSETUP_FAIL", "LSOLVE_FAIL"),
+     "the linear solver failed (a singular Newton matrix, or Jacobian entries not finite?)"),
+)
+"""What the failure flags of CVODES and IDAS mean (by a part of the flag's name), for
+messages."""
 
 
 def diverged(system: System, x: np.ndarray, x0: np.ndarray) -> str:
@@ -65,3 +85,26 @@ def evaluation_failure(exc: BaseException) -> str:
                 "solution near its start: a speed or load beyond what the model carries?)")
     where = f" in {chain[-1][0]}" if chain else ""
     return f"{type(exc).__name__}{where}: {reason[:300]}"
+
+
+def sundials_failure(exc: BaseException) -> str:
+    """What the failure flag of a CVODES or IDAS call means, in words, or ``""`` when the
+    error names no flag.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error CasADi raised for the integrator call.
+
+    Returns
+    -------
+    str
+        E.g. ``"the right-hand side was not finite ... (CV_REPTD_RHSFUNC_ERR)"``.
+    """
+    found = _SUNDIALS_FLAG.search(str(exc))
+    if found is None:
+        return ""
+    flag = found.group(1)
+    meaning = next((text for parts, text in SUNDIALS_FLAGS if any(p in flag for p in parts)),
+                   "a failure of the integrator")
+    return f"{meaning} ({flag})"

@@ -110,9 +110,10 @@ def casadi_dumps_dropped() -> Iterator[None]:
 def held_stderr(hold: bool, drop: Any) -> Iterator[None]:
     """With ``hold``, send the process's standard error (file descriptor 2, and Python's
     ``sys.stderr``) aside while the context lasts, then copy it to standard error unless
-    ``drop()`` is true:
+    ``drop()`` is true or the context ends in an error:
     a run its budget stopped ends in a failed evaluation, which the Python layer, CasADi and
-    SUNDIALS each report on standard error; the budget's own error says what happened.
+    SUNDIALS each report on standard error; the budget's own error says what happened, as a
+    failed run's error says why it failed (IDAS prints its failure whatever its options).
 
     Parameters
     ----------
@@ -131,19 +132,23 @@ def held_stderr(hold: bool, drop: Any) -> Iterator[None]:
         yield
         return
     python_level = io.StringIO()  # Python's own reports go to sys.stderr, not always fd 2
+    raised = False
     with tempfile.TemporaryFile() as held, contextlib.redirect_stderr(python_level):
         os.dup2(held.fileno(), 2)
         try:
             yield
+        except BaseException:
+            raised = True
+            raise
         finally:
             os.dup2(saved, 2)
             os.close(saved)
-            if not drop():
+            if not (raised or drop()):
                 held.seek(0)
                 text = held.read()
                 if text:
                     os.write(2, text)
-    if not drop() and python_level.getvalue():
+    if not (raised or drop()) and python_level.getvalue():
         sys.stderr.write(python_level.getvalue())
 
 

@@ -29,7 +29,7 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.errors import BudgetExceededError, ParameterError, SimulationError
 from bearingsim.simulation.budget import RunBudget
-from bearingsim.simulation.diagnostics import diverged
+from bearingsim.simulation.diagnostics import diverged, sundials_failure
 from bearingsim.simulation.fastcall import columns_call
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import Kernel
@@ -145,9 +145,11 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     n_x = system.n_states
     if linear_solver is None:
         linear_solver = choose_linear_solver(*jacobian_size(kernel, n_x), kernel.form)
+    # a failure raises with its reason: no warning per failed evaluation (hundreds of lines)
     opts: dict[str, Any] = {"abstol": atol, "reltol": rtol,
                             "max_num_steps": budget.max_steps if budget else 100000,
-                            "linear_solver": linear_solver, **(options or {})}
+                            "linear_solver": linear_solver, "show_eval_warnings": False,
+                            "disable_internal_warnings": True, **(options or {})}
     span = t1 - t0
     t_out, tau, grid_key = normalized_grid(t0, t1, t_eval)
     if math.isfinite(max_step):
@@ -188,7 +190,8 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     try:
         with interrupts() as interrupted, (CLOCK.observing(observe) if observed
                                             else contextlib.nullcontext()), \
-                held_stderr(timed and bar is None, lambda: bool(stopped)):
+                held_stderr((timed or method == "idas") and bar is None,
+                            lambda: bool(stopped)):
             call(x_start, p_ext, z0, xf, zf)
         integrate_cpu_time = time.thread_time() - called
         observe(1.0)
@@ -300,7 +303,7 @@ def _locate_failure(method: str, system: System, built: Built, opts: dict, p_ext
     ``t0`` [s], to report where it failed; ``x0`` is the run's start state, which the states
     reached are compared with (failure path only). An interval that used up the step budget
     (SUNDIALS' ``max_num_steps``, "TOO_MUCH_WORK") raises the ``budget``'s error."""
-    with quiet_stdout():
+    with quiet_stdout(), held_stderr(True, lambda: True):  # the error says why
         _locate(method, system, built, opts, p_ext, x_start, z_start, x0, t0, span, tau, exc,
                 budget)
 
@@ -323,9 +326,11 @@ def _locate(method: str, system: System, built: Built, opts: dict, p_ext: np.nda
             x_new = None
         if x_new is None or not np.all(np.isfinite(x_new)):
             a, b = t0 + span * tau_prev, t0 + span * tau_next
+            why = sundials_failure(exc)
             raise SimulationError(
-                f"{method.upper()} failed between t = {a:.6g} s and {b:.6g} s; states at "
-                f"t = {a:.6g} s: {diverged(system, x, x0)}"
+                f"{method.upper()} failed between t = {a:.6g} s and {b:.6g} s"
+                f"{': ' + why if why else ''}; states at t = {a:.6g} s: "
+                f"{diverged(system, x, x0)}"
             ) from None
         x, tau_prev = x_new, float(tau_next)
     raise SimulationError(f"{method.upper()} failed ({str(exc).splitlines()[0]}; not "
