@@ -16,6 +16,7 @@ from bearingsim.files import atomic_path
 from bearingsim.plotting import keep_tight_layout, wrapped_label
 from bearingsim.series_csv import write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
+from bearingsim.units.registry import UnitError, si_factor
 
 __all__ = ["Result", "ResultLayout"]
 
@@ -232,22 +233,43 @@ class Result:
         return first + [n for n in self.names if n not in set(first)]
 
     @checked
-    def final(self, name: str) -> float:
-        """Value at the last time point.
+    def final(self, name: str, unit: str | None = None) -> float:
+        """Value at the last time point, in SI or in ``unit``.
 
         Parameters
         ----------
         name : str
             A variable's dotted name.
+        unit : str, optional
+            A unit of the variable's quantity to give the value in (``"rpm"`` for a speed,
+            ``"N mm"`` for a torque); None: its SI unit (:attr:`units`).
 
         Returns
         -------
         float
-            Its last value, in SI.
+            Its last value, in SI or in ``unit``.
+
+        Raises
+        ------
+        UnitError
+            For a unit of another quantity, naming the variable and its SI unit.
+
+        Examples
+        --------
+        >>> res.final("w_shaft", "rpm")  # doctest: +SKIP
+        5000.0
         """
         if not isinstance(name, str):
             raise ParameterError(f"Result.final: expected a variable name, got {name!r:.60}")
-        return float(self[name][-1])
+        value = float(self[name][-1])
+        if unit is None:
+            return value
+        si_unit = self.units.get(name, "1")
+        try:
+            factor, offset = si_factor(unit, si_unit)
+        except UnitError as exc:
+            raise UnitError(f"Result.final: {name} [{si_unit}]: {exc}") from None
+        return (value - offset) / factor
 
     def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
         """Write ``time`` and the chosen variables (default all) as CSV in SI, one header row
