@@ -13,6 +13,7 @@ from bearingsim.components.blocks import PIController
 from bearingsim.components.connectors import Flange
 from bearingsim.errors import ParameterError
 from bearingsim.language import Assembly, Component, Input, Parameter, Variable, connect, der
+from bearingsim.language.symbols import of_time
 from bearingsim.units import is_quantity
 from bearingsim.validation import check_choice, check_quantity
 
@@ -309,5 +310,5 @@ def _reference(ref, component):
     if ref is None:
         return component.w_ref
     if callable(ref):
-        return ref(component.time)
+        return of_time(ref, component.time, f"{component.display_name}: speed reference")
     return float(ref) + 0.0 * component.time

@@ -18,6 +18,7 @@ from bearingsim.language import (
     Variable,
     der,
 )
+from bearingsim.language.symbols import of_time
 from bearingsim.validation import check_quantity, check_range
 
 __all__ = [
@@ -360,7 +361,7 @@ def _signal(source, component: Component, input_name: str, unit: str = "-"):
     if source is None:
         return getattr(component, input_name)
     if callable(source):
-        return source(component.time)
+        return of_time(source, component.time, f"{component.display_name}: {input_name}")
     where = component.display_name
     check_range(source, input_name, unit, where=where)  # not a number: a clear message
     return ca.SX(float(check_range(float(source), input_name, unit, where=where)))

@@ -11,14 +11,15 @@ from __future__ import annotations
 
 import itertools
 import re
+import warnings
 import weakref
 from typing import Any, Protocol
 
 import casadi as ca
 
-from bearingsim.errors import ModelError
+from bearingsim.errors import ModelError, ParameterError
 
-__all__ = ["Declared", "time", "der", "symbol_declaration", "new_symbol", "readable"]
+__all__ = ["Declared", "time", "der", "symbol_declaration", "new_symbol", "of_time", "readable"]
 
 
 class Declared(Protocol):
@@ -42,6 +43,49 @@ _NAME = re.compile(r"\b([A-Za-z_][A-Za-z0-9_]*?)__(\d+)\b")
 
 time = ca.SX.sym("time")
 """The independent variable t [s], shared by every model."""
+
+
+_NUMPY_ON_CASADI = r"\s*casadi: a numpy function was called on a casadi value"
+"""The start of CasADi's warning when a numpy function meets a CasADi symbol (it still gives
+CasADi's function of it)."""
+
+
+def of_time(function: Any, t: ca.SX, what: str) -> ca.SX:
+    """``function(t)`` as an expression of the time symbol ``t``: a function of time written
+    with casadi, :mod:`bearingsim.symbolic` or numpy math (numpy's functions of a CasADi
+    symbol give CasADi's; CasADi's warning about it, a dozen lines, is not shown).
+
+    Parameters
+    ----------
+    function : callable
+        The function of time [s].
+    t : casadi.SX
+        The time symbol.
+    what : str
+        What the function gives, for the message (``"input shaft_speed"``).
+
+    Returns
+    -------
+    casadi.SX
+        The expression.
+
+    Raises
+    ------
+    ParameterError
+        When the function cannot be evaluated on a symbol (a Python ``if`` on the time, a
+        function from another library), naming ``what`` and the first line of the failure.
+    """
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=_NUMPY_ON_CASADI, category=FutureWarning)
+        try:
+            return ca.SX(function(t))
+        except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
+            lines = str(exc).strip().splitlines()
+            raise ParameterError(
+                f"{what}: the function of time could not be evaluated symbolically "
+                f"({(lines[0] if lines else type(exc).__name__)[:200]}); write it with casadi, "
+                "numpy or bearingsim.symbolic math (casadi.if_else for a choice on the time)"
+            ) from None
 
 
 def new_symbol(attr: str, declaration: Declared) -> ca.SX:

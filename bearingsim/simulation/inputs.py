@@ -21,6 +21,7 @@ from bearingsim.assembler.system import System
 from bearingsim.entry_points import value_key
 from bearingsim.errors import ParameterError
 from bearingsim.keeps import kept
+from bearingsim.language.symbols import of_time
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.units import is_quantity, to_si
 from bearingsim.units.registry import si_factor
@@ -224,14 +225,7 @@ def _function_of_time(name: str, spec: Any, t: ca.SX) -> tuple[ca.SX, str, tuple
     if form is not None and len(form.numbers) <= _LIFTED.numel():
         found = (ca.SX(form.build(t, _LIFTED)), f"e:{form.template}", form.numbers)
     else:
-        try:
-            out = spec(t)
-        except Exception as exc:  # noqa: BLE001 - report any failure of the user's function
-            raise ParameterError(
-                f"input {name}: the function could not be evaluated symbolically ({exc}); "
-                "write it with casadi or bearingsim.symbolic math"
-            ) from None
-        expr = ca.SX(out)
+        expr = of_time(spec, t, f"input {name}")
         found = (expr, f"f:{expr}", ())
     if text is not None:
         if len(_EXPRESSIONS) >= _EXPRESSIONS_LIMIT:
