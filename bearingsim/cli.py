@@ -404,7 +404,8 @@ def _parser() -> argparse.ArgumentParser:
     p_demo.add_argument("--overwrite", action="store_true",
                         help="replace the files of an earlier demo run in the folder")
     p_demo.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p_exp = sub.add_parser("export-fmu", help="export an assembly as an FMU", add_help=False)
+    p_exp = sub.add_parser("export-fmu", add_help=False,
+                           help="export an assembly, or the model a scene runs, as an FMU")
     p_exp.add_argument("rest", nargs=argparse.REMAINDER)
     return parser
 

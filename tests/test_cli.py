@@ -275,6 +275,20 @@ def test_version_and_export_fmu_help(capsys):
     assert "--arg NAME=VALUE" in out and "FMI 2.0 or 3.0" in out
 
 
+def test_export_fmu_of_an_unknown_name_lists_what_it_takes(capsys):
+    """The command takes scene files and built-in scenes too: the refusal of a name it does
+    not know said "expected pkg.module:callable, file.py:callable or an assembly name", and
+    the command's help "export an assembly"."""
+    with pytest.raises(SystemExit) as exit_:
+        main(["export-fmu", "nothing", "out.fmu"])
+    assert str(exit_.value.code) == (
+        "export-fmu: expected a scene file (*.toml) or built-in scene, an assembly name "
+        "(bearingsim list), pkg.module:callable or file.py:callable, got 'nothing'")
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    assert "the model a scene runs, as an FMU" in " ".join(capsys.readouterr().out.split())
+
+
 FACTORY = '''
 from bearingsim.assemblies import double_layer_bearing
 

@@ -181,8 +181,9 @@ def _load(spec: str, kwargs: dict[str, Any]):
             return found
     module, sep, attr = spec.rpartition(":")
     if not sep or not module or not attr:
-        raise SystemExit(f"export-fmu: expected pkg.module:callable, file.py:callable or an "
-                         f"assembly name (bearingsim list), got {spec!r}")
+        raise SystemExit(f"export-fmu: expected a scene file (*.toml) or built-in scene, an "
+                         f"assembly name (bearingsim list), pkg.module:callable or "
+                         f"file.py:callable, got {spec!r}")
     if module.endswith(".py"):
         path = Path(module)
         if not path.is_file():
