@@ -10,8 +10,8 @@ change at the level of rounding that moves the step sequence, so that the counts
 over ``NUDGES`` step sequences rather than one (one steady run of the nested bearing has
 50-100 steps, and its counts move by 20-30 % with such a nudge).
 
-* ``counts``: the tree's stepping core and commit ``BEFORE``'s (its C sources from git, at the
-  tree's flags), alternating; CPU seconds per simulated second (thread time, per nudge the
+* ``counts``: the tree's stepping core and commit ``BEFORE``'s (its ``bsm_bdf.c`` and
+  ``bsm_lu.c`` from git under the tree's driver, at the tree's flags), alternating; CPU seconds per simulated second (thread time, per nudge the
   least of ``REPEATS``, summed over the nudges), steps, Newton iterations per step (right-hand
   sides less the two of the first step size, with the iterations of attempts that failed),
   Jacobians, LU factorisations, error-test failures and the error against a tight CVODES
