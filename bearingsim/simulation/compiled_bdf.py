@@ -83,6 +83,10 @@ STEPS_PER_CALL = 1000
 """Steps per call of the C loop (about 30 ms on the 6304 massive-ball level): between calls
 the progress bar moves and Ctrl-C is seen, however few the output times."""
 
+KEPT_OUTPUT_TIMES = 1000
+"""Most output times a kept solver's output arrays hold between runs (a run with more gets
+arrays of its own, freed with its result)."""
+
 _LOCK = threading.Lock()
 
 
@@ -209,7 +213,11 @@ class _Solver:
 
     def outputs(self, m: int) -> tuple[tuple[np.ndarray, ...], tuple[int, ...]]:
         """Arrays for ``m`` output times (times, states and observed variables, a row per
-        time) and their addresses, grown when a run has more output times than any before."""
+        time) and their addresses: kept for up to :data:`KEPT_OUTPUT_TIMES` (grown to the most
+        a run had), made for the run alone above (a long series is not held after it)."""
+        if m > KEPT_OUTPUT_TIMES:
+            arrays = (np.empty(m), np.empty((m, self.n)), np.empty((m, self.n_y)))
+            return arrays, tuple(_address_of(a) for a in arrays)
         if not self._outputs or self._outputs[0].size < m:
             self._outputs = (np.empty(m), np.empty((m, self.n)), np.empty((m, self.n_y)))
             self._addresses = tuple(_address_of(a) for a in self._outputs)

@@ -218,3 +218,19 @@ def test_threads_run_on_solvers_of_their_own(kernel_cache):
         together = list(pool.map(run, settings * 3))
     for k, states in enumerate(together):
         np.testing.assert_array_equal(states, alone[k % len(settings)])
+
+
+def test_a_long_series_is_not_held_by_the_kept_solver(kernel_cache, monkeypatch):
+    """The kept solver's output arrays hold up to KEPT_OUTPUT_TIMES output times between runs;
+    a run with more writes into arrays of its own (a series of a million output times would
+    otherwise stay allocated with the thread's solver), with the same numbers."""
+    system = assemble(SpringMassChain(phi0=0.1))
+    long_kept = simulate(system, 1.0, method="compiled_bdf", n_points=60)
+    monkeypatch.setattr(compiled_bdf, "_PREPARED", {})
+    monkeypatch.setattr(compiled_bdf, "KEPT_OUTPUT_TIMES", 20)
+    simulate(system, 1.0, method="compiled_bdf", n_points=5)
+    long_apart = simulate(system, 1.0, method="compiled_bdf", n_points=60)
+    np.testing.assert_array_equal(_states(long_apart, system), _states(long_kept, system))
+    (prep,) = compiled_bdf._PREPARED.values()
+    (solver,) = prep.solvers.by_size.values()
+    assert [a.shape[0] for a in solver._outputs] == [5, 5, 5]  # not grown to 60
