@@ -9,7 +9,7 @@ import numpy as np
 
 from bearingsim.assembler.system import System, as_system
 from bearingsim.entry_points import entry_point
-from bearingsim.errors import ParameterError
+from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.result import Result
 from bearingsim.validation import check_mapping, check_range, check_vector
@@ -147,14 +147,38 @@ def linearize(
             check_range(val, name, sig.unit, sig.low, sig.high, where="linearize: inputs"))
     t = 0.0 if t is None else float(check_range(t, "t", "s", where="linearize"))
     fns = system.functions
-    jacobian = kernel(system, "ode", compiled).function.jacobian()
-    _, d_dx, d_du, _ = jacobian(t, x, u, p, 0.0)
+    kern = kernel(system, "ode", compiled)
+    _, d_dx, d_du, _ = kern.function.jacobian()(t, x, u, p, 0.0)
     a, b = (np.asarray(m.full(), dtype=float) for m in (d_dx, d_du))
     c, d = (np.asarray(fns[k](t, x, u, p).full(), dtype=float) for k in ("out_jac_x",
                                                                           "out_jac_u"))
+    _check_finite(system, t, np.asarray(kern.observe(t, x, u, p).full(), dtype=float).ravel(),
+                  np.hstack([a, b]), np.hstack([c, d]))
     lam, fn, zeta, shapes = _modes(a)
     return LinearModel(a, b, c, d, system.state_names, system.input_names, system.output_names,
                        x, u, lam, fn, zeta, shapes)
+
+
+def _check_finite(system: System, t: float, values: np.ndarray, ab: np.ndarray,
+                  cd: np.ndarray) -> None:
+    """Raise when a variable at the operating point (``values``: every observed variable) or
+    an entry of the linear model is not finite (a nonlinear block without a solution there, a
+    square root of a negative value), naming them: the modes would be empty or NaN."""
+    names = [n for n, v in zip(system.observed_names, values, strict=True)
+             if not np.isfinite(v)]
+    where = "its variables are not finite at the operating point"
+    if not names:
+        names = [f"der({n})" for n, row in zip(system.state_names, ab, strict=True)
+                 if not np.isfinite(row).all()]
+        names += [n for n, row in zip(system.output_names, cd, strict=True)
+                  if not np.isfinite(row).all()]
+        where = "the Jacobian is not finite at the operating point in the rows of"
+    if names:
+        raise SimulationError(
+            f"linearize: {system.name}: {where} (t = {t:g} s): {', '.join(names[:8])}"
+            f"{', ...' if len(names) > 8 else ''}; "
+            + ("the nonlinear blocks (algebraic loops) found no solution there"
+               if system.rootfinder else "the model evaluates to NaN or inf there"))
 
 
 def _take_recorded(vector: np.ndarray, names: list[str], recorded: dict[str, float],

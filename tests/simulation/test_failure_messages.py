@@ -73,3 +73,19 @@ def test_the_compiled_bdf_names_what_is_not_finite_and_the_loop_without_a_root(k
     assert "the model returned non-finite values: x, der(y) not finite at the state " \
            "reached; a nonlinear block (algebraic loop) without a solution there gives NaN" \
         in str(err.value)
+
+
+def test_linearize_refuses_an_operating_point_without_a_solution():
+    """Linearizing where the loop x^2 + 1 = 0 has no solution returned a linear model with no
+    modes (A finite: der(y) = x - y does not see x's NaN in its derivative by y), a silent
+    non-answer; it now names the variables that are not finite there."""
+    from bearingsim.simulation import linearize
+
+    class Loop(NoRealRoot):
+        def equations(self):
+            return [self.x**2 + 1.0 == 0.0, der(self.y) == self.x - self.y]
+
+    with pytest.raises(SimulationError, match=r"linearize: loop: its variables are not finite "
+                       r"at the operating point \(t = 0 s\): x, der\(y\); the nonlinear "
+                       r"blocks \(algebraic loops\) found no solution there"):
+        linearize(assemble(Loop()))
