@@ -49,7 +49,7 @@ from bearingsim.physics.life import (
 )
 from bearingsim.physics.materials import STEEL, Material, effective_modulus
 from bearingsim.physics.ring_equilibrium import EquilibriumProblem
-from bearingsim.validation import check_choice, check_quantity, check_range
+from bearingsim.validation import check_choice, check_mapping, check_quantity, check_range
 
 __all__ = ["DeepGrooveStatics", "LOAD_NAMES", "METHODS",
            "STATIC_PRESSURE_LIMIT", "deep_groove_statics"]
@@ -180,7 +180,7 @@ def deep_groove_statics(bearing: str | BearingGeometry = "6304",
 
 
 def _load_vector(loads, where: str) -> np.ndarray:
-    loads = dict(loads or {})
+    loads = check_mapping(loads, "loads", where, f"load names ({', '.join(LOAD_NAMES)})")
     unknown = sorted(set(loads) - set(LOAD_NAMES))
     if unknown:
         raise ParameterError(f"{where}: unknown load(s) {', '.join(map(repr, unknown))}; the "

@@ -221,7 +221,8 @@ def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), paramete
     Parameters
     ----------
     speeds : array_like
-        Shaft speeds [rad/s], > 0.
+        Shaft speeds [rad/s], > 0, or numbers with a unit (``["1000 rpm", "5000 rpm"]``, a
+        :class:`pint.Quantity` array).
     inner, outer : str or BearingGeometry, optional
         Bearings (default "61905" in "61907"); only without ``system``.
     loads : (float, float)
@@ -246,11 +247,15 @@ def speed_ratio_sweep(speeds, inner=None, outer=None, loads=(0.0, 0.0), paramete
         keywords (they would be ignored: the system is already assembled).
     """
     where = "speed_ratio_sweep"
+    if isinstance(speeds, (list, tuple)):  # each a number or a number with a unit
+        speeds = [check_quantity(v, "speeds", "rad/s", where=where) for v in speeds]
+    else:
+        speeds = check_quantity(speeds, "speeds", "rad/s", where=where)
     try:
         speeds = np.asarray(speeds, dtype=float)
     except (TypeError, ValueError):
-        raise ParameterError(f"{where}: speeds must be numbers [rad/s], got "
-                             f"{speeds!r:.60}") from None
+        raise ParameterError(f"{where}: speeds must be numbers [rad/s] or numbers with a unit "
+                             f"('3000 rpm'), got {speeds!r:.60}") from None
     if speeds.ndim != 1 or speeds.size == 0:
         raise ParameterError(f"{where}: speeds must be a non-empty list of shaft speeds "
                              f"[rad/s], got shape {speeds.shape}")

@@ -25,6 +25,7 @@ from bearingsim.components.roller_row import (
     roller_row_parameters,
 )
 from bearingsim.physical_checks import check_static_pressure
+from bearingsim.validation import check_mapping
 
 __all__ = ["LOAD_NAMES", "ROLLER_PRESSURE_LIMIT", "RollerStatics", "roller_statics"]
 
@@ -111,7 +112,8 @@ def roller_statics(bearing: str | RollerBearingGeometry = "NU206",
     # checked (units converted) as the product's quasi-static level checks them
     opts = CylindricalRollerOptions(bearing, "quasi-static", clearance=clearance,
                                     misalignment=misalignment, n_slices=n_slices,
-                                    loads=dict(loads or {}))
+                                    loads=check_mapping(loads, "loads", where,
+                                                        "load names (Fx, Fy)"))
     g, clearance, tilt = opts.geometry, opts.clearance, list(opts.misalignment)
     force = [load_value(opts.loads.get(k, 0.0), k, where) for k in LOAD_NAMES]  # constants
     p = roller_row_parameters(g, clearance)

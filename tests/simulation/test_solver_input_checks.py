@@ -534,10 +534,32 @@ def test_steady_ratio_takes_numbers_with_units_as_simulate_does(torque_system):
 @pytest.mark.parametrize(("speeds", "match"), [
     ([100.0, 0.0], r"speed_ratio_sweep: speeds = array with min 0, max 100 \[rad/s\] is "
                    r"outside the valid range \(0, inf\)"),  # was steady_ratio's message
-    (["fast"], r"speed_ratio_sweep: speeds must be numbers \[rad/s\]"),  # was ValueError
+    (["fast"], r"speed_ratio_sweep: speeds: 'fast' is not a number with a unit"),  # ValueError
+    (["5000 kg"], r"speed_ratio_sweep: speeds: 'kg' is not a unit of rad/s quantities"),
     ([], r"speed_ratio_sweep: speeds must be a non-empty list"),  # was an empty sweep
     ([100.0, float("nan")], r"speed_ratio_sweep: speeds must be finite"),
 ])
 def test_speed_ratio_sweep_checks_its_speeds_before_assembling(speeds, match):
     with pytest.raises(ParameterError, match=match):
         speed_ratio_sweep(speeds)
+
+
+def test_speed_ratio_sweep_takes_speeds_with_units(torque_system):
+    """As steady_ratio takes "3000 rpm" (docs/units.md); the sweep refused ["1000 rpm"]: "speeds
+    must be numbers [rad/s]"."""
+    with_units = speed_ratio_sweep(["1000 rpm", "5000 rpm"], system=torque_system)
+    in_si = speed_ratio_sweep([1000 * np.pi / 30, 5000 * np.pi / 30], system=torque_system)
+    np.testing.assert_allclose(with_units.speeds, in_si.speeds, rtol=1e-15)
+    np.testing.assert_allclose(with_units.rs, in_si.rs, rtol=1e-12)
+
+
+@pytest.mark.parametrize("study", ["deep_groove_statics", "roller_statics"])
+def test_statics_loads_must_be_a_mapping(study):
+    """A list of loads raised a TypeError from inside dict()."""
+    from bearingsim.studies.deep_groove_statics import deep_groove_statics
+    from bearingsim.studies.roller_statics import roller_statics
+
+    run = {"deep_groove_statics": deep_groove_statics, "roller_statics": roller_statics}[study]
+    with pytest.raises(ParameterError, match=rf"{study}: loads must be a dict of load names "
+                                             r"\(Fx, Fy.*\) -> values, got list \[1000\]"):
+        run(loads=[1000])
