@@ -18,6 +18,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.physics.shaft_modes import MODE_NAMES, modal_analysis
 from bearingsim.studies.duplex import DuplexModel
 from bearingsim.units import to_deg
+from bearingsim.validation import check_quantity
 
 __all__ = ["SWEEP_PARAMETERS", "Sweep", "sweep", "plot_sweep"]
 
@@ -28,6 +29,10 @@ SWEEP_PARAMETERS = {
     "ball_position_angle": ("deg", to_deg(1.0)),
 }
 """Sweepable configuration parameters: (display unit, factor from SI to it)."""
+
+SI_UNITS = {"contact_angle": "rad", "speed": "rad/s", "ball_position_angle": "rad"}
+"""The SI unit of each swept value but the preload (a class name or a force, which
+:meth:`~bearingsim.studies.duplex.DuplexModel.preload_force` reads)."""
 
 
 @dataclass
@@ -75,7 +80,8 @@ def sweep(model: DuplexModel, parameter: str, values, label: str = "",
     model : DuplexModel
     parameter : {"preload", "contact_angle", "speed", "ball_position_angle"}
     values : array_like
-        Values in SI units (N, rad, rad/s, rad); preload may also list class names.
+        Values in SI units (N, rad, rad/s, rad) or numbers with a unit (``"15 deg"``,
+        ``"6000 rpm"``, ``"0.5 kN"``); preload may also list class names.
     label : str
         Legend label.
     **config
@@ -92,6 +98,8 @@ def sweep(model: DuplexModel, parameter: str, values, label: str = "",
                              f"got {parameter!r}")
     freqs, stiff, xs = [], [], []
     for v in values:
+        if parameter in SI_UNITS:
+            v = float(check_quantity(v, parameter, SI_UNITS[parameter], where="sweep"))
         config[parameter] = v
         eq = model.equilibrium(**config)
         k = model.stiffness(eq)

@@ -13,7 +13,7 @@ from bearingsim.components.aligned_body import AXES
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation import steady_state
 from bearingsim.simulation.statics import static_stiffness
-from bearingsim.validation import check_range
+from bearingsim.validation import check_quantity
 
 __all__ = ["NestedEquilibrium", "nested_equilibrium"]
 
@@ -39,7 +39,7 @@ class NestedEquilibrium:
     state: np.ndarray
 
 
-def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
+def nested_equilibrium(system: System, radial: float | str, axial: float | str = 0.0,
                        guess: np.ndarray | None = None) -> NestedEquilibrium:
     """Solve the nested pair for a radial (x) and axial (z) shaft load.
 
@@ -47,11 +47,11 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     ----------
     system : System
         Assembled :class:`NestedQuasiStatic`.
-    radial : float
-        Radial load on the shaft along x [N], >= 0; 0 only with an axial load (a load is
-        needed to seat the balls).
-    axial : float
-        Axial load along z [N] (needs ``axial=True``).
+    radial : float or str
+        Radial load on the shaft along x [N], >= 0, or a number with a unit (``"0.5 kN"``); 0
+        only with an axial load (a load is needed to seat the balls).
+    axial : float or str
+        Axial load along z [N] or a number with a unit (needs ``axial=True``).
     guess : array, optional
         Starting state (default: seated guess from the clearance).
 
@@ -67,8 +67,8 @@ def nested_equilibrium(system: System, radial: float, axial: float = 0.0,
     """
     system = as_system(system, "nested_equilibrium")
     _check_nested(system)
-    check_range(radial, "radial", "N", 0.0, None, where="nested_equilibrium")
-    check_range(axial, "axial", "N", where="nested_equilibrium")
+    radial = float(check_quantity(radial, "radial", "N", 0.0, None, where="nested_equilibrium"))
+    axial = float(check_quantity(axial, "axial", "N", where="nested_equilibrium"))
     if radial == 0.0 and not axial:
         raise ParameterError("nested_equilibrium: radial = 0 N needs an axial load; the balls "
                              "of a bearing with clearance are seated by a load (radial > 0 N "

@@ -115,6 +115,17 @@ def test_axial_mode_is_most_sensitive_to_contact_angle(df):
     assert np.all(np.diff(result.frequencies[:, MODE_NAMES.index("axial")]) > 0)
 
 
+def test_swept_values_take_units(df):
+    """sweep's values take numbers with a unit, as the model's arguments do (docs/units.md):
+    ["15 deg", ...] raised a ValueError from float("15 deg")."""
+    with_units = sweep(df, "contact_angle", ["15 deg", "25 deg"], preload="1.27 kN")
+    in_si = sweep(df, "contact_angle", [deg(15.0), deg(25.0)], preload=1270.0)
+    np.testing.assert_array_equal(with_units.values, in_si.values)
+    np.testing.assert_allclose(with_units.frequencies, in_si.frequencies, rtol=1e-12)
+    with pytest.raises(ParameterError, match=r"sweep: contact_angle: 'kg' is not a unit of rad"):
+        sweep(df, "contact_angle", ["15 kg"])
+
+
 def test_ball_position_angle_barely_changes_frequencies(df):
     result = sweep(df, "ball_position_angle", np.linspace(0.0, 2 * np.pi / 20, 4),
                    preload="light")

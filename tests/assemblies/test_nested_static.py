@@ -98,6 +98,17 @@ def test_invalid_loads_are_rejected(radial_system):
         nested_equilibrium(radial_system, 0.0)
     with pytest.raises(ParameterError, match="axial"):
         nested_equilibrium(radial_system, 100.0, 50.0)
+    with pytest.raises(ParameterError, match=r"nested_equilibrium: radial: 'rpm' is not a unit "
+                                             r"of N quantities"):
+        nested_equilibrium(radial_system, "500 rpm")
+
+
+def test_loads_take_units(radial_system):
+    """As the assemblies' loads do (docs/units.md); "0.5 kN" was refused ("radial must be a
+    number in N")."""
+    with_units = nested_equilibrium(radial_system, "0.5 kN")
+    in_si = nested_equilibrium(radial_system, 500.0)
+    np.testing.assert_array_equal(with_units.state, in_si.state)
 
 
 def test_study_fits_set_each_layers_operating_clearance():
