@@ -12,7 +12,7 @@ from bearingsim.entry_points import entry_point
 from bearingsim.errors import ParameterError, SimulationError
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.result import Result
-from bearingsim.validation import check_mapping, check_range, check_vector
+from bearingsim.validation import check_mapping, check_quantity, check_vector
 
 __all__ = ["LinearModel", "linearize"]
 
@@ -78,8 +78,8 @@ def linearize(
     system: System,
     operating_point: dict[str, float] | Result | np.ndarray | None = None,
     *,
-    t: float | None = None,
-    inputs: dict[str, float] | None = None,
+    t: float | str | None = None,
+    inputs: dict[str, float | str] | None = None,
     parameters: dict[str, float] | None = None,
     compiled: bool | str = "auto",
 ) -> LinearModel:
@@ -102,10 +102,12 @@ def linearize(
     operating_point : dict or Result or array, optional
         State values by name (others at their start values), a result (its last point, inputs
         and parameters) or a full state vector. Default: the start values.
-    t : float, optional
-        Time [s]; default the result's last time, else 0.
+    t : float or str, optional
+        Time [s] or a number with a unit (``"2 ms"``); default the result's last time, else 0.
     inputs : dict, optional
-        Constant input values by name, overriding the result's (or the default) values.
+        Constant input values by name (in the input's SI unit, or with a unit: ``"5000
+        rpm"``, as :func:`~bearingsim.simulation.simulate` takes them), overriding the
+        result's (or the default) values.
     parameters : dict, optional
         Parameter values by name, overriding the result's (or the default) values.
     compiled : bool or "auto"
@@ -144,8 +146,8 @@ def linearize(
             )
         sig = system.inputs[system.input_names.index(name)]
         u[system.input_names.index(name)] = float(
-            check_range(val, name, sig.unit, sig.low, sig.high, where="linearize: inputs"))
-    t = 0.0 if t is None else float(check_range(t, "t", "s", where="linearize"))
+            check_quantity(val, name, sig.unit, sig.low, sig.high, where="linearize: inputs"))
+    t = 0.0 if t is None else float(check_quantity(t, "t", "s", where="linearize"))
     fns = system.functions
     kern = kernel(system, "ode", compiled)
     _, d_dx, d_du, _ = kern.function.jacobian()(t, x, u, p, 0.0)

@@ -23,7 +23,7 @@ from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.native_streams import casadi_dumps_dropped
 from bearingsim.units.fmi import derivative_unit
-from bearingsim.validation import check_flag, check_range, check_vector
+from bearingsim.validation import check_flag, check_quantity, check_range, check_vector
 
 __all__ = ["steady_state", "integrator_states", "turning_angles"]
 
@@ -86,7 +86,7 @@ def steady_state(
     parameters: dict | None = None,
     p: np.ndarray | None = None,
     x_guess: np.ndarray | None = None,
-    t: float = 0.0,
+    t: float | str = 0.0,
     tol: float = 1e-12,
     residual_tol: float = 1e-9,
     require_unique: bool = True,
@@ -110,8 +110,8 @@ def steady_state(
         ``system.parameter_names`` in its SI unit, each within its declared range.
     x_guess : array, optional
         Starting guess (default: start values).
-    t : float
-        Time at which inputs are evaluated [s].
+    t : float or str
+        Time at which inputs are evaluated [s], or a number with a unit (``"2 ms"``).
     tol : float
         Relative step tolerance of the solver, in (0, 1].
     residual_tol : float
@@ -143,7 +143,7 @@ def steady_state(
     """
     where = "steady_state"
     system = as_system(system, where)
-    check_range(t, "t", "s", where=where)
+    t = float(check_quantity(t, "t", "s", where=where))
     check_range(tol, "tol", "1", 0.0, 1.0, low_inclusive=False, where=where)
     check_range(residual_tol, "residual_tol", "state units/s", 0.0, None, low_inclusive=False,
                 where=where)

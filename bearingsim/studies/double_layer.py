@@ -314,9 +314,9 @@ class SpeedRatioEstimate:
         return self.torques[0] > 0.0 > self.torques[1]
 
 
-def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: float,
+def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: float | str,
                 bracket: tuple[float, float] | None = None, parameters: dict | None = None,
-                t_run: float = 0.02, tol: float = 1e-4,
+                t_run: float | str = 0.02, tol: float = 1e-4,
                 max_runs: int = 16) -> SpeedRatioEstimate:
     """Steady speed ratio from the net middle-ring torque of short runs.
 
@@ -336,14 +336,14 @@ def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: flo
     system : System
         ``bearing`` assembled as the root, with the input ``shaft_speed``
         (``drive="speed"``, ``speed=None``) and ``M_middle`` among its outputs.
-    w_shaft : float
-        Shaft speed [rad/s], > 0.
+    w_shaft : float or str
+        Shaft speed [rad/s], > 0, or a number with a unit (``"5000 rpm"``).
     bracket : (float, float), optional
         Two speed ratios to start from [-], in (0, 1); default: the torque level's.
     parameters : dict, optional
         Parameter overrides (e.g. ``{"inner_layer.ring_drag.f0": 1.62}``).
-    t_run : float
-        Length of each run [s], > 0.
+    t_run : float or str
+        Length of each run [s], > 0, or a number with a unit (``"20 ms"``).
     tol : float
         Convergence of the ratio [-], > 0.
     max_runs : int
@@ -361,8 +361,10 @@ def speed_ratio(bearing: DynamicDoubleLayerBearing, system: System, w_shaft: flo
     """
     where = "speed_ratio"
     system = as_system(system, where)
-    check_range(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False, where=where)
-    check_range(t_run, "t_run", "s", 0.0, None, low_inclusive=False, where=where)
+    w_shaft = float(check_quantity(w_shaft, "w_shaft", "rad/s", 0.0, None, low_inclusive=False,
+                                   where=where))
+    t_run = float(check_quantity(t_run, "t_run", "s", 0.0, None, low_inclusive=False,
+                                 where=where))
     check_range(tol, "tol", "-", 0.0, None, low_inclusive=False, where=where)
     if "shaft_speed" not in system.input_names or "M_middle" not in system.output_names:
         raise ParameterError("speed_ratio: assemble the bearing as the root with "

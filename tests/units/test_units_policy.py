@@ -163,6 +163,30 @@ def test_simulate_times_and_start_values_take_numbers_with_units(torque_system):
         simulate(torque_system, 0.01, inputs={"shaft_speed": 1.0}, x0={"middle.sleeve.w": "3 m"})
 
 
+def test_linearize_steady_state_and_speed_ratio_take_numbers_with_units(torque_system):
+    """linearize refused the inputs simulate and steady_state take ("shaft_speed must be a
+    number in rad/s, got '5000 rpm'") and a time with a unit; steady_state's time and
+    speed_ratio's speed and run length alike."""
+    from bearingsim.simulation import linearize
+    from bearingsim.studies.double_layer import speed_ratio
+
+    with_units = linearize(torque_system, inputs={"shaft_speed": "5000 rpm", "Fr": "0.2 kN"},
+                           t="2 ms")
+    si = linearize(torque_system, inputs={"shaft_speed": 5000 * RPM, "Fr": 200.0}, t=0.002)
+    assert np.array_equal(with_units.A, si.A) and np.array_equal(with_units.u_op, si.u_op)
+    with pytest.raises(ParameterError, match=r"linearize: inputs: shaft_speed: 'kN' is not a "
+                                             r"unit of rad/s quantities"):
+        linearize(torque_system, inputs={"shaft_speed": "5 kN"})
+    x = steady_state(torque_system, inputs={"shaft_speed": "5000 rpm"}, t="1 ms")
+    assert np.array_equal(x, steady_state(torque_system, inputs={"shaft_speed": 5000 * RPM},
+                                          t=0.001))
+    with pytest.raises(ParameterError, match=r"speed_ratio: w_shaft: 'kg' is not a unit"):
+        speed_ratio(None, torque_system, "5000 kg")
+    # converted, then refused for this system (the torque level has no M_middle)
+    with pytest.raises(ParameterError, match=r"speed_ratio: assemble the bearing as the root"):
+        speed_ratio(None, torque_system, "5000 rpm", t_run="20 ms")
+
+
 def test_api_load_arguments_take_numbers_with_units():
     """A new-user trial: ``deep_groove_ball_bearing("6304", ..., speed="1730 rpm",
     loads={"Fx": "938 N"})`` took the speed with its unit and refused the load ("must be a
