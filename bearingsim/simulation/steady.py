@@ -176,6 +176,8 @@ def steady_state(
         except RuntimeError:  # no root of a Newton block there: no residual, try elsewhere
             unsolved[0] += 1
             f, j = np.full(free.size, np.nan), np.full((free.size, free.size), np.nan)
+        else:  # a compiled block without a root gives NaN instead of an error
+            unsolved[0] += bool(system.rootfinder) and not np.isfinite(f).all()
         last[0], last[1] = z.copy(), j
         return f
 

@@ -89,3 +89,18 @@ def test_linearize_refuses_an_operating_point_without_a_solution():
                        r"at the operating point \(t = 0 s\): x, der\(y\); the nonlinear "
                        r"blocks \(algebraic loops\) found no solution there"):
         linearize(assemble(Loop()))
+
+
+@pytest.mark.skipif(c_compiler() is None, reason="needs a C compiler")
+def test_steady_state_says_a_compiled_block_found_no_root(kernel_cache):
+    """A block of compiled C without a root gives NaN rather than an error: the message named
+    only "y nan 1/s", not the block (the VM's error was counted, the compiled NaN was not)."""
+    from bearingsim.simulation import steady_state
+
+    class Loop(NoRealRoot):
+        def equations(self):
+            return [self.x**2 + 1.0 == 0.0, der(self.y) == self.x - self.y]
+
+    with pytest.raises(SimulationError, match=r"steady state not found: .* of the points tried "
+                       r"a nonlinear block of the model found no root"):
+        steady_state(assemble(Loop()), compiled=True)
