@@ -16,14 +16,14 @@ bearing as ``bench/sundials_compiled.py`` runs them (``CASES``: its tolerances, 
   operations' time, the distance to the limit counted with every LU solve, both measured in
   the same run (the limit of section "SUNDIALS on compiled kernels" times the operations
   apart from the runs, and moves with the machine's load between the two).
-* ``before``: the stepping core of commit ``BEFORE`` (its ``bsm_bdf.c`` and ``bsm_lu.c`` from
-  git under the tree's driver ``bdf.c``, compiled at its -O2) and the tree's, on the start-up runs at four tolerances: CPU per step (thread time,
-  least of ``REPEATS``, the two builds alternating), steps, right-hand sides, Newton iterations
-  per step and the error against a tight CVODES reference (the largest over 201 output times
-  of the weighted RMS norm of the difference, weights ``atol + rtol |x|`` with the case's
-  rtol and atol: a global error in units of the case's tolerance); and the tree's again with
-  rtol larger by 1e-9 of itself, whose errors show how much a rounding-level change of the
-  step sequence alone moves the error at one tolerance.
+* ``before``: the stepping core of commit ``BEFORE`` (its ``bsm_bdf.c`` and ``bsm_lu.c`` from git
+  under the tree's driver ``bdf.c``, compiled at its -O2) and the tree's, on the start-up runs at
+  four tolerances: CPU per step (thread time, least of ``REPEATS``, the two builds alternating),
+  steps, right-hand sides, Newton iterations per step and the error against a tight CVODES
+  reference (the largest over 201 output times of the weighted RMS norm of the difference, weights
+  ``atol + rtol |x|`` with the case's rtol and atol: a global error in units of the case's
+  tolerance); and the tree's again with rtol larger by 1e-9 of itself, whose errors show how much
+  a rounding-level change of the step sequence alone moves the error at one tolerance.
 
 ``python -m bench.compiled_bdf_core [split] [before] [--cases massive,nested]``
 """

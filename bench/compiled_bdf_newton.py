@@ -10,21 +10,21 @@ change at the level of rounding that moves the step sequence, so that the counts
 over ``NUDGES`` step sequences rather than one (one steady run of the nested bearing has
 50-100 steps, and its counts move by 20-30 % with such a nudge).
 
-* ``counts``: the tree's stepping core and commit ``BEFORE``'s (its ``bsm_bdf.c`` and
-  ``bsm_lu.c`` from git under the tree's driver, at the tree's flags), alternating; CPU seconds per simulated second (thread time, per nudge the
-  least of ``REPEATS``, summed over the nudges), steps, Newton iterations per step (right-hand
-  sides less the two of the first step size, with the iterations of attempts that failed),
-  Jacobians, LU factorisations, error-test failures and the error against a tight CVODES
-  reference (the largest over 201 output times of the weighted RMS norm of the difference,
-  weights ``atol + rtol |x|`` with the case's rtol and atol; geometric mean over the
-  nudges). CVODES on the same compiled kernels at the same tolerance for comparison
+* ``counts``: the tree's stepping core and commit ``BEFORE``'s (its ``bsm_bdf.c`` and ``bsm_lu.c``
+  from git under the tree's driver, at the tree's flags), alternating; CPU seconds per simulated
+  second (thread time, per nudge the least of ``REPEATS``, summed over the nudges), steps, Newton
+  iterations per step (right-hand sides less the two of the first step size, with the iterations
+  of attempts that failed), Jacobians, LU factorisations, error-test failures and the error
+  against a tight CVODES reference (the largest over 201 output times of the weighted RMS norm of
+  the difference, weights ``atol + rtol |x|`` with the case's rtol and atol; geometric mean over
+  the nudges). CVODES on the same compiled kernels at the same tolerance for comparison
   (``nniters`` per step; its CPU includes CasADi's integrator interface). And an experiment,
-  ``KEPT_RATE``: the tree's core with the rate estimate kept at a new factorisation instead
-  of reset to 1 (as CVODES resets it): the reset costs a second iteration at almost every
-  new factorisation; kept, the iteration may stop after one. And a second, ``LOOSE_TEST``:
-  the tree's core with the Newton iteration's stopping test ``LOOSE_COEF`` of the tolerance
-  instead of ``NEWTON_COEF`` (0.1, CVODES' ``nlscoef``): fewer iterations a step, at the
-  price of what the looser corrections leave in the error estimate.
+  ``KEPT_RATE``: the tree's core with the rate estimate kept at a new factorisation instead of
+  reset to 1 (as CVODES resets it): the reset costs a second iteration at almost every new
+  factorisation; kept, the iteration may stop after one. And a second, ``LOOSE_TEST``: the tree's
+  core with the Newton iteration's stopping test ``LOOSE_COEF`` of the tolerance instead of
+  ``NEWTON_COEF`` (0.1, CVODES' ``nlscoef``): fewer iterations a step, at the price of what the
+  looser corrections leave in the error estimate.
 * ``histogram``: the same runs one step per call of the C loop: the share of steps that took
   1, 2, 3 and 4 or more Newton iterations (with those of attempts that failed), the share of
   steps with a Jacobian evaluation in them (after a failed attempt on an old one, or asked
