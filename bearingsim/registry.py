@@ -280,7 +280,8 @@ class Registry(MutableMapping):
         self._registered[name] = entry
 
     def unregister(self, name: str) -> None:
-        """Forget an entry :meth:`register` added (a built-in entry or a plug-in's stays).
+        """Forget an entry :meth:`register` added (a built-in entry or a plug-in's stays, and
+        one that the registration replaced comes back).
 
         Parameters
         ----------
@@ -293,10 +294,18 @@ class Registry(MutableMapping):
             For a name that no registered entry has (an unknown name, a built-in entry).
         """
         known = self.find(name)
-        if known is None or known not in self._registered:
+        if known is None:
+            raise self.unknown(name)
+        if known not in self._registered:
             raise CatalogError(f"unregister {self.kind}: {name!r} is not a registered "
                                f"{self.kind}")
         del self[known]
+        key = self._normalize(known)  # an entry it replaced comes back
+        for source in (self._builtin or {}, self.plugins):
+            base = next((n for n in source if self._normalize(n) == key), None)
+            if base is not None:
+                self._entries[base] = source[base]
+                break
 
     def registered(self) -> dict[str, Any]:
         """The entries :meth:`register` added in this process (a scene's bearings and

@@ -189,7 +189,8 @@ def register_lubricant(name: str, factory: Callable[..., Lubricant], *,
 
 
 def unregister_lubricant(name: str) -> None:
-    """Remove a registered lubricant.
+    """Remove a registered lubricant; a built-in (or plug-in) lubricant it replaced comes
+    back.
 
     Parameters
     ----------
@@ -199,9 +200,9 @@ def unregister_lubricant(name: str) -> None:
     Raises
     ------
     CatalogError
-        For a name that is not registered.
+        For a name that is not registered (a built-in lubricant stays).
     """
-    del LUBRICANTS[name]
+    LUBRICANTS.unregister(name)
 
 
 def known_lubricants() -> list[str]:

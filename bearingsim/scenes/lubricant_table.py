@@ -9,8 +9,10 @@ the properties of :class:`~bearingsim.physics.lubricant.Oil` or ``Grease``. Numb
 
 The lubricants are registered (:func:`~bearingsim.physics.lubricant.register_lubricant`,
 replacing one of the same name) when the scene is read, before the assembly's lubricant names
-are checked, and the lubricant contract is checked then; like a scene's ``bearings``, they stay
-known for the rest of the process.
+are checked, and the lubricant contract is checked then. They belong to the scene: reading or
+preparing another scene first forgets them (an overridden built-in lubricant comes back), and
+preparing a scene registers its own again, so that scenes read one after the other in a
+process each run with their own lubricants.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from bearingsim.physics.lubricant import (
     Oil,
     get_lubricant,
     register_lubricant,
+    unregister_lubricant,
 )
 from bearingsim.scenes.tables import SceneFileError
 from bearingsim.units import UnitError, to_si
@@ -49,6 +52,9 @@ LUBRICANT_KEYS: dict[str, str] = {
 """The keys of a ``[lubricants."NAME"]`` table and what they mean."""
 
 _UNITS = {"nu40": "m^2/s", "nu100": "m^2/s", "temperature": "K"}
+
+_FROM_SCENE: dict[str, Callable[..., Lubricant]] = {}
+"""The lubricants the last scene read or prepared registered, by name (their factories)."""
 _GREASE_KEYS = ("fill_fraction", "thickener_factor")
 
 
@@ -138,6 +144,10 @@ def load_lubricants_table(table: Any) -> list[SceneFileError]:
         One per lubricant that could not be defined, its ``key`` the scene key
         (``lubricants.NAME``), its ``reason`` naming the property, unit and range.
     """
+    for name, factory in list(_FROM_SCENE.items()):  # the last scene's, forgotten
+        if LUBRICANTS.registered().get(name) is factory:
+            unregister_lubricant(name)
+    _FROM_SCENE.clear()
     if table is None:
         return []
     if not isinstance(table, dict):
@@ -153,6 +163,7 @@ def load_lubricants_table(table: Any) -> list[SceneFileError]:
         try:
             factory = _factory(name, dict(entry))
             register_lubricant(name, factory, replace=True)
+            _FROM_SCENE[name] = LUBRICANTS.registered()[name]
             get_lubricant(name)  # the table's own values once more, through the registry
         except BearingsimError as exc:
             problems.append(SceneFileError(key, str(exc), ", ".join(LUBRICANT_KEYS)))

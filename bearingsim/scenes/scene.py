@@ -59,11 +59,7 @@ from bearingsim.scenes.scene_types import (
     TableInput,
     line_of,
 )
-from bearingsim.scenes.tables import (
-    load_bearings_files,
-    output_base,
-    scene_folder,
-)
+from bearingsim.scenes.tables import load_bearings_files, output_base, scene_folder
 from bearingsim.simulation.budget import MAX_TIMEOUT
 from bearingsim.simulation.integrators import METHODS
 
@@ -147,6 +143,8 @@ class Scene:  # numpydoc ignore=PR02
         The scene file text (for line numbers in error messages).
     allow_paths : tuple of str
         Folders outside the scene's folder that its files may be in (``--allow-path``).
+    lubricants : dict
+        The scene's ``[lubricants]`` table (registered again when the scene is prepared).
     """
 
     assembly: str
@@ -171,6 +169,7 @@ class Scene:  # numpydoc ignore=PR02
     path: str | None = None
     text: str | None = field(default=None, repr=False)
     allow_paths: tuple[str, ...] = ()
+    lubricants: dict[str, Any] = field(default_factory=dict)
 
     @property
     def spec(self) -> AssemblySpec:
@@ -214,7 +213,7 @@ class Scene:  # numpydoc ignore=PR02
             "parameters": dict(self.parameters),
             "initial": dict(self.initial),
             "simulation": sim,
-            "output": out,
+            "output": out, **({"lubricants": self.lubricants} if self.lubricants else {}),
         }
 
     @property
@@ -447,7 +446,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         simulation=sim, output=out, title=title or (Path(path).stem if path else name),
         tolerance=float(tolerance), analysis=analysis, grid=grid, cases=cases,
         settling=settling, transient_on_purpose=on_purpose, statics_method=statics_method,
-        path=path, text=text, allow_paths=allowed,
+        path=path, text=text, allow_paths=allowed, lubricants=d.get("lubricants") or {},
     )
 
 

@@ -23,6 +23,7 @@ import os
 import sys
 import threading
 import time
+import uuid
 import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -37,8 +38,8 @@ from bearingsim.scenes.scene import Scene
 from bearingsim.sweep_preloads import imported_since
 
 __all__ = ["MODELS", "LOADS", "ModelPayload", "Job", "PointTimeout", "dask_setup", "guard_time",
-           "load_model", "registrations", "restore_registrations", "run_chunk", "run_job",
-           "run_point"]
+           "load_model", "process_token", "registrations", "restore_registrations", "run_chunk",
+           "run_job", "run_point"]
 
 
 @dataclass
@@ -68,6 +69,29 @@ def _registries() -> tuple:
     return BEARINGS, ROLLER_BEARINGS, LUBRICANTS
 
 
+_RESTORED: dict[str, dict[str, Any]] = {}
+"""What :func:`restore_registrations` registered in this process for the last chunk, by
+registry kind and name."""
+
+_PROCESS: dict[int, str] = {}
+
+
+def process_token() -> str:
+    """A text that names this process among all (a worker on another machine may have the
+    client's process id; a forked process gets a token of its own).
+
+    Returns
+    -------
+    str
+        The token.
+    """
+    pid = os.getpid()
+    if pid not in _PROCESS:
+        _PROCESS.clear()
+        _PROCESS[pid] = f"{pid}-{uuid.uuid4().hex}"
+    return _PROCESS[pid]
+
+
 def registrations(names: Iterable[str]) -> bytes:
     """The registered bearings (ball and roller) and lubricants of this process that
     ``names`` name (:meth:`bearingsim.registry.Registry.registered`), serialized with
@@ -83,7 +107,7 @@ def registrations(names: Iterable[str]) -> bytes:
     Returns
     -------
     bytes
-        ``{registry kind: {name: entry}}`` pickled, or ``b""``.
+        ``{registry kind: {name: entry}, "process": process_token()}`` pickled, or ``b""``.
     """
     names = set(names)
     shipped = {}
@@ -96,12 +120,15 @@ def registrations(names: Iterable[str]) -> bytes:
         return b""
     import cloudpickle  # (a dependency of dask, which sweeps need)
 
-    return cloudpickle.dumps(shipped)
+    return cloudpickle.dumps({**shipped, "process": process_token()})
 
 
 def restore_registrations(data: bytes) -> None:
     """Register in this process what :func:`registrations` serialized in another, replacing
-    entries of the same names (a persistent worker may hold those of an earlier sweep).
+    entries of the same names; what it registered for an earlier sweep's chunks and this one
+    does not name is forgotten first (a persistent worker; an entry that replaced a built-in
+    one gives it back). In the client's own process (a worker thread there) nothing is done:
+    its registries are the client's.
 
     Parameters
     ----------
@@ -113,18 +140,23 @@ def restore_registrations(data: bytes) -> None:
     RuntimeError
         When they cannot be loaded here (each point of the chunk then fails with why).
     """
-    if not data:
-        return
     import pickle
 
     try:
-        shipped = pickle.loads(data)  # noqa: S301 - the sweep's own client sent it
+        shipped = pickle.loads(data) if data else {}  # noqa: S301 - the sweep's own client's
     except Exception as exc:  # noqa: BLE001 - named for every point of the chunk
         raise RuntimeError(f"the client's registered bearings and lubricants cannot be loaded "
                            f"in this worker: {type(exc).__name__}: {exc}") from None
+    if shipped.get("process") == process_token():
+        return
     for registry in _registries():
-        for name, entry in shipped.get(registry.kind, {}).items():
+        entries = shipped.get(registry.kind, {})
+        for name, entry in _RESTORED.pop(registry.kind, {}).items():
+            if name not in entries and registry.registered().get(name) is entry:
+                registry.unregister(name)
+        for name, entry in entries.items():
             registry.register(name, entry, replace=True)
+        _RESTORED[registry.kind] = {n: registry.registered()[n] for n in entries}
 
 
 @dataclass

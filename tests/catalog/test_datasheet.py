@@ -91,20 +91,23 @@ def test_registration_does_not_shadow_the_catalogue(registered):
         register_bearing(get_bearing("MY6005"))
 
 
-def test_a_sweep_ships_the_registered_bearings_its_points_name(registered):
+def test_a_sweep_ships_the_registered_bearings_its_points_name(registered, monkeypatch):
     """What a sweep ships to its workers: the bearings registered in this process that its
     scene and points name (:meth:`Registry.registered`), not the catalogue's; an unregistered
     one leaves the list; a worker registers what it gets."""
     import pickle
 
     from bearingsim.catalog import BEARINGS
+    from bearingsim.scenes import sweep_worker
     from bearingsim.scenes.sweep_worker import registrations, restore_registrations
 
     assert registrations(["6304", "ISO VG 32"]) == b""  # catalogue names: nothing to ship
     shipped = registrations(["my6005", "6304"])
-    assert pickle.loads(shipped) == {"bearing": {"MY6005": get_bearing("MY6005")}}
+    assert pickle.loads(shipped) == {"bearing": {"MY6005": get_bearing("MY6005")},
+                                     "process": sweep_worker.process_token()}
     unregister_bearing("MY6005")
     assert "MY6005" not in BEARINGS.registered() and "MY6005" not in list_bearings()
+    monkeypatch.setattr(sweep_worker, "process_token", lambda: "a worker's process")
     restore_registrations(shipped)  # as a worker does
     assert get_bearing("my6005") == pickle.loads(shipped)["bearing"]["MY6005"]
 

@@ -141,7 +141,22 @@ C0_kN = 7.9
 
 
 
-def test_workers_know_the_scenes_own_bearings_and_lubricants(deployment, tmp_path):
+@pytest.fixture()
+def scene_bearings_forgotten():
+    """The bearings the test's scenes register (process-wide) are forgotten after it, so that
+    a later test in this process may register the same designations."""
+    from bearingsim.catalog import BEARINGS
+    from bearingsim.catalog.rollers import ROLLER_BEARINGS
+
+    before = {r.kind: set(r.registered()) for r in (BEARINGS, ROLLER_BEARINGS)}
+    yield
+    for registry in (BEARINGS, ROLLER_BEARINGS):
+        for name in set(registry.registered()) - before[registry.kind]:
+            registry.unregister(name)
+
+
+def test_workers_know_the_scenes_own_bearings_and_lubricants(deployment, tmp_path,
+                                                              scene_bearings_forgotten):
     """A scene's ``bearings`` and ``[lubricants]`` are registered in the process that reads it;
     the workers, other processes, did not know them. Every point of a statics sweep of a
     scene's own bearing failed ("unknown bearing 'MY6304'"), and in a sweep over the
