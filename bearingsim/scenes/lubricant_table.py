@@ -52,10 +52,10 @@ LUBRICANT_KEYS: dict[str, str] = {
 """The keys of a ``[lubricants."NAME"]`` table and what they mean."""
 
 _UNITS = {"nu40": "m^2/s", "nu100": "m^2/s", "temperature": "K"}
+_GREASE_KEYS = ("fill_fraction", "thickener_factor")
 
 _FROM_SCENE: dict[str, Callable[..., Lubricant]] = {}
 """The lubricants the last scene read or prepared registered, by name (their factories)."""
-_GREASE_KEYS = ("fill_fraction", "thickener_factor")
 
 
 def _values(name: str, entry: dict[str, Any]) -> dict[str, Any]:

@@ -156,7 +156,8 @@ def restore_registrations(data: bytes) -> None:
                 registry.unregister(name)
         for name, entry in entries.items():
             registry.register(name, entry, replace=True)
-        _RESTORED[registry.kind] = {n: registry.registered()[n] for n in entries}
+        registered = registry.registered()
+        _RESTORED[registry.kind] = {n: registered[n] for n in entries}
 
 
 @dataclass

@@ -38,7 +38,7 @@ from bearingsim.errors import SimulationError
 from bearingsim.simulation.c_compiler import CompileError
 from bearingsim.simulation.c_units import generate_source
 from bearingsim.simulation.compile import source_library
-from bearingsim.simulation.diagnostics import diverged
+from bearingsim.simulation.diagnostics import diverged, listed_names, no_value_cause
 from bearingsim.simulation.inputs import InputSignal
 from bearingsim.simulation.kernels import COMPILED, Kernel
 from bearingsim.simulation.ordering import NewtonPattern, kept_order, newton_pattern
@@ -208,20 +208,22 @@ class _Solver:
         self.stats_at = _address_of(self.stats)
         self.written = ctypes.c_int(0)
         self.written_at = ctypes.byref(self.written)
-        self._outputs: tuple[np.ndarray, ...] = ()
-        self._addresses: tuple[int, ...] = ()
+        self._outputs = self._new_outputs(0)
+
+    def _new_outputs(self, m: int) -> tuple[tuple[np.ndarray, ...], tuple[int, ...]]:
+        arrays = (np.empty(m), np.empty((m, self.n)), np.empty((m, self.n_y)))
+        return arrays, tuple(_address_of(a) for a in arrays)
 
     def outputs(self, m: int) -> tuple[tuple[np.ndarray, ...], tuple[int, ...]]:
         """Arrays for ``m`` output times (times, states and observed variables, a row per
         time) and their addresses: kept for up to :data:`KEPT_OUTPUT_TIMES` (grown to the most
         a run had), made for the run alone above (a long series is not held after it)."""
         if m > KEPT_OUTPUT_TIMES:
-            arrays = (np.empty(m), np.empty((m, self.n)), np.empty((m, self.n_y)))
-            return arrays, tuple(_address_of(a) for a in arrays)
-        if not self._outputs or self._outputs[0].size < m:
-            self._outputs = (np.empty(m), np.empty((m, self.n)), np.empty((m, self.n_y)))
-            self._addresses = tuple(_address_of(a) for a in self._outputs)
-        return tuple(a[:m] for a in self._outputs), self._addresses
+            return self._new_outputs(m)
+        if self._outputs[0][0].size < m:
+            self._outputs = self._new_outputs(m)
+        arrays, addresses = self._outputs
+        return tuple(a[:m] for a in arrays), addresses
 
     def __del__(self) -> None:
         if getattr(self, "pointer", None):
@@ -266,8 +268,8 @@ def _prepare(kern: Kernel, signal: InputSignal, cache_dir: str | Path | None) ->
 
 def _not_finite_there(system: System, solver: _Solver, t: float, state: np.ndarray) -> str:
     """For a failure message: the variables that are not finite at the state the run reached
-    (``""`` when all are: the integrator failed at a state it tried, not at this one), and,
-    for a model with nonlinear blocks, that a block without a solution gives NaN."""
+    (``""`` when all are: the integrator failed at a state it tried, not at this one), and
+    why (:func:`~bearingsim.simulation.diagnostics.no_value_cause`)."""
     times, values = np.array([t]), np.empty(solver.n_y)
     status = solver.dll.bsm_bdf_observe(solver.pointer, 1, _address_of(times),
                                         _address_of(state), solver.n_y, _address_of(values))
@@ -275,10 +277,7 @@ def _not_finite_there(system: System, solver: _Solver, t: float, state: np.ndarr
            if not np.isfinite(v)]
     if status or not bad:
         return ""
-    names = ", ".join(bad[:8]) + (", ..." if len(bad) > 8 else "")
-    blocks = ("; a nonlinear block (algebraic loop) without a solution there gives NaN"
-              if system.rootfinder else "")
-    return f": {names} not finite at the state reached{blocks}"
+    return f": {listed_names(bad)} not finite at the state reached; {no_value_cause(system)}"
 
 
 def compiled_bdf_run(system: System, kern: Kernel, signal: InputSignal, p: np.ndarray,

@@ -9,7 +9,8 @@ import numpy as np
 
 from bearingsim.assembler.system import System
 
-__all__ = ["diverged", "evaluation_failure", "sundials_failure"]
+__all__ = ["diverged", "evaluation_failure", "listed_names", "no_value_cause",
+           "sundials_failure"]
 
 _FAILED_IN = re.compile(r"for '(\S+)' \[(\w+)\]")
 
@@ -108,3 +109,39 @@ def sundials_failure(exc: BaseException) -> str:
     meaning = next((text for parts, text in SUNDIALS_FLAGS if any(p in flag for p in parts)),
                    "a failure of the integrator")
     return f"{meaning} ({flag})"
+
+
+def listed_names(names: list[str], most: int = 8) -> str:
+    """The first ``most`` names, comma-separated, ``", ..."`` after them when there are more.
+
+    Parameters
+    ----------
+    names : list of str
+        The names.
+    most : int
+        How many are shown.
+
+    Returns
+    -------
+    str
+        E.g. ``"x, der(y)"``.
+    """
+    return ", ".join(names[:most]) + (", ..." if len(names) > most else "")
+
+
+def no_value_cause(system: System) -> str:
+    """Why a variable of ``system`` is not finite at a point, for messages: a nonlinear block
+    without a solution there when the model has any, else the model's own NaN or inf.
+
+    Parameters
+    ----------
+    system : System
+        The system.
+
+    Returns
+    -------
+    str
+        The cause.
+    """
+    return ("the nonlinear blocks (algebraic loops) found no solution there"
+            if system.rootfinder else "the model evaluates to NaN or inf there")

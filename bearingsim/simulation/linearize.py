@@ -10,6 +10,7 @@ import numpy as np
 from bearingsim.assembler.system import System, as_system
 from bearingsim.entry_points import entry_point
 from bearingsim.errors import ParameterError, SimulationError
+from bearingsim.simulation.diagnostics import listed_names, no_value_cause
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.result import Result
 from bearingsim.validation import check_mapping, check_quantity, check_vector
@@ -176,11 +177,8 @@ def _check_finite(system: System, t: float, values: np.ndarray, ab: np.ndarray,
                   if not np.isfinite(row).all()]
         where = "the Jacobian is not finite at the operating point in the rows of"
     if names:
-        raise SimulationError(
-            f"linearize: {system.name}: {where} (t = {t:g} s): {', '.join(names[:8])}"
-            f"{', ...' if len(names) > 8 else ''}; "
-            + ("the nonlinear blocks (algebraic loops) found no solution there"
-               if system.rootfinder else "the model evaluates to NaN or inf there"))
+        raise SimulationError(f"linearize: {system.name}: {where} (t = {t:g} s): "
+                              f"{listed_names(names)}; {no_value_cause(system)}")
 
 
 def _take_recorded(vector: np.ndarray, names: list[str], recorded: dict[str, float],

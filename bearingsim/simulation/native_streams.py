@@ -107,20 +107,18 @@ def casadi_dumps_dropped() -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def held_stderr(hold: bool, drop: Any) -> Iterator[None]:
+def held_stderr(hold: bool) -> Iterator[None]:
     """With ``hold``, send the process's standard error (file descriptor 2, and Python's
-    ``sys.stderr``) aside while the context lasts, then copy it to standard error unless
-    ``drop()`` is true or the context ends in an error:
-    a run its budget stopped ends in a failed evaluation, which the Python layer, CasADi and
-    SUNDIALS each report on standard error; the budget's own error says what happened, as a
-    failed run's error says why it failed (IDAS prints its failure whatever its options).
+    ``sys.stderr``) aside while the context lasts, then copy it to standard error unless the
+    context ends in an error: a run its budget stopped ends in a failed evaluation, which the
+    Python layer, CasADi and SUNDIALS each report on standard error; the budget's own error
+    says what happened, as a failed run's error says why it failed (IDAS prints its failure
+    whatever its options).
 
     Parameters
     ----------
     hold : bool
         Whether to hold standard error at all.
-    drop : callable
-        Called at the end: true discards what was held.
     """
     if not hold:
         yield
@@ -143,12 +141,12 @@ def held_stderr(hold: bool, drop: Any) -> Iterator[None]:
         finally:
             os.dup2(saved, 2)
             os.close(saved)
-            if not (raised or drop()):
+            if not raised:
                 held.seek(0)
                 text = held.read()
                 if text:
                     os.write(2, text)
-    if not (raised or drop()) and python_level.getvalue():
+    if not raised and python_level.getvalue():
         sys.stderr.write(python_level.getvalue())
 
 

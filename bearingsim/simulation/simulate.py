@@ -17,6 +17,7 @@ from bearingsim.errors import LongRunWarning, ParameterError, SimulationError
 from bearingsim.simulation.budget import DEFAULT_MAX_STEPS, RunBudget
 from bearingsim.simulation.choice import choose_method
 from bearingsim.simulation.closed import close_inputs
+from bearingsim.simulation.diagnostics import listed_names, no_value_cause
 from bearingsim.simulation.fastcall import evaluate, mapped_function
 from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import InputSignal, input_signal
@@ -437,6 +438,4 @@ def _check_finite(system: System, ts: np.ndarray, values: np.ndarray) -> None:
     names = [n for n, b in zip(system.observed_names, bad[:, k], strict=True) if b]
     raise SimulationError(
         f"{system.name}: {len(names)} variable(s) are not finite at t = {ts[k]:.6g} s: "
-        f"{', '.join(names[:8])}{', ...' if len(names) > 8 else ''}; "
-        + ("the nonlinear blocks (algebraic loops) found no solution there"
-           if system.rootfinder else "the model evaluates to NaN or inf there"))
+        f"{listed_names(names)}; {no_value_cause(system)}")

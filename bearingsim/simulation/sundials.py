@@ -190,8 +190,7 @@ def sundials_run(method: str, system: System, kernel: Kernel, signal: InputSigna
     try:
         with interrupts() as interrupted, (CLOCK.observing(observe) if observed
                                             else contextlib.nullcontext()), \
-                held_stderr((timed or method == "idas") and bar is None,
-                            lambda: bool(stopped)):
+                held_stderr((timed or method == "idas") and bar is None):
             call(x_start, p_ext, z0, xf, zf)
         integrate_cpu_time = time.thread_time() - called
         observe(1.0)
@@ -303,7 +302,7 @@ def _locate_failure(method: str, system: System, built: Built, opts: dict, p_ext
     ``t0`` [s], to report where it failed; ``x0`` is the run's start state, which the states
     reached are compared with (failure path only). An interval that used up the step budget
     (SUNDIALS' ``max_num_steps``, "TOO_MUCH_WORK") raises the ``budget``'s error."""
-    with quiet_stdout(), held_stderr(True, lambda: True):  # the error says why
+    with quiet_stdout(), held_stderr(True):  # it raises, saying why
         _locate(method, system, built, opts, p_ext, x_start, z_start, x0, t0, span, tau, exc,
                 budget)
 

@@ -233,4 +233,4 @@ def test_a_long_series_is_not_held_by_the_kept_solver(kernel_cache, monkeypatch)
     np.testing.assert_array_equal(_states(long_apart, system), _states(long_kept, system))
     (prep,) = compiled_bdf._PREPARED.values()
     (solver,) = prep.solvers.by_size.values()
-    assert [a.shape[0] for a in solver._outputs] == [5, 5, 5]  # not grown to 60
+    assert [a.shape[0] for a in solver._outputs[0]] == [5, 5, 5]  # not grown to 60

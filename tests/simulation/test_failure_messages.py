@@ -71,7 +71,7 @@ def test_the_compiled_bdf_names_what_is_not_finite_and_the_loop_without_a_root(k
     with pytest.raises(SimulationError) as err:
         simulate(system, 1.0, method="compiled_bdf")
     assert "the model returned non-finite values: x, der(y) not finite at the state " \
-           "reached; a nonlinear block (algebraic loop) without a solution there gives NaN" \
+           "reached; the nonlinear blocks (algebraic loops) found no solution there" \
         in str(err.value)
 
 
