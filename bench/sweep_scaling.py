@@ -290,13 +290,24 @@ def _child_overhead(quiet: bool) -> dict:
     return json.loads(out.strip().splitlines()[-1])
 
 
+CHILD = """
+import json, sys
+from bearingsim.sweep_preloads import learned_preloads, scene_file
+from bearingsim.sweep_server import start_worker_server
+start_worker_server(learned_preloads(scene_file("deep_groove_duty1")))
+from bench.sweep_scaling import sweeps_in_a_fresh_process
+print(json.dumps(sweeps_in_a_fresh_process(int(sys.argv[1]), float(sys.argv[2]))))
+"""
+"""A fresh process of :func:`_child`: the fork server started as ``bearingsim sweep`` starts
+it, before anything else is imported (the benchmark's own modules import matplotlib)."""
+
+
 def _child(workers: int) -> list[dict]:
-    """:func:`sweeps_in_a_fresh_process` run by ``python -m bench.sweep_scaling --child``."""
+    """:func:`sweeps_in_a_fresh_process` in a new Python process (:data:`CHILD`)."""
     root = Path(__file__).resolve().parent.parent
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [str(root), *filter(None, [os.environ.get("PYTHONPATH")])])}
-    out = subprocess.run([sys.executable, "-m", "bench.sweep_scaling", "--child", str(workers),
-                          "--launched", repr(time.time())],
+    out = subprocess.run([sys.executable, "-c", CHILD, str(workers), repr(time.time())],
                          capture_output=True, text=True, check=True, env=env, cwd=root)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -558,16 +569,10 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--workers", type=int, default=2,
                         help="workers of the scaling run (default 2)")
-    parser.add_argument("--child", type=int, metavar="WORKERS",
-                        help=argparse.SUPPRESS)  # the sweeps of one worker count, as JSON
-    parser.add_argument("--launched", type=float, default=time.time(),
-                        help=argparse.SUPPRESS)  # epoch time the parent launched the child
     parser.add_argument("--overhead", choices=("defaults", "quiet"),
                         help=argparse.SUPPRESS)  # the cluster's own CPU time, as JSON
     args = parser.parse_args()
     if args.overhead:
         print(json.dumps(cluster_overhead(args.overhead == "quiet")))
-    elif args.child:
-        print(json.dumps(sweeps_in_a_fresh_process(args.child, args.launched)))
     else:
         print(section(args.workers).body)

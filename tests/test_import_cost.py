@@ -139,3 +139,40 @@ def test_learning_the_cost_of_a_sweeps_points_does_not_import_scipy_optimize():
         assert costs.estimate(12) > costs.estimate(11)
         """)
     assert used == []
+
+
+def _modules_after(code: str, names: tuple[str, ...]) -> list[str]:
+    """Which of ``names`` a new process has imported after running ``code``."""
+    script = textwrap.dedent(code) + textwrap.dedent(f"""
+        import json, sys
+        print(json.dumps([m for m in {names!r} if m in sys.modules]))
+        """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True, timeout=600)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_starting_the_sweep_worker_server_waits_for_no_model_library():
+    """``bearingsim sweep`` starts the process its workers fork from before anything else; the
+    package's modeling language (CasADi, numpy, beartype: 0.2-0.3 s) is imported on first use,
+    not by importing a submodule, so the server starts at once and its imports (the first
+    points wait for them) begin that much sooner."""
+    assert _modules_after("""
+        import bearingsim.cli, bearingsim.sweep_preloads, bearingsim.sweep_server
+        """, ("casadi", "numpy", "beartype", "bearingsim.language")) == []
+
+
+def test_the_language_is_still_importable_from_the_package():
+    import bearingsim
+    import bearingsim.language as language
+    from bearingsim import Component, der
+
+    assert Component is language.Component and der is language.der
+    assert bearingsim.__all__ == list(language.__all__)
+    assert set(language.__all__) <= set(dir(bearingsim))
+    assert bearingsim.language is language
+    with pytest.raises(AttributeError, match="no attribute 'Componnt'"):
+        bearingsim.Componnt  # noqa: B018
+    namespace: dict = {}
+    exec("from bearingsim import *", namespace)  # noqa: S102
+    assert set(language.__all__) <= set(namespace)
