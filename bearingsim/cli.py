@@ -326,7 +326,7 @@ def _cache(args: argparse.Namespace) -> int:
 
 def _parser() -> argparse.ArgumentParser:
     from bearingsim import __version__
-    from bearingsim.scenes.sampling import SAMPLERS
+    from bearingsim.sweep_samplers import SAMPLERS  # (not the scenes package: see there)
 
     parser = argparse.ArgumentParser(prog="bearingsim", description="bearing system simulator")
     parser.add_argument("--version", action="version", version=f"bearingsim {__version__}")

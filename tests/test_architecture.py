@@ -24,7 +24,7 @@ PACKAGE = Path(bearingsim.__file__).parent
 LAYERS: dict[str, int] = {
     "symbolic": 0, "cache_paths": 0, "keeps": 0, "units": 1, "files": 1, "errors": 1,
     "cache_budget": 1, "series_csv": 1, "input_limits": 2,
-    "validation": 2, "sweep_preloads": 2,
+    "validation": 2, "sweep_preloads": 2, "sweep_samplers": 0,
     "checks": 2, "physical_checks": 2, "vectors": 1, "entry_points": 1, "sweep_server": 1,
     "plotting": 1, "registry": 2,
     "catalog": 3, "physics": 4,

@@ -176,3 +176,25 @@ def test_the_language_is_still_importable_from_the_package():
     namespace: dict = {}
     exec("from bearingsim import *", namespace)  # noqa: S102
     assert set(language.__all__) <= set(namespace)
+
+
+def test_the_sweep_command_starts_its_worker_server_before_it_imports_the_scenes():
+    """``bearingsim sweep`` builds its parser, then starts the fork server of its workers: the
+    parser names the samplers without importing the scenes package (0.4-0.5 s, which the
+    server's start, and so the first sweep's workers, waited for)."""
+    script = textwrap.dedent("""
+        import sys
+        import bearingsim.sweep_server as server
+
+        def started(*args, **kwargs):
+            print("bearingsim.scenes" in sys.modules, "casadi" in sys.modules)
+            raise SystemExit(0)
+
+        server.start_worker_server = started
+        from bearingsim.cli import main
+        main(["sweep", "scenes/deep_groove_duty1.toml", "--grid", "inputs.load.Fx=1,2",
+              "--sampler", "sobol"])
+        """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True, cwd=ROOT, timeout=600)
+    assert out.stdout.split() == ["False", "False"]

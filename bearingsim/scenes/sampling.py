@@ -17,14 +17,11 @@ from typing import Any
 
 from bearingsim.checks import check_output_size
 from bearingsim.errors import ParameterError
+from bearingsim.sweep_samplers import SAMPLERS
 from bearingsim.units import parse_quantity
 
 __all__ = ["SAMPLERS", "SIM_KEYS", "SampleBalanceWarning", "SweepError", "check_key",
            "crossed_points", "grid_points", "parse_sample", "sample_points"]
-
-SAMPLERS = ("lhs", "lhs-optimal", "sobol")
-"""Names of the samplers :func:`sample_points` takes."""
-
 
 SIM_KEYS = ("t_end", "t_start", "rtol", "atol", "method", "max_step", "n_points", "initial")
 """The ``simulation.<setting>`` keys a sweep can set."""
