@@ -46,8 +46,9 @@ instead of the whole row (a duplex pair's preload offset, solved per operating p
 Hertz constants were kept and :func:`~bearingsim.simulation.steady_state` shortened its
 Newton steps. ``2c41f1d``: before the physics functions' finite checks were cut to one pass
 per argument and a sweep's plan stopped building the assembly for every parametric point.
-``89e8352``: before the package imported its modeling language on first use (the sweep's fork
-server started after CasADi, numpy and beartype were imported)."""
+``89e8352``: before the package imported its modeling language on first use and the sweep
+command's parser stopped importing the scenes package (the sweep's fork server started after
+both)."""
 SWEEP = ("duplex_modes", ["assembly.preload_force=250,500,1000,1500,2000,2500,3000,4000",
                           "assembly.speed=0,419"], 2)
 """The sweep timed: scene, grid (16 points) and workers."""
@@ -237,7 +238,8 @@ BASELINE_WORDS = (
     "worked out their message only when raising, and before a sweep's plan stopped building "
     "the assembly for every point of a parametric argument;",
     "before the package imported its modeling language on first use: `bearingsim sweep` "
-    "started its workers' fork server after CasADi, numpy and beartype were imported.")
+    "started its workers' fork server after CasADi, numpy and beartype were imported, and "
+    "after its parser imported the scenes package.")
 """What each of :data:`BASELINES` is before, for the section's text."""
 
 
