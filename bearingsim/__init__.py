@@ -13,7 +13,10 @@ imports are what the sweep's first points wait for.
 from __future__ import annotations
 
 import importlib
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the language's names for type checkers and editors (at run time: below)
+    from bearingsim.language import *  # noqa: F403
 
 __version__ = "0.1.0"
 
