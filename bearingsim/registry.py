@@ -307,6 +307,20 @@ class Registry(MutableMapping):
                 self._entries[base] = source[base]
                 break
 
+    def forget(self, name: str, entry: Any) -> None:
+        """Unregister ``name`` if it still stands for ``entry`` (what a scene or a sweep's chunk
+        registered for itself; a registration of another entry made since stays).
+
+        Parameters
+        ----------
+        name : str
+            The name it was registered under.
+        entry : object
+            The entry registered then.
+        """
+        if self._registered.get(name) is entry:
+            self.unregister(name)
+
     def registered(self) -> dict[str, Any]:
         """The entries :meth:`register` added in this process (a scene's bearings and
         lubricants among them), by name, in the order they were registered: what another

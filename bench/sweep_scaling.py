@@ -257,17 +257,13 @@ def sweeps_in_a_fresh_process(workers: int, launched: float, n_points: int = N_P
                               repeats: int = 2) -> list[dict]:
     """``repeats`` sweeps of ``n_points`` on ``workers`` workers in one new Python process
     launched at epoch time ``launched``, in the order of ``bearingsim sweep``: the fork server
-    of the workers started first (before this process imports bearingsim's scenes; with the
-    modules the scene's workers imported in earlier sweeps, as the command), the scene
-    loaded, then the sweeps; a repeat forks its workers from the running server. With more
+    of the workers started first (by :data:`CHILD`, before the process imports anything else;
+    with the modules the scene's workers imported in earlier sweeps, as the command), the
+    scene loaded, then the sweeps; a repeat forks its workers from the running server. With more
     than one worker, one more sweep runs the points in the given order instead of longest
     first (``longest_first=False``). Each sweep notes the load average after it; the first,
     the time from the launch to its start (``ready_s``: interpreter, imports, scene) and to
     its end (``command_s``, the wall of the whole command)."""
-    from bearingsim.sweep_preloads import learned_preloads, scene_file
-    from bearingsim.sweep_server import start_worker_server
-
-    start_worker_server(learned_preloads(scene_file("deep_groove_duty1")))
     from bearingsim.scenes import load_scene
     from bearingsim.scenes.library import builtin_scene_path
 

@@ -26,11 +26,13 @@ HEAVY = ("networkx", "scipy.optimize", "scipy.integrate", "scipy.linalg", "scipy
          "scipy.special", "bearingsim.assembler.pipeline", "pint")
 
 
-def _imported_after(code: str, env: dict | None = None) -> list[str]:
-    """The modules of :data:`HEAVY` imported after running ``code`` in a new process."""
+def _imported_after(code: str, env: dict | None = None,
+                    names: tuple[str, ...] = HEAVY) -> list[str]:
+    """The modules of ``names`` (default :data:`HEAVY`) imported after running ``code`` in a
+    new process."""
     script = textwrap.dedent(code) + textwrap.dedent(f"""
         import json, sys
-        print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))
+        print(json.dumps([m for m in {names!r} if m in sys.modules]))
         """)
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                          check=True, env={**os.environ, **(env or {})}, timeout=600)
@@ -141,25 +143,14 @@ def test_learning_the_cost_of_a_sweeps_points_does_not_import_scipy_optimize():
     assert used == []
 
 
-def _modules_after(code: str, names: tuple[str, ...]) -> list[str]:
-    """Which of ``names`` a new process has imported after running ``code``."""
-    script = textwrap.dedent(code) + textwrap.dedent(f"""
-        import json, sys
-        print(json.dumps([m for m in {names!r} if m in sys.modules]))
-        """)
-    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                         check=True, timeout=600)
-    return json.loads(out.stdout.strip().splitlines()[-1])
-
-
 def test_starting_the_sweep_worker_server_waits_for_no_model_library():
     """``bearingsim sweep`` starts the process its workers fork from before anything else; the
     package's modeling language (CasADi, numpy, beartype: 0.2-0.3 s) is imported on first use,
     not by importing a submodule, so the server starts at once and its imports (the first
     points wait for them) begin that much sooner."""
-    assert _modules_after("""
+    assert _imported_after("""
         import bearingsim.cli, bearingsim.sweep_preloads, bearingsim.sweep_server
-        """, ("casadi", "numpy", "beartype", "bearingsim.language")) == []
+        """, names=("casadi", "numpy", "beartype", "bearingsim.language")) == []
 
 
 def test_the_language_is_still_importable_from_the_package():

@@ -28,7 +28,6 @@ from bearingsim.physics.lubricant import (
     Oil,
     get_lubricant,
     register_lubricant,
-    unregister_lubricant,
 )
 from bearingsim.scenes.tables import SceneFileError
 from bearingsim.units import UnitError, to_si
@@ -144,9 +143,8 @@ def load_lubricants_table(table: Any) -> list[SceneFileError]:
         One per lubricant that could not be defined, its ``key`` the scene key
         (``lubricants.NAME``), its ``reason`` naming the property, unit and range.
     """
-    for name, factory in list(_FROM_SCENE.items()):  # the last scene's, forgotten
-        if LUBRICANTS.registered().get(name) is factory:
-            unregister_lubricant(name)
+    for name, factory in _FROM_SCENE.items():  # the last scene's, forgotten
+        LUBRICANTS.forget(name, factory)
     _FROM_SCENE.clear()
     if table is None:
         return []

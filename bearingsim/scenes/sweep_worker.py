@@ -152,8 +152,8 @@ def restore_registrations(data: bytes) -> None:
     for registry in _registries():
         entries = shipped.get(registry.kind, {})
         for name, entry in _RESTORED.pop(registry.kind, {}).items():
-            if name not in entries and registry.registered().get(name) is entry:
-                registry.unregister(name)
+            if name not in entries:
+                registry.forget(name, entry)
         for name, entry in entries.items():
             registry.register(name, entry, replace=True)
         registered = registry.registered()
