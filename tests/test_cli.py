@@ -130,6 +130,15 @@ def test_sweep_needs_a_grid_or_sample(scene_file, capsys):
     assert "--grid" in capsys.readouterr().err
 
 
+def test_sweep_bad_counts_name_their_flags(scene_file, capsys):
+    """Before: ``--seed -1`` ended in numpy's traceback ("expected non-negative integer"), and
+    ``--workers 0`` was refused as run_sweep's ``n_workers`` without naming the flag."""
+    assert main(["sweep", str(scene_file), "--sample", "inputs.Fr=1:2", "--seed", "-1"]) == 2
+    assert "--seed must be a non-negative integer, got -1" in capsys.readouterr().err
+    assert main(["sweep", str(scene_file), "--grid", "inputs.Fr=1,2", "--workers", "0"]) == 2
+    assert "--workers" in capsys.readouterr().err
+
+
 def test_console_script_runs_sweep_on_a_local_cluster(scene_file, tmp_path):
     """Neither point settles by t_end (the intermediate ring still speeds up): the summary
     counts them as not settled, and warns as a run of one of them does (before: ``2 point(s):

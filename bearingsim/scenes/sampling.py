@@ -126,7 +126,8 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     n : int
         Number of points (>= 1).
     seed : int or None
-        Seed of the scrambling and permutations (None: fresh entropy, not reproducible).
+        Seed of the scrambling and permutations, >= 0 (None: fresh entropy, not
+        reproducible).
     method : {"lhs", "lhs-optimal", "sobol"}
         Latin hypercube, Latin hypercube with centred-discrepancy optimal permutations, or
         the Sobol sequence.
@@ -142,7 +143,7 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     Raises
     ------
     SweepError
-        For ``n < 1``, an unknown method or no ranges.
+        For ``n < 1``, a negative seed, an unknown method or no ranges.
 
     Warns
     -----
@@ -151,6 +152,8 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     """
     if n < 1:
         raise SweepError(f"--samples must be >= 1, got {n}")
+    if seed is not None and seed < 0:  # numpy's seeds are non-negative integers
+        raise SweepError(f"--seed must be a non-negative integer, got {seed}")
     if not ranges:
         raise SweepError("a sample needs at least one key=low:high range")
     check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")

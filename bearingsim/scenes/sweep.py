@@ -251,7 +251,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     KeyboardInterrupt
         On Ctrl-C, after the tasks are cancelled; the rows written so far stay in the table.
     """
-    check_count(n_workers, "n_workers", 1, "run_sweep")
+    check_count(n_workers, "n_workers (LocalCluster workers, --workers)", 1, "run_sweep")
     if chunk is not None:
         check_count(chunk, "chunk (points per task, --chunk)", 1, "run_sweep")
     if not isinstance(scene, Scene):

@@ -106,6 +106,8 @@ def test_balanced_samples_do_not_warn(n, method):
 def test_bad_specifications_are_named():
     with pytest.raises(SweepError, match="--samples must be >= 1"):
         sample_points(RANGES, 0)
+    with pytest.raises(SweepError, match="--seed must be a non-negative integer, got -1"):
+        sample_points(RANGES, 4, seed=-1)  # was numpy's ValueError from deep inside
     with pytest.raises(SweepError, match="allowed: lhs, lhs-optimal, sobol"):
         sample_points(RANGES, 4, method="halton")
     with pytest.raises(SweepError, match="low < high"):
