@@ -134,7 +134,7 @@ def test_sweep_bad_counts_name_their_flags(scene_file, capsys):
     """Before: ``--seed -1`` ended in numpy's traceback ("expected non-negative integer"), and
     ``--workers 0`` was refused as run_sweep's ``n_workers`` without naming the flag."""
     assert main(["sweep", str(scene_file), "--sample", "inputs.Fr=1:2", "--seed", "-1"]) == 2
-    assert "--seed must be a non-negative integer, got -1" in capsys.readouterr().err
+    assert "--seed must be a non-negative integer or None, got -1" in capsys.readouterr().err
     assert main(["sweep", str(scene_file), "--grid", "inputs.Fr=1,2", "--workers", "0"]) == 2
     assert "--workers" in capsys.readouterr().err
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import numbers
 import warnings
 from typing import Any
 
@@ -115,6 +116,11 @@ def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
     return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
 
 
+def _whole(value: Any) -> bool:
+    """Whether ``value`` is an integer (numpy's included), not a boolean."""
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
 def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | None = 0,
                   method: str = "lhs", scramble: bool = True) -> list[dict[str, Any]]:
     """``n`` quasi-random points in the box ``ranges`` (scipy.stats.qmc).
@@ -143,17 +149,18 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     Raises
     ------
     SweepError
-        For ``n < 1``, a negative seed, an unknown method or no ranges.
+        For ``n`` not a whole number >= 1, a seed not a whole number >= 0, an unknown
+        method or no ranges.
 
     Warns
     -----
     SampleBalanceWarning
         For ``method="sobol"`` with ``n`` not a power of two.
     """
-    if n < 1:
-        raise SweepError(f"--samples must be >= 1, got {n}")
-    if seed is not None and seed < 0:  # numpy's seeds are non-negative integers
-        raise SweepError(f"--seed must be a non-negative integer, got {seed}")
+    if not _whole(n) or n < 1:
+        raise SweepError(f"--samples must be >= 1 (a whole number), got {n!r}")
+    if seed is not None and (not _whole(seed) or seed < 0):  # numpy's seeds
+        raise SweepError(f"--seed must be a non-negative integer or None, got {seed!r}")
     if not ranges:
         raise SweepError("a sample needs at least one key=low:high range")
     check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")

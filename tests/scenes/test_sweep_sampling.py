@@ -106,8 +106,17 @@ def test_balanced_samples_do_not_warn(n, method):
 def test_bad_specifications_are_named():
     with pytest.raises(SweepError, match="--samples must be >= 1"):
         sample_points(RANGES, 0)
-    with pytest.raises(SweepError, match="--seed must be a non-negative integer, got -1"):
+    with pytest.raises(SweepError, match="--seed must be a non-negative integer or None, "
+                                         "got -1"):
         sample_points(RANGES, 4, seed=-1)  # was numpy's ValueError from deep inside
+    # before: TypeErrors from the comparison or from numpy's SeedSequence
+    for seed in (1.5, "3", True):
+        with pytest.raises(SweepError, match="--seed must be"):
+            sample_points(RANGES, 4, seed=seed)
+    for n in (2.5, "4", None, True):
+        with pytest.raises(SweepError, match=r"--samples must be >= 1 \(a whole number\)"):
+            sample_points(RANGES, n)
+    assert len(sample_points(RANGES, np.int64(4), seed=np.int64(2))) == 4
     with pytest.raises(SweepError, match="allowed: lhs, lhs-optimal, sobol"):
         sample_points(RANGES, 4, method="halton")
     with pytest.raises(SweepError, match="low < high"):
