@@ -39,6 +39,14 @@ SP = {"shaft_speed": 100.0}
 NAN, INF = float("nan"), float("inf")
 G = get_bearing("6304")
 
+
+
+def _sweep(points, **kwargs):
+    from bearingsim.scenes.sweep import run_sweep
+
+    return run_sweep("scenes/deep_groove_radial.toml", points, **kwargs)
+
+
 CASES = [
     # --- simulate: times, tolerances, sizes
     ("simulate t_end text", lambda: simulate(SYSTEM, "1", inputs=SP), "t_end"),
@@ -241,6 +249,13 @@ CASES += [
         {f"k{i}": list(range(1000)) for i in range(4)}), "grid_points"),
     ("sweep n_workers 0", lambda: __import__("bearingsim.scenes.sweep", fromlist=["x"])
      .run_sweep("scenes/deep_groove_radial.toml", [{}], n_workers=0), "n_workers"),
+    # before: a TypeError, a ValueError from unpacking the key, or dask's TypeError after the
+    # sweep's table was created
+    ("sweep points text", lambda: _sweep("abc"), "must be a list of dicts"),
+    ("sweep points numbers", lambda: _sweep([1, 2]), "sweep point 0 must be a dict"),
+    ("sweep key without section", lambda: _sweep([{"x": 1}]), "must start with inputs."),
+    ("sweep timeout text", lambda: _sweep([{}], timeout="1"), "--timeout"),
+    ("sweep scheduler number", lambda: _sweep([{}], scheduler=5), "scheduler"),
     ("export_fmu into a folder", lambda: __import__("bearingsim.fmu", fromlist=["x"])
      .export_fmu(SYSTEM, "."), "path must be a file path ending in .fmu"),
     ("simulate max_steps 0", lambda: simulate(SYSTEM, 1.0, inputs=SP, max_steps=0),

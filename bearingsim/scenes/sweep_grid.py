@@ -11,6 +11,7 @@ them (:func:`si_values`). Running the points is :func:`bearingsim.scenes.sweep.r
 from __future__ import annotations
 
 import sys
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 if sys.version_info >= (3, 11):
@@ -206,22 +207,34 @@ def point_scene(scene: Scene, point: dict[str, Any]) -> Scene:
 
 
 def check_point_keys(points: list[dict[str, Any]]) -> None:
-    """Raise :class:`SweepError` unless every point sets the same keys: they are the table's
-    columns, which name what each row ran (a point with other keys had its row say nothing of
-    them).
+    """Raise :class:`SweepError` unless the points are a list of dicts that all set the same
+    keys, each one a sweep key (:func:`~bearingsim.scenes.sampling.check_key`): they are the
+    table's columns, which name what each row ran (a point with other keys had its row say
+    nothing of them).
 
     Parameters
     ----------
     points : list of dict
         The sweep's points (values by sweep key).
     """
+    if isinstance(points, (str, bytes, Mapping)) or not isinstance(points, Sequence):
+        raise SweepError("the sweep's points must be a list of dicts (sweep key -> value, "
+                         f"e.g. from grid_points or sample_points), got {type(points).__name__}")
+    for k, point in enumerate(points):
+        if not isinstance(point, Mapping):
+            raise SweepError(f"sweep point {k} must be a dict (sweep key -> value), got "
+                             f"{type(point).__name__}")
     keys = set(points[0])
+    for key in sorted(keys, key=str):
+        if not isinstance(key, str):
+            raise SweepError(f"sweep key {key!r}: must be text (e.g. inputs.shaft_speed)")
+        check_key(key)
     for k, point in enumerate(points):
         if set(point) != keys:
             raise SweepError(
-                f"sweep point {k} sets {', '.join(sorted(point)) or 'no key'}, point 0 "
-                f"{', '.join(sorted(keys)) or 'no key'}: every point of a sweep sets the same "
-                "keys (the columns of its table)")
+                f"sweep point {k} sets {', '.join(sorted(map(str, point))) or 'no key'}, "
+                f"point 0 {', '.join(sorted(keys)) or 'no key'}: every point of a sweep sets "
+                "the same keys (the columns of its table)")
 
 
 def check_operating_points(scene: Scene, points: list[dict[str, Any]]) -> None:
