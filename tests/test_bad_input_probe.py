@@ -47,6 +47,18 @@ def _sweep(points, **kwargs):
     return run_sweep("scenes/deep_groove_radial.toml", points, **kwargs)
 
 
+def _sampling():
+    from bearingsim.scenes import sampling
+
+    return sampling
+
+
+def _scenes():
+    import bearingsim.scenes
+
+    return bearingsim.scenes
+
+
 CASES = [
     # --- simulate: times, tolerances, sizes
     ("simulate t_end text", lambda: simulate(SYSTEM, "1", inputs=SP), "t_end"),
@@ -246,7 +258,7 @@ CASES += [
         "deep_groove_ball", 1e12, 7800.0), "P0"),
     ("grid of 10^12 points", lambda: __import__(
         "bearingsim.scenes.sweep", fromlist=["x"]).grid_points(
-        {f"k{i}": list(range(1000)) for i in range(4)}), "grid_points"),
+        {f"inputs.k{i}": list(range(1000)) for i in range(4)}), "grid_points"),
     ("sweep n_workers 0", lambda: __import__("bearingsim.scenes.sweep", fromlist=["x"])
      .run_sweep("scenes/deep_groove_radial.toml", [{}], n_workers=0), "n_workers"),
     # before: a TypeError, a ValueError from unpacking the key, or dask's TypeError after the
@@ -256,6 +268,21 @@ CASES += [
     ("sweep key without section", lambda: _sweep([{"x": 1}]), "must start with inputs."),
     ("sweep timeout text", lambda: _sweep([{}], timeout="1"), "--timeout"),
     ("sweep scheduler number", lambda: _sweep([{}], scheduler=5), "scheduler"),
+    ("sweep out number", lambda: _sweep([{}], out=5), "out (--out) must be a folder path"),
+    ("grid_points text", lambda: _sampling().grid_points("abc"), "must be a dict"),
+    ("grid_points one value", lambda: _sampling().grid_points({"inputs.x": 5}),
+     "expected a list of values"),
+    ("grid_points no values", lambda: _sampling().grid_points({"inputs.x": []}), "no values"),
+    ("grid_points key without section", lambda: _sampling().grid_points({"x": [1]}),
+     "must start with inputs."),
+    ("sample_points reversed range", lambda: _sampling().sample_points({"inputs.x": (2, 1)}, 4),
+     "low < high"),
+    ("sample_points range text", lambda: _sampling().sample_points({"inputs.x": "1:2"}, 4),
+     "low < high"),
+    ("parse_scene bytes", lambda: _scenes().parse_scene(b"title = 'x'"), "TOML text (str)"),
+    ("load_scene number", lambda: _scenes().load_scene(5), "str or Path"),
+    ("run_scene out number", lambda: _scenes().run_scene("scenes/deep_groove_radial.toml", out=5),
+     "out must be a folder path"),
     ("export_fmu into a folder", lambda: __import__("bearingsim.fmu", fromlist=["x"])
      .export_fmu(SYSTEM, "."), "path must be a file path ending in .fmu"),
     ("simulate max_steps 0", lambda: simulate(SYSTEM, 1.0, inputs=SP, max_steps=0),

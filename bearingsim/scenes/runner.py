@@ -13,6 +13,7 @@ import contextlib
 import glob
 import json
 import math
+import os
 import re
 import time
 import warnings
@@ -257,10 +258,14 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     Raises
     ------
     SceneError
-        When the folder holds an earlier run's files and ``overwrite`` is False.
+        When the folder holds an earlier run's files and ``overwrite`` is False, or ``out``
+        is not a path.
     """
-    from bearingsim.scenes.scene import load_scene
+    from bearingsim.scenes.scene import SceneError, load_scene
 
+    if out is not None and not isinstance(out, (str, os.PathLike)):
+        raise SceneError(f"run_scene: out must be a folder path (str or Path), got "
+                         f"{type(out).__name__}")
     if not isinstance(scene, Scene):
         scene = load_scene(scene, allow_paths)
     folder = Path(out) if out is not None else scene_output_folder(scene)

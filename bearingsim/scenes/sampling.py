@@ -14,6 +14,7 @@ import itertools
 import math
 import numbers
 import warnings
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from bearingsim.checks import check_output_size
@@ -109,11 +110,36 @@ def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
     -------
     list of dict
         The points.
+
+    Raises
+    ------
+    SweepError
+        For a grid that is not a mapping, a key a sweep cannot set
+        (:func:`check_key`) or a key without values.
     """
+    if not isinstance(grid, Mapping):
+        raise SweepError(f"grid_points: the grid must be a dict (sweep key -> list of values), "
+                         f"got {type(grid).__name__}")
+    grid = {key: _values(key, values) for key, values in grid.items()}
     keys = list(grid)
     check_output_size(math.prod(len(v) for v in grid.values()), 300 + 100 * len(keys),
                       "the number of grid points", "grid_points")
     return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*grid.values())]
+
+
+def _values(key: Any, values: Any) -> list[Any]:
+    """The values of a grid key as a list; :class:`SweepError` for a key a sweep cannot set,
+    a single value (text, a number, a mapping) or none."""
+    if not isinstance(key, str):
+        raise SweepError(f"sweep key {key!r}: must be text (e.g. inputs.shaft_speed)")
+    check_key(key)
+    if isinstance(values, (str, bytes, Mapping)) or not isinstance(values, Iterable):
+        raise SweepError(f"grid key {key}: expected a list of values, got "
+                         f"{type(values).__name__} (a single value is a list of one: [v])")
+    values = list(values)
+    if not values:
+        raise SweepError(f"grid key {key}: no values")
+    return values
 
 
 def _whole(value: Any) -> bool:
@@ -150,7 +176,7 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     ------
     SweepError
         For ``n`` not a whole number >= 1, a seed not a whole number >= 0, an unknown
-        method or no ranges.
+        method, no ranges, a key a sweep cannot set or a range not finite low < high.
 
     Warns
     -----
@@ -161,8 +187,18 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
         raise SweepError(f"--samples must be >= 1 (a whole number), got {n!r}")
     if seed is not None and (not _whole(seed) or seed < 0):  # numpy's seeds
         raise SweepError(f"--seed must be a non-negative integer or None, got {seed!r}")
-    if not ranges:
-        raise SweepError("a sample needs at least one key=low:high range")
+    if not isinstance(ranges, Mapping) or not ranges:
+        raise SweepError("a sample needs at least one key=low:high range (a dict: sweep key "
+                         f"-> (low, high)), got {ranges!r:.60}")
+    for key, bounds in ranges.items():
+        if not isinstance(key, str):
+            raise SweepError(f"sweep key {key!r}: must be text (e.g. inputs.shaft_speed)")
+        check_key(key)
+        if not (isinstance(bounds, Sequence) and not isinstance(bounds, str) and len(bounds) == 2
+                and all(isinstance(b, numbers.Real) and not isinstance(b, bool)
+                        and math.isfinite(b) for b in bounds) and bounds[0] < bounds[1]):
+            raise SweepError(f"--sample {key}: need finite low < high (in SI units), got "
+                             f"{bounds!r:.60}")
     check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")
     # imported here: scipy.stats takes about 0.5 s to import, which a grid sweep never needs
     from scipy.stats import qmc

@@ -14,6 +14,7 @@ The scene's parts are in :mod:`.scene_types`, the checks of its sections in
 
 from __future__ import annotations
 
+import os
 import re
 import sys
 from collections.abc import Sequence
@@ -468,6 +469,9 @@ def parse_scene(text: str, path: str | None = None,
     Scene
         The checked scene.
     """
+    if not isinstance(text, str):
+        raise SceneError(f"parse_scene: the scene must be TOML text (str), got "
+                         f"{type(text).__name__}; a file: load_scene(path)", path=path)
     try:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -501,6 +505,9 @@ def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scen
         Naming the key, the line and the allowed values; for a missing file, the built-in
         scene names.
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise SceneError(f"load_scene: the scene file's path must be a str or Path, got "
+                         f"{type(path).__name__}")
     p = Path(path)
     if not p.is_file():  # a folder named like a built-in scene (its output, say) is not one
         p = builtin_scene_path(str(path)) or p

@@ -255,6 +255,9 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     check_count(n_workers, "n_workers (LocalCluster workers, --workers)", 1, "run_sweep")
     if chunk is not None:
         check_count(chunk, "chunk (points per task, --chunk)", 1, "run_sweep")
+    if out is not None and not isinstance(out, (str, os.PathLike)):
+        raise SweepError(f"out (--out) must be a folder path (str or Path), got "
+                         f"{type(out).__name__}")
     if scheduler is not None and not isinstance(scheduler, str):
         raise SweepError("scheduler (--scheduler) must be the address of a dask scheduler, "
                          f"as text (tcp://host:8786), got {type(scheduler).__name__}")

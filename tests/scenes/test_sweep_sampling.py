@@ -163,7 +163,7 @@ def test_a_sweep_imports_scipy_stats_only_to_sample() -> None:
             "import bearingsim.cli, bearingsim.scenes.sweep\n"
             "before = 'scipy.stats' in sys.modules\n"
             "from bearingsim.scenes.sampling import sample_points\n"
-            "sample_points({'a': (0.0, 1.0)}, 4)\n"
+            "sample_points({'inputs.a': (0.0, 1.0)}, 4)\n"
             "print(before, 'scipy.stats' in sys.modules)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
