@@ -57,7 +57,6 @@ import numbers
 import os
 import time
 import warnings
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -82,7 +81,10 @@ from bearingsim.scenes.sweep_cluster import (
 from bearingsim.scenes.sweep_order import PointCosts, point_features
 from bearingsim.scenes.sweep_plan import plan_sweep
 from bearingsim.scenes.sweep_results import (
+    SweepResult,
     column_units,
+    describe_failures,
+    describe_points,
     point_warnings,
     result_columns,
     sweep_figures,
@@ -98,73 +100,6 @@ from bearingsim.validation import check_count
 __all__ = ["SweepError", "SweepResult", "parse_sample", "grid_points", "crossed_points",
            "sample_points", "run_sweep", "describe_failures", "describe_points", "chunk_size",
            "CHUNK_SECONDS"]
-
-
-@dataclass
-class SweepResult:
-    """Rows of the result table (one per point, in point order), failures and written files."""
-
-    keys: list[str]
-    rows: list[dict[str, Any]]
-    failures: list[dict[str, Any]]
-    models_built: int
-    files: list[Path] = field(default_factory=list)
-    wall_s: float = 0.0
-    resumed: int = 0
-    """Points taken from the table of an earlier run (``resume``)."""
-    chunk_size: int = 1
-    """Most points in one task."""
-    point_s: float = math.nan
-    """Median wall time of a point [s] (which sized the chunks with ``longest_first=False``)."""
-    spans: dict[int, tuple[int, float, float]] = field(default_factory=dict)
-    """Point -> (process id of the worker that ran it, epoch time it started [s], its wall
-    time [s]) of the points this sweep ran: a timeline of the workers."""
-    point_cpu: dict[int, float] = field(default_factory=dict)
-    """Point -> CPU time of the thread that ran it on its worker [s], of the points this
-    sweep ran; below the wall time in :attr:`spans` by the time the point waited for a core
-    (other processes on the worker's machine)."""
-    phases: dict[str, float] = field(default_factory=dict)
-    """Wall time [s] of the client's phases: ``imports`` (dask.distributed, the first sweep of
-    a process: about 0.5 s), ``plan`` (validate, prepare or load the models),
-    ``cluster`` (waiting for the cluster after planning), ``ship`` (scatter the models),
-    ``points`` (first chunk out to last row in; the client imports what writing takes
-    meanwhile), ``close`` (close the cluster), ``write`` (sorted table, Parquet copy, plot,
-    summary)."""
-    warnings: list[dict[str, Any]] = field(default_factory=list)
-    """The warnings the points gave, one per kind, with the points that gave it
-    (:func:`~bearingsim.scenes.sweep_results.point_warnings`); each is also warned once on
-    the client (a worker's own standard error shows none)."""
-    settling: str = ""
-    """Whether the rows say if each point settled: ``"checked"`` (a transient scene: columns
-    ``settled`` and ``unsettled``), ``"on purpose"`` (a transient scene that reports a
-    transient on purpose: not checked, as ``bearingsim run`` does not) or ``""`` (a steady,
-    modes or statics point is solved, not run in time)."""
-    plot_failures: list[dict[str, str]] = field(default_factory=list)
-    """The figures that failed (``plot``, ``error``); the table and summary are written."""
-
-    @property
-    def ok(self) -> list[dict[str, Any]]:
-        """The rows of the points that succeeded (settled or not).
-
-        Returns
-        -------
-        list of dict
-            The rows.
-        """
-        return [r for r in self.rows if r["status"] == "ok"]
-
-    @property
-    def unsettled(self) -> list[dict[str, Any]]:
-        """The rows of the points that ran but had not settled by ``t_end``: their values are
-        flagged (``settled`` False, the outputs that had not in ``unsettled``). Empty unless the
-        sweep checks settling (:attr:`settling`).
-
-        Returns
-        -------
-        list of dict
-            The rows.
-        """
-        return [r for r in self.ok if self.settling == "checked" and not r["settled"]]
 
 
 def _ready_to_write(units: dict[str, str]) -> None:
@@ -479,50 +414,3 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
     lap("write")
     res.wall_s = time.perf_counter() - wall
     return res
-
-
-def describe_points(res: SweepResult) -> str:
-    """The points of a sweep by outcome, as ``bearingsim sweep`` reports them: ``4 point(s): 3
-    settled, 1 not settled (values flagged: settled False), 0 failed`` when the sweep checks
-    settling (:attr:`SweepResult.settling`), otherwise ``4 point(s): 4 ok, 0 failed`` (a
-    transient reported on purpose says its values were not checked for settling).
-
-    Parameters
-    ----------
-    res : SweepResult
-        A sweep's result.
-
-    Returns
-    -------
-    str
-        The counts.
-    """
-    ok = len(res.ok)
-    if res.settling == "checked":
-        unsettled = len(res.unsettled)
-        outcome = (f"{ok - unsettled} settled, {unsettled} not settled"
-                   + (" (values flagged: settled False)" if unsettled else ""))
-    else:
-        outcome = f"{ok} ok" + (" (transient on purpose: not checked for settling)"
-                                if res.settling == "on purpose" else "")
-    return f"{len(res.rows)} point(s): {outcome}, {len(res.failures)} failed"
-
-
-def describe_failures(res: SweepResult) -> str:
-    """One line per failed point: its values and the error.
-
-    Parameters
-    ----------
-    res : SweepResult
-        A sweep's result.
-
-    Returns
-    -------
-    str
-        The lines (empty without failures).
-    """
-    lines = []
-    for f in res.failures:
-        values = ", ".join(f"{k}={v!r}" for k, v in f["values"].items())
-        lines.append(f"point {f['point']} ({values}): {f['error']}")
-    return "\n".join(lines)
