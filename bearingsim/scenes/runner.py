@@ -13,7 +13,6 @@ import contextlib
 import glob
 import json
 import math
-import os
 import re
 import time
 import warnings
@@ -23,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from bearingsim.checks import checked
 from bearingsim.errors import ModelError, SimulationError
 from bearingsim.scenes.analyses import (
     NoModesWarning,
@@ -228,6 +228,7 @@ def summary(prep: Prepared, result: Result, series: dict[str, np.ndarray],
     })
 
 
+@checked
 def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write: bool = True,
               overwrite: bool = False, progress: bool | None = None,
               allow_paths: list[str | Path] | tuple = ()) -> SceneRun:
@@ -258,14 +259,10 @@ def run_scene(scene: Scene | str | Path, out: str | Path | None = None, *, write
     Raises
     ------
     SceneError
-        When the folder holds an earlier run's files and ``overwrite`` is False, or ``out``
-        is not a path.
+        When the folder holds an earlier run's files and ``overwrite`` is False.
     """
-    from bearingsim.scenes.scene import SceneError, load_scene
+    from bearingsim.scenes.scene import load_scene
 
-    if out is not None and not isinstance(out, (str, os.PathLike)):
-        raise SceneError(f"run_scene: out must be a folder path (str or Path), got "
-                         f"{type(out).__name__}")
     if not isinstance(scene, Scene):
         scene = load_scene(scene, allow_paths)
     folder = Path(out) if out is not None else scene_output_folder(scene)

@@ -14,7 +14,6 @@ The scene's parts are in :mod:`.scene_types`, the checks of its sections in
 
 from __future__ import annotations
 
-import os
 import re
 import sys
 from collections.abc import Sequence
@@ -23,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from bearingsim.assemblies.spec import AssemblySpec
-from bearingsim.checks import ATOL_RANGE, RTOL_RANGE
+from bearingsim.checks import ATOL_RANGE, RTOL_RANGE, checked
 from bearingsim.files import (
     FileAccessError,
     PathOutsideError,
@@ -308,9 +307,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
               "true, false")
         on_purpose = False
     allowed = tuple(str(a) for a in allow_paths)
-    for problem in load_bearings_files(d.get("bearings"), scene_folder(path), allowed):
-        c.add(problem.key, problem.reason, problem.allowed)
-    for problem in load_lubricants_table(d.get("lubricants")):
+    for problem in [*load_bearings_files(d.get("bearings"), scene_folder(path), allowed),
+                    *load_lubricants_table(d.get("lubricants"))]:
         c.add(problem.key, problem.reason, problem.allowed)
     # assembly
     asm = d.get("assembly")
@@ -451,6 +449,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     )
 
 
+@checked
 def parse_scene(text: str, path: str | None = None,
                 allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Parse and validate scene TOML text (without assembling the model).
@@ -469,9 +468,6 @@ def parse_scene(text: str, path: str | None = None,
     Scene
         The checked scene.
     """
-    if not isinstance(text, str):
-        raise SceneError(f"parse_scene: the scene must be TOML text (str), got "
-                         f"{type(text).__name__}; a file: load_scene(path)", path=path)
     try:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -481,6 +477,7 @@ def parse_scene(text: str, path: str | None = None,
     return scene_from_dict(d, path=path, text=text, allow_paths=allow_paths)
 
 
+@checked
 def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scene:
     """Read, parse and validate a scene file (without assembling the model).
 
@@ -505,9 +502,6 @@ def load_scene(path: str | Path, allow_paths: Sequence[str | Path] = ()) -> Scen
         Naming the key, the line and the allowed values; for a missing file, the built-in
         scene names.
     """
-    if not isinstance(path, (str, os.PathLike)):
-        raise SceneError(f"load_scene: the scene file's path must be a str or Path, got "
-                         f"{type(path).__name__}")
     p = Path(path)
     if not p.is_file():  # a folder named like a built-in scene (its output, say) is not one
         p = builtin_scene_path(str(path)) or p

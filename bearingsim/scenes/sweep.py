@@ -53,13 +53,13 @@ import gc
 import importlib
 import json
 import math
-import numbers
 import os
 import time
 import warnings
 from pathlib import Path
 from typing import Any
 
+from bearingsim.checks import checked
 from bearingsim.scenes.analyses import NotSettledWarning
 from bearingsim.scenes.outputs import OutputFolder, command_line
 from bearingsim.scenes.sampling import (
@@ -125,6 +125,7 @@ def _earlier_files(folder: Path, stem: str) -> list[str]:
     return [n for n in names if (folder / n).exists()]
 
 
+@checked
 def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
               progress: bool | None = None, client=None, resume: bool = False,
@@ -190,12 +191,6 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     check_count(n_workers, "n_workers (LocalCluster workers, --workers)", 1, "run_sweep")
     if chunk is not None:
         check_count(chunk, "chunk (points per task, --chunk)", 1, "run_sweep")
-    if out is not None and not isinstance(out, (str, os.PathLike)):
-        raise SweepError(f"out (--out) must be a folder path (str or Path), got "
-                         f"{type(out).__name__}")
-    if scheduler is not None and not isinstance(scheduler, str):
-        raise SweepError("scheduler (--scheduler) must be the address of a dask scheduler, "
-                         f"as text (tcp://host:8786), got {type(scheduler).__name__}")
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     if scheduler is None and client is None:  # the workers' imports begin, on another core
@@ -204,9 +199,7 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
         raise SweepError("a sweep needs at least one point")
     if timeout is None:
         timeout = scene.simulation.timeout
-    if timeout is not None and not (isinstance(timeout, numbers.Real)
-                                    and not isinstance(timeout, bool)
-                                    and math.isfinite(timeout) and timeout > 0):
+    if timeout is not None and not (math.isfinite(timeout) and timeout > 0):
         raise SweepError(f"--timeout must be a positive number of seconds, got {timeout!r}")
     if timeout != scene.simulation.timeout:  # the solver's own budget too (--timeout wins)
         scene = scene.replace(simulation=dataclasses.replace(scene.simulation, timeout=timeout))

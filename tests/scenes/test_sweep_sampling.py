@@ -23,7 +23,7 @@ from bearingsim.scenes.sampling import (
     parse_sample,
     sample_points,
 )
-from bearingsim.scenes.sweep_grid import parse_grid
+from bearingsim.scenes.sweep_grid import check_point_keys, parse_grid
 
 RANGES = {"parameters.shaft.J": (1e-4, 1e-3), "inputs.shaft_speed": (100.0, 600.0)}
 
@@ -117,6 +117,11 @@ def test_bad_specifications_are_named():
         with pytest.raises(SweepError, match=r"--samples must be >= 1 \(a whole number\)"):
             sample_points(RANGES, n)
     assert len(sample_points(RANGES, np.int64(4), seed=np.int64(2))) == 4
+    # every point checked, whatever run_sweep's type check sampled (beartype checks one item)
+    with pytest.raises(SweepError, match="sweep point 2 must be a dict"):
+        check_point_keys([{}, {}, 5, {}])
+    with pytest.raises(SweepError, match="must start with inputs."):
+        check_point_keys([{"x": 1}])
     with pytest.raises(SweepError, match="allowed: lhs, lhs-optimal, sobol"):
         sample_points(RANGES, 4, method="halton")
     with pytest.raises(SweepError, match="low < high"):
