@@ -125,7 +125,7 @@ def _earlier_files(folder: Path, stem: str) -> list[str]:
     return [n for n in names if (folder / n).exists()]
 
 
-@checked
+@checked(skip=("n_workers", "chunk"))  # checked below, naming the flags
 def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
               progress: bool | None = None, client=None, resume: bool = False,
