@@ -26,6 +26,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
+from bearingsim.errors import BearingsimError, ParameterError, SimulationError
+
 __all__ = ["build_parser", "cli_export", "scene_outputs"]
 
 
@@ -146,30 +148,29 @@ def _from_registry(name: str, kwargs: dict[str, Any]):
     """The assembly a scene would build from ``name`` and the arguments ``kwargs``, and the
     outputs such a scene reports (None when no assembly has that name)."""
     from bearingsim.assemblies.registry import REGISTRY
-    from bearingsim.errors import BearingsimError
 
-    try:
-        if name not in REGISTRY:
-            return None
-        spec = REGISTRY[name]
-        kwargs = dict(kwargs)
-        fidelity = kwargs.pop("fidelity", spec.auto_fidelities[-1])
-        unknown = sorted(set(kwargs) - set(spec.args))
-        if unknown:
-            raise SystemExit(f"export-fmu: {name} has no argument {', '.join(unknown)}; "
+    if name not in REGISTRY:
+        return None
+    spec = REGISTRY[name]
+    kwargs = dict(kwargs)
+    fidelity = kwargs.pop("fidelity", spec.auto_fidelities[-1])
+    unknown = sorted(set(kwargs) - set(spec.args))
+    if unknown:
+        raise ParameterError(f"{name} has no argument {', '.join(unknown)}; "
                              f"arguments: {', '.join(spec.args)}, fidelity")
-        if fidelity not in spec.fidelities:
-            raise SystemExit(f"export-fmu: {fidelity!r} is not a fidelity of {name}; "
+    if fidelity not in spec.fidelities:
+        raise ParameterError(f"{fidelity!r} is not a fidelity of {name}; "
                              f"fidelities: {', '.join(spec.fidelities)}")
-        texts = sorted(k for k, v in kwargs.items()
-                       if spec.args[k].kind == "signal" and isinstance(v, str))
-        if texts:
-            raise SystemExit(f"export-fmu: {name}: give {', '.join(texts)} as a number (an "
+    texts = sorted(k for k, v in kwargs.items()
+                   if spec.args[k].kind == "signal" and isinstance(v, str))
+    if texts:
+        raise ParameterError(f"{name}: give {', '.join(texts)} as a number (an "
                              "expression of t is for scenes; the FMU's inputs vary in time)")
+    try:
         model = spec.build(spec.with_defaults(kwargs), fidelity)
         return model, scene_outputs(spec, model, fidelity)
     except BearingsimError as exc:  # the assembly's own name said once
-        raise SystemExit(f"export-fmu: {name}: {str(exc).removeprefix(f'{name}: ')}") from None
+        raise ParameterError(f"{name}: {str(exc).removeprefix(f'{name}: ')}") from None
 
 
 def _load(spec: str, kwargs: dict[str, Any]):
@@ -181,39 +182,39 @@ def _load(spec: str, kwargs: dict[str, Any]):
             return found
     module, sep, attr = spec.rpartition(":")
     if not sep or not module or not attr:
-        raise SystemExit(f"export-fmu: expected a scene file (*.toml) or built-in scene, an "
+        raise ParameterError(f"expected a scene file (*.toml) or built-in scene, an "
                          f"assembly name (bearingsim list), pkg.module:callable or "
                          f"file.py:callable, got {spec!r}")
     if module.endswith(".py"):
         path = Path(module)
         if not path.is_file():
-            raise SystemExit(f"export-fmu: no file {module}")
+            raise ParameterError(f"no file {module}")
         spec_obj = importlib.util.spec_from_file_location(path.stem, path)
         obj = importlib.util.module_from_spec(spec_obj)
         try:
             spec_obj.loader.exec_module(obj)
         except Exception as exc:  # noqa: BLE001 - report any failure of the user's file
-            raise SystemExit(f"export-fmu: cannot load {module}: {exc}") from None
+            raise ParameterError(f"cannot load {module}: {exc}") from None
     else:
         if os.getcwd() not in sys.path:
             sys.path.insert(0, os.getcwd())  # modules in the current folder, as python -m does
         try:
             obj = importlib.import_module(module)
         except ImportError as exc:
-            raise SystemExit(f"export-fmu: cannot import {module}: {exc}") from None
+            raise ParameterError(f"cannot import {module}: {exc}") from None
     for part in attr.split("."):
         if not hasattr(obj, part):
-            raise SystemExit(f"export-fmu: {module} has no attribute {attr!r}")
+            raise ParameterError(f"{module} has no attribute {attr!r}")
         obj = getattr(obj, part)
     if not callable(obj):
         if kwargs:
-            raise SystemExit(f"export-fmu: {attr} is not callable, so --arg cannot be given")
+            raise ParameterError(f"{attr} is not callable, so --arg cannot be given")
         return obj, None
     try:
         return obj(**kwargs), None
     except TypeError as exc:
-        raise SystemExit(f"export-fmu: {attr}({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
-                         f" failed: {exc}") from None
+        raise ParameterError(f"{attr}({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
+                             f" failed: {exc}") from None
 
 
 def cli_export(argv: Sequence[str] | None = None,
@@ -233,37 +234,41 @@ def cli_export(argv: Sequence[str] | None = None,
     Returns
     -------
     int
-        Exit status (0 on success).
+        Exit status: 0 on success; as the other commands, 2 for bad input and 1 for a build
+        that failed (no C compiler), the reason on standard error after ``bearingsim
+        export-fmu:``.
     """
-    from bearingsim.errors import BearingsimError
-    from bearingsim.fmu.export import export_fmu
+    from bearingsim.simulation.c_compiler import CompileError
 
     args = build_parser().parse_args(argv)
-    inputs, parameters = dict(args.input), dict(args.param)
     try:
-        scene = scene_fmu(args.factory) if scene_fmu is not None else None
-    except BearingsimError as exc:
-        print(f"export-fmu: {exc}", file=sys.stderr)
-        return 2
+        path = _export(args, scene_fmu)
+    except BearingsimError as exc:  # as the other commands: 2 for bad input, 1 for a failure
+        print(f"bearingsim export-fmu: {exc}", file=sys.stderr)
+        return 1 if isinstance(exc, (SimulationError, CompileError)) else 2
+    print(path)
+    return 0
+
+
+def _export(args: argparse.Namespace, scene_fmu: Callable[[str], Any] | None) -> Path:
+    """:func:`cli_export` after parsing: the FMU written."""
+    from bearingsim.fmu.export import export_fmu
+
+    inputs, parameters = dict(args.input), dict(args.param)
+    scene = scene_fmu(args.factory) if scene_fmu is not None else None
     if scene is not None:
         if args.arg:
-            raise SystemExit("export-fmu: a scene's assembly takes its arguments from the "
-                             "scene's [assembly]; --arg is for a factory or an assembly name")
+            raise ParameterError("a scene's assembly takes its arguments from the scene's "
+                                 "[assembly]; --arg is for a factory or an assembly name")
         model, default_outputs = scene.model, scene.outputs
         inputs, parameters = {**scene.inputs, **inputs}, {**scene.parameters, **parameters}
         for note in scene.notes:
-            print(f"export-fmu: {note}", file=sys.stderr)
+            print(f"bearingsim export-fmu: {note}", file=sys.stderr)
     else:
         model, default_outputs = _load(args.factory, dict(args.arg))
-    try:
-        path = export_fmu(
-            model, args.output, inputs=inputs,
-            outputs=args.outputs if args.outputs is not None else default_outputs,
-            parameters=parameters, fmi_version=args.fmi_version, kinds=args.kinds,
-            model_name=args.name, stepper=args.stepper, platforms=args.platforms,
-        )
-    except BearingsimError as exc:
-        print(f"export-fmu: {exc}", file=sys.stderr)
-        return 1
-    print(path)
-    return 0
+    return export_fmu(
+        model, args.output, inputs=inputs,
+        outputs=args.outputs if args.outputs is not None else default_outputs,
+        parameters=parameters, fmi_version=args.fmi_version, kinds=args.kinds,
+        model_name=args.name, stepper=args.stepper, platforms=args.platforms,
+    )

@@ -95,7 +95,8 @@ def test_cli_export(tmp_path):
 def test_cli_reports_errors(tmp_path, capsys):
     status = cli_export(["tests.models:TwoInertiaDrive", str(tmp_path / "x.fmu"),
                          "--param", "sd.c=-1"])
-    assert status == 1 and "sd.c" in capsys.readouterr().err
+    err = capsys.readouterr().err  # bad input: 2, as the other commands (before: 1)
+    assert status == 2 and err.startswith("bearingsim export-fmu: ") and "sd.c" in err
 
 
 @pytest.mark.parametrize(

@@ -36,7 +36,7 @@ def test_scene_name_exports_its_outputs_and_inputs(tmp_path):
     assert inputs == ["shaft.Fx", "shaft.Fy", "shaft.Fz", "shaft.Mx", "shaft.My"]
 
 
-def test_assembly_arguments_of_an_export_take_numbers_with_units(tmp_path):
+def test_assembly_arguments_of_an_export_take_numbers_with_units(tmp_path, capsys):
     """``bearingsim export-fmu duplex_pair x.fmu --arg 'preload_force="1 kN"'`` ended in a
     traceback (``float('1 kN')``); the arguments take what a scene takes: numbers with units,
     designations in any letter case, and text that is no quantity is a named error."""
@@ -52,9 +52,9 @@ def test_assembly_arguments_of_an_export_take_numbers_with_units(tmp_path):
                 if v.causality == "parameter"}
 
     assert parameters(path) == parameters(si)
-    with pytest.raises(SystemExit, match=r"^export-fmu: duplex_pair: preload_force: 'light' is "
-                                         r"not a number with a unit"):
-        cli_export(["duplex_pair", str(path), "--arg", 'preload_force="light"'])
+    assert cli_export(["duplex_pair", str(path), "--arg", 'preload_force="light"']) == 2
+    assert capsys.readouterr().err.startswith(
+        "bearingsim export-fmu: duplex_pair: preload_force: 'light' is not a number with a unit")
     roller = tmp_path / "nu.fmu"
     assert cli_export(["cylindrical_roller_bearing", str(roller), "--arg", 'bearing="nu 208"',
                        "--arg", 'tilt_y="0.5 mrad"', "--arg", 'clearance="20 um"',
@@ -146,8 +146,8 @@ def test_a_scene_exports_the_model_it_runs(tmp_path, capsys):
     single = run_scene(parse_scene(_SCENE, str(scene)), write=False).series
     assert result["Rs"][-1] == pytest.approx(float(single["Rs"][-1]), rel=1e-4)
     assert result["M_shaft"][-1] == pytest.approx(float(single["M_shaft"][-1]), rel=1e-4)
-    with pytest.raises(SystemExit, match="takes its arguments from the scene's"):
-        main(["export-fmu", str(scene), str(path), "--arg", "inner=61905"])
+    assert main(["export-fmu", str(scene), str(path), "--arg", "inner=61905"]) == 2
+    assert "takes its arguments from the scene's" in capsys.readouterr().err
     scene.write_text(_SCENE.replace('fidelity = "torque"', 'fidelity = "fast"'))
     assert main(["export-fmu", str(scene), str(path)]) == 2
     assert "assembly.fidelity" in capsys.readouterr().err
