@@ -31,6 +31,7 @@ __all__ = [
     "atomic_path",
     "atomic_write_text",
     "confined_path",
+    "file_path",
     "open_regular",
     "os_reason",
 ]
@@ -71,6 +72,30 @@ def os_reason(exc: OSError) -> str:
     return reasons.get(exc.errno, exc.strerror or type(exc).__name__)
 
 
+def file_path(path: str | Path) -> Path:
+    """``path`` as a :class:`~pathlib.Path` to write a file to.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    pathlib.Path
+        The same path.
+
+    Raises
+    ------
+    FileAccessError
+        When the path names no file (``"."``, ``".."``, ``""``, a root): a folder.
+    """
+    path = Path(path)
+    if path.name in ("", ".", ".."):  # (Path(".").with_name(...) raises ValueError)
+        raise FileAccessError(f"cannot write {str(path)!r}: a folder, not a file path")
+    return path
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | Path) -> Iterator[Path]:
     """A temporary path to write ``path`` to; renamed to ``path`` when the block completes.
@@ -90,9 +115,10 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     ------
     FileAccessError
         When the block or the rename fails with an operating-system error (missing or
-        read-only folder, full disk), naming ``path`` and the reason.
+        read-only folder, full disk), naming ``path`` and the reason, or ``path`` names a
+        folder (:func:`file_path`).
     """
-    path = Path(path)
+    path = file_path(path)
     tmp = path.with_name(f".{path.stem}.{os.getpid()}{PART}{path.suffix}")
     try:
         yield tmp

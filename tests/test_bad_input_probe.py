@@ -10,6 +10,7 @@ Each case: an id, the call, and a fragment the message must contain (the argumen
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import numpy as np
 import pytest
@@ -45,6 +46,11 @@ def _sweep(points, **kwargs):
     from bearingsim.scenes.sweep import run_sweep
 
     return run_sweep("scenes/deep_groove_radial.toml", points, **kwargs)
+
+
+@functools.cache
+def _result():
+    return simulate(SYSTEM, 0.01, inputs=SP)
 
 
 def _sampling():
@@ -283,6 +289,10 @@ CASES += [
     ("load_scene number", lambda: _scenes().load_scene(5), "path must be str | Path"),
     ("run_scene out number", lambda: _scenes().run_scene("scenes/deep_groove_radial.toml", out=5),
      "out must be str | Path"),
+    # before: TypeError / ValueError from pathlib
+    ("Result.to_csv path number", lambda: _result().to_csv(5), "path must be str | Path"),
+    ("Result.plot path number", lambda: _result().plot("Rs", path=5), "path must be"),
+    ("Result.to_npz into a folder", lambda: _result().to_npz("."), "a folder, not a file path"),
     ("export_fmu into a folder", lambda: __import__("bearingsim.fmu", fromlist=["x"])
      .export_fmu(SYSTEM, "."), "path must be a file path ending in .fmu"),
     ("simulate max_steps 0", lambda: simulate(SYSTEM, 1.0, inputs=SP, max_steps=0),

@@ -12,7 +12,7 @@ import numpy as np
 
 from bearingsim.checks import checked
 from bearingsim.errors import ParameterError
-from bearingsim.files import atomic_path
+from bearingsim.files import atomic_path, file_path
 from bearingsim.plotting import keep_tight_layout, wrapped_label
 from bearingsim.series_csv import write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
@@ -271,6 +271,7 @@ class Result:
             raise UnitError(f"Result.final: {name} [{si_unit}]: {exc}") from None
         return (value - offset) / factor
 
+    @checked(skip=("names",))  # names: one or a list, checked by _names
     def to_csv(self, path: str | Path, names: list[str] | None = None) -> Path:
         """Write ``time`` and the chosen variables (default all) as CSV in SI, one header row
         ``time [s], name [unit], ...`` (:func:`~bearingsim.series_csv.write_series_csv`).
@@ -290,6 +291,7 @@ class Result:
         names = self._names(names, "Result.to_csv") if names is not None else self.names
         return write_series_csv(path, self.t, {n: self[n] for n in names}, self.units)
 
+    @checked
     def to_npz(self, path: str | Path) -> Path:
         """Write all series to a compressed NumPy archive.
 
@@ -303,7 +305,7 @@ class Result:
         Path
             The file written.
         """
-        path = Path(path)
+        path = file_path(path)
         if path.suffix != ".npz":  # numpy appends it; return the file actually written
             path = path.with_name(path.name + ".npz")
         with atomic_path(path) as tmp:
@@ -348,6 +350,7 @@ class Result:
         self._series(name)  # KeyError with close matches, ParameterError for non-text
         return describe(name, self.descriptions.get(name, ""), self.units.get(name, "1"))
 
+    @checked(skip=("names",))
     def plot(self, names: str | Sequence[str] | None = None, path: str | Path | None = None,
              title=None, ax=None):
         """Plot variables against time in engineering units (r/min, µm, N mm, kN: one per
