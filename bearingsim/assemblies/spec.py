@@ -180,7 +180,8 @@ class ArgSpec:  # numpydoc ignore=PR02
         Parameters
         ----------
         name : object
-            The value as written (anything but text stands for none).
+            The value as written: text, or a whole number as TOML reads ``inner = 61905``
+            (anything else stands for none).
 
         Returns
         -------
@@ -189,6 +190,8 @@ class ArgSpec:  # numpydoc ignore=PR02
         """
         from bearingsim.catalog import BEARINGS  # on use: a spec is read without the catalogue
 
+        if isinstance(name, int) and not isinstance(name, bool):  # 61905 written unquoted
+            name = str(name)
         return (self.find or BEARINGS.find)(name) if isinstance(name, str) else None
 
     def __post_init__(self) -> None:

@@ -168,6 +168,11 @@ def test_designations_are_read_as_the_catalogues_read_them():
     assert assembly("cylindrical_roller_bearing", bearing="nu 208").args == {
         "bearing": "NU208"}
     assert assembly("duplex_pair", bearing="7020c").args == {"bearing": "7020C"}
+    # unquoted, TOML reads a number: before, "unknown bearing designation 61905; allowed:
+    # ..., 61905, ..."
+    unquoted = parse_scene('[assembly]\nname = "double_layer_bearing"\ninner = 61905\n'
+                           'outer = 61907\n[simulation]\nt_end = 1\n')
+    assert unquoted.args == {"inner": "61905", "outer": "61907"}
     assert assembly("spindle", roller_bearing="NU 210",
                     bearing="7014c").args == {"roller_bearing": "NU210",
                                                        "bearing": "7014C"}
