@@ -309,8 +309,14 @@ def _sweep(args: argparse.Namespace) -> int:
 
 def _cache(args: argparse.Namespace) -> int:
     from bearingsim.assembler.cache import cache_info, clear_cache
+    from bearingsim.cache_paths import cache_root
 
-    info = clear_cache() if args.action == "clear" else cache_info()
+    root = cache_root()
+    if root.exists() and not root.is_dir():  # a misspelt $BEARINGSIM_CACHE, say
+        _say(f"bearingsim cache: {root} is not a folder: nothing is kept there, every run "
+             "assembles anew; set $BEARINGSIM_CACHE to a folder", err=args.action == "clear")
+        return 2 if args.action == "clear" else 0
+    info = clear_cache(root) if args.action == "clear" else cache_info(root)
     verb = "removed" if args.action == "clear" else "holds"
     print(f"{info.root} {verb}: {info.systems} assembled system(s), "
           f"{info.systems_bytes / 1e6:.1f} MB; {info.libraries} compiled librar"

@@ -24,6 +24,7 @@ __all__ = [
     "LongRunWarning",
     "SpeedLimitWarning",
     "MultipleSteadyStatesWarning",
+    "CacheWarning",
 ]
 
 
@@ -154,3 +155,8 @@ class MultipleSteadyStatesWarning(UserWarning):
 
 class SpeedLimitWarning(UserWarning):
     """A speed above the catalogue limiting speed of a bearing."""
+
+
+class CacheWarning(UserWarning):
+    """The cache folder (``$BEARINGSIM_CACHE``) cannot be written: assembled systems are not
+    kept, and every run assembles anew."""

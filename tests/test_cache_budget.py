@@ -171,3 +171,19 @@ def test_cache_command_states_the_budget(tmp_path, monkeypatch, capsys):
     assert main(["cache"]) == 0
     assert "budget for the systems and libraries: 500.0 MB ($BEARINGSIM_CACHE_SIZE" in \
         capsys.readouterr().out
+
+
+def test_cache_command_on_a_file_says_it_is_not_a_folder(tmp_path, monkeypatch, capsys):
+    """Before: ``cache`` said the file "holds: 0 assembled system(s)", and ``cache clear``
+    failed on "<file>/kernel_names: a part of the path is a file"."""
+    from bearingsim.cli import main
+
+    blocked = tmp_path / "cache"
+    blocked.write_text("not a folder")
+    monkeypatch.setenv("BEARINGSIM_CACHE", str(blocked))
+    said = f"bearingsim cache: {blocked} is not a folder: nothing is kept there"
+    assert main(["cache"]) == 0
+    assert capsys.readouterr().out.startswith(said)
+    assert main(["cache", "clear"]) == 2
+    assert capsys.readouterr().err.startswith(said)
+    assert blocked.read_text() == "not a folder"

@@ -33,6 +33,7 @@ import hashlib
 import pickle
 import shutil
 import time
+import warnings
 from collections.abc import Callable, Mapping
 from functools import partial
 from pathlib import Path
@@ -57,7 +58,8 @@ from bearingsim.cache_paths import (
     system_files,
     systems_dir,
 )
-from bearingsim.files import atomic_path
+from bearingsim.errors import CacheWarning
+from bearingsim.files import atomic_path, os_reason
 from bearingsim.language.component import Component
 from bearingsim.language.declarations import Parameter
 from bearingsim.units.registry import PINT_CACHE
@@ -327,10 +329,24 @@ def assemble_cached(component: Component, outputs: list[str] | None = None, *,
     try:
         _write_entry(path, key, dumps_system(system), _value_dependent(system))
         keep_to_budget(path.parent.parent, path, budget)
-    except OSError:
-        pass  # a read-only or full cache only costs the next run an assembly
+    except OSError as exc:  # a read-only or full cache costs the next run an assembly
+        _warn_unwritable(path.parent.parent, exc)
     LAST.update(hit=False, key=key, path=path, seconds=time.perf_counter() - t0)
     return system
+
+
+_UNWRITABLE: set[Path] = set()
+"""The cache roots this process has warned about (:func:`_warn_unwritable`)."""
+
+
+def _warn_unwritable(root: Path, exc: OSError) -> None:
+    """Say once per process and cache root that nothing can be kept there, and why."""
+    if root in _UNWRITABLE:
+        return
+    _UNWRITABLE.add(root)
+    warnings.warn(f"the cache {root} cannot be written ({os_reason(exc)}): assembled systems "
+                  "are not kept, so every run assembles anew; set $BEARINGSIM_CACHE to a "
+                  "writable folder", CacheWarning, stacklevel=3)
 
 
 # --------------------------------------------------------------------------- housekeeping

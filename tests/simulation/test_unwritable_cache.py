@@ -11,6 +11,7 @@ import pytest
 
 from bearingsim.assembler import assemble, assemble_cached
 from bearingsim.assembler import cache as system_cache
+from bearingsim.errors import CacheWarning
 from bearingsim.simulation import kernels, simulate
 from bearingsim.simulation.c_compiler import CompileError, c_compiler
 from tests.models import TwoInertiaDrive
@@ -30,7 +31,12 @@ def blocked_cache(tmp_path, monkeypatch):
 
 
 def test_the_system_is_assembled_instead_of_loaded(blocked_cache):
-    system = assemble_cached(TwoInertiaDrive())
+    """And says so, once per process and folder (before: silently, each run assembling)."""
+    with pytest.warns(CacheWarning, match=rf"the cache {blocked_cache} cannot be written \(.*\): "
+                                          r"assembled systems are not kept") as seen:
+        system = assemble_cached(TwoInertiaDrive())
+        assemble_cached(TwoInertiaDrive())
+    assert len([w for w in seen if issubclass(w.category, CacheWarning)]) == 1
     assert not system_cache.LAST["hit"]
     fresh = assemble(TwoInertiaDrive())
     args = (0.1, fresh.x0() + 0.3, fresh.u_default() + 0.5, fresh.p0())
