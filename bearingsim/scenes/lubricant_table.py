@@ -87,7 +87,11 @@ def _new_oil_factory(name: str, v: dict[str, Any]) -> Callable[..., Lubricant]:
         keys = {"name": name, **oil_keys, **kw}
         if "grade" in v:
             return Oil.from_iso_vg(v["grade"], **keys)
-        return Oil(v["nu40"] * 1e6, 40.0, v["nu100"] * 1e6, 100.0, **keys)
+        try:
+            return Oil(v["nu40"] * 1e6, 40.0, v["nu100"] * 1e6, 100.0, **keys)
+        except ParameterError as exc:  # named as the table names them
+            raise ParameterError(str(exc).replace("nu1_cst", "nu40").replace(
+                "nu2_cst", "nu100")) from None
 
     if not grease:
         return oil
@@ -163,6 +167,7 @@ def load_lubricants_table(table: Any) -> list[SceneFileError]:
             register_lubricant(name, factory, replace=True)
             _FROM_SCENE[name] = LUBRICANTS.registered()[name]
             get_lubricant(name)  # the table's own values once more, through the registry
-        except BearingsimError as exc:
-            problems.append(SceneFileError(key, str(exc), ", ".join(LUBRICANT_KEYS)))
+        except BearingsimError as exc:  # (the key is said once, by the problem)
+            problems.append(SceneFileError(key, str(exc).removeprefix(f"{key}: "),
+                                           ", ".join(LUBRICANT_KEYS)))
     return problems

@@ -109,7 +109,12 @@ fill_fraction = 0.25
     ('[lubricants."x"]\nbase = "ISO VG 86"\n',
      r"unknown lubricant 'ISO VG 86'.*did you mean 'ISO VG 68'"),
     ('[lubricants."x"]\ngrade = 68\nnu40 = "10 mm^2/s"\n', r"give grade or nu40 and nu100"),
-    ('[lubricants."x"]\nnu40 = "10 mm^2/s"\n', r"a new oil needs grade, or nu40 and nu100"),
+    ('[lubricants."x"]\nnu40 = "10 mm^2/s"\n',  # before: "lubricants.x: lubricants.x: a new"
+     r"bad.toml:1: lubricants.x: a new oil needs grade, or nu40 and nu100"),
+    # before: named by the Oil's nu1_cst and nu2_cst, which the table does not have
+    ('[lubricants."x"]\nnu40 = "10 mm^2/s"\nnu100 = "20 mm^2/s"\n',
+     r"lubricants.x: Oil 'x': nu100 = 20.0 \[mm\^2/s\] is outside the valid range \(0, 10\)"),
+    ('[lubricants."x"]\nnu40 = -3\nnu100 = 2\n', r"lubricants.x: Oil 'x': nu40 = -3000000.0 "),
     ('[lubricants."x"]\ngrade = 68\nviscosity = 3\n', r"unknown key 'viscosity'; give base"),
     ('[lubricants]\nx = 3\n', r"lubricants.x: must be a table"),
     ('[lubricants."x"]\nbase = "lithium grease"\nmu_bl = 0.1\n',
