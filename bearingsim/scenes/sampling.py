@@ -46,6 +46,8 @@ def check_key(key: str) -> None:
     key : str
         A sweep key (``inputs.X``, ``parameters.X`` or an assembly argument).
     """
+    if not isinstance(key, str):
+        raise SweepError(f"sweep key {key!r}: must be text (e.g. inputs.shaft_speed)")
     head = key.split(".", 1)[0]
     if head not in ("inputs", "parameters", "initial", "simulation", "assembly") or "." not in key:
         raise SweepError(
@@ -130,8 +132,6 @@ def grid_points(grid: dict[str, list[Any]]) -> list[dict[str, Any]]:
 def _values(key: Any, values: Any) -> list[Any]:
     """The values of a grid key as a list; :class:`SweepError` for a key a sweep cannot set,
     a single value (text, a number, a mapping) or none."""
-    if not isinstance(key, str):
-        raise SweepError(f"sweep key {key!r}: must be text (e.g. inputs.shaft_speed)")
     check_key(key)
     if isinstance(values, (str, bytes, Mapping)) or not isinstance(values, Iterable):
         raise SweepError(f"grid key {key}: expected a list of values, got "
@@ -191,8 +191,6 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
         raise SweepError("a sample needs at least one key=low:high range (a dict: sweep key "
                          f"-> (low, high)), got {ranges!r:.60}")
     for key, bounds in ranges.items():
-        if not isinstance(key, str):
-            raise SweepError(f"sweep key {key!r}: must be text (e.g. inputs.shaft_speed)")
         check_key(key)
         if not (isinstance(bounds, Sequence) and not isinstance(bounds, str) and len(bounds) == 2
                 and all(isinstance(b, numbers.Real) and not isinstance(b, bool)
