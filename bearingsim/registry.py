@@ -127,6 +127,9 @@ class Registry(MutableMapping):
         """The plug-ins' entries by name."""
         self.plugin_failures: list[PluginFailure] = []
         """Entry points skipped at the last discovery."""
+        self.sibling: tuple[Registry, str] | None = None
+        """A registry of another kind that a name asked of this one may belong to, and what its
+        entries are (the ball and the roller bearings): :meth:`unknown` says so."""
 
     # ---- loading -----------------------------------------------------------------------------
     def _builtins(self) -> dict[str, Any]:
@@ -241,6 +244,8 @@ class Registry(MutableMapping):
             text += f"; did you mean {', '.join(repr(by_key[c]) for c in close)}?"
         text += "".join(f"; {failure}" for failure in self.plugin_failures
                         if failure.name == name)
+        if self.sibling is not None and name in self.sibling[0]:
+            text += f"; {name!r} is {self.sibling[1]}"
         return CatalogError(text)
 
     def register(self, name: str, entry: Any, *, replace: bool = False) -> None:

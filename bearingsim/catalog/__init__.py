@@ -29,6 +29,7 @@ from importlib import resources
 from bearingsim.catalog.datasheet import read_datasheet
 from bearingsim.catalog.geometry import BearingGeometry, PreloadClasses
 from bearingsim.catalog.rollers import (
+    ROLLER_BEARINGS,
     RollerBearingGeometry,
     find_roller_bearing,
     register_roller_bearing,
@@ -70,6 +71,8 @@ BEARINGS = Registry("bearing", _catalogue, group=ENTRY_POINT_GROUP, convert=_plu
 """Designation -> geometry: the catalogue (``bearings.csv``), the plug-ins of
 :data:`ENTRY_POINT_GROUP` and the registered bearings (:func:`register_bearing`,
 :func:`load_datasheet`, a scene's ``bearings`` key)."""
+BEARINGS.sibling = (ROLLER_BEARINGS, "a cylindrical roller bearing")  # asked of the other
+ROLLER_BEARINGS.sibling = (BEARINGS, "a ball bearing")
 
 
 def list_bearings() -> list[str]:

@@ -122,7 +122,8 @@ def _unit_text(spec: ArgSpec) -> str:
 
 
 def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
-    from bearingsim.catalog import list_bearings
+    from bearingsim.catalog import BEARINGS, list_bearings
+    from bearingsim.catalog.rollers import ROLLER_BEARINGS
     from bearingsim.physics.lubricant import as_lubricant, known_lubricants
 
     if v is None:
@@ -130,7 +131,10 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
     if spec.kind == "bearing":  # as the catalogue reads it ("7020c", "NU 206"), spelled its way
         found = spec.designation(v)
         if found is None:
-            c.add(key, f"unknown bearing designation {v!r}",
+            elsewhere = next((f" ({v!r} is {what}: not one of this assembly's bearings)"
+                              for other, what in (BEARINGS.sibling, ROLLER_BEARINGS.sibling)
+                              if isinstance(v, str) and v in other), "")
+            c.add(key, f"unknown bearing designation {v!r}{elsewhere}",
                   ", ".join(spec.known() if spec.known is not None else list_bearings()))
             return v
         return found

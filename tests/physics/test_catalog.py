@@ -21,6 +21,18 @@ def test_unknown_designation_lists_known():
     with pytest.raises(CatalogError) as err:
         get_bearing("6299X")
     assert "6299X" in str(err.value) and "6204" in str(err.value) and "7020C" in str(err.value)
+    assert "is a" not in str(err.value)
+
+
+def test_a_designation_of_the_other_catalogue_says_which():
+    """Before: 'unknown bearing 'NU208'; known: 6204, ...', as for a designation no catalogue
+    has."""
+    from bearingsim.catalog.rollers import ROLLER_BEARINGS
+
+    with pytest.raises(CatalogError, match=r"'nu 208' is a cylindrical roller bearing$"):
+        get_bearing("nu 208")
+    with pytest.raises(CatalogError, match=r"'6304' is a ball bearing$"):
+        ROLLER_BEARINGS["6304"]
 
 
 def test_case_insensitive():

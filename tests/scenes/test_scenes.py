@@ -179,8 +179,13 @@ def test_designations_are_read_as_the_catalogues_read_them():
     with pytest.raises(SceneError, match="'NU 999'; allowed: NU204, NU205") as info:
         assembly("cylindrical_roller_bearing", bearing="NU 999")
     assert "6204" not in str(info.value)
-    with pytest.raises(SceneError, match="'NU208'; allowed: 6204"):
+    # a designation of the other catalogue says so (before: only "unknown")
+    with pytest.raises(SceneError, match=r"'NU208' \('NU208' is a cylindrical roller bearing: "
+                                         r"not one of this assembly's bearings\); allowed: 6204"):
         assembly("duplex_pair", bearing="NU208")
+    with pytest.raises(SceneError, match=r"'6304' \('6304' is a ball bearing: not one of this "
+                                         r"assembly's bearings\); allowed: NU204"):
+        assembly("cylindrical_roller_bearing", bearing="6304")
     roller = assembly("cylindrical_roller_bearing")  # a sweep's values, as its table has them
     assert coerce(roller, "assembly.bearing", "nu 208") == "NU208"
     assert coerce(roller, "assembly.bearing", "NU 999") == "NU 999"  # refused by its point
@@ -360,8 +365,8 @@ def test_scene_dataclass_equals_toml_scene():
 def test_scene_dataclass_is_validated():
     with pytest.raises(SceneError, match="simulation.method"):
         prepare(Scene("double_layer_bearing", simulation=Simulation(method="Euler")))
-    with pytest.raises(SceneError, match="assembly.inner"):
-        prepare(Scene("double_layer_bearing", args={"inner": 61905}))
+    with pytest.raises(SceneError, match="assembly.inner"):  # (61905, a whole number, is read)
+        prepare(Scene("double_layer_bearing", args={"inner": 61905.5}))
 
 
 def test_motor_drive_scene_runs_with_kinematic_bearing_when_only_speeds_are_asked():
