@@ -25,6 +25,7 @@ import inspect
 import math
 import numbers
 import os
+import re
 import sys
 import typing
 from collections.abc import Callable
@@ -79,7 +80,9 @@ def _describe(hint: Any) -> str:
     """A type hint as text for a message (``float``, ``str | Path``, ``dict[str, float]``)."""
     if isinstance(hint, type):
         return hint.__name__
-    return str(hint).replace("typing.", "").replace("pathlib.", "").replace("NoneType", "None")
+    # the modules named off (typing.Any, collections.abc.Sequence, bearingsim.scenes.scene.Scene)
+    text = re.sub(r"(?<![\w'\"])(?:[a-z_]\w*\.)+(?=[A-Za-z_])", "", str(hint))
+    return text.replace("NoneType", "None")
 
 
 def _too_large_int(value: Any) -> bool:

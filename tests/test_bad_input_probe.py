@@ -269,8 +269,11 @@ CASES += [
      .run_sweep("scenes/deep_groove_radial.toml", [{}], n_workers=0), "n_workers"),
     # before: a TypeError, a ValueError from unpacking the key, or dask's TypeError after the
     # sweep's table was created
-    ("sweep points text", lambda: _sweep("abc"), "points must be list[dict"),
-    ("sweep points numbers", lambda: _sweep([{}, 2]), "dict"),
+    ("sweep points text", lambda: _sweep("abc"), "points must be Sequence[Mapping"),
+    # (beartype or check_point_keys, by the item beartype samples: both say "must be")
+    ("sweep points numbers", lambda: _sweep([{}, 2]), "must be"),
+    # a tuple of points passes the type check (stopped at the next check, the timeout)
+    ("sweep points as a tuple run", lambda: _sweep(({}, {}), timeout=-1.0), "--timeout"),
     ("sweep key without section", lambda: _sweep([{"x": 1}]), "must start with inputs."),
     ("sweep timeout text", lambda: _sweep([{}], timeout="1"), "timeout must be float"),
     ("sweep scheduler number", lambda: _sweep([{}], scheduler=5), "scheduler"),

@@ -56,6 +56,7 @@ import math
 import os
 import time
 import warnings
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -126,7 +127,7 @@ def _earlier_files(folder: Path, stem: str) -> list[str]:
 
 
 @checked(skip=("n_workers", "chunk"))  # checked below, naming the flags
-def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
+def run_sweep(scene: Scene | str | Path, points: Sequence[Mapping[str, Any]], *,
               scheduler: str | None = None, n_workers: int = 2, out: str | Path | None = None,
               progress: bool | None = None, client=None, resume: bool = False,
               timeout: float | None = None, chunk: int | None = None,
@@ -140,8 +141,8 @@ def run_sweep(scene: Scene | str | Path, points: list[dict[str, Any]], *,
     Parameters
     ----------
     scene : Scene or path
-    points : list of dict
-        From :func:`grid_points` or :func:`sample_points`.
+    points : sequence of dict
+        From :func:`grid_points` or :func:`sample_points` (a list or a tuple).
     scheduler : str, optional
         Address of a running dask scheduler (``tcp://host:8786``); default: a LocalCluster.
     n_workers : int
