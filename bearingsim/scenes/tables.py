@@ -280,8 +280,12 @@ def read_table_file(key: str, v: dict[str, Any], base: Path, allowed: Sequence[P
                                f"header have the same name {label}", "distinct column names")
             if tcol not in names or col not in names:
                 sub = "time_column" if tcol not in names else "column"
+                separator = next((f"; the header row is one column with {s!r} in it: the "
+                                  "file's cells must be separated by commas"
+                                  for s in (";", "\t", "|") if len(raw) == 1 and s in raw[0]),
+                                 "")  # (the separator named, never the file's text)
                 raise fail(sub, f"column {(tcol if sub == 'time_column' else col)!r} not in "
-                           f"the header row", _columns_hint(names))
+                           f"the header row{separator}", _columns_hint(names))
             it, iv = names.index(tcol), names.index(col)
             units = [u for _, u in header]
             for row in reader:

@@ -235,6 +235,10 @@ def test_a_unit_row_still_works_and_a_typo_in_the_first_row_is_an_error(tmp_path
     ("time,w\n0,0\n2,1\n1,2\n", "times must increase strictly: data row 3 has t = 1 s after "
                                  "t = 2 s in row 2"),  # was "a table needs ..." with no row
     ("time,w\n0,0\n", "a table needs at least two rows and a value per time; got 1 time(s)"),
+    # before: only "column 'time' not in the header row; allowed: 1 column(s) with other text"
+    ("time;w\n0;0\n1;1\n", "not in the header row; the header row is one column with ';' "
+                            "in it: the file's cells must be separated by commas"),
+    ("time\tw\n0\t0\n1\t1\n", "one column with '\\t' in it"),
 ])
 def test_malformed_tables_are_errors_naming_the_row_or_column(tmp_path, text, words):
     message = _problems(_scene(tmp_path, _table(tmp_path, text)))
