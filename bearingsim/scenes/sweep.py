@@ -311,7 +311,14 @@ def _sweep(scene: Scene, points: list[dict[str, Any]], folder: OutputFolder | No
             preparing.submit(_ready_to_write, units)
         if own and todo:
             starting = starting or start()
-            client, cluster = starting.result()
+            try:
+                client, cluster = starting.result()
+            except OSError as exc:  # a scheduler that does not answer: no header-only table
+                if table is not None and not rows:  # left to block the next sweep
+                    table.path.unlink(missing_ok=True)
+                raise SweepError(f"cannot reach the dask scheduler {scheduler}: {exc}"
+                                 if scheduler else f"cannot start the LocalCluster: {exc}"
+                                 ) from None
         if todo:  # (nothing left to run: no cluster)
             client.wait_for_workers(1)
         lap("cluster")
