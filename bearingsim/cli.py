@@ -330,6 +330,14 @@ def _cache(args: argparse.Namespace) -> int:
     return 0
 
 
+def _folder(text: str) -> str:
+    """An output folder given on the command line: not empty (``--out "$UNSET"`` wrote into
+    the current folder)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty folder name; give . for the current folder")
+    return text
+
+
 def _parser() -> argparse.ArgumentParser:
     from bearingsim import __version__
     from bearingsim.sweep_samplers import SAMPLERS  # (not the scenes package: see there)
@@ -339,7 +347,8 @@ def _parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
     p_run = sub.add_parser("run", help="run a scene file: CSV, JSON summary and PNG plots")
     p_run.add_argument("scene", help="scene TOML file or built-in scene name (bearingsim list)")
-    p_run.add_argument("--out", help="output folder (default: the scene's output.folder)")
+    p_run.add_argument("--out", type=_folder,
+                       help="output folder (default: the scene's output.folder)")
     p_run.add_argument("--overwrite", action="store_true",
                        help="replace the files of an earlier run of this scene in the folder")
     p_run.add_argument("--no-progress", action="store_true",
@@ -389,7 +398,8 @@ def _parser() -> argparse.ArgumentParser:
                                           "LocalCluster)")
     p_sw.add_argument("--workers", type=int, default=2,
                       help="LocalCluster workers (default 2)")
-    p_sw.add_argument("--out", help="output folder (default: the scene's output.folder)")
+    p_sw.add_argument("--out", type=_folder,
+                      help="output folder (default: the scene's output.folder)")
     p_sw.add_argument("--no-progress", action="store_true",
                       help="no progress bar (shown on a terminal)")
     p_cache = sub.add_parser("cache", help="size of the cache of assembled systems and "
@@ -405,7 +415,7 @@ def _parser() -> argparse.ArgumentParser:
     p_demo = sub.add_parser("demo", help="run the built-in demo scenes, one per study question "
                             "(double-layer Rs against speed and load, duplex-pair modes against "
                             "preload, deep-groove life per duty condition) and a PMSM spin-up")
-    p_demo.add_argument("--out", default="demo_output",
+    p_demo.add_argument("--out", default="demo_output", type=_folder,
                         help="output folder (default demo_output)")
     p_demo.add_argument("--overwrite", action="store_true",
                         help="replace the files of an earlier demo run in the folder")

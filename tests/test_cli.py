@@ -533,3 +533,15 @@ def test_validate_variables_lists_the_parameters_a_scene_may_set(tmp_path, capsy
            "temperature; 32 mm²/s (3.2e-05 m2/s); 0 to 0.01 m2/s" in listed
     assert any(x.startswith("  inner_layer.f0 [-]: Palmgren") and x.endswith("; >= 0")
                for x in listed)
+
+
+@pytest.mark.parametrize("command", ["run", "sweep", "demo"])
+def test_an_empty_output_folder_is_refused(command, capsys):
+    """Before: ``--out ""`` (an unset shell variable) wrote into the current folder."""
+    args = {"run": ["run", "deep_groove_radial"], "demo": ["demo"],
+            "sweep": ["sweep", "deep_groove_radial", "--grid", "inputs.load.Fx=1,2"]}[command]
+    with pytest.raises(SystemExit) as exit_:
+        main([*args, "--out", ""])
+    assert exit_.value.code == 2
+    assert "argument --out: an empty folder name; give . for the current folder" in \
+        capsys.readouterr().err

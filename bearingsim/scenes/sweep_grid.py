@@ -28,9 +28,11 @@ __all__ = ["check_operating_points", "check_point_keys", "coerce", "parse_grid",
 
 def _split_values(text: str) -> list[str]:
     """Split on ';' if present, else on commas outside parentheses, brackets and quotes (a
-    TOML list such as ``["lithium grease", "ISO VG 32"]`` is one value)."""
+    TOML list such as ``["lithium grease", "ISO VG 32"]`` is one value); an empty value between
+    two separators is kept (:func:`parse_grid` refuses it), a trailing separator ignored."""
     if ";" in text:
-        return [v.strip() for v in text.split(";") if v.strip()]
+        parts = [v.strip() for v in text.split(";")]
+        return parts[:-1] if parts[-1] == "" else parts
     out, depth, cur, quote = [], 0, "", ""
     for ch in text:
         if quote:
@@ -103,8 +105,11 @@ def parse_grid(items: list[str]) -> dict[str, list[Any]]:
             raise SweepError(f"--grid {key} is given twice; give all its values in one: "
                              f"--grid {key}=v1,v2,...")
         vals = _split_values(values)
-        if not vals:
+        if not any(vals):
             raise SweepError(f"--grid {key}: no values")
+        if "" in vals:  # "1,,2": was refused as the expression '' of a point
+            raise SweepError(f"--grid {key}: value {vals.index('') + 1} of {len(vals)} is "
+                             "empty (two separators in a row)")
         grid[key] = vals
     return grid
 

@@ -117,6 +117,16 @@ def test_bad_specifications_are_named():
         with pytest.raises(SweepError, match=r"--samples must be >= 1 \(a whole number\)"):
             sample_points(RANGES, n)
     assert len(sample_points(RANGES, np.int64(4), seed=np.int64(2))) == 4
+    # before: "1,,2" ran as far as the point, refused as "the expression ''"; "1;;2" and "1;"
+    # dropped the empty value without a word
+    for values in ("1,,2", "1;;2"):
+        with pytest.raises(SweepError, match=r"--grid inputs.x: value 2 of 3 is empty"):
+            parse_grid([f"inputs.x={values}"])
+    for values in (",", ";", ""):
+        with pytest.raises(SweepError, match=r"--grid inputs.x: no values"):
+            parse_grid([f"inputs.x={values}"])
+    assert parse_grid(["inputs.x=1,2,"]) == parse_grid(["inputs.x=1;2;"]) == {
+        "inputs.x": ["1", "2"]}
     # every point checked, whatever run_sweep's type check sampled (beartype checks one item)
     with pytest.raises(SweepError, match="sweep point 2 must be a dict"):
         check_point_keys([{}, {}, 5, {}])
