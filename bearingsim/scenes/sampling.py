@@ -90,10 +90,13 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
             raise SweepError(f"--sample {key} is given twice; give one range: "
                              f"--sample {key}=low:high")
         try:
-            lo, hi = (_bound(x) for x in rng.split(":", 1))
+            (lo, lo_unit), (hi, hi_unit) = (_bound(x) for x in rng.split(":", 1))
         except (ValueError, ParameterError):
             raise SweepError(f"--sample {key}: low and high must be numbers (SI) or numbers "
                              f"with a unit ('1000 rpm:2000 rpm'), got {rng!r}") from None
+        if lo_unit and hi_unit and lo_unit != hi_unit:  # "1 kN:2 m": was "need low < high"
+            raise SweepError(f"--sample {key}: low and high are different quantities (in SI "
+                             f"{lo_unit} and {hi_unit}), got {rng!r}")
         if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
             raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
         ranges[key] = (lo, hi)
@@ -256,7 +259,8 @@ def crossed_points(grid_points: list[dict[str, Any]], samples: list[dict[str, An
     return [{**p, **s} for p in grid_points for s in samples]
 
 
-def _bound(text: str) -> float:
-    """A sample bound: a number (SI) or a number with a unit (``500rpm``), in SI."""
+def _bound(text: str) -> tuple[float, str | None]:
+    """A sample bound: a number (SI) or a number with a unit (``500rpm``), in SI, and its SI
+    unit (None for a plain number)."""
     quantity = parse_quantity(text)
-    return quantity[0] if quantity is not None else float(text)
+    return quantity if quantity is not None else (float(text), None)

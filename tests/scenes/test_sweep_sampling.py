@@ -136,6 +136,9 @@ def test_bad_specifications_are_named():
         sample_points(RANGES, 4, method="halton")
     with pytest.raises(SweepError, match="low < high"):
         parse_sample(["inputs.x=2:1"])
+    with pytest.raises(SweepError, match=r"--sample inputs.x: low and high are different "
+                                         r"quantities \(in SI N and m\), got '1 kN:2 m'"):
+        parse_sample(["inputs.x=1 kN:2 m"])  # before: "need finite low < high"
     with pytest.raises(SweepError, match="must start with"):
         parse_sample(["x=1:2"])
     with pytest.raises(SweepError, match="allowed simulation settings"):
