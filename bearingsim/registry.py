@@ -244,9 +244,28 @@ class Registry(MutableMapping):
             text += f"; did you mean {', '.join(repr(by_key[c]) for c in close)}?"
         text += "".join(f"; {failure}" for failure in self.plugin_failures
                         if failure.name == name)
-        if self.sibling is not None and name in self.sibling[0]:
-            text += f"; {name!r} is {self.sibling[1]}"
+        other = self.in_sibling(name)
+        if other:
+            text += f"; {name!r} is {other}"
         return CatalogError(text)
+
+    def in_sibling(self, name: Any) -> str | None:
+        """What ``name`` is when the :attr:`sibling` registry has it (``"a cylindrical
+        roller bearing"``), else None.
+
+        Parameters
+        ----------
+        name : object
+            A name (one the sibling's ``normalize`` cannot read stands for none).
+
+        Returns
+        -------
+        str or None
+            The sibling's description of its entries, or None.
+        """
+        if self.sibling is not None and self.sibling[0].find(name) is not None:
+            return self.sibling[1]
+        return None
 
     def register(self, name: str, entry: Any, *, replace: bool = False) -> None:
         """Add an entry under ``name`` (replacing the one it stands for with ``replace``).

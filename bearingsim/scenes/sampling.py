@@ -97,7 +97,7 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
         if lo_unit and hi_unit and lo_unit != hi_unit:  # "1 kN:2 m": was "need low < high"
             raise SweepError(f"--sample {key}: low and high are different quantities (in SI "
                              f"{lo_unit} and {hi_unit}), got {rng!r}")
-        if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+        if not _is_range((lo, hi)):
             raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
         ranges[key] = (lo, hi)
     return ranges
@@ -143,6 +143,14 @@ def _values(key: Any, values: Any) -> list[Any]:
     if not values:
         raise SweepError(f"grid key {key}: no values")
     return values
+
+
+def _is_range(bounds: Any) -> bool:
+    """Whether ``bounds`` is ``(low, high)``: two finite real numbers (not booleans), low <
+    high."""
+    return (isinstance(bounds, Sequence) and not isinstance(bounds, str) and len(bounds) == 2
+            and all(isinstance(b, numbers.Real) and not isinstance(b, bool) and math.isfinite(b)
+                    for b in bounds) and bounds[0] < bounds[1])
 
 
 def _whole(value: Any) -> bool:
@@ -195,9 +203,7 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
                          f"-> (low, high)), got {ranges!r:.60}")
     for key, bounds in ranges.items():
         check_key(key)
-        if not (isinstance(bounds, Sequence) and not isinstance(bounds, str) and len(bounds) == 2
-                and all(isinstance(b, numbers.Real) and not isinstance(b, bool)
-                        and math.isfinite(b) for b in bounds) and bounds[0] < bounds[1]):
+        if not _is_range(bounds):
             raise SweepError(f"--sample {key}: need finite low < high (in SI units), got "
                              f"{bounds!r:.60}")
     check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")

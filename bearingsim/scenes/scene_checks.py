@@ -131,9 +131,10 @@ def _check_arg(c: _Collector, key: str, spec: ArgSpec, v: Any) -> Any:
     if spec.kind == "bearing":  # as the catalogue reads it ("7020c", "NU 206"), spelled its way
         found = spec.designation(v)
         if found is None:
-            elsewhere = next((f" ({v!r} is {what}: not one of this assembly's bearings)"
-                              for other, what in (BEARINGS.sibling, ROLLER_BEARINGS.sibling)
-                              if isinstance(v, str) and v in other), "")
+            # the other catalogue's kind (each catalogue knows the other as its sibling)
+            other = BEARINGS.in_sibling(v) or ROLLER_BEARINGS.in_sibling(v)
+            elsewhere = f" ({v!r} is {other}: not one of this assembly's bearings)" if other \
+                else ""
             c.add(key, f"unknown bearing designation {v!r}{elsewhere}",
                   ", ".join(spec.known() if spec.known is not None else list_bearings()))
             return v
