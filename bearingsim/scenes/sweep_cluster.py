@@ -240,8 +240,10 @@ class ChunkFeeder:
         self._workers_seen: set[Any] = set()
         self._counted = time.monotonic()
         # results come with the futures (fetched by the client's event loop, not one
-        # round trip per chunk after it is reported done)
-        self.done = distributed_module().as_completed(with_results=True, raise_errors=False)
+        # round trip per chunk after it is reported done); tracked on this client's loop, not
+        # the default client's (dask's default), which may be another one's
+        self.done = distributed_module().as_completed(loop=client.loop, with_results=True,
+                                                      raise_errors=False)
 
     @property
     def point_s(self) -> float:

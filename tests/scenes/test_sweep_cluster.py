@@ -181,3 +181,31 @@ def test_the_last_points_wait_for_a_free_worker(tmp_path):
     # (points to submit, tasks in flight) after each chunk is back: two in flight while
     # more than one point is left to submit; the last goes out when the worker is free
     assert in_flight == [(2, 2), (1, 2), (1, 1), (0, 1), (0, 0)]
+
+
+def test_a_sweeps_results_are_tracked_on_its_own_clients_loop(tmp_path):
+    """A sweep started while another client is the current one (the test suite's fixture, a
+    notebook's ``with Client():``) tracked its chunks on that client's event loop, because
+    dask's ``as_completed`` takes the default client's loop: the chunks' events were set from
+    one loop's thread and awaited on another's, and their results fetched through the sweep
+    client's connections from the wrong thread. A CLI sweep inside a test once hung there
+    with both chunks finished. The feeder now tracks them on its own client's loop."""
+    path = tmp_path / "bearing.toml"
+    path.write_text(SCENE)
+    plan = plan_sweep(load_scene(path),
+                      grid_points(parse_grid(["inputs.shaft_speed=100,150,200"])))
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=":0") as current:
+        sweep_client = distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                                          dashboard_address=":0")
+        try:
+            assert sweep_client.loop is not current.loop
+            models = {key: sweep_client.scatter(p, broadcast=True)
+                      for key, p in plan.payloads.items()}
+            feeder = ChunkFeeder(sweep_client, models,
+                                 [(plan.structure[j.index], j) for j in plan.jobs], 1, None)
+            assert feeder.done.loop is sweep_client.loop
+            returned = sorted(r["index"] for _, rows in feeder for r in rows)
+        finally:
+            sweep_client.close()
+    assert returned == [0, 1, 2]
