@@ -59,7 +59,7 @@ def check_key(key: str) -> None:
                          + ", ".join(SIM_KEYS))
 
 
-def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
+def parse_sample(items: list[str]) -> dict[str, tuple]:
     """``["parameters.shaft.J=1e-4:1e-3"]`` -> ``{"parameters.shaft.J": (1e-4, 1e-3)}``.
 
     Parameters
@@ -70,8 +70,11 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
 
     Returns
     -------
-    dict of str to tuple of (float, float)
-        The range (SI units) by key.
+    dict of str to tuple
+        The range by key: ``(low, high)`` in SI, or ``(low, high, unit)`` for a range given
+        with a unit (``unit`` the SI unit of its quantity, ``"rad/s"`` for rpm): its sampled
+        values then carry that unit, and the sweep checks it against the key's, as it does a
+        grid's ``"1 kN"``.
 
     Raises
     ------
@@ -99,7 +102,8 @@ def parse_sample(items: list[str]) -> dict[str, tuple[float, float]]:
                              f"{lo_unit} and {hi_unit}), got {rng!r}")
         if not _is_range((lo, hi)):
             raise SweepError(f"--sample {key}: need finite low < high, got {rng!r}")
-        ranges[key] = (lo, hi)
+        unit = lo_unit or hi_unit  # "1 mm:2 mm" for a force: refused by the sweep (was run
+        ranges[key] = (lo, hi, unit) if unit else (lo, hi)  # with forces of 1-2 mN)
     return ranges
 
 
@@ -146,11 +150,14 @@ def _values(key: Any, values: Any) -> list[Any]:
 
 
 def _is_range(bounds: Any) -> bool:
-    """Whether ``bounds`` is ``(low, high)``: two finite real numbers (not booleans), low <
-    high."""
-    return (isinstance(bounds, Sequence) and not isinstance(bounds, str) and len(bounds) == 2
-            and all(isinstance(b, numbers.Real) and not isinstance(b, bool) and math.isfinite(b)
-                    for b in bounds) and bounds[0] < bounds[1])
+    """Whether ``bounds`` is ``(low, high)`` or ``(low, high, unit)``: two finite real numbers
+    (not booleans), low < high, and the unit's text."""
+    if not isinstance(bounds, Sequence) or isinstance(bounds, str) or len(bounds) not in (2, 3):
+        return False
+    low, high, *unit = bounds
+    return (all(isinstance(b, numbers.Real) and not isinstance(b, bool) and math.isfinite(b)
+                for b in (low, high)) and low < high
+            and all(isinstance(u, str) and u.strip() for u in unit))
 
 
 def _whole(value: Any) -> bool:
@@ -165,7 +172,10 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     Parameters
     ----------
     ranges : dict
-        Key -> (low, high) in the key's unit.
+        Key -> (low, high) in the key's SI unit, or (low, high, unit) with ``unit`` the SI
+        unit of the bounds (:func:`parse_sample` of ``"1 kN:2 kN"``): the key's values are then
+        text with that unit (``"1234.5 N"``), checked against the key's unit when the sweep
+        runs and written to its table in SI.
     n : int
         Number of points (>= 1).
     seed : int or None
@@ -181,7 +191,7 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     Returns
     -------
     list of dict
-        ``n`` dicts key -> float.
+        ``n`` dicts key -> float (or text with the range's unit).
 
     Raises
     ------
@@ -204,8 +214,8 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     for key, bounds in ranges.items():
         check_key(key)
         if not _is_range(bounds):
-            raise SweepError(f"--sample {key}: need finite low < high (in SI units), got "
-                             f"{bounds!r:.60}")
+            raise SweepError(f"--sample {key}: need finite low < high (in SI units, and "
+                             f"optionally the unit's text), got {bounds!r:.60}")
     check_output_size(n, 300 + 100 * len(ranges), "--samples", "sample_points")
     # imported here: scipy.stats takes about 0.5 s to import, which a grid sweep never needs
     from scipy.stats import qmc
@@ -230,11 +240,13 @@ def sample_points(ranges: dict[str, tuple[float, float]], n: int, seed: int | No
     with warnings.catch_warnings():  # scipy's own warning says less; this one is above
         warnings.filterwarnings("ignore", message=".*balance properties.*")
         unit = engine.random(n)
-    lows = [lo for lo, _ in ranges.values()]
-    highs = [hi for _, hi in ranges.values()]
+    lows = [bounds[0] for bounds in ranges.values()]
+    highs = [bounds[1] for bounds in ranges.values()]
     box = qmc.scale(unit, lows, highs)
+    units = [bounds[2] if len(bounds) == 3 else None for bounds in ranges.values()]
     keys = list(ranges)
-    return [{k: float(row[j]) for j, k in enumerate(keys)} for row in box]
+    return [{k: float(row[j]) if units[j] is None else f"{float(row[j])!r} {units[j]}"
+             for j, k in enumerate(keys)} for row in box]
 
 
 def crossed_points(grid_points: list[dict[str, Any]], samples: list[dict[str, Any]]

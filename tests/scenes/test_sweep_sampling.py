@@ -194,5 +194,33 @@ def test_a_range_that_is_not_numbers_is_told_that_units_work():
     with pytest.raises(SweepError, match=r"inputs\.shaft_speed: low and high must be numbers "
                                          r"\(SI\) or numbers with a unit \('1000 rpm:2000 rpm'\)"):
         parse_sample(["inputs.shaft_speed=rpm(1000):rpm(2000)"])
-    assert parse_sample(["inputs.shaft_speed=1000 rpm:2000 rpm"])["inputs.shaft_speed"] == \
-        pytest.approx((1000 * math.pi / 30, 2000 * math.pi / 30), rel=1e-12)
+    low, high, unit = parse_sample(["inputs.shaft_speed=1000 rpm:2000 rpm"])["inputs.shaft_speed"]
+    assert (low, high, unit) == (pytest.approx(1000 * math.pi / 30, rel=1e-12),
+                                 pytest.approx(2000 * math.pi / 30, rel=1e-12), "rad/s")
+
+
+def test_a_sampled_range_with_a_unit_is_checked_against_the_key(client, tmp_path):
+    """``--sample "inputs.load.Fx=1 mm:2 mm"`` ran, with forces of 1-2 mN: the range's unit was
+    converted to SI and dropped, so a length passed for a force. A range given with a unit now
+    keeps it (``parse_sample`` gives (low, high, SI unit)), its sampled values carry it, and the
+    sweep refuses a point of another quantity as it does a grid's ``"1 mm"``. A force in kN
+    gives the same sample, in N, as the plain range in N."""
+    from bearingsim.scenes import load_scene
+    from bearingsim.scenes.sweep import run_sweep
+
+    assert parse_sample(["inputs.load.Fx=1 mm:2 mm"]) == {"inputs.load.Fx": (0.001, 0.002, "m")}
+    in_kn = sample_points(parse_sample(["inputs.load.Fx=1 kN:2 kN"]), 3, seed=4)
+    in_n = sample_points(parse_sample(["inputs.load.Fx=1000:2000"]), 3, seed=4)
+    assert [p["inputs.load.Fx"] for p in in_kn] == [f"{p['inputs.load.Fx']!r} N" for p in in_n]
+
+    scene = load_scene("deep_groove_statics")
+    at = {"inputs.shaft_speed": "1000 rpm"}
+    mm = sample_points(parse_sample(["inputs.load.Fx=1 mm:2 mm"]), 2, seed=4)
+    with pytest.raises(SweepError, match=r"inputs\.load\.Fx: input load\.Fx is in N, but its "
+                                         r"value is given in m"):
+        run_sweep(scene, [{**at, **p} for p in mm], client=client, out=tmp_path / "mm",
+                  progress=False)
+    res = run_sweep(scene, [{**at, **p} for p in in_kn], client=client, out=tmp_path / "kN",
+                    progress=False)
+    assert [r["inputs.load.Fx"] for r in res.rows] == [p["inputs.load.Fx"] for p in in_n]
+    assert all(r["status"] == "ok" for r in res.rows)

@@ -340,7 +340,7 @@ def test_grid_values_take_units_and_the_table_stores_si():
         "inputs.shaft_speed": pytest.approx(2000 * RPM), "assembly.inner": "61905"}
     assert constant_value("rpm(2000) * t") is None
     assert parse_sample(["inputs.shaft_speed=500rpm:1000 r/min"])["inputs.shaft_speed"] == (
-        pytest.approx(500 * RPM), pytest.approx(1000 * RPM))
+        pytest.approx(500 * RPM), pytest.approx(1000 * RPM), "rad/s")
 
 
 def test_fmi_units_come_from_the_same_library():
