@@ -9,7 +9,6 @@ CasADi's VM, with the same numbers either way.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -22,7 +21,7 @@ from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.native_streams import casadi_dumps_dropped
-from bearingsim.units.fmi import derivative_unit
+from bearingsim.simulation.steady_messages import not_found, speed_inputs
 from bearingsim.validation import check_flag, check_quantity, check_range, check_vector
 
 __all__ = ["steady_state", "integrator_states", "turning_angles"]
@@ -193,7 +192,7 @@ def steady_state(
     with casadi_dumps_dropped():  # a block without a root on the VM: said below, not dumped
         try:
             solution = _solve(system, res, jac, x[free], tol, residual_tol, free, unsolved,
-                              _speed_inputs(system, u))
+                              speed_inputs(system, u))
         except SimulationError:
             solution = _load_continuation(system, u, load_at, res, jac, x[free], tol,
                                           residual_tol)
@@ -219,7 +218,7 @@ def _solve(system: System, res, jac, z: np.ndarray, tol: float, residual_tol: fl
     sol = root(res, z, jac=jac, method="hybr", tol=tol)
     converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
     if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
-        raise SimulationError(_not_found(system, sol, res(sol.x), jac(sol.x), free, speeds,
+        raise SimulationError(not_found(system, sol, res(sol.x), jac(sol.x), free, speeds,
                                          unsolved[0]))
     return sol.x
 
@@ -262,53 +261,6 @@ def _load_continuation(system: System, u: np.ndarray, load_at, res, jac, z: np.n
     finally:
         load_at(u)
     return found
-
-
-def _speed_inputs(system: System, u: np.ndarray) -> list[str]:
-    """The inputs in rad/s that are not zero, as ``name = value rad/s``."""
-    units = system.variable_units
-    return [f"{n} = {v:.6g} rad/s" for n, v in zip(system.input_names, u.tolist(), strict=True)
-            if units.get(n) == "rad/s" and v != 0.0]
-
-
-SHOWN_STATES = 6
-"""Most states a message of :func:`steady_state` names."""
-
-
-def _not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
-               free: np.ndarray, speeds: list[str], unsolved: int) -> str:
-    """Why no steady state was found, in one line: with a speed input turning the model and
-    angle states in it (a state in rad whose derivative is one other state, its speed), its
-    steady running is periodic, not a fixed point; else the largest derivatives left at the
-    closest point MINPACK reached, with their units. And the points where the model had no
-    value."""
-    names = [system.state_names[k] for k in free]
-    units = system.variable_units
-    angles = [names[i] for i in range(len(free)) if units.get(names[i]) == "rad"
-              and np.count_nonzero(jacobian[i]) == 1
-              and np.isin(jacobian[i][jacobian[i] != 0.0], (1.0, -1.0)).all()]
-
-    def listed(items: list[str]) -> str:
-        more = len(items) - SHOWN_STATES
-        return ", ".join(items[:SHOWN_STATES]) + (f" and {more} more" if more > 0 else "")
-
-    if angles and speeds:
-        text = (f"{system.name}: no steady state: the inputs turn it ({', '.join(speeds)}) "
-                f"and its angles turn with it ({listed(angles)}: each one's derivative is a "
-                "speed), so its steady running is periodic, not a fixed point; run it in time "
-                "(simulate, a transient scene) or use a model without these angles (a "
-                "quasi-static level)")
-    else:
-        finite = np.isfinite(r)
-        order = np.argsort(-np.where(finite, np.abs(r), np.inf))
-        text = ("steady state not found: " + " ".join(str(sol.message).split())  # one line
-                + "; the largest derivatives left: " + listed(
-                    [f"{names[i]} {r[i]:.3g} {derivative_unit(units.get(names[i], '1'))}"
-                     for i in order]))
-    if unsolved:
-        text += (f"; at {unsolved} of the points tried a nonlinear block of the model found no "
-                 "root (the model has no value there)")
-    return text
 
 
 NEWTON_ITERATIONS = 40

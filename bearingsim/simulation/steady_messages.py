@@ -1,0 +1,97 @@
+"""The messages of :func:`~bearingsim.simulation.steady.steady_state` when it finds no steady
+state: a turning model whose steady running is periodic, or the derivatives left where the
+solver stopped."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from bearingsim.assembler.system import System
+from bearingsim.units.fmi import derivative_unit
+
+__all__ = ["SHOWN_STATES", "not_found", "speed_inputs"]
+
+
+def speed_inputs(system: System, u: np.ndarray) -> list[str]:
+    """The inputs in rad/s that are not zero, as ``name = value rad/s``.
+
+    Parameters
+    ----------
+    system : System
+        The model.
+    u : numpy.ndarray
+        Its input values (SI).
+
+    Returns
+    -------
+    list of str
+        One ``name = value rad/s`` per turning input.
+    """
+    units = system.variable_units
+    return [f"{n} = {v:.6g} rad/s" for n, v in zip(system.input_names, u.tolist(), strict=True)
+            if units.get(n) == "rad/s" and v != 0.0]
+
+
+SHOWN_STATES = 6
+"""Most states a message of :func:`~bearingsim.simulation.steady.steady_state` names."""
+
+
+def not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
+              free: np.ndarray, speeds: list[str], unsolved: int) -> str:
+    """Why no steady state was found, in one line: with a speed input turning the model and
+    angle states in it (a state in rad whose derivative is one other state, its speed), its
+    steady running is periodic, not a fixed point; else the largest derivatives left at the
+    closest point MINPACK reached, with their units. And the points where the model had no
+    value.
+
+    Parameters
+    ----------
+    system : System
+        The model.
+    sol : scipy.optimize.OptimizeResult
+        MINPACK's result (its message).
+    r : numpy.ndarray
+        The derivatives of the free states at ``sol.x`` [state units/s].
+    jacobian : numpy.ndarray
+        Their Jacobian there.
+    free : numpy.ndarray
+        Indices of the free states in ``system.state_names``.
+    speeds : list of str
+        :func:`speed_inputs`.
+    unsolved : int
+        Points tried where a nonlinear block of the model found no root.
+
+    Returns
+    -------
+    str
+        The message.
+    """
+    names = [system.state_names[k] for k in free]
+    units = system.variable_units
+    angles = [names[i] for i in range(len(free)) if units.get(names[i]) == "rad"
+              and np.count_nonzero(jacobian[i]) == 1
+              and np.isin(jacobian[i][jacobian[i] != 0.0], (1.0, -1.0)).all()]
+
+    def listed(items: list[str]) -> str:
+        more = len(items) - SHOWN_STATES
+        return ", ".join(items[:SHOWN_STATES]) + (f" and {more} more" if more > 0 else "")
+
+    if angles and speeds:
+        text = (f"{system.name}: no steady state: the inputs turn it ({', '.join(speeds)}) "
+                f"and its angles turn with it ({listed(angles)}: each one's derivative is a "
+                "speed), so its steady running is periodic, not a fixed point; run it in time "
+                "(simulate, a transient scene) or use a model without these angles (a "
+                "quasi-static level)")
+    else:
+        finite = np.isfinite(r)
+        order = np.argsort(-np.where(finite, np.abs(r), np.inf))
+        text = ("steady state not found: " + " ".join(str(sol.message).split())  # one line
+                + "; the largest derivatives left: " + listed(
+                    [f"{names[i]} {r[i]:.3g} {derivative_unit(units.get(names[i], '1'))}"
+                     for i in order]))
+    if unsolved:
+        text += (f"; at {unsolved} of the points tried a nonlinear block of the model found no "
+                 "root (the model has no value there)")
+    return text
