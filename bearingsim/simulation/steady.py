@@ -21,7 +21,7 @@ from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
 from bearingsim.simulation.kernels import kernel
 from bearingsim.simulation.native_streams import casadi_dumps_dropped
-from bearingsim.simulation.steady_messages import not_found, speed_inputs
+from bearingsim.simulation.steady_messages import not_found, running_off, speed_inputs
 from bearingsim.validation import check_flag, check_quantity, check_range, check_vector
 
 __all__ = ["steady_state", "integrator_states", "turning_angles"]
@@ -115,7 +115,9 @@ def steady_state(
         Relative step tolerance of the solver, in (0, 1].
     residual_tol : float
         A solution whose largest derivative is below this is accepted even if the solver
-        stalls [state units/s], > 0 and finite.
+        stalls [state units/s], > 0 and finite, provided a Newton step from it moves the
+        states by at most ``sqrt(tol)`` of their norm (else the derivatives vanish only as
+        states run off, ``y' = exp(y)`` towards minus infinity: no steady state).
     require_unique : bool
         Raise when the steady state is not unique (the Jacobian is singular at the solution,
         e.g. two free bodies coupled by dampers, or a ring without any torque): the solver's
@@ -216,11 +218,29 @@ def _solve(system: System, res, jac, z: np.ndarray, tol: float, residual_tol: fl
     from scipy.optimize import root  # on use: importing scipy.optimize takes ~0.6 s
 
     sol = root(res, z, jac=jac, method="hybr", tol=tol)
-    converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(res(sol.x))) <= residual_tol
+    r = res(sol.x)
+    converged = np.all(np.isfinite(sol.x)) and np.max(np.abs(r)) <= residual_tol
+    if converged and not sol.success:  # stalled where the derivatives are small: a root, or
+        step = _newton_step(jac(sol.x), r)  # states running off (y' = exp(y) at y = -138)
+        if step is not None and _norm(step) > math.sqrt(tol) * max(_norm(sol.x), 1.0):
+            raise SimulationError(running_off(system, sol, r, step, free))
     if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
-        raise SimulationError(not_found(system, sol, res(sol.x), jac(sol.x), free, speeds,
-                                         unsolved[0]))
+        raise SimulationError(not_found(system, sol, r, jac(sol.x), free, speeds,
+                                        unsolved[0]))
     return sol.x
+
+
+def _newton_step(jacobian: np.ndarray, r: np.ndarray) -> np.ndarray | None:
+    """The Newton step ``-J^-1 r`` (LAPACK's gesv); None for a singular ``J``."""
+    from scipy.linalg.lapack import dgesv  # on use, as in _newton
+
+    _, _, step, info = dgesv(jacobian, -r)
+    return step if info == 0 else None
+
+
+def _norm(x: np.ndarray) -> float:
+    """The 2-norm of ``x``."""
+    return math.sqrt(x.dot(x))
 
 
 LOAD_UNITS = ("N", "N.m")

@@ -11,7 +11,7 @@ import numpy as np
 from bearingsim.assembler.system import System
 from bearingsim.units.fmi import derivative_unit
 
-__all__ = ["SHOWN_STATES", "not_found", "speed_inputs"]
+__all__ = ["SHOWN_STATES", "not_found", "running_off", "speed_inputs"]
 
 
 def speed_inputs(system: System, u: np.ndarray) -> list[str]:
@@ -95,3 +95,45 @@ def not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
         text += (f"; at {unsolved} of the points tried a nonlinear block of the model found no "
                  "root (the model has no value there)")
     return text
+
+
+def running_off(system: System, sol: Any, r: np.ndarray, step: np.ndarray,
+                free: np.ndarray) -> str:
+    """Why a point where the derivatives are small is no steady state: a Newton step from it
+    still moves the states by much (their derivatives vanish only as they run off to a limit:
+    ``y' = exp(y)`` has derivatives below any tolerance at y = -138, and none at zero). Names
+    the states that step moves most relative to their values.
+
+    Parameters
+    ----------
+    system : System
+        The model.
+    sol : scipy.optimize.OptimizeResult
+        MINPACK's result: the point ``sol.x`` and its evaluations ``sol.nfev``.
+    r : numpy.ndarray
+        The derivatives of the free states at ``sol.x`` [state units/s].
+    step : numpy.ndarray
+        The Newton step from ``sol.x`` [state units].
+    free : numpy.ndarray
+        Indices of the free states in ``system.state_names``.
+
+    Returns
+    -------
+    str
+        The message.
+    """
+    names = [system.state_names[k] for k in free]
+    units = system.variable_units
+    moved = np.abs(step) / np.maximum(np.abs(sol.x), np.finfo(float).tiny)
+    shown = []
+    for i in np.argsort(-moved)[:SHOWN_STATES]:
+        unit = units.get(names[i], "1")
+        shown.append(f"{names[i]} = {sol.x[i]:.6g}{'' if unit in ('', '1') else ' ' + unit} "
+                     f"(derivative {r[i]:.3g} {derivative_unit(unit)}, Newton step "
+                     f"{step[i]:+.3g})")
+    return ("steady state not found: the derivatives fall toward zero only as the states run "
+            f"off: where the solver stopped after {sol.nfev} evaluations, "
+            + "; ".join(shown) + ". A steady state would take no Newton step; this model's "
+            "derivatives vanish only in a limit (a state without bound), so it has no steady "
+            "state at these inputs and parameters: run it in time (simulate) to see where it "
+            "goes")
