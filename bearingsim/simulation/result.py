@@ -16,7 +16,7 @@ from bearingsim.files import atomic_path, file_path
 from bearingsim.plotting import keep_tight_layout, wrapped_label
 from bearingsim.series_csv import write_series_csv
 from bearingsim.units import describe, display_label, engineering, to_display
-from bearingsim.units.registry import UnitError, si_factor
+from bearingsim.units.registry import UnitError, si_factor, si_label
 
 __all__ = ["Result", "ResultLayout"]
 
@@ -268,7 +268,7 @@ class Result:
         try:
             factor, offset = si_factor(unit, si_unit)
         except UnitError as exc:
-            raise UnitError(f"Result.final: {name} [{si_unit}]: {exc}") from None
+            raise UnitError(f"Result.final: {name} [{si_label(si_unit)}]: {exc}") from None
         return (value - offset) / factor
 
     @checked(skip=("names",))  # names: one or a list, checked by _names

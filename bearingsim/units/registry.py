@@ -185,6 +185,9 @@ def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
     e1, f1, o1 = base_exponents(unit)
     e2, f2, o2 = base_exponents(si_unit)
     if e1 != e2:
+        if not e2:  # was "not a unit of - quantities (..., '1' is dimensionless)"
+            raise UnitError(f"{unit!r} is not a unit of dimensionless quantities (it is "
+                            f"{_dimension_text(unit)}); give a pure number")
         raise UnitError(f"{unit!r} is not a unit of {si_label(si_unit)} quantities "
                         f"(it is {_dimension_text(unit)}, {si_unit!r} is "
                         f"{_dimension_text(si_unit)})")

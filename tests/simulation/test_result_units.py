@@ -43,3 +43,15 @@ def test_converting_back_gives_the_si_value(w, kelvin):
     assert res.final("w_shaft", "rpm") * math.pi / 30 == pytest.approx(w, rel=1e-12,
                                                                           abs=1e-9)
     assert res.final("T_oil", "degC") + 273.15 == pytest.approx(kelvin, rel=1e-12)
+
+
+def test_a_unit_for_a_dimensionless_variable_is_refused_in_words():
+    """``final("Rs", "rpm")`` said "Rs [1]: 'rpm' is not a unit of - quantities (it is radian
+    second^-1, '1' is dimensionless)"; a dimensionless variable is labelled [-] as everywhere
+    else, and the message says dimensionless."""
+    res = Result(np.array([0.0, 1.0]), ["Rs"], np.array([[0.2, 0.21]]), {"Rs": "1"})
+    with pytest.raises(UnitError) as err:
+        res.final("Rs", "rpm")
+    assert str(err.value) == ("Result.final: Rs [-]: 'rpm' is not a unit of dimensionless "
+                              "quantities (it is radian second^-1); give a pure number")
+    assert res.final("Rs", "percent") == pytest.approx(21.0, rel=1e-12)
