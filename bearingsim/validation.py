@@ -33,6 +33,7 @@ __all__ = [
     "options_object",
     "check_range",
     "keyword_names",
+    "named_arguments",
     "table_entry",
 ]
 
@@ -297,7 +298,7 @@ def keyword_names(func: Callable, exclude: tuple[str, ...] = ()) -> tuple[str, .
 
 
 def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str,
-                  what: str, context: str = "") -> None:
+                  what: str, context: str = "", arguments: tuple[str, ...] = ()) -> None:
     """Raise for keyword options that are not among ``accepted``.
 
     Parameters
@@ -312,17 +313,45 @@ def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str
         What the options are called (e.g. ``"layer_options"``).
     context : str
         Appended to the name list (e.g. ``"at fidelity 'torque'"``).
+    arguments : tuple of str
+        The function's own named arguments (:func:`named_arguments`), listed after the
+        options: a near miss of one (``preload_force`` for ``preload``) is named as well.
 
     Raises
     ------
     ParameterError
-        ``"<where>: unknown <what> 'a', 'b' <context>; accepted: ..."``.
+        ``"<where>: unknown <what> 'a', 'b' <context>; accepted: ...; did you mean 'c'?"``
+        (the hint for the first unknown name that is close to a valid one).
     """
     unknown = [k for k in options if k not in accepted]
     if unknown:
         ctx = f" {context}" if context else ""
+        valid = [*accepted, *arguments]
+        close = next((c for k in unknown if isinstance(k, str)
+                      for c in difflib.get_close_matches(k, valid, n=1)), None)
+        hint = f"; did you mean {close!r}?" if close else ""
+        listed = ", ".join(accepted) or "none"
+        if arguments:
+            listed += f"; and the arguments {', '.join(arguments)}"
         raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
-                             f"accepted: {', '.join(accepted) or 'none'}")
+                             f"accepted: {listed}{hint}")
+
+
+def named_arguments(function: Callable[..., Any]) -> tuple[str, ...]:
+    """The names of ``function``'s parameters other than ``*args`` and ``**kwargs``.
+
+    Parameters
+    ----------
+    function : callable
+
+    Returns
+    -------
+    tuple of str
+        Parameter names, in order.
+    """
+    kinds = (inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD)
+    return tuple(name for name, parameter in inspect.signature(function).parameters.items()
+                 if parameter.kind not in kinds)
 
 
 def options_object(options: Any, kind: type, where: str) -> Any:

@@ -144,3 +144,26 @@ def test_duplex_pair_refuses_unknown_keywords_by_name():
         duplex_pair("7020C", dampng_ratio=0.1)
     with pytest.raises(ParameterError, match="exact must be True or False"):
         DuplexOptions(exact="yes")
+
+
+def test_a_misnamed_argument_is_named_with_the_arguments_listed():
+    """``duplex_pair(preload_force=800)`` (the scene's name of the preload in N) was refused
+    with a list of the other options only ("accepted: contact_angle, spacer_offset, ..."),
+    which has no preload in it: the function's own arguments are listed too, and a near miss
+    of an option or an argument is named."""
+    with pytest.raises(ParameterError) as err:
+        duplex_pair("7020C", preload_force=800.0)
+    text = str(err.value)
+    assert text.startswith("duplex_pair: unknown option(s) 'preload_force'; accepted: "
+                           "contact_angle, ")
+    assert "; and the arguments designation, arrangement, preload, speed, " in text
+    assert text.endswith("; did you mean 'preload'?")
+    assert duplex_pair("7020C", preload=800.0).preload_force == 800.0
+    with pytest.raises(ParameterError, match=r"unknown option\(s\) 'lubricnt' at fidelity "
+                                             r"'dynamic'; accepted: .*; and the arguments "
+                                             r"designation, fidelity, lubricant.*; did you "
+                                             r"mean 'lubricant'\?$"):
+        deep_groove_ball_bearing("6304", "dynamic", lubricnt="ISO VG 32")
+    with pytest.raises(ParameterError, match=r"unknown keyword\(s\) 'lubrcation' .*did you "
+                                             r"mean 'lubrication'\?$"):
+        double_layer_bearing(lubrcation="ISO VG 46")

@@ -14,7 +14,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
 from bearingsim.units import is_quantity
-from bearingsim.validation import check_options, check_quantity
+from bearingsim.validation import check_options, check_quantity, named_arguments
 
 
 def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
@@ -92,7 +92,8 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     cage_keys = ("pocket_clearance", "guide_clearance")
     if options:
         check_options(options, DeepGrooveOptions.keyword_names() + ("name",) + cage_keys,
-                      "deep_groove_ball_bearing", "option(s)", f"at fidelity {fidelity!r}")
+                      "deep_groove_ball_bearing", "option(s)", f"at fidelity {fidelity!r}",
+                      arguments=named_arguments(deep_groove_ball_bearing))
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":
