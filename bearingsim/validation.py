@@ -33,7 +33,6 @@ __all__ = [
     "options_object",
     "check_range",
     "keyword_names",
-    "named_arguments",
     "table_entry",
 ]
 
@@ -314,7 +313,7 @@ def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str
     context : str
         Appended to the name list (e.g. ``"at fidelity 'torque'"``).
     arguments : tuple of str
-        The function's own named arguments (:func:`named_arguments`), listed after the
+        The function's own named arguments (:func:`keyword_names` of the function), listed after the
         options: a near miss of one (``preload_force`` for ``preload``) is named as well.
 
     Raises
@@ -335,23 +334,6 @@ def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str
             listed += f"; and the arguments {', '.join(arguments)}"
         raise ParameterError(f"{where}: unknown {what} {', '.join(map(repr, unknown))}{ctx}; "
                              f"accepted: {listed}{hint}")
-
-
-def named_arguments(function: Callable[..., Any]) -> tuple[str, ...]:
-    """The names of ``function``'s parameters other than ``*args`` and ``**kwargs``.
-
-    Parameters
-    ----------
-    function : callable
-
-    Returns
-    -------
-    tuple of str
-        Parameter names, in order.
-    """
-    kinds = (inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD)
-    return tuple(name for name, parameter in inspect.signature(function).parameters.items()
-                 if parameter.kind not in kinds)
 
 
 def options_object(options: Any, kind: type, where: str) -> Any:

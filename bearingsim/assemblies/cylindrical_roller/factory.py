@@ -9,7 +9,7 @@ from bearingsim.assemblies.cylindrical_roller.options import CylindricalRollerOp
 from bearingsim.assemblies.cylindrical_roller.quasi_static import QuasiStaticCylindricalRoller
 from bearingsim.assemblies.cylindrical_roller.torque import CylindricalRollerTorque
 from bearingsim.catalog.rollers import RollerBearingGeometry
-from bearingsim.validation import check_options, keyword_names, named_arguments
+from bearingsim.validation import check_options, keyword_names
 
 __all__ = ["cylindrical_roller_bearing"]
 
@@ -47,7 +47,7 @@ def cylindrical_roller_bearing(designation: str | RollerBearingGeometry = "NU206
     """
     check_options(options, keyword_names(CylindricalRollerOptions, ("bearing", "fidelity")),
                   "cylindrical_roller_bearing", "option(s)", f"at fidelity {fidelity!r}",
-                  arguments=named_arguments(cylindrical_roller_bearing))
+                  arguments=keyword_names(cylindrical_roller_bearing))
     opts = CylindricalRollerOptions(designation, fidelity, **options)
     if opts.fidelity == "torque":
         return CylindricalRollerTorque(opts)

@@ -20,7 +20,7 @@ from bearingsim.components.rings import (
     Spacer,
 )
 from bearingsim.language import Assembly, connect
-from bearingsim.validation import check_options, keyword_names, named_arguments, options_object
+from bearingsim.validation import check_options, keyword_names, options_object
 
 
 class DuplexPair(Assembly):
@@ -193,6 +193,6 @@ def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str =
     check_options(options, keyword_names(DuplexOptions, (
         "bearing", "arrangement", "preload", "speed", "shaft", "lubricant",
         "ball_position_angle")), "duplex_pair", "option(s)",
-        arguments=named_arguments(duplex_pair))
+        arguments=keyword_names(duplex_pair))
     return DuplexPair(DuplexOptions(designation, arrangement, preload, speed, shaft, lubricant,
                                     ball_position_angle, **options), name, shared_radial)
