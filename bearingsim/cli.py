@@ -218,9 +218,11 @@ def _validate(args: argparse.Namespace) -> int:
     if args.no_assemble:
         _say(f"{args.scene}: valid ({prep.assembly}; names not checked against the model)")
         return 0
+    modes = prep.scene.analysis == "modes"  # its outputs are modes, not the model's outputs
     _say(f"{args.scene}: valid; {prep.spec.name} at fidelity {prep.fidelity or '-'} "
-          f"({prep.fidelity_reason}); {prep.system.n_states} states; outputs "
-          + ", ".join(prep.outputs))
+          f"({prep.fidelity_reason}); {prep.system.n_states} states; "
+          + (f"modes {', '.join(prep.scene.outputs) or '(every mode)'}" if modes
+             else "outputs " + ", ".join(prep.outputs)))
     for item in prep.system.skipped:
         _say(f"  pruned: {item}")
     for name in prep.post:
@@ -235,6 +237,10 @@ def _variables(args: argparse.Namespace) -> int:
 
     scene = load_scene(args.scene, args.allow_path)
     listed = model_variables(scene)
+    if listed.columns:  # what a statics or modes scene's outputs name, not the variables
+        _say(f"{scene.analysis} columns (this scene's outputs name these):")
+        for name, unit, description in listed.columns:
+            _say(f"  {name} [{unit or '-'}]: {description}")
     _say(f"{scene.assembly} at fidelity {listed.fidelity}: {len(listed.variables)} variables")
     for name, unit, description in listed.variables:
         _say(f"  {name} [{unit or '-'}]: {description}")

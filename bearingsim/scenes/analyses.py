@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from bearingsim.errors import BearingsimError, ParameterError, SimulationError
+from bearingsim.scenes.analysis_outputs import selected_columns
 from bearingsim.scenes.operating_points import (
     filled_point,
     point_label,
@@ -333,7 +334,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     if scene.analysis == "statics":
         statics = statics_of(prep)
         values, state = statics.solve(prep, inputs, prep.spec.with_defaults(args), x_guess)
-        return {**row, **values, "_state": state}
+        return {**row, **selected_columns(prep, values), "_state": state}
     prep, overrides = point_model(prep, args)
     parameters.update(overrides)
     if x_guess is not None and np.size(x_guess) != prep.system.n_states:
@@ -367,7 +368,7 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     order = list(known.values())
     modes = sorted(zip(names, linear.natural_frequencies, strict=True),
                    key=lambda m: order.index(m[0]) if m[0] in order else len(order))
-    row.update({n: float(f) for n, f in modes})
+    row.update(selected_columns(prep, {n: float(f) for n, f in modes}))
     return {**row, "_state": x}
 
 

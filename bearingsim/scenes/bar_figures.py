@@ -50,9 +50,10 @@ def _value_bars(ax, pos: np.ndarray, y: np.ndarray, width: float = 0.8, color: s
 
 
 def statics_columns(prep: Any, rows: list[dict[str, Any]]) -> list[str]:
-    """The statics columns a figure draws
-    (:attr:`~bearingsim.scenes.statics_table.Statics.figure`): those that are a finite number
-    at every point, and the life in revolutions where one at rest has no life in hours.
+    """The statics columns a figure draws (the scene's ``outputs``, else
+    :attr:`~bearingsim.scenes.statics_table.Statics.figure`): those that are a finite number
+    at every point, and the life in revolutions (when in the rows) where one at rest has no
+    life in hours.
 
     Parameters
     ----------
@@ -66,10 +67,11 @@ def statics_columns(prep: Any, rows: list[dict[str, Any]]) -> list[str]:
     list of str
         The columns.
     """
-    figure = statics_of(prep).figure
+    figure = prep.outputs if prep.scene.outputs else statics_of(prep).figure
     columns = [n for n in figure
                if all(isinstance(row.get(n), float) and math.isfinite(row[n]) for row in rows)]
-    if "L10h" in figure and "L10h" not in columns:
+    if ("L10h" in figure and "L10h" not in columns and "L10r" not in columns
+            and all(isinstance(row.get("L10r"), float) for row in rows)):
         columns.insert(0, "L10r")  # a case at rest (LIFE_AT_REST): the life in revolutions
     return columns
 
@@ -104,6 +106,8 @@ def statics_figures(prep: Any, rows: list[dict[str, Any]], units: dict[str, str]
         return []
     names = [str(row.get("name", k + 1)) for k, row in enumerate(rows)]
     columns = statics_columns(prep, rows)
+    if not columns:  # outputs that are all text (the life in hours of cases at rest)
+        return []
     fig = Figure(figsize=(7, 2.6 * len(columns) + 1.0))
     axes = np.atleast_1d(fig.subplots(len(columns), 1, sharex=True, squeeze=False)[:, 0])
     pos = np.arange(len(rows))

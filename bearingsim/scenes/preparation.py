@@ -18,6 +18,7 @@ import numpy as np
 from bearingsim.assembler import System, assemble_cached
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
+from bearingsim.scenes import analysis_outputs
 from bearingsim.scenes.lubricant_table import load_lubricants_table
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, line_of, scene_from_dict
@@ -159,9 +160,10 @@ class Prepared:
             The output names.
         """
         if self.scene.analysis == "statics":
-            return list(statics_of(self).columns)
-        return self.scene.outputs or [n for n in self.spec.default_outputs
-                                      if n in self.model_outputs or n in self.post]
+            return list(analysis_outputs.selected_columns(self, statics_of(self).columns))
+        return (analysis_outputs.model_outputs_asked(self.scene)
+                or [n for n in self.spec.default_outputs
+                    if n in self.model_outputs or n in self.post])
 
 
 def _check(scene: Scene) -> Scene:
@@ -202,7 +204,7 @@ def choose_fidelity(scene: Scene, spec: AssemblySpec, post: dict[str, PostQuanti
         return scene.fidelity, "requested by the scene", []
     order = list(spec.auto_fidelities)
     need = {}
-    names = list(scene.outputs or spec.default_outputs)
+    names = analysis_outputs.model_outputs_asked(scene) or list(spec.default_outputs)
     for n in names:
         need[n] = post[n].fidelity if n in post else spec.min_fidelity(n)
     point_names = [k.split(".", 1)[1] for k in point_keys(scene)
@@ -340,9 +342,7 @@ def prepare(scene: Scene) -> Prepared:
     args = spec.with_defaults(scene.args)
     args.update(reduced_args(scene, args, scene_inputs(scene)))
     post_all = spec.post(args)
-    # a statics scene solves its own equilibrium: no default outputs to keep
-    requested = list(scene.outputs or ([] if scene.analysis == "statics"
-                                       else spec.default_outputs))
+    requested = analysis_outputs.requested_outputs(scene, spec)
     post = {n: post_all[n] for n in requested if n in post_all}
     model_outputs = [n for n in requested if n not in post]
     for q in post.values():
@@ -386,6 +386,7 @@ def prepare(scene: Scene) -> Prepared:
                     symmetry, assemble_s, attempts, rejected, plots, plot_outputs)
     if scene.analysis == "statics":
         statics_of(prep)  # an assembly without statics: an error before anything runs
+    analysis_outputs.check_analysis_outputs(prep)
     return prep
 
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from bearingsim.errors import ParameterError
 from bearingsim.scenes.preparation import reduced_args, scene_inputs
 from bearingsim.scenes.scene import Scene, SceneError, line_of
+from bearingsim.scenes.statics_table import STATICS
 
 __all__ = ["ModelVariables", "model_variables"]
 
@@ -31,12 +32,17 @@ class ModelVariables:
         Name, SI unit, value (with the scene's ``[parameters]``), allowed range (``"> 0"``,
         ``"0 to 0.01"``, ``""`` for any number) and description of each parameter of the
         model: what ``[parameters]`` may set and a sweep may vary as ``parameters.<name>``.
+    columns : list of (str, str, str)
+        Name, SI unit and description of what a statics scene's ``outputs`` name (the columns
+        of its assembly's statics solution) or a modes scene's (the assembly's named modes);
+        empty for the other analyses.
     """
 
     fidelity: str
     variables: list[tuple[str, str, str]]
     post: list[tuple[str, str, str]]
     parameters: list[tuple[str, str, float, str, str]]
+    columns: list[tuple[str, str, str]] = ()
 
 
 def _range_text(declaration) -> str:
@@ -94,4 +100,16 @@ def model_variables(scene: Scene) -> ModelVariables:
         [(n, units.get(n, ""), descriptions.get(n, "")) for n in system.observed_names],
         [(n, q.unit, q.doc) for n, q in spec.post(args).items()],
         [(q.name, q.unit, float(v), _range_text(q.declaration), q.description)
-         for q, v in zip(system.params, values, strict=True)])
+         for q, v in zip(system.params, values, strict=True)],
+        _analysis_columns(scene))
+
+
+def _analysis_columns(scene: Scene) -> list[tuple[str, str, str]]:
+    """The columns a statics or modes scene's ``outputs`` may name, as (name, unit,
+    description)."""
+    if scene.analysis == "statics" and scene.spec.name in STATICS:
+        return [(n, unit, text) for n, (unit, text) in STATICS[scene.spec.name].columns.items()]
+    if scene.analysis == "modes":
+        return [(n, "Hz", f"natural frequency of the {n} mode")
+                for n in dict.fromkeys(scene.spec.mode_names.values())]
+    return []

@@ -19,6 +19,7 @@ from typing import Any
 
 from bearingsim.assembler import cache as system_cache
 from bearingsim.errors import ParameterError
+from bearingsim.scenes.analysis_outputs import model_outputs_asked
 from bearingsim.scenes.preparation import Prepared, choose_fidelity, prepare, reduced_args
 from bearingsim.scenes.sampling import SweepError
 from bearingsim.scenes.scene import Scene, SceneError
@@ -47,7 +48,8 @@ def _structure(sc: Scene) -> tuple[str, str]:
     args = spec.with_defaults(sc.args)
     args.update(reduced_args(sc, args, sc.inputs))
     post_all = spec.post(args)
-    post = {n: post_all[n] for n in (sc.outputs or spec.default_outputs) if n in post_all}
+    post = {n: post_all[n] for n in (model_outputs_asked(sc) or spec.default_outputs)
+            if n in post_all}
     fidelity, _, _ = choose_fidelity(sc, spec, post)
     stripped = copy.deepcopy(args)
     for key, holds in spec.parametric_args.items():

@@ -50,7 +50,6 @@ def result_columns(prep: Prepared, probe: dict[str, Any] | None
         The result column names and their SI units by name.
     """
     from bearingsim.scenes.analysis_table import analysis_units
-    from bearingsim.scenes.statics_table import statics_of
 
     kind = prep.scene.analysis
     if kind == "transient":
@@ -62,7 +61,7 @@ def result_columns(prep: Prepared, probe: dict[str, Any] | None
             return list(prep.outputs), output_units
         return [*prep.outputs, *TRANSIENT_COLUMNS], {**output_units, "time_constant": "s"}
     if kind == "statics":
-        names = list(statics_of(prep).columns)
+        names = list(prep.outputs)
     elif kind == "modes":
         names = [n for n in (probe or {}) if not n.startswith("_")]
     else:
