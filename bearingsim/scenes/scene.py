@@ -25,8 +25,6 @@ from bearingsim.assemblies.spec import AssemblySpec
 from bearingsim.checks import ATOL_RANGE, RTOL_RANGE, checked
 from bearingsim.files import (
     FileAccessError,
-    PathOutsideError,
-    confined_path,
     open_regular,
     os_reason,
 )
@@ -42,6 +40,7 @@ from bearingsim.scenes.scene_checks import (
     _inputs,
     _number,
     _operating_points,
+    _output,
     _quantity_value,
     _section,
     _settling,
@@ -59,7 +58,7 @@ from bearingsim.scenes.scene_types import (
     TableInput,
     line_of,
 )
-from bearingsim.scenes.tables import load_bearings_files, output_base, scene_folder
+from bearingsim.scenes.tables import load_bearings_files, scene_folder
 from bearingsim.simulation.budget import MAX_TIMEOUT
 from bearingsim.simulation.integrators import METHODS
 
@@ -398,30 +397,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     elif sim.t_end <= sim.t_start:
         c.add("simulation.t_end", f"{sim.t_end!r} must be after t_start = {sim.t_start!r}",
               f"a number in s > {sim.t_start!r}")
-    # output
-    out = Output()
-    for k, v, key in _section(c, d, "output", Output.__dataclass_fields__):
-        if k == "folder":
-            if not isinstance(v, str) or not v:
-                c.add(key, "must be a folder name", "a non-empty text")
-            else:
-                try:
-                    confined_path(v, output_base(path), allowed, "output folder")
-                    out.folder = v
-                except PathOutsideError as exc:
-                    c.add(key, str(exc))
-        elif k in ("csv", "plots"):
-            if not isinstance(v, bool):
-                c.add(key, f"must be true or false, got {v!r}", "true, false")
-            else:
-                setattr(out, k, v)
-        elif k == "plot_groups":
-            if not (isinstance(v, list) and all(isinstance(g, list) and g and all(
-                    isinstance(n, str) for n in g) for g in v)):
-                c.add(key, "must be a list of lists of output names",
-                      'e.g. [["w_shaft", "w_middle"], ["Rs"]]')
-            else:
-                out.plot_groups = v
+    out = _output(c, d, path, allowed)
     _check_signals(c, inputs, sim)
     for k in ("load_torque",):
         if isinstance(args.get(k), str):

@@ -13,12 +13,14 @@ import numpy as np
 
 from bearingsim.assemblies.spec import ArgSpec, AssemblySpec
 from bearingsim.errors import BearingsimError, ParameterError
+from bearingsim.files import PathOutsideError, confined_path
 from bearingsim.scenes.expression_units import expression_unit
 from bearingsim.scenes.expressions import ExpressionError, compile_expression, constant_value
 from bearingsim.scenes.scene_types import (
     POINT_HEADS,
     STATICS_METHODS,
     TABLE_KEYS,
+    Output,
     SceneError,
     Settling,
     Simulation,
@@ -28,6 +30,7 @@ from bearingsim.scenes.scene_types import (
 from bearingsim.scenes.tables import (
     SceneFileError,
     check_table_memory,
+    output_base,
     read_table_file,
 )
 from bearingsim.units import parse_quantity
@@ -416,6 +419,36 @@ def _operating_points(c: _Collector, d: dict[str, Any], spec: AssemblySpec | Non
         c.add("cases", "give the operating points either as a grid or as cases, not both",
               "[grid] or [[cases]]")
     return grid, cases
+
+
+def _output(c: _Collector, d: dict[str, Any], path: str | None,
+            allowed: tuple[str, ...]) -> Output:
+    """The ``[output]`` section: its folder (inside the scene's output base or an allowed
+    folder), the CSV and plot switches and the plot groups."""
+    out = Output()
+    for k, v, key in _section(c, d, "output", Output.__dataclass_fields__):
+        if k == "folder":
+            if not isinstance(v, str) or not v:
+                c.add(key, "must be a folder name", "a non-empty text")
+            else:
+                try:
+                    confined_path(v, output_base(path), allowed, "output folder")
+                    out.folder = v
+                except PathOutsideError as exc:
+                    c.add(key, str(exc))
+        elif k in ("csv", "plots"):
+            if not isinstance(v, bool):
+                c.add(key, f"must be true or false, got {v!r}", "true, false")
+            else:
+                setattr(out, k, v)
+        elif k == "plot_groups":
+            if not (isinstance(v, list) and all(isinstance(g, list) and g and all(
+                    isinstance(n, str) for n in g) for g in v)):
+                c.add(key, "must be a list of lists of output names",
+                      'e.g. [["w_shaft", "w_middle"], ["Rs"]]')
+            else:
+                out.plot_groups = v
+    return out
 
 
 def _settling(c: _Collector, d: dict[str, Any]) -> Settling:
