@@ -19,7 +19,6 @@ from bearingsim.assembler import System, assemble_cached
 from bearingsim.assemblies.spec import AssemblyPlot, AssemblySpec, PostQuantity
 from bearingsim.errors import ModelError, ParameterError
 from bearingsim.scenes import analysis_outputs
-from bearingsim.scenes.lubricant_table import load_lubricants_table
 from bearingsim.scenes.registry import build_component
 from bearingsim.scenes.scene import Scene, SceneError, line_of, scene_from_dict
 from bearingsim.scenes.scene_input_checks import (
@@ -337,7 +336,7 @@ def prepare(scene: Scene) -> Prepared:
         parameter values outside their range, naming the key and line.
     """
     scene = _check(scene)
-    load_lubricants_table(scene.lubricants)  # its own, whatever scenes were read since
+    scene.register_own()  # its bearings and lubricants, whatever scenes were read since
     spec = scene.spec
     args = spec.with_defaults(scene.args)
     args.update(reduced_args(scene, args, scene_inputs(scene)))

@@ -144,6 +144,9 @@ class Scene:  # numpydoc ignore=PR02
         Folders outside the scene's folder that its files may be in (``--allow-path``).
     lubricants : dict
         The scene's ``[lubricants]`` table (registered again when the scene is prepared).
+    bearings : list of str
+        Its bearing datasheet files (key ``bearings``), registered when the scene is read and
+        again when it is prepared (:meth:`register_own`).
     """
 
     assembly: str
@@ -169,6 +172,7 @@ class Scene:  # numpydoc ignore=PR02
     text: str | None = field(default=None, repr=False)
     allow_paths: tuple[str, ...] = ()
     lubricants: dict[str, Any] = field(default_factory=dict)
+    bearings: list[str] = field(default_factory=list)
 
     @property
     def spec(self) -> AssemblySpec:
@@ -213,7 +217,24 @@ class Scene:  # numpydoc ignore=PR02
             "initial": dict(self.initial),
             "simulation": sim,
             "output": out, **({"lubricants": self.lubricants} if self.lubricants else {}),
+            **({"bearings": list(self.bearings)} if self.bearings else {}),
         }
+
+    def register_own(self) -> None:
+        """Register the scene's own datasheet bearings and lubricants again, replacing those of
+        the same names that scenes read since registered: a scene runs with its own (it ran
+        with the last-read scene's bearing of a shared designation).
+
+        Raises
+        ------
+        SceneError
+            When a datasheet file cannot be read any more, naming the key ``bearings``.
+        """
+        for problem in [*load_bearings_files(self.bearings or None, scene_folder(self.path),
+                                             self.allow_paths),
+                        *load_lubricants_table(self.lubricants)]:
+            raise SceneError(problem.reason, problem.key, line_of(self.text, problem.key),
+                             problem.allowed, self.path)
 
     @property
     def given_units(self) -> dict[str, str]:
@@ -414,6 +435,7 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
     settling = _settling(c, d)
     statics_method = _analysis_options(c, d, analysis, inputs)
     c.raise_if_any()
+    files = d.get("bearings")  # None: none
     return Scene(
         assembly=name, args=args, fidelity=fidelity, inputs=inputs, input_units=input_units,
         value_units=value_units,
@@ -422,6 +444,8 @@ def scene_from_dict(d: dict[str, Any], path: str | None = None,
         tolerance=float(tolerance), analysis=analysis, grid=grid, cases=cases,
         settling=settling, transient_on_purpose=on_purpose, statics_method=statics_method,
         path=path, text=text, allow_paths=allowed, lubricants=d.get("lubricants") or {},
+        bearings=[b for b in (files if isinstance(files, list) else [files])
+                  if isinstance(b, str)],
     )
 
 

@@ -142,3 +142,35 @@ def test_a_registration_the_sweep_does_not_name_stays_in_the_client():
     finally:
         sys.modules.pop("client_only_oils", None)
         unregister_lubricant("client only oil")
+
+
+def test_a_scene_runs_with_its_own_datasheet_whatever_was_read_since(tmp_path):
+    """Two scenes whose datasheets define one designation differently (a dynamic load rating
+    C of 11.2 kN in one folder, 5.6 kN in the other): a scene read first and run after the
+    second was read ran with the second's bearing, and its life was the other bearing's. A
+    scene now registers its own again when it is prepared; its life follows C^3 (ISO 281:
+    half the rating, an eighth of the life)."""
+    from bearingsim.scenes import load_scene, run_scene
+
+    lives = {}
+    for folder, rating in (("a", "11.2"), ("b", "5.6")):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / "mine.toml").write_text(TOML.replace("C_kN = 11.2",
+                                                                  f"C_kN = {rating}"))
+        (tmp_path / folder / "scene.toml").write_text(
+            'analysis = "statics"\nbearings = "mine.toml"\noutputs = ["L10h"]\n'
+            '[assembly]\nname = "deep_groove_ball_bearing"\nbearing = "MY6005"\n'
+            'fidelity = "quasi-static"\n[inputs]\n"load.Fx" = "1 kN"\n'
+            'shaft_speed = "1000 rpm"\n')
+    try:
+        first = load_scene(tmp_path / "a" / "scene.toml")
+        second = load_scene(tmp_path / "b" / "scene.toml")
+        lives["b"] = run_scene(second, write=False).rows[0]["L10h"]
+        lives["a"] = run_scene(first, write=False).rows[0]["L10h"]
+        assert get_bearing("MY6005").dynamic_load_rating == pytest.approx(11200.0)
+        copy = first.replace(title="a copy")  # through the scene's TOML form
+        assert copy.bearings == ["mine.toml"]
+        assert run_scene(copy, write=False).rows[0]["L10h"] == lives["a"]
+    finally:
+        unregister_bearing("MY6005")
+    assert lives["a"] == pytest.approx(8.0 * lives["b"], rel=1e-9)
