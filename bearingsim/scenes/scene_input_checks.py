@@ -19,6 +19,7 @@ from bearingsim.scenes.scene import Scene
 from bearingsim.scenes.scene_types import simulate_inputs
 from bearingsim.simulation.input_ranges import check_input_ranges
 from bearingsim.simulation.inputs import input_signal
+from bearingsim.units.registry import cycles_hint
 
 __all__ = ["input_range_problems", "input_unit_mismatches", "rest_problems",
            "value_unit_mismatches"]
@@ -44,6 +45,7 @@ def input_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
     """
     units = {sig.name: sig.unit for sig in system.inputs}
     return {n: f"input {n} is in {units[n]}, but its value is given in {si}"
+            + cycles_hint(si, units[n])
             + (f" (the expression {scene.inputs[n]!r}: rpm() converts r/min to rad/s, deg() "
                "degrees to rad)" if isinstance(scene.inputs.get(n), str) else "")
             for n, si in scene.input_units.items() if n in units and units[n] != si}
@@ -73,7 +75,8 @@ def value_unit_mismatches(scene: Scene, system: System) -> dict[str, str]:
         unit = units.get(section, {}).get(name)
         if unit is not None and unit != si:
             what = "parameter" if section == "parameters" else "state"
-            out[key] = f"{what} {name} is in {unit}, but its value is given in {si}"
+            out[key] = (f"{what} {name} is in {unit}, but its value is given in {si}"
+                        + cycles_hint(si, unit))
     return out
 
 

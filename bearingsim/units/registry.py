@@ -17,7 +17,7 @@ from bearingsim.cache_paths import cache_root
 from bearingsim.errors import ParameterError
 
 __all__ = ["PINT_CACHE", "UnitError", "registry", "pint_unit", "si_factor", "base_exponents",
-           "split_quantity", "quantity_to_si", "is_quantity", "same_quantity"]
+           "split_quantity", "quantity_to_si", "is_quantity", "same_quantity", "cycles_hint"]
 
 
 class UnitError(ParameterError):
@@ -25,7 +25,8 @@ class UnitError(ParameterError):
 
 
 _MODELICA_NAMES = {"rev": "revolution", "Ohm": "ohm", "um": "micrometer", "µm": "micrometer",
-                   "r/min": "rpm", "1/min": "rpm", "degC": "degree_Celsius",
+                   "r/min": "rpm", "1/min": "rpm", "min^-1": "rpm", "min⁻¹": "rpm",
+                   "min-1": "rpm", "degC": "degree_Celsius",
                    "°C": "degree_Celsius", "deg": "degree", "Nmm": "N*mm", "Nm": "N*m",
                    "cSt": "mm**2/s"}
 """Spellings of the model, catalogues and engineers that pint spells otherwise."""
@@ -33,10 +34,12 @@ _MODELICA_NAMES = {"rev": "revolution", "Ohm": "ohm", "um": "micrometer", "µm":
 _EXPRESSION_NAMES = {"t", "e", "pi"}
 """Names of the scene expressions (time, constants) that pint would read as units (tonne,
 elementary charge, the number pi): text using them is never a number with a unit."""
-_UNIT_TEXT = re.compile(r"[A-Za-zµ°²³_0-9\s*/^().\-]+")
+_UNIT_TEXT = re.compile(r"[A-Za-zµ°²³⁻¹_0-9\s*/^().\-]+")
 _SYMBOL_POWER = re.compile(r"([A-Za-zµ°]+)(-?\d+)(?![\w.])")
 _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity)"
-_QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*([^\d\s+\-.(][^()]*?|\(.*\))\s*$", re.IGNORECASE)
+_UNIT_START = r"1/\s*[A-Za-zµ°][^()]*?|[^\d\s+\-.(][^()]*?|\(.*\)"
+"""A unit after a number: not a digit, sign, point or space first, except ``1/min``."""
+_QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*({_UNIT_START})\s*$", re.IGNORECASE)
 
 
 PINT_CACHE = "pint"
@@ -185,6 +188,9 @@ def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
     e1, f1, o1 = base_exponents(unit)
     e2, f2, o2 = base_exponents(si_unit)
     if e1 != e2:
+        if cycles_hint(unit, si_unit):  # "1000 Hz" for a speed in rad/s
+            raise UnitError(f"{unit!r} is not a unit of {si_label(si_unit)} quantities (it is "
+                            f"{_dimension_text(unit)}){cycles_hint(unit, si_unit)}")
         if not e2:  # was "not a unit of - quantities (..., '1' is dimensionless)"
             raise UnitError(f"{unit!r} is not a unit of dimensionless quantities (it is "
                             f"{_dimension_text(unit)}); give a pure number")
@@ -192,6 +198,32 @@ def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
                         f"(it is {_dimension_text(unit)}, {si_unit!r} is "
                         f"{_dimension_text(si_unit)})")
     return f1 / f2, (o1 - o2) / f2
+
+
+def cycles_hint(unit: str, si_unit: str) -> str:
+    """For a unit of cycles per time given where an angle per time is wanted (``Hz``, ``1/s``
+    for ``rad/s``): what to write instead; else empty.
+
+    Parameters
+    ----------
+    unit : str
+        The unit given.
+    si_unit : str
+        The unit wanted.
+
+    Returns
+    -------
+    str
+        ``"; Hz counts cycles, not their angle: ..."`` or ``""``.
+    """
+    try:
+        given, wanted = base_exponents(unit)[0], base_exponents(si_unit)[0]
+    except UnitError:
+        return ""
+    if ("radian", 1.0) not in wanted or tuple(e for e in wanted if e[0] != "radian") != given:
+        return ""
+    return (f"; {unit} counts cycles, not their angle: give a rotational speed in r/min, rpm, "
+            "1/min or rev/s (revolutions carry the angle), or in rad/s")
 
 
 def _dimension_text(unit: str) -> str:

@@ -94,6 +94,35 @@ def test_constant_expressions_must_be_finite(text):
         compile_expression(text, "inputs.shaft_speed")
 
 
+@given(st.floats(-1e6, 1e6, allow_nan=False),
+       st.sampled_from(["1/min", "min^-1", "min⁻¹", "min-1"]))
+def test_revolutions_per_minute_in_every_spelling_of_the_standards(x, spelling):
+    """ISO 15312 and DIN catalogues write speeds in min⁻¹ (1/min): ``"1000 1/min"`` and
+    ``"1000 min⁻¹"`` were not read as numbers with a unit (refused as expressions with
+    invalid syntax), and ``"1000 min^-1"`` was read as a frequency (16.7 Hz) and refused for a
+    speed, although the units library takes ``1/min`` as r/min. Each now reads as r/min."""
+    value, unit = parse_quantity(f"{x!r} {spelling}")
+    assert unit == "rad/s" and value == pytest.approx(x * RPM, rel=1e-12, abs=1e-12)
+
+
+def test_a_frequency_for_a_speed_is_refused_saying_what_to_write(torque_system):
+    """``"1000 Hz"`` (or ``1/s``) for a speed: cycles without their angle, refused with the
+    units that carry it (before: only that Hz is not a unit of rad/s quantities)."""
+    hint = (r"Hz counts cycles, not their angle: give a rotational speed in r/min, rpm, 1/min "
+            r"or rev/s \(revolutions carry the angle\), or in rad/s")
+    with pytest.raises(UnitError, match=r"'Hz' is not a unit of rad/s quantities \(it is "
+                                        r"second\^-1\); " + hint):
+        to_si("1000 Hz", "rad/s", "shaft_speed")
+    with pytest.raises(SceneError, match=r"input shaft_speed is in rad/s, but its value is "
+                                         r"given in Hz; " + hint):
+        from bearingsim.scenes.preparation import prepare
+
+        prepare(_scene(shaft_speed="1000 1/s"))
+    same = [simulate(torque_system, 0.01, inputs={"shaft_speed": v}).final("w_shaft")
+            for v in ("3000 min⁻¹", "3000 rpm")]
+    assert same[0] == same[1] == pytest.approx(3000 * RPM, rel=1e-9)
+
+
 def test_wrong_quantity_is_refused_with_both_units():
     with pytest.raises(UnitError, match="'kN' is not a unit of rad/s"):
         to_si("2 kN", "rad/s", "shaft_speed")
