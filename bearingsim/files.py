@@ -203,7 +203,8 @@ def confined_path(name: str, base: str | Path, allowed: Sequence[str | Path] = (
 
 
 def open_regular(path: str | Path, what: str = "file", max_bytes: int | None = None):
-    """Open ``path`` for reading as text (UTF-8, universal newlines) if it is a regular file.
+    """Open ``path`` for reading as text (UTF-8, a byte-order mark skipped; universal
+    newlines) if it is a regular file.
 
     A FIFO, device or socket is refused without blocking (it is opened non-blocking and
     checked before anything is read).
@@ -240,7 +241,8 @@ def open_regular(path: str | Path, what: str = "file", max_bytes: int | None = N
                                   f"{max_bytes} bytes it may have")
         if hasattr(os, "set_blocking"):
             os.set_blocking(fd, True)
-        return open(fd, encoding="utf-8", newline="")  # noqa: SIM115 - the caller closes it
+        # utf-8-sig: a byte-order mark (Excel's "CSV UTF-8", Notepad) is not text of the file
+        return open(fd, encoding="utf-8-sig", newline="")  # noqa: SIM115 - the caller closes it
     except BaseException:
         os.close(fd)
         raise

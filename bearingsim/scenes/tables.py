@@ -311,7 +311,8 @@ def read_table_file(key: str, v: dict[str, Any], base: Path, allowed: Sequence[P
                                    "finite numbers")
                     target.append(number)
     except UnicodeDecodeError:
-        raise fail("file", "not UTF-8 text") from None
+        raise fail("file", "not UTF-8 text", "UTF-8 text (from Excel: save as 'CSV UTF-8')"
+                   ) from None
     except csv.Error as exc:
         raise fail("file", f"not a CSV table near line {line} ({type(exc).__name__})") from None
     except OSError as exc:

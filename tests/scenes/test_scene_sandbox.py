@@ -347,3 +347,30 @@ def test_confined_path_never_leaves_the_base(tmp_path_factory, parts):
     except PathOutsideError:
         return
     assert path == base.resolve() or base.resolve() in path.parents
+
+
+def test_files_with_a_byte_order_mark_read_as_without(tmp_path):
+    """Excel's "CSV UTF-8" and Notepad write a UTF-8 byte-order mark first: a table's first
+    column was then '\\ufefftime' ("column 'time' not in the header row"), a scene file "not
+    valid TOML (line 1, column 1)" and a datasheet's first column unknown. The mark is now
+    skipped: each reads as the same file without it."""
+    from bearingsim.catalog import get_bearing, load_datasheet, unregister_bearing
+    from bearingsim.scenes.tables import read_table_file
+
+    bom = "\ufeff"
+    (tmp_path / "t.csv").write_text(bom + "time [s],w [rpm]\n0,0\n0.5,3000\n", encoding="utf-8")
+    assert (tmp_path / "t.csv").read_bytes().startswith(b"\xef\xbb\xbf")
+    times, values, _, unit = read_table_file("inputs.w", {"file": "t.csv", "column": "w"},
+                                             tmp_path)
+    assert list(times) == [0.0, 0.5] and unit == "rad/s"
+    assert list(values) == pytest.approx([0.0, 3000 * math.pi / 30], rel=1e-15)
+    scene = load_scene("double_layer_rs")
+    (tmp_path / "scene.toml").write_text(bom + scene.text, encoding="utf-8")
+    assert load_scene(tmp_path / "scene.toml").to_dict() == scene.to_dict()
+    (tmp_path / "mine.csv").write_text(bom + "designation,d_mm,D_mm,B_mm,Z,Dw_mm,dm_mm\n"
+                                       "BOM6005,25,47,12,10,6.35,36\n", encoding="utf-8")
+    try:
+        assert load_datasheet(tmp_path / "mine.csv") == ["BOM6005"]
+        assert get_bearing("BOM6005").ball_count == 10
+    finally:
+        unregister_bearing("BOM6005")
