@@ -197,7 +197,8 @@ class Scene:  # numpydoc ignore=PR02
         for k, v in self.inputs.items():
             inputs[k] = {"times": list(v.times), "values": list(v.values)} if isinstance(
                 v, TableInput) else v
-        sim = {k: v for k, v in asdict(self.simulation).items() if v is not None}
+        sim = {k: v for k, v in asdict(self.simulation).items() if v is not None
+               and (self.analysis == "transient" or k == "timeout")}
         out = asdict(self.output)
         kind = ({"settling": asdict(self.settling),
                  "transient_on_purpose": self.transient_on_purpose}
@@ -221,9 +222,8 @@ class Scene:  # numpydoc ignore=PR02
         }
 
     def register_own(self) -> None:
-        """Register the scene's own datasheet bearings and lubricants again, replacing those of
-        the same names that scenes read since registered: a scene runs with its own (it ran
-        with the last-read scene's bearing of a shared designation).
+        """Register the scene's datasheet bearings and lubricants again (replacing those of
+        their names that scenes read since registered): a scene runs with its own.
 
         Raises
         ------

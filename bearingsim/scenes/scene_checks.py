@@ -479,6 +479,15 @@ def _analysis_options(c: _Collector, d: dict[str, Any], analysis: str,
     for key in ("settling", "transient_on_purpose"):
         if key in d:
             c.add(key, f"{key} applies to transient scenes only (analysis = {analysis!r})")
+    sim, out = d.get("simulation"), d.get("output")  # were read, then left unused
+    for k in sim if isinstance(sim, dict) else {}:
+        if k in Simulation.__dataclass_fields__ and k != "timeout":
+            c.add(f"simulation.{k}", f"simulation.{k} applies to transient scenes only (a "
+                  f"{analysis} analysis solves each point directly, not in time)",
+                  "simulation.timeout (a sweep point's time budget)")
+    if isinstance(out, dict) and out.get("plot_groups"):
+        c.add("output.plot_groups", f"output.plot_groups applies to transient scenes only "
+              f"(the {analysis} figure draws its own columns; outputs chooses them)")
     for name, v in inputs.items():
         try:
             constant = constant_value(v, f"inputs.{name}")

@@ -241,9 +241,14 @@ fidelity = "torque"
 Fa = 0.0
 Fr = 200.0
 {speed}
-[simulation]
-t_end = 0.05
-"""
+{simulation}"""
+
+
+def _at_rest(analysis: str, speed: str, outputs: str) -> str:
+    """The scene _AT_REST; a transient one with its end time (a steady one has none)."""
+    simulation = "[simulation]\nt_end = 0.05\n" if analysis == "transient" else ""
+    return _AT_REST.format(analysis=analysis, speed=speed, outputs=outputs,
+                           simulation=simulation)
 
 
 @pytest.mark.parametrize(("analysis", "speed", "outputs", "key"), [
@@ -256,7 +261,7 @@ def test_outputs_without_a_value_at_rest_are_refused(analysis, speed, outputs, k
     """Rs = w_middle / w_shaft is 0/0 and a life in hours undefined at rest. Old code: Rs = 0
     (the regularized ratio) reported as the steady answer, or as settled at the end of a
     transient, and inner_layer.L10h = inf ("None" / "inf/nan" on the console)."""
-    text = _AT_REST.format(analysis=analysis, speed=speed, outputs=outputs)
+    text = _at_rest(analysis, speed, outputs)
     with pytest.raises(SceneError, match=r"input shaft_speed = 0 rad/s holds the shaft at rest, "
                        r"where the outputs .* have no value: .*valid range of shaft_speed: other "
                        r"than 0 \[rad/s\]") as err:
@@ -266,8 +271,7 @@ def test_outputs_without_a_value_at_rest_are_refused(analysis, speed, outputs, k
 
 
 def test_a_bearing_at_rest_answers_what_has_a_value_there():
-    text = _AT_REST.format(analysis="steady", speed="shaft_speed = 0.0",
-                           outputs='outputs = ["w_middle", "M_shaft"]')
+    text = _at_rest("steady", "shaft_speed = 0.0", 'outputs = ["w_middle", "M_shaft"]')
     row = run_scene(parse_scene(text), write=False).rows[0]
     assert row["w_middle"] == 0.0 and row["M_shaft"] == 0.0
 
@@ -345,12 +349,32 @@ def test_statics_of_an_assembly_without_statics_is_refused():
      "transient scenes only"),
     ('[settling]\nwindow = 1.5\n[simulation]\nt_end = 1.0\n', "settling.window",
      "out of range"),
+    # were read and then left unused: an rtol that could not tighten a steady solve
+    ('analysis = "steady"\n[simulation]\nrtol = 1e-9\n', "simulation.rtol",
+     r"simulation\.rtol applies to transient scenes only \(a steady analysis solves each "
+     r"point directly, not in time\)"),
+    ('analysis = "modes"\n[simulation]\nt_end = 2.0\n', "simulation.t_end",
+     "transient scenes only"),
+    ('analysis = "steady"\n[output]\nplot_groups = [["Rs"]]\n', "output.plot_groups",
+     r"output\.plot_groups applies to transient scenes only \(the steady figure draws its "
+     r"own columns; outputs chooses them\)"),
 ])
 def test_analysis_keys_are_validated(text, key, match):
     base = '[assembly]\nname = "double_layer_bearing"\n'
     with pytest.raises(SceneError, match=match) as info:
         parse_scene(text + base)
     assert any(p.key == key for p in info.value.problems), [p.key for p in info.value.problems]
+
+
+def test_a_steady_scene_keeps_its_time_budget_and_copies_without_time_settings():
+    """simulation.timeout (a sweep point's budget) is the one simulation setting of an
+    analysis scene; its TOML form (to_dict, replace) holds no other, so a copy is valid."""
+    scene = parse_scene('analysis = "steady"\n[simulation]\ntimeout = "2 s"\n'
+                        '[assembly]\nname = "double_layer_bearing"\n[inputs]\n'
+                        'shaft_speed = "1000 rpm"\n')
+    assert scene.simulation.timeout == 2.0
+    assert scene.to_dict()["simulation"] == {"timeout": 2.0}
+    assert scene.replace(title="a copy").simulation.timeout == 2.0
 
 
 def test_grid_values_take_units_and_the_first_key_varies_fastest():
