@@ -488,6 +488,17 @@ def _analysis_options(c: _Collector, d: dict[str, Any], analysis: str,
     if isinstance(out, dict) and out.get("plot_groups"):
         c.add("output.plot_groups", f"output.plot_groups applies to transient scenes only "
               f"(the {analysis} figure draws its own columns; outputs chooses them)")
+    if analysis == "statics":  # its solvers take the bearing by name: model values unused
+        cases = [case for case in d.get("cases") or [] if isinstance(case, dict)]
+        swept = {"grid": list(d.get("grid") or {}) if isinstance(d.get("grid"), dict) else [],
+                 "cases": [k for case in cases for k in case]}
+        for key in [*(s for s in ("parameters", "initial") if d.get(s)),
+                    *(where for where, keys in swept.items()
+                      if any(str(k).startswith("parameters.") for k in keys))]:
+            c.add(key, "a statics scene solves its bearing from the designation and the "
+                  "assembly arguments, not from the model's parameters or start values, which "
+                  "it would leave unused", "the bearing's values in a datasheet (bearings = "
+                  "...), assembly arguments, or a steady scene of the quasi-static level")
     for name, v in inputs.items():
         try:
             constant = constant_value(v, f"inputs.{name}")

@@ -355,6 +355,16 @@ def test_statics_of_an_assembly_without_statics_is_refused():
      r"point directly, not in time\)"),
     ('analysis = "modes"\n[simulation]\nt_end = 2.0\n', "simulation.t_end",
      "transient scenes only"),
+    # a statics scene solves its bearing by designation: a groove curvature fi of 0.56 gave
+    # the answer of the catalogue's 0.52 without a word
+    ('analysis = "statics"\n[parameters]\n"row.fi" = 0.56\n', "parameters",
+     r"a statics scene solves its bearing from the designation and the assembly arguments, "
+     r"not from the model's parameters or start values, which it would leave unused; "
+     r"allowed: the bearing's values in a datasheet"),
+    ('analysis = "statics"\n[grid]\n"parameters.row.fi" = [0.52, 0.56]\n', "grid",
+     "not from the model's parameters"),
+    ('analysis = "statics"\n[[cases]]\n"parameters.row.fi" = 0.56\n', "cases",
+     "not from the model's parameters"),
     ('analysis = "steady"\n[output]\nplot_groups = [["Rs"]]\n', "output.plot_groups",
      r"output\.plot_groups applies to transient scenes only \(the steady figure draws its "
      r"own columns; outputs chooses them\)"),
