@@ -34,6 +34,11 @@ def speed_inputs(system: System, u: np.ndarray) -> list[str]:
             if units.get(n) == "rad/s" and v != 0.0]
 
 
+def _free_names(system: System, free: np.ndarray) -> tuple[list[str], dict[str, str]]:
+    """The free states' names and the model's units by variable name."""
+    return [system.state_names[k] for k in free], system.variable_units
+
+
 SHOWN_STATES = 6
 """Most states a message of :func:`~bearingsim.simulation.steady.steady_state` names."""
 
@@ -68,8 +73,7 @@ def not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
     str
         The message.
     """
-    names = [system.state_names[k] for k in free]
-    units = system.variable_units
+    names, units = _free_names(system, free)
     angles = [names[i] for i in range(len(free)) if units.get(names[i]) == "rad"
               and np.count_nonzero(jacobian[i]) == 1
               and np.isin(jacobian[i][jacobian[i] != 0.0], (1.0, -1.0)).all()]
@@ -122,8 +126,7 @@ def running_off(system: System, sol: Any, r: np.ndarray, step: np.ndarray,
     str
         The message.
     """
-    names = [system.state_names[k] for k in free]
-    units = system.variable_units
+    names, units = _free_names(system, free)
     moved = np.abs(step) / np.maximum(np.abs(sol.x), np.finfo(float).tiny)
     shown = []
     for i in np.argsort(-moved)[:SHOWN_STATES]:
