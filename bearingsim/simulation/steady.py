@@ -54,9 +54,10 @@ def integrator_states(system: System) -> list[int]:
 def turning_angles(system: System) -> list[str]:
     """Names of the states that make the model's steady running periodic when a speed input
     turns it (empty: the model may have a fixed point): angles (in rad) whose derivative is
-    one other state (their speed) and that some derivative depends on (a ball's or cage's
-    position, which the contact geometry reads). A free rotor's angle, which nothing reads,
-    is not one (:func:`integrator_states`).
+    one other state (their speed) and no input, and that some derivative depends on (a ball's
+    or cage's position, which the contact geometry reads). A free rotor's angle, which nothing
+    reads, is not one (:func:`integrator_states`), nor the integral of a speed error (a PI
+    speed controller's ``xi' = w_ref - w``, in rad too, which settles where ``w = w_ref``).
 
     Parameters
     ----------
@@ -73,8 +74,9 @@ def turning_angles(system: System) -> list[str]:
     alone = np.bincount(rows, minlength=len(names)) == 1  # a derivative of one state only
     rate = dict(zip(rows[alone[rows]].tolist(), cols[alone[rows]].tolist(), strict=True))
     read = set(cols.tolist())
+    driven = set(system.functions["ode"].jac_sparsity(0, 2).get_triplet()[0])  # by an input
     return [name for k, name in enumerate(names) if units.get(name) == "rad" and k in read
-            and k in rate and units.get(names[rate[k]]) == "rad/s"]
+            and k in rate and k not in driven and units.get(names[rate[k]]) == "rad/s"]
 
 
 @entry_point
@@ -225,7 +227,7 @@ def _solve(system: System, res, jac, z: np.ndarray, tol: float, residual_tol: fl
         if step is not None and _norm(step) > math.sqrt(tol) * max(_norm(sol.x), 1.0):
             raise SimulationError(running_off(system, sol, r, step, free))
     if not (sol.success or converged) or not np.all(np.isfinite(sol.x)):
-        raise SimulationError(not_found(system, sol, r, jac(sol.x), free, speeds,
+        raise SimulationError(not_found(system, sol, r, turning_angles(system), free, speeds,
                                         unsolved[0]))
     return sol.x
 

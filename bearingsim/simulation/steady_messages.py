@@ -43,11 +43,11 @@ SHOWN_STATES = 6
 """Most states a message of :func:`~bearingsim.simulation.steady.steady_state` names."""
 
 
-def not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
+def not_found(system: System, sol: Any, r: np.ndarray, angles: list[str],
               free: np.ndarray, speeds: list[str], unsolved: int) -> str:
     """Why no steady state was found, in one line: with a speed input turning the model and
-    angle states in it (a state in rad whose derivative is one other state, its speed), its
-    steady running is periodic, not a fixed point; else the largest derivatives left at the
+    angle states in it (:func:`~bearingsim.simulation.steady.turning_angles`), its steady
+    running is periodic, not a fixed point; else the largest derivatives left at the
     closest point MINPACK reached, with their units. And the points where the model had no
     value.
 
@@ -59,8 +59,8 @@ def not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
         MINPACK's result (its message).
     r : numpy.ndarray
         The derivatives of the free states at ``sol.x`` [state units/s].
-    jacobian : numpy.ndarray
-        Their Jacobian there.
+    angles : list of str
+        The model's turning angles.
     free : numpy.ndarray
         Indices of the free states in ``system.state_names``.
     speeds : list of str
@@ -74,9 +74,6 @@ def not_found(system: System, sol: Any, r: np.ndarray, jacobian: np.ndarray,
         The message.
     """
     names, units = _free_names(system, free)
-    angles = [names[i] for i in range(len(free)) if units.get(names[i]) == "rad"
-              and np.count_nonzero(jacobian[i]) == 1
-              and np.isin(jacobian[i][jacobian[i] != 0.0], (1.0, -1.0)).all()]
 
     def listed(items: list[str]) -> str:
         more = len(items) - SHOWN_STATES

@@ -78,3 +78,29 @@ def test_a_steady_scene_of_a_turning_model_is_refused_before_it_runs():
                        r"its angles turn with it \(cage.phi, ball\[0\].theta") as caught:
         validate_scene(parse_scene(text))
     assert caught.value.line == 1
+
+
+def test_a_speed_controllers_integral_is_no_turning_angle():
+    """A PI speed controller integrates the speed error, ``xi' = w_ref - w``, in rad: taken for
+    a turning angle (one state, a speed, in its derivative), it made a steady or modes scene of
+    the motor drive refused ("no steady state while motor.w_ref turns it ... periodic"),
+    though the drive settles where w = w_ref. Its derivative also depends on the input w_ref,
+    which a turning angle's (phi' = w) does not. The steady drive runs at the reference speed
+    exactly (integral action) and its bearing has the Rs of the bare bearing at that speed."""
+    from bearingsim.assemblies import double_layer_bearing
+    from bearingsim.assemblies.motor_drive import motor_drive
+    from bearingsim.scenes import parse_scene, run_scene
+    from bearingsim.simulation.steady import turning_angles
+
+    for motor in ("dc", "pmsm"):
+        assert turning_angles(assemble(motor_drive(motor=motor))) == []
+    rows = run_scene(parse_scene(
+        'analysis = "steady"\noutputs = ["shaft.w", "bearing.Rs"]\n[assembly]\n'
+        'name = "motor_drive"\n[grid]\n"inputs.motor.w_ref" = ["1000 rpm", "3000 rpm"]\n'),
+        write=False).rows
+    bare = assemble(double_layer_bearing())
+    for row in rows:
+        assert row["shaft.w"] == pytest.approx(row["motor.w_ref"], rel=1e-9)
+        x = steady_state(bare, inputs={"shaft_speed": row["motor.w_ref"]})
+        w_middle = x[bare.state_names.index("middle.sleeve.w")]
+        assert row["bearing.Rs"] == pytest.approx(w_middle / row["motor.w_ref"], rel=1e-6)
