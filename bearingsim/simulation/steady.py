@@ -163,8 +163,8 @@ def steady_state(
             p = system.p0(dict(zip(names, values.tolist(), strict=True)))
         except ParameterError as exc:
             raise ParameterError(f"{where}: p: {exc}") from None
-    x = (system.x0() if x_guess is None
-         else check_vector(x_guess, system.n_states, "x_guess", "state units", where))
+    x = (system.x0() if x_guess is None  # a copy: the caller's guess is not overwritten
+         else check_vector(x_guess, system.n_states, "x_guess", "state units", where).copy())
     free = _free_states(system)
     if not free.size:
         return x

@@ -97,3 +97,14 @@ def test_a_linear_relaxation_has_its_analytic_steady_state(a, b):
     """y' = b - a y: y = b / a, over eight decades of the rate."""
     x = steady_state(assemble(Relaxing(a, b)), compiled=False)
     assert x[0] == pytest.approx(b / a, rel=1e-9, abs=1e-12)
+
+
+def test_the_guess_is_not_overwritten():
+    """steady_state wrote its solution into the caller's x_guess array (the guess a caller
+    keeps for the next point, or a scene's start values, changed under it)."""
+    system = assemble(double_layer_bearing("61905", "61907", fidelity="torque", drive="speed"))
+    guess = system.x0()
+    kept = guess.copy()
+    x = steady_state(system, inputs=INPUTS, x_guess=guess)
+    np.testing.assert_array_equal(guess, kept)
+    assert not np.array_equal(x, kept)  # the solution moved away from the guess
