@@ -352,14 +352,16 @@ def run_operating_point(prep: Any, point: dict[str, Any] | None = None,
     from bearingsim.simulation import linearize, steady_state
 
     system = prep.system
+    start = system.x0(scene.initial) if scene.initial else None  # the scene's [initial]
     try:
-        x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=x_guess)
+        x = steady_state(system, inputs=inputs, parameters=parameters,
+                         x_guess=start if x_guess is None else x_guess)
     except SimulationError:
         if x_guess is None:
             raise
         # the previous point's state led nowhere (a point of another arrangement: DB's state
-        # is no start for DT): from the model's own start, as the point alone
-        x = steady_state(system, inputs=inputs, parameters=parameters)
+        # is no start for DT): from the scene's own start, as the point alone
+        x = steady_state(system, inputs=inputs, parameters=parameters, x_guess=start)
     if scene.analysis == "steady":
         return {**row, **_observed_outputs(prep, x, inputs, parameters), "_state": x}
     linear = linearize(system, x, inputs=inputs, parameters=parameters)

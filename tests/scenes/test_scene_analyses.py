@@ -803,3 +803,28 @@ fidelity = "quasi-static"
 """), write=False)
     assert "needs an axial load" in run.rows[0]["error"]
     assert "error" not in run.rows[1] and run.rows[1]["Q_max_inner"] > 100.0
+
+
+def test_a_steady_scene_starts_its_solve_from_its_initial_values(monkeypatch):
+    """A steady or modes scene checked its [initial] state names and then solved from the
+    model's own start values: the start it gave (to reach another equilibrium, or to help a
+    hard one converge) was left unused. Its first point now starts there; the steady Rs is
+    the same (it is unique), reached from the given middle-ring speed."""
+    import bearingsim.simulation as simulation
+
+    text = ('analysis = "steady"\noutputs = ["Rs"]\n[assembly]\nname = "double_layer_bearing"\n'
+            '[inputs]\nshaft_speed = "1000 rpm"\n')
+    plain = run_scene(parse_scene(text), write=False).rows[0]["Rs"]
+    guesses = []
+    solve = simulation.steady_state
+
+    def spy(system, **kwargs):
+        guesses.append((system.state_names, np.array(kwargs.get("x_guess"))))
+        return solve(system, **kwargs)
+
+    monkeypatch.setattr(simulation, "steady_state", spy)
+    row = run_scene(parse_scene(text + '[initial]\n"middle.sleeve.w" = "200 rpm"\n'),
+                    write=False).rows[0]
+    names, guess = guesses[0]
+    assert guess[names.index("middle.sleeve.w")] == pytest.approx(rpm_to_rad_s(200), rel=1e-15)
+    assert row["Rs"] == pytest.approx(plain, rel=1e-9)
