@@ -297,7 +297,7 @@ def keyword_names(func: Callable, exclude: tuple[str, ...] = ()) -> tuple[str, .
 
 
 def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str,
-                  what: str, context: str = "", arguments: tuple[str, ...] = ()) -> None:
+                  what: str, context: str = "", owner: Callable | None = None) -> None:
     """Raise for keyword options that are not among ``accepted``.
 
     Parameters
@@ -312,19 +312,18 @@ def check_options(options: dict[str, Any], accepted: tuple[str, ...], where: str
         What the options are called (e.g. ``"layer_options"``).
     context : str
         Appended to the name list (e.g. ``"at fidelity 'torque'"``).
-    arguments : tuple of str
-        The function's own named arguments (:func:`keyword_names` of the function), listed after the
-        options: a near miss of one (``preload_force`` for ``preload``) is named as well.
+    owner : callable, optional
+        The function that takes them: its arguments are listed too (read for the message only).
 
     Raises
     ------
     ParameterError
-        ``"<where>: unknown <what> 'a', 'b' <context>; accepted: ...; did you mean 'c'?"``
-        (the hint for the first unknown name that is close to a valid one).
+        ``"<where>: unknown <what> 'a' <context>; accepted: ...; did you mean 'c'?"``.
     """
     unknown = [k for k in options if k not in accepted]
     if unknown:
         ctx = f" {context}" if context else ""
+        arguments = keyword_names(owner) if owner is not None else ()
         valid = [*accepted, *arguments]
         close = next((c for k in unknown if isinstance(k, str)
                       for c in difflib.get_close_matches(k, valid, n=1)), None)

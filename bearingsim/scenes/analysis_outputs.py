@@ -10,9 +10,9 @@ from __future__ import annotations
 from typing import Any
 
 from bearingsim.scenes.scene import Scene, SceneError, line_of
-from bearingsim.scenes.statics_table import statics_of
+from bearingsim.scenes.statics_table import STATICS
 
-__all__ = ["ANALYSIS_COLUMNS", "check_analysis_outputs", "model_outputs_asked",
+__all__ = ["ANALYSIS_COLUMNS", "analysis_columns", "check_analysis_outputs", "model_outputs_asked",
            "requested_outputs", "selected_columns"]
 
 ANALYSIS_COLUMNS = ("statics", "modes")
@@ -57,11 +57,27 @@ def requested_outputs(scene: Scene, spec: Any) -> list[str]:
                                           else list(spec.default_outputs))
 
 
-def _allowed(prep: Any) -> list[str]:
-    """The column names a statics or modes scene's ``outputs`` may name."""
-    if prep.scene.analysis == "statics":
-        return list(statics_of(prep).columns)
-    return list(dict.fromkeys(prep.spec.mode_names.values()))
+def analysis_columns(scene: Scene) -> dict[str, tuple[str, str]]:
+    """What a statics or modes scene's ``outputs`` may name: the columns of its assembly's
+    statics solution, or the assembly's named modes (natural frequencies); none for the other
+    analyses.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+
+    Returns
+    -------
+    dict of str to (str, str)
+        Column name -> (SI unit, description).
+    """
+    if scene.analysis == "statics" and scene.spec.name in STATICS:
+        return dict(STATICS[scene.spec.name].columns)
+    if scene.analysis == "modes":
+        return {n: ("Hz", f"natural frequency of the {n} mode")
+                for n in scene.spec.mode_names.values()}
+    return {}
 
 
 def check_analysis_outputs(prep: Any) -> None:
@@ -81,7 +97,7 @@ def check_analysis_outputs(prep: Any) -> None:
     scene = prep.scene
     if scene.analysis not in ANALYSIS_COLUMNS or not scene.outputs:
         return
-    allowed = _allowed(prep)
+    allowed = list(analysis_columns(scene))
     unknown = [n for n in scene.outputs if n not in allowed]
     if not unknown:
         return

@@ -8,9 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from bearingsim.errors import ParameterError
+from bearingsim.scenes.analysis_outputs import analysis_columns
 from bearingsim.scenes.preparation import reduced_args, scene_inputs
 from bearingsim.scenes.scene import Scene, SceneError, line_of
-from bearingsim.scenes.statics_table import STATICS
 
 __all__ = ["ModelVariables", "model_variables"]
 
@@ -101,15 +101,4 @@ def model_variables(scene: Scene) -> ModelVariables:
         [(n, q.unit, q.doc) for n, q in spec.post(args).items()],
         [(q.name, q.unit, float(v), _range_text(q.declaration), q.description)
          for q, v in zip(system.params, values, strict=True)],
-        _analysis_columns(scene))
-
-
-def _analysis_columns(scene: Scene) -> list[tuple[str, str, str]]:
-    """The columns a statics or modes scene's ``outputs`` may name, as (name, unit,
-    description)."""
-    if scene.analysis == "statics" and scene.spec.name in STATICS:
-        return [(n, unit, text) for n, (unit, text) in STATICS[scene.spec.name].columns.items()]
-    if scene.analysis == "modes":
-        return [(n, "Hz", f"natural frequency of the {n} mode")
-                for n in dict.fromkeys(scene.spec.mode_names.values())]
-    return []
+        [(n, unit, text) for n, (unit, text) in analysis_columns(scene).items()])

@@ -319,16 +319,16 @@ def _newton(res, jac, z: np.ndarray, tol: float, residual_tol: float) -> np.ndar
         _, _, step, info = dgesv(jac(z), -r)
         if info != 0:  # a singular Jacobian (an exact zero pivot)
             return None
-        norm, lam = math.sqrt(r.dot(r)), 1.0
+        norm, lam = _norm(r), 1.0
         while True:
             taken = lam * step
             z_new = z + taken
             r_new = res(z_new)
-            if (math.sqrt(taken.dot(taken)) <= tol * max(math.sqrt(z_new.dot(z_new)), tol)
+            if (_norm(taken) <= tol * max(_norm(z_new), tol)
                     and np.abs(r_new).max() <= residual_tol):
                 return z_new
             if (np.isfinite(r_new).all()
-                    and math.sqrt(r_new.dot(r_new)) <= (1.0 - SUFFICIENT_DECREASE * lam) * norm):
+                    and _norm(r_new) <= (1.0 - SUFFICIENT_DECREASE * lam) * norm):
                 break
             if lam <= SMALLEST_STEP_FRACTION:
                 return None

@@ -188,9 +188,10 @@ def si_factor(unit: str, si_unit: str) -> tuple[float, float]:
     e1, f1, o1 = base_exponents(unit)
     e2, f2, o2 = base_exponents(si_unit)
     if e1 != e2:
-        if cycles_hint(unit, si_unit):  # "1000 Hz" for a speed in rad/s
+        hint = cycles_hint(unit, si_unit)  # "1000 Hz" for a speed in rad/s
+        if hint:
             raise UnitError(f"{unit!r} is not a unit of {si_label(si_unit)} quantities (it is "
-                            f"{_dimension_text(unit)}){cycles_hint(unit, si_unit)}")
+                            f"{_dimension_text(unit)}){hint}")
         if not e2:  # was "not a unit of - quantities (..., '1' is dimensionless)"
             raise UnitError(f"{unit!r} is not a unit of dimensionless quantities (it is "
                             f"{_dimension_text(unit)}); give a pure number")

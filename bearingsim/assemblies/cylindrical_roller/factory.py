@@ -47,7 +47,7 @@ def cylindrical_roller_bearing(designation: str | RollerBearingGeometry = "NU206
     """
     check_options(options, keyword_names(CylindricalRollerOptions, ("bearing", "fidelity")),
                   "cylindrical_roller_bearing", "option(s)", f"at fidelity {fidelity!r}",
-                  arguments=keyword_names(cylindrical_roller_bearing))
+                  owner=cylindrical_roller_bearing)
     opts = CylindricalRollerOptions(designation, fidelity, **options)
     if opts.fidelity == "torque":
         return CylindricalRollerTorque(opts)

@@ -14,7 +14,7 @@ from bearingsim.errors import ParameterError
 from bearingsim.physics.bearing_design import bearing_design
 from bearingsim.physics.lubricant import Lubricant, Oil, as_lubricant
 from bearingsim.units import is_quantity
-from bearingsim.validation import check_options, check_quantity, keyword_names
+from bearingsim.validation import check_options, check_quantity
 
 
 def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic",
@@ -93,7 +93,7 @@ def deep_groove_ball_bearing(designation: str = "6304", fidelity: str = "dynamic
     if options:
         check_options(options, DeepGrooveOptions.keyword_names() + ("name",) + cage_keys,
                       "deep_groove_ball_bearing", "option(s)", f"at fidelity {fidelity!r}",
-                      arguments=keyword_names(deep_groove_ball_bearing))
+                      owner=deep_groove_ball_bearing)
     design = bearing_design(designation, clearance,
                             **{k: options.pop(k) for k in cage_keys if k in options})
     if fidelity == "quasi-static":

@@ -61,7 +61,7 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
         where = "double_layer_bearing"
         check_options(kwargs, keyword_names(NestedQuasiStatic, ("inner", "outer", "structure")),
                       where, "keyword(s)", "at fidelity 'quasi-static'",
-                      arguments=keyword_names(double_layer_bearing))
+                      owner=double_layer_bearing)
         if _pair(lubrication) != _pair(_DEFAULT_LUBRICATION):
             raise ParameterError(f"{where}: lubrication = {lubrication!r} is not used: the "
                                  f"quasi-static level has no friction (Hertz load sharing "
@@ -70,7 +70,7 @@ def double_layer_bearing(inner="61905", outer="61907", structure=None, fidelity=
     level = DynamicDoubleLayerOptions if fidelity == "dynamic" else DoubleLayerOptions
     context = "at fidelity 'dynamic'" if fidelity == "dynamic" else f"at fidelity {fidelity!r}"
     check_options(kwargs, _option_names(level) + ("name",), "double_layer_bearing",
-                  "keyword(s)", context, arguments=keyword_names(double_layer_bearing))
+                  "keyword(s)", context, owner=double_layer_bearing)
     name = kwargs.pop("name", "bearing")
     pair = dict(inner=inner, outer=outer, structure=structure, lubrication=lubrication)
     if fidelity == "dynamic":

@@ -193,6 +193,6 @@ def duplex_pair(designation: str | BearingGeometry = "7020C", arrangement: str =
     check_options(options, keyword_names(DuplexOptions, (
         "bearing", "arrangement", "preload", "speed", "shaft", "lubricant",
         "ball_position_angle")), "duplex_pair", "option(s)",
-        arguments=keyword_names(duplex_pair))
+        owner=duplex_pair)
     return DuplexPair(DuplexOptions(designation, arrangement, preload, speed, shaft, lubricant,
                                     ball_position_angle, **options), name, shared_radial)
